@@ -1,0 +1,69 @@
+//! Derive macros implementing the JAUS RA 3.3 wire codec.
+//!
+//! This crate is the only place where wire layout rules live. Each derive parses its
+//! `#[jaus(...)]` attributes, validates them (reporting every problem at once, with the
+//! span of the offending attribute or field), and expands to implementations of
+//! `jaus::codec::Encode` and `jaus::codec::Decode` (plus `jaus::JausMessage` for
+//! messages). On an attribute error a minimal impl is still emitted so that users see
+//! the real error and not a cascade of "trait not implemented" errors.
+//!
+//! | derive | for | container attributes |
+//! |---|---|---|
+//! | `JausMessage` | a struct that is a whole message body | `code = 0x....` (required), `presence = u8\|u16\|u32`, `crate = "path"` |
+//! | `JausRecord` | a struct nested in messages (list element, shared type) | `presence = ...`, `crate = ...` |
+//! | `JausEnum` | a C-like enum of named values | `repr = u8\|u16\|u32`; optional `#[jaus(unknown)] Unknown(T)` variant preserving undefined values |
+//! | `JausBits` | a struct of named bits of one integer | `repr = ...`; fields `#[jaus(bit = N)] bool`, `#[jaus(bits = A..=B)] uN`, `#[jaus(reserved)] uN` |
+//! | `JausUnion` | an enum whose variant is chosen by a leading tag | `tag = u8\|u16\|u32`; variants `#[jaus(tag = N)] Name(T)` or unit |
+//!
+//! Field attributes of messages and records:
+//!
+//! | attribute | applies to | wire form |
+//! |---|---|---|
+//! | (none) | integers, `f32`, `f64`, any `Encode + Decode` type | the value, little-endian |
+//! | `bit = N` | `Option<T>` | present iff bit N of the presence vector is set; the presence vector is computed on encode, never stored |
+//! | `scaled(T, lo, hi)` | `f64`, `Vec<f64>` | integer `T` with `value = n * (hi - lo) / D + bias` |
+//! | `count = T` | `Vec<E>` | element count as unsigned `T`, then the elements |
+//! | `size = T` | `String`, `Vec<u8>`, any codec type | byte length as unsigned `T`, then the bytes |
+//! | `fixed = N` | `String`, `Vec<u8>` | exactly N bytes, NUL padded; with `accept_short` a shorter final field is accepted on decode |
+//! | `rest` | `String`, `Vec<u8>`, `Vec<E>` (last field) | everything to the end of the body; `nul` adds a terminating NUL to a string |
+
+mod attr;
+mod expand;
+
+use proc_macro::TokenStream;
+use syn::{parse_macro_input, DeriveInput};
+
+/// Implements the wire codec and `jaus::JausMessage` for a message body struct.
+#[proc_macro_derive(JausMessage, attributes(jaus))]
+pub fn derive_message(input: TokenStream) -> TokenStream {
+    let input = parse_macro_input!(input as DeriveInput);
+    expand::message(&input, true).into()
+}
+
+/// Implements the wire codec for a record nested in messages.
+#[proc_macro_derive(JausRecord, attributes(jaus))]
+pub fn derive_record(input: TokenStream) -> TokenStream {
+    let input = parse_macro_input!(input as DeriveInput);
+    expand::message(&input, false).into()
+}
+
+/// Implements the wire codec for an enumeration of named integer values.
+#[proc_macro_derive(JausEnum, attributes(jaus))]
+pub fn derive_enum(input: TokenStream) -> TokenStream {
+    let input = parse_macro_input!(input as DeriveInput);
+    expand::enumeration(&input).into()
+}
+
+/// Implements the wire codec for a bit field: named bits of one integer.
+#[proc_macro_derive(JausBits, attributes(jaus))]
+pub fn derive_bits(input: TokenStream) -> TokenStream {
+    let input = parse_macro_input!(input as DeriveInput);
+    expand::bits(&input).into()
+}
+
+/// Implements the wire codec for a tagged union: a tag followed by the variant's value.
+#[proc_macro_derive(JausUnion, attributes(jaus))]
+pub fn derive_union(input: TokenStream) -> TokenStream {
+    let input = parse_macro_input!(input as DeriveInput);
+    expand::union(&input).into()
+}

@@ -1,0 +1,438 @@
+//! # jaus-spec — the JAUS RA 3.3 definition language
+//!
+//! YAML files describe message groups: shared types (records, enumerations, bit fields,
+//! tagged unions), messages with their command codes and fields in wire order, and
+//! component interfaces. This crate loads them with `serde_yaml` into a typed model
+//! ([`model`]), validates the whole set, and reports every problem with
+//! `file:line:column`, the message and field concerned, and what to fix.
+//!
+//! The language is documented, one example per feature, in this crate's README.md.
+//! The RA 3.3 definitions themselves live in `defs/` ([`defs_dir`]).
+//!
+//! ```
+//! let spec = jaus_spec::load_dirs(&[jaus_spec::defs_dir()]).unwrap();
+//! let pose = spec.message("ReportGlobalPose").unwrap();
+//! assert_eq!(pose.def.code.0, 0x4402);
+//! ```
+
+pub mod location;
+pub mod model;
+mod validate;
+
+use location::{LocationIndex, Pos};
+pub use model::*;
+use std::fmt;
+use std::path::{Path, PathBuf};
+
+/// Directory holding the RA 3.3 definitions shipped with this crate.
+pub fn defs_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("defs")
+}
+
+/// One problem found in the definitions.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct SpecError {
+    /// File the problem is in.
+    pub file: PathBuf,
+    /// Where in the file.
+    pub pos: Pos,
+    /// The message/type/field concerned, e.g. `message ReportGlobalPose, field latitude`.
+    pub context: String,
+    /// What is wrong and what to do.
+    pub message: String,
+}
+
+impl fmt::Display for SpecError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}:{}:{}: ", self.file.display(), self.pos.line, self.pos.column)?;
+        if !self.context.is_empty() {
+            write!(f, "{}: ", self.context)?;
+        }
+        f.write_str(&self.message)
+    }
+}
+
+/// Every problem found, in file order.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct SpecErrors(pub Vec<SpecError>);
+
+impl fmt::Display for SpecErrors {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        for (i, e) in self.0.iter().enumerate() {
+            if i > 0 {
+                writeln!(f)?;
+            }
+            write!(f, "{e}")?;
+        }
+        Ok(())
+    }
+}
+
+impl std::error::Error for SpecErrors {}
+
+/// A loaded source file.
+#[derive(Debug)]
+pub struct Source {
+    /// Its path.
+    pub path: PathBuf,
+    /// Its text.
+    pub text: String,
+    /// Node positions.
+    pub index: LocationIndex,
+}
+
+/// A message with the file it came from.
+#[derive(Debug, Clone)]
+pub struct Message {
+    /// The definition.
+    pub def: MessageDef,
+    /// Group name.
+    pub group: String,
+    /// Index into [`Spec::sources`].
+    pub source: usize,
+    /// YAML path of the definition (`messages[3]`).
+    pub path: String,
+}
+
+/// A named type with the file it came from.
+#[derive(Debug, Clone)]
+pub struct Type {
+    /// The definition.
+    pub def: TypeDef,
+    /// Group name.
+    pub group: String,
+    /// Index into [`Spec::sources`].
+    pub source: usize,
+    /// YAML path of the definition (`types[1]`).
+    pub path: String,
+}
+
+/// A component with the file it came from.
+#[derive(Debug, Clone)]
+pub struct Component {
+    /// The definition.
+    pub def: ComponentDef,
+    /// Group name.
+    pub group: String,
+    /// Index into [`Spec::sources`].
+    pub source: usize,
+    /// YAML path of the definition.
+    pub path: String,
+}
+
+/// A message group, merged over every file that names it.
+#[derive(Debug, Clone)]
+pub struct Group {
+    /// Group identifier.
+    pub name: String,
+    /// Title.
+    pub title: String,
+    /// Description.
+    pub description: Option<String>,
+}
+
+/// A validated set of definitions.
+#[derive(Debug)]
+pub struct Spec {
+    /// Every file read, in load order.
+    pub sources: Vec<Source>,
+    /// Groups in first-seen order.
+    pub groups: Vec<Group>,
+    /// Named types in file order.
+    pub types: Vec<Type>,
+    /// Messages in file order.
+    pub messages: Vec<Message>,
+    /// Components in file order.
+    pub components: Vec<Component>,
+}
+
+/// Integer wire types.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Int {
+    /// JAUS Byte.
+    U8,
+    /// JAUS Unsigned Short Integer.
+    U16,
+    /// JAUS Unsigned Integer.
+    U32,
+    /// JAUS Unsigned Long Integer.
+    U64,
+    /// JAUS Short Integer.
+    I16,
+    /// JAUS Integer.
+    I32,
+    /// JAUS Long Integer.
+    I64,
+}
+
+impl Int {
+    /// Parses a Rust-style or JAUS name of an integer type.
+    pub fn parse(s: &str) -> Option<Int> {
+        Some(match s {
+            "u8" | "byte" => Int::U8,
+            "u16" | "unsigned short" | "ushort" => Int::U16,
+            "u32" | "unsigned integer" | "uint" => Int::U32,
+            "u64" | "unsigned long" | "ulong" => Int::U64,
+            "i16" | "short" => Int::I16,
+            "i32" | "integer" | "int" => Int::I32,
+            "i64" | "long" => Int::I64,
+            _ => return None,
+        })
+    }
+    /// Rust type name.
+    pub fn rust(self) -> &'static str {
+        match self {
+            Int::U8 => "u8",
+            Int::U16 => "u16",
+            Int::U32 => "u32",
+            Int::U64 => "u64",
+            Int::I16 => "i16",
+            Int::I32 => "i32",
+            Int::I64 => "i64",
+        }
+    }
+    /// Size in bytes.
+    pub fn bytes(self) -> usize {
+        match self {
+            Int::U8 => 1,
+            Int::U16 | Int::I16 => 2,
+            Int::U32 | Int::I32 => 4,
+            Int::U64 | Int::I64 => 8,
+        }
+    }
+    /// True for the unsigned types.
+    pub fn unsigned(self) -> bool {
+        matches!(self, Int::U8 | Int::U16 | Int::U32 | Int::U64)
+    }
+    /// True for types usable as a count, size or presence vector (u8, u16, u32).
+    pub fn is_count(self) -> bool {
+        matches!(self, Int::U8 | Int::U16 | Int::U32)
+    }
+}
+
+/// How long a string or blob is on the wire.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Len {
+    /// Exactly `n` bytes, NUL padded.
+    Fixed {
+        /// Byte count.
+        n: usize,
+        /// Shorter is accepted on receive (final field only).
+        accept_short: bool,
+    },
+    /// A length prefix of this type.
+    Prefix(Int),
+    /// To the end of the body.
+    Rest {
+        /// A NUL terminator is written (strings).
+        nul: bool,
+    },
+}
+
+/// A field's wire form, resolved.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Wire {
+    /// A plain integer.
+    Int(Int),
+    /// IEEE-754 single.
+    F32,
+    /// IEEE-754 double.
+    F64,
+    /// A real value carried as a scaled integer.
+    Scaled {
+        /// The integer type.
+        int: Int,
+        /// Lower limit.
+        lo: f64,
+        /// Upper limit.
+        hi: f64,
+    },
+    /// A named type, optionally wrapped in a byte-size prefix.
+    Named {
+        /// The type name.
+        name: String,
+        /// Its kind.
+        kind: TypeKind,
+        /// Size prefix type.
+        size: Option<Int>,
+    },
+    /// 8-bit text.
+    Str(Len),
+    /// Opaque bytes.
+    Bytes(Len),
+    /// A list; `count: None` runs to the end of the body.
+    List {
+        /// Count prefix type.
+        count: Option<Int>,
+        /// Element form.
+        elem: Box<Wire>,
+    },
+    /// A whole embedded JAUS message with its 16-byte header.
+    Packet {
+        /// Size prefix type.
+        size: Option<Int>,
+    },
+}
+
+/// Loads every `*.yaml` file of `dirs` (sorted by name within each directory) and
+/// validates the set.
+pub fn load_dirs<P: AsRef<Path>>(dirs: &[P]) -> Result<Spec, SpecErrors> {
+    load(dirs, &[] as &[PathBuf])
+}
+
+/// Loads the `*.yaml` files of `dirs`, then the `overlays` files (which may add types,
+/// messages and components to existing groups, or new groups), and validates the set.
+pub fn load<P: AsRef<Path>, Q: AsRef<Path>>(dirs: &[P], overlays: &[Q]) -> Result<Spec, SpecErrors> {
+    let mut files = Vec::new();
+    let mut errors = Vec::new();
+    for d in dirs {
+        let d = d.as_ref();
+        match std::fs::read_dir(d) {
+            Ok(rd) => {
+                let mut v: Vec<PathBuf> = rd
+                    .filter_map(|e| e.ok().map(|e| e.path()))
+                    .filter(|p| p.extension().is_some_and(|x| x == "yaml" || x == "yml"))
+                    .collect();
+                v.sort();
+                files.extend(v);
+            }
+            Err(e) => errors.push(SpecError {
+                file: d.to_path_buf(),
+                pos: Pos { line: 0, column: 0 },
+                context: String::new(),
+                message: format!("cannot read definition directory: {e}"),
+            }),
+        }
+    }
+    files.extend(overlays.iter().map(|p| p.as_ref().to_path_buf()));
+    let mut texts = Vec::new();
+    for f in files {
+        match std::fs::read_to_string(&f) {
+            Ok(t) => texts.push((f, t)),
+            Err(e) => errors.push(SpecError {
+                file: f,
+                pos: Pos { line: 0, column: 0 },
+                context: String::new(),
+                message: format!("cannot read definition file: {e}"),
+            }),
+        }
+    }
+    if !errors.is_empty() {
+        return Err(SpecErrors(errors));
+    }
+    load_texts(texts)
+}
+
+/// Loads definitions from `(path, text)` pairs (the path is used in errors only).
+pub fn load_texts(texts: Vec<(PathBuf, String)>) -> Result<Spec, SpecErrors> {
+    let mut spec =
+        Spec { sources: Vec::new(), groups: Vec::new(), types: Vec::new(), messages: Vec::new(), components: Vec::new() };
+    let mut errors = Vec::new();
+    for (path, text) in texts {
+        let index = LocationIndex::build(&text);
+        let source = spec.sources.len();
+        match serde_yaml::from_str::<SpecFile>(&text) {
+            Ok(file) => {
+                if !spec.groups.iter().any(|g| g.name == file.group) {
+                    spec.groups.push(Group {
+                        name: file.group.clone(),
+                        title: file.title.clone().unwrap_or_else(|| file.group.replace('_', " ")),
+                        description: file.description.clone(),
+                    });
+                }
+                for (i, t) in file.types.into_iter().enumerate() {
+                    spec.types.push(Type { def: t, group: file.group.clone(), source, path: format!("types[{i}]") });
+                }
+                for (i, m) in file.messages.into_iter().enumerate() {
+                    spec.messages.push(Message {
+                        def: m,
+                        group: file.group.clone(),
+                        source,
+                        path: format!("messages[{i}]"),
+                    });
+                }
+                for (i, c) in file.components.into_iter().enumerate() {
+                    spec.components.push(Component {
+                        def: c,
+                        group: file.group.clone(),
+                        source,
+                        path: format!("components[{i}]"),
+                    });
+                }
+            }
+            Err(e) => {
+                let pos = e.location().map_or(Pos { line: 1, column: 1 }, |l| Pos { line: l.line(), column: l.column() });
+                let msg = e.to_string();
+                // serde_yaml appends " at line N column M"; the position is printed in front.
+                let msg = msg.split(" at line ").next().unwrap_or(&msg).to_string();
+                errors.push(SpecError { file: path.clone(), pos, context: String::new(), message: msg });
+            }
+        }
+        spec.sources.push(Source { path, text, index });
+    }
+    if !errors.is_empty() {
+        return Err(SpecErrors(errors));
+    }
+    let errors = validate::validate(&spec);
+    if errors.is_empty() {
+        Ok(spec)
+    } else {
+        Err(SpecErrors(errors))
+    }
+}
+
+impl Spec {
+    /// The message named `name`.
+    pub fn message(&self, name: &str) -> Option<&Message> {
+        self.messages.iter().find(|m| m.def.name == name)
+    }
+
+    /// The message with command code `code`.
+    pub fn message_by_code(&self, code: u16) -> Option<&Message> {
+        self.messages.iter().find(|m| m.def.code.0 == code)
+    }
+
+    /// The named type `name`.
+    pub fn ty(&self, name: &str) -> Option<&Type> {
+        self.types.iter().find(|t| t.def.name == name)
+    }
+
+    /// The report answering a query message, by the complement rule (report = query +
+    /// 0x2000) or the query's explicit `report:`; `None` for non-queries and for
+    /// queries marked `no_report`.
+    pub fn report_of(&self, query: &MessageDef) -> Option<&Message> {
+        if !(0x2000..0x4000).contains(&query.code.0) || query.no_report {
+            return None;
+        }
+        match &query.report {
+            Some(name) => self.message(name),
+            None => self.message_by_code(query.code.0 + 0x2000),
+        }
+    }
+
+    /// Resolves a field's wire form. Only meaningful on a validated spec.
+    pub fn wire(&self, f: &FieldDef) -> Wire {
+        validate::resolve(self, f).unwrap_or(Wire::Int(Int::U8))
+    }
+
+    /// Every source file path (for `cargo:rerun-if-changed`).
+    pub fn source_paths(&self) -> impl Iterator<Item = &Path> {
+        self.sources.iter().map(|s| s.path.as_path())
+    }
+}
+
+/// Splits `PascalCase` into words: `ReportGlobalPose` → `Report Global Pose`.
+pub fn title_of(name: &str) -> String {
+    let mut out = String::new();
+    let chars: Vec<char> = name.chars().collect();
+    for (i, &c) in chars.iter().enumerate() {
+        let boundary = i > 0
+            && c.is_uppercase()
+            && (chars[i - 1].is_lowercase() || chars.get(i + 1).is_some_and(|n| n.is_lowercase()));
+        if boundary {
+            out.push(' ');
+        }
+        out.push(c);
+    }
+    out
+}

@@ -1,0 +1,315 @@
+//! The typed model of a definition file, as read by `serde_yaml`.
+
+use serde::de::{self, Deserializer};
+use serde::Deserialize;
+use std::fmt;
+
+/// One YAML definition file: a message group with its shared types, messages and
+/// (optionally) component interfaces.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SpecFile {
+    /// Group identifier (snake_case); also the cargo feature that selects it.
+    pub group: String,
+    /// Human-readable group title.
+    #[serde(default)]
+    pub title: Option<String>,
+    /// What the group is for.
+    #[serde(default)]
+    pub description: Option<String>,
+    /// Shared named types.
+    #[serde(default)]
+    pub types: Vec<TypeDef>,
+    /// Messages.
+    #[serde(default)]
+    pub messages: Vec<MessageDef>,
+    /// Component interfaces.
+    #[serde(default)]
+    pub components: Vec<ComponentDef>,
+}
+
+/// A 16-bit command code, written as an integer or a `"0x...."` string.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct Code(pub u16);
+
+impl<'de> Deserialize<'de> for Code {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct V;
+        impl de::Visitor<'_> for V {
+            type Value = Code;
+            fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                f.write_str("a 16-bit command code such as 0x4402")
+            }
+            fn visit_u64<E: de::Error>(self, v: u64) -> Result<Code, E> {
+                u16::try_from(v).map(Code).map_err(|_| E::custom(format!("command code {v} exceeds 0xFFFF")))
+            }
+            fn visit_i64<E: de::Error>(self, v: i64) -> Result<Code, E> {
+                u16::try_from(v).map(Code).map_err(|_| E::custom(format!("command code {v} is not in 0..=0xFFFF")))
+            }
+            fn visit_str<E: de::Error>(self, v: &str) -> Result<Code, E> {
+                let t = v.trim();
+                let parsed = match t.strip_prefix("0x").or_else(|| t.strip_prefix("0X")) {
+                    Some(h) => u16::from_str_radix(h, 16),
+                    None => t.parse(),
+                };
+                parsed.map(Code).map_err(|_| E::custom(format!("`{v}` is not a 16-bit command code")))
+            }
+        }
+        d.deserialize_any(V)
+    }
+}
+
+impl fmt::Display for Code {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "0x{:04X}", self.0)
+    }
+}
+
+/// A message definition.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MessageDef {
+    /// PascalCase name, e.g. `ReportGlobalPose`.
+    pub name: String,
+    /// Command code.
+    pub code: Code,
+    /// Title as the standard writes it (default: the name split into words).
+    #[serde(default)]
+    pub title: Option<String>,
+    /// What the message means.
+    #[serde(default)]
+    pub description: Option<String>,
+    /// Presence vector type (`u8`, `u16`, `u32`), first in the body, if the message has
+    /// optional fields.
+    #[serde(default)]
+    pub presence: Option<String>,
+    /// For a query: the name of its report, where the complement rule (report = query +
+    /// 0x2000) does not give it.
+    #[serde(default)]
+    pub report: Option<String>,
+    /// For a query: there is no report (an explicit exception to the complement rule).
+    #[serde(default)]
+    pub no_report: bool,
+    /// A vendor/OpenJAUS experimental message.
+    #[serde(default)]
+    pub experimental: bool,
+    /// A note about interoperability (deviations of other implementations).
+    #[serde(default)]
+    pub interop: Option<String>,
+    /// The body's fields, in wire order.
+    #[serde(default)]
+    pub fields: Vec<FieldDef>,
+}
+
+/// A field of a message or record, or a list element.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FieldDef {
+    /// snake_case name.
+    #[serde(default)]
+    pub name: String,
+    /// Wire type: a basic type, `string`, `bytes`, `list`, `message` or a named type.
+    #[serde(rename = "type")]
+    pub ty: String,
+    /// What the field means.
+    #[serde(default)]
+    pub description: Option<String>,
+    /// Real-value limits `[lower, upper]` of a scaled integer.
+    #[serde(default)]
+    pub scale: Option<[f64; 2]>,
+    /// Unit of the (real) value, e.g. `m`, `rad`, `deg`, `%`, `m/s`.
+    #[serde(default)]
+    pub unit: Option<String>,
+    /// Presence-vector bit; makes the field optional.
+    #[serde(default)]
+    pub bit: Option<u32>,
+    /// Count prefix type of a list, or length prefix type of a string/bytes/message.
+    #[serde(default)]
+    pub count: Option<String>,
+    /// Size prefix (byte length) type for a nested value or embedded message.
+    #[serde(default)]
+    pub size: Option<String>,
+    /// Element type of a list (a type name, or a full field definition).
+    #[serde(default)]
+    pub of: Option<Box<ElemDef>>,
+    /// Fixed length in bytes, or `rest` (to the end of the body).
+    #[serde(default)]
+    pub length: Option<Length>,
+    /// A `rest` string ends with a NUL byte on the wire.
+    #[serde(default)]
+    pub nul: bool,
+    /// A fixed-length final string may be shorter on receive.
+    #[serde(default)]
+    pub accept_short: bool,
+    /// For an embedded message body: the field holding its command code.
+    #[serde(default)]
+    pub code_field: Option<String>,
+    /// With `code_field`: the embedded body's code is the complement (query ↔ report)
+    /// of that field's code.
+    #[serde(default)]
+    pub complement: bool,
+}
+
+/// A list element: a type name, or a field definition without a name.
+#[derive(Debug, Clone)]
+pub struct ElemDef(pub FieldDef);
+
+impl<'de> Deserialize<'de> for ElemDef {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        #[derive(Deserialize)]
+        #[serde(untagged)]
+        enum Raw {
+            Name(String),
+            Def(FieldDef),
+        }
+        Ok(ElemDef(match Raw::deserialize(d)? {
+            Raw::Name(ty) => FieldDef { ty, ..FieldDef::default() },
+            Raw::Def(f) => f,
+        }))
+    }
+}
+
+/// `length:` of a string or blob.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Length {
+    /// Exactly this many bytes.
+    Fixed(usize),
+    /// To the end of the body.
+    Rest,
+}
+
+impl<'de> Deserialize<'de> for Length {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct V;
+        impl de::Visitor<'_> for V {
+            type Value = Length;
+            fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                f.write_str("a byte count or `rest`")
+            }
+            fn visit_u64<E: de::Error>(self, v: u64) -> Result<Length, E> {
+                Ok(Length::Fixed(v as usize))
+            }
+            fn visit_i64<E: de::Error>(self, v: i64) -> Result<Length, E> {
+                usize::try_from(v).map(Length::Fixed).map_err(|_| E::custom("a length is not negative"))
+            }
+            fn visit_str<E: de::Error>(self, v: &str) -> Result<Length, E> {
+                if v == "rest" {
+                    Ok(Length::Rest)
+                } else {
+                    Err(E::custom(format!("`{v}` is not a length: use a number or `rest`")))
+                }
+            }
+        }
+        d.deserialize_any(V)
+    }
+}
+
+/// A shared named type.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TypeDef {
+    /// PascalCase name.
+    pub name: String,
+    /// `record`, `enum`, `bitfield` or `union`.
+    pub kind: TypeKind,
+    /// Integer type of an enum's values, a bitfield, or a union's tag.
+    #[serde(default)]
+    pub repr: Option<String>,
+    /// What the type means.
+    #[serde(default)]
+    pub description: Option<String>,
+    /// Presence vector type of a record.
+    #[serde(default)]
+    pub presence: Option<String>,
+    /// Fields of a record.
+    #[serde(default)]
+    pub fields: Vec<FieldDef>,
+    /// Named values of an enum.
+    #[serde(default)]
+    pub values: Vec<EnumValue>,
+    /// Members of a bitfield.
+    #[serde(default)]
+    pub bits: Vec<BitDef>,
+    /// Variants of a union.
+    #[serde(default)]
+    pub variants: Vec<VariantDef>,
+}
+
+/// The kinds of named type.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum TypeKind {
+    /// A sequence of fields.
+    Record,
+    /// Named integer values.
+    Enum,
+    /// Named bits of an integer.
+    Bitfield,
+    /// A tag followed by the value of the variant it names.
+    Union,
+}
+
+/// A named enum value.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EnumValue {
+    /// PascalCase name.
+    pub name: String,
+    /// Wire value.
+    pub value: u64,
+    /// Meaning.
+    #[serde(default)]
+    pub description: Option<String>,
+}
+
+/// A member of a bitfield: one bit (a flag) or a range of bits (a small integer).
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BitDef {
+    /// snake_case name.
+    pub name: String,
+    /// A single-bit flag.
+    #[serde(default)]
+    pub bit: Option<u32>,
+    /// An inclusive bit range `[low, high]` holding an unsigned value.
+    #[serde(default)]
+    pub bits: Option<[u32; 2]>,
+    /// Meaning.
+    #[serde(default)]
+    pub description: Option<String>,
+}
+
+/// A union variant.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct VariantDef {
+    /// PascalCase name.
+    pub name: String,
+    /// Tag value.
+    pub tag: u64,
+    /// Type of the value that follows the tag (none for a tag-only variant).
+    #[serde(rename = "type", default)]
+    pub ty: Option<String>,
+    /// Meaning.
+    #[serde(default)]
+    pub description: Option<String>,
+}
+
+/// A component interface (the component layer builds on these).
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ComponentDef {
+    /// PascalCase name.
+    pub name: String,
+    /// Component id (Part 1).
+    pub id: u8,
+    /// Function of the component.
+    #[serde(default)]
+    pub description: Option<String>,
+    /// Messages it accepts.
+    #[serde(default)]
+    pub accepts: Vec<String>,
+    /// Messages it may send.
+    #[serde(default)]
+    pub emits: Vec<String>,
+}

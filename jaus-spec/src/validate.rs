@@ -1,0 +1,422 @@
+//! Validation of a whole definition set. Every rule reports with the position of the
+//! offending key and names the message/type and field concerned.
+
+use crate::model::*;
+use crate::{Int, Len, Spec, SpecError, Wire};
+use std::collections::HashMap;
+
+const KEYWORDS: &[&str] = &[
+    "as", "async", "await", "break", "const", "continue", "crate", "dyn", "else", "enum", "extern",
+    "false", "fn", "for", "if", "impl", "in", "let", "loop", "match", "mod", "move", "mut", "pub",
+    "ref", "return", "self", "Self", "static", "struct", "super", "trait", "true", "type", "unsafe",
+    "use", "where", "while", "abstract", "become", "box", "do", "final", "macro", "override", "priv",
+    "typeof", "unsized", "virtual", "yield", "try", "gen",
+];
+
+fn is_snake(s: &str) -> bool {
+    !s.is_empty()
+        && s.starts_with(|c: char| c.is_ascii_lowercase())
+        && s.chars().all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '_')
+}
+
+fn is_pascal(s: &str) -> bool {
+    !s.is_empty() && s.starts_with(|c: char| c.is_ascii_uppercase()) && s.chars().all(|c| c.is_ascii_alphanumeric())
+}
+
+struct Ctx<'a> {
+    spec: &'a Spec,
+    errors: Vec<SpecError>,
+}
+
+impl Ctx<'_> {
+    fn err(&mut self, source: usize, path: &str, context: String, message: impl Into<String>) {
+        let s = &self.spec.sources[source];
+        self.errors.push(SpecError { file: s.path.clone(), pos: s.index.find(path), context, message: message.into() });
+    }
+}
+
+fn count_type(name: &str) -> Result<Int, String> {
+    match Int::parse(name) {
+        Some(i) if i.is_count() => Ok(i),
+        _ => Err(format!("`{name}` is not a count type: use an unsigned integer u8, u16 or u32")),
+    }
+}
+
+/// Resolves a field definition to its wire form, or says what is wrong with it.
+pub(crate) fn resolve(spec: &Spec, f: &FieldDef) -> Result<Wire, String> {
+    let ty = f.ty.as_str();
+    let size = f.size.as_deref().map(count_type).transpose()?;
+    let no = |what: &str, ok: bool| if ok { Ok(()) } else { Err(format!("`{what}` does not apply to a `{ty}` field")) };
+    no("scale", f.scale.is_none() || Int::parse(ty).is_some())?;
+    no("of", f.of.is_none() || ty == "list")?;
+    no("length", f.length.is_none() || matches!(ty, "string" | "bytes" | "list"))?;
+    no("nul", !f.nul || ty == "string")?;
+    no("accept_short", !f.accept_short || matches!(f.length, Some(Length::Fixed(_))))?;
+    no("code_field", f.code_field.is_none() || ty == "bytes")?;
+    if f.complement && f.code_field.is_none() {
+        return Err("`complement` needs `code_field`".into());
+    }
+    if let Some(int) = Int::parse(ty) {
+        no("count", f.count.is_none())?;
+        no("size", size.is_none())?;
+        return Ok(match f.scale {
+            Some([lo, hi]) => {
+                if !(lo < hi) || !lo.is_finite() || !hi.is_finite() {
+                    return Err(format!("scale lower limit {lo} must be below upper limit {hi}"));
+                }
+                Wire::Scaled { int, lo, hi }
+            }
+            None => Wire::Int(int),
+        });
+    }
+    let len = |f: &FieldDef| -> Result<Len, String> {
+        match (f.length, &f.count) {
+            (Some(_), Some(_)) => Err("give either `length` or `count`, not both".into()),
+            (Some(Length::Fixed(n)), None) => Ok(Len::Fixed { n, accept_short: f.accept_short }),
+            (Some(Length::Rest), None) => Ok(Len::Rest { nul: f.nul }),
+            (None, Some(c)) => Ok(Len::Prefix(count_type(c)?)),
+            (None, None) => Err(format!(
+                "count field missing: a `{ty}` needs `length: N` (fixed), `length: rest` or `count: u8|u16|u32` (length prefix)"
+            )),
+        }
+    };
+    match ty {
+        "f32" | "float" => Ok(Wire::F32),
+        "f64" | "long float" | "double" => Ok(Wire::F64),
+        "string" => {
+            no("size", size.is_none())?;
+            if f.nul && !matches!(f.length, Some(Length::Rest)) {
+                return Err("`nul` applies to a string with `length: rest`".into());
+            }
+            Ok(Wire::Str(len(f)?))
+        }
+        "bytes" => {
+            no("size", size.is_none())?;
+            Ok(Wire::Bytes(len(f)?))
+        }
+        "message" => {
+            no("count", f.count.is_none())?;
+            Ok(Wire::Packet { size })
+        }
+        "list" => {
+            no("size", size.is_none())?;
+            let elem = f.of.as_ref().ok_or("a list needs `of:` (its element type)")?;
+            if elem.0.bit.is_some() || !elem.0.name.is_empty() {
+                return Err("a list element has no `name` or `bit`".into());
+            }
+            let elem = resolve(spec, &elem.0).map_err(|e| format!("list element: {e}"))?;
+            let count = match (&f.count, f.length) {
+                (Some(c), None) => Some(count_type(c)?),
+                (None, Some(Length::Rest)) => None,
+                (None, Some(Length::Fixed(_))) => {
+                    return Err("a list takes `count: T` or `length: rest`, not a fixed length".into())
+                }
+                (Some(_), Some(_)) => return Err("give either `count` or `length: rest`, not both".into()),
+                (None, None) => {
+                    return Err("count field missing: a list needs `count: u8|u16|u32` (or `length: rest`)".into())
+                }
+            };
+            Ok(Wire::List { count, elem: Box::new(elem) })
+        }
+        name => match spec.ty(name) {
+            Some(t) => {
+                no("count", f.count.is_none())?;
+                Ok(Wire::Named { name: name.to_string(), kind: t.def.kind, size })
+            }
+            None => Err(format!(
+                "unknown type `{name}`: use a basic type (u8, u16, u32, u64, i16, i32, i64, f32, f64 or their JAUS names), string, bytes, list, message, or a type defined under `types:`"
+            )),
+        },
+    }
+}
+
+fn check_fields(
+    cx: &mut Ctx<'_>,
+    source: usize,
+    owner_path: &str,
+    owner: &str,
+    presence: &Option<String>,
+    fields: &[FieldDef],
+) {
+    let pv = match presence {
+        None => None,
+        Some(p) => match Int::parse(p) {
+            Some(i) if i.is_count() => Some(i),
+            _ => {
+                cx.err(
+                    source,
+                    &format!("{owner_path}.presence"),
+                    owner.to_string(),
+                    format!("presence vector type `{p}` must be u8, u16 or u32"),
+                );
+                None
+            }
+        },
+    };
+    let mut bits: HashMap<u32, &str> = HashMap::new();
+    let mut names: HashMap<&str, ()> = HashMap::new();
+    for (i, f) in fields.iter().enumerate() {
+        let path = format!("{owner_path}.fields[{i}]");
+        let ctx = format!("{owner}, field `{}`", f.name);
+        if !is_snake(&f.name) {
+            cx.err(source, &format!("{path}.name"), ctx.clone(), format!("field name `{}` must be snake_case", f.name));
+        } else if KEYWORDS.contains(&f.name.as_str()) {
+            cx.err(source, &format!("{path}.name"), ctx.clone(), format!("field name `{}` is a Rust keyword; choose another", f.name));
+        }
+        if names.insert(&f.name, ()).is_some() {
+            cx.err(source, &format!("{path}.name"), ctx.clone(), format!("duplicate field name `{}`", f.name));
+        }
+        if let Some(b) = f.bit {
+            match (presence, pv) {
+                (None, _) => cx.err(
+                    source,
+                    &format!("{path}.bit"),
+                    ctx.clone(),
+                    format!("presence bit {b} but `{owner}` has no presence vector: add `presence: u8|u16|u32`"),
+                ),
+                (Some(_), Some(p)) if b as usize >= p.bytes() * 8 => cx.err(
+                    source,
+                    &format!("{path}.bit"),
+                    ctx.clone(),
+                    format!("presence bit {b} is out of range for a {}-bit presence vector", p.bytes() * 8),
+                ),
+                _ => {}
+            }
+            if let Some(other) = bits.insert(b, &f.name) {
+                cx.err(source, &format!("{path}.bit"), ctx.clone(), format!("presence bit {b} is already used by field `{other}`"));
+            }
+        }
+        match resolve(cx.spec, f) {
+            Ok(w) => {
+                let rest = matches!(
+                    w,
+                    Wire::Str(Len::Rest { .. }) | Wire::Bytes(Len::Rest { .. }) | Wire::List { count: None, .. }
+                ) || f.accept_short;
+                if rest && i + 1 != fields.len() {
+                    cx.err(
+                        source,
+                        &format!("{path}.length"),
+                        ctx.clone(),
+                        "a field that runs to the end of the body (`length: rest`, `accept_short`) must be the last field",
+                    );
+                }
+            }
+            Err(e) => {
+                let key = if e.starts_with("unknown type") { "type" } else if e.starts_with("scale") { "scale" } else { "type" };
+                cx.err(source, &format!("{path}.{key}"), ctx.clone(), e);
+            }
+        }
+        if let Some(cf) = &f.code_field {
+            let ok = fields[..i].iter().any(|g| &g.name == cf && Int::parse(&g.ty) == Some(Int::U16));
+            if !ok {
+                cx.err(
+                    source,
+                    &format!("{path}.code_field"),
+                    ctx.clone(),
+                    format!("`code_field: {cf}` must name an earlier u16 field of `{owner}`"),
+                );
+            }
+        }
+    }
+}
+
+pub(crate) fn validate(spec: &Spec) -> Vec<SpecError> {
+    let mut cx = Ctx { spec, errors: Vec::new() };
+
+    // Groups.
+    for (si, s) in spec.sources.iter().enumerate() {
+        let _ = s;
+        let group = spec
+            .messages
+            .iter()
+            .find(|m| m.source == si)
+            .map(|m| m.group.clone())
+            .or_else(|| spec.types.iter().find(|t| t.source == si).map(|t| t.group.clone()));
+        if let Some(g) = group {
+            if !is_snake(&g) {
+                cx.err(si, "group", String::new(), format!("group name `{g}` must be snake_case (it is also a cargo feature)"));
+            }
+        }
+    }
+
+    // Unique names across messages and types (both become Rust types).
+    let mut seen: HashMap<&str, (usize, &str)> = HashMap::new();
+    let entries = spec
+        .types
+        .iter()
+        .map(|t| (t.def.name.as_str(), t.source, t.path.as_str(), "type"))
+        .chain(spec.messages.iter().map(|m| (m.def.name.as_str(), m.source, m.path.as_str(), "message")));
+    for (name, source, path, what) in entries {
+        if !is_pascal(name) {
+            cx.err(source, &format!("{path}.name"), format!("{what} `{name}`"), format!("name `{name}` must be PascalCase"));
+        }
+        if matches!(name, "Message" | "Header" | "Packet" | "Address" | "CommandCode") {
+            cx.err(source, &format!("{path}.name"), format!("{what} `{name}`"), format!("`{name}` is reserved by the SDK"));
+        }
+        if let Some((other_src, other_path)) = seen.insert(name, (source, path)) {
+            let o = &spec.sources[other_src];
+            let pos = o.index.find(other_path);
+            cx.err(
+                source,
+                &format!("{path}.name"),
+                format!("{what} `{name}`"),
+                format!("duplicate name `{name}` (first defined at {}:{}:{})", o.path.display(), pos.line, pos.column),
+            );
+        }
+    }
+
+    // Unique command codes.
+    let mut codes: HashMap<u16, &crate::Message> = HashMap::new();
+    for m in &spec.messages {
+        if let Some(first) = codes.insert(m.def.code.0, m) {
+            let o = &spec.sources[first.source];
+            let pos = o.index.find(&first.path);
+            cx.err(
+                m.source,
+                &format!("{}.code", m.path),
+                format!("message `{}`", m.def.name),
+                format!(
+                    "duplicate command code {} (also `{}` at {}:{}:{})",
+                    m.def.code,
+                    first.def.name,
+                    o.path.display(),
+                    pos.line,
+                    pos.column
+                ),
+            );
+        }
+    }
+
+    // Types.
+    for t in &spec.types {
+        let ctx = format!("type `{}`", t.def.name);
+        let d = &t.def;
+        let repr = d.repr.as_deref().map(|r| (r, Int::parse(r)));
+        let need_repr = |cx: &mut Ctx<'_>, what: &str, allow_u64: bool| -> Option<Int> {
+            match repr {
+                Some((_, Some(i))) if i.unsigned() && (allow_u64 || i.is_count()) => Some(i),
+                Some((r, _)) => {
+                    cx.err(t.source, &format!("{}.repr", t.path), ctx.clone(), format!("`{r}` is not an unsigned integer type for {what}"));
+                    None
+                }
+                None => {
+                    cx.err(t.source, &format!("{}.kind", t.path), ctx.clone(), format!("{what} needs `repr: u8|u16|u32`"));
+                    None
+                }
+            }
+        };
+        match d.kind {
+            TypeKind::Record => check_fields(&mut cx, t.source, &t.path, &ctx, &d.presence, &d.fields),
+            TypeKind::Enum => {
+                let r = need_repr(&mut cx, "an enum", true);
+                let mut vals: HashMap<u64, &str> = HashMap::new();
+                for (i, v) in d.values.iter().enumerate() {
+                    let p = format!("{}.values[{i}]", t.path);
+                    if !is_pascal(&v.name) || v.name == "Unknown" {
+                        cx.err(t.source, &format!("{p}.name"), ctx.clone(), format!("value name `{}` must be PascalCase and not `Unknown` (reserved for undefined values)", v.name));
+                    }
+                    if let Some(o) = vals.insert(v.value, &v.name) {
+                        cx.err(t.source, &format!("{p}.value"), ctx.clone(), format!("value {} is already used by `{o}`", v.value));
+                    }
+                    if let Some(r) = r {
+                        if r.bytes() < 8 && v.value >> (r.bytes() * 8) != 0 {
+                            cx.err(t.source, &format!("{p}.value"), ctx.clone(), format!("value {} does not fit in {}", v.value, r.rust()));
+                        }
+                    }
+                }
+            }
+            TypeKind::Bitfield => {
+                let width = need_repr(&mut cx, "a bitfield", true).map_or(64, |r| r.bytes() as u32 * 8);
+                let mut used: u64 = 0;
+                for (i, b) in d.bits.iter().enumerate() {
+                    let p = format!("{}.bits[{i}]", t.path);
+                    let (lo, hi) = match (b.bit, b.bits) {
+                        (Some(x), None) => (x, x),
+                        (None, Some([lo, hi])) => (lo, hi),
+                        _ => {
+                            cx.err(t.source, &p, ctx.clone(), format!("member `{}` needs exactly one of `bit: N` or `bits: [low, high]`", b.name));
+                            continue;
+                        }
+                    };
+                    if lo > hi || hi >= width {
+                        cx.err(t.source, &p, ctx.clone(), format!("bits {lo}..{hi} of `{}` are out of range for a {width}-bit field", b.name));
+                        continue;
+                    }
+                    let mask = if hi - lo == 63 { u64::MAX } else { ((1u64 << (hi - lo + 1)) - 1) << lo };
+                    if used & mask != 0 {
+                        cx.err(t.source, &p, ctx.clone(), format!("bits of `{}` overlap another member", b.name));
+                    }
+                    used |= mask;
+                    if !is_snake(&b.name) || b.name == "reserved" {
+                        cx.err(t.source, &format!("{p}.name"), ctx.clone(), format!("member name `{}` must be snake_case and not `reserved`", b.name));
+                    }
+                }
+            }
+            TypeKind::Union => {
+                need_repr(&mut cx, "a union tag", false);
+                let mut tags: HashMap<u64, &str> = HashMap::new();
+                for (i, v) in d.variants.iter().enumerate() {
+                    let p = format!("{}.variants[{i}]", t.path);
+                    if let Some(o) = tags.insert(v.tag, &v.name) {
+                        cx.err(t.source, &format!("{p}.tag"), ctx.clone(), format!("tag {} is already used by `{o}`", v.tag));
+                    }
+                    if let Some(ty) = &v.ty {
+                        let f = FieldDef { ty: ty.clone(), ..FieldDef::default() };
+                        if let Err(e) = resolve(spec, &f) {
+                            cx.err(t.source, &format!("{p}.type"), ctx.clone(), e);
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    // Messages.
+    for m in &spec.messages {
+        let ctx = format!("message `{}`", m.def.name);
+        check_fields(&mut cx, m.source, &m.path, &ctx, &m.def.presence, &m.def.fields);
+        let code = m.def.code.0;
+        let is_query = (0x2000..0x4000).contains(&code);
+        if let Some(r) = &m.def.report {
+            if !is_query {
+                cx.err(m.source, &format!("{}.report", m.path), ctx.clone(), "`report` applies to query messages (0x2000..0x3FFF)");
+            } else if spec.message(r).is_none() {
+                cx.err(m.source, &format!("{}.report", m.path), ctx.clone(), format!("report `{r}` is not defined"));
+            }
+        } else if is_query && !m.def.no_report && spec.report_of(&m.def).is_none() {
+            cx.err(
+                m.source,
+                &format!("{}.code", m.path),
+                ctx.clone(),
+                format!(
+                    "query {} has no report: define the message with code 0x{:04X} (the complement rule), name it with `report:`, or mark the query `no_report: true`",
+                    m.def.code,
+                    code + 0x2000
+                ),
+            );
+        }
+    }
+
+    // Components.
+    let mut ids: HashMap<u8, &str> = HashMap::new();
+    for c in &spec.components {
+        let ctx = format!("component `{}`", c.def.name);
+        if let Some(o) = ids.insert(c.def.id, &c.def.name) {
+            cx.err(c.source, &format!("{}.id", c.path), ctx.clone(), format!("component id {} is already used by `{o}`", c.def.id));
+        }
+        for (key, list) in [("accepts", &c.def.accepts), ("emits", &c.def.emits)] {
+            for (i, name) in list.iter().enumerate() {
+                if spec.message(name).is_none() {
+                    cx.err(
+                        c.source,
+                        &format!("{}.{key}[{i}]", c.path),
+                        ctx.clone(),
+                        format!("`{key}` names unknown message `{name}`"),
+                    );
+                }
+            }
+        }
+    }
+    cx.errors.sort_by(|a, b| (&a.file, a.pos.line, a.pos.column).cmp(&(&b.file, b.pos.line, b.pos.column)));
+    cx.errors
+}

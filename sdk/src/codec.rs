@@ -1,0 +1,720 @@
+//! The wire codec runtime: byte cursors, the [`Encode`]/[`Decode`] traits, scaled
+//! integers and typed errors.
+//!
+//! The derive macros of `jaus-derive` expand to calls into this module; nothing here
+//! knows about any particular message. Every read is bounds-checked and returns a
+//! [`DecodeError`] that names the offending field and byte offset: no input makes a
+//! decoder panic.
+//!
+//! All multi-byte values are little-endian (WIRE.md §2.1).
+
+use std::fmt;
+
+/// A cursor over the bytes of one message body (or any part of it).
+#[derive(Debug, Clone)]
+pub struct Reader<'a> {
+    buf: &'a [u8],
+    pos: usize,
+    /// Offset of `buf[0]` within the outermost buffer, so errors report absolute offsets.
+    base: usize,
+}
+
+impl<'a> Reader<'a> {
+    /// Starts reading at the first byte of `buf`.
+    #[inline]
+    pub fn new(buf: &'a [u8]) -> Self {
+        Self { buf, pos: 0, base: 0 }
+    }
+
+    /// Bytes not yet consumed.
+    #[inline]
+    pub fn remaining(&self) -> usize {
+        self.buf.len() - self.pos
+    }
+
+    /// Absolute offset of the next byte to read.
+    #[inline]
+    pub fn offset(&self) -> usize {
+        self.base + self.pos
+    }
+
+    /// Consumes exactly `n` bytes.
+    #[inline]
+    pub fn take(&mut self, n: usize) -> Result<&'a [u8], DecodeError> {
+        match self.buf.get(self.pos..self.pos.saturating_add(n)) {
+            Some(s) if n <= self.remaining() => {
+                self.pos += n;
+                Ok(s)
+            }
+            _ => Err(DecodeError::new(
+                DecodeErrorKind::Truncated { needed: n, available: self.remaining() },
+                self.offset(),
+            )),
+        }
+    }
+
+    /// Consumes a fixed-size array.
+    #[inline]
+    pub fn array<const N: usize>(&mut self) -> Result<[u8; N], DecodeError> {
+        if self.remaining() < N {
+            return Err(DecodeError::new(
+                DecodeErrorKind::Truncated { needed: N, available: self.remaining() },
+                self.offset(),
+            ));
+        }
+        let mut out = [0u8; N];
+        out.copy_from_slice(&self.buf[self.pos..self.pos + N]);
+        self.pos += N;
+        Ok(out)
+    }
+
+    /// Consumes every remaining byte.
+    #[inline]
+    pub fn rest(&mut self) -> &'a [u8] {
+        let s = &self.buf[self.pos..];
+        self.pos = self.buf.len();
+        s
+    }
+
+    /// Splits off a reader over the next `n` bytes (for size-prefixed fields) and
+    /// advances past them.
+    pub fn sub(&mut self, n: usize) -> Result<Reader<'a>, DecodeError> {
+        let base = self.offset();
+        let buf = self.take(n)?;
+        Ok(Reader { buf, pos: 0, base })
+    }
+
+    /// Fails with [`DecodeErrorKind::TrailingBytes`] unless every byte was consumed.
+    pub fn finish(&self) -> Result<(), DecodeError> {
+        if self.remaining() == 0 {
+            Ok(())
+        } else {
+            Err(DecodeError::new(
+                DecodeErrorKind::TrailingBytes { count: self.remaining() },
+                self.offset(),
+            ))
+        }
+    }
+}
+
+/// A cursor writing into a caller-provided buffer. Never reallocates.
+#[derive(Debug)]
+pub struct Writer<'a> {
+    buf: &'a mut [u8],
+    pos: usize,
+}
+
+impl<'a> Writer<'a> {
+    /// Starts writing at the first byte of `buf`.
+    #[inline]
+    pub fn new(buf: &'a mut [u8]) -> Self {
+        Self { buf, pos: 0 }
+    }
+
+    /// Bytes written so far.
+    #[inline]
+    pub fn position(&self) -> usize {
+        self.pos
+    }
+
+    /// Appends `bytes`.
+    #[inline]
+    pub fn put(&mut self, bytes: &[u8]) -> Result<(), EncodeError> {
+        let end = self.pos + bytes.len();
+        match self.buf.get_mut(self.pos..end) {
+            Some(dst) => {
+                dst.copy_from_slice(bytes);
+                self.pos = end;
+                Ok(())
+            }
+            None => Err(EncodeError::BufferTooSmall { needed: end, capacity: self.buf.len() }),
+        }
+    }
+
+    /// Appends `n` zero bytes (padding of fixed-length fields).
+    pub fn zeros(&mut self, n: usize) -> Result<(), EncodeError> {
+        let end = self.pos + n;
+        match self.buf.get_mut(self.pos..end) {
+            Some(dst) => {
+                dst.fill(0);
+                self.pos = end;
+                Ok(())
+            }
+            None => Err(EncodeError::BufferTooSmall { needed: end, capacity: self.buf.len() }),
+        }
+    }
+
+    /// Reserves `n` bytes to be filled later with [`Writer::patch`]; returns their offset.
+    pub fn reserve(&mut self, n: usize) -> Result<usize, EncodeError> {
+        let at = self.pos;
+        self.zeros(n)?;
+        Ok(at)
+    }
+
+    /// Overwrites bytes previously reserved at `at`.
+    pub fn patch(&mut self, at: usize, bytes: &[u8]) {
+        self.buf[at..at + bytes.len()].copy_from_slice(bytes);
+    }
+}
+
+/// A value with a JAUS wire encoding.
+pub trait Encode {
+    /// Number of bytes [`Encode::encode`] writes.
+    fn encoded_len(&self) -> usize;
+
+    /// Writes the value.
+    fn encode(&self, w: &mut Writer<'_>) -> Result<(), EncodeError>;
+
+    /// Encodes into a new vector of exactly [`Encode::encoded_len`] bytes.
+    fn to_bytes(&self) -> Result<Vec<u8>, EncodeError> {
+        let mut out = vec![0u8; self.encoded_len()];
+        let mut w = Writer::new(&mut out);
+        self.encode(&mut w)?;
+        debug_assert_eq!(w.position(), out.len(), "encoded_len disagrees with encode");
+        Ok(out)
+    }
+}
+
+/// A value that can be read back from its JAUS wire encoding.
+pub trait Decode: Sized {
+    /// The fewest bytes any encoding of this type occupies (used to reject impossible
+    /// element counts before allocating).
+    const MIN_LEN: usize;
+
+    /// Reads one value.
+    fn decode(r: &mut Reader<'_>) -> Result<Self, DecodeError>;
+
+    /// Decodes a whole buffer, failing if bytes are left over.
+    fn from_bytes(bytes: &[u8]) -> Result<Self, DecodeError> {
+        let mut r = Reader::new(bytes);
+        let v = Self::decode(&mut r)?;
+        r.finish()?;
+        Ok(v)
+    }
+}
+
+macro_rules! primitive {
+    ($($t:ty),*) => {$(
+        impl Encode for $t {
+            #[inline]
+            fn encoded_len(&self) -> usize { std::mem::size_of::<$t>() }
+            #[inline]
+            fn encode(&self, w: &mut Writer<'_>) -> Result<(), EncodeError> {
+                w.put(&self.to_le_bytes())
+            }
+        }
+        impl Decode for $t {
+            const MIN_LEN: usize = std::mem::size_of::<$t>();
+            #[inline]
+            fn decode(r: &mut Reader<'_>) -> Result<Self, DecodeError> {
+                Ok(<$t>::from_le_bytes(r.array()?))
+            }
+        }
+    )*};
+}
+primitive!(u8, u16, u32, u64, i8, i16, i32, i64, f32, f64);
+
+/// An unsigned integer usable as a count or size prefix.
+pub trait CountRepr: Encode + Decode + Copy {
+    /// Largest count representable.
+    const MAX: usize;
+    /// Widens to `usize`.
+    fn to_usize(self) -> usize;
+    /// Narrows from `usize`; the caller has checked `n <= MAX`.
+    fn from_usize(n: usize) -> Self;
+}
+
+macro_rules! count_repr {
+    ($($t:ty),*) => {$(
+        impl CountRepr for $t {
+            const MAX: usize = <$t>::MAX as usize;
+            #[inline]
+            fn to_usize(self) -> usize { self as usize }
+            #[inline]
+            fn from_usize(n: usize) -> Self { n as $t }
+        }
+    )*};
+}
+count_repr!(u8, u16, u32);
+
+/// Writes a count/size prefix, failing if `n` does not fit.
+#[inline]
+pub fn put_count<C: CountRepr>(
+    w: &mut Writer<'_>,
+    n: usize,
+    field: &'static str,
+) -> Result<(), EncodeError> {
+    if n > C::MAX {
+        return Err(EncodeError::CountOverflow { field, count: n, max: C::MAX });
+    }
+    C::from_usize(n).encode(w)
+}
+
+/// Reads a count prefix for a list whose elements take at least `min_elem` bytes, and
+/// rejects counts that cannot fit in the bytes left.
+#[inline]
+pub fn get_count<C: CountRepr>(r: &mut Reader<'_>, min_elem: usize) -> Result<usize, DecodeError> {
+    let at = r.offset();
+    let n = C::decode(r)?.to_usize();
+    if n.saturating_mul(min_elem) > r.remaining() {
+        return Err(DecodeError::new(
+            DecodeErrorKind::CountBeyondBuffer { count: n, remaining: r.remaining() },
+            at,
+        ));
+    }
+    Ok(n)
+}
+
+/// Encodes a list of values after its count prefix.
+pub fn encode_list<C: CountRepr, T: Encode>(
+    w: &mut Writer<'_>,
+    items: &[T],
+    field: &'static str,
+) -> Result<(), EncodeError> {
+    put_count::<C>(w, items.len(), field)?;
+    items.iter().try_for_each(|i| i.encode(w))
+}
+
+/// Decodes a count-prefixed list.
+pub fn decode_list<C: CountRepr, T: Decode>(r: &mut Reader<'_>) -> Result<Vec<T>, DecodeError> {
+    let n = get_count::<C>(r, T::MIN_LEN)?;
+    let mut v = Vec::with_capacity(n.min(r.remaining()));
+    for _ in 0..n {
+        v.push(T::decode(r)?);
+    }
+    Ok(v)
+}
+
+/// Decodes elements until the reader is exhausted.
+pub fn decode_rest<T: Decode>(r: &mut Reader<'_>) -> Result<Vec<T>, DecodeError> {
+    let mut v = Vec::new();
+    while r.remaining() > 0 {
+        v.push(T::decode(r)?);
+    }
+    Ok(v)
+}
+
+// ---------------------------------------------------------------------------------
+// Scaled integers (WIRE.md §2.2).
+
+/// An integer type that can carry a scaled real value.
+pub trait ScaledRepr: Encode + Decode + Copy {
+    /// The divisor `D` of the scale factor `(hi - lo) / D`.
+    const DIVISOR: f64;
+    /// Signed types use the midpoint as bias; unsigned ones the lower limit.
+    const SIGNED: bool;
+    /// Smallest integer value.
+    const MIN_F: f64;
+    /// Largest integer value.
+    const MAX_F: f64;
+    /// Converts an in-range, already rounded count.
+    fn from_count(x: f64) -> Self;
+    /// Widens to f64.
+    fn to_count(self) -> f64;
+}
+
+macro_rules! scaled_repr {
+    ($($t:ty => $d:expr, $signed:expr;)*) => {$(
+        impl ScaledRepr for $t {
+            const DIVISOR: f64 = $d;
+            const SIGNED: bool = $signed;
+            const MIN_F: f64 = <$t>::MIN as f64;
+            const MAX_F: f64 = <$t>::MAX as f64;
+            #[inline]
+            fn from_count(x: f64) -> Self { x as $t }
+            #[inline]
+            fn to_count(self) -> f64 { self as f64 }
+        }
+    )*};
+}
+// Divisors as used by OpenJAUS 3.3 (WIRE.md §2.2), which the reference vectors follow.
+scaled_repr! {
+    u8 => 255.0, false;
+    u16 => 65_535.0, false;
+    u32 => 4_294_967_294.0, false;
+    u64 => 18_446_744_073_709_551_615.0, false;
+    i16 => 65_534.0, true;
+    i32 => 4_294_967_294.0, true;
+    i64 => 18_446_744_073_709_551_614.0, true;
+}
+
+/// Scale factor and bias of a scaled field with limits `[lo, hi]`.
+#[inline(always)]
+fn scale_bias<T: ScaledRepr>(lo: f64, hi: f64) -> (f64, f64) {
+    let sf = (hi - lo) / T::DIVISOR;
+    let bias = if T::SIGNED { (hi + lo) / 2.0 } else { lo };
+    (sf, bias)
+}
+
+/// Real value → integer: clamp to the limits, round to nearest.
+///
+/// Values within one count beyond a limit are kept (then saturated to the integer
+/// type), so that any integer received on the wire re-encodes to the same bytes.
+#[inline(always)]
+pub fn scale_to<T: ScaledRepr>(
+    v: f64,
+    lo: f64,
+    hi: f64,
+    field: &'static str,
+) -> Result<T, EncodeError> {
+    if !v.is_finite() {
+        return Err(EncodeError::NotFinite { field });
+    }
+    let (sf, bias) = scale_bias::<T>(lo, hi);
+    let v = v.clamp(lo - sf, hi + sf);
+    let x = ((v - bias) / sf).round().clamp(T::MIN_F, T::MAX_F);
+    Ok(T::from_count(x))
+}
+
+/// Integer → real value: `n * scale + bias`.
+#[inline(always)]
+pub fn scale_from<T: ScaledRepr>(n: T, lo: f64, hi: f64) -> f64 {
+    let (sf, bias) = scale_bias::<T>(lo, hi);
+    n.to_count() * sf + bias
+}
+
+/// One count of a scaled field: the resolution of its real value.
+pub fn scale_step<T: ScaledRepr>(lo: f64, hi: f64) -> f64 {
+    scale_bias::<T>(lo, hi).0
+}
+
+// ---------------------------------------------------------------------------------
+// Strings and blobs. JAUS strings are 8-bit characters; they are decoded as
+// ISO-8859-1 so that every byte sequence maps to a `String` and back losslessly.
+
+/// Converts wire bytes to a string (ISO-8859-1).
+pub fn latin1_to_string(bytes: &[u8]) -> String {
+    if bytes.is_ascii() {
+        // ASCII is valid UTF-8.
+        String::from_utf8(bytes.to_vec()).unwrap_or_default()
+    } else {
+        bytes.iter().map(|&b| b as char).collect()
+    }
+}
+
+/// Number of wire bytes of `s` (one per character).
+pub fn latin1_len(s: &str) -> usize {
+    if s.is_ascii() {
+        s.len()
+    } else {
+        s.chars().count()
+    }
+}
+
+/// Writes `s` as ISO-8859-1, failing on characters above U+00FF.
+pub fn put_latin1(w: &mut Writer<'_>, s: &str, field: &'static str) -> Result<(), EncodeError> {
+    if s.is_ascii() {
+        return w.put(s.as_bytes());
+    }
+    for c in s.chars() {
+        let b = u8::try_from(u32::from(c)).map_err(|_| EncodeError::NotLatin1 { field, ch: c })?;
+        w.put(&[b])?;
+    }
+    Ok(())
+}
+
+/// Writes a fixed-length, NUL-padded string field.
+pub fn put_fixed_string(
+    w: &mut Writer<'_>,
+    s: &str,
+    len: usize,
+    field: &'static str,
+) -> Result<(), EncodeError> {
+    let n = latin1_len(s);
+    if n > len {
+        return Err(EncodeError::TooLong { field, len: n, max: len });
+    }
+    put_latin1(w, s, field)?;
+    w.zeros(len - n)
+}
+
+/// Reads a fixed-length string field, stopping at the first NUL. With `accept_short`,
+/// a body that ends early yields the bytes that are there.
+pub fn get_fixed_string(
+    r: &mut Reader<'_>,
+    len: usize,
+    accept_short: bool,
+) -> Result<String, DecodeError> {
+    let n = if accept_short { len.min(r.remaining()) } else { len };
+    let raw = r.take(n)?;
+    let end = raw.iter().position(|&b| b == 0).unwrap_or(raw.len());
+    Ok(latin1_to_string(&raw[..end]))
+}
+
+/// Writes a fixed-length blob, zero padded.
+pub fn put_fixed_bytes(
+    w: &mut Writer<'_>,
+    b: &[u8],
+    len: usize,
+    field: &'static str,
+) -> Result<(), EncodeError> {
+    if b.len() > len {
+        return Err(EncodeError::TooLong { field, len: b.len(), max: len });
+    }
+    w.put(b)?;
+    w.zeros(len - b.len())
+}
+
+/// Reads a string that runs to the end of the body; trailing NULs are dropped.
+pub fn get_rest_string(r: &mut Reader<'_>) -> String {
+    let raw = r.rest();
+    let end = raw.iter().rposition(|&b| b != 0).map_or(0, |i| i + 1);
+    latin1_to_string(&raw[..end])
+}
+
+// ---------------------------------------------------------------------------------
+// Errors.
+
+/// What went wrong while decoding, and where.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct DecodeError {
+    /// The kind of failure.
+    pub kind: DecodeErrorKind,
+    /// Byte offset within the body (or packet, for header errors).
+    pub offset: usize,
+    /// `Type.field` where decoding failed (innermost), if known.
+    pub field: Option<&'static str>,
+    /// Name of the message being decoded, if known.
+    pub message: Option<&'static str>,
+}
+
+/// The kinds of decoding failure.
+#[derive(Debug, Clone, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum DecodeErrorKind {
+    /// The buffer ended before the field did.
+    Truncated {
+        /// Bytes the field needed.
+        needed: usize,
+        /// Bytes that were left.
+        available: usize,
+    },
+    /// A count prefix promises more elements than the remaining bytes can hold.
+    CountBeyondBuffer {
+        /// The count read.
+        count: usize,
+        /// Bytes left after it.
+        remaining: usize,
+    },
+    /// A size prefix does not match the size of what it wraps.
+    SizeMismatch {
+        /// Size announced by the prefix.
+        announced: usize,
+        /// Size actually consumed.
+        consumed: usize,
+    },
+    /// The body is longer than the message's fields.
+    TrailingBytes {
+        /// Bytes left over.
+        count: usize,
+    },
+    /// A tag of a tagged union, or a value of a closed enumeration, that the
+    /// definition does not name.
+    UndefinedValue {
+        /// The value read.
+        value: u64,
+    },
+    /// A command code that no known message has.
+    UnknownCommandCode {
+        /// The code.
+        code: u16,
+    },
+    /// The packet is shorter than the 16-byte header.
+    TruncatedHeader {
+        /// Bytes present.
+        len: usize,
+    },
+    /// The header's data size disagrees with the bytes that follow it.
+    DataSizeMismatch {
+        /// Size in the header.
+        header: usize,
+        /// Bytes actually present after the header.
+        actual: usize,
+    },
+}
+
+impl DecodeError {
+    /// A new error without field context.
+    #[cold]
+    pub fn new(kind: DecodeErrorKind, offset: usize) -> Self {
+        Self { kind, offset, field: None, message: None }
+    }
+
+    /// Attaches the field being decoded, keeping an inner (more precise) one.
+    #[cold]
+    pub fn in_field(mut self, field: &'static str) -> Self {
+        self.field.get_or_insert(field);
+        self
+    }
+
+    /// Attaches the message being decoded, keeping an inner one.
+    #[cold]
+    pub fn in_message(mut self, message: &'static str) -> Self {
+        self.message.get_or_insert(message);
+        self
+    }
+}
+
+impl fmt::Display for DecodeErrorKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Truncated { needed, available } => {
+                write!(f, "truncated: needs {needed} byte(s), {available} left")
+            }
+            Self::CountBeyondBuffer { count, remaining } => {
+                write!(f, "count {count} beyond buffer ({remaining} byte(s) left)")
+            }
+            Self::SizeMismatch { announced, consumed } => {
+                write!(f, "size prefix says {announced} byte(s) but content is {consumed}")
+            }
+            Self::TrailingBytes { count } => write!(f, "{count} unexpected trailing byte(s)"),
+            Self::UndefinedValue { value } => write!(f, "undefined value {value}"),
+            Self::UnknownCommandCode { code } => write!(f, "unknown command code 0x{code:04X}"),
+            Self::TruncatedHeader { len } => {
+                write!(f, "truncated header: {len} byte(s), a header needs 16")
+            }
+            Self::DataSizeMismatch { header, actual } => write!(
+                f,
+                "data size mismatch: header says {header} byte(s), {actual} follow the header"
+            ),
+        }
+    }
+}
+
+impl fmt::Display for DecodeError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if let Some(m) = self.message {
+            write!(f, "{m}: ")?;
+        }
+        write!(f, "{}", self.kind)?;
+        if let Some(field) = self.field {
+            write!(f, " in field `{field}`")?;
+        }
+        write!(f, " at byte {}", self.offset)
+    }
+}
+
+impl std::error::Error for DecodeError {}
+
+/// Why a value could not be encoded.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum EncodeError {
+    /// The output buffer is too small.
+    #[error("buffer too small: needs {needed} byte(s), has {capacity}")]
+    BufferTooSmall {
+        /// Bytes needed so far.
+        needed: usize,
+        /// Buffer capacity.
+        capacity: usize,
+    },
+    /// A list or blob has more elements than its count prefix can express.
+    #[error("field `{field}`: {count} element(s) do not fit a count of at most {max}")]
+    CountOverflow {
+        /// Field path.
+        field: &'static str,
+        /// Elements present.
+        count: usize,
+        /// Largest count.
+        max: usize,
+    },
+    /// A string or blob is longer than its fixed length.
+    #[error("field `{field}`: {len} byte(s) exceed the fixed length {max}")]
+    TooLong {
+        /// Field path.
+        field: &'static str,
+        /// Length given.
+        len: usize,
+        /// Fixed length.
+        max: usize,
+    },
+    /// A scaled value is NaN or infinite.
+    #[error("field `{field}`: value is not finite")]
+    NotFinite {
+        /// Field path.
+        field: &'static str,
+    },
+    /// A value does not fit the bits of its bit field.
+    #[error("field `{field}`: value {value} does not fit in {width} bit(s)")]
+    BitsOverflow {
+        /// Field path.
+        field: &'static str,
+        /// The value.
+        value: u64,
+        /// Width of the bit field.
+        width: u32,
+    },
+    /// A string holds a character outside ISO-8859-1.
+    #[error("field `{field}`: character {ch:?} is not an 8-bit character")]
+    NotLatin1 {
+        /// Field path.
+        field: &'static str,
+        /// The character.
+        ch: char,
+    },
+    /// A whole message is larger than a body can be.
+    #[error("message body of {len} byte(s) exceeds the maximum of {max}")]
+    BodyTooLarge {
+        /// Body length.
+        len: usize,
+        /// Maximum.
+        max: usize,
+    },
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn scaled_examples_from_wire_md() {
+        // (value, lo, hi, expected integer) — the OpenJAUS table of WIRE.md §2.2, with
+        // round-to-nearest for negatives (−50 % → −16384, −100 % → −32767).
+        assert_eq!(scale_to::<i16>(50.0, -100.0, 100.0, "").unwrap(), 16384);
+        assert_eq!(scale_to::<i16>(-50.0, -100.0, 100.0, "").unwrap(), -16384);
+        assert_eq!(scale_to::<i16>(100.0, -100.0, 100.0, "").unwrap(), 32767);
+        assert_eq!(scale_to::<i16>(-100.0, -100.0, 100.0, "").unwrap(), -32767);
+        assert_eq!(scale_to::<u8>(50.0, 0.0, 100.0, "").unwrap(), 128);
+        assert_eq!(scale_to::<u16>(10.0, 0.0, 1092.0, "").unwrap(), 600);
+        assert_eq!(scale_to::<i32>(29.0, -90.0, 90.0, "").unwrap(), 691_966_953);
+        assert_eq!(scale_to::<u32>(1.5, 0.0, 100.0, "").unwrap(), 64_424_509);
+        assert!((scale_from::<i16>(16384, -100.0, 100.0) - 50.00153).abs() < 1e-5);
+        assert!(scale_to::<i16>(f64::NAN, -1.0, 1.0, "x").is_err());
+    }
+
+    #[test]
+    fn every_wire_integer_round_trips() {
+        for n in [i16::MIN, -32767, -1, 0, 1, 32766, i16::MAX] {
+            let v = scale_from(n, -std::f64::consts::PI, std::f64::consts::PI);
+            assert_eq!(scale_to::<i16>(v, -std::f64::consts::PI, std::f64::consts::PI, "").unwrap(), n);
+        }
+        for n in [0u32, 1, 4_294_967_294, u32::MAX] {
+            let v = scale_from(n, 0.0, 100.0);
+            assert_eq!(scale_to::<u32>(v, 0.0, 100.0, "").unwrap(), n);
+        }
+    }
+
+    #[test]
+    fn out_of_range_values_clamp() {
+        assert_eq!(scale_to::<u8>(1e9, 0.0, 100.0, "").unwrap(), 255);
+        assert_eq!(scale_to::<u8>(-5.0, 0.0, 100.0, "").unwrap(), 0);
+        assert_eq!(scale_to::<i16>(-1e9, -1.0, 1.0, "").unwrap(), i16::MIN);
+    }
+
+    #[test]
+    fn reader_never_panics_on_short_input() {
+        let mut r = Reader::new(&[1, 2, 3]);
+        assert!(u32::decode(&mut r).is_err());
+        assert!(r.take(usize::MAX).is_err());
+        assert_eq!(u16::decode(&mut r).unwrap(), 0x0201);
+    }
+
+    #[test]
+    fn latin1_round_trip() {
+        let bytes: Vec<u8> = (1..=255).collect();
+        let s = latin1_to_string(&bytes);
+        let mut out = vec![0; 255];
+        put_latin1(&mut Writer::new(&mut out), &s, "").unwrap();
+        assert_eq!(out, bytes);
+    }
+}

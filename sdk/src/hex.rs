@@ -1,0 +1,66 @@
+//! Hexadecimal text for packets and blobs (CLI input/output, JSON).
+
+/// Lowercase hex of `bytes`.
+pub fn encode(bytes: &[u8]) -> String {
+    const DIGITS: &[u8; 16] = b"0123456789abcdef";
+    let mut s = String::with_capacity(bytes.len() * 2);
+    for b in bytes {
+        s.push(DIGITS[usize::from(b >> 4)] as char);
+        s.push(DIGITS[usize::from(b & 15)] as char);
+    }
+    s
+}
+
+/// Why a hex string could not be read.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum HexError {
+    /// Odd number of digits.
+    #[error("odd number of hex digits ({0})")]
+    OddLength(usize),
+    /// A character that is not a hex digit.
+    #[error("invalid hex digit {ch:?} at position {at}")]
+    BadDigit {
+        /// The character.
+        ch: char,
+        /// Its index.
+        at: usize,
+    },
+}
+
+/// Bytes of a hex string; whitespace is ignored.
+pub fn decode(s: &str) -> Result<Vec<u8>, HexError> {
+    let digits: Vec<(usize, char)> = s.char_indices().filter(|(_, c)| !c.is_whitespace()).collect();
+    if digits.len() % 2 != 0 {
+        return Err(HexError::OddLength(digits.len()));
+    }
+    let val = |(at, ch): (usize, char)| ch.to_digit(16).map(|d| d as u8).ok_or(HexError::BadDigit { ch, at });
+    digits.chunks(2).map(|p| Ok(val(p[0])? << 4 | val(p[1])?)).collect()
+}
+
+/// `#[serde(with = "jaus::hex::serde")]` for `Vec<u8>` fields: a hex string in JSON.
+#[cfg(feature = "serde")]
+pub mod serde {
+    use serde::{Deserialize, Deserializer, Serializer};
+
+    /// Serialises bytes as a hex string.
+    pub fn serialize<S: Serializer>(v: &[u8], s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(&super::encode(v))
+    }
+
+    /// Deserialises bytes from a hex string.
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<u8>, D::Error> {
+        let s = String::deserialize(d)?;
+        super::decode(&s).map_err(serde::de::Error::custom)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn round_trip() {
+        let b = [0u8, 1, 0xab, 0xff];
+        assert_eq!(super::decode(&super::encode(&b)).unwrap(), b);
+        assert!(super::decode("abc").is_err());
+        assert!(super::decode("zz").is_err());
+    }
+}

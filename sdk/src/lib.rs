@@ -1,0 +1,86 @@
+//! # jaus — a JAUS RA 3.3 SDK
+//!
+//! Typed messages generated at build time from the YAML definitions of `jaus-spec`,
+//! a byte-exact wire codec derived from field attributes, and the header/packet types.
+//!
+//! ```
+//! use jaus::codec::{Decode, Encode};
+//! use jaus::messages::ReportGlobalPose;
+//!
+//! let pose = ReportGlobalPose {
+//!     latitude: Some(29.65),
+//!     longitude: Some(-82.32),
+//!     ..Default::default()
+//! };
+//! let body = pose.to_bytes().unwrap();
+//! assert_eq!(body.len(), 2 + 4 + 4); // presence vector + two scaled i32
+//! let back = ReportGlobalPose::from_bytes(&body).unwrap();
+//! assert!((back.latitude.unwrap() - 29.65).abs() < 1e-7);
+//! assert_eq!(back.elevation, None);
+//! ```
+//!
+//! A vendor's own experimental message needs no YAML: derive the codec by hand.
+//!
+//! ```
+//! use jaus::codec::{Decode, Encode};
+//! use jaus::{JausMessage, JausRecord};
+//!
+//! #[derive(Debug, PartialEq, JausRecord)]
+//! struct Sample {
+//!     #[jaus(scaled(u16, 0.0, 100.0))]
+//!     level: f64,
+//! }
+//!
+//! /// Report Tank Levels, an experimental message of our own.
+//! #[derive(Debug, PartialEq, JausMessage)]
+//! #[jaus(code = 0xD101, presence = u8)]
+//! struct ReportTankLevels {
+//!     tank: u8,
+//!     #[jaus(count = u8)]
+//!     samples: Vec<Sample>,
+//!     #[jaus(bit = 0, size = u8)]
+//!     label: Option<String>,
+//! }
+//!
+//! let m = ReportTankLevels { tank: 2, samples: vec![Sample { level: 100.0 }], label: None };
+//! let bytes = m.to_bytes().unwrap();
+//! assert_eq!(bytes, [0x00, 0x02, 0x01, 0xFF, 0xFF]);
+//! assert_eq!(ReportTankLevels::from_bytes(&bytes).unwrap(), m);
+//! assert_eq!(ReportTankLevels::CODE.0, 0xD101);
+//! ```
+
+// The derive macros refer to `::jaus`; make that path work inside this crate too.
+extern crate self as jaus;
+
+pub mod codec;
+pub mod hex;
+pub mod wire;
+
+pub use jaus_derive::{JausBits, JausEnum, JausMessage, JausRecord, JausUnion};
+pub use wire::{Address, CommandCode, Header, Packet};
+
+/// A message body type with its command code.
+pub trait JausMessage: codec::Encode + codec::Decode {
+    /// The command code in the header of this message.
+    const CODE: CommandCode;
+    /// The message name.
+    const NAME: &'static str;
+
+    /// Decodes a whole body, naming this message in any error.
+    fn decode_body(body: &[u8]) -> Result<Self, codec::DecodeError> {
+        Self::from_bytes(body).map_err(|e| e.in_message(Self::NAME))
+    }
+}
+
+/// A query message and the report that answers it.
+pub trait Query: JausMessage {
+    /// The report a component sends back.
+    type Report: JausMessage;
+}
+
+/// The generated message set: one struct per message, shared types, and the
+/// [`messages::Message`] enum over all of them.
+#[allow(clippy::all, missing_docs)]
+pub mod messages {
+    include!(concat!(env!("OUT_DIR"), "/messages.rs"));
+}

@@ -1,0 +1,456 @@
+//! The 16-byte JAUS message header, addresses, command codes and whole packets
+//! (WIRE.md §1). Hand-written: everything about a message body comes from the derive.
+
+use crate::codec::{Decode, DecodeError, DecodeErrorKind, Encode, EncodeError, Reader, Writer};
+use std::fmt;
+use std::str::FromStr;
+
+/// Size of the JAUS message header in bytes.
+pub const HEADER_LEN: usize = 16;
+/// Largest body the 12-bit data-size field can describe.
+pub const MAX_DATA_SIZE: usize = 0x0FFF;
+/// Largest body OpenJAUS puts in one packet; longer messages are split (WIRE.md §1.6).
+pub const MAX_PACKET_BODY: usize = 4080;
+
+/// A 16-bit JAUS command code.
+#[derive(Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize), serde(transparent))]
+pub struct CommandCode(pub u16);
+
+/// The message class a command code falls in (WIRE.md §3.1).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MessageClass {
+    /// 0x0000–0x1FFF.
+    Command,
+    /// 0x2000–0x3FFF.
+    Query,
+    /// 0x4000–0x5FFF.
+    Inform,
+    /// 0x6000–0x7FFF (deprecated in RA 3.3).
+    EventSetup,
+    /// 0x8000–0x9FFF (deprecated in RA 3.3).
+    EventNotification,
+    /// 0xA000–0xBFFF.
+    NodeManagement,
+    /// 0xC000–0xCFFF.
+    Reserved,
+    /// 0xD000–0xFFFF.
+    Experimental,
+}
+
+impl CommandCode {
+    /// The class of this code.
+    pub fn class(self) -> MessageClass {
+        match self.0 {
+            0x0000..=0x1FFF => MessageClass::Command,
+            0x2000..=0x3FFF => MessageClass::Query,
+            0x4000..=0x5FFF => MessageClass::Inform,
+            0x6000..=0x7FFF => MessageClass::EventSetup,
+            0x8000..=0x9FFF => MessageClass::EventNotification,
+            0xA000..=0xBFFF => MessageClass::NodeManagement,
+            0xC000..=0xCFFF => MessageClass::Reserved,
+            _ => MessageClass::Experimental,
+        }
+    }
+}
+
+impl fmt::Debug for CommandCode {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "0x{:04X}", self.0)
+    }
+}
+
+impl fmt::Display for CommandCode {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "0x{:04X}", self.0)
+    }
+}
+
+/// A JAUS address: subsystem, node, component, instance. 255 is broadcast at any level;
+/// 0 is not a valid identifier.
+#[derive(Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Default, Debug)]
+pub struct Address {
+    /// Subsystem id.
+    pub subsystem: u8,
+    /// Node id.
+    pub node: u8,
+    /// Component id.
+    pub component: u8,
+    /// Instance id.
+    pub instance: u8,
+}
+
+impl Address {
+    /// The broadcast value of any level.
+    pub const BROADCAST: u8 = 255;
+
+    /// A new address.
+    pub const fn new(subsystem: u8, node: u8, component: u8, instance: u8) -> Self {
+        Self { subsystem, node, component, instance }
+    }
+
+    /// True when every level is a valid id (1–254) or broadcast.
+    pub fn is_valid(&self) -> bool {
+        [self.subsystem, self.node, self.component, self.instance].iter().all(|&b| b != 0)
+    }
+
+    /// True when `self`, used as a destination, matches the concrete address `other`
+    /// (255 at a level matches anything there).
+    pub fn matches(&self, other: &Address) -> bool {
+        let m = |d: u8, o: u8| d == Self::BROADCAST || d == o;
+        m(self.subsystem, other.subsystem)
+            && m(self.node, other.node)
+            && m(self.component, other.component)
+            && m(self.instance, other.instance)
+    }
+
+    fn to_wire(self) -> [u8; 4] {
+        [self.instance, self.component, self.node, self.subsystem]
+    }
+
+    fn from_wire(b: [u8; 4]) -> Self {
+        Self { instance: b[0], component: b[1], node: b[2], subsystem: b[3] }
+    }
+}
+
+impl fmt::Display for Address {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}.{}.{}.{}", self.subsystem, self.node, self.component, self.instance)
+    }
+}
+
+/// Error parsing an address from text.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("invalid JAUS address `{0}`: expected subsystem.node.component.instance, each 0-255")]
+pub struct AddressParseError(pub String);
+
+impl FromStr for Address {
+    type Err = AddressParseError;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        let parts: Vec<&str> = s.split('.').collect();
+        let p = |i: usize| parts.get(i).and_then(|x| x.parse::<u8>().ok());
+        match (parts.len(), p(0), p(1), p(2), p(3)) {
+            (4, Some(a), Some(b), Some(c), Some(d)) => Ok(Address::new(a, b, c, d)),
+            _ => Err(AddressParseError(s.to_string())),
+        }
+    }
+}
+
+#[cfg(feature = "serde")]
+impl serde::Serialize for Address {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        [self.subsystem, self.node, self.component, self.instance].serialize(s)
+    }
+}
+
+#[cfg(feature = "serde")]
+impl<'de> serde::Deserialize<'de> for Address {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        let [a, b, c, e] = <[u8; 4]>::deserialize(d)?;
+        Ok(Address::new(a, b, c, e))
+    }
+}
+
+/// ACK/NAK field of the header.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
+pub enum AckNak {
+    /// No acknowledgement required (0).
+    #[default]
+    None,
+    /// Acknowledgement requested (1).
+    Request,
+    /// Negative acknowledgement (2).
+    Nak,
+    /// Acknowledgement (3).
+    Ack,
+}
+
+/// Data flag of a packet in a multi-packet sequence (WIRE.md §1.3).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
+pub enum DataFlag {
+    /// A whole message in one packet (0).
+    #[default]
+    Single,
+    /// First packet of a sequence (1).
+    First,
+    /// Middle packet (2).
+    Normal,
+    /// Retransmitted packet (4).
+    Retransmit,
+    /// Last packet (8).
+    Last,
+    /// A value the standard does not define (kept so the packet round-trips).
+    Other(u8),
+}
+
+impl DataFlag {
+    fn to_bits(self) -> u8 {
+        match self {
+            DataFlag::Single => 0,
+            DataFlag::First => 1,
+            DataFlag::Normal => 2,
+            DataFlag::Retransmit => 4,
+            DataFlag::Last => 8,
+            DataFlag::Other(v) => v & 0x0F,
+        }
+    }
+    fn from_bits(v: u8) -> Self {
+        match v {
+            0 => DataFlag::Single,
+            1 => DataFlag::First,
+            2 => DataFlag::Normal,
+            4 => DataFlag::Retransmit,
+            8 => DataFlag::Last,
+            v => DataFlag::Other(v),
+        }
+    }
+}
+
+/// The 16-byte JAUS message header, every field of WIRE.md §1.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct Header {
+    /// Priority 0–15 (6 is the default; 12–15 are safety critical).
+    pub priority: u8,
+    /// ACK/NAK request or reply.
+    pub ack_nak: AckNak,
+    /// Part of a service connection.
+    pub service_connection: bool,
+    /// Experimental (user-defined) message.
+    pub experimental: bool,
+    /// Version: 2 for RA 3.2/3.3.
+    pub version: u8,
+    /// The two reserved bits of the properties word (kept as received).
+    #[cfg_attr(feature = "serde", serde(default, skip_serializing_if = "is_zero"))]
+    pub reserved: u8,
+    /// What the body is.
+    pub command_code: CommandCode,
+    /// Where it goes.
+    pub destination: Address,
+    /// Who sent it.
+    pub source: Address,
+    /// Body bytes in this packet (12 bits). Computed from the body when a packet is
+    /// encoded.
+    pub data_size: u16,
+    /// Position in a multi-packet sequence.
+    pub data_flag: DataFlag,
+    /// Multi-packet index or service-connection sequence number.
+    pub sequence_number: u16,
+}
+
+#[cfg(feature = "serde")]
+fn is_zero(v: &u8) -> bool {
+    *v == 0
+}
+
+impl Header {
+    /// Version value of RA 3.2 and 3.3.
+    pub const VERSION_3_3: u8 = 2;
+    /// Default priority.
+    pub const DEFAULT_PRIORITY: u8 = 6;
+
+    /// A header with the defaults OpenJAUS uses (priority 6, version 2, no flags).
+    pub fn new(command_code: CommandCode, destination: Address, source: Address) -> Self {
+        Self {
+            priority: Self::DEFAULT_PRIORITY,
+            ack_nak: AckNak::None,
+            service_connection: false,
+            experimental: false,
+            version: Self::VERSION_3_3,
+            reserved: 0,
+            command_code,
+            destination,
+            source,
+            data_size: 0,
+            data_flag: DataFlag::Single,
+            sequence_number: 0,
+        }
+    }
+
+    /// Writes the header with `data_size` as given.
+    fn put(&self, w: &mut Writer<'_>, data_size: usize) -> Result<(), EncodeError> {
+        let check = |field: &'static str, v: u64, width: u32| {
+            if v >> width != 0 {
+                Err(EncodeError::BitsOverflow { field, value: v, width })
+            } else {
+                Ok(())
+            }
+        };
+        check("Header.priority", self.priority.into(), 4)?;
+        check("Header.version", self.version.into(), 6)?;
+        check("Header.reserved", self.reserved.into(), 2)?;
+        check("Header.data_size", data_size as u64, 12)?;
+        let ack = match self.ack_nak {
+            AckNak::None => 0u16,
+            AckNak::Request => 1,
+            AckNak::Nak => 2,
+            AckNak::Ack => 3,
+        };
+        let props: u16 = u16::from(self.priority)
+            | ack << 4
+            | u16::from(self.service_connection) << 6
+            | u16::from(self.experimental) << 7
+            | u16::from(self.version) << 8
+            | u16::from(self.reserved) << 14;
+        let control = data_size as u16 | u16::from(self.data_flag.to_bits()) << 12;
+        let mut b = [0u8; HEADER_LEN];
+        b[0..2].copy_from_slice(&props.to_le_bytes());
+        b[2..4].copy_from_slice(&self.command_code.0.to_le_bytes());
+        b[4..8].copy_from_slice(&self.destination.to_wire());
+        b[8..12].copy_from_slice(&self.source.to_wire());
+        b[12..14].copy_from_slice(&control.to_le_bytes());
+        b[14..16].copy_from_slice(&self.sequence_number.to_le_bytes());
+        w.put(&b)
+    }
+
+    /// Parses the first 16 bytes of `bytes`.
+    pub fn parse(bytes: &[u8]) -> Result<Header, DecodeError> {
+        let b: &[u8; HEADER_LEN] = bytes
+            .get(..HEADER_LEN)
+            .and_then(|s| s.try_into().ok())
+            .ok_or_else(|| DecodeError::new(DecodeErrorKind::TruncatedHeader { len: bytes.len() }, 0))?;
+        let props = u16::from_le_bytes([b[0], b[1]]);
+        let control = u16::from_le_bytes([b[12], b[13]]);
+        Ok(Header {
+            priority: (props & 0x0F) as u8,
+            ack_nak: match (props >> 4) & 3 {
+                0 => AckNak::None,
+                1 => AckNak::Request,
+                2 => AckNak::Nak,
+                _ => AckNak::Ack,
+            },
+            service_connection: props & (1 << 6) != 0,
+            experimental: props & (1 << 7) != 0,
+            version: ((props >> 8) & 0x3F) as u8,
+            reserved: (props >> 14) as u8,
+            command_code: CommandCode(u16::from_le_bytes([b[2], b[3]])),
+            destination: Address::from_wire([b[4], b[5], b[6], b[7]]),
+            source: Address::from_wire([b[8], b[9], b[10], b[11]]),
+            data_size: control & 0x0FFF,
+            data_flag: DataFlag::from_bits((control >> 12) as u8),
+            sequence_number: u16::from_le_bytes([b[14], b[15]]),
+        })
+    }
+}
+
+impl Encode for Header {
+    fn encoded_len(&self) -> usize {
+        HEADER_LEN
+    }
+    fn encode(&self, w: &mut Writer<'_>) -> Result<(), EncodeError> {
+        self.put(w, usize::from(self.data_size))
+    }
+}
+
+impl Decode for Header {
+    const MIN_LEN: usize = HEADER_LEN;
+    fn decode(r: &mut Reader<'_>) -> Result<Self, DecodeError> {
+        let at = r.offset();
+        let bytes = r.take(HEADER_LEN).map_err(|e| {
+            DecodeError::new(
+                DecodeErrorKind::TruncatedHeader { len: match e.kind {
+                    DecodeErrorKind::Truncated { available, .. } => available,
+                    _ => 0,
+                } },
+                at,
+            )
+        })?;
+        Header::parse(bytes)
+    }
+}
+
+/// A whole JAUS packet: header and raw body. Also the form of a message embedded with
+/// its header in another message (Spool Mission tasks, Report Events queries).
+#[derive(Debug, Clone, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct Packet {
+    /// The header; its `data_size` is recomputed from `body` on encode.
+    pub header: Header,
+    /// The body bytes.
+    #[cfg_attr(feature = "serde", serde(with = "crate::hex::serde"))]
+    pub body: Vec<u8>,
+}
+
+impl Packet {
+    /// Parses one datagram-sized packet: a header and exactly `data_size` body bytes.
+    pub fn parse(bytes: &[u8]) -> Result<Packet, DecodeError> {
+        let header = Header::parse(bytes)?;
+        let actual = bytes.len() - HEADER_LEN;
+        if actual != usize::from(header.data_size) {
+            return Err(DecodeError::new(
+                DecodeErrorKind::DataSizeMismatch { header: header.data_size.into(), actual },
+                12,
+            ));
+        }
+        Ok(Packet { header, body: bytes[HEADER_LEN..].to_vec() })
+    }
+}
+
+impl Encode for Packet {
+    fn encoded_len(&self) -> usize {
+        HEADER_LEN + self.body.len()
+    }
+    fn encode(&self, w: &mut Writer<'_>) -> Result<(), EncodeError> {
+        if self.body.len() > MAX_DATA_SIZE {
+            return Err(EncodeError::BodyTooLarge { len: self.body.len(), max: MAX_DATA_SIZE });
+        }
+        self.header.put(w, self.body.len())?;
+        w.put(&self.body)
+    }
+}
+
+impl Decode for Packet {
+    const MIN_LEN: usize = HEADER_LEN;
+    fn decode(r: &mut Reader<'_>) -> Result<Self, DecodeError> {
+        let header = Header::decode(r)?;
+        let body = r.take(usize::from(header.data_size))?.to_vec();
+        Ok(Packet { header, body })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn header_example_of_wire_md() {
+        // Query Component Status from 1.1.40.1 to 1.1.33.1 (WIRE.md §1.5).
+        let bytes = [6, 2, 2, 0x20, 1, 0x21, 1, 1, 1, 0x28, 1, 1, 0, 0, 0, 0];
+        let h = Header::parse(&bytes).unwrap();
+        assert_eq!(h.command_code, CommandCode(0x2002));
+        assert_eq!(h.destination, Address::new(1, 1, 33, 1));
+        assert_eq!(h.source, Address::new(1, 1, 40, 1));
+        assert_eq!(h.priority, 6);
+        assert_eq!(h.version, 2);
+        assert_eq!(h.to_bytes().unwrap(), bytes);
+        assert_eq!(Header::new(CommandCode(0x2002), h.destination, h.source), h);
+    }
+
+    #[test]
+    fn packet_size_checks() {
+        let mut bytes = vec![6, 2, 1, 0, 1, 1, 1, 1, 2, 2, 2, 2, 1, 0, 0, 0, 7];
+        assert_eq!(Packet::parse(&bytes).unwrap().body, vec![7]);
+        bytes.push(0);
+        assert!(matches!(
+            Packet::parse(&bytes).unwrap_err().kind,
+            DecodeErrorKind::DataSizeMismatch { header: 1, actual: 2 }
+        ));
+        assert!(matches!(
+            Packet::parse(&bytes[..5]).unwrap_err().kind,
+            DecodeErrorKind::TruncatedHeader { len: 5 }
+        ));
+    }
+
+    #[test]
+    fn address_text() {
+        let a: Address = "1.2.3.4".parse().unwrap();
+        assert_eq!(a.to_string(), "1.2.3.4");
+        assert!("1.2.3".parse::<Address>().is_err());
+        assert!(Address::new(1, 255, 255, 255).matches(&Address::new(1, 2, 3, 4)));
+        assert!(!Address::new(2, 255, 255, 255).matches(&Address::new(1, 2, 3, 4)));
+    }
+}
