@@ -697,11 +697,16 @@ pub fn enumeration(input: &DeriveInput) -> TokenStream {
             let mut seen: Vec<(u64, String)> = Vec::new();
             for v in &e.variants {
                 let mut is_unknown = false;
+                let mut attr_value: Option<u64> = None;
                 for_each_item(&v.attrs, &mut errors, |key, input, errors| {
                     if key == "unknown" {
                         is_unknown = true;
+                    } else if key == "value" {
+                        input.parse::<syn::Token![=]>()?;
+                        let l: syn::LitInt = input.parse()?;
+                        attr_value = Some(l.base10_parse()?);
                     } else {
-                        errors.error(key.span(), format!("unknown jaus variant attribute `{key}`; expected `unknown`"));
+                        errors.error(key.span(), format!("unknown jaus variant attribute `{key}`; expected `value = N` or `unknown`"));
                         while !input.is_empty() && !input.peek(syn::Token![,]) {
                             input.parse::<proc_macro2::TokenTree>()?;
                         }
@@ -721,8 +726,9 @@ pub fn enumeration(input: &DeriveInput) -> TokenStream {
                     errors.error(v.ident.span(), "enumeration variants are unit variants with a value (`Name = 3`); use JausUnion for variants with data");
                     continue;
                 }
-                let value = match &v.discriminant {
-                    Some((_, syn::Expr::Lit(syn::ExprLit { lit: syn::Lit::Int(i), .. }))) => i.base10_parse::<u64>().ok(),
+                let value = match (&v.discriminant, attr_value) {
+                    (None, Some(v)) => Some(v),
+                    (Some((_, syn::Expr::Lit(syn::ExprLit { lit: syn::Lit::Int(i), .. }))), None) => i.base10_parse::<u64>().ok(),
                     _ => None,
                 };
                 match value {
@@ -738,7 +744,7 @@ pub fn enumeration(input: &DeriveInput) -> TokenStream {
                         seen.push((val, v.ident.to_string()));
                         known.push((v.ident.clone(), val));
                     }
-                    None => errors.error(v.ident.span(), "each variant needs an explicit integer value: `Name = 3`"),
+                    None => errors.error(v.ident.span(), "each variant needs exactly one wire value: `Name = 3` or `#[jaus(value = 3)]`"),
                 }
             }
         }

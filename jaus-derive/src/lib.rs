@@ -11,7 +11,7 @@
 //! |---|---|---|
 //! | `JausMessage` | a struct that is a whole message body | `code = 0x....` (required), `presence = u8\|u16\|u32`, `crate = "path"` |
 //! | `JausRecord` | a struct nested in messages (list element, shared type) | `presence = ...`, `crate = ...` |
-//! | `JausEnum` | a C-like enum of named values | `repr = u8\|u16\|u32`; optional `#[jaus(unknown)] Unknown(T)` variant preserving undefined values |
+//! | `JausEnum` | an enum of named values (`Name = 3` or `#[jaus(value = 3)] Name`) | `repr = u8\|u16\|u32`; optional `#[jaus(unknown)] Unknown(T)` variant preserving undefined values |
 //! | `JausBits` | a struct of named bits of one integer | `repr = ...`; fields `#[jaus(bit = N)] bool`, `#[jaus(bits = A..=B)] uN`, `#[jaus(reserved)] uN` |
 //! | `JausUnion` | an enum whose variant is chosen by a leading tag | `tag = u8\|u16\|u32`; variants `#[jaus(tag = N)] Name(T)` or unit |
 //!

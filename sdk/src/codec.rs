@@ -462,6 +462,11 @@ pub fn get_rest_string(r: &mut Reader<'_>) -> String {
     latin1_to_string(&raw[..end])
 }
 
+/// True when `v` equals its type's default (used to omit zero reserved bits in JSON).
+pub fn is_default<T: Default + PartialEq>(v: &T) -> bool {
+    *v == T::default()
+}
+
 // ---------------------------------------------------------------------------------
 // Errors.
 

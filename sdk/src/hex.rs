@@ -64,3 +64,23 @@ mod tests {
         assert!(super::decode("zz").is_err());
     }
 }
+
+/// `#[serde(with = "jaus::hex::serde_opt")]` for `Option<Vec<u8>>` fields.
+#[cfg(feature = "serde")]
+pub mod serde_opt {
+    use serde::{Deserialize, Deserializer, Serializer};
+
+    /// Serialises present bytes as a hex string.
+    pub fn serialize<S: Serializer>(v: &Option<Vec<u8>>, s: S) -> Result<S::Ok, S::Error> {
+        match v {
+            Some(b) => s.serialize_str(&super::encode(b)),
+            None => s.serialize_none(),
+        }
+    }
+
+    /// Deserialises optional bytes from a hex string.
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<Option<Vec<u8>>, D::Error> {
+        let s = Option::<String>::deserialize(d)?;
+        s.map(|s| super::decode(&s).map_err(serde::de::Error::custom)).transpose()
+    }
+}

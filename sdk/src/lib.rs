@@ -78,6 +78,30 @@ pub trait Query: JausMessage {
     type Report: JausMessage;
 }
 
+/// A row of the message catalogue ([`messages::MESSAGES`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct MessageInfo {
+    /// Command code.
+    pub code: CommandCode,
+    /// Rust/struct name.
+    pub name: &'static str,
+    /// Title as the standard writes it.
+    pub title: &'static str,
+    /// Message group (also the cargo feature that selects it).
+    pub group: &'static str,
+    /// For a query, the name of the report answering it.
+    pub report: Option<&'static str>,
+    /// Not part of RA 3.3.
+    pub experimental: bool,
+}
+
+impl MessageInfo {
+    /// The catalogue row of `code`.
+    pub fn of(code: CommandCode) -> Option<&'static MessageInfo> {
+        messages::MESSAGES.iter().find(|m| m.code == code)
+    }
+}
+
 /// The generated message set: one struct per message, shared types, and the
 /// [`messages::Message`] enum over all of them.
 #[allow(clippy::all, missing_docs)]

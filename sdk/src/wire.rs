@@ -54,6 +54,19 @@ impl CommandCode {
     }
 }
 
+impl CommandCode {
+    /// The complementary code of the query/report pairing (WIRE.md §3.3): a query's
+    /// report is `query + 0x2000`, a report's query `report - 0x2000`. `None` outside
+    /// the query and inform classes.
+    pub fn complement(self) -> Option<CommandCode> {
+        match self.class() {
+            MessageClass::Query => Some(CommandCode(self.0 + 0x2000)),
+            MessageClass::Inform => Some(CommandCode(self.0 - 0x2000)),
+            _ => None,
+        }
+    }
+}
+
 impl fmt::Debug for CommandCode {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(f, "0x{:04X}", self.0)

@@ -1,0 +1,493 @@
+//! The template context: every message and type of a spec, with Rust types, derive
+//! attributes and documentation already worked out.
+
+use jaus_spec::{FieldDef, Int, Len, Spec, TypeKind, Wire};
+use serde::Serialize;
+
+/// Everything the templates see.
+#[derive(Debug, Serialize)]
+pub struct Context {
+    /// Groups in definition order, each with its types and messages.
+    pub groups: Vec<GroupCtx>,
+    /// Every message, in definition order.
+    pub messages: Vec<MessageCtx>,
+    /// Query → report pairs.
+    pub queries: Vec<QueryCtx>,
+}
+
+/// One group.
+#[derive(Debug, Serialize)]
+pub struct GroupCtx {
+    /// Identifier.
+    pub name: String,
+    /// Rust module name (the identifier, except where it would shadow a crate: `core`
+    /// becomes `core_messages`).
+    pub module: String,
+    /// Title.
+    pub title: String,
+    /// Description lines.
+    pub doc: Vec<String>,
+    /// `#[cfg(...)]` condition text, if gated.
+    pub cfg: Option<String>,
+    /// Named types.
+    pub types: Vec<TypeCtx>,
+    /// Messages.
+    pub messages: Vec<MessageCtx>,
+}
+
+/// A named type.
+#[derive(Debug, Serialize)]
+pub struct TypeCtx {
+    /// Rust name.
+    pub name: String,
+    /// `record`, `enum`, `bitfield` or `union`.
+    pub kind: String,
+    /// Integer type of enum/bitfield/union tag.
+    pub repr: String,
+    /// Doc lines.
+    pub doc: Vec<String>,
+    /// `#[jaus(...)]` container attribute contents.
+    pub container_attr: String,
+    /// Derive `Default`.
+    pub default: bool,
+    /// Derive `Copy`.
+    pub copy: bool,
+    /// Record fields.
+    pub fields: Vec<FieldCtx>,
+    /// Enum values.
+    pub values: Vec<ValueCtx>,
+    /// Bitfield members.
+    pub bits: Vec<BitCtx>,
+    /// Union variants.
+    pub variants: Vec<VariantCtx>,
+}
+
+/// A message.
+#[derive(Debug, Clone, Serialize)]
+pub struct MessageCtx {
+    /// Rust name.
+    pub name: String,
+    /// Command code as `0x4402`.
+    pub code: String,
+    /// Title.
+    pub title: String,
+    /// Group identifier.
+    pub group: String,
+    /// `#[cfg(...)]` condition, if gated.
+    pub cfg: Option<String>,
+    /// Doc lines.
+    pub doc: Vec<String>,
+    /// `#[jaus(...)]` container attribute contents.
+    pub container_attr: String,
+    /// Derive `Default`.
+    pub default: bool,
+    /// Fields.
+    pub fields: Vec<FieldCtx>,
+    /// Accessors decoding embedded message bodies.
+    pub embedded: Vec<EmbeddedCtx>,
+    /// Report answering this query.
+    pub report: Option<String>,
+    /// Experimental.
+    pub experimental: bool,
+}
+
+/// A struct field.
+#[derive(Debug, Clone, Serialize)]
+pub struct FieldCtx {
+    /// Rust name.
+    pub name: String,
+    /// Rust type.
+    pub ty: String,
+    /// `#[jaus(...)]` contents (empty for none).
+    pub attr: String,
+    /// `serde(...)` contents (empty for none).
+    pub serde: String,
+    /// Doc lines.
+    pub doc: Vec<String>,
+}
+
+/// An enum value.
+#[derive(Debug, Serialize)]
+pub struct ValueCtx {
+    /// Variant name.
+    pub name: String,
+    /// Wire value.
+    pub value: u64,
+    /// Doc lines.
+    pub doc: Vec<String>,
+}
+
+/// A bitfield member.
+#[derive(Debug, Serialize)]
+pub struct BitCtx {
+    /// Field name.
+    pub name: String,
+    /// Rust type.
+    pub ty: String,
+    /// `#[jaus(...)]` contents.
+    pub attr: String,
+    /// Doc lines.
+    pub doc: Vec<String>,
+}
+
+/// A union variant.
+#[derive(Debug, Serialize)]
+pub struct VariantCtx {
+    /// Variant name.
+    pub name: String,
+    /// Tag.
+    pub tag: u64,
+    /// Payload type, if any.
+    pub ty: Option<String>,
+    /// Doc lines.
+    pub doc: Vec<String>,
+}
+
+/// An embedded message body with its code in another field.
+#[derive(Debug, Clone, Serialize)]
+pub struct EmbeddedCtx {
+    /// The bytes field.
+    pub field: String,
+    /// The field holding the code.
+    pub code_field: String,
+    /// The body's code is the complement of that code.
+    pub complement: bool,
+}
+
+/// A query and its report.
+#[derive(Debug, Serialize)]
+pub struct QueryCtx {
+    /// Query name.
+    pub query: String,
+    /// Report name.
+    pub report: String,
+    /// Combined cfg.
+    pub cfg: Option<String>,
+}
+
+fn doc_lines(text: Option<&str>) -> Vec<String> {
+    text.map(|t| t.lines().map(|l| l.trim_end().to_string()).collect()).unwrap_or_default()
+}
+
+fn fmt_f64(v: f64) -> String {
+    format!("{v:?}")
+}
+
+fn cfg_of(group: &str, gates: bool) -> Option<String> {
+    (gates && group != "core").then(|| format!("feature = \"{group}\""))
+}
+
+struct Mapped {
+    ty: String,
+    attr: Vec<String>,
+    serde: Vec<String>,
+    doc: Vec<String>,
+}
+
+/// Rust type, derive attributes and documentation of a wire form.
+fn map_wire(spec: &Spec, w: &Wire) -> Mapped {
+    let mut m = Mapped { ty: String::new(), attr: Vec::new(), serde: Vec::new(), doc: Vec::new() };
+    match w {
+        Wire::Int(i) => m.ty = i.rust().into(),
+        Wire::F32 => m.ty = "f32".into(),
+        Wire::F64 => m.ty = "f64".into(),
+        Wire::Scaled { int, lo, hi } => {
+            m.ty = "f64".into();
+            m.attr.push(format!("scaled({}, {}, {})", int.rust(), fmt_f64(*lo), fmt_f64(*hi)));
+            let d = divisor(*int);
+            m.doc.push(format!(
+                "Range `[{lo}, {hi}]`, carried as a scaled `{}` (resolution {:.3e}).",
+                int.rust(),
+                (hi - lo) / d
+            ));
+        }
+        Wire::Named { name, size, .. } => {
+            m.ty = name.clone();
+            if let Some(s) = size {
+                m.attr.push(format!("size = {}", s.rust()));
+            }
+        }
+        Wire::Str(len) => {
+            m.ty = "String".into();
+            len_attrs(&mut m, *len, "string");
+        }
+        Wire::Bytes(len) => {
+            m.ty = "Vec<u8>".into();
+            len_attrs(&mut m, *len, "blob");
+            m.serde.push("with = \"crate::hex::serde\"".into());
+        }
+        Wire::Packet { size } => {
+            m.ty = "crate::Packet".into();
+            m.doc.push("A whole JAUS message, header included.".into());
+            if let Some(s) = size {
+                m.attr.push(format!("size = {}", s.rust()));
+                m.doc.push(format!("Preceded on the wire by its byte length as `{}`.", s.rust()));
+            }
+        }
+        Wire::List { count, elem } => {
+            let e = map_wire(spec, elem);
+            m.ty = format!("Vec<{}>", e.ty);
+            match count {
+                Some(c) => {
+                    m.attr.push(format!("count = {}", c.rust()));
+                    m.doc.push(format!("Preceded on the wire by its element count as `{}`.", c.rust()));
+                }
+                None => {
+                    m.attr.push("rest".into());
+                    m.doc.push("Elements run to the end of the body.".into());
+                }
+            }
+            // Element attributes (scaled) apply to each element.
+            m.attr.extend(e.attr.into_iter().filter(|a| a.starts_with("scaled")));
+            m.doc.extend(e.doc.into_iter().map(|d| format!("Each element: {d}")));
+        }
+    }
+    m
+}
+
+fn divisor(i: Int) -> f64 {
+    match i {
+        Int::U8 => 255.0,
+        Int::U16 => 65_535.0,
+        Int::U32 | Int::I32 => 4_294_967_294.0,
+        Int::I16 => 65_534.0,
+        Int::U64 => 18_446_744_073_709_551_615.0,
+        Int::I64 => 18_446_744_073_709_551_614.0,
+    }
+}
+
+fn len_attrs(m: &mut Mapped, len: Len, what: &str) {
+    match len {
+        Len::Fixed { n, accept_short } => {
+            m.attr.push(format!("fixed = {n}"));
+            m.doc.push(format!("A fixed {n}-byte {what}, NUL padded."));
+            if accept_short {
+                m.attr.push("accept_short".into());
+                m.doc.push("A shorter field is accepted on receive.".into());
+            }
+        }
+        Len::Prefix(c) => {
+            m.attr.push(format!("size = {}", c.rust()));
+            m.doc.push(format!("Preceded on the wire by its length as `{}`.", c.rust()));
+        }
+        Len::Rest { nul } => {
+            m.attr.push("rest".into());
+            m.doc.push("Runs to the end of the body.".into());
+            if nul {
+                m.attr.push("nul".into());
+                m.doc.push("Sent with a terminating NUL.".into());
+            }
+        }
+    }
+}
+
+fn field_ctx(spec: &Spec, f: &FieldDef) -> FieldCtx {
+    let w = spec.wire(f);
+    let mut m = map_wire(spec, &w);
+    let mut doc = doc_lines(f.description.as_deref());
+    if let Some(u) = &f.unit {
+        doc.push(String::new());
+        doc.push(format!("Unit: {u}."));
+    } else if !m.doc.is_empty() {
+        doc.push(String::new());
+    }
+    doc.append(&mut m.doc);
+    let mut attr = m.attr;
+    let mut serde = m.serde;
+    let ty = match f.bit {
+        Some(b) => {
+            attr.insert(0, format!("bit = {b}"));
+            doc.push(format!("Optional: presence bit {b}."));
+            if serde.iter().any(|s| s.contains("hex::serde")) {
+                serde = vec!["with = \"crate::hex::serde_opt\"".into()];
+            }
+            serde.insert(0, "default, skip_serializing_if = \"Option::is_none\"".into());
+            format!("Option<{}>", m.ty)
+        }
+        None => m.ty,
+    };
+    FieldCtx { name: f.name.clone(), ty, attr: attr.join(", "), serde: serde.join(", "), doc }
+}
+
+/// Whether values of this wire form have a `Default`.
+fn has_default(spec: &Spec, w: &Wire, bit: bool) -> bool {
+    if bit {
+        return true;
+    }
+    match w {
+        Wire::Named { name, kind, .. } => match kind {
+            TypeKind::Union => false,
+            TypeKind::Enum | TypeKind::Bitfield => true,
+            TypeKind::Record => spec
+                .ty(name)
+                .is_some_and(|t| t.def.fields.iter().all(|f| has_default(spec, &spec.wire(f), f.bit.is_some()))),
+        },
+        Wire::Packet { .. } => false,
+        _ => true,
+    }
+}
+
+/// Builds the template context of a validated spec.
+pub fn build_context(spec: &Spec, gates: bool) -> Context {
+    let mut groups: Vec<GroupCtx> = spec
+        .groups
+        .iter()
+        .map(|g| GroupCtx {
+            name: g.name.clone(),
+            module: if matches!(g.name.as_str(), "core" | "std" | "alloc") { format!("{}_messages", g.name) } else { g.name.clone() },
+            title: g.title.clone(),
+            doc: doc_lines(g.description.as_deref()),
+            cfg: cfg_of(&g.name, gates),
+            types: Vec::new(),
+            messages: Vec::new(),
+        })
+        .collect();
+    for t in &spec.types {
+        let d = &t.def;
+        let mut tc = TypeCtx {
+            name: d.name.clone(),
+            kind: format!("{:?}", d.kind).to_lowercase(),
+            repr: d.repr.as_deref().and_then(Int::parse).map_or_else(String::new, |i| i.rust().to_string()),
+            doc: doc_lines(d.description.as_deref()),
+            container_attr: String::new(),
+            default: false,
+            copy: false,
+            fields: Vec::new(),
+            values: Vec::new(),
+            bits: Vec::new(),
+            variants: Vec::new(),
+        };
+        match d.kind {
+            TypeKind::Record => {
+                tc.container_attr = d.presence.as_deref().and_then(Int::parse).map_or_else(String::new, |p| format!("presence = {}", p.rust()));
+                tc.fields = d.fields.iter().map(|f| field_ctx(spec, f)).collect();
+                tc.default = d.fields.iter().all(|f| has_default(spec, &spec.wire(f), f.bit.is_some()));
+            }
+            TypeKind::Enum => {
+                tc.container_attr = format!("repr = {}", tc.repr);
+                tc.values = d
+                    .values
+                    .iter()
+                    .map(|v| ValueCtx { name: v.name.clone(), value: v.value, doc: doc_lines(v.description.as_deref()) })
+                    .collect();
+                tc.default = !tc.values.is_empty();
+                tc.copy = true;
+            }
+            TypeKind::Bitfield => {
+                tc.container_attr = format!("repr = {}", tc.repr);
+                tc.bits = d
+                    .bits
+                    .iter()
+                    .map(|b| {
+                        let (ty, attr, extra) = match (b.bit, b.bits) {
+                            (Some(x), _) => ("bool".to_string(), format!("bit = {x}"), format!("Bit {x}.")),
+                            (None, Some([lo, hi])) => {
+                                let w = hi - lo + 1;
+                                let ty = if w <= 8 { "u8" } else if w <= 16 { "u16" } else if w <= 32 { "u32" } else { "u64" };
+                                (ty.to_string(), format!("bits = {lo}..={hi}"), format!("Bits {lo}-{hi}."))
+                            }
+                            _ => ("bool".to_string(), String::new(), String::new()),
+                        };
+                        let mut doc = doc_lines(b.description.as_deref());
+                        if !doc.is_empty() {
+                            doc.push(String::new());
+                        }
+                        doc.push(extra);
+                        BitCtx { name: b.name.clone(), ty, attr, doc }
+                    })
+                    .collect();
+                tc.default = true;
+                tc.copy = true;
+            }
+            TypeKind::Union => {
+                tc.container_attr = format!("tag = {}", tc.repr);
+                tc.variants = d
+                    .variants
+                    .iter()
+                    .map(|v| VariantCtx {
+                        name: v.name.clone(),
+                        tag: v.tag,
+                        ty: v.ty.as_ref().map(|t| {
+                            map_wire(spec, &spec.wire(&FieldDef { ty: t.clone(), ..FieldDef::default() })).ty
+                        }),
+                        doc: doc_lines(v.description.as_deref()),
+                    })
+                    .collect();
+            }
+        }
+        if let Some(g) = groups.iter_mut().find(|g| g.name == t.group) {
+            g.types.push(tc);
+        }
+    }
+    let mut messages = Vec::new();
+    for m in &spec.messages {
+        let d = &m.def;
+        let title = d.title.clone().unwrap_or_else(|| jaus_spec::title_of(&d.name));
+        let mut doc = vec![format!("{title} ({}).", d.code)];
+        if !doc_lines(d.description.as_deref()).is_empty() {
+            doc.push(String::new());
+            doc.extend(doc_lines(d.description.as_deref()));
+        }
+        if let Some(i) = &d.interop {
+            doc.push(String::new());
+            doc.push("Interoperability:".into());
+            doc.extend(doc_lines(Some(i)));
+        }
+        let report = spec.report_of(d).map(|r| r.def.name.clone());
+        if let Some(r) = &report {
+            doc.push(String::new());
+            doc.push(format!("Answered by [`{r}`]."));
+        }
+        if d.experimental {
+            doc.push(String::new());
+            doc.push("Experimental (not part of RA 3.3).".into());
+        }
+        let mut container = vec![format!("code = {}", d.code)];
+        if let Some(p) = d.presence.as_deref().and_then(Int::parse) {
+            container.push(format!("presence = {}", p.rust()));
+        }
+        let embedded = d
+            .fields
+            .iter()
+            .filter_map(|f| {
+                f.code_field.as_ref().map(|c| EmbeddedCtx {
+                    field: f.name.clone(),
+                    code_field: c.clone(),
+                    complement: f.complement,
+                })
+            })
+            .collect();
+        let mc = MessageCtx {
+            name: d.name.clone(),
+            code: format!("{}", d.code),
+            title,
+            group: m.group.clone(),
+            cfg: cfg_of(&m.group, gates),
+            doc,
+            container_attr: container.join(", "),
+            default: d.fields.iter().all(|f| has_default(spec, &spec.wire(f), f.bit.is_some())),
+            fields: d.fields.iter().map(|f| field_ctx(spec, f)).collect(),
+            embedded,
+            report,
+            experimental: d.experimental,
+        };
+        if let Some(g) = groups.iter_mut().find(|g| g.name == m.group) {
+            g.messages.push(mc.clone());
+        }
+        messages.push(mc);
+    }
+    let queries = spec
+        .messages
+        .iter()
+        .filter_map(|q| {
+            let r = spec.report_of(&q.def)?;
+            let cfg = match (cfg_of(&q.group, gates), cfg_of(&r.group, gates)) {
+                (Some(a), Some(b)) if a != b => Some(format!("all({a}, {b})")),
+                (Some(a), _) | (None, Some(a)) => Some(a),
+                (None, None) => None,
+            };
+            Some(QueryCtx { query: q.def.name.clone(), report: r.def.name.clone(), cfg })
+        })
+        .collect();
+    Context { groups, messages, queries }
+}

@@ -1,0 +1,18 @@
+//! Generates the typed message set from the jaus-spec definitions.
+
+fn main() {
+    let out = std::env::var("OUT_DIR").expect("cargo sets OUT_DIR");
+    let result = jaus_gen::Builder::new()
+        .spec_dir(jaus_spec::defs_dir())
+        .feature_gates(true)
+        .out_dir(out)
+        .generate();
+    if let Err(e) = result {
+        // One line per problem, each with file:line:column, so the vendor knows what to fix.
+        for line in e.to_string().lines() {
+            println!("cargo:warning={line}");
+        }
+        eprintln!("{e}");
+        std::process::exit(1);
+    }
+}
