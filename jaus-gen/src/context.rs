@@ -152,6 +152,8 @@ pub struct EmbeddedCtx {
     pub code_field: String,
     /// The body's code is the complement of that code.
     pub complement: bool,
+    /// The field is optional: the accessor returns `None` when it is absent.
+    pub optional: bool,
 }
 
 /// A query and its report.
@@ -454,6 +456,7 @@ pub fn build_context(spec: &Spec, gates: bool) -> Context {
                     field: f.name.clone(),
                     code_field: c.clone(),
                     complement: f.complement,
+                    optional: f.bit.is_some(),
                 })
             })
             .collect();

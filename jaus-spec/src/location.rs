@@ -68,7 +68,9 @@ impl MarkedEventReceiver for Builder {
             Event::Scalar(value, ..) => {
                 if let Some(Frame::Map { key: key @ None, path }) = self.stack.last_mut() {
                     let p = if path.is_empty() { value.clone() } else { format!("{path}.{value}") };
+                    let own = path.clone();
                     *key = Some(value);
+                    self.record(own, mark);
                     self.record(p, mark);
                 } else {
                     let p = self.child_path();
@@ -82,8 +84,9 @@ impl MarkedEventReceiver for Builder {
                 self.advance();
             }
             Event::MappingStart(..) => {
+                // The mapping itself is located at its first key (recorded below): the
+                // parser's mark for a block mapping start is not where the text begins.
                 let path = self.child_path();
-                self.record(path.clone(), mark);
                 self.stack.push(Frame::Map { path, key: None });
             }
             Event::SequenceStart(..) => {

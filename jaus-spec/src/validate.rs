@@ -172,7 +172,7 @@ fn check_fields(
                     source,
                     &format!("{path}.bit"),
                     ctx.clone(),
-                    format!("presence bit {b} but `{owner}` has no presence vector: add `presence: u8|u16|u32`"),
+                    format!("presence bit {b} but {owner} has no presence vector: add `presence: u8|u16|u32`"),
                 ),
                 (Some(_), Some(p)) if b as usize >= p.bytes() * 8 => cx.err(
                     source,

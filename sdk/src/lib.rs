@@ -52,6 +52,8 @@
 // The derive macros refer to `::jaus`; make that path work inside this crate too.
 extern crate self as jaus;
 
+#[cfg(feature = "serde")]
+pub mod cli;
 pub mod codec;
 pub mod hex;
 pub mod wire;

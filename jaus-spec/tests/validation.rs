@@ -1,0 +1,58 @@
+//! Every validation rule has a bad fixture in `tests/fixtures/bad/`. The first line of
+//! each fixture says what the error must be: `# expect: LINE:COLUMN: text`. The test
+//! checks the whole set of definitions is rejected with exactly that position, the
+//! file name, and a message starting with that text.
+
+use std::path::Path;
+
+fn fixtures() -> Vec<std::path::PathBuf> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/bad");
+    let mut v: Vec<_> = std::fs::read_dir(dir).unwrap().map(|e| e.unwrap().path()).collect();
+    v.sort();
+    v
+}
+
+#[test]
+fn every_bad_fixture_is_rejected_with_file_line_column() {
+    let files = fixtures();
+    assert!(files.len() >= 10, "fixtures present");
+    let mut failures = Vec::new();
+    for f in &files {
+        let text = std::fs::read_to_string(f).unwrap();
+        let expect = text
+            .lines()
+            .next()
+            .and_then(|l| l.strip_prefix("# expect: "))
+            .unwrap_or_else(|| panic!("{} has no `# expect:` line", f.display()))
+            .to_string();
+        match jaus_spec::load(&[] as &[&Path], &[f]) {
+            Ok(_) => failures.push(format!("{}: accepted, expected `{expect}`", f.display())),
+            Err(errs) => {
+                let want = format!("{}:{expect}", f.display());
+                if !errs.0.iter().any(|e| e.to_string().starts_with(&want)) {
+                    failures.push(format!("{}:\n  expected {want}\n  got      {errs}", f.display()));
+                }
+            }
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+#[test]
+fn the_shipped_definitions_validate() {
+    let spec = jaus_spec::load_dirs(&[jaus_spec::defs_dir()]).unwrap_or_else(|e| panic!("{e}"));
+    assert!(spec.messages.len() > 80);
+    // The complement rule holds for every query.
+    for m in &spec.messages {
+        if (0x2000..0x4000).contains(&m.def.code.0) {
+            assert!(spec.report_of(&m.def).is_some() || m.def.no_report, "{} has no report", m.def.name);
+        }
+    }
+}
+
+#[test]
+fn all_errors_are_reported_at_once() {
+    let text = "group: g\nmessages:\n  - name: QueryX\n    code: 0x2F00\n    fields:\n      - { name: a, type: nope }\n      - { name: b, type: list, of: u8 }\n";
+    let errs = jaus_spec::load_texts(vec![("inline.yaml".into(), text.into())]).unwrap_err();
+    assert_eq!(errs.0.len(), 3, "{errs}");
+}

@@ -1,0 +1,442 @@
+//! Conformance against packets serialised by the OpenJAUS 3.3 C library
+//! (`data/openjaus33.jsonl`, copied from the shared reference vectors).
+//!
+//! For every vector whose command code the definitions know: the packet decodes to the
+//! right message, re-encodes to identical bytes, the header fields equal the vector's,
+//! and every field value equals OpenJAUS's within one least significant bit of its
+//! scaling. The comparison is driven by the YAML definitions (field by field, with the
+//! wire form of each), so no per-message code exists here either.
+
+use jaus::codec::Encode;
+use jaus::messages::Message;
+use jaus::Packet;
+use jaus_spec::{FieldDef, Spec, TypeKind, Wire};
+use serde_json::{Map, Value};
+use std::collections::{BTreeMap, HashMap};
+use std::path::Path;
+
+/// Groups whose every vector must be covered by a definition (issue: message layer).
+const REQUIRED_GROUP_RANGES: &[(u16, u16, &str)] = &[
+    (0x0000, 0x01FF, "core/events"),
+    (0x2000, 0x21FF, "core/events"),
+    (0x4000, 0x41FF, "core/events"),
+    (0x0200, 0x03FF, "communications"),
+    (0x2200, 0x23FF, "communications"),
+    (0x4200, 0x43FF, "communications"),
+    (0x0400, 0x05FF, "platform"),
+    (0x2400, 0x25FF, "platform"),
+    (0x4400, 0x45FF, "platform"),
+    (0x2B00, 0x2BFF, "dynamic configuration"),
+    (0x4B00, 0x4BFF, "dynamic configuration"),
+];
+
+fn data_dir() -> &'static Path {
+    Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/data"))
+}
+
+pub struct Vector {
+    pub message: String,
+    pub variant: String,
+    pub bytes: Vec<u8>,
+    pub header: Value,
+    pub fields: Value,
+}
+
+pub fn vectors() -> Vec<Vector> {
+    let text = std::fs::read_to_string(data_dir().join("openjaus33.jsonl")).expect("vectors present");
+    text.lines()
+        .filter(|l| !l.trim().is_empty())
+        .map(|l| {
+            let v: Value = serde_json::from_str(l).expect("vector is JSON");
+            Vector {
+                message: v["message"].as_str().unwrap().to_string(),
+                variant: v["variant"].as_str().unwrap().to_string(),
+                bytes: jaus::hex::decode(v["hex"].as_str().unwrap()).unwrap(),
+                header: v["header"].clone(),
+                fields: v["fields"].clone(),
+            }
+        })
+        .collect()
+}
+
+/// `Owner.field = ojKey.path` lines, and `TypeName = ojKey` for every field of a type.
+fn name_overrides() -> HashMap<String, String> {
+    let text = std::fs::read_to_string(data_dir().join("openjaus-names.txt")).unwrap_or_default();
+    text.lines()
+        .filter(|l| !l.trim().is_empty() && !l.trim_start().starts_with('#'))
+        .filter_map(|l| l.split_once('=').map(|(a, b)| (a.trim().to_string(), b.trim().to_string())))
+        .collect()
+}
+
+const UNIT_SUFFIXES: &[&str] =
+    &["Degrees", "Radians", "Percent", "Celsius", "Meters", "Hertz", "Deg", "Mps", "Rps", "M"];
+
+fn norm_oj(key: &str) -> String {
+    let mut k = key;
+    for s in UNIT_SUFFIXES {
+        if let Some(stripped) = k.strip_suffix(s) {
+            if !stripped.is_empty() {
+                k = stripped;
+                break;
+            }
+        }
+    }
+    k.to_lowercase()
+}
+
+fn norm_mine(name: &str) -> String {
+    name.replace('_', "").to_lowercase()
+}
+
+struct Cmp<'a> {
+    spec: &'a Spec,
+    names: HashMap<String, String>,
+    errors: Vec<String>,
+}
+
+fn get_path<'v>(obj: &'v Map<String, Value>, path: &str) -> Option<&'v Value> {
+    let mut parts = path.split('.');
+    let mut cur = obj.get(parts.next()?)?;
+    for p in parts {
+        cur = cur.get(p)?;
+    }
+    Some(cur)
+}
+
+impl Cmp<'_> {
+    fn fail(&mut self, at: &str, msg: String) {
+        self.errors.push(format!("{at}: {msg}"));
+    }
+
+    /// Finds the OpenJAUS key of `owner.field` in `oj`.
+    fn lookup<'v>(&self, owner: &str, field: &str, oj: &'v Map<String, Value>) -> Option<(String, &'v Value)> {
+        if let Some(path) = self.names.get(&format!("{owner}.{field}")) {
+            let first = path.split('.').next().unwrap_or("").to_string();
+            return get_path(oj, path).map(|v| (first, v));
+        }
+        let want = norm_mine(field);
+        oj.iter().find(|(k, _)| norm_oj(k) == want).map(|(k, v)| (k.clone(), v))
+    }
+
+    fn fields(&mut self, owner: &str, defs: &[FieldDef], mine: &Map<String, Value>, oj: &Map<String, Value>, at: &str) {
+        let mut used: Vec<String> = Vec::new();
+        for f in defs {
+            let here = format!("{at}.{}", f.name);
+            let wire = self.spec.wire(f);
+            let my = mine.get(&f.name);
+            if let Wire::Named { name, kind: TypeKind::Bitfield, .. } = &wire {
+                self.bitfield(owner, f, name, my, oj, &here, &mut used);
+                continue;
+            }
+            let found = self.lookup(owner, &f.name, oj);
+            match (my, found) {
+                (Some(m), Some((k, o))) => {
+                    used.push(k);
+                    self.value(&wire, m, o, &here);
+                }
+                (None, None) if f.bit.is_some() => {}
+                (None, Some((k, o))) => {
+                    used.push(k);
+                    self.fail(&here, format!("absent here but OpenJAUS has {o}"));
+                }
+                (Some(m), None) => self.fail(&here, format!("present here ({m}) but OpenJAUS has no such field")),
+                (None, None) => self.fail(&here, "missing on both sides".into()),
+            }
+        }
+        for (k, v) in oj {
+            let ignorable = matches!(k.as_str(), "presenceVector" | "count" | "subsystemCount" | "dataSize" | "commandCode");
+            if !used.contains(k) && !ignorable {
+                self.fail(at, format!("OpenJAUS field `{k}` = {v} matches no field of {owner}"));
+            }
+        }
+    }
+
+    fn bitfield(
+        &mut self,
+        owner: &str,
+        f: &FieldDef,
+        ty: &str,
+        my: Option<&Value>,
+        oj: &Map<String, Value>,
+        at: &str,
+        used: &mut Vec<String>,
+    ) {
+        let def = &self.spec.ty(ty).expect("bitfield type").def;
+        let raw_of = |v: &Value| -> u64 {
+            def.bits
+                .iter()
+                .map(|b| {
+                    let lo = b.bit.or(b.bits.map(|r| r[0])).unwrap_or(0);
+                    let x = match &v[&b.name] {
+                        Value::Bool(t) => u64::from(*t),
+                        n => n.as_u64().unwrap_or(0),
+                    };
+                    x << lo
+                })
+                .sum::<u64>()
+                | v.get("reserved").and_then(Value::as_u64).unwrap_or(0)
+        };
+        // Whole bit field as a raw number, or inside an object (OpenJAUS's `time`). A
+        // line `TypeName = key` maps every field of that type.
+        let by_type = self.names.get(ty).and_then(|k| oj.get(k).map(|v| (k.clone(), v)));
+        if let Some((k, o)) = by_type.or_else(|| self.lookup(owner, &f.name, oj)) {
+            used.push(k);
+            let raw = match o {
+                Value::Object(obj) => {
+                    let key = obj.keys().find(|key| norm_oj(key) == norm_mine(ty)).cloned();
+                    key.and_then(|key| obj.get(&key)).and_then(Value::as_u64)
+                }
+                n => n.as_u64(),
+            };
+            match (my, raw) {
+                (Some(m), Some(r)) if raw_of(m) == r => {}
+                (None, None) if f.bit.is_some() => {}
+                (Some(m), r) => self.fail(at, format!("bits {} vs OpenJAUS {r:?}", raw_of(m))),
+                (None, r) => self.fail(at, format!("absent here but OpenJAUS has {r:?}")),
+            }
+            return;
+        }
+        // Members flattened into the parent object.
+        for b in &def.bits {
+            let here = format!("{at}.{}", b.name);
+            match (my, self.lookup(ty, &b.name, oj)) {
+                (Some(m), Some((k, o))) => {
+                    used.push(k);
+                    let mine = &m[&b.name];
+                    let equal = match (mine, o) {
+                        (Value::Bool(a), Value::Bool(c)) => a == c,
+                        (a, c) => a.as_u64().is_some() && a.as_u64() == c.as_u64(),
+                    };
+                    if !equal {
+                        self.fail(&here, format!("{mine} vs OpenJAUS {o}"));
+                    }
+                }
+                (None, None) => {}
+                (None, Some((k, o))) => {
+                    used.push(k);
+                    self.fail(&here, format!("absent here but OpenJAUS has {o}"));
+                }
+                (Some(_), None) => self.fail(&here, "OpenJAUS has no such member".into()),
+            }
+        }
+    }
+
+    fn value(&mut self, wire: &Wire, my: &Value, oj: &Value, at: &str) {
+        match wire {
+            Wire::Int(_) => {
+                let same = match (my.as_i64(), oj.as_i64(), my.as_u64(), oj.as_u64()) {
+                    (Some(a), Some(b), _, _) => a == b,
+                    (_, _, Some(a), Some(b)) => a == b,
+                    _ => oj.as_bool().map(u64::from) == my.as_u64(),
+                };
+                if !same {
+                    self.fail(at, format!("{my} vs OpenJAUS {oj}"));
+                }
+            }
+            Wire::F32 | Wire::F64 => {
+                let (a, b) = (my.as_f64().unwrap_or(f64::NAN), oj.as_f64().unwrap_or(f64::NAN));
+                if (a - b).abs() > 1e-9 * b.abs().max(1.0) {
+                    self.fail(at, format!("{a} vs OpenJAUS {b}"));
+                }
+            }
+            Wire::Scaled { int, lo, hi } => {
+                let step = (hi - lo) / divisor(*int);
+                let (a, b) = (my.as_f64().unwrap_or(f64::NAN), oj.as_f64().unwrap_or(f64::NAN));
+                if !((a - b).abs() <= step * 1.000_001) {
+                    self.fail(at, format!("{a} vs OpenJAUS {b} (one count = {step:e})"));
+                }
+            }
+            Wire::Named { name, kind, .. } => {
+                let def = &self.spec.ty(name).expect("named type").def;
+                match kind {
+                    TypeKind::Enum => {
+                        let n = match my {
+                            Value::String(s) => def.values.iter().find(|v| &v.name == s).map(|v| v.value),
+                            Value::Object(o) => o.get("Unknown").and_then(Value::as_u64),
+                            _ => None,
+                        };
+                        if n != oj.as_u64() {
+                            self.fail(at, format!("{my} ({n:?}) vs OpenJAUS {oj}"));
+                        }
+                    }
+                    TypeKind::Record => match (my.as_object(), oj.as_object()) {
+                        (Some(m), Some(o)) => self.fields(name, &def.fields.clone(), m, o, at),
+                        _ => self.fail(at, format!("record {my} vs OpenJAUS {oj}")),
+                    },
+                    TypeKind::Union => {
+                        let (vname, payload) = match my {
+                            Value::Object(o) if o.len() == 1 => o.iter().next().map(|(k, v)| (k.clone(), v.clone())).unwrap(),
+                            Value::String(s) => (s.clone(), Value::Null),
+                            _ => (String::new(), Value::Null),
+                        };
+                        let Some(var) = def.variants.iter().find(|v| v.name == vname) else {
+                            return self.fail(at, format!("unknown variant in {my}"));
+                        };
+                        if Some(var.tag) != oj.get("dataType").and_then(Value::as_u64) {
+                            return self.fail(at, format!("variant {vname} (tag {}) vs OpenJAUS {oj}", var.tag));
+                        }
+                        let ojv = oj.get("value").cloned().unwrap_or(Value::Null);
+                        let payload = match (payload, var.ty.as_deref().and_then(|t| self.spec.ty(t))) {
+                            // A record payload compares with OpenJAUS's array form, in field order.
+                            (Value::Object(o), Some(rec)) => Value::Array(
+                                rec.def.fields.iter().map(|f| o.get(&f.name).cloned().unwrap_or(Value::Null)).collect(),
+                            ),
+                            (p, _) => p,
+                        };
+                        let same = match (&payload, &ojv) {
+                            (Value::Array(a), Value::Array(b)) => a == b,
+                            (a, b) if a.is_f64() || b.is_f64() => {
+                                let (x, y) = (a.as_f64().unwrap_or(f64::NAN), b.as_f64().unwrap_or(f64::NAN));
+                                (x - y).abs() <= 1e-9 * y.abs().max(1.0)
+                            }
+                            (a, b) => a == b,
+                        };
+                        if !same {
+                            self.fail(at, format!("{payload} vs OpenJAUS {ojv}"));
+                        }
+                    }
+                    TypeKind::Bitfield => unreachable!("handled by the caller"),
+                }
+            }
+            Wire::Str(_) => {
+                if my.as_str() != oj.as_str() {
+                    self.fail(at, format!("{my} vs OpenJAUS {oj}"));
+                }
+            }
+            Wire::Bytes(_) => {
+                let theirs = oj.get("data").unwrap_or(oj);
+                if my.as_str() != theirs.as_str() {
+                    self.fail(at, format!("{my} vs OpenJAUS {theirs}"));
+                }
+            }
+            Wire::List { elem, .. } => match (my.as_array(), oj.as_array()) {
+                (Some(a), Some(b)) if a.len() == b.len() => {
+                    for (i, (x, y)) in a.iter().zip(b).enumerate() {
+                        self.value(elem, x, y, &format!("{at}[{i}]"));
+                    }
+                }
+                _ => self.fail(at, format!("list {my} vs OpenJAUS {oj}")),
+            },
+            Wire::Packet { .. } => {
+                if my["body"].as_str() != oj["data"].as_str() {
+                    self.fail(at, format!("embedded body {} vs OpenJAUS {}", my["body"], oj["data"]));
+                }
+                self.header(&my["header"], &oj["header"], at);
+            }
+        }
+    }
+
+    fn header(&mut self, mine: &Value, oj: &Value, at: &str) {
+        let ack = ["none", "request", "nak", "ack"];
+        let flag = |v: &Value| v.as_bool().map(u64::from);
+        let pairs: [(&str, Option<u64>, Option<u64>); 7] = [
+            ("priority", mine["priority"].as_u64(), oj["priority"].as_u64()),
+            (
+                "ack_nak",
+                ack.iter().position(|a| Some(*a) == mine["ack_nak"].as_str()).map(|p| p as u64),
+                oj["ack_nak"].as_u64(),
+            ),
+            ("sc_flag", flag(&mine["service_connection"]), oj["sc_flag"].as_u64()),
+            ("exp_flag", flag(&mine["experimental"]), oj["exp_flag"].as_u64()),
+            ("version", mine["version"].as_u64(), oj["version"].as_u64()),
+            ("command_code", mine["command_code"].as_u64(), oj["command_code"].as_u64()),
+            ("sequence_number", mine["sequence_number"].as_u64(), oj["sequence_number"].as_u64()),
+        ];
+        for (name, a, b) in pairs {
+            if a != b || a.is_none() {
+                self.fail(at, format!("header {name}: {a:?} vs OpenJAUS {b:?}"));
+            }
+        }
+        // Both list addresses as [subsystem, node, component, instance].
+        for key in ["destination", "source"] {
+            let m: Vec<u64> = mine[key].as_array().map(|a| a.iter().filter_map(Value::as_u64).collect()).unwrap_or_default();
+            let o: Vec<u64> = oj[key].as_array().map(|a| a.iter().filter_map(Value::as_u64).collect()).unwrap_or_default();
+            if m != o {
+                self.fail(at, format!("header {key}: {m:?} vs OpenJAUS {o:?}"));
+            }
+        }
+    }
+}
+
+fn divisor(i: jaus_spec::Int) -> f64 {
+    use jaus_spec::Int;
+    match i {
+        Int::U8 => 255.0,
+        Int::U16 => 65_535.0,
+        Int::U32 | Int::I32 => 4_294_967_294.0,
+        Int::I16 => 65_534.0,
+        Int::U64 => 18_446_744_073_709_551_615.0,
+        Int::I64 => 18_446_744_073_709_551_614.0,
+    }
+}
+
+#[test]
+fn openjaus_vectors_decode_reencode_and_match_field_values() {
+    let spec = jaus_spec::load_dirs(&[jaus_spec::defs_dir()]).expect("definitions validate");
+    let mut cmp = Cmp { spec: &spec, names: name_overrides(), errors: Vec::new() };
+    let mut per_group: BTreeMap<String, (usize, usize)> = BTreeMap::new();
+    let mut uncovered: BTreeMap<String, usize> = BTreeMap::new();
+    let vectors = vectors();
+    assert_eq!(vectors.len(), 1264, "the full reference set is present");
+    for v in &vectors {
+        let at = format!("{} [{}]", v.message, v.variant);
+        let code = u16::from_le_bytes([v.bytes[2], v.bytes[3]]);
+        let Some(def) = spec.message_by_code(code) else {
+            if REQUIRED_GROUP_RANGES.iter().any(|(lo, hi, _)| (*lo..=*hi).contains(&code)) {
+                cmp.fail(&at, format!("no definition for required code 0x{code:04X}"));
+            }
+            *uncovered.entry(v.message.clone()).or_default() += 1;
+            continue;
+        };
+        let entry = per_group.entry(def.group.clone()).or_default();
+        entry.0 += 1;
+        let before = cmp.errors.len();
+        if def.def.name != v.message {
+            cmp.fail(&at, format!("code 0x{code:04X} is `{}` here", def.def.name));
+        }
+        let packet = match Packet::parse(&v.bytes) {
+            Ok(p) => p,
+            Err(e) => {
+                cmp.fail(&at, format!("packet: {e}"));
+                continue;
+            }
+        };
+        let message = match Message::decode(packet.header.command_code, &packet.body) {
+            Ok(m) => m,
+            Err(e) => {
+                cmp.fail(&at, format!("decode: {e}"));
+                continue;
+            }
+        };
+        let reencoded = Packet { header: packet.header, body: message.to_bytes().expect("re-encode") };
+        if reencoded.to_bytes().unwrap() != v.bytes {
+            cmp.fail(
+                &at,
+                format!(
+                    "re-encoded bytes differ:\n  vector {}\n  ours   {}",
+                    jaus::hex::encode(&v.bytes),
+                    jaus::hex::encode(&reencoded.to_bytes().unwrap())
+                ),
+            );
+        }
+        let json = serde_json::to_value(&message).unwrap();
+        let header = serde_json::to_value(packet.header).unwrap();
+        cmp.header(&header, &v.header, &at);
+        let empty = Map::new();
+        let mine = json["fields"].as_object().unwrap_or(&empty);
+        let oj = v.fields.as_object().unwrap_or(&empty);
+        cmp.fields(&def.def.name, &def.def.fields.clone(), mine, oj, &at);
+        if cmp.errors.len() == before {
+            entry.1 += 1;
+        }
+    }
+    println!("{:<24} {:>8} {:>8}", "group", "vectors", "passed");
+    for (g, (n, ok)) in &per_group {
+        println!("{g:<24} {n:>8} {ok:>8}");
+    }
+    println!("not yet defined (later groups): {} message types, {} vectors", uncovered.len(), uncovered.values().sum::<usize>());
+    if !cmp.errors.is_empty() {
+        let shown: Vec<&String> = cmp.errors.iter().take(400).collect();
+        panic!("{} conformance failure(s):\n{}", cmp.errors.len(), shown.iter().map(|s| s.as_str()).collect::<Vec<_>>().join("\n"));
+    }
+}
