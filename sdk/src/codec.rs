@@ -346,10 +346,13 @@ fn scale_bias<T: ScaledRepr>(lo: f64, hi: f64) -> (f64, f64) {
     (sf, bias)
 }
 
-/// Real value → integer: clamp to the limits, round to nearest.
+/// Real value → integer: clamp to the limits `[lo, hi]`, then round to nearest.
 ///
-/// Values within one count beyond a limit are kept (then saturated to the integer
-/// type), so that any integer received on the wire re-encodes to the same bytes.
+/// Every integer an encoder following this rule produces decodes to a value that
+/// re-encodes to the same integer. Two integers lie outside the limits and are never
+/// produced (the most negative value of a signed type, whose range is symmetric, and
+/// `u32::MAX` under the OpenJAUS divisor 2³²−2); a received one decodes faithfully, one
+/// step beyond the limit, and re-encodes clamped to the limit.
 #[inline(always)]
 pub fn scale_to<T: ScaledRepr>(
     v: f64,
@@ -361,7 +364,7 @@ pub fn scale_to<T: ScaledRepr>(
         return Err(EncodeError::NotFinite { field });
     }
     let (sf, bias) = scale_bias::<T>(lo, hi);
-    let v = v.clamp(lo - sf, hi + sf);
+    let v = v.clamp(lo, hi);
     let x = ((v - bias) / sf).round().clamp(T::MIN_F, T::MAX_F);
     Ok(T::from_count(x))
 }
@@ -688,22 +691,25 @@ mod tests {
     }
 
     #[test]
-    fn every_wire_integer_round_trips() {
-        for n in [i16::MIN, -32767, -1, 0, 1, 32766, i16::MAX] {
-            let v = scale_from(n, -std::f64::consts::PI, std::f64::consts::PI);
-            assert_eq!(scale_to::<i16>(v, -std::f64::consts::PI, std::f64::consts::PI, "").unwrap(), n);
+    fn every_in_range_wire_integer_round_trips() {
+        use std::f64::consts::PI;
+        for n in [-32767, -1, 0, 1, 32766, i16::MAX] {
+            assert_eq!(scale_to::<i16>(scale_from(n, -PI, PI), -PI, PI, "").unwrap(), n);
         }
-        for n in [0u32, 1, 4_294_967_294, u32::MAX] {
-            let v = scale_from(n, 0.0, 100.0);
-            assert_eq!(scale_to::<u32>(v, 0.0, 100.0, "").unwrap(), n);
+        for n in [0u32, 1, 4_294_967_294] {
+            assert_eq!(scale_to::<u32>(scale_from(n, 0.0, 100.0), 0.0, 100.0, "").unwrap(), n);
         }
+        // The two integers outside the limits decode faithfully and re-encode clamped.
+        assert!(scale_from(i16::MIN, -PI, PI) < -PI);
+        assert_eq!(scale_to::<i16>(scale_from(i16::MIN, -PI, PI), -PI, PI, "").unwrap(), -32767);
+        assert_eq!(scale_to::<u32>(scale_from(u32::MAX, 0.0, 100.0), 0.0, 100.0, "").unwrap(), 4_294_967_294);
     }
 
     #[test]
     fn out_of_range_values_clamp() {
         assert_eq!(scale_to::<u8>(1e9, 0.0, 100.0, "").unwrap(), 255);
         assert_eq!(scale_to::<u8>(-5.0, 0.0, 100.0, "").unwrap(), 0);
-        assert_eq!(scale_to::<i16>(-1e9, -1.0, 1.0, "").unwrap(), i16::MIN);
+        assert_eq!(scale_to::<i16>(-1e9, -1.0, 1.0, "").unwrap(), -32767);
     }
 
     #[test]

@@ -34,6 +34,7 @@ fn data_dir() -> &'static Path {
     Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/data"))
 }
 
+#[derive(Debug)]
 pub struct Vector {
     pub message: String,
     pub variant: String,

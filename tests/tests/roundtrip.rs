@@ -1,0 +1,228 @@
+//! Property test: random values of every message round-trip through encode/decode.
+//!
+//! Strategies are built from the YAML definitions (one general mechanism, no
+//! per-message code): each message gets random field values as JSON, which serde turns
+//! into the typed message. Then `encode → decode` must give the same message up to the
+//! resolution of scaled fields, and a second `encode` must give identical bytes.
+
+use jaus::codec::Encode;
+use jaus::messages::Message;
+use jaus_spec::{FieldDef, Int, Len, Spec, TypeKind, Wire};
+use proptest::prelude::*;
+use proptest::test_runner::{Config, TestCaseError, TestRunner};
+use serde_json::{json, Map, Value};
+
+fn int_strategy(i: Int) -> BoxedStrategy<Value> {
+    match i {
+        Int::U8 => any::<u8>().prop_map(|v| json!(v)).boxed(),
+        Int::U16 => any::<u16>().prop_map(|v| json!(v)).boxed(),
+        Int::U32 => any::<u32>().prop_map(|v| json!(v)).boxed(),
+        Int::U64 => any::<u64>().prop_map(|v| json!(v)).boxed(),
+        Int::I16 => any::<i16>().prop_map(|v| json!(v)).boxed(),
+        Int::I32 => any::<i32>().prop_map(|v| json!(v)).boxed(),
+        Int::I64 => any::<i64>().prop_map(|v| json!(v)).boxed(),
+    }
+}
+
+fn hex_of(n: std::ops::Range<usize>) -> BoxedStrategy<Value> {
+    prop::collection::vec(any::<u8>(), n).prop_map(|b| json!(jaus::hex::encode(&b))).boxed()
+}
+
+fn text(max: usize) -> BoxedStrategy<Value> {
+    prop::collection::vec(prop::char::range(' ', '~'), 0..=max)
+        .prop_map(|c| json!(c.into_iter().collect::<String>()))
+        .boxed()
+}
+
+fn wire_strategy(spec: &Spec, w: &Wire) -> BoxedStrategy<Value> {
+    match w {
+        Wire::Int(i) => int_strategy(*i),
+        Wire::F32 => any::<f32>().prop_filter("finite", |v| v.is_finite()).prop_map(|v| json!(v)).boxed(),
+        Wire::F64 => any::<f64>().prop_filter("finite", |v| v.is_finite()).prop_map(|v| json!(v)).boxed(),
+        Wire::Scaled { lo, hi, .. } => {
+            let span = hi - lo;
+            // Mostly in range; sometimes beyond, which must clamp.
+            prop_oneof![9 => (*lo..=*hi).boxed(), 1 => ((lo - span)..=(hi + span)).boxed()]
+                .prop_map(|v| json!(v))
+                .boxed()
+        }
+        Wire::Str(len) => match len {
+            Len::Fixed { n, .. } => text(*n),
+            _ => text(40),
+        },
+        Wire::Bytes(len) => match len {
+            Len::Fixed { n, .. } => hex_of(*n..*n + 1),
+            _ => hex_of(0..40),
+        },
+        Wire::List { elem, .. } => {
+            prop::collection::vec(wire_strategy(spec, elem), 0..5).prop_map(Value::Array).boxed()
+        }
+        Wire::Packet { .. } => (any::<u8>(), any::<u16>(), any::<u16>(), prop::collection::vec(any::<u8>(), 0..20))
+            .prop_map(|(prio, code, seq, body)| {
+                json!({
+                    "header": {
+                        "priority": prio & 15, "ack_nak": "none", "service_connection": false,
+                        "experimental": prio & 16 != 0, "version": 2, "command_code": code,
+                        "destination": [1, 2, 3, 4], "source": [5, 6, 7, 8],
+                        "data_size": body.len(), "data_flag": "single", "sequence_number": seq
+                    },
+                    "body": jaus::hex::encode(&body)
+                })
+            })
+            .boxed(),
+        Wire::Named { name, kind, .. } => {
+            let def = spec.ty(name).expect("named type").def.clone();
+            match kind {
+                TypeKind::Record => record_strategy(spec, &def.fields),
+                TypeKind::Enum => {
+                    let values = def.values.clone();
+                    any::<u8>()
+                        .prop_map(move |n| match values.iter().find(|v| v.value == u64::from(n)) {
+                            Some(v) => json!(v.name),
+                            None => json!({ "Unknown": n }),
+                        })
+                        .boxed()
+                }
+                TypeKind::Bitfield => {
+                    let members: Vec<BoxedStrategy<(String, Value)>> = def
+                        .bits
+                        .iter()
+                        .map(|b| {
+                            let name = b.name.clone();
+                            match (b.bit, b.bits) {
+                                (Some(_), _) => any::<bool>().prop_map(move |v| (name.clone(), json!(v))).boxed(),
+                                (_, Some([lo, hi])) => {
+                                    let max = (1u64 << (hi - lo + 1)) - 1;
+                                    (0..=max).prop_map(move |v| (name.clone(), json!(v))).boxed()
+                                }
+                                _ => unreachable!(),
+                            }
+                        })
+                        .collect();
+                    members.prop_map(|m| Value::Object(m.into_iter().collect())).boxed()
+                }
+                TypeKind::Union => {
+                    let variants: Vec<BoxedStrategy<Value>> = def
+                        .variants
+                        .iter()
+                        .map(|v| {
+                            let name = v.name.clone();
+                            match &v.ty {
+                                Some(t) => {
+                                    let f = FieldDef { ty: t.clone(), ..FieldDef::default() };
+                                    wire_strategy(spec, &spec.wire(&f))
+                                        .prop_map(move |x| json!({ name.clone(): x }))
+                                        .boxed()
+                                }
+                                None => Just(json!(name)).boxed(),
+                            }
+                        })
+                        .collect();
+                    proptest::strategy::Union::new(variants).boxed()
+                }
+            }
+        }
+    }
+}
+
+fn record_strategy(spec: &Spec, fields: &[FieldDef]) -> BoxedStrategy<Value> {
+    let parts: Vec<BoxedStrategy<Option<(String, Value)>>> = fields
+        .iter()
+        .map(|f| {
+            let name = f.name.clone();
+            let s = wire_strategy(spec, &spec.wire(f)).prop_map(move |v| (name.clone(), v));
+            if f.bit.is_some() {
+                prop::option::of(s).boxed()
+            } else {
+                s.prop_map(Some).boxed()
+            }
+        })
+        .collect();
+    parts.prop_map(|p| Value::Object(p.into_iter().flatten().collect::<Map<_, _>>())).boxed()
+}
+
+/// `a` (what was asked) and `b` (what came back) agree up to scaling resolution.
+fn close(spec: &Spec, w: &Wire, a: &Value, b: &Value, at: &str) -> Result<(), String> {
+    match (w, a, b) {
+        (Wire::Scaled { int, lo, hi }, Value::Number(x), Value::Number(y)) => {
+            let d = match int {
+                Int::U8 => 255.0,
+                Int::U16 => 65535.0,
+                Int::I16 => 65534.0,
+                _ => 4_294_967_294.0,
+            };
+            let step = (hi - lo) / d;
+            let want = x.as_f64().unwrap().clamp(*lo, *hi);
+            let got = y.as_f64().unwrap();
+            if (want - got).abs() <= step * 0.5 + 1e-9 * want.abs().max(1.0) {
+                Ok(())
+            } else {
+                Err(format!("{at}: sent {want}, got {got} (step {step:e})"))
+            }
+        }
+        (Wire::Named { name, kind: TypeKind::Record, .. }, Value::Object(x), Value::Object(y)) => {
+            let fields = spec.ty(name).unwrap().def.fields.clone();
+            fields_close(spec, &fields, x, y, at)
+        }
+        (Wire::Named { name, kind: TypeKind::Union, .. }, Value::Object(x), Value::Object(y)) => {
+            let (vn, xv) = x.iter().next().unwrap();
+            let t = spec.ty(name).unwrap().def.variants.iter().find(|v| &v.name == vn).unwrap().ty.clone();
+            let w = spec.wire(&FieldDef { ty: t.unwrap(), ..FieldDef::default() });
+            close(spec, &w, xv, y.get(vn).ok_or(format!("{at}: variant {vn} lost"))?, at)
+        }
+        (Wire::List { elem, .. }, Value::Array(x), Value::Array(y)) if x.len() == y.len() => {
+            x.iter().zip(y).enumerate().try_for_each(|(i, (p, q))| close(spec, elem, p, q, &format!("{at}[{i}]")))
+        }
+        (Wire::F32, Value::Number(x), Value::Number(y)) => {
+            (x.as_f64().map(|v| v as f32) == y.as_f64().map(|v| v as f32)).then_some(()).ok_or(format!("{at}: {x} vs {y}"))
+        }
+        _ => (a == b).then_some(()).ok_or(format!("{at}: sent {a}, got {b}")),
+    }
+}
+
+fn fields_close(spec: &Spec, fields: &[FieldDef], a: &Map<String, Value>, b: &Map<String, Value>, at: &str) -> Result<(), String> {
+    for f in fields {
+        let here = format!("{at}.{}", f.name);
+        match (a.get(&f.name), b.get(&f.name)) {
+            (Some(x), Some(y)) => close(spec, &spec.wire(f), x, y, &here)?,
+            (None, None) => {}
+            (x, y) => return Err(format!("{here}: sent {x:?}, got {y:?}")),
+        }
+    }
+    Ok(())
+}
+
+#[test]
+fn random_values_of_every_message_round_trip() {
+    let spec = jaus_spec::load_dirs(&[jaus_spec::defs_dir()]).expect("definitions validate");
+    let mut cases = 0;
+    for m in &spec.messages {
+        let strategy = record_strategy(&spec, &m.def.fields);
+        let mut runner = TestRunner::new(Config { cases: 48, failure_persistence: None, ..Config::default() });
+        let result = runner.run(&strategy, |fields| {
+            let input = json!({ "message": m.def.name, "fields": fields });
+            let msg: Message = serde_json::from_value(input.clone())
+                .map_err(|e| TestCaseError::fail(format!("JSON → {}: {e}", m.def.name)))?;
+            let bytes = msg.to_bytes().map_err(|e| TestCaseError::fail(format!("encode: {e}")))?;
+            let back = Message::decode(msg.code(), &bytes).map_err(|e| TestCaseError::fail(format!("decode: {e}")))?;
+            let again = back.to_bytes().map_err(|e| TestCaseError::fail(format!("re-encode: {e}")))?;
+            prop_assert_eq!(&bytes, &again, "second encoding differs");
+            let out = serde_json::to_value(&back).unwrap();
+            let empty = Map::new();
+            fields_close(
+                &spec,
+                &m.def.fields,
+                input["fields"].as_object().unwrap_or(&empty),
+                out["fields"].as_object().unwrap_or(&empty),
+                &m.def.name,
+            )
+            .map_err(TestCaseError::fail)?;
+            Ok(())
+        });
+        if let Err(e) = result {
+            panic!("{}: {e}", m.def.name);
+        }
+        cases += 48;
+    }
+    assert!(cases >= 48 * 90);
+}
