@@ -364,9 +364,14 @@ pub fn scale_to<T: ScaledRepr>(
         return Err(EncodeError::NotFinite { field });
     }
     let (sf, bias) = scale_bias::<T>(lo, hi);
-    let v = v.clamp(lo, hi);
-    let x = ((v - bias) / sf).round().clamp(T::MIN_F, T::MAX_F);
-    Ok(T::from_count(x))
+    // Divide (not multiply by the inverse): exact ties such as 50 % in a u8 [0, 100]
+    // then round as OpenJAUS rounds them (128).
+    let counts = (v.clamp(lo, hi) - bias) / sf;
+    // Round half away from zero by truncating `x ± 0.5` (a single conversion
+    // instruction; `f64::round` is a library call on baseline x86-64).
+    let x = if counts >= 0.0 { counts + 0.5 } else { counts - 0.5 };
+    // `from_count` is an `as` conversion: it truncates toward zero.
+    Ok(T::from_count(x.clamp(T::MIN_F, T::MAX_F)))
 }
 
 /// Integer → real value: `n * scale + bias`.
@@ -474,16 +479,18 @@ pub fn is_default<T: Default + PartialEq>(v: &T) -> bool {
 // Errors.
 
 /// What went wrong while decoding, and where.
+///
+/// Boxed, so that `Result<T, DecodeError>` stays one word wider than `T` on the hot
+/// path; the allocation happens only when decoding fails.
 #[derive(Debug, Clone, PartialEq, Eq)]
-pub struct DecodeError {
-    /// The kind of failure.
-    pub kind: DecodeErrorKind,
-    /// Byte offset within the body (or packet, for header errors).
-    pub offset: usize,
-    /// `Type.field` where decoding failed (innermost), if known.
-    pub field: Option<&'static str>,
-    /// Name of the message being decoded, if known.
-    pub message: Option<&'static str>,
+pub struct DecodeError(Box<DecodeErrorInner>);
+
+#[derive(Debug, Clone, PartialEq, Eq)]
+struct DecodeErrorInner {
+    kind: DecodeErrorKind,
+    offset: usize,
+    field: Option<&'static str>,
+    message: Option<&'static str>,
 }
 
 /// The kinds of decoding failure.
@@ -545,21 +552,41 @@ impl DecodeError {
     /// A new error without field context.
     #[cold]
     pub fn new(kind: DecodeErrorKind, offset: usize) -> Self {
-        Self { kind, offset, field: None, message: None }
+        Self(Box::new(DecodeErrorInner { kind, offset, field: None, message: None }))
     }
 
     /// Attaches the field being decoded, keeping an inner (more precise) one.
     #[cold]
     pub fn in_field(mut self, field: &'static str) -> Self {
-        self.field.get_or_insert(field);
+        self.0.field.get_or_insert(field);
         self
     }
 
     /// Attaches the message being decoded, keeping an inner one.
     #[cold]
     pub fn in_message(mut self, message: &'static str) -> Self {
-        self.message.get_or_insert(message);
+        self.0.message.get_or_insert(message);
         self
+    }
+
+    /// The kind of failure.
+    pub fn kind(&self) -> &DecodeErrorKind {
+        &self.0.kind
+    }
+
+    /// Byte offset within the body (or packet, for header errors).
+    pub fn offset(&self) -> usize {
+        self.0.offset
+    }
+
+    /// `Type.field` where decoding failed (innermost), if known.
+    pub fn field(&self) -> Option<&'static str> {
+        self.0.field
+    }
+
+    /// Name of the message being decoded, if known.
+    pub fn message(&self) -> Option<&'static str> {
+        self.0.message
     }
 }
 
@@ -591,14 +618,14 @@ impl fmt::Display for DecodeErrorKind {
 
 impl fmt::Display for DecodeError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        if let Some(m) = self.message {
+        if let Some(m) = self.0.message {
             write!(f, "{m}: ")?;
         }
-        write!(f, "{}", self.kind)?;
-        if let Some(field) = self.field {
+        write!(f, "{}", self.0.kind)?;
+        if let Some(field) = self.0.field {
             write!(f, " in field `{field}`")?;
         }
-        write!(f, " at byte {}", self.offset)
+        write!(f, " at byte {}", self.0.offset)
     }
 }
 

@@ -365,8 +365,8 @@ impl Decode for Header {
         let at = r.offset();
         let bytes = r.take(HEADER_LEN).map_err(|e| {
             DecodeError::new(
-                DecodeErrorKind::TruncatedHeader { len: match e.kind {
-                    DecodeErrorKind::Truncated { available, .. } => available,
+                DecodeErrorKind::TruncatedHeader { len: match e.kind() {
+                    DecodeErrorKind::Truncated { available, .. } => *available,
                     _ => 0,
                 } },
                 at,
@@ -449,12 +449,12 @@ mod tests {
         assert_eq!(Packet::parse(&bytes).unwrap().body, vec![7]);
         bytes.push(0);
         assert!(matches!(
-            Packet::parse(&bytes).unwrap_err().kind,
-            DecodeErrorKind::DataSizeMismatch { header: 1, actual: 2 }
+            Packet::parse(&bytes).unwrap_err().kind(),
+            &DecodeErrorKind::DataSizeMismatch { header: 1, actual: 2 }
         ));
         assert!(matches!(
-            Packet::parse(&bytes[..5]).unwrap_err().kind,
-            DecodeErrorKind::TruncatedHeader { len: 5 }
+            Packet::parse(&bytes[..5]).unwrap_err().kind(),
+            &DecodeErrorKind::TruncatedHeader { len: 5 }
         ));
     }
 

@@ -1,0 +1,370 @@
+//! The `jaus` command-line tool, run as a process: `decode`, `encode` and `messages`.
+//!
+//! The binary belongs to the `jaus` package, so `CARGO_BIN_EXE_jaus` is not available
+//! here. It is found next to this test's executable (`<target>/<profile>/jaus`, the test
+//! runs from `<target>/<profile>/deps/`) after one `cargo build -p jaus --bin jaus`,
+//! which is a quick no-op when the binary is up to date and keeps it from going stale.
+//! `JAUS_BIN` overrides the path (and skips the build).
+
+use serde_json::Value;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output, Stdio};
+use std::sync::OnceLock;
+
+/// Path of the `jaus` binary, built once per test process.
+fn jaus_bin() -> &'static Path {
+    static BIN: OnceLock<PathBuf> = OnceLock::new();
+    BIN.get_or_init(|| {
+        if let Some(p) = std::env::var_os("JAUS_BIN") {
+            return PathBuf::from(p);
+        }
+        let exe = std::env::current_exe().expect("test executable path");
+        let deps = exe.parent().expect("deps directory");
+        let profile_dir = if deps.file_name().is_some_and(|n| n == "deps") {
+            deps.parent().expect("profile directory")
+        } else {
+            deps
+        };
+        let bin = profile_dir.join(format!("jaus{}", std::env::consts::EXE_SUFFIX));
+        let target_dir = profile_dir.parent().expect("target directory");
+        let mut cmd = Command::new(env!("CARGO"));
+        cmd.args(["build", "--quiet", "-p", "jaus", "--bin", "jaus"])
+            .arg("--manifest-path")
+            .arg(Path::new(env!("CARGO_MANIFEST_DIR")).join("../Cargo.toml"))
+            .arg("--target-dir")
+            .arg(target_dir);
+        match profile_dir.file_name().and_then(|n| n.to_str()) {
+            Some("debug") | None => {}
+            Some("release") => {
+                cmd.arg("--release");
+            }
+            Some(other) => {
+                cmd.args(["--profile", other]);
+            }
+        }
+        let status = cmd.status().expect("run cargo build");
+        assert!(status.success(), "cargo build -p jaus --bin jaus failed");
+        assert!(bin.is_file(), "jaus binary not found at {}", bin.display());
+        bin
+    })
+}
+
+/// Runs `jaus <args>` with `stdin` as its standard input.
+fn run(args: &[&str], stdin: &str) -> Output {
+    let mut child = Command::new(jaus_bin())
+        .args(args)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("start jaus");
+    let mut input = child.stdin.take().expect("stdin");
+    let text = stdin.to_string();
+    // Write from another thread so a full stdout pipe cannot block us.
+    let writer = std::thread::spawn(move || {
+        input.write_all(text.as_bytes()).expect("write stdin");
+    });
+    let out = child.wait_with_output().expect("wait for jaus");
+    writer.join().expect("stdin writer");
+    out
+}
+
+fn lines(bytes: &[u8]) -> Vec<String> {
+    String::from_utf8(bytes.to_vec())
+        .expect("UTF-8 output")
+        .lines()
+        .map(str::to_string)
+        .collect()
+}
+
+/// `(command code, hex)` of every reference vector, in file order.
+fn vector_hex() -> Vec<(u16, String)> {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("data/openjaus33.jsonl");
+    std::fs::read_to_string(path)
+        .expect("vectors present")
+        .lines()
+        .filter(|l| !l.trim().is_empty())
+        .map(|l| {
+            let v: Value = serde_json::from_str(l).expect("vector is JSON");
+            let code = v["header"]["command_code"].as_u64().expect("command code") as u16;
+            (code, v["hex"].as_str().expect("hex").to_string())
+        })
+        .collect()
+}
+
+/// The command codes `jaus messages` lists.
+fn listed_codes() -> Vec<u16> {
+    let out = run(&["messages"], "");
+    assert!(out.status.success());
+    lines(&out.stdout)
+        .iter()
+        .filter_map(|l| l.strip_prefix("0x"))
+        .map(|l| u16::from_str_radix(&l[..4], 16).expect("hex code"))
+        .collect()
+}
+
+/// The `N` of a `line N: ...` error.
+fn error_line_number(e: &str) -> usize {
+    let rest = e
+        .strip_prefix("line ")
+        .unwrap_or_else(|| panic!("error without line number: {e}"));
+    rest.split(':')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap_or_else(|_| panic!("bad line number in {e}"))
+}
+
+#[test]
+fn decode_then_encode_reproduces_every_known_vector() {
+    let vectors = vector_hex();
+    let input: String = vectors.iter().map(|(_, h)| format!("{h}\n")).collect();
+    let decoded = run(&["decode"], &input);
+    let json = lines(&decoded.stdout);
+    let errors = lines(&decoded.stderr);
+
+    // Vectors of groups not defined yet are rejected for their command code only, and no
+    // listed message is among them.
+    let listed = listed_codes();
+    let mut rejected = vec![false; vectors.len()];
+    for e in &errors {
+        let n = error_line_number(e);
+        let (code, _) = vectors[n - 1];
+        assert!(
+            e.contains(&format!("unknown command code 0x{code:04X}")),
+            "vector on line {n} (code 0x{code:04X}) failed for another reason: {e}"
+        );
+        assert!(
+            !listed.contains(&code),
+            "`jaus messages` lists 0x{code:04X} but decode rejects it: {e}"
+        );
+        rejected[n - 1] = true;
+    }
+    assert_eq!(decoded.status.success(), errors.is_empty());
+    let accepted: Vec<&(u16, String)> = vectors
+        .iter()
+        .zip(&rejected)
+        .filter(|(_, r)| !**r)
+        .map(|(v, _)| v)
+        .collect();
+    assert_eq!(
+        json.len(),
+        accepted.len(),
+        "one JSON line per accepted vector"
+    );
+    assert!(
+        json.len() >= 700,
+        "only {} of {} vectors decode",
+        json.len(),
+        vectors.len()
+    );
+
+    for (line, (code, _)) in json.iter().zip(&accepted) {
+        let v: Value = serde_json::from_str(line).expect("decode prints JSON");
+        assert_eq!(
+            v["header"]["command_code"].as_u64(),
+            Some(u64::from(*code)),
+            "{line}"
+        );
+        assert!(
+            v["message"].is_string() && v["fields"].is_object(),
+            "{line}"
+        );
+    }
+
+    let encoded = run(&["encode"], &(json.join("\n") + "\n"));
+    assert_eq!(lines(&encoded.stderr), Vec::<String>::new());
+    assert!(encoded.status.success());
+    let hex = lines(&encoded.stdout);
+    assert_eq!(hex.len(), accepted.len());
+    for (i, (got, (_, want))) in hex.iter().zip(&accepted).enumerate() {
+        assert_eq!(
+            got,
+            want,
+            "re-encoded packet differs for JSON line {}: {}",
+            i + 1,
+            json[i]
+        );
+    }
+}
+
+/// A packet of `ReportGlobalPose` with every field present (OpenJAUS vector).
+const POSE: &str =
+    "02020244f028877624eb7b0b1e001a60ff0175fc208189cd377cf6167a1077e4f38fa5e490ddaf42fff4e5ec1ded";
+/// A `SetDataLinkSelect` packet (one body byte).
+const SELECT: &str = "9f020102cd2c3f560b256bff010019e4b7";
+
+#[test]
+fn malformed_lines_are_reported_one_each_and_good_lines_still_decode() {
+    let select = jaus::hex::decode(SELECT).unwrap();
+    let pose = jaus::hex::decode(POSE).unwrap();
+
+    // An unknown (experimental, undefined) command code with a consistent header.
+    let mut unknown = select.clone();
+    unknown[2..4].copy_from_slice(&0xD123u16.to_le_bytes());
+    // The body of a known message cut short, with a header that agrees with it.
+    let mut short_body = pose[..16 + 9].to_vec();
+    short_body[12] = 9;
+    short_body[13] &= 0xF0;
+
+    let input = [
+        SELECT.to_string(),                // 1 ok
+        POSE[..10].to_string(),            // 2 truncated header (5 bytes)
+        format!("{SELECT}00"),             // 3 data size mismatch
+        jaus::hex::encode(&unknown),       // 4 unknown command code
+        jaus::hex::encode(&short_body),    // 5 truncated body
+        POSE.to_string(),                  // 6 ok
+        format!("zz{}", &SELECT[2..]),     // 7 bad hex digit
+        SELECT[..SELECT.len() - 1].into(), // 8 odd number of digits
+        String::new(),                     // 9 blank: skipped, no output
+        POSE.to_uppercase(),               // 10 ok (upper case hex)
+    ];
+    let path = Path::new(env!("CARGO_TARGET_TMPDIR")).join("jaus-cli-malformed.txt");
+    std::fs::write(&path, input.join("\n") + "\n").unwrap();
+    let file = std::fs::File::open(&path).unwrap();
+    let out = Command::new(jaus_bin())
+        .arg("decode")
+        .stdin(file)
+        .output()
+        .expect("run jaus decode");
+
+    assert_eq!(
+        out.status.code(),
+        Some(1),
+        "a malformed line makes the exit status 1"
+    );
+    let errors = lines(&out.stderr);
+    let expected: &[(usize, &[&str])] = &[
+        (2, &["truncated header", "5 byte"]),
+        (3, &["data size", "header says 1", "2 follow"]),
+        (4, &["unknown command code", "0xD123"]),
+        (5, &["ReportGlobalPose", "truncated", "longitude"]),
+        (7, &["bad hex", "invalid hex digit"]),
+        (8, &["bad hex", "odd number of hex digits"]),
+    ];
+    assert_eq!(
+        errors.len(),
+        expected.len(),
+        "one error line per bad line: {errors:#?}"
+    );
+    for (e, (n, words)) in errors.iter().zip(expected) {
+        assert!(
+            e.starts_with(&format!("line {n}: ")),
+            "expected an error for line {n}: {e}"
+        );
+        for w in *words {
+            assert!(
+                e.contains(w),
+                "error for line {n} should mention {w:?}: {e}"
+            );
+        }
+    }
+    assert!(
+        !errors[4].contains("header"),
+        "a short body is not a header problem: {}",
+        errors[4]
+    );
+
+    let json = lines(&out.stdout);
+    let names: Vec<String> = json
+        .iter()
+        .map(|l| {
+            serde_json::from_str::<Value>(l).unwrap()["message"]
+                .as_str()
+                .unwrap()
+                .to_string()
+        })
+        .collect();
+    assert_eq!(
+        names,
+        ["SetDataLinkSelect", "ReportGlobalPose", "ReportGlobalPose"]
+    );
+    assert_eq!(json[1], json[2], "hex case does not matter");
+}
+
+#[test]
+fn decode_takes_packets_as_arguments() {
+    let out = run(&["decode", SELECT, "0602", POSE], "");
+    assert_eq!(out.status.code(), Some(1));
+    let errors = lines(&out.stderr);
+    assert_eq!(errors.len(), 1, "{errors:?}");
+    assert!(
+        errors[0].starts_with("line 2: ") && errors[0].contains("truncated header"),
+        "{}",
+        errors[0]
+    );
+    assert_eq!(lines(&out.stdout).len(), 2);
+
+    let ok = run(&["decode", POSE], "");
+    assert!(ok.status.success());
+    assert!(ok.stderr.is_empty());
+}
+
+#[test]
+fn messages_lists_the_catalogue() {
+    let out = run(&["messages"], "");
+    assert!(out.status.success());
+    let text = lines(&out.stdout);
+    let rows: Vec<&String> = text.iter().filter(|l| l.starts_with("0x")).collect();
+    assert!(rows.len() >= 90, "only {} messages listed", rows.len());
+    assert!(
+        rows.iter()
+            .any(|r| r.starts_with("0x4402")
+                && r.split_whitespace().nth(1) == Some("ReportGlobalPose")),
+        "0x4402 ReportGlobalPose missing"
+    );
+    assert_eq!(
+        text.last().map(String::as_str),
+        Some(format!("{} messages", rows.len()).as_str())
+    );
+    // Codes are unique.
+    let mut codes: Vec<&str> = rows.iter().map(|r| &r[..6]).collect();
+    codes.sort_unstable();
+    codes.dedup();
+    assert_eq!(codes.len(), rows.len());
+
+    let platform = run(&["messages", "--group", "platform"], "");
+    assert!(platform.status.success());
+    let prows: Vec<String> = lines(&platform.stdout)
+        .into_iter()
+        .filter(|l| l.starts_with("0x"))
+        .collect();
+    assert!(!prows.is_empty() && prows.len() < rows.len());
+    assert!(
+        prows
+            .iter()
+            .all(|r| r.split_whitespace().any(|w| w == "platform")),
+        "{prows:#?}"
+    );
+    assert!(prows.iter().any(|r| r.starts_with("0x4402")));
+}
+
+#[test]
+fn encode_rejects_a_header_code_that_disagrees_with_the_message() {
+    let decoded = run(&["decode", POSE], "");
+    assert!(decoded.status.success());
+    let good = lines(&decoded.stdout).remove(0);
+    let mut v: Value = serde_json::from_str(&good).unwrap();
+    assert_eq!(v["message"], "ReportGlobalPose");
+    v["header"]["command_code"] = Value::from(0x4403);
+    let bad = v.to_string();
+
+    let out = run(&["encode"], &format!("{bad}\n{good}\n{{not json\n"));
+    assert_eq!(out.status.code(), Some(1));
+    let errors = lines(&out.stderr);
+    assert_eq!(errors.len(), 2, "{errors:?}");
+    assert!(errors[0].starts_with("line 1: "), "{}", errors[0]);
+    assert!(
+        errors[0].contains("command code") && errors[0].contains("ReportGlobalPose"),
+        "{}",
+        errors[0]
+    );
+    assert!(
+        errors[1].starts_with("line 3: ") && errors[1].contains("bad JSON"),
+        "{}",
+        errors[1]
+    );
+    // The good line is still encoded, to the original bytes.
+    assert_eq!(lines(&out.stdout), [POSE]);
+}
