@@ -5,6 +5,8 @@ fn main() {
     let result = jaus_gen::Builder::new()
         .spec_dir(jaus_spec::defs_dir())
         .feature_gates(true)
+        .runtime_path("crate")
+        .serde_cfg("feature = \"serde\"")
         .out_dir(out)
         .generate();
     if let Err(e) = result {

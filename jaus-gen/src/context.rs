@@ -187,7 +187,7 @@ struct Mapped {
 }
 
 /// Rust type, derive attributes and documentation of a wire form.
-fn map_wire(spec: &Spec, w: &Wire) -> Mapped {
+fn map_wire(spec: &Spec, w: &Wire, rt: &str) -> Mapped {
     let mut m = Mapped { ty: String::new(), attr: Vec::new(), serde: Vec::new(), doc: Vec::new() };
     match w {
         Wire::Int(i) => m.ty = i.rust().into(),
@@ -216,10 +216,10 @@ fn map_wire(spec: &Spec, w: &Wire) -> Mapped {
         Wire::Bytes(len) => {
             m.ty = "Vec<u8>".into();
             len_attrs(&mut m, *len, "blob");
-            m.serde.push("with = \"crate::hex::serde\"".into());
+            m.serde.push(format!("with = \"{rt}::hex::serde\""));
         }
         Wire::Packet { size } => {
-            m.ty = "crate::Packet".into();
+            m.ty = format!("{rt}::Packet");
             m.doc.push("A whole JAUS message, header included.".into());
             if let Some(s) = size {
                 m.attr.push(format!("size = {}", s.rust()));
@@ -227,7 +227,7 @@ fn map_wire(spec: &Spec, w: &Wire) -> Mapped {
             }
         }
         Wire::List { count, elem } => {
-            let e = map_wire(spec, elem);
+            let e = map_wire(spec, elem, rt);
             m.ty = format!("Vec<{}>", e.ty);
             match count {
                 Some(c) => {
@@ -283,9 +283,9 @@ fn len_attrs(m: &mut Mapped, len: Len, what: &str) {
     }
 }
 
-fn field_ctx(spec: &Spec, f: &FieldDef) -> FieldCtx {
+fn field_ctx(spec: &Spec, f: &FieldDef, rt: &str) -> FieldCtx {
     let w = spec.wire(f);
-    let mut m = map_wire(spec, &w);
+    let mut m = map_wire(spec, &w, rt);
     let mut doc = doc_lines(f.description.as_deref());
     if let Some(u) = &f.unit {
         doc.push(String::new());
@@ -301,7 +301,7 @@ fn field_ctx(spec: &Spec, f: &FieldDef) -> FieldCtx {
             attr.insert(0, format!("bit = {b}"));
             doc.push(format!("Optional: presence bit {b}."));
             if serde.iter().any(|s| s.contains("hex::serde")) {
-                serde = vec!["with = \"crate::hex::serde_opt\"".into()];
+                serde = vec![format!("with = \"{rt}::hex::serde_opt\"")];
             }
             serde.insert(0, "default, skip_serializing_if = \"Option::is_none\"".into());
             format!("Option<{}>", m.ty)
@@ -330,7 +330,7 @@ fn has_default(spec: &Spec, w: &Wire, bit: bool) -> bool {
 }
 
 /// Builds the template context of a validated spec.
-pub fn build_context(spec: &Spec, gates: bool) -> Context {
+pub fn build_context(spec: &Spec, gates: bool, rt: &str) -> Context {
     let mut groups: Vec<GroupCtx> = spec
         .groups
         .iter()
@@ -362,7 +362,7 @@ pub fn build_context(spec: &Spec, gates: bool) -> Context {
         match d.kind {
             TypeKind::Record => {
                 tc.container_attr = d.presence.as_deref().and_then(Int::parse).map_or_else(String::new, |p| format!("presence = {}", p.rust()));
-                tc.fields = d.fields.iter().map(|f| field_ctx(spec, f)).collect();
+                tc.fields = d.fields.iter().map(|f| field_ctx(spec, f, rt)).collect();
                 tc.default = d.fields.iter().all(|f| has_default(spec, &spec.wire(f), f.bit.is_some()));
             }
             TypeKind::Enum => {
@@ -370,7 +370,13 @@ pub fn build_context(spec: &Spec, gates: bool) -> Context {
                 tc.values = d
                     .values
                     .iter()
-                    .map(|v| ValueCtx { name: v.name.clone(), value: v.value, doc: doc_lines(v.description.as_deref()) })
+                    .map(|v| {
+                        let mut doc = doc_lines(v.description.as_deref());
+                        if doc.is_empty() {
+                            doc.push(format!("{} ({}).", jaus_spec::title_of(&v.name), v.value));
+                        }
+                        ValueCtx { name: v.name.clone(), value: v.value, doc }
+                    })
                     .collect();
                 tc.default = !tc.values.is_empty();
                 tc.copy = true;
@@ -410,7 +416,7 @@ pub fn build_context(spec: &Spec, gates: bool) -> Context {
                         name: v.name.clone(),
                         tag: v.tag,
                         ty: v.ty.as_ref().map(|t| {
-                            map_wire(spec, &spec.wire(&FieldDef { ty: t.clone(), ..FieldDef::default() })).ty
+                            map_wire(spec, &spec.wire(&FieldDef { ty: t.clone(), ..FieldDef::default() }), rt).ty
                         }),
                         doc: doc_lines(v.description.as_deref()),
                     })
@@ -469,7 +475,7 @@ pub fn build_context(spec: &Spec, gates: bool) -> Context {
             doc,
             container_attr: container.join(", "),
             default: d.fields.iter().all(|f| has_default(spec, &spec.wire(f), f.bit.is_some())),
-            fields: d.fields.iter().map(|f| field_ctx(spec, f)).collect(),
+            fields: d.fields.iter().map(|f| field_ctx(spec, f, rt)).collect(),
             embedded,
             report,
             experimental: d.experimental,

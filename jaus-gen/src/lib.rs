@@ -80,6 +80,8 @@ pub struct Builder {
     templates_dir: Option<PathBuf>,
     feature_gates: bool,
     cargo: bool,
+    runtime: Option<String>,
+    serde_cfg: Option<String>,
 }
 
 /// What one generation run produced.
@@ -134,6 +136,21 @@ impl Builder {
         self
     }
 
+    /// Path of the SDK runtime in generated code: `::jaus` (the default, for a vendor's
+    /// crate depending on the SDK) or `crate` (inside the SDK itself).
+    pub fn runtime_path(mut self, path: impl Into<String>) -> Self {
+        self.runtime = Some(path.into());
+        self
+    }
+
+    /// The `cfg` condition under which generated types derive serde's traits:
+    /// `feature = "serde"` (the SDK's choice), `all()` (always) or `any()` (never, the
+    /// default, so a vendor crate needs no serde dependency).
+    pub fn serde_cfg(mut self, cfg: impl Into<String>) -> Self {
+        self.serde_cfg = Some(cfg.into());
+        self
+    }
+
     /// Turns `cargo:rerun-if-changed` output on or off.
     pub fn emit_rerun_if_changed(mut self, on: bool) -> Self {
         self.cargo = on;
@@ -159,8 +176,11 @@ impl Builder {
     /// Renders the code without writing it.
     pub fn render(&self) -> Result<Generated, Error> {
         let spec = self.load()?;
-        let ctx = build_context(&spec, self.feature_gates);
-        let env = self.environment()?;
+        let rt = self.runtime.as_deref().unwrap_or("::jaus");
+        let ctx = build_context(&spec, self.feature_gates, rt);
+        let mut env = self.environment()?;
+        env.add_global("rt", rt);
+        env.add_global("serde_cfg", self.serde_cfg.as_deref().unwrap_or("any()"));
         let raw = env.get_template("messages.rs.j2")?.render(&ctx)?;
         let code = format_code(&raw, self.out_dir.as_deref())?;
         Ok(Generated { code, files: Vec::new(), messages: spec.messages.len(), types: spec.types.len() })

@@ -389,6 +389,13 @@ pub struct Packet {
 }
 
 impl Packet {
+    /// A packet of `body` under `header`, with the header's data size set from the body
+    /// (saturating at the 12-bit maximum; encoding a longer body fails).
+    pub fn new(mut header: Header, body: Vec<u8>) -> Packet {
+        header.data_size = body.len().min(MAX_DATA_SIZE) as u16;
+        Packet { header, body }
+    }
+
     /// Parses one datagram-sized packet: a header and exactly `data_size` body bytes.
     pub fn parse(bytes: &[u8]) -> Result<Packet, DecodeError> {
         let header = Header::parse(bytes)?;

@@ -178,15 +178,20 @@ fn decode_then_encode_reproduces_every_known_vector() {
     assert!(encoded.status.success());
     let hex = lines(&encoded.stdout);
     assert_eq!(hex.len(), accepted.len());
-    for (i, (got, (_, want))) in hex.iter().zip(&accepted).enumerate() {
-        assert_eq!(
-            got,
-            want,
-            "re-encoded packet differs for JSON line {}: {}",
-            i + 1,
-            json[i]
-        );
-    }
+    let differing: Vec<String> = hex
+        .iter()
+        .zip(&accepted)
+        .zip(&json)
+        .filter(|((got, (_, want)), _)| got.as_str() != want.as_str())
+        .map(|((got, (_, want)), json)| format!("  in   {want}\n  out  {got}\n  json {json}"))
+        .collect();
+    assert!(
+        differing.is_empty(),
+        "{} of {} packets re-encode to different bytes after decode | encode:\n{}",
+        differing.len(),
+        accepted.len(),
+        differing.join("\n")
+    );
 }
 
 /// A packet of `ReportGlobalPose` with every field present (OpenJAUS vector).

@@ -1,0 +1,320 @@
+use ::jaus::codec::{DecodeError, DecodeErrorKind, Encode, EncodeError, Writer};
+use ::jaus::{CommandCode, JausMessage};
+/// ACME experimental messages and types.
+///
+/// Tank telemetry of the ACME tracked carrier (experimental, 0xD100-0xD1FF).
+pub mod acme {
+    #[allow(unused_imports)]
+    use super::*;
+    /// What a tank holds.
+    ///
+    /// A value the definition does not name decodes to `Unknown(n)` and re-encodes
+    /// unchanged.
+    #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, ::jaus::JausEnum)]
+    #[cfg_attr(all(), derive(serde::Serialize, serde::Deserialize))]
+    #[jaus(repr = u8)]
+    pub enum TankKind {
+        /// Diesel.
+        #[default]
+        #[jaus(value = 0)]
+        Fuel,
+        /// Water (1).
+        #[jaus(value = 1)]
+        Water,
+        /// Hydraulic (7).
+        #[jaus(value = 7)]
+        Hydraulic,
+        /// A value the definition does not name.
+        #[jaus(unknown)]
+        Unknown(u8),
+    }
+    /// Tank state bits.
+    #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, ::jaus::JausBits)]
+    #[cfg_attr(
+        all(),
+        derive(serde::Serialize, serde::Deserialize),
+        serde(deny_unknown_fields)
+    )]
+    #[jaus(repr = u16)]
+    pub struct TankFlags {
+        /// Below the low-level mark.
+        ///
+        /// Bit 0.
+        #[jaus(bit = 0)]
+        pub low: bool,
+        /// Bit 1.
+        #[jaus(bit = 1)]
+        pub leaking: bool,
+        /// Level sensor in use.
+        ///
+        /// Bits 4-7.
+        #[jaus(bits = 4..= 7)]
+        pub sensor_id: u8,
+        /// Bits the definition does not name, kept as received.
+        #[jaus(reserved)]
+        #[cfg_attr(
+            all(),
+            serde(default, skip_serializing_if = "::jaus::codec::is_default")
+        )]
+        pub reserved: u16,
+    }
+    /// A sensor reading, tagged by its type.
+    #[derive(Debug, Clone, PartialEq, ::jaus::JausUnion)]
+    #[cfg_attr(all(), derive(serde::Serialize, serde::Deserialize))]
+    #[jaus(tag = u8)]
+    pub enum Reading {
+        #[jaus(tag = 1)]
+        Level(u16),
+        #[jaus(tag = 2)]
+        Temperature(f32),
+        #[jaus(tag = 3)]
+        Missing,
+    }
+    /// One tank.
+    #[derive(Debug, Clone, PartialEq, Default, ::jaus::JausRecord)]
+    #[cfg_attr(
+        all(),
+        derive(serde::Serialize, serde::Deserialize),
+        serde(deny_unknown_fields)
+    )]
+    #[jaus(presence = u8)]
+    pub struct Tank {
+        /// Contents.
+        pub kind: TankKind,
+        /// Fill level.
+        ///
+        /// Unit: %.
+        /// Range `[0, 100]`, carried as a scaled `u16` (resolution 1.526e-3).
+        #[jaus(scaled(u16, 0.0, 100.0))]
+        pub level: f64,
+        /// State.
+        pub flags: TankFlags,
+        /// Operator label.
+        ///
+        /// Preceded on the wire by its length as `u8`.
+        /// Optional: presence bit 0.
+        #[jaus(bit = 0, size = u8)]
+        #[cfg_attr(all(), serde(default, skip_serializing_if = "Option::is_none"))]
+        pub label: Option<String>,
+        /// Probe temperatures.
+        ///
+        /// Unit: °C.
+        /// Preceded on the wire by its element count as `u8`.
+        /// Each element: Range `[-40, 125]`, carried as a scaled `i16` (resolution 2.518e-3).
+        /// Optional: presence bit 1.
+        #[jaus(bit = 1, count = u8, scaled(i16, -40.0, 125.0))]
+        #[cfg_attr(all(), serde(default, skip_serializing_if = "Option::is_none"))]
+        pub temperatures: Option<Vec<f64>>,
+    }
+    /// Query Tanks (0xD100).
+    ///
+    /// Asks for the tank report.
+    #[derive(Debug, Clone, PartialEq, Default, ::jaus::JausMessage)]
+    #[cfg_attr(
+        all(),
+        derive(serde::Serialize, serde::Deserialize),
+        serde(deny_unknown_fields)
+    )]
+    #[jaus(code = 0xD100)]
+    pub struct QueryTanks {
+        /// Tank fields wanted.
+        pub presence_vector: u8,
+    }
+    /// Report Tanks (0xF100).
+    ///
+    /// The tanks of the carrier.
+    #[derive(Debug, Clone, PartialEq, Default, ::jaus::JausMessage)]
+    #[cfg_attr(
+        all(),
+        derive(serde::Serialize, serde::Deserialize),
+        serde(deny_unknown_fields)
+    )]
+    #[jaus(code = 0xF100, presence = u16)]
+    pub struct ReportTanks {
+        /// Vehicle name.
+        ///
+        /// A fixed 15-byte string, NUL padded.
+        #[jaus(fixed = 15)]
+        pub vehicle: String,
+        /// Every tank.
+        ///
+        /// Preceded on the wire by its element count as `u8`.
+        #[jaus(count = u8)]
+        pub tanks: Vec<Tank>,
+        /// Raw readings.
+        ///
+        /// Preceded on the wire by its element count as `u16`.
+        /// Optional: presence bit 0.
+        #[jaus(bit = 0, count = u16)]
+        #[cfg_attr(all(), serde(default, skip_serializing_if = "Option::is_none"))]
+        pub readings: Option<Vec<Reading>>,
+        /// Controller serial number.
+        ///
+        /// A fixed 4-byte blob, NUL padded.
+        /// Optional: presence bit 3.
+        #[jaus(bit = 3, fixed = 4)]
+        #[cfg_attr(
+            all(),
+            serde(
+                default,
+                skip_serializing_if = "Option::is_none",
+                with = "::jaus::hex::serde_opt"
+            )
+        )]
+        pub serial: Option<Vec<u8>>,
+        /// Controller uptime when measured.
+        ///
+        /// Unit: s.
+        /// Optional: presence bit 2.
+        #[jaus(bit = 2)]
+        #[cfg_attr(all(), serde(default, skip_serializing_if = "Option::is_none"))]
+        pub uptime: Option<u32>,
+        /// Free text.
+        ///
+        /// Runs to the end of the body.
+        /// Sent with a terminating NUL.
+        /// Optional: presence bit 9.
+        #[jaus(bit = 9, rest, nul)]
+        #[cfg_attr(all(), serde(default, skip_serializing_if = "Option::is_none"))]
+        pub note: Option<String>,
+    }
+    /// Replay Tanks (0xD101).
+    ///
+    /// Wraps another message, with and without its header.
+    #[derive(Debug, Clone, PartialEq, ::jaus::JausMessage)]
+    #[cfg_attr(
+        all(),
+        derive(serde::Serialize, serde::Deserialize),
+        serde(deny_unknown_fields)
+    )]
+    #[jaus(code = 0xD101)]
+    pub struct ReplayTanks {
+        /// Code of `wrapped`.
+        pub wrapped_code: u16,
+        /// A body without header.
+        ///
+        /// Preceded on the wire by its length as `u32`.
+        #[jaus(size = u32)]
+        #[cfg_attr(all(), serde(with = "::jaus::hex::serde"))]
+        pub wrapped: Vec<u8>,
+        /// A whole message with header.
+        ///
+        /// A whole JAUS message, header included.
+        /// Preceded on the wire by its byte length as `u16`.
+        #[jaus(size = u16)]
+        pub packet: ::jaus::Packet,
+        /// Anything after.
+        ///
+        /// Runs to the end of the body.
+        #[jaus(rest)]
+        #[cfg_attr(all(), serde(with = "::jaus::hex::serde"))]
+        pub tail: Vec<u8>,
+    }
+    impl ReplayTanks {
+        /// Decodes `wrapped` as the message whose code is `wrapped_code`.
+        pub fn wrapped_decoded(
+            &self,
+        ) -> ::core::result::Result<Message, ::jaus::codec::DecodeError> {
+            let code = ::jaus::CommandCode(self.wrapped_code);
+            Message::decode(code, &self.wrapped)
+        }
+    }
+}
+pub use acme::*;
+/// Any message of the set, by command code.
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(
+    all(),
+    derive(serde::Serialize, serde::Deserialize),
+    serde(tag = "message", content = "fields")
+)]
+pub enum Message {
+    /// Query Tanks (0xD100).
+    QueryTanks(QueryTanks),
+    /// Report Tanks (0xF100).
+    ReportTanks(ReportTanks),
+    /// Replay Tanks (0xD101).
+    ReplayTanks(ReplayTanks),
+}
+impl Message {
+    /// Decodes a body of the message with command code `code`.
+    pub fn decode(
+        code: CommandCode,
+        body: &[u8],
+    ) -> ::core::result::Result<Self, DecodeError> {
+        match code.0 {
+            0xD100 => QueryTanks::decode_body(body).map(Self::QueryTanks),
+            0xF100 => ReportTanks::decode_body(body).map(Self::ReportTanks),
+            0xD101 => ReplayTanks::decode_body(body).map(Self::ReplayTanks),
+            other => {
+                Err(
+                    DecodeError::new(
+                        DecodeErrorKind::UnknownCommandCode {
+                            code: other,
+                        },
+                        0,
+                    ),
+                )
+            }
+        }
+    }
+    /// The command code of this message.
+    pub fn code(&self) -> CommandCode {
+        match self {
+            Self::QueryTanks(_) => QueryTanks::CODE,
+            Self::ReportTanks(_) => ReportTanks::CODE,
+            Self::ReplayTanks(_) => ReplayTanks::CODE,
+        }
+    }
+    /// The name of this message.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Self::QueryTanks(_) => QueryTanks::NAME,
+            Self::ReportTanks(_) => ReportTanks::NAME,
+            Self::ReplayTanks(_) => ReplayTanks::NAME,
+        }
+    }
+    /// The body as a value implementing [`Encode`].
+    pub fn body(&self) -> &dyn Encode {
+        match self {
+            Self::QueryTanks(m) => m,
+            Self::ReportTanks(m) => m,
+            Self::ReplayTanks(m) => m,
+        }
+    }
+}
+impl Encode for Message {
+    fn encoded_len(&self) -> usize {
+        self.body().encoded_len()
+    }
+    fn encode(&self, w: &mut Writer<'_>) -> ::core::result::Result<(), EncodeError> {
+        self.body().encode(w)
+    }
+}
+/// Every message of the set: code, name, title, group and the report answering it.
+pub static MESSAGES: &[::jaus::MessageInfo] = &[
+    ::jaus::MessageInfo {
+        code: CommandCode(0xD100),
+        name: "QueryTanks",
+        title: "Query Tanks",
+        group: "acme",
+        report: None,
+        experimental: false,
+    },
+    ::jaus::MessageInfo {
+        code: CommandCode(0xF100),
+        name: "ReportTanks",
+        title: "Report Tanks",
+        group: "acme",
+        report: None,
+        experimental: false,
+    },
+    ::jaus::MessageInfo {
+        code: CommandCode(0xD101),
+        name: "ReplayTanks",
+        title: "Replay Tanks",
+        group: "acme",
+        report: None,
+        experimental: false,
+    },
+];
