@@ -88,10 +88,16 @@ pub struct IntSpan {
     pub span: Span,
 }
 
-fn parse_int_type(input: syn::parse::ParseStream<'_>, errors: &mut Errors) -> syn::Result<Option<IntSpan>> {
+fn parse_int_type(
+    input: syn::parse::ParseStream<'_>,
+    errors: &mut Errors,
+) -> syn::Result<Option<IntSpan>> {
     let ty: Ident = input.parse()?;
     match Int::parse(&ty.to_string()) {
-        Some(int) => Ok(Some(IntSpan { int, span: ty.span() })),
+        Some(int) => Ok(Some(IntSpan {
+            int,
+            span: ty.span(),
+        })),
         None => {
             errors.error(
                 ty.span(),
@@ -159,6 +165,8 @@ pub struct FieldAttrs {
     // Bit-field members:
     pub bits: Option<(u32, u32, Span)>,
     pub reserved: Option<Span>,
+    /// An attribute did not parse (already reported): skip further checks of the field.
+    pub parse_failed: bool,
 }
 
 pub const FIELD_KEYS: &str =
@@ -170,7 +178,8 @@ pub fn for_each_item(
     attrs: &[Attribute],
     errors: &mut Errors,
     mut f: impl FnMut(&Ident, syn::parse::ParseStream<'_>, &mut Errors) -> syn::Result<()>,
-) {
+) -> bool {
+    let mut failed = false;
     for attr in attrs.iter().filter(|a| a.path().is_ident("jaus")) {
         let res = attr.parse_args_with(|input: syn::parse::ParseStream<'_>| {
             loop {
@@ -193,8 +202,10 @@ pub fn for_each_item(
         });
         if let Err(e) = res {
             errors.push(e);
+            failed = true;
         }
     }
+    failed
 }
 
 fn parse_eq<T: Parse>(input: syn::parse::ParseStream<'_>) -> syn::Result<T> {
@@ -215,7 +226,7 @@ fn set<T>(slot: &mut Option<T>, v: T, key: &Ident, errors: &mut Errors) {
 
 pub fn parse_field_attrs(attrs: &[Attribute], errors: &mut Errors, in_bits: bool) -> FieldAttrs {
     let mut out = FieldAttrs::default();
-    for_each_item(attrs, errors, |key, input, errors| {
+    let failed = for_each_item(attrs, errors, |key, input, errors| {
         let k = key.to_string();
         match k.as_str() {
             "bit" => {
@@ -228,7 +239,12 @@ pub fn parse_field_attrs(attrs: &[Attribute], errors: &mut Errors, in_bits: bool
                 input.parse::<Token![..=]>()?;
                 let hi: LitInt = input.parse()?;
                 let span = lo.span().join(hi.span()).unwrap_or(lo.span());
-                set(&mut out.bits, (lit_u32(&lo)?, lit_u32(&hi)?, span), key, errors);
+                set(
+                    &mut out.bits,
+                    (lit_u32(&lo)?, lit_u32(&hi)?, span),
+                    key,
+                    errors,
+                );
             }
             "reserved" if in_bits => set(&mut out.reserved, key.span(), key, errors),
             "scaled" if !in_bits => {
@@ -240,7 +256,17 @@ pub fn parse_field_attrs(attrs: &[Attribute], errors: &mut Errors, in_bits: bool
                 content.parse::<Token![,]>()?;
                 let hi: Expr = content.parse()?;
                 if let Some(int) = int {
-                    set(&mut out.scaled, Scaled { int, lo, hi, span: key.span() }, key, errors);
+                    set(
+                        &mut out.scaled,
+                        Scaled {
+                            int,
+                            lo,
+                            hi,
+                            span: key.span(),
+                        },
+                        key,
+                        errors,
+                    );
                 }
             }
             "count" if !in_bits => {
@@ -257,7 +283,12 @@ pub fn parse_field_attrs(attrs: &[Attribute], errors: &mut Errors, in_bits: bool
             }
             "fixed" if !in_bits => {
                 let lit: LitInt = parse_eq(input)?;
-                set(&mut out.fixed, (lit.base10_parse()?, lit.span()), key, errors);
+                set(
+                    &mut out.fixed,
+                    (lit.base10_parse()?, lit.span()),
+                    key,
+                    errors,
+                );
             }
             "rest" if !in_bits => set(&mut out.rest, key.span(), key, errors),
             "nul" if !in_bits => set(&mut out.nul, key.span(), key, errors),
@@ -278,6 +309,7 @@ pub fn parse_field_attrs(attrs: &[Attribute], errors: &mut Errors, in_bits: bool
         }
         Ok(())
     });
+    out.parse_failed = failed;
     out
 }
 
@@ -292,14 +324,28 @@ pub struct ContainerAttrs {
     pub name: Option<LitStr>,
 }
 
-pub fn parse_container_attrs(attrs: &[Attribute], errors: &mut Errors, allowed: &[&str]) -> ContainerAttrs {
+pub fn parse_container_attrs(
+    attrs: &[Attribute],
+    errors: &mut Errors,
+    allowed: &[&str],
+) -> ContainerAttrs {
     let mut out = ContainerAttrs::default();
     for_each_item(attrs, errors, |key, input, errors| {
         let k = key.to_string();
         if !allowed.contains(&k.as_str()) {
             errors.error(
                 key.span(),
-                format!("unknown jaus container attribute `{k}`; expected one of: {}", allowed.join(", ")),
+                if k == "code" {
+                    format!(
+                        "`code` belongs on `#[derive(JausMessage)]`; this derive takes: {}",
+                        allowed.join(", ")
+                    )
+                } else {
+                    format!(
+                        "unknown jaus container attribute `{k}`; expected one of: {}",
+                        allowed.join(", ")
+                    )
+                },
             );
             while !input.is_empty() && !input.peek(Token![,]) {
                 input.parse::<proc_macro2::TokenTree>()?;
@@ -311,7 +357,10 @@ pub fn parse_container_attrs(attrs: &[Attribute], errors: &mut Errors, allowed: 
                 let lit: LitInt = parse_eq(input)?;
                 match lit.base10_parse::<u16>() {
                     Ok(v) => set(&mut out.code, (v, lit.span()), key, errors),
-                    Err(_) => errors.error(lit.span(), "a command code is a 16-bit value (0x0000..=0xFFFF)"),
+                    Err(_) => errors.error(
+                        lit.span(),
+                        "a command code is a 16-bit value (0x0000..=0xFFFF)",
+                    ),
                 }
             }
             "presence" | "repr" | "tag" => {

@@ -56,6 +56,7 @@ enum Len {
     Rest,
 }
 
+#[allow(clippy::large_enum_variant)] // built once per field at compile time
 enum Elem {
     Plain(Type),
     Scaled(ScaledSpec),
@@ -71,10 +72,20 @@ struct ScaledSpec {
 enum Shape {
     Plain(Type),
     Scaled(ScaledSpec),
-    List { count: Option<Int>, elem: Elem },
+    List {
+        count: Option<Int>,
+        elem: Elem,
+    },
     Bytes(Len),
-    Str { len: Len, nul: bool, accept_short: bool },
-    Sized { size: Int, ty: Type },
+    Str {
+        len: Len,
+        nul: bool,
+        accept_short: bool,
+    },
+    Sized {
+        size: Int,
+        ty: Type,
+    },
 }
 
 struct FieldModel {
@@ -89,26 +100,45 @@ fn scaled_spec(s: &Scaled, errors: &mut Errors) -> Option<ScaledSpec> {
     let lo = eval_f64(&s.lo);
     let hi = eval_f64(&s.hi);
     if lo.is_none() {
-        errors.error(span_of(&s.lo), "the lower limit must be a constant number (e.g. `-90.0`, `-PI`)");
+        errors.error(
+            span_of(&s.lo),
+            "the lower limit must be a constant number (e.g. `-90.0`, `-PI`)",
+        );
     }
     if hi.is_none() {
-        errors.error(span_of(&s.hi), "the upper limit must be a constant number (e.g. `90.0`, `PI`)");
+        errors.error(
+            span_of(&s.hi),
+            "the upper limit must be a constant number (e.g. `90.0`, `PI`)",
+        );
     }
     let (lo, hi) = (lo?, hi?);
-    if !(lo < hi) || !lo.is_finite() || !hi.is_finite() {
-        errors.error(span_of(&s.lo), format!("lower limit {lo} must be below upper limit {hi}"));
+    if lo.is_nan() || hi.is_nan() || lo >= hi || !lo.is_finite() || !hi.is_finite() {
+        errors.error(
+            span_of(&s.lo),
+            format!("lower limit {lo} must be below upper limit {hi}"),
+        );
         return None;
     }
     if s.int.int == Int::I8 {
-        errors.error(s.int.span, "i8 is not a JAUS scaled-integer type; use u8, u16, u32, u64, i16, i32 or i64");
+        errors.error(
+            s.int.span,
+            "i8 is not a JAUS scaled-integer type; use u8, u16, u32, u64, i16, i32 or i64",
+        );
         return None;
     }
-    Some(ScaledSpec { int: s.int.int, lo, hi })
+    Some(ScaledSpec {
+        int: s.int.int,
+        lo,
+        hi,
+    })
 }
 
 fn require_unsigned(t: &IntSpan, what: &str, errors: &mut Errors) -> Option<Int> {
     if !t.int.unsigned() || t.int == Int::U64 {
-        errors.error(t.span, format!("{what} type must be an unsigned integer: u8, u16 or u32"));
+        errors.error(
+            t.span,
+            format!("{what} type must be an unsigned integer: u8, u16 or u32"),
+        );
         None
     } else {
         Some(t.int)
@@ -124,11 +154,20 @@ fn classify(
     errors: &mut Errors,
 ) -> Option<Shape> {
     let name = type_name(ty);
-    let count = a.count.as_ref().and_then(|c| require_unsigned(c, "count", errors));
-    let size = a.size.as_ref().and_then(|c| require_unsigned(c, "size", errors));
+    let count = a
+        .count
+        .as_ref()
+        .and_then(|c| require_unsigned(c, "count", errors));
+    let size = a
+        .size
+        .as_ref()
+        .and_then(|c| require_unsigned(c, "size", errors));
     if let Some(span) = a.rest {
         if !is_last {
-            errors.error(span, "`rest` consumes the rest of the body, so it is only allowed on the last field");
+            errors.error(
+                span,
+                "`rest` consumes the rest of the body, so it is only allowed on the last field",
+            );
         }
     }
     if let Some(span) = a.accept_short {
@@ -138,7 +177,10 @@ fn classify(
             errors.error(span, "`accept_short` is only allowed on the last field");
         }
     }
-    let lens = [a.fixed.is_some(), a.size.is_some(), a.rest.is_some()].iter().filter(|b| **b).count();
+    let lens = [a.fixed.is_some(), a.size.is_some(), a.rest.is_some()]
+        .iter()
+        .filter(|b| **b)
+        .count();
     if lens > 1 {
         errors.error(field_span, "use only one of `fixed`, `size` and `rest`");
     }
@@ -166,7 +208,10 @@ fn classify(
         let spec = scaled_spec(s, errors)?;
         if name.as_deref() == Some("f64") {
             if a.count.is_some() || len.is_some() {
-                errors.error(field_span, "a scaled `f64` takes no `count`, `size`, `fixed` or `rest`");
+                errors.error(
+                    field_span,
+                    "a scaled `f64` takes no `count`, `size`, `fixed` or `rest`",
+                );
             }
             return Some(Shape::Scaled(spec));
         }
@@ -175,7 +220,10 @@ fn classify(
                 return list_shape(count, a, Elem::Scaled(spec), errors, field_span);
             }
         }
-        errors.error(s.span, "`scaled` applies to an `f64` field (or `Vec<f64>` with `count`)");
+        errors.error(
+            s.span,
+            "`scaled` applies to an `f64` field (or `Vec<f64>` with `count`)",
+        );
         return None;
     }
 
@@ -189,11 +237,18 @@ fn classify(
         }
         Some("String") => {
             if a.count.is_some() {
-                errors.error(field_span, "a `String` takes `size = T` (byte length prefix), not `count`");
+                errors.error(
+                    field_span,
+                    "a `String` takes `size = T` (byte length prefix), not `count`",
+                );
                 return None;
             }
             return match len {
-                Some(len) => Some(Shape::Str { len, nul: a.nul.is_some(), accept_short: a.accept_short.is_some() }),
+                Some(len) => Some(Shape::Str {
+                    len,
+                    nul: a.nul.is_some(),
+                    accept_short: a.accept_short.is_some(),
+                }),
                 None => {
                     errors.error(field_span, "a `String` field needs its wire form: `fixed = N`, `size = u8|u16|u32` or `rest`");
                     None
@@ -207,25 +262,40 @@ fn classify(
             return match len {
                 Some(len) => Some(Shape::Bytes(len)),
                 None => {
-                    errors.error(field_span, "a `Vec<u8>` field needs `fixed = N`, `size = T`, `count = T` or `rest`");
+                    errors.error(
+                        field_span,
+                        "a `Vec<u8>` field needs `fixed = N`, `size = T`, `count = T` or `rest`",
+                    );
                     None
                 }
             };
         }
         if matches!(len, Some(Len::Fixed(_)) | Some(Len::Size(_))) {
-            errors.error(field_span, "a list takes `count = T` (element count) or `rest`, not `fixed`/`size`");
+            errors.error(
+                field_span,
+                "a list takes `count = T` (element count) or `rest`, not `fixed`/`size`",
+            );
             return None;
         }
         return list_shape(count, a, Elem::Plain(inner.clone()), errors, field_span);
     }
     if a.count.is_some() {
-        errors.error(a.count.as_ref().map_or(field_span, |c| c.span), "`count` applies to a `Vec<T>` field");
+        errors.error(
+            a.count.as_ref().map_or(field_span, |c| c.span),
+            "`count` applies to a `Vec<T>` field",
+        );
         return None;
     }
     match len {
-        Some(Len::Size(s)) => Some(Shape::Sized { size: s, ty: ty.clone() }),
+        Some(Len::Size(s)) => Some(Shape::Sized {
+            size: s,
+            ty: ty.clone(),
+        }),
         Some(_) => {
-            errors.error(field_span, "`fixed` and `rest` apply to `String`, `Vec<u8>` or list fields");
+            errors.error(
+                field_span,
+                "`fixed` and `rest` apply to `String`, `Vec<u8>` or list fields",
+            );
             None
         }
         None => Some(Shape::Plain(ty.clone())),
@@ -240,11 +310,17 @@ fn list_shape(
     span: Span,
 ) -> Option<Shape> {
     match (count, a.rest) {
-        (Some(c), None) => Some(Shape::List { count: Some(c), elem }),
+        (Some(c), None) => Some(Shape::List {
+            count: Some(c),
+            elem,
+        }),
         (None, Some(_)) => Some(Shape::List { count: None, elem }),
         (None, None) if a.count.is_some() => None, // bad count type, already reported
         _ => {
-            errors.error(span, "a list field needs `count = u8|u16|u32` (count prefix) or `rest`");
+            errors.error(
+                span,
+                "a list field needs `count = u8|u16|u32` (count prefix) or `rest`",
+            );
             None
         }
     }
@@ -258,12 +334,19 @@ struct StructModel {
 
 fn struct_model(input: &DeriveInput, c: &ContainerAttrs, errors: &mut Errors) -> StructModel {
     let type_name = input.ident.to_string();
-    let mut model = StructModel { presence: None, fields: Vec::new(), unit: false };
+    let mut model = StructModel {
+        presence: None,
+        fields: Vec::new(),
+        unit: false,
+    };
     if let Some(p) = &c.presence {
         if p.int.unsigned() && p.int != Int::U64 {
             model.presence = Some(p.int);
         } else {
-            errors.error(p.span, "a presence vector is an unsigned integer: u8, u16 or u32");
+            errors.error(
+                p.span,
+                "a presence vector is an unsigned integer: u8, u16 or u32",
+            );
         }
     }
     let data = match &input.data {
@@ -280,7 +363,10 @@ fn struct_model(input: &DeriveInput, c: &ContainerAttrs, errors: &mut Errors) ->
             Vec::new()
         }
         Fields::Unnamed(u) => {
-            errors.error(span_of(u), "tuple structs are not supported: name the fields");
+            errors.error(
+                span_of(u),
+                "tuple structs are not supported: name the fields",
+            );
             return model;
         }
     };
@@ -289,6 +375,9 @@ fn struct_model(input: &DeriveInput, c: &ContainerAttrs, errors: &mut Errors) ->
     for (i, f) in named.into_iter().enumerate() {
         let ident = f.ident.clone().expect("named field");
         let a = parse_field_attrs(&f.attrs, errors, false);
+        if a.parse_failed {
+            continue;
+        }
         let fspan = span_of(&f.ty);
         let optional = generic_inner(&f.ty, "Option");
         let ty = optional.unwrap_or(&f.ty);
@@ -301,12 +390,15 @@ fn struct_model(input: &DeriveInput, c: &ContainerAttrs, errors: &mut Errors) ->
                     ),
                     Some(p) if b >= p.bits() => errors.error(
                         span,
-                        format!("presence bit {b} is out of range for a {}-bit presence vector", p.bits()),
+                        format!("presence bit {b} is out of range for a {} presence vector (bits 0..={})", p.ident(), p.bits() - 1),
                     ),
                     _ => {}
                 }
                 if let Some((_, other)) = used_bits.iter().find(|(u, _)| *u == b) {
-                    errors.error(span, format!("presence bit {b} is already used by field `{other}`"));
+                    errors.error(
+                        span,
+                        format!("presence bit {b} is already used by field `{other}`"),
+                    );
                 }
                 used_bits.push((b, ident.to_string()));
                 Some(b)
@@ -316,7 +408,10 @@ fn struct_model(input: &DeriveInput, c: &ContainerAttrs, errors: &mut Errors) ->
                 None
             }
             (None, true) => {
-                errors.error(fspan, "an `Option<T>` field needs its presence bit: `#[jaus(bit = N)]`");
+                errors.error(
+                    fspan,
+                    "an `Option<T>` field needs its presence bit: `#[jaus(bit = N)]`",
+                );
                 None
             }
             (None, false) => None,
@@ -348,7 +443,9 @@ fn len_expr(shape: &Shape, v: &TokenStream, k: &TokenStream) -> TokenStream {
         Shape::List { count, elem } => {
             let c = count.map_or(0, Int::bytes);
             match elem {
-                Elem::Plain(_) => quote!(#c + #v.iter().map(#codec::Encode::encoded_len).sum::<usize>()),
+                Elem::Plain(_) => {
+                    quote!(#c + #v.iter().map(#codec::Encode::encoded_len).sum::<usize>())
+                }
                 Elem::Scaled(s) => {
                     let n = s.int.bytes();
                     quote!(#c + #v.len() * #n)
@@ -485,7 +582,11 @@ fn decode_expr(shape: &Shape, k: &TokenStream) -> TokenStream {
             }
             Len::Rest => quote!(Ok::<_, #err>(r.rest().to_vec())),
         },
-        Shape::Str { len, nul, accept_short } => match len {
+        Shape::Str {
+            len,
+            nul,
+            accept_short,
+        } => match len {
             Len::Fixed(n) => quote!(#codec::get_fixed_string(r, #n, #accept_short)),
             Len::Size(s) => {
                 let c = s.ident();
@@ -524,11 +625,19 @@ fn min_len(shape: &Shape, k: &TokenStream) -> TokenStream {
             quote!(#n)
         }
         Shape::Bytes(Len::Fixed(n)) => quote!(#n),
-        Shape::Str { len: Len::Fixed(n), accept_short, .. } => {
+        Shape::Str {
+            len: Len::Fixed(n),
+            accept_short,
+            ..
+        } => {
             let n = if *accept_short { 0 } else { *n };
             quote!(#n)
         }
-        Shape::Bytes(Len::Size(s)) | Shape::Str { len: Len::Size(s), .. } | Shape::Sized { size: s, .. } => {
+        Shape::Bytes(Len::Size(s))
+        | Shape::Str {
+            len: Len::Size(s), ..
+        }
+        | Shape::Sized { size: s, .. } => {
             let n = s.bytes();
             quote!(#n)
         }
@@ -539,8 +648,11 @@ fn min_len(shape: &Shape, k: &TokenStream) -> TokenStream {
 /// Expands `JausMessage` (`is_message`) or `JausRecord`.
 pub fn message(input: &DeriveInput, is_message: bool) -> TokenStream {
     let mut errors = Errors::default();
-    let allowed: &[&str] =
-        if is_message { &["code", "presence", "crate", "name"] } else { &["presence", "crate"] };
+    let allowed: &[&str] = if is_message {
+        &["code", "presence", "crate", "name"]
+    } else {
+        &["presence", "crate"]
+    };
     let c = parse_container_attrs(&input.attrs, &mut errors, allowed);
     let k = crate_path(&c);
     if is_message && c.code.is_none() {
@@ -629,9 +741,15 @@ pub fn message(input: &DeriveInput, is_message: bool) -> TokenStream {
         }
         None => (quote!(), quote!()),
     };
-    let construct = if model.unit { quote!(#ident) } else { quote!(#ident { #(#names),* }) };
-    let unused_w = (model.fields.is_empty() && model.presence.is_none()).then(|| quote!(let _ = w;));
-    let unused_r = (model.fields.is_empty() && model.presence.is_none()).then(|| quote!(let _ = r;));
+    let construct = if model.unit {
+        quote!(#ident)
+    } else {
+        quote!(#ident { #(#names),* })
+    };
+    let unused_w =
+        (model.fields.is_empty() && model.presence.is_none()).then(|| quote!(let _ = w;));
+    let unused_r =
+        (model.fields.is_empty() && model.presence.is_none()).then(|| quote!(let _ = r;));
     let msg_impl = is_message.then(|| {
         let code = c.code.map_or(0, |(c, _)| c);
         let name = c.name.clone().unwrap_or_else(|| lit(&ident.to_string()));
@@ -643,6 +761,9 @@ pub fn message(input: &DeriveInput, is_message: bool) -> TokenStream {
         }
     });
     quote! {
+        // Scaled limits are emitted as literals (e.g. 3.141592653589793), which clippy
+        // would flag as approximations of named constants.
+        #[allow(clippy::approx_constant)]
         impl #impl_g #codec::Encode for #ident #ty_g #where_g {
             #[inline]
             fn encoded_len(&self) -> usize {
@@ -656,6 +777,7 @@ pub fn message(input: &DeriveInput, is_message: bool) -> TokenStream {
                 Ok(())
             }
         }
+        #[allow(clippy::approx_constant)]
         impl #impl_g #codec::Decode for #ident #ty_g #where_g {
             const MIN_LEN: usize = #pv_bytes #(+ #mins)*;
             #[inline]
@@ -682,11 +804,17 @@ pub fn enumeration(input: &DeriveInput) -> TokenStream {
     let repr = match &c.repr {
         Some(r) if r.int.unsigned() => Some(r.int),
         Some(r) => {
-            errors.error(r.span, "an enumeration's repr is an unsigned integer: u8, u16, u32 or u64");
+            errors.error(
+                r.span,
+                "an enumeration's repr is an unsigned integer: u8, u16, u32 or u64",
+            );
             None
         }
         None => {
-            errors.error(ident.span(), "missing `#[jaus(repr = u8|u16|u32)]`: the wire type of the enumeration");
+            errors.error(
+                ident.span(),
+                "missing `#[jaus(repr = u8|u16|u32)]`: the wire type of the enumeration",
+            );
             None
         }
     };
@@ -717,7 +845,10 @@ pub fn enumeration(input: &DeriveInput) -> TokenStream {
                     let ok = matches!(&v.fields, Fields::Unnamed(u) if u.unnamed.len() == 1
                         && Some(is_int_type(&u.unnamed[0].ty)) == Some(repr));
                     if !ok {
-                        errors.error(v.ident.span(), "the `unknown` variant must hold the raw value: `Unknown(<repr>)`");
+                        errors.error(
+                            v.ident.span(),
+                            "the `unknown` variant must hold the raw value: `Unknown(<repr>)`",
+                        );
                     }
                     unknown = Some(v.ident.clone());
                     continue;
@@ -728,7 +859,16 @@ pub fn enumeration(input: &DeriveInput) -> TokenStream {
                 }
                 let value = match (&v.discriminant, attr_value) {
                     (None, Some(v)) => Some(v),
-                    (Some((_, syn::Expr::Lit(syn::ExprLit { lit: syn::Lit::Int(i), .. }))), None) => i.base10_parse::<u64>().ok(),
+                    (
+                        Some((
+                            _,
+                            syn::Expr::Lit(syn::ExprLit {
+                                lit: syn::Lit::Int(i),
+                                ..
+                            }),
+                        )),
+                        None,
+                    ) => i.base10_parse::<u64>().ok(),
                     _ => None,
                 };
                 match value {
@@ -766,8 +906,10 @@ pub fn enumeration(input: &DeriveInput) -> TokenStream {
     }
     let repr = repr.expect("checked").ident();
     let n = Int::parse(&repr.to_string()).expect("int").bytes();
-    let lits: Vec<(Ident, proc_macro2::Literal)> =
-        known.iter().map(|(v, val)| (v.clone(), proc_macro2::Literal::u64_unsuffixed(*val))).collect();
+    let lits: Vec<(Ident, proc_macro2::Literal)> = known
+        .iter()
+        .map(|(v, val)| (v.clone(), proc_macro2::Literal::u64_unsuffixed(*val)))
+        .collect();
     let to_arms = lits.iter().map(|(v, val)| quote!(Self::#v => #val));
     let from_arms = lits.iter().map(|(v, val)| quote!(#val => Some(Self::#v)));
     let (unknown_to, decode_other) = match &unknown {
@@ -824,16 +966,23 @@ pub fn bits(input: &DeriveInput) -> TokenStream {
     let repr = match &c.repr {
         Some(r) if r.int.unsigned() => Some(r.int),
         Some(r) => {
-            errors.error(r.span, "a bit field's repr is an unsigned integer: u8, u16, u32 or u64");
+            errors.error(
+                r.span,
+                "a bit field's repr is an unsigned integer: u8, u16, u32 or u64",
+            );
             None
         }
         None => {
-            errors.error(ident.span(), "missing `#[jaus(repr = u8|u16|u32)]`: the integer that holds the bits");
+            errors.error(
+                ident.span(),
+                "missing `#[jaus(repr = u8|u16|u32)]`: the integer that holds the bits",
+            );
             None
         }
     };
     let width = repr.map_or(64, Int::bits);
     let mut defined: u64 = 0;
+    let mut taken: Vec<(u64, String, u32, u32)> = Vec::new();
     let mut members = Vec::new(); // (ident, lo, hi, is_bool)
     let mut reserved: Option<Ident> = None;
     match &input.data {
@@ -847,7 +996,10 @@ pub fn bits(input: &DeriveInput) -> TokenStream {
                 let tname = type_name(&f.ty);
                 if a.reserved.is_some() {
                     if tname.as_deref().and_then(Int::parse) != repr {
-                        errors.error(span_of(&f.ty), "the `reserved` field has the repr type and holds the undefined bits");
+                        errors.error(
+                            span_of(&f.ty),
+                            "the `reserved` field has the repr type and holds the undefined bits",
+                        );
                     }
                     reserved = Some(id);
                     continue;
@@ -861,13 +1013,27 @@ pub fn bits(input: &DeriveInput) -> TokenStream {
                     }
                 };
                 if lo > hi || hi >= width {
-                    errors.error(span, format!("bits {lo}..={hi} are out of range for a {width}-bit field"));
+                    errors.error(
+                        span,
+                        format!(
+                            "bits {lo}..={hi} are out of range: the field has bits 0..={}",
+                            width - 1
+                        ),
+                    );
                     continue;
                 }
-                let mask = if hi - lo + 1 == 64 { u64::MAX } else { ((1u64 << (hi - lo + 1)) - 1) << lo };
-                if defined & mask != 0 {
-                    errors.error(span, format!("bits {lo}..={hi} overlap another member"));
+                let mask = if hi - lo + 1 == 64 {
+                    u64::MAX
+                } else {
+                    ((1u64 << (hi - lo + 1)) - 1) << lo
+                };
+                if let Some((_, other, olo, ohi)) = taken.iter().find(|(m, ..)| m & mask != 0) {
+                    errors.error(
+                        span,
+                        format!("bits {lo}..={hi} overlap member `{other}` (bits {olo}..={ohi})"),
+                    );
                 }
+                taken.push((mask, id.to_string(), lo, hi));
                 defined |= mask;
                 let is_bool = tname.as_deref() == Some("bool");
                 if a.bit.is_some() && !is_bool {
@@ -876,7 +1042,7 @@ pub fn bits(input: &DeriveInput) -> TokenStream {
                 }
                 if a.bits.is_some() {
                     match tname.as_deref().and_then(Int::parse) {
-                        Some(t) if t.unsigned() && t.bits() >= hi - lo + 1 => {}
+                        Some(t) if t.unsigned() && t.bits() > hi - lo => {}
                         _ => {
                             errors.error(span_of(&f.ty), format!("a {}-bit member needs an unsigned integer type at least that wide", hi - lo + 1));
                             continue;
@@ -925,7 +1091,12 @@ pub fn bits(input: &DeriveInput) -> TokenStream {
             dec.push(quote!(#id: ((x >> #lo) & #mask) as #ty));
         }
     }
-    let undefined = !defined & if width == 64 { u64::MAX } else { (1u64 << width) - 1 };
+    let undefined = !defined
+        & if width == 64 {
+            u64::MAX
+        } else {
+            (1u64 << width) - 1
+        };
     if let Some(r) = &reserved {
         enc.push(quote!(x |= (self.#r as u64) & #undefined;));
         dec.push(quote!(#r: (x & #undefined) as #rt));
@@ -968,7 +1139,10 @@ pub fn union(input: &DeriveInput) -> TokenStream {
             None
         }
         None => {
-            errors.error(ident.span(), "missing `#[jaus(tag = u8|u16|u32)]`: the wire type of the tag");
+            errors.error(
+                ident.span(),
+                "missing `#[jaus(tag = u8|u16|u32)]`: the wire type of the tag",
+            );
             None
         }
     };
@@ -984,7 +1158,10 @@ pub fn union(input: &DeriveInput) -> TokenStream {
                         let l: syn::LitInt = input.parse()?;
                         t = Some((l.base10_parse()?, l.span()));
                     } else {
-                        errors.error(key.span(), format!("unknown jaus variant attribute `{key}`; expected `tag = N`"));
+                        errors.error(
+                            key.span(),
+                            format!("unknown jaus variant attribute `{key}`; expected `tag = N`"),
+                        );
                         while !input.is_empty() && !input.peek(syn::Token![,]) {
                             input.parse::<proc_macro2::TokenTree>()?;
                         }
@@ -992,7 +1169,10 @@ pub fn union(input: &DeriveInput) -> TokenStream {
                     Ok(())
                 });
                 let Some((val, span)) = t else {
-                    errors.error(v.ident.span(), "each variant needs its tag: `#[jaus(tag = N)]`");
+                    errors.error(
+                        v.ident.span(),
+                        "each variant needs its tag: `#[jaus(tag = N)]`",
+                    );
                     continue;
                 };
                 if let Some((_, other)) = seen.iter().find(|(s, _)| *s == val) {
@@ -1003,7 +1183,10 @@ pub fn union(input: &DeriveInput) -> TokenStream {
                     Fields::Unit => None,
                     Fields::Unnamed(u) if u.unnamed.len() == 1 => Some(u.unnamed[0].ty.clone()),
                     _ => {
-                        errors.error(v.ident.span(), "a union variant is a unit variant or holds one value: `Name(T)`");
+                        errors.error(
+                            v.ident.span(),
+                            "a union variant is a unit variant or holds one value: `Name(T)`",
+                        );
                         continue;
                     }
                 };

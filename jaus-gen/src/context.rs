@@ -168,7 +168,8 @@ pub struct QueryCtx {
 }
 
 fn doc_lines(text: Option<&str>) -> Vec<String> {
-    text.map(|t| t.lines().map(|l| l.trim_end().to_string()).collect()).unwrap_or_default()
+    text.map(|t| t.lines().map(|l| l.trim_end().to_string()).collect())
+        .unwrap_or_default()
 }
 
 fn fmt_f64(v: f64) -> String {
@@ -187,15 +188,25 @@ struct Mapped {
 }
 
 /// Rust type, derive attributes and documentation of a wire form.
-fn map_wire(spec: &Spec, w: &Wire, rt: &str) -> Mapped {
-    let mut m = Mapped { ty: String::new(), attr: Vec::new(), serde: Vec::new(), doc: Vec::new() };
+fn map_wire(w: &Wire, rt: &str) -> Mapped {
+    let mut m = Mapped {
+        ty: String::new(),
+        attr: Vec::new(),
+        serde: Vec::new(),
+        doc: Vec::new(),
+    };
     match w {
         Wire::Int(i) => m.ty = i.rust().into(),
         Wire::F32 => m.ty = "f32".into(),
         Wire::F64 => m.ty = "f64".into(),
         Wire::Scaled { int, lo, hi } => {
             m.ty = "f64".into();
-            m.attr.push(format!("scaled({}, {}, {})", int.rust(), fmt_f64(*lo), fmt_f64(*hi)));
+            m.attr.push(format!(
+                "scaled({}, {}, {})",
+                int.rust(),
+                fmt_f64(*lo),
+                fmt_f64(*hi)
+            ));
             let d = divisor(*int);
             m.doc.push(format!(
                 "Range `[{lo}, {hi}]`, carried as a scaled `{}` (resolution {:.3e}).",
@@ -223,16 +234,22 @@ fn map_wire(spec: &Spec, w: &Wire, rt: &str) -> Mapped {
             m.doc.push("A whole JAUS message, header included.".into());
             if let Some(s) = size {
                 m.attr.push(format!("size = {}", s.rust()));
-                m.doc.push(format!("Preceded on the wire by its byte length as `{}`.", s.rust()));
+                m.doc.push(format!(
+                    "Preceded on the wire by its byte length as `{}`.",
+                    s.rust()
+                ));
             }
         }
         Wire::List { count, elem } => {
-            let e = map_wire(spec, elem, rt);
+            let e = map_wire(elem, rt);
             m.ty = format!("Vec<{}>", e.ty);
             match count {
                 Some(c) => {
                     m.attr.push(format!("count = {}", c.rust()));
-                    m.doc.push(format!("Preceded on the wire by its element count as `{}`.", c.rust()));
+                    m.doc.push(format!(
+                        "Preceded on the wire by its element count as `{}`.",
+                        c.rust()
+                    ));
                 }
                 None => {
                     m.attr.push("rest".into());
@@ -240,8 +257,10 @@ fn map_wire(spec: &Spec, w: &Wire, rt: &str) -> Mapped {
                 }
             }
             // Element attributes (scaled) apply to each element.
-            m.attr.extend(e.attr.into_iter().filter(|a| a.starts_with("scaled")));
-            m.doc.extend(e.doc.into_iter().map(|d| format!("Each element: {d}")));
+            m.attr
+                .extend(e.attr.into_iter().filter(|a| a.starts_with("scaled")));
+            m.doc
+                .extend(e.doc.into_iter().map(|d| format!("Each element: {d}")));
         }
     }
     m
@@ -270,7 +289,10 @@ fn len_attrs(m: &mut Mapped, len: Len, what: &str) {
         }
         Len::Prefix(c) => {
             m.attr.push(format!("size = {}", c.rust()));
-            m.doc.push(format!("Preceded on the wire by its length as `{}`.", c.rust()));
+            m.doc.push(format!(
+                "Preceded on the wire by its length as `{}`.",
+                c.rust()
+            ));
         }
         Len::Rest { nul } => {
             m.attr.push("rest".into());
@@ -285,7 +307,7 @@ fn len_attrs(m: &mut Mapped, len: Len, what: &str) {
 
 fn field_ctx(spec: &Spec, f: &FieldDef, rt: &str) -> FieldCtx {
     let w = spec.wire(f);
-    let mut m = map_wire(spec, &w, rt);
+    let mut m = map_wire(&w, rt);
     let mut doc = doc_lines(f.description.as_deref());
     if let Some(u) = &f.unit {
         doc.push(String::new());
@@ -303,12 +325,21 @@ fn field_ctx(spec: &Spec, f: &FieldDef, rt: &str) -> FieldCtx {
             if serde.iter().any(|s| s.contains("hex::serde")) {
                 serde = vec![format!("with = \"{rt}::hex::serde_opt\"")];
             }
-            serde.insert(0, "default, skip_serializing_if = \"Option::is_none\"".into());
+            serde.insert(
+                0,
+                "default, skip_serializing_if = \"Option::is_none\"".into(),
+            );
             format!("Option<{}>", m.ty)
         }
         None => m.ty,
     };
-    FieldCtx { name: f.name.clone(), ty, attr: attr.join(", "), serde: serde.join(", "), doc }
+    FieldCtx {
+        name: f.name.clone(),
+        ty,
+        attr: attr.join(", "),
+        serde: serde.join(", "),
+        doc,
+    }
 }
 
 /// Whether values of this wire form have a `Default`.
@@ -320,9 +351,12 @@ fn has_default(spec: &Spec, w: &Wire, bit: bool) -> bool {
         Wire::Named { name, kind, .. } => match kind {
             TypeKind::Union => false,
             TypeKind::Enum | TypeKind::Bitfield => true,
-            TypeKind::Record => spec
-                .ty(name)
-                .is_some_and(|t| t.def.fields.iter().all(|f| has_default(spec, &spec.wire(f), f.bit.is_some()))),
+            TypeKind::Record => spec.ty(name).is_some_and(|t| {
+                t.def
+                    .fields
+                    .iter()
+                    .all(|f| has_default(spec, &spec.wire(f), f.bit.is_some()))
+            }),
         },
         Wire::Packet { .. } => false,
         _ => true,
@@ -336,7 +370,11 @@ pub fn build_context(spec: &Spec, gates: bool, rt: &str) -> Context {
         .iter()
         .map(|g| GroupCtx {
             name: g.name.clone(),
-            module: if matches!(g.name.as_str(), "core" | "std" | "alloc") { format!("{}_messages", g.name) } else { g.name.clone() },
+            module: if matches!(g.name.as_str(), "core" | "std" | "alloc") {
+                format!("{}_messages", g.name)
+            } else {
+                g.name.clone()
+            },
             title: g.title.clone(),
             doc: doc_lines(g.description.as_deref()),
             cfg: cfg_of(&g.name, gates),
@@ -349,7 +387,11 @@ pub fn build_context(spec: &Spec, gates: bool, rt: &str) -> Context {
         let mut tc = TypeCtx {
             name: d.name.clone(),
             kind: format!("{:?}", d.kind).to_lowercase(),
-            repr: d.repr.as_deref().and_then(Int::parse).map_or_else(String::new, |i| i.rust().to_string()),
+            repr: d
+                .repr
+                .as_deref()
+                .and_then(Int::parse)
+                .map_or_else(String::new, |i| i.rust().to_string()),
             doc: doc_lines(d.description.as_deref()),
             container_attr: String::new(),
             default: false,
@@ -361,9 +403,16 @@ pub fn build_context(spec: &Spec, gates: bool, rt: &str) -> Context {
         };
         match d.kind {
             TypeKind::Record => {
-                tc.container_attr = d.presence.as_deref().and_then(Int::parse).map_or_else(String::new, |p| format!("presence = {}", p.rust()));
+                tc.container_attr = d
+                    .presence
+                    .as_deref()
+                    .and_then(Int::parse)
+                    .map_or_else(String::new, |p| format!("presence = {}", p.rust()));
                 tc.fields = d.fields.iter().map(|f| field_ctx(spec, f, rt)).collect();
-                tc.default = d.fields.iter().all(|f| has_default(spec, &spec.wire(f), f.bit.is_some()));
+                tc.default = d
+                    .fields
+                    .iter()
+                    .all(|f| has_default(spec, &spec.wire(f), f.bit.is_some()));
             }
             TypeKind::Enum => {
                 tc.container_attr = format!("repr = {}", tc.repr);
@@ -375,7 +424,11 @@ pub fn build_context(spec: &Spec, gates: bool, rt: &str) -> Context {
                         if doc.is_empty() {
                             doc.push(format!("{} ({}).", jaus_spec::title_of(&v.name), v.value));
                         }
-                        ValueCtx { name: v.name.clone(), value: v.value, doc }
+                        ValueCtx {
+                            name: v.name.clone(),
+                            value: v.value,
+                            doc,
+                        }
                     })
                     .collect();
                 tc.default = !tc.values.is_empty();
@@ -388,11 +441,27 @@ pub fn build_context(spec: &Spec, gates: bool, rt: &str) -> Context {
                     .iter()
                     .map(|b| {
                         let (ty, attr, extra) = match (b.bit, b.bits) {
-                            (Some(x), _) => ("bool".to_string(), format!("bit = {x}"), format!("Bit {x}.")),
+                            (Some(x), _) => (
+                                "bool".to_string(),
+                                format!("bit = {x}"),
+                                format!("Bit {x}."),
+                            ),
                             (None, Some([lo, hi])) => {
                                 let w = hi - lo + 1;
-                                let ty = if w <= 8 { "u8" } else if w <= 16 { "u16" } else if w <= 32 { "u32" } else { "u64" };
-                                (ty.to_string(), format!("bits = {lo}..={hi}"), format!("Bits {lo}-{hi}."))
+                                let ty = if w <= 8 {
+                                    "u8"
+                                } else if w <= 16 {
+                                    "u16"
+                                } else if w <= 32 {
+                                    "u32"
+                                } else {
+                                    "u64"
+                                };
+                                (
+                                    ty.to_string(),
+                                    format!("bits = {lo}..={hi}"),
+                                    format!("Bits {lo}-{hi}."),
+                                )
                             }
                             _ => ("bool".to_string(), String::new(), String::new()),
                         };
@@ -401,7 +470,12 @@ pub fn build_context(spec: &Spec, gates: bool, rt: &str) -> Context {
                             doc.push(String::new());
                         }
                         doc.push(extra);
-                        BitCtx { name: b.name.clone(), ty, attr, doc }
+                        BitCtx {
+                            name: b.name.clone(),
+                            ty,
+                            attr,
+                            doc,
+                        }
                     })
                     .collect();
                 tc.default = true;
@@ -416,7 +490,14 @@ pub fn build_context(spec: &Spec, gates: bool, rt: &str) -> Context {
                         name: v.name.clone(),
                         tag: v.tag,
                         ty: v.ty.as_ref().map(|t| {
-                            map_wire(spec, &spec.wire(&FieldDef { ty: t.clone(), ..FieldDef::default() }), rt).ty
+                            map_wire(
+                                &spec.wire(&FieldDef {
+                                    ty: t.clone(),
+                                    ..FieldDef::default()
+                                }),
+                                rt,
+                            )
+                            .ty
                         }),
                         doc: doc_lines(v.description.as_deref()),
                     })
@@ -430,7 +511,10 @@ pub fn build_context(spec: &Spec, gates: bool, rt: &str) -> Context {
     let mut messages = Vec::new();
     for m in &spec.messages {
         let d = &m.def;
-        let title = d.title.clone().unwrap_or_else(|| jaus_spec::title_of(&d.name));
+        let title = d
+            .title
+            .clone()
+            .unwrap_or_else(|| jaus_spec::title_of(&d.name));
         let mut doc = vec![format!("{title} ({}).", d.code)];
         if !doc_lines(d.description.as_deref()).is_empty() {
             doc.push(String::new());
@@ -474,7 +558,10 @@ pub fn build_context(spec: &Spec, gates: bool, rt: &str) -> Context {
             cfg: cfg_of(&m.group, gates),
             doc,
             container_attr: container.join(", "),
-            default: d.fields.iter().all(|f| has_default(spec, &spec.wire(f), f.bit.is_some())),
+            default: d
+                .fields
+                .iter()
+                .all(|f| has_default(spec, &spec.wire(f), f.bit.is_some())),
             fields: d.fields.iter().map(|f| field_ctx(spec, f, rt)).collect(),
             embedded,
             report,
@@ -495,8 +582,16 @@ pub fn build_context(spec: &Spec, gates: bool, rt: &str) -> Context {
                 (Some(a), _) | (None, Some(a)) => Some(a),
                 (None, None) => None,
             };
-            Some(QueryCtx { query: q.def.name.clone(), report: r.def.name.clone(), cfg })
+            Some(QueryCtx {
+                query: q.def.name.clone(),
+                report: r.def.name.clone(),
+                cfg,
+            })
         })
         .collect();
-    Context { groups, messages, queries }
+    Context {
+        groups,
+        messages,
+        queries,
+    }
 }

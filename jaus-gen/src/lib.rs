@@ -32,7 +32,10 @@ pub use context::{build_context, Context};
 
 /// Templates compiled into the generator (from the workspace `templates/` directory).
 pub const DEFAULT_TEMPLATES: &[(&str, &str)] = &[
-    ("messages.rs.j2", include_str!("../../templates/messages.rs.j2")),
+    (
+        "messages.rs.j2",
+        include_str!("../../templates/messages.rs.j2"),
+    ),
     ("items.rs.j2", include_str!("../../templates/items.rs.j2")),
 ];
 
@@ -101,7 +104,10 @@ impl Builder {
     /// A builder with no inputs. Emits `cargo:rerun-if-changed` lines when run by cargo
     /// (`OUT_DIR` set).
     pub fn new() -> Self {
-        Self { cargo: std::env::var_os("CARGO").is_some() && std::env::var_os("OUT_DIR").is_some(), ..Self::default() }
+        Self {
+            cargo: std::env::var_os("CARGO").is_some() && std::env::var_os("OUT_DIR").is_some(),
+            ..Self::default()
+        }
     }
 
     /// Adds a directory of `*.yaml` definitions.
@@ -183,15 +189,26 @@ impl Builder {
         env.add_global("serde_cfg", self.serde_cfg.as_deref().unwrap_or("any()"));
         let raw = env.get_template("messages.rs.j2")?.render(&ctx)?;
         let code = format_code(&raw, self.out_dir.as_deref())?;
-        Ok(Generated { code, files: Vec::new(), messages: spec.messages.len(), types: spec.types.len() })
+        Ok(Generated {
+            code,
+            files: Vec::new(),
+            messages: spec.messages.len(),
+            types: spec.types.len(),
+        })
     }
 
     /// Renders and writes `OUT/messages.rs` (only if its content changed, so that
     /// cargo does not rebuild needlessly).
     pub fn generate(&self) -> Result<Generated, Error> {
-        let out = self.out_dir.clone().ok_or_else(|| Error::Config("no output directory: call out_dir()".into()))?;
+        let out = self
+            .out_dir
+            .clone()
+            .ok_or_else(|| Error::Config("no output directory: call out_dir()".into()))?;
         let mut g = self.render()?;
-        std::fs::create_dir_all(&out).map_err(|source| Error::Io { path: out.clone(), source })?;
+        std::fs::create_dir_all(&out).map_err(|source| Error::Io {
+            path: out.clone(),
+            source,
+        })?;
         let path = out.join("messages.rs");
         write_if_changed(&path, &g.code)?;
         g.files.push(path);
@@ -229,7 +246,10 @@ pub fn write_if_changed(path: &Path, text: &str) -> Result<(), Error> {
     if std::fs::read_to_string(path).is_ok_and(|old| old == text) {
         return Ok(());
     }
-    std::fs::write(path, text).map_err(|source| Error::Io { path: path.to_path_buf(), source })
+    std::fs::write(path, text).map_err(|source| Error::Io {
+        path: path.to_path_buf(),
+        source,
+    })
 }
 
 /// Parses and pretty-prints generated code. On a syntax error the raw text is written
@@ -238,12 +258,19 @@ pub fn format_code(raw: &str, out_dir: Option<&Path>) -> Result<String, Error> {
     match syn::parse_file(raw) {
         Ok(file) => Ok(prettyplease::unparse(&file)),
         Err(e) => {
-            let dir = out_dir.map(Path::to_path_buf).unwrap_or_else(std::env::temp_dir);
+            let dir = out_dir
+                .map(Path::to_path_buf)
+                .unwrap_or_else(std::env::temp_dir);
             let path = dir.join("messages.unformatted.rs");
             let _ = std::fs::create_dir_all(&dir);
             let _ = std::fs::write(&path, raw);
             let start = e.span().start();
-            Err(Error::Syntax { path, line: start.line, column: start.column + 1, message: e.to_string() })
+            Err(Error::Syntax {
+                path,
+                line: start.line,
+                column: start.column + 1,
+                message: e.to_string(),
+            })
         }
     }
 }

@@ -5,7 +5,11 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 #[derive(Parser)]
-#[command(name = "jaus-gen", version, about = "Generate the typed JAUS SDK from YAML definitions")]
+#[command(
+    name = "jaus-gen",
+    version,
+    about = "Generate the typed JAUS SDK from YAML definitions"
+)]
 struct Cli {
     #[command(subcommand)]
     cmd: Cmd,
@@ -43,7 +47,11 @@ enum Cmd {
 }
 
 fn builder(spec: Vec<PathBuf>, overlays: Vec<PathBuf>) -> jaus_gen::Builder {
-    let dirs = if spec.is_empty() && overlays.is_empty() { vec![jaus_spec::defs_dir()] } else { spec };
+    let dirs = if spec.is_empty() && overlays.is_empty() {
+        vec![jaus_spec::defs_dir()]
+    } else {
+        spec
+    };
     let mut b = jaus_gen::Builder::new().emit_rerun_if_changed(false);
     for d in dirs {
         b = b.spec_dir(d);
@@ -57,14 +65,27 @@ fn builder(spec: Vec<PathBuf>, overlays: Vec<PathBuf>) -> jaus_gen::Builder {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.cmd {
-        Cmd::Generate { spec, overlays, out, templates, feature_gates } => {
-            let mut b = builder(spec, overlays).out_dir(&out).feature_gates(feature_gates);
+        Cmd::Generate {
+            spec,
+            overlays,
+            out,
+            templates,
+            feature_gates,
+        } => {
+            let mut b = builder(spec, overlays)
+                .out_dir(&out)
+                .feature_gates(feature_gates);
             if let Some(t) = templates {
                 b = b.templates_dir(t);
             }
             b.generate().map(|g| {
                 for f in &g.files {
-                    println!("wrote {} ({} messages, {} types)", f.display(), g.messages, g.types);
+                    println!(
+                        "wrote {} ({} messages, {} types)",
+                        f.display(),
+                        g.messages,
+                        g.types
+                    );
                 }
             })
         }

@@ -4,7 +4,10 @@
 use jaus_gen::{Builder, Error};
 
 fn ra33() -> Builder {
-    Builder::new().emit_rerun_if_changed(false).spec_dir(jaus_spec::defs_dir()).feature_gates(true)
+    Builder::new()
+        .emit_rerun_if_changed(false)
+        .spec_dir(jaus_spec::defs_dir())
+        .feature_gates(true)
 }
 
 #[test]
@@ -18,13 +21,20 @@ fn same_input_gives_byte_identical_output() {
 #[test]
 fn generated_code_is_documented_from_the_yaml() {
     let code = ra33().render().unwrap().code;
-    let pose = &code[code.find("pub struct ReportGlobalPose").unwrap() - 1500..code.find("pub struct ReportGlobalPose").unwrap()];
+    let pose = &code[code.find("pub struct ReportGlobalPose").unwrap() - 1500
+        ..code.find("pub struct ReportGlobalPose").unwrap()];
     assert!(pose.contains("/// Report Global Pose (0x4402)."), "{pose}");
     let lat = &code[code.find("pub struct ReportGlobalPose").unwrap()..];
     let lat = &lat[..lat.find("pub latitude").unwrap()];
     assert!(lat.contains("Unit: deg."), "{lat}");
-    assert!(lat.contains("Range `[-90, 90]`, carried as a scaled `i32`"), "{lat}");
-    assert!(lat.contains("#[jaus(bit = 0, scaled(i32, -90.0, 90.0))]"), "{lat}");
+    assert!(
+        lat.contains("Range `[-90, 90]`, carried as a scaled `i32`"),
+        "{lat}"
+    );
+    assert!(
+        lat.contains("#[jaus(bit = 0, scaled(i32, -90.0, 90.0))]"),
+        "{lat}"
+    );
     assert!(code.contains("#[cfg(feature = \"platform\")]"));
 }
 
@@ -32,15 +42,25 @@ fn generated_code_is_documented_from_the_yaml() {
 fn template_overrides_are_used_and_syntax_errors_point_into_the_output() {
     let dir = std::env::temp_dir().join(format!("jaus-gen-templates-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    std::fs::write(dir.join("messages.rs.j2"), "pub struct {{ messages[0].name }} { oops }\n").unwrap();
+    std::fs::write(
+        dir.join("messages.rs.j2"),
+        "pub struct {{ messages[0].name }} { oops }\n",
+    )
+    .unwrap();
     match ra33().templates_dir(&dir).out_dir(&dir).render() {
         Err(Error::Syntax { path, line, .. }) => {
             assert_eq!(line, 1);
-            assert!(std::fs::read_to_string(path).unwrap().contains("pub struct Set"));
+            assert!(std::fs::read_to_string(path)
+                .unwrap()
+                .contains("pub struct Set"));
         }
         other => panic!("expected a syntax error, got {other:?}"),
     }
-    std::fs::write(dir.join("messages.rs.j2"), "pub const N: usize = {{ messages | length }};\n").unwrap();
+    std::fs::write(
+        dir.join("messages.rs.j2"),
+        "pub const N: usize = {{ messages | length }};\n",
+    )
+    .unwrap();
     let g = ra33().templates_dir(&dir).render().unwrap();
     assert!(g.code.starts_with("pub const N: usize = "), "{}", g.code);
     std::fs::remove_dir_all(&dir).ok();
@@ -52,9 +72,16 @@ fn invalid_definitions_fail_with_positions() {
     std::fs::create_dir_all(&dir).unwrap();
     let f = dir.join("bad.yaml");
     std::fs::write(&f, "group: g\nmessages:\n  - name: ReportA\n    code: 0x4001\n    fields:\n      - { name: a, type: nope }\n").unwrap();
-    let err = Builder::new().emit_rerun_if_changed(false).overlay(&f).render().unwrap_err();
+    let err = Builder::new()
+        .emit_rerun_if_changed(false)
+        .overlay(&f)
+        .render()
+        .unwrap_err();
     let text = err.to_string();
     assert!(matches!(err, Error::Spec(_)));
-    assert!(text.contains("bad.yaml:6:20: message `ReportA`, field `a`: unknown type `nope`"), "{text}");
+    assert!(
+        text.contains("bad.yaml:6:20: message `ReportA`, field `a`: unknown type `nope`"),
+        "{text}"
+    );
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -44,7 +44,13 @@ pub struct SpecError {
 
 impl fmt::Display for SpecError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}:{}:{}: ", self.file.display(), self.pos.line, self.pos.column)?;
+        write!(
+            f,
+            "{}:{}:{}: ",
+            self.file.display(),
+            self.pos.line,
+            self.pos.column
+        )?;
         if !self.context.is_empty() {
             write!(f, "{}: ", self.context)?;
         }
@@ -282,7 +288,10 @@ pub fn load_dirs<P: AsRef<Path>>(dirs: &[P]) -> Result<Spec, SpecErrors> {
 
 /// Loads the `*.yaml` files of `dirs`, then the `overlays` files (which may add types,
 /// messages and components to existing groups, or new groups), and validates the set.
-pub fn load<P: AsRef<Path>, Q: AsRef<Path>>(dirs: &[P], overlays: &[Q]) -> Result<Spec, SpecErrors> {
+pub fn load<P: AsRef<Path>, Q: AsRef<Path>>(
+    dirs: &[P],
+    overlays: &[Q],
+) -> Result<Spec, SpecErrors> {
     let mut files = Vec::new();
     let mut errors = Vec::new();
     for d in dirs {
@@ -325,8 +334,13 @@ pub fn load<P: AsRef<Path>, Q: AsRef<Path>>(dirs: &[P], overlays: &[Q]) -> Resul
 
 /// Loads definitions from `(path, text)` pairs (the path is used in errors only).
 pub fn load_texts(texts: Vec<(PathBuf, String)>) -> Result<Spec, SpecErrors> {
-    let mut spec =
-        Spec { sources: Vec::new(), groups: Vec::new(), types: Vec::new(), messages: Vec::new(), components: Vec::new() };
+    let mut spec = Spec {
+        sources: Vec::new(),
+        groups: Vec::new(),
+        types: Vec::new(),
+        messages: Vec::new(),
+        components: Vec::new(),
+    };
     let mut errors = Vec::new();
     for (path, text) in texts {
         let index = LocationIndex::build(&text);
@@ -336,12 +350,20 @@ pub fn load_texts(texts: Vec<(PathBuf, String)>) -> Result<Spec, SpecErrors> {
                 if !spec.groups.iter().any(|g| g.name == file.group) {
                     spec.groups.push(Group {
                         name: file.group.clone(),
-                        title: file.title.clone().unwrap_or_else(|| file.group.replace('_', " ")),
+                        title: file
+                            .title
+                            .clone()
+                            .unwrap_or_else(|| file.group.replace('_', " ")),
                         description: file.description.clone(),
                     });
                 }
                 for (i, t) in file.types.into_iter().enumerate() {
-                    spec.types.push(Type { def: t, group: file.group.clone(), source, path: format!("types[{i}]") });
+                    spec.types.push(Type {
+                        def: t,
+                        group: file.group.clone(),
+                        source,
+                        path: format!("types[{i}]"),
+                    });
                 }
                 for (i, m) in file.messages.into_iter().enumerate() {
                     spec.messages.push(Message {
@@ -361,11 +383,19 @@ pub fn load_texts(texts: Vec<(PathBuf, String)>) -> Result<Spec, SpecErrors> {
                 }
             }
             Err(e) => {
-                let pos = e.location().map_or(Pos { line: 1, column: 1 }, |l| Pos { line: l.line(), column: l.column() });
+                let pos = e.location().map_or(Pos { line: 1, column: 1 }, |l| Pos {
+                    line: l.line(),
+                    column: l.column(),
+                });
                 let msg = e.to_string();
                 // serde_yaml appends " at line N column M"; the position is printed in front.
                 let msg = msg.split(" at line ").next().unwrap_or(&msg).to_string();
-                errors.push(SpecError { file: path.clone(), pos, context: String::new(), message: msg });
+                errors.push(SpecError {
+                    file: path.clone(),
+                    pos,
+                    context: String::new(),
+                    message: msg,
+                });
             }
         }
         spec.sources.push(Source { path, text, index });

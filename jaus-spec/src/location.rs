@@ -35,7 +35,10 @@ struct Builder {
 }
 
 fn pos(m: Marker) -> Pos {
-    Pos { line: m.line(), column: m.col() + 1 }
+    Pos {
+        line: m.line(),
+        column: m.col() + 1,
+    }
 }
 
 impl Builder {
@@ -66,8 +69,16 @@ impl MarkedEventReceiver for Builder {
     fn on_event(&mut self, ev: Event, mark: Marker) {
         match ev {
             Event::Scalar(value, ..) => {
-                if let Some(Frame::Map { key: key @ None, path }) = self.stack.last_mut() {
-                    let p = if path.is_empty() { value.clone() } else { format!("{path}.{value}") };
+                if let Some(Frame::Map {
+                    key: key @ None,
+                    path,
+                }) = self.stack.last_mut()
+                {
+                    let p = if path.is_empty() {
+                        value.clone()
+                    } else {
+                        format!("{path}.{value}")
+                    };
                     let own = path.clone();
                     *key = Some(value);
                     self.record(own, mark);
@@ -136,11 +147,18 @@ mod tests {
 
     #[test]
     fn finds_nested_keys() {
-        let src = "group: g\nmessages:\n  - name: A\n    fields:\n      - name: x\n        bit: 3\n";
+        let src =
+            "group: g\nmessages:\n  - name: A\n    fields:\n      - name: x\n        bit: 3\n";
         let idx = LocationIndex::build(src);
-        assert_eq!(idx.find("messages[0].fields[0].bit"), Pos { line: 6, column: 9 });
+        assert_eq!(
+            idx.find("messages[0].fields[0].bit"),
+            Pos { line: 6, column: 9 }
+        );
         assert_eq!(idx.find("messages[0].name"), Pos { line: 3, column: 5 });
         // A missing key falls back to its parent.
-        assert_eq!(idx.find("messages[0].fields[0].scale"), Pos { line: 5, column: 9 });
+        assert_eq!(
+            idx.find("messages[0].fields[0].scale"),
+            Pos { line: 5, column: 9 }
+        );
     }
 }

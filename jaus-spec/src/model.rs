@@ -41,10 +41,14 @@ impl<'de> Deserialize<'de> for Code {
                 f.write_str("a 16-bit command code such as 0x4402")
             }
             fn visit_u64<E: de::Error>(self, v: u64) -> Result<Code, E> {
-                u16::try_from(v).map(Code).map_err(|_| E::custom(format!("command code {v} exceeds 0xFFFF")))
+                u16::try_from(v)
+                    .map(Code)
+                    .map_err(|_| E::custom(format!("command code {v} exceeds 0xFFFF")))
             }
             fn visit_i64<E: de::Error>(self, v: i64) -> Result<Code, E> {
-                u16::try_from(v).map(Code).map_err(|_| E::custom(format!("command code {v} is not in 0..=0xFFFF")))
+                u16::try_from(v)
+                    .map(Code)
+                    .map_err(|_| E::custom(format!("command code {v} is not in 0..=0xFFFF")))
             }
             fn visit_str<E: de::Error>(self, v: &str) -> Result<Code, E> {
                 let t = v.trim();
@@ -52,7 +56,9 @@ impl<'de> Deserialize<'de> for Code {
                     Some(h) => u16::from_str_radix(h, 16),
                     None => t.parse(),
                 };
-                parsed.map(Code).map_err(|_| E::custom(format!("`{v}` is not a 16-bit command code")))
+                parsed
+                    .map(Code)
+                    .map_err(|_| E::custom(format!("`{v}` is not a 16-bit command code")))
             }
         }
         d.deserialize_any(V)
@@ -160,11 +166,14 @@ impl<'de> Deserialize<'de> for ElemDef {
         #[serde(untagged)]
         enum Raw {
             Name(String),
-            Def(FieldDef),
+            Def(Box<FieldDef>),
         }
         Ok(ElemDef(match Raw::deserialize(d)? {
-            Raw::Name(ty) => FieldDef { ty, ..FieldDef::default() },
-            Raw::Def(f) => f,
+            Raw::Name(ty) => FieldDef {
+                ty,
+                ..FieldDef::default()
+            },
+            Raw::Def(f) => *f,
         }))
     }
 }
@@ -190,13 +199,17 @@ impl<'de> Deserialize<'de> for Length {
                 Ok(Length::Fixed(v as usize))
             }
             fn visit_i64<E: de::Error>(self, v: i64) -> Result<Length, E> {
-                usize::try_from(v).map(Length::Fixed).map_err(|_| E::custom("a length is not negative"))
+                usize::try_from(v)
+                    .map(Length::Fixed)
+                    .map_err(|_| E::custom("a length is not negative"))
             }
             fn visit_str<E: de::Error>(self, v: &str) -> Result<Length, E> {
                 if v == "rest" {
                     Ok(Length::Rest)
                 } else {
-                    Err(E::custom(format!("`{v}` is not a length: use a number or `rest`")))
+                    Err(E::custom(format!(
+                        "`{v}` is not a length: use a number or `rest`"
+                    )))
                 }
             }
         }

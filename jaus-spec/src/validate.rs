@@ -8,19 +8,22 @@ use std::collections::HashMap;
 const KEYWORDS: &[&str] = &[
     "as", "async", "await", "break", "const", "continue", "crate", "dyn", "else", "enum", "extern",
     "false", "fn", "for", "if", "impl", "in", "let", "loop", "match", "mod", "move", "mut", "pub",
-    "ref", "return", "self", "Self", "static", "struct", "super", "trait", "true", "type", "unsafe",
-    "use", "where", "while", "abstract", "become", "box", "do", "final", "macro", "override", "priv",
-    "typeof", "unsized", "virtual", "yield", "try", "gen",
+    "ref", "return", "self", "Self", "static", "struct", "super", "trait", "true", "type",
+    "unsafe", "use", "where", "while", "abstract", "become", "box", "do", "final", "macro",
+    "override", "priv", "typeof", "unsized", "virtual", "yield", "try", "gen",
 ];
 
 fn is_snake(s: &str) -> bool {
     !s.is_empty()
         && s.starts_with(|c: char| c.is_ascii_lowercase())
-        && s.chars().all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '_')
+        && s.chars()
+            .all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '_')
 }
 
 fn is_pascal(s: &str) -> bool {
-    !s.is_empty() && s.starts_with(|c: char| c.is_ascii_uppercase()) && s.chars().all(|c| c.is_ascii_alphanumeric())
+    !s.is_empty()
+        && s.starts_with(|c: char| c.is_ascii_uppercase())
+        && s.chars().all(|c| c.is_ascii_alphanumeric())
 }
 
 struct Ctx<'a> {
@@ -31,14 +34,21 @@ struct Ctx<'a> {
 impl Ctx<'_> {
     fn err(&mut self, source: usize, path: &str, context: String, message: impl Into<String>) {
         let s = &self.spec.sources[source];
-        self.errors.push(SpecError { file: s.path.clone(), pos: s.index.find(path), context, message: message.into() });
+        self.errors.push(SpecError {
+            file: s.path.clone(),
+            pos: s.index.find(path),
+            context,
+            message: message.into(),
+        });
     }
 }
 
 fn count_type(name: &str) -> Result<Int, String> {
     match Int::parse(name) {
         Some(i) if i.is_count() => Ok(i),
-        _ => Err(format!("`{name}` is not a count type: use an unsigned integer u8, u16 or u32")),
+        _ => Err(format!(
+            "`{name}` is not a count type: use an unsigned integer u8, u16 or u32"
+        )),
     }
 }
 
@@ -46,12 +56,24 @@ fn count_type(name: &str) -> Result<Int, String> {
 pub(crate) fn resolve(spec: &Spec, f: &FieldDef) -> Result<Wire, String> {
     let ty = f.ty.as_str();
     let size = f.size.as_deref().map(count_type).transpose()?;
-    let no = |what: &str, ok: bool| if ok { Ok(()) } else { Err(format!("`{what}` does not apply to a `{ty}` field")) };
+    let no = |what: &str, ok: bool| {
+        if ok {
+            Ok(())
+        } else {
+            Err(format!("`{what}` does not apply to a `{ty}` field"))
+        }
+    };
     no("scale", f.scale.is_none() || Int::parse(ty).is_some())?;
     no("of", f.of.is_none() || ty == "list")?;
-    no("length", f.length.is_none() || matches!(ty, "string" | "bytes" | "list"))?;
+    no(
+        "length",
+        f.length.is_none() || matches!(ty, "string" | "bytes" | "list"),
+    )?;
     no("nul", !f.nul || ty == "string")?;
-    no("accept_short", !f.accept_short || matches!(f.length, Some(Length::Fixed(_))))?;
+    no(
+        "accept_short",
+        !f.accept_short || matches!(f.length, Some(Length::Fixed(_))),
+    )?;
     no("code_field", f.code_field.is_none() || ty == "bytes")?;
     if f.complement && f.code_field.is_none() {
         return Err("`complement` needs `code_field`".into());
@@ -61,8 +83,10 @@ pub(crate) fn resolve(spec: &Spec, f: &FieldDef) -> Result<Wire, String> {
         no("size", size.is_none())?;
         return Ok(match f.scale {
             Some([lo, hi]) => {
-                if !(lo < hi) || !lo.is_finite() || !hi.is_finite() {
-                    return Err(format!("scale lower limit {lo} must be below upper limit {hi}"));
+                if lo.is_nan() || hi.is_nan() || lo >= hi || !lo.is_finite() || !hi.is_finite() {
+                    return Err(format!(
+                        "scale lower limit {lo} must be below upper limit {hi}"
+                    ));
                 }
                 Wire::Scaled { int, lo, hi }
             }
@@ -159,12 +183,27 @@ fn check_fields(
         let path = format!("{owner_path}.fields[{i}]");
         let ctx = format!("{owner}, field `{}`", f.name);
         if !is_snake(&f.name) {
-            cx.err(source, &format!("{path}.name"), ctx.clone(), format!("field name `{}` must be snake_case", f.name));
+            cx.err(
+                source,
+                &format!("{path}.name"),
+                ctx.clone(),
+                format!("field name `{}` must be snake_case", f.name),
+            );
         } else if KEYWORDS.contains(&f.name.as_str()) {
-            cx.err(source, &format!("{path}.name"), ctx.clone(), format!("field name `{}` is a Rust keyword; choose another", f.name));
+            cx.err(
+                source,
+                &format!("{path}.name"),
+                ctx.clone(),
+                format!("field name `{}` is a Rust keyword; choose another", f.name),
+            );
         }
         if names.insert(&f.name, ()).is_some() {
-            cx.err(source, &format!("{path}.name"), ctx.clone(), format!("duplicate field name `{}`", f.name));
+            cx.err(
+                source,
+                &format!("{path}.name"),
+                ctx.clone(),
+                format!("duplicate field name `{}`", f.name),
+            );
         }
         if let Some(b) = f.bit {
             match (presence, pv) {
@@ -178,19 +217,26 @@ fn check_fields(
                     source,
                     &format!("{path}.bit"),
                     ctx.clone(),
-                    format!("presence bit {b} is out of range for a {}-bit presence vector", p.bytes() * 8),
+                    format!("presence bit {b} is out of range for a {} presence vector (bits 0-{})", p.rust(), p.bytes() * 8 - 1),
                 ),
                 _ => {}
             }
             if let Some(other) = bits.insert(b, &f.name) {
-                cx.err(source, &format!("{path}.bit"), ctx.clone(), format!("presence bit {b} is already used by field `{other}`"));
+                cx.err(
+                    source,
+                    &format!("{path}.bit"),
+                    ctx.clone(),
+                    format!("presence bit {b} is already used by field `{other}`"),
+                );
             }
         }
         match resolve(cx.spec, f) {
             Ok(w) => {
                 let rest = matches!(
                     w,
-                    Wire::Str(Len::Rest { .. }) | Wire::Bytes(Len::Rest { .. }) | Wire::List { count: None, .. }
+                    Wire::Str(Len::Rest { .. })
+                        | Wire::Bytes(Len::Rest { .. })
+                        | Wire::List { count: None, .. }
                 ) || f.accept_short;
                 if rest && i + 1 != fields.len() {
                     cx.err(
@@ -202,12 +248,20 @@ fn check_fields(
                 }
             }
             Err(e) => {
-                let key = if e.starts_with("unknown type") { "type" } else if e.starts_with("scale") { "scale" } else { "type" };
+                let key = if e.starts_with("unknown type") {
+                    "type"
+                } else if e.starts_with("scale") {
+                    "scale"
+                } else {
+                    "type"
+                };
                 cx.err(source, &format!("{path}.{key}"), ctx.clone(), e);
             }
         }
         if let Some(cf) = &f.code_field {
-            let ok = fields[..i].iter().any(|g| &g.name == cf && Int::parse(&g.ty) == Some(Int::U16));
+            let ok = fields[..i]
+                .iter()
+                .any(|g| &g.name == cf && Int::parse(&g.ty) == Some(Int::U16));
             if !ok {
                 cx.err(
                     source,
@@ -221,7 +275,10 @@ fn check_fields(
 }
 
 pub(crate) fn validate(spec: &Spec) -> Vec<SpecError> {
-    let mut cx = Ctx { spec, errors: Vec::new() };
+    let mut cx = Ctx {
+        spec,
+        errors: Vec::new(),
+    };
 
     // Groups.
     for (si, s) in spec.sources.iter().enumerate() {
@@ -231,10 +288,20 @@ pub(crate) fn validate(spec: &Spec) -> Vec<SpecError> {
             .iter()
             .find(|m| m.source == si)
             .map(|m| m.group.clone())
-            .or_else(|| spec.types.iter().find(|t| t.source == si).map(|t| t.group.clone()));
+            .or_else(|| {
+                spec.types
+                    .iter()
+                    .find(|t| t.source == si)
+                    .map(|t| t.group.clone())
+            });
         if let Some(g) = group {
             if !is_snake(&g) {
-                cx.err(si, "group", String::new(), format!("group name `{g}` must be snake_case (it is also a cargo feature)"));
+                cx.err(
+                    si,
+                    "group",
+                    String::new(),
+                    format!("group name `{g}` must be snake_case (it is also a cargo feature)"),
+                );
             }
         }
     }
@@ -245,13 +312,30 @@ pub(crate) fn validate(spec: &Spec) -> Vec<SpecError> {
         .types
         .iter()
         .map(|t| (t.def.name.as_str(), t.source, t.path.as_str(), "type"))
-        .chain(spec.messages.iter().map(|m| (m.def.name.as_str(), m.source, m.path.as_str(), "message")));
+        .chain(
+            spec.messages
+                .iter()
+                .map(|m| (m.def.name.as_str(), m.source, m.path.as_str(), "message")),
+        );
     for (name, source, path, what) in entries {
         if !is_pascal(name) {
-            cx.err(source, &format!("{path}.name"), format!("{what} `{name}`"), format!("name `{name}` must be PascalCase"));
+            cx.err(
+                source,
+                &format!("{path}.name"),
+                format!("{what} `{name}`"),
+                format!("name `{name}` must be PascalCase"),
+            );
         }
-        if matches!(name, "Message" | "Header" | "Packet" | "Address" | "CommandCode") {
-            cx.err(source, &format!("{path}.name"), format!("{what} `{name}`"), format!("`{name}` is reserved by the SDK"));
+        if matches!(
+            name,
+            "Message" | "Header" | "Packet" | "Address" | "CommandCode"
+        ) {
+            cx.err(
+                source,
+                &format!("{path}.name"),
+                format!("{what} `{name}`"),
+                format!("`{name}` is reserved by the SDK"),
+            );
         }
         if let Some((other_src, other_path)) = seen.insert(name, (source, path)) {
             let o = &spec.sources[other_src];
@@ -260,7 +344,12 @@ pub(crate) fn validate(spec: &Spec) -> Vec<SpecError> {
                 source,
                 &format!("{path}.name"),
                 format!("{what} `{name}`"),
-                format!("duplicate name `{name}` (first defined at {}:{}:{})", o.path.display(), pos.line, pos.column),
+                format!(
+                    "duplicate name `{name}` (first defined at {}:{}:{})",
+                    o.path.display(),
+                    pos.line,
+                    pos.column
+                ),
             );
         }
     }
@@ -296,17 +385,29 @@ pub(crate) fn validate(spec: &Spec) -> Vec<SpecError> {
             match repr {
                 Some((_, Some(i))) if i.unsigned() && (allow_u64 || i.is_count()) => Some(i),
                 Some((r, _)) => {
-                    cx.err(t.source, &format!("{}.repr", t.path), ctx.clone(), format!("`{r}` is not an unsigned integer type for {what}"));
+                    cx.err(
+                        t.source,
+                        &format!("{}.repr", t.path),
+                        ctx.clone(),
+                        format!("`{r}` is not an unsigned integer type for {what}"),
+                    );
                     None
                 }
                 None => {
-                    cx.err(t.source, &format!("{}.kind", t.path), ctx.clone(), format!("{what} needs `repr: u8|u16|u32`"));
+                    cx.err(
+                        t.source,
+                        &format!("{}.kind", t.path),
+                        ctx.clone(),
+                        format!("{what} needs `repr: u8|u16|u32`"),
+                    );
                     None
                 }
             }
         };
         match d.kind {
-            TypeKind::Record => check_fields(&mut cx, t.source, &t.path, &ctx, &d.presence, &d.fields),
+            TypeKind::Record => {
+                check_fields(&mut cx, t.source, &t.path, &ctx, &d.presence, &d.fields)
+            }
             TypeKind::Enum => {
                 let r = need_repr(&mut cx, "an enum", true);
                 let mut vals: HashMap<u64, &str> = HashMap::new();
@@ -316,17 +417,28 @@ pub(crate) fn validate(spec: &Spec) -> Vec<SpecError> {
                         cx.err(t.source, &format!("{p}.name"), ctx.clone(), format!("value name `{}` must be PascalCase and not `Unknown` (reserved for undefined values)", v.name));
                     }
                     if let Some(o) = vals.insert(v.value, &v.name) {
-                        cx.err(t.source, &format!("{p}.value"), ctx.clone(), format!("value {} is already used by `{o}`", v.value));
+                        cx.err(
+                            t.source,
+                            &format!("{p}.value"),
+                            ctx.clone(),
+                            format!("value {} is already used by `{o}`", v.value),
+                        );
                     }
                     if let Some(r) = r {
                         if r.bytes() < 8 && v.value >> (r.bytes() * 8) != 0 {
-                            cx.err(t.source, &format!("{p}.value"), ctx.clone(), format!("value {} does not fit in {}", v.value, r.rust()));
+                            cx.err(
+                                t.source,
+                                &format!("{p}.value"),
+                                ctx.clone(),
+                                format!("value {} does not fit in {}", v.value, r.rust()),
+                            );
                         }
                     }
                 }
             }
             TypeKind::Bitfield => {
-                let width = need_repr(&mut cx, "a bitfield", true).map_or(64, |r| r.bytes() as u32 * 8);
+                let width =
+                    need_repr(&mut cx, "a bitfield", true).map_or(64, |r| r.bytes() as u32 * 8);
                 let mut used: u64 = 0;
                 for (i, b) in d.bits.iter().enumerate() {
                     let p = format!("{}.bits[{i}]", t.path);
@@ -339,16 +451,41 @@ pub(crate) fn validate(spec: &Spec) -> Vec<SpecError> {
                         }
                     };
                     if lo > hi || hi >= width {
-                        cx.err(t.source, &p, ctx.clone(), format!("bits {lo}..{hi} of `{}` are out of range for a {width}-bit field", b.name));
+                        cx.err(
+                            t.source,
+                            &p,
+                            ctx.clone(),
+                            format!(
+                                "bits {lo}..{hi} of `{}` are out of range for a {width}-bit field",
+                                b.name
+                            ),
+                        );
                         continue;
                     }
-                    let mask = if hi - lo == 63 { u64::MAX } else { ((1u64 << (hi - lo + 1)) - 1) << lo };
+                    let mask = if hi - lo == 63 {
+                        u64::MAX
+                    } else {
+                        ((1u64 << (hi - lo + 1)) - 1) << lo
+                    };
                     if used & mask != 0 {
-                        cx.err(t.source, &p, ctx.clone(), format!("bits of `{}` overlap another member", b.name));
+                        cx.err(
+                            t.source,
+                            &p,
+                            ctx.clone(),
+                            format!("bits of `{}` overlap another member", b.name),
+                        );
                     }
                     used |= mask;
                     if !is_snake(&b.name) || b.name == "reserved" {
-                        cx.err(t.source, &format!("{p}.name"), ctx.clone(), format!("member name `{}` must be snake_case and not `reserved`", b.name));
+                        cx.err(
+                            t.source,
+                            &format!("{p}.name"),
+                            ctx.clone(),
+                            format!(
+                                "member name `{}` must be snake_case and not `reserved`",
+                                b.name
+                            ),
+                        );
                     }
                 }
             }
@@ -358,10 +495,18 @@ pub(crate) fn validate(spec: &Spec) -> Vec<SpecError> {
                 for (i, v) in d.variants.iter().enumerate() {
                     let p = format!("{}.variants[{i}]", t.path);
                     if let Some(o) = tags.insert(v.tag, &v.name) {
-                        cx.err(t.source, &format!("{p}.tag"), ctx.clone(), format!("tag {} is already used by `{o}`", v.tag));
+                        cx.err(
+                            t.source,
+                            &format!("{p}.tag"),
+                            ctx.clone(),
+                            format!("tag {} is already used by `{o}`", v.tag),
+                        );
                     }
                     if let Some(ty) = &v.ty {
-                        let f = FieldDef { ty: ty.clone(), ..FieldDef::default() };
+                        let f = FieldDef {
+                            ty: ty.clone(),
+                            ..FieldDef::default()
+                        };
                         if let Err(e) = resolve(spec, &f) {
                             cx.err(t.source, &format!("{p}.type"), ctx.clone(), e);
                         }
@@ -374,14 +519,31 @@ pub(crate) fn validate(spec: &Spec) -> Vec<SpecError> {
     // Messages.
     for m in &spec.messages {
         let ctx = format!("message `{}`", m.def.name);
-        check_fields(&mut cx, m.source, &m.path, &ctx, &m.def.presence, &m.def.fields);
+        check_fields(
+            &mut cx,
+            m.source,
+            &m.path,
+            &ctx,
+            &m.def.presence,
+            &m.def.fields,
+        );
         let code = m.def.code.0;
         let is_query = (0x2000..0x4000).contains(&code);
         if let Some(r) = &m.def.report {
             if !is_query {
-                cx.err(m.source, &format!("{}.report", m.path), ctx.clone(), "`report` applies to query messages (0x2000..0x3FFF)");
+                cx.err(
+                    m.source,
+                    &format!("{}.report", m.path),
+                    ctx.clone(),
+                    "`report` applies to query messages (0x2000..0x3FFF)",
+                );
             } else if spec.message(r).is_none() {
-                cx.err(m.source, &format!("{}.report", m.path), ctx.clone(), format!("report `{r}` is not defined"));
+                cx.err(
+                    m.source,
+                    &format!("{}.report", m.path),
+                    ctx.clone(),
+                    format!("report `{r}` is not defined"),
+                );
             }
         } else if is_query && !m.def.no_report && spec.report_of(&m.def).is_none() {
             cx.err(
@@ -402,7 +564,12 @@ pub(crate) fn validate(spec: &Spec) -> Vec<SpecError> {
     for c in &spec.components {
         let ctx = format!("component `{}`", c.def.name);
         if let Some(o) = ids.insert(c.def.id, &c.def.name) {
-            cx.err(c.source, &format!("{}.id", c.path), ctx.clone(), format!("component id {} is already used by `{o}`", c.def.id));
+            cx.err(
+                c.source,
+                &format!("{}.id", c.path),
+                ctx.clone(),
+                format!("component id {} is already used by `{o}`", c.def.id),
+            );
         }
         for (key, list) in [("accepts", &c.def.accepts), ("emits", &c.def.emits)] {
             for (i, name) in list.iter().enumerate() {
@@ -417,6 +584,8 @@ pub(crate) fn validate(spec: &Spec) -> Vec<SpecError> {
             }
         }
     }
-    cx.errors.sort_by(|a, b| (&a.file, a.pos.line, a.pos.column).cmp(&(&b.file, b.pos.line, b.pos.column)));
+    cx.errors.sort_by(|a, b| {
+        (&a.file, a.pos.line, a.pos.column).cmp(&(&b.file, b.pos.line, b.pos.column))
+    });
     cx.errors
 }

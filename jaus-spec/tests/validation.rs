@@ -7,7 +7,10 @@ use std::path::Path;
 
 fn fixtures() -> Vec<std::path::PathBuf> {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/bad");
-    let mut v: Vec<_> = std::fs::read_dir(dir).unwrap().map(|e| e.unwrap().path()).collect();
+    let mut v: Vec<_> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
     v.sort();
     v
 }
@@ -30,7 +33,10 @@ fn every_bad_fixture_is_rejected_with_file_line_column() {
             Err(errs) => {
                 let want = format!("{}:{expect}", f.display());
                 if !errs.0.iter().any(|e| e.to_string().starts_with(&want)) {
-                    failures.push(format!("{}:\n  expected {want}\n  got      {errs}", f.display()));
+                    failures.push(format!(
+                        "{}:\n  expected {want}\n  got      {errs}",
+                        f.display()
+                    ));
                 }
             }
         }
@@ -45,7 +51,11 @@ fn the_shipped_definitions_validate() {
     // The complement rule holds for every query.
     for m in &spec.messages {
         if (0x2000..0x4000).contains(&m.def.code.0) {
-            assert!(spec.report_of(&m.def).is_some() || m.def.no_report, "{} has no report", m.def.name);
+            assert!(
+                spec.report_of(&m.def).is_some() || m.def.no_report,
+                "{} has no report",
+                m.def.name
+            );
         }
     }
 }

@@ -23,7 +23,9 @@ fn bench_one<M: Encode + Decode>(c: &mut Criterion, name: &str, body: &[u8]) {
             black_box(w.position())
         })
     });
-    g.bench_function("decode", |b| b.iter(|| M::from_bytes(black_box(body)).unwrap()));
+    g.bench_function("decode", |b| {
+        b.iter(|| M::from_bytes(black_box(body)).unwrap())
+    });
     g.finish();
 }
 

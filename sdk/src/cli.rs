@@ -30,8 +30,13 @@ pub fn decode_packet(packet: &Packet) -> Result<String, String> {
             packet.header.sequence_number, packet.header.data_flag
         ));
     }
-    let message = Message::decode(packet.header.command_code, &packet.body).map_err(|e| e.to_string())?;
-    serde_json::to_string(&JsonPacket { header: packet.header, message }).map_err(|e| e.to_string())
+    let message =
+        Message::decode(packet.header.command_code, &packet.body).map_err(|e| e.to_string())?;
+    serde_json::to_string(&JsonPacket {
+        header: packet.header,
+        message,
+    })
+    .map_err(|e| e.to_string())
 }
 
 /// Encodes one JSON line to a hex packet. The data size is computed from the body; a
@@ -46,9 +51,17 @@ pub fn encode_line(line: &str) -> Result<String, String> {
             p.message.name()
         ));
     }
-    let body = p.message.to_bytes().map_err(|e| format!("{}: {e}", p.message.name()))?;
-    let packet = Packet { header: p.header, body };
-    let bytes = packet.to_bytes().map_err(|e| format!("{}: {e}", p.message.name()))?;
+    let body = p
+        .message
+        .to_bytes()
+        .map_err(|e| format!("{}: {e}", p.message.name()))?;
+    let packet = Packet {
+        header: p.header,
+        body,
+    };
+    let bytes = packet
+        .to_bytes()
+        .map_err(|e| format!("{}: {e}", p.message.name()))?;
     Ok(crate::hex::encode(&bytes))
 }
 
@@ -82,13 +95,20 @@ pub fn run_lines(
 pub fn print_messages(out: &mut impl Write, group: Option<&str>) {
     let _ = writeln!(out, "{:<8} {:<40} {:<22} report", "code", "name", "group");
     let mut n = 0;
-    for m in MESSAGES.iter().filter(|m| group.is_none_or(|g| g == m.group)) {
+    for m in MESSAGES
+        .iter()
+        .filter(|m| group.is_none_or(|g| g == m.group))
+    {
         n += 1;
         let _ = writeln!(
             out,
             "{:<8} {:<40} {:<22} {}",
             m.code.to_string(),
-            if m.experimental { format!("{} (experimental)", m.name) } else { m.name.to_string() },
+            if m.experimental {
+                format!("{} (experimental)", m.name)
+            } else {
+                m.name.to_string()
+            },
             m.group,
             m.report.unwrap_or("")
         );
@@ -113,7 +133,12 @@ pub const REFERENCE_PACKETS: &[(&str, &str)] = &[
 /// checks the bytes are identical; then builds a message from typed values.
 pub fn tour(out: &mut impl Write) -> bool {
     let mut ok = true;
-    let _ = writeln!(out, "JAUS RA 3.3 SDK: {} messages in {} groups\n", MESSAGES.len(), groups().len());
+    let _ = writeln!(
+        out,
+        "JAUS RA 3.3 SDK: {} messages in {} groups\n",
+        MESSAGES.len(),
+        groups().len()
+    );
     for (title, hex) in REFERENCE_PACKETS {
         let _ = writeln!(out, "{title}\n  packet  {hex}");
         match decode_line(hex).and_then(|json| {
@@ -124,7 +149,11 @@ pub fn tour(out: &mut impl Write) -> bool {
                 let same = back == *hex;
                 ok &= same;
                 let _ = writeln!(out, "  decoded {json}");
-                let _ = writeln!(out, "  re-encoded identical: {}\n", if same { "yes" } else { "NO" });
+                let _ = writeln!(
+                    out,
+                    "  re-encoded identical: {}\n",
+                    if same { "yes" } else { "NO" }
+                );
             }
             Err(e) => {
                 ok = false;

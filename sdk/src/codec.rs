@@ -23,7 +23,11 @@ impl<'a> Reader<'a> {
     /// Starts reading at the first byte of `buf`.
     #[inline]
     pub fn new(buf: &'a [u8]) -> Self {
-        Self { buf, pos: 0, base: 0 }
+        Self {
+            buf,
+            pos: 0,
+            base: 0,
+        }
     }
 
     /// Bytes not yet consumed.
@@ -47,7 +51,10 @@ impl<'a> Reader<'a> {
                 Ok(s)
             }
             _ => Err(DecodeError::new(
-                DecodeErrorKind::Truncated { needed: n, available: self.remaining() },
+                DecodeErrorKind::Truncated {
+                    needed: n,
+                    available: self.remaining(),
+                },
                 self.offset(),
             )),
         }
@@ -58,7 +65,10 @@ impl<'a> Reader<'a> {
     pub fn array<const N: usize>(&mut self) -> Result<[u8; N], DecodeError> {
         if self.remaining() < N {
             return Err(DecodeError::new(
-                DecodeErrorKind::Truncated { needed: N, available: self.remaining() },
+                DecodeErrorKind::Truncated {
+                    needed: N,
+                    available: self.remaining(),
+                },
                 self.offset(),
             ));
         }
@@ -90,7 +100,9 @@ impl<'a> Reader<'a> {
             Ok(())
         } else {
             Err(DecodeError::new(
-                DecodeErrorKind::TrailingBytes { count: self.remaining() },
+                DecodeErrorKind::TrailingBytes {
+                    count: self.remaining(),
+                },
                 self.offset(),
             ))
         }
@@ -127,7 +139,10 @@ impl<'a> Writer<'a> {
                 self.pos = end;
                 Ok(())
             }
-            None => Err(EncodeError::BufferTooSmall { needed: end, capacity: self.buf.len() }),
+            None => Err(EncodeError::BufferTooSmall {
+                needed: end,
+                capacity: self.buf.len(),
+            }),
         }
     }
 
@@ -140,7 +155,10 @@ impl<'a> Writer<'a> {
                 self.pos = end;
                 Ok(())
             }
-            None => Err(EncodeError::BufferTooSmall { needed: end, capacity: self.buf.len() }),
+            None => Err(EncodeError::BufferTooSmall {
+                needed: end,
+                capacity: self.buf.len(),
+            }),
         }
     }
 
@@ -245,7 +263,11 @@ pub fn put_count<C: CountRepr>(
     field: &'static str,
 ) -> Result<(), EncodeError> {
     if n > C::MAX {
-        return Err(EncodeError::CountOverflow { field, count: n, max: C::MAX });
+        return Err(EncodeError::CountOverflow {
+            field,
+            count: n,
+            max: C::MAX,
+        });
     }
     C::from_usize(n).encode(w)
 }
@@ -258,7 +280,10 @@ pub fn get_count<C: CountRepr>(r: &mut Reader<'_>, min_elem: usize) -> Result<us
     let n = C::decode(r)?.to_usize();
     if n.saturating_mul(min_elem) > r.remaining() {
         return Err(DecodeError::new(
-            DecodeErrorKind::CountBeyondBuffer { count: n, remaining: r.remaining() },
+            DecodeErrorKind::CountBeyondBuffer {
+                count: n,
+                remaining: r.remaining(),
+            },
             at,
         ));
     }
@@ -369,7 +394,11 @@ pub fn scale_to<T: ScaledRepr>(
     let counts = (v.clamp(lo, hi) - bias) / sf;
     // Round half away from zero by truncating `x ± 0.5` (a single conversion
     // instruction; `f64::round` is a library call on baseline x86-64).
-    let x = if counts >= 0.0 { counts + 0.5 } else { counts - 0.5 };
+    let x = if counts >= 0.0 {
+        counts + 0.5
+    } else {
+        counts - 0.5
+    };
     // `from_count` is an `as` conversion: it truncates toward zero.
     Ok(T::from_count(x.clamp(T::MIN_F, T::MAX_F)))
 }
@@ -430,7 +459,11 @@ pub fn put_fixed_string(
 ) -> Result<(), EncodeError> {
     let n = latin1_len(s);
     if n > len {
-        return Err(EncodeError::TooLong { field, len: n, max: len });
+        return Err(EncodeError::TooLong {
+            field,
+            len: n,
+            max: len,
+        });
     }
     put_latin1(w, s, field)?;
     w.zeros(len - n)
@@ -443,7 +476,11 @@ pub fn get_fixed_string(
     len: usize,
     accept_short: bool,
 ) -> Result<String, DecodeError> {
-    let n = if accept_short { len.min(r.remaining()) } else { len };
+    let n = if accept_short {
+        len.min(r.remaining())
+    } else {
+        len
+    };
     let raw = r.take(n)?;
     let end = raw.iter().position(|&b| b == 0).unwrap_or(raw.len());
     Ok(latin1_to_string(&raw[..end]))
@@ -457,7 +494,11 @@ pub fn put_fixed_bytes(
     field: &'static str,
 ) -> Result<(), EncodeError> {
     if b.len() > len {
-        return Err(EncodeError::TooLong { field, len: b.len(), max: len });
+        return Err(EncodeError::TooLong {
+            field,
+            len: b.len(),
+            max: len,
+        });
     }
     w.put(b)?;
     w.zeros(len - b.len())
@@ -552,7 +593,12 @@ impl DecodeError {
     /// A new error without field context.
     #[cold]
     pub fn new(kind: DecodeErrorKind, offset: usize) -> Self {
-        Self(Box::new(DecodeErrorInner { kind, offset, field: None, message: None }))
+        Self(Box::new(DecodeErrorInner {
+            kind,
+            offset,
+            field: None,
+            message: None,
+        }))
     }
 
     /// Attaches the field being decoded, keeping an inner (more precise) one.
@@ -599,8 +645,14 @@ impl fmt::Display for DecodeErrorKind {
             Self::CountBeyondBuffer { count, remaining } => {
                 write!(f, "count {count} beyond buffer ({remaining} byte(s) left)")
             }
-            Self::SizeMismatch { announced, consumed } => {
-                write!(f, "size prefix says {announced} byte(s) but content is {consumed}")
+            Self::SizeMismatch {
+                announced,
+                consumed,
+            } => {
+                write!(
+                    f,
+                    "size prefix says {announced} byte(s) but content is {consumed}"
+                )
             }
             Self::TrailingBytes { count } => write!(f, "{count} unexpected trailing byte(s)"),
             Self::UndefinedValue { value } => write!(f, "undefined value {value}"),
@@ -721,15 +773,27 @@ mod tests {
     fn every_in_range_wire_integer_round_trips() {
         use std::f64::consts::PI;
         for n in [-32767, -1, 0, 1, 32766, i16::MAX] {
-            assert_eq!(scale_to::<i16>(scale_from(n, -PI, PI), -PI, PI, "").unwrap(), n);
+            assert_eq!(
+                scale_to::<i16>(scale_from(n, -PI, PI), -PI, PI, "").unwrap(),
+                n
+            );
         }
         for n in [0u32, 1, 4_294_967_294] {
-            assert_eq!(scale_to::<u32>(scale_from(n, 0.0, 100.0), 0.0, 100.0, "").unwrap(), n);
+            assert_eq!(
+                scale_to::<u32>(scale_from(n, 0.0, 100.0), 0.0, 100.0, "").unwrap(),
+                n
+            );
         }
         // The two integers outside the limits decode faithfully and re-encode clamped.
         assert!(scale_from(i16::MIN, -PI, PI) < -PI);
-        assert_eq!(scale_to::<i16>(scale_from(i16::MIN, -PI, PI), -PI, PI, "").unwrap(), -32767);
-        assert_eq!(scale_to::<u32>(scale_from(u32::MAX, 0.0, 100.0), 0.0, 100.0, "").unwrap(), 4_294_967_294);
+        assert_eq!(
+            scale_to::<i16>(scale_from(i16::MIN, -PI, PI), -PI, PI, "").unwrap(),
+            -32767
+        );
+        assert_eq!(
+            scale_to::<u32>(scale_from(u32::MAX, 0.0, 100.0), 0.0, 100.0, "").unwrap(),
+            4_294_967_294
+        );
     }
 
     #[test]

@@ -29,12 +29,22 @@ pub enum HexError {
 
 /// Bytes of a hex string; whitespace is ignored.
 pub fn decode(s: &str) -> Result<Vec<u8>, HexError> {
-    let digits: Vec<(usize, char)> = s.char_indices().filter(|(_, c)| !c.is_whitespace()).collect();
+    let digits: Vec<(usize, char)> = s
+        .char_indices()
+        .filter(|(_, c)| !c.is_whitespace())
+        .collect();
     if digits.len() % 2 != 0 {
         return Err(HexError::OddLength(digits.len()));
     }
-    let val = |(at, ch): (usize, char)| ch.to_digit(16).map(|d| d as u8).ok_or(HexError::BadDigit { ch, at });
-    digits.chunks(2).map(|p| Ok(val(p[0])? << 4 | val(p[1])?)).collect()
+    let val = |(at, ch): (usize, char)| {
+        ch.to_digit(16)
+            .map(|d| d as u8)
+            .ok_or(HexError::BadDigit { ch, at })
+    };
+    digits
+        .chunks(2)
+        .map(|p| Ok(val(p[0])? << 4 | val(p[1])?))
+        .collect()
 }
 
 /// `#[serde(with = "jaus::hex::serde")]` for `Vec<u8>` fields: a hex string in JSON.
@@ -81,6 +91,7 @@ pub mod serde_opt {
     /// Deserialises optional bytes from a hex string.
     pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<Option<Vec<u8>>, D::Error> {
         let s = Option::<String>::deserialize(d)?;
-        s.map(|s| super::decode(&s).map_err(serde::de::Error::custom)).transpose()
+        s.map(|s| super::decode(&s).map_err(serde::de::Error::custom))
+            .transpose()
     }
 }

@@ -50,6 +50,8 @@
 //! ```
 
 // The derive macros refer to `::jaus`; make that path work inside this crate too.
+#![warn(missing_docs)]
+
 extern crate self as jaus;
 
 #[cfg(feature = "serde")]
@@ -106,7 +108,6 @@ impl MessageInfo {
 
 /// The generated message set: one struct per message, shared types, and the
 /// [`messages::Message`] enum over all of them.
-#[allow(clippy::all, missing_docs)]
 pub mod messages {
     include!(concat!(env!("OUT_DIR"), "/messages.rs"));
 }

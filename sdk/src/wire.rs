@@ -14,7 +14,11 @@ pub const MAX_PACKET_BODY: usize = 4080;
 
 /// A 16-bit JAUS command code.
 #[derive(Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Default)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize), serde(transparent))]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(transparent)
+)]
 pub struct CommandCode(pub u16);
 
 /// The message class a command code falls in (WIRE.md §3.1).
@@ -99,12 +103,19 @@ impl Address {
 
     /// A new address.
     pub const fn new(subsystem: u8, node: u8, component: u8, instance: u8) -> Self {
-        Self { subsystem, node, component, instance }
+        Self {
+            subsystem,
+            node,
+            component,
+            instance,
+        }
     }
 
     /// True when every level is a valid id (1–254) or broadcast.
     pub fn is_valid(&self) -> bool {
-        [self.subsystem, self.node, self.component, self.instance].iter().all(|&b| b != 0)
+        [self.subsystem, self.node, self.component, self.instance]
+            .iter()
+            .all(|&b| b != 0)
     }
 
     /// True when `self`, used as a destination, matches the concrete address `other`
@@ -122,13 +133,22 @@ impl Address {
     }
 
     fn from_wire(b: [u8; 4]) -> Self {
-        Self { instance: b[0], component: b[1], node: b[2], subsystem: b[3] }
+        Self {
+            instance: b[0],
+            component: b[1],
+            node: b[2],
+            subsystem: b[3],
+        }
     }
 }
 
 impl fmt::Display for Address {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}.{}.{}.{}", self.subsystem, self.node, self.component, self.instance)
+        write!(
+            f,
+            "{}.{}.{}.{}",
+            self.subsystem, self.node, self.component, self.instance
+        )
     }
 }
 
@@ -288,7 +308,11 @@ impl Header {
     fn put(&self, w: &mut Writer<'_>, data_size: usize) -> Result<(), EncodeError> {
         let check = |field: &'static str, v: u64, width: u32| {
             if v >> width != 0 {
-                Err(EncodeError::BitsOverflow { field, value: v, width })
+                Err(EncodeError::BitsOverflow {
+                    field,
+                    value: v,
+                    width,
+                })
             } else {
                 Ok(())
             }
@@ -325,7 +349,9 @@ impl Header {
         let b: &[u8; HEADER_LEN] = bytes
             .get(..HEADER_LEN)
             .and_then(|s| s.try_into().ok())
-            .ok_or_else(|| DecodeError::new(DecodeErrorKind::TruncatedHeader { len: bytes.len() }, 0))?;
+            .ok_or_else(|| {
+                DecodeError::new(DecodeErrorKind::TruncatedHeader { len: bytes.len() }, 0)
+            })?;
         let props = u16::from_le_bytes([b[0], b[1]]);
         let control = u16::from_le_bytes([b[12], b[13]]);
         Ok(Header {
@@ -365,10 +391,12 @@ impl Decode for Header {
         let at = r.offset();
         let bytes = r.take(HEADER_LEN).map_err(|e| {
             DecodeError::new(
-                DecodeErrorKind::TruncatedHeader { len: match e.kind() {
-                    DecodeErrorKind::Truncated { available, .. } => *available,
-                    _ => 0,
-                } },
+                DecodeErrorKind::TruncatedHeader {
+                    len: match e.kind() {
+                        DecodeErrorKind::Truncated { available, .. } => *available,
+                        _ => 0,
+                    },
+                },
                 at,
             )
         })?;
@@ -402,11 +430,17 @@ impl Packet {
         let actual = bytes.len() - HEADER_LEN;
         if actual != usize::from(header.data_size) {
             return Err(DecodeError::new(
-                DecodeErrorKind::DataSizeMismatch { header: header.data_size.into(), actual },
+                DecodeErrorKind::DataSizeMismatch {
+                    header: header.data_size.into(),
+                    actual,
+                },
                 12,
             ));
         }
-        Ok(Packet { header, body: bytes[HEADER_LEN..].to_vec() })
+        Ok(Packet {
+            header,
+            body: bytes[HEADER_LEN..].to_vec(),
+        })
     }
 }
 
@@ -416,7 +450,10 @@ impl Encode for Packet {
     }
     fn encode(&self, w: &mut Writer<'_>) -> Result<(), EncodeError> {
         if self.body.len() > MAX_DATA_SIZE {
-            return Err(EncodeError::BodyTooLarge { len: self.body.len(), max: MAX_DATA_SIZE });
+            return Err(EncodeError::BodyTooLarge {
+                len: self.body.len(),
+                max: MAX_DATA_SIZE,
+            });
         }
         self.header.put(w, self.body.len())?;
         w.put(&self.body)
@@ -457,7 +494,10 @@ mod tests {
         bytes.push(0);
         assert!(matches!(
             Packet::parse(&bytes).unwrap_err().kind(),
-            &DecodeErrorKind::DataSizeMismatch { header: 1, actual: 2 }
+            &DecodeErrorKind::DataSizeMismatch {
+                header: 1,
+                actual: 2
+            }
         ));
         assert!(matches!(
             Packet::parse(&bytes[..5]).unwrap_err().kind(),

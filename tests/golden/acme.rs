@@ -3,6 +3,7 @@ use ::jaus::{CommandCode, JausMessage};
 /// ACME experimental messages and types.
 ///
 /// Tank telemetry of the ACME tracked carrier (experimental, 0xD100-0xD1FF).
+#[allow(clippy::module_inception)]
 pub mod acme {
     #[allow(unused_imports)]
     use super::*;
@@ -222,6 +223,7 @@ pub mod acme {
 }
 pub use acme::*;
 /// Any message of the set, by command code.
+#[allow(clippy::enum_variant_names, clippy::large_enum_variant)]
 #[derive(Debug, Clone, PartialEq)]
 #[cfg_attr(
     all(),

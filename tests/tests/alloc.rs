@@ -66,7 +66,10 @@ fn fixed_size_messages_decode_and_encode_without_allocating() {
             std::hint::black_box((&p, &w, &s, &out));
         }
     });
-    assert_eq!(n, 0, "decoding/encoding fixed-size messages allocated {n} time(s)");
+    assert_eq!(
+        n, 0,
+        "decoding/encoding fixed-size messages allocated {n} time(s)"
+    );
 
     // The counter does count: a Vec allocates.
     assert!(allocations(|| drop(std::hint::black_box(vec![1u8; 10]))) > 0);

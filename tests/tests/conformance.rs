@@ -44,7 +44,8 @@ pub struct Vector {
 }
 
 pub fn vectors() -> Vec<Vector> {
-    let text = std::fs::read_to_string(data_dir().join("openjaus33.jsonl")).expect("vectors present");
+    let text =
+        std::fs::read_to_string(data_dir().join("openjaus33.jsonl")).expect("vectors present");
     text.lines()
         .filter(|l| !l.trim().is_empty())
         .map(|l| {
@@ -65,12 +66,16 @@ fn name_overrides() -> HashMap<String, String> {
     let text = std::fs::read_to_string(data_dir().join("openjaus-names.txt")).unwrap_or_default();
     text.lines()
         .filter(|l| !l.trim().is_empty() && !l.trim_start().starts_with('#'))
-        .filter_map(|l| l.split_once('=').map(|(a, b)| (a.trim().to_string(), b.trim().to_string())))
+        .filter_map(|l| {
+            l.split_once('=')
+                .map(|(a, b)| (a.trim().to_string(), b.trim().to_string()))
+        })
         .collect()
 }
 
-const UNIT_SUFFIXES: &[&str] =
-    &["Degrees", "Radians", "Percent", "Celsius", "Meters", "Hertz", "Deg", "Mps", "Rps", "M"];
+const UNIT_SUFFIXES: &[&str] = &[
+    "Degrees", "Radians", "Percent", "Celsius", "Meters", "Hertz", "Deg", "Mps", "Rps", "M",
+];
 
 fn norm_oj(key: &str) -> String {
     let mut k = key;
@@ -110,22 +115,41 @@ impl Cmp<'_> {
     }
 
     /// Finds the OpenJAUS key of `owner.field` in `oj`.
-    fn lookup<'v>(&self, owner: &str, field: &str, oj: &'v Map<String, Value>) -> Option<(String, &'v Value)> {
+    fn lookup<'v>(
+        &self,
+        owner: &str,
+        field: &str,
+        oj: &'v Map<String, Value>,
+    ) -> Option<(String, &'v Value)> {
         if let Some(path) = self.names.get(&format!("{owner}.{field}")) {
             let first = path.split('.').next().unwrap_or("").to_string();
             return get_path(oj, path).map(|v| (first, v));
         }
         let want = norm_mine(field);
-        oj.iter().find(|(k, _)| norm_oj(k) == want).map(|(k, v)| (k.clone(), v))
+        oj.iter()
+            .find(|(k, _)| norm_oj(k) == want)
+            .map(|(k, v)| (k.clone(), v))
     }
 
-    fn fields(&mut self, owner: &str, defs: &[FieldDef], mine: &Map<String, Value>, oj: &Map<String, Value>, at: &str) {
+    fn fields(
+        &mut self,
+        owner: &str,
+        defs: &[FieldDef],
+        mine: &Map<String, Value>,
+        oj: &Map<String, Value>,
+        at: &str,
+    ) {
         let mut used: Vec<String> = Vec::new();
         for f in defs {
             let here = format!("{at}.{}", f.name);
             let wire = self.spec.wire(f);
             let my = mine.get(&f.name);
-            if let Wire::Named { name, kind: TypeKind::Bitfield, .. } = &wire {
+            if let Wire::Named {
+                name,
+                kind: TypeKind::Bitfield,
+                ..
+            } = &wire
+            {
                 self.bitfield(owner, f, name, my, oj, &here, &mut used);
                 continue;
             }
@@ -140,18 +164,28 @@ impl Cmp<'_> {
                     used.push(k);
                     self.fail(&here, format!("absent here but OpenJAUS has {o}"));
                 }
-                (Some(m), None) => self.fail(&here, format!("present here ({m}) but OpenJAUS has no such field")),
+                (Some(m), None) => self.fail(
+                    &here,
+                    format!("present here ({m}) but OpenJAUS has no such field"),
+                ),
                 (None, None) => self.fail(&here, "missing on both sides".into()),
             }
         }
         for (k, v) in oj {
-            let ignorable = matches!(k.as_str(), "presenceVector" | "count" | "subsystemCount" | "dataSize" | "commandCode");
+            let ignorable = matches!(
+                k.as_str(),
+                "presenceVector" | "count" | "subsystemCount" | "dataSize" | "commandCode"
+            );
             if !used.contains(k) && !ignorable {
-                self.fail(at, format!("OpenJAUS field `{k}` = {v} matches no field of {owner}"));
+                self.fail(
+                    at,
+                    format!("OpenJAUS field `{k}` = {v} matches no field of {owner}"),
+                );
             }
         }
     }
 
+    #[allow(clippy::too_many_arguments)]
     fn bitfield(
         &mut self,
         owner: &str,
@@ -179,12 +213,18 @@ impl Cmp<'_> {
         };
         // Whole bit field as a raw number, or inside an object (OpenJAUS's `time`). A
         // line `TypeName = key` maps every field of that type.
-        let by_type = self.names.get(ty).and_then(|k| oj.get(k).map(|v| (k.clone(), v)));
+        let by_type = self
+            .names
+            .get(ty)
+            .and_then(|k| oj.get(k).map(|v| (k.clone(), v)));
         if let Some((k, o)) = by_type.or_else(|| self.lookup(owner, &f.name, oj)) {
             used.push(k);
             let raw = match o {
                 Value::Object(obj) => {
-                    let key = obj.keys().find(|key| norm_oj(key) == norm_mine(ty)).cloned();
+                    let key = obj
+                        .keys()
+                        .find(|key| norm_oj(key) == norm_mine(ty))
+                        .cloned();
                     key.and_then(|key| obj.get(&key)).and_then(Value::as_u64)
                 }
                 n => n.as_u64(),
@@ -235,15 +275,21 @@ impl Cmp<'_> {
                 }
             }
             Wire::F32 | Wire::F64 => {
-                let (a, b) = (my.as_f64().unwrap_or(f64::NAN), oj.as_f64().unwrap_or(f64::NAN));
+                let (a, b) = (
+                    my.as_f64().unwrap_or(f64::NAN),
+                    oj.as_f64().unwrap_or(f64::NAN),
+                );
                 if (a - b).abs() > 1e-9 * b.abs().max(1.0) {
                     self.fail(at, format!("{a} vs OpenJAUS {b}"));
                 }
             }
             Wire::Scaled { int, lo, hi } => {
                 let step = (hi - lo) / divisor(*int);
-                let (a, b) = (my.as_f64().unwrap_or(f64::NAN), oj.as_f64().unwrap_or(f64::NAN));
-                if !((a - b).abs() <= step * 1.000_001) {
+                let (a, b) = (
+                    my.as_f64().unwrap_or(f64::NAN),
+                    oj.as_f64().unwrap_or(f64::NAN),
+                );
+                if a.is_nan() || b.is_nan() || (a - b).abs() > step * 1.000_001 {
                     self.fail(at, format!("{a} vs OpenJAUS {b} (one count = {step:e})"));
                 }
             }
@@ -252,7 +298,9 @@ impl Cmp<'_> {
                 match kind {
                     TypeKind::Enum => {
                         let n = match my {
-                            Value::String(s) => def.values.iter().find(|v| &v.name == s).map(|v| v.value),
+                            Value::String(s) => {
+                                def.values.iter().find(|v| &v.name == s).map(|v| v.value)
+                            }
                             Value::Object(o) => o.get("Unknown").and_then(Value::as_u64),
                             _ => None,
                         };
@@ -266,7 +314,11 @@ impl Cmp<'_> {
                     },
                     TypeKind::Union => {
                         let (vname, payload) = match my {
-                            Value::Object(o) if o.len() == 1 => o.iter().next().map(|(k, v)| (k.clone(), v.clone())).unwrap(),
+                            Value::Object(o) if o.len() == 1 => o
+                                .iter()
+                                .next()
+                                .map(|(k, v)| (k.clone(), v.clone()))
+                                .unwrap(),
                             Value::String(s) => (s.clone(), Value::Null),
                             _ => (String::new(), Value::Null),
                         };
@@ -274,20 +326,31 @@ impl Cmp<'_> {
                             return self.fail(at, format!("unknown variant in {my}"));
                         };
                         if Some(var.tag) != oj.get("dataType").and_then(Value::as_u64) {
-                            return self.fail(at, format!("variant {vname} (tag {}) vs OpenJAUS {oj}", var.tag));
+                            return self.fail(
+                                at,
+                                format!("variant {vname} (tag {}) vs OpenJAUS {oj}", var.tag),
+                            );
                         }
                         let ojv = oj.get("value").cloned().unwrap_or(Value::Null);
-                        let payload = match (payload, var.ty.as_deref().and_then(|t| self.spec.ty(t))) {
-                            // A record payload compares with OpenJAUS's array form, in field order.
-                            (Value::Object(o), Some(rec)) => Value::Array(
-                                rec.def.fields.iter().map(|f| o.get(&f.name).cloned().unwrap_or(Value::Null)).collect(),
-                            ),
-                            (p, _) => p,
-                        };
+                        let payload =
+                            match (payload, var.ty.as_deref().and_then(|t| self.spec.ty(t))) {
+                                // A record payload compares with OpenJAUS's array form, in field order.
+                                (Value::Object(o), Some(rec)) => Value::Array(
+                                    rec.def
+                                        .fields
+                                        .iter()
+                                        .map(|f| o.get(&f.name).cloned().unwrap_or(Value::Null))
+                                        .collect(),
+                                ),
+                                (p, _) => p,
+                            };
                         let same = match (&payload, &ojv) {
                             (Value::Array(a), Value::Array(b)) => a == b,
                             (a, b) if a.is_f64() || b.is_f64() => {
-                                let (x, y) = (a.as_f64().unwrap_or(f64::NAN), b.as_f64().unwrap_or(f64::NAN));
+                                let (x, y) = (
+                                    a.as_f64().unwrap_or(f64::NAN),
+                                    b.as_f64().unwrap_or(f64::NAN),
+                                );
                                 (x - y).abs() <= 1e-9 * y.abs().max(1.0)
                             }
                             (a, b) => a == b,
@@ -320,7 +383,10 @@ impl Cmp<'_> {
             },
             Wire::Packet { .. } => {
                 if my["body"].as_str() != oj["data"].as_str() {
-                    self.fail(at, format!("embedded body {} vs OpenJAUS {}", my["body"], oj["data"]));
+                    self.fail(
+                        at,
+                        format!("embedded body {} vs OpenJAUS {}", my["body"], oj["data"]),
+                    );
                 }
                 self.header(&my["header"], &oj["header"], at);
             }
@@ -331,17 +397,39 @@ impl Cmp<'_> {
         let ack = ["none", "request", "nak", "ack"];
         let flag = |v: &Value| v.as_bool().map(u64::from);
         let pairs: [(&str, Option<u64>, Option<u64>); 7] = [
-            ("priority", mine["priority"].as_u64(), oj["priority"].as_u64()),
+            (
+                "priority",
+                mine["priority"].as_u64(),
+                oj["priority"].as_u64(),
+            ),
             (
                 "ack_nak",
-                ack.iter().position(|a| Some(*a) == mine["ack_nak"].as_str()).map(|p| p as u64),
+                ack.iter()
+                    .position(|a| Some(*a) == mine["ack_nak"].as_str())
+                    .map(|p| p as u64),
                 oj["ack_nak"].as_u64(),
             ),
-            ("sc_flag", flag(&mine["service_connection"]), oj["sc_flag"].as_u64()),
-            ("exp_flag", flag(&mine["experimental"]), oj["exp_flag"].as_u64()),
+            (
+                "sc_flag",
+                flag(&mine["service_connection"]),
+                oj["sc_flag"].as_u64(),
+            ),
+            (
+                "exp_flag",
+                flag(&mine["experimental"]),
+                oj["exp_flag"].as_u64(),
+            ),
             ("version", mine["version"].as_u64(), oj["version"].as_u64()),
-            ("command_code", mine["command_code"].as_u64(), oj["command_code"].as_u64()),
-            ("sequence_number", mine["sequence_number"].as_u64(), oj["sequence_number"].as_u64()),
+            (
+                "command_code",
+                mine["command_code"].as_u64(),
+                oj["command_code"].as_u64(),
+            ),
+            (
+                "sequence_number",
+                mine["sequence_number"].as_u64(),
+                oj["sequence_number"].as_u64(),
+            ),
         ];
         for (name, a, b) in pairs {
             if a != b || a.is_none() {
@@ -350,8 +438,14 @@ impl Cmp<'_> {
         }
         // Both list addresses as [subsystem, node, component, instance].
         for key in ["destination", "source"] {
-            let m: Vec<u64> = mine[key].as_array().map(|a| a.iter().filter_map(Value::as_u64).collect()).unwrap_or_default();
-            let o: Vec<u64> = oj[key].as_array().map(|a| a.iter().filter_map(Value::as_u64).collect()).unwrap_or_default();
+            let m: Vec<u64> = mine[key]
+                .as_array()
+                .map(|a| a.iter().filter_map(Value::as_u64).collect())
+                .unwrap_or_default();
+            let o: Vec<u64> = oj[key]
+                .as_array()
+                .map(|a| a.iter().filter_map(Value::as_u64).collect())
+                .unwrap_or_default();
             if m != o {
                 self.fail(at, format!("header {key}: {m:?} vs OpenJAUS {o:?}"));
             }
@@ -374,7 +468,11 @@ fn divisor(i: jaus_spec::Int) -> f64 {
 #[test]
 fn openjaus_vectors_decode_reencode_and_match_field_values() {
     let spec = jaus_spec::load_dirs(&[jaus_spec::defs_dir()]).expect("definitions validate");
-    let mut cmp = Cmp { spec: &spec, names: name_overrides(), errors: Vec::new() };
+    let mut cmp = Cmp {
+        spec: &spec,
+        names: name_overrides(),
+        errors: Vec::new(),
+    };
     let mut per_group: BTreeMap<String, (usize, usize)> = BTreeMap::new();
     let mut uncovered: BTreeMap<String, usize> = BTreeMap::new();
     let vectors = vectors();
@@ -383,7 +481,10 @@ fn openjaus_vectors_decode_reencode_and_match_field_values() {
         let at = format!("{} [{}]", v.message, v.variant);
         let code = u16::from_le_bytes([v.bytes[2], v.bytes[3]]);
         let Some(def) = spec.message_by_code(code) else {
-            if REQUIRED_GROUP_RANGES.iter().any(|(lo, hi, _)| (*lo..=*hi).contains(&code)) {
+            if REQUIRED_GROUP_RANGES
+                .iter()
+                .any(|(lo, hi, _)| (*lo..=*hi).contains(&code))
+            {
                 cmp.fail(&at, format!("no definition for required code 0x{code:04X}"));
             }
             *uncovered.entry(v.message.clone()).or_default() += 1;
@@ -409,7 +510,10 @@ fn openjaus_vectors_decode_reencode_and_match_field_values() {
                 continue;
             }
         };
-        let reencoded = Packet { header: packet.header, body: message.to_bytes().expect("re-encode") };
+        let reencoded = Packet {
+            header: packet.header,
+            body: message.to_bytes().expect("re-encode"),
+        };
         if reencoded.to_bytes().unwrap() != v.bytes {
             cmp.fail(
                 &at,
@@ -435,9 +539,21 @@ fn openjaus_vectors_decode_reencode_and_match_field_values() {
     for (g, (n, ok)) in &per_group {
         println!("{g:<24} {n:>8} {ok:>8}");
     }
-    println!("not yet defined (later groups): {} message types, {} vectors", uncovered.len(), uncovered.values().sum::<usize>());
+    println!(
+        "not yet defined (later groups): {} message types, {} vectors",
+        uncovered.len(),
+        uncovered.values().sum::<usize>()
+    );
     if !cmp.errors.is_empty() {
         let shown: Vec<&String> = cmp.errors.iter().take(400).collect();
-        panic!("{} conformance failure(s):\n{}", cmp.errors.len(), shown.iter().map(|s| s.as_str()).collect::<Vec<_>>().join("\n"));
+        panic!(
+            "{} conformance failure(s):\n{}",
+            cmp.errors.len(),
+            shown
+                .iter()
+                .map(|s| s.as_str())
+                .collect::<Vec<_>>()
+                .join("\n")
+        );
     }
 }

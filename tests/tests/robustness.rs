@@ -7,7 +7,11 @@ use jaus::messages::Message;
 use jaus::{CommandCode, Packet};
 
 fn vector_packets() -> Vec<Vec<u8>> {
-    let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/data/openjaus33.jsonl")).unwrap();
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/data/openjaus33.jsonl"
+    ))
+    .unwrap();
     text.lines()
         .filter_map(|l| serde_json::from_str::<serde_json::Value>(l).ok())
         .map(|v| jaus::hex::decode(v["hex"].as_str().unwrap()).unwrap())
@@ -21,12 +25,19 @@ fn vector_packets() -> Vec<Vec<u8>> {
 fn check(code: CommandCode, body: &[u8]) -> bool {
     match Message::decode(code, body) {
         Ok(m) => {
-            let bytes = m.to_bytes().unwrap_or_else(|e| panic!("{} decoded but does not encode: {e}", m.name()));
+            let bytes = m
+                .to_bytes()
+                .unwrap_or_else(|e| panic!("{} decoded but does not encode: {e}", m.name()));
             let m2 = Message::decode(code, &bytes)
                 .unwrap_or_else(|e| panic!("{} re-encoding does not decode: {e}", m.name()));
             let bytes2 = m2.to_bytes().unwrap();
             assert_eq!(bytes2, bytes, "{}: encoding is not a fixed point", m.name());
-            assert_eq!(Message::decode(code, &bytes2).unwrap(), m2, "{}: decoding is not a fixed point", m.name());
+            assert_eq!(
+                Message::decode(code, &bytes2).unwrap(),
+                m2,
+                "{}: decoding is not a fixed point",
+                m.name()
+            );
             true
         }
         Err(e) => {
@@ -115,7 +126,10 @@ fn a_million_random_mutations_never_panic() {
             }
         }
     }
-    println!("mutations: {} decoded, {} rejected with a typed error", ok, err);
+    println!(
+        "mutations: {} decoded, {} rejected with a typed error",
+        ok, err
+    );
     assert!(ok + err >= 1_000_000);
     assert!(err > 0 && ok > 0);
 }

@@ -25,7 +25,9 @@ fn int_strategy(i: Int) -> BoxedStrategy<Value> {
 }
 
 fn hex_of(n: std::ops::Range<usize>) -> BoxedStrategy<Value> {
-    prop::collection::vec(any::<u8>(), n).prop_map(|b| json!(jaus::hex::encode(&b))).boxed()
+    prop::collection::vec(any::<u8>(), n)
+        .prop_map(|b| json!(jaus::hex::encode(&b)))
+        .boxed()
 }
 
 fn text(max: usize) -> BoxedStrategy<Value> {
@@ -37,8 +39,14 @@ fn text(max: usize) -> BoxedStrategy<Value> {
 fn wire_strategy(spec: &Spec, w: &Wire) -> BoxedStrategy<Value> {
     match w {
         Wire::Int(i) => int_strategy(*i),
-        Wire::F32 => any::<f32>().prop_filter("finite", |v| v.is_finite()).prop_map(|v| json!(v)).boxed(),
-        Wire::F64 => any::<f64>().prop_filter("finite", |v| v.is_finite()).prop_map(|v| json!(v)).boxed(),
+        Wire::F32 => any::<f32>()
+            .prop_filter("finite", |v| v.is_finite())
+            .prop_map(|v| json!(v))
+            .boxed(),
+        Wire::F64 => any::<f64>()
+            .prop_filter("finite", |v| v.is_finite())
+            .prop_map(|v| json!(v))
+            .boxed(),
         Wire::Scaled { lo, hi, .. } => {
             let span = hi - lo;
             // Mostly in range; sometimes beyond, which must clamp.
@@ -54,10 +62,15 @@ fn wire_strategy(spec: &Spec, w: &Wire) -> BoxedStrategy<Value> {
             Len::Fixed { n, .. } => hex_of(*n..*n + 1),
             _ => hex_of(0..40),
         },
-        Wire::List { elem, .. } => {
-            prop::collection::vec(wire_strategy(spec, elem), 0..5).prop_map(Value::Array).boxed()
-        }
-        Wire::Packet { .. } => (any::<u8>(), any::<u16>(), any::<u16>(), prop::collection::vec(any::<u8>(), 0..20))
+        Wire::List { elem, .. } => prop::collection::vec(wire_strategy(spec, elem), 0..5)
+            .prop_map(Value::Array)
+            .boxed(),
+        Wire::Packet { .. } => (
+            any::<u8>(),
+            any::<u16>(),
+            any::<u16>(),
+            prop::collection::vec(any::<u8>(), 0..20),
+        )
             .prop_map(|(prio, code, seq, body)| {
                 json!({
                     "header": {
@@ -77,10 +90,12 @@ fn wire_strategy(spec: &Spec, w: &Wire) -> BoxedStrategy<Value> {
                 TypeKind::Enum => {
                     let values = def.values.clone();
                     any::<u8>()
-                        .prop_map(move |n| match values.iter().find(|v| v.value == u64::from(n)) {
-                            Some(v) => json!(v.name),
-                            None => json!({ "Unknown": n }),
-                        })
+                        .prop_map(
+                            move |n| match values.iter().find(|v| v.value == u64::from(n)) {
+                                Some(v) => json!(v.name),
+                                None => json!({ "Unknown": n }),
+                            },
+                        )
                         .boxed()
                 }
                 TypeKind::Bitfield => {
@@ -90,16 +105,22 @@ fn wire_strategy(spec: &Spec, w: &Wire) -> BoxedStrategy<Value> {
                         .map(|b| {
                             let name = b.name.clone();
                             match (b.bit, b.bits) {
-                                (Some(_), _) => any::<bool>().prop_map(move |v| (name.clone(), json!(v))).boxed(),
+                                (Some(_), _) => any::<bool>()
+                                    .prop_map(move |v| (name.clone(), json!(v)))
+                                    .boxed(),
                                 (_, Some([lo, hi])) => {
                                     let max = (1u64 << (hi - lo + 1)) - 1;
-                                    (0..=max).prop_map(move |v| (name.clone(), json!(v))).boxed()
+                                    (0..=max)
+                                        .prop_map(move |v| (name.clone(), json!(v)))
+                                        .boxed()
                                 }
                                 _ => unreachable!(),
                             }
                         })
                         .collect();
-                    members.prop_map(|m| Value::Object(m.into_iter().collect())).boxed()
+                    members
+                        .prop_map(|m| Value::Object(m.into_iter().collect()))
+                        .boxed()
                 }
                 TypeKind::Union => {
                     let variants: Vec<BoxedStrategy<Value>> = def
@@ -109,7 +130,10 @@ fn wire_strategy(spec: &Spec, w: &Wire) -> BoxedStrategy<Value> {
                             let name = v.name.clone();
                             match &v.ty {
                                 Some(t) => {
-                                    let f = FieldDef { ty: t.clone(), ..FieldDef::default() };
+                                    let f = FieldDef {
+                                        ty: t.clone(),
+                                        ..FieldDef::default()
+                                    };
                                     wire_strategy(spec, &spec.wire(&f))
                                         .prop_map(move |x| json!({ name.clone(): x }))
                                         .boxed()
@@ -138,7 +162,9 @@ fn record_strategy(spec: &Spec, fields: &[FieldDef]) -> BoxedStrategy<Value> {
             }
         })
         .collect();
-    parts.prop_map(|p| Value::Object(p.into_iter().flatten().collect::<Map<_, _>>())).boxed()
+    parts
+        .prop_map(|p| Value::Object(p.into_iter().flatten().collect::<Map<_, _>>()))
+        .boxed()
 }
 
 /// `a` (what was asked) and `b` (what came back) agree up to scaling resolution.
@@ -160,27 +186,72 @@ fn close(spec: &Spec, w: &Wire, a: &Value, b: &Value, at: &str) -> Result<(), St
                 Err(format!("{at}: sent {want}, got {got} (step {step:e})"))
             }
         }
-        (Wire::Named { name, kind: TypeKind::Record, .. }, Value::Object(x), Value::Object(y)) => {
+        (
+            Wire::Named {
+                name,
+                kind: TypeKind::Record,
+                ..
+            },
+            Value::Object(x),
+            Value::Object(y),
+        ) => {
             let fields = spec.ty(name).unwrap().def.fields.clone();
             fields_close(spec, &fields, x, y, at)
         }
-        (Wire::Named { name, kind: TypeKind::Union, .. }, Value::Object(x), Value::Object(y)) => {
+        (
+            Wire::Named {
+                name,
+                kind: TypeKind::Union,
+                ..
+            },
+            Value::Object(x),
+            Value::Object(y),
+        ) => {
             let (vn, xv) = x.iter().next().unwrap();
-            let t = spec.ty(name).unwrap().def.variants.iter().find(|v| &v.name == vn).unwrap().ty.clone();
-            let w = spec.wire(&FieldDef { ty: t.unwrap(), ..FieldDef::default() });
-            close(spec, &w, xv, y.get(vn).ok_or(format!("{at}: variant {vn} lost"))?, at)
+            let t = spec
+                .ty(name)
+                .unwrap()
+                .def
+                .variants
+                .iter()
+                .find(|v| &v.name == vn)
+                .unwrap()
+                .ty
+                .clone();
+            let w = spec.wire(&FieldDef {
+                ty: t.unwrap(),
+                ..FieldDef::default()
+            });
+            close(
+                spec,
+                &w,
+                xv,
+                y.get(vn).ok_or(format!("{at}: variant {vn} lost"))?,
+                at,
+            )
         }
-        (Wire::List { elem, .. }, Value::Array(x), Value::Array(y)) if x.len() == y.len() => {
-            x.iter().zip(y).enumerate().try_for_each(|(i, (p, q))| close(spec, elem, p, q, &format!("{at}[{i}]")))
-        }
-        (Wire::F32, Value::Number(x), Value::Number(y)) => {
-            (x.as_f64().map(|v| v as f32) == y.as_f64().map(|v| v as f32)).then_some(()).ok_or(format!("{at}: {x} vs {y}"))
-        }
-        _ => (a == b).then_some(()).ok_or(format!("{at}: sent {a}, got {b}")),
+        (Wire::List { elem, .. }, Value::Array(x), Value::Array(y)) if x.len() == y.len() => x
+            .iter()
+            .zip(y)
+            .enumerate()
+            .try_for_each(|(i, (p, q))| close(spec, elem, p, q, &format!("{at}[{i}]"))),
+        (Wire::F32, Value::Number(x), Value::Number(y)) => (x.as_f64().map(|v| v as f32)
+            == y.as_f64().map(|v| v as f32))
+        .then_some(())
+        .ok_or(format!("{at}: {x} vs {y}")),
+        _ => (a == b)
+            .then_some(())
+            .ok_or(format!("{at}: sent {a}, got {b}")),
     }
 }
 
-fn fields_close(spec: &Spec, fields: &[FieldDef], a: &Map<String, Value>, b: &Map<String, Value>, at: &str) -> Result<(), String> {
+fn fields_close(
+    spec: &Spec,
+    fields: &[FieldDef],
+    a: &Map<String, Value>,
+    b: &Map<String, Value>,
+    at: &str,
+) -> Result<(), String> {
     for f in fields {
         let here = format!("{at}.{}", f.name);
         match (a.get(&f.name), b.get(&f.name)) {
@@ -198,14 +269,23 @@ fn random_values_of_every_message_round_trip() {
     let mut cases = 0;
     for m in &spec.messages {
         let strategy = record_strategy(&spec, &m.def.fields);
-        let mut runner = TestRunner::new(Config { cases: 48, failure_persistence: None, ..Config::default() });
+        let mut runner = TestRunner::new(Config {
+            cases: 48,
+            failure_persistence: None,
+            ..Config::default()
+        });
         let result = runner.run(&strategy, |fields| {
             let input = json!({ "message": m.def.name, "fields": fields });
             let msg: Message = serde_json::from_value(input.clone())
                 .map_err(|e| TestCaseError::fail(format!("JSON → {}: {e}", m.def.name)))?;
-            let bytes = msg.to_bytes().map_err(|e| TestCaseError::fail(format!("encode: {e}")))?;
-            let back = Message::decode(msg.code(), &bytes).map_err(|e| TestCaseError::fail(format!("decode: {e}")))?;
-            let again = back.to_bytes().map_err(|e| TestCaseError::fail(format!("re-encode: {e}")))?;
+            let bytes = msg
+                .to_bytes()
+                .map_err(|e| TestCaseError::fail(format!("encode: {e}")))?;
+            let back = Message::decode(msg.code(), &bytes)
+                .map_err(|e| TestCaseError::fail(format!("decode: {e}")))?;
+            let again = back
+                .to_bytes()
+                .map_err(|e| TestCaseError::fail(format!("re-encode: {e}")))?;
             prop_assert_eq!(&bytes, &again, "second encoding differs");
             let out = serde_json::to_value(&back).unwrap();
             let empty = Map::new();

@@ -20,7 +20,10 @@ fn generated_code_matches_the_golden_file() {
         std::fs::write(golden_path, &generated).unwrap();
     }
     let golden = std::fs::read_to_string(golden_path).unwrap_or_default();
-    assert!(golden == generated, "generated code differs from golden/acme.rs; review and run with UPDATE_GOLDEN=1");
+    assert!(
+        golden == generated,
+        "generated code differs from golden/acme.rs; review and run with UPDATE_GOLDEN=1"
+    );
 }
 
 fn sample() -> ReportTanks {
@@ -30,13 +33,26 @@ fn sample() -> ReportTanks {
             Tank {
                 kind: TankKind::Hydraulic,
                 level: 50.0,
-                flags: TankFlags { low: true, leaking: false, sensor_id: 9, reserved: 0 },
+                flags: TankFlags {
+                    low: true,
+                    leaking: false,
+                    sensor_id: 9,
+                    reserved: 0,
+                },
                 label: Some("aft".into()),
                 temperatures: Some(vec![-40.0, 20.0, 125.0]),
             },
-            Tank { kind: TankKind::Unknown(42), level: 100.0, ..Default::default() },
+            Tank {
+                kind: TankKind::Unknown(42),
+                level: 100.0,
+                ..Default::default()
+            },
         ],
-        readings: Some(vec![Reading::Level(7), Reading::Temperature(21.5), Reading::Missing]),
+        readings: Some(vec![
+            Reading::Level(7),
+            Reading::Temperature(21.5),
+            Reading::Missing,
+        ]),
         serial: Some(vec![1, 2, 3, 4]),
         uptime: None,
         note: Some("ok".into()),
@@ -60,13 +76,20 @@ fn vendor_message_has_the_documented_wire_form() {
     assert_eq!(back.readings, m.readings);
     assert_eq!(back.to_bytes().unwrap(), b);
     assert_eq!(ReportTanks::CODE, CommandCode(0xF100));
-    assert_eq!(Message::decode(ReportTanks::CODE, &b).unwrap(), Message::ReportTanks(back));
+    assert_eq!(
+        Message::decode(ReportTanks::CODE, &b).unwrap(),
+        Message::ReportTanks(back)
+    );
 }
 
 #[test]
 fn embedded_messages_decode_through_their_code_field() {
     let inner = QueryTanks { presence_vector: 3 };
-    let header = Header::new(QueryTanks::CODE, Address::new(1, 1, 200, 1), Address::new(2, 1, 40, 1));
+    let header = Header::new(
+        QueryTanks::CODE,
+        Address::new(1, 1, 200, 1),
+        Address::new(2, 1, 40, 1),
+    );
     let replay = ReplayTanks {
         wrapped_code: QueryTanks::CODE.0,
         wrapped: inner.to_bytes().unwrap(),
@@ -88,7 +111,10 @@ fn embedded_messages_decode_through_their_code_field() {
 #[test]
 fn vendor_messages_have_json() {
     let json = serde_json::to_string(&Message::ReportTanks(sample())).unwrap();
-    assert!(json.starts_with(r#"{"message":"ReportTanks","fields":{"vehicle":"carrier-7""#), "{json}");
+    assert!(
+        json.starts_with(r#"{"message":"ReportTanks","fields":{"vehicle":"carrier-7""#),
+        "{json}"
+    );
     let back: Message = serde_json::from_str(&json).unwrap();
     assert_eq!(back, Message::ReportTanks(sample()));
     assert_eq!(MESSAGES.len(), 3);

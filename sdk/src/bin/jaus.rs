@@ -6,7 +6,11 @@ use std::io::{BufRead, Write};
 use std::process::ExitCode;
 
 #[derive(Parser)]
-#[command(name = "jaus", version, about = "JAUS RA 3.3 toolkit: message catalogue, packet decoder and encoder")]
+#[command(
+    name = "jaus",
+    version,
+    about = "JAUS RA 3.3 toolkit: message catalogue, packet decoder and encoder"
+)]
 struct Cli {
     #[command(subcommand)]
     cmd: Cmd,
