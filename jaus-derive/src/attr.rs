@@ -167,10 +167,15 @@ pub struct FieldAttrs {
     pub reserved: Option<Span>,
     /// An attribute did not parse (already reported): skip further checks of the field.
     pub parse_failed: bool,
+    // Dependencies between fields:
+    pub var: Option<(String, Span)>,
+    pub count_var: Option<(String, Span)>,
+    pub present_if: Option<(String, Span)>,
+    pub flag: Option<(u32, Span)>,
+    pub offsets: Option<(String, Span)>,
 }
 
-pub const FIELD_KEYS: &str =
-    "bit, scaled(T, lo, hi), count = T, size = T, fixed = N, rest, nul, accept_short";
+pub const FIELD_KEYS: &str = "bit, scaled(T, lo, hi), count = T, size = T, fixed = N, rest, nul, accept_short, var, count_var, present_if, flag, offsets";
 pub const BITS_FIELD_KEYS: &str = "bit = N, bits = A..=B, reserved";
 
 /// Calls `f` on every `key` or `key = ...` / `key(...)` item of every `#[jaus(...)]`.
@@ -291,6 +296,20 @@ pub fn parse_field_attrs(attrs: &[Attribute], errors: &mut Errors, in_bits: bool
                 );
             }
             "rest" if !in_bits => set(&mut out.rest, key.span(), key, errors),
+            "var" | "count_var" | "present_if" | "offsets" if !in_bits => {
+                let lit: LitStr = parse_eq(input)?;
+                let slot = match k.as_str() {
+                    "var" => &mut out.var,
+                    "count_var" => &mut out.count_var,
+                    "present_if" => &mut out.present_if,
+                    _ => &mut out.offsets,
+                };
+                set(slot, (lit.value(), lit.span()), key, errors);
+            }
+            "flag" if !in_bits => {
+                let lit: LitInt = parse_eq(input)?;
+                set(&mut out.flag, (lit_u32(&lit)?, lit.span()), key, errors);
+            }
             "nul" if !in_bits => set(&mut out.nul, key.span(), key, errors),
             "accept_short" if !in_bits => set(&mut out.accept_short, key.span(), key, errors),
             _ => {

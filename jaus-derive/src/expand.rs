@@ -82,6 +82,13 @@ enum Shape {
         nul: bool,
         accept_short: bool,
     },
+    /// A list whose count is the value of an earlier field (`count_var`).
+    ListVar {
+        var: String,
+        elem: Elem,
+    },
+    /// A presence-vector bit with no bytes of its own (`flag = N` on a `bool`).
+    Flag(u32),
     Sized {
         size: Int,
         ty: Type,
@@ -91,6 +98,17 @@ enum Shape {
 struct FieldModel {
     ident: Ident,
     bit: Option<u32>,
+    /// Optional field present iff this variable is non-zero.
+    present_if: Option<String>,
+    /// This field's value is published as a variable for later fields.
+    var: Option<String>,
+    /// For a `var` field: the sibling list whose length it carries (computed on encode),
+    /// and whether that list is optional.
+    counts: Option<(Ident, bool)>,
+    /// A `Vec<u32>` of byte offsets of the elements of this sibling list.
+    offsets_of: Option<Ident>,
+    /// For a list: the sibling offsets field to patch while encoding elements.
+    patched_by: Option<Ident>,
     shape: Shape,
     path: LitStr,
     span: Span,
@@ -194,6 +212,33 @@ fn classify(
         if !(name.as_deref() == Some("String") && a.rest.is_some()) {
             errors.error(span, "`nul` only applies to a `String` field with `rest`");
         }
+    }
+
+    if let Some((bit, span)) = a.flag {
+        if name.as_deref() != Some("bool") {
+            errors.error(span, "`flag` applies to a `bool` field: it is a presence bit with no bytes");
+            return None;
+        }
+        return Some(Shape::Flag(bit));
+    }
+    if let Some((var, span)) = &a.count_var {
+        let Some(inner) = generic_inner(ty, "Vec") else {
+            errors.error(*span, "`count_var` applies to a `Vec<T>` field");
+            return None;
+        };
+        if a.count.is_some() || a.rest.is_some() {
+            errors.error(*span, "use one of `count = T`, `count_var` and `rest`");
+            return None;
+        }
+        let elem = match &a.scaled {
+            Some(sc) if type_name(inner).as_deref() == Some("f64") => Elem::Scaled(scaled_spec(sc, errors)?),
+            Some(sc) => {
+                errors.error(sc.span, "`scaled` applies to `Vec<f64>`");
+                return None;
+            }
+            None => Elem::Plain(inner.clone()),
+        };
+        return Some(Shape::ListVar { var: var.clone(), elem });
     }
 
     // Scaled values.
@@ -333,7 +378,7 @@ struct StructModel {
 }
 
 fn struct_model(input: &DeriveInput, c: &ContainerAttrs, errors: &mut Errors) -> StructModel {
-    let type_name = input.ident.to_string();
+    let struct_name = input.ident.to_string();
     let mut model = StructModel {
         presence: None,
         fields: Vec::new(),
@@ -381,7 +426,32 @@ fn struct_model(input: &DeriveInput, c: &ContainerAttrs, errors: &mut Errors) ->
         let fspan = span_of(&f.ty);
         let optional = generic_inner(&f.ty, "Option");
         let ty = optional.unwrap_or(&f.ty);
-        let bit = match (a.bit, optional.is_some()) {
+        if let Some((b, span)) = a.flag {
+            if model.presence.is_none() && c.presence.is_none() {
+                errors.error(span, "`flag` needs a presence vector: add `#[jaus(presence = u8|u16|u32)]` to the struct");
+            } else if let Some(p) = model.presence {
+                if b >= p.bits() {
+                    errors.error(span, format!("flag bit {b} is out of range for a {} presence vector", p.ident()));
+                }
+            }
+            if let Some((_, other)) = used_bits.iter().find(|(u, _)| *u == b) {
+                errors.error(span, format!("presence bit {b} is already used by field `{other}`"));
+            }
+            used_bits.push((b, ident.to_string()));
+        }
+        let present_if = match (&a.present_if, optional.is_some(), a.bit) {
+            (Some((v, _)), true, None) => Some(v.clone()),
+            (Some((_, span)), false, _) => {
+                errors.error(*span, "`present_if` applies to an `Option<T>` field");
+                None
+            }
+            (Some((_, span)), true, Some(_)) => {
+                errors.error(*span, "use either `bit` or `present_if`, not both");
+                None
+            }
+            (None, ..) => None,
+        };
+        let bit = match (a.bit, optional.is_some() && present_if.is_none()) {
             (Some((b, span)), true) => {
                 match model.presence {
                     None if c.presence.is_none() => errors.error(
@@ -410,20 +480,64 @@ fn struct_model(input: &DeriveInput, c: &ContainerAttrs, errors: &mut Errors) ->
             (None, true) => {
                 errors.error(
                     fspan,
-                    "an `Option<T>` field needs its presence bit: `#[jaus(bit = N)]`",
+                    "an `Option<T>` field needs its presence bit: `#[jaus(bit = N)]` (or `present_if = \"flag\"`)",
                 );
                 None
             }
             (None, false) => None,
         };
+        if let Some((_, span)) = &a.var {
+            if !(is_int_type(ty).is_some_and(Int::unsigned) || type_name(ty).as_deref() == Some("bool")) || optional.is_some() {
+                errors.error(*span, "`var` applies to an unsigned integer or `bool` field (not optional)");
+            }
+        }
+        if let Some((_, span)) = &a.offsets {
+            let ok = generic_inner(ty, "Vec").is_some_and(|t| type_name(t).as_deref() == Some("u32")) && a.count_var.is_some();
+            if !ok {
+                errors.error(*span, "`offsets` applies to a `Vec<u32>` field with `count_var`");
+            }
+        }
         if let Some(shape) = classify(ty, &a, fspan, i + 1 == n, errors) {
             model.fields.push(FieldModel {
-                path: lit(&format!("{type_name}.{ident}")),
+                path: lit(&format!("{struct_name}.{ident}")),
                 span: span_of(&ident),
+                present_if,
+                var: a.var.as_ref().map(|(v, _)| v.clone()),
+                counts: None,
+                offsets_of: a.offsets.as_ref().map(|(v, _)| Ident::new(v, Span::call_site())),
+                patched_by: None,
                 ident,
                 bit,
                 shape,
             });
+        }
+    }
+    // Link fields that depend on each other within this struct.
+    let snapshot: Vec<(Ident, Option<String>, bool, bool)> = model
+        .fields
+        .iter()
+        .map(|f| {
+            let var = match &f.shape {
+                Shape::ListVar { var, .. } => Some(var.clone()),
+                _ => None,
+            };
+            (f.ident.clone(), var, f.bit.is_some() || f.present_if.is_some(), f.offsets_of.is_some())
+        })
+        .collect();
+    for f in &mut model.fields {
+        if let Some(v) = &f.var {
+            f.counts = snapshot
+                .iter()
+                .find(|(_, lv, _, is_offsets)| lv.as_deref() == Some(v.as_str()) && !is_offsets)
+                .map(|(id, _, opt, _)| (id.clone(), *opt));
+        }
+    }
+    let offsets: Vec<(Ident, Ident)> =
+        model.fields.iter().filter_map(|f| f.offsets_of.clone().map(|t| (f.ident.clone(), t))).collect();
+    for (off, target) in offsets {
+        match model.fields.iter_mut().find(|f| f.ident == target) {
+            Some(t) if matches!(t.shape, Shape::ListVar { .. } | Shape::List { .. }) => t.patched_by = Some(off),
+            _ => errors.error(off.span(), format!("`offsets` names `{target}`, which is not a list field of this struct")),
         }
     }
     model
@@ -475,6 +589,14 @@ fn len_expr(shape: &Shape, v: &TokenStream, k: &TokenStream) -> TokenStream {
             let c = size.bytes();
             quote!(#c + #codec::Encode::encoded_len(#v))
         }
+        Shape::ListVar { elem, .. } => match elem {
+            Elem::Plain(_) => quote!(#v.iter().map(#codec::Encode::encoded_len).sum::<usize>()),
+            Elem::Scaled(s) => {
+                let n = s.int.bytes();
+                quote!(#v.len() * #n)
+            }
+        },
+        Shape::Flag(_) => quote!(0usize),
     }
 }
 
@@ -485,6 +607,8 @@ fn scaled_args(s: &ScaledSpec) -> (Ident, f64, f64) {
 fn encode_stmt(shape: &Shape, v: &TokenStream, path: &LitStr, k: &TokenStream) -> TokenStream {
     let codec = quote!(#k::codec);
     match shape {
+        // Written by the caller, which knows the neighbouring fields.
+        Shape::ListVar { .. } | Shape::Flag(_) => quote!(let _ = #v;),
         Shape::Plain(_) => quote!(#codec::Encode::encode(#v, w)?;),
         Shape::Scaled(s) => {
             let (t, lo, hi) = scaled_args(s);
@@ -595,6 +719,27 @@ fn decode_expr(shape: &Shape, k: &TokenStream) -> TokenStream {
             Len::Rest if *nul => quote!(Ok::<_, #err>(#codec::get_rest_string(r))),
             Len::Rest => quote!(Ok::<_, #err>(#codec::latin1_to_string(r.rest()))),
         },
+        Shape::ListVar { var, elem } => {
+            let var = lit(var);
+            let (ty, min, read) = match elem {
+                Elem::Plain(ty) => (quote!(#ty), quote!(<#ty as #codec::Decode>::MIN_LEN), quote!(<#ty as #codec::Decode>::decode(r)?)),
+                Elem::Scaled(s) => {
+                    let (t, lo, hi) = scaled_args(s);
+                    let n = s.int.bytes();
+                    (quote!(f64), quote!(#n), quote!(#codec::scale_from::<#t>(<#t as #codec::Decode>::decode(r)?, #lo, #hi)))
+                }
+            };
+            quote!((|r: &mut #codec::Reader<'_>| -> ::core::result::Result<::std::vec::Vec<#ty>, #err> {
+                let n = r.var(#var)?;
+                let n = r.check_count(n, #min)?;
+                let mut out = ::std::vec::Vec::with_capacity(n);
+                for _ in 0..n {
+                    out.push(#read);
+                }
+                Ok(out)
+            })(r))
+        }
+        Shape::Flag(_) => quote!(Ok::<bool, #err>(false)),
         Shape::Sized { size, ty } => {
             let c = size.ident();
             quote!((|r: &mut #codec::Reader<'_>| -> ::core::result::Result<#ty, #err> {
@@ -642,6 +787,7 @@ fn min_len(shape: &Shape, k: &TokenStream) -> TokenStream {
             quote!(#n)
         }
         Shape::Bytes(Len::Rest) | Shape::Str { len: Len::Rest, .. } => quote!(0usize),
+        Shape::ListVar { .. } | Shape::Flag(_) => quote!(0usize),
     }
 }
 
@@ -698,31 +844,132 @@ pub fn message(input: &DeriveInput, is_message: bool) -> TokenStream {
     let mut mins = Vec::new();
     let mut pv_sets = Vec::new();
     let names: Vec<&Ident> = model.fields.iter().map(|f| &f.ident).collect();
+    let mut prelude = Vec::new();
     for f in &model.fields {
         let id = &f.ident;
         let v = quote!(v);
-        let len = len_expr(&f.shape, &v, &k);
-        let enc = encode_stmt(&f.shape, &v, &f.path, &k);
-        let dec = decode_expr(&f.shape, &k);
+        let len = match &f.offsets_of {
+            // Computed offsets: one u32 per element of the target list.
+            Some(target) => quote!({ let _ = #v; 4 * self.#target.len() }),
+            None => len_expr(&f.shape, &v, &k),
+        };
         let path = &f.path;
+        let enc = match &f.shape {
+            Shape::ListVar { var, elem } => {
+                let var = lit(var);
+                let each = match elem {
+                    Elem::Plain(_) => quote!(#codec::Encode::encode(e, w)?;),
+                    Elem::Scaled(s) => {
+                        let (t, lo, hi) = scaled_args(s);
+                        quote!(#codec::Encode::encode(&#codec::scale_to::<#t>(*e, #lo, #hi, #path)?, w)?;)
+                    }
+                };
+                let (n, body) = match &f.offsets_of {
+                    // Offsets are computed, never taken from the value: reserve them
+                    // now and patch each while the target list is written.
+                    Some(target) => {
+                        let slot = format_ident!("__offsets_{}", id);
+                        prelude.push(quote!(let mut #slot: usize = 0;));
+                        (quote!(self.#target.len()), quote! { let _ = #v; #slot = w.reserve(4 * n)?; })
+                    }
+                    None => {
+                        let patch = f.patched_by.as_ref().map(|o| {
+                            let slot = format_ident!("__offsets_{}", o);
+                            quote! {
+                                let here = u32::try_from(w.position()).unwrap_or(u32::MAX);
+                                w.patch(#slot + 4 * i, &here.to_le_bytes());
+                            }
+                        });
+                        (quote!(#v.len()), quote!(for (i, e) in #v.iter().enumerate() { let _ = i; #patch #each }))
+                    }
+                };
+                quote! {
+                    let expected = w.var(#var, #path)?;
+                    let n = #n;
+                    if n as u64 != expected {
+                        return Err(#codec::EncodeError::CountMismatch { field: #path, len: n, count_field: #var, expected });
+                    }
+                    #body
+                }
+            }
+            Shape::Flag(_) => quote!(let _ = #v;),
+            _ => encode_stmt(&f.shape, &v, &f.path, &k),
+        };
+        let dec = decode_expr(&f.shape, &k);
         let dec = quote_spanned! {f.span=>
             match #dec {
                 ::core::result::Result::Ok(v) => v,
                 ::core::result::Result::Err(e) => return ::core::result::Result::Err(e.in_field(#path)),
             }
         };
-        match f.bit {
-            Some(bit) => {
-                let p = model.presence.unwrap_or(Int::U32).ident();
+        // Publishing the value for later fields.
+        let set_var_dec = f.var.as_ref().map(|name| {
+            let name = lit(name);
+            quote!(r.vars().set(#name, #id as u64);)
+        });
+        let p = model.presence.unwrap_or(Int::U32).ident();
+        match (&f.shape, f.bit, &f.present_if) {
+            (Shape::Flag(bit), ..) => {
+                let set = f.var.as_ref().map(|name| {
+                    let name = lit(name);
+                    quote!(w.vars().set(#name, u64::from(self.#id));)
+                });
+                pv_sets.push(quote!(if self.#id { pv |= (1 as #p) << #bit; }));
+                encodes.push(quote!(#set));
+                decodes.push(quote!(let #id = pv & ((1 as #p) << #bit) != 0; #set_var_dec));
+            }
+            (_, Some(bit), _) => {
                 lens.push(quote!(match &self.#id { Some(v) => #len, None => 0 }));
                 encodes.push(quote!(if let Some(v) = &self.#id { #enc }));
                 pv_sets.push(quote!(if self.#id.is_some() { pv |= (1 as #p) << #bit; }));
                 decodes.push(quote!(let #id = if pv & ((1 as #p) << #bit) != 0 { Some(#dec) } else { None };));
             }
-            None => {
+            (_, None, Some(flag)) => {
+                let flag = lit(flag);
+                lens.push(quote!(match &self.#id { Some(v) => #len, None => 0 }));
+                encodes.push(quote! {
+                    let want = w.var(#flag, #path)? != 0;
+                    if want != self.#id.is_some() {
+                        return Err(#codec::EncodeError::PresenceMismatch { field: #path, flag: #flag, expected: want });
+                    }
+                    if let Some(v) = &self.#id { #enc }
+                });
+                decodes.push(quote! {
+                    let present = match r.var(#flag) {
+                        Ok(x) => x != 0,
+                        Err(e) => return Err(e.in_field(#path)),
+                    };
+                    let #id = if present { Some(#dec) } else { None };
+                });
+            }
+            (_, None, None) => {
                 lens.push(quote!({ let v = &self.#id; #len }));
-                encodes.push(quote!({ let v = &self.#id; #enc }));
-                decodes.push(quote!(let #id = #dec;));
+                let enc = match (&f.var, &f.counts) {
+                    // A count kept in its own field: written from the list it counts
+                    // when that list is here, and published for nested lists.
+                    (Some(name), counts) => {
+                        let name = lit(name);
+                        let Shape::Plain(ty) = &f.shape else { unreachable!("checked: var fields are integers") };
+                        let value = match counts {
+                            Some((list, true)) => quote!(match &self.#list { Some(l) => Some(l.len()), None => None }),
+                            Some((list, false)) => quote!(Some(self.#list.len())),
+                            None => quote!(None::<usize>),
+                        };
+                        quote! {
+                            let v: #ty = match #value {
+                                Some(n) => <#ty>::try_from(n).map_err(|_| #codec::EncodeError::CountOverflow {
+                                    field: #path, count: n, max: <#ty>::MAX as usize,
+                                })?,
+                                None => self.#id,
+                            };
+                            w.vars().set(#name, v as u64);
+                            #codec::Encode::encode(&v, w)?;
+                        }
+                    }
+                    (None, _) => quote!({ let v = &self.#id; #enc }),
+                };
+                encodes.push(enc);
+                decodes.push(quote!(let #id = #dec; #set_var_dec));
                 mins.push(min_len(&f.shape, &k));
             }
         }
@@ -772,6 +1019,7 @@ pub fn message(input: &DeriveInput, is_message: bool) -> TokenStream {
             #[inline]
             fn encode(&self, w: &mut #codec::Writer<'_>) -> ::core::result::Result<(), #codec::EncodeError> {
                 #unused_w
+                #(#prelude)*
                 #pv_encode
                 #(#encodes)*
                 Ok(())

@@ -262,6 +262,23 @@ fn map_wire(w: &Wire, rt: &str) -> Mapped {
             m.doc
                 .extend(e.doc.into_iter().map(|d| format!("Each element: {d}")));
         }
+        Wire::ListField { field, elem, offsets_of } => {
+            let e = map_wire(elem, rt);
+            m.ty = format!("Vec<{}>", e.ty);
+            m.attr.push(format!("count_var = \"{field}\""));
+            m.doc.push(format!("Its element count is the field `{field}`."));
+            if let Some(t) = offsets_of {
+                m.attr.push(format!("offsets = \"{t}\""));
+                m.doc.push(format!(
+                    "Byte offsets of the elements of `{t}` from the start of the body: computed on encode, informational on decode."
+                ));
+            }
+            m.attr
+                .extend(e.attr.into_iter().filter(|a| a.starts_with("scaled")));
+            m.doc
+                .extend(e.doc.into_iter().map(|d| format!("Each element: {d}")));
+        }
+        Wire::Flag => m.ty = "bool".into(),
     }
     m
 }
@@ -308,6 +325,9 @@ fn len_attrs(m: &mut Mapped, len: Len, what: &str) {
 fn field_ctx(spec: &Spec, f: &FieldDef, rt: &str) -> FieldCtx {
     let w = spec.wire(f);
     let mut m = map_wire(&w, rt);
+    if vars(spec).iter().any(|v| v == &f.name) {
+        m.attr.push(format!("var = \"{}\"", f.name));
+    }
     let mut doc = doc_lines(f.description.as_deref());
     if let Some(u) = &f.unit {
         doc.push(String::new());
@@ -318,8 +338,22 @@ fn field_ctx(spec: &Spec, f: &FieldDef, rt: &str) -> FieldCtx {
     doc.append(&mut m.doc);
     let mut attr = m.attr;
     let mut serde = m.serde;
-    let ty = match f.bit {
-        Some(b) => {
+    let ty = match (f.bit, &f.present_if) {
+        (Some(b), _) if w == Wire::Flag => {
+            attr.insert(0, format!("flag = {b}"));
+            doc.push(format!("Presence-vector bit {b} (no bytes of its own)."));
+            m.ty
+        }
+        (None, Some(flag)) => {
+            attr.insert(0, format!("present_if = \"{flag}\""));
+            doc.push(format!("Present exactly when `{flag}` is set."));
+            if serde.iter().any(|s| s.contains("hex::serde")) {
+                serde = vec![format!("with = \"{rt}::hex::serde_opt\"")];
+            }
+            serde.insert(0, "default, skip_serializing_if = \"Option::is_none\"".into());
+            format!("Option<{}>", m.ty)
+        }
+        (Some(b), _) => {
             attr.insert(0, format!("bit = {b}"));
             doc.push(format!("Optional: presence bit {b}."));
             if serde.iter().any(|s| s.contains("hex::serde")) {
@@ -331,7 +365,7 @@ fn field_ctx(spec: &Spec, f: &FieldDef, rt: &str) -> FieldCtx {
             );
             format!("Option<{}>", m.ty)
         }
-        None => m.ty,
+        (None, None) => m.ty,
     };
     FieldCtx {
         name: f.name.clone(),
@@ -340,6 +374,30 @@ fn field_ctx(spec: &Spec, f: &FieldDef, rt: &str) -> FieldCtx {
         serde: serde.join(", "),
         doc,
     }
+}
+
+/// Names of fields other fields depend on (`count_field`, `present_if`): such fields
+/// publish their value while encoding and decoding.
+fn vars(spec: &Spec) -> Vec<String> {
+    fn walk(fields: &[FieldDef], out: &mut Vec<String>) {
+        for f in fields {
+            out.extend(f.count_field.iter().cloned());
+            out.extend(f.present_if.iter().cloned());
+            if let Some(e) = &f.of {
+                walk(std::slice::from_ref(&e.0), out);
+            }
+        }
+    }
+    let mut out = Vec::new();
+    for m in &spec.messages {
+        walk(&m.def.fields, &mut out);
+    }
+    for t in &spec.types {
+        walk(&t.def.fields, &mut out);
+    }
+    out.sort();
+    out.dedup();
+    out
 }
 
 /// Whether values of this wire form have a `Default`.

@@ -273,6 +273,17 @@ pub enum Wire {
         /// Element form.
         elem: Box<Wire>,
     },
+    /// A list whose count is the value of an earlier field.
+    ListField {
+        /// The field holding the count.
+        field: String,
+        /// Element form.
+        elem: Box<Wire>,
+        /// The list holds byte offsets of the elements of this other list.
+        offsets_of: Option<String>,
+    },
+    /// A presence-vector bit with no bytes (a `bool` in Rust).
+    Flag,
     /// A whole embedded JAUS message with its 16-byte header.
     Packet {
         /// Size prefix type.

@@ -132,6 +132,18 @@ pub struct FieldDef {
     /// Count prefix type of a list, or length prefix type of a string/bytes/message.
     #[serde(default)]
     pub count: Option<String>,
+    /// A list whose element count is the value of this earlier field (of the same
+    /// record, or of a record or message that contains it) instead of a prefix.
+    #[serde(default)]
+    pub count_field: Option<String>,
+    /// An optional field present exactly when this earlier field (a `flag`, or a
+    /// non-zero integer; of this record or one containing it) is set.
+    #[serde(default)]
+    pub present_if: Option<String>,
+    /// A list of u32 byte offsets (from the start of the body) of the elements of this
+    /// later list field; computed on encode, informational on decode.
+    #[serde(default)]
+    pub offsets_of: Option<String>,
     /// Size prefix (byte length) type for a nested value or embedded message.
     #[serde(default)]
     pub size: Option<String>,

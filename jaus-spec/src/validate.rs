@@ -75,6 +75,14 @@ pub(crate) fn resolve(spec: &Spec, f: &FieldDef) -> Result<Wire, String> {
         !f.accept_short || matches!(f.length, Some(Length::Fixed(_))),
     )?;
     no("code_field", f.code_field.is_none() || ty == "bytes")?;
+    no("count_field", f.count_field.is_none() || ty == "list")?;
+    no("offsets_of", f.offsets_of.is_none() || (ty == "list" && f.count_field.is_some()))?;
+    if ty == "flag" {
+        if f.bit.is_none() {
+            return Err("a `flag` is a presence-vector bit: give its `bit`".into());
+        }
+        return Ok(Wire::Flag);
+    }
     if f.complement && f.code_field.is_none() {
         return Err("`complement` needs `code_field`".into());
     }
@@ -129,6 +137,12 @@ pub(crate) fn resolve(spec: &Spec, f: &FieldDef) -> Result<Wire, String> {
                 return Err("a list element has no `name` or `bit`".into());
             }
             let elem = resolve(spec, &elem.0).map_err(|e| format!("list element: {e}"))?;
+            if let Some(field) = &f.count_field {
+                if f.count.is_some() || f.length.is_some() {
+                    return Err("give one of `count`, `count_field` and `length: rest`".into());
+                }
+                return Ok(Wire::ListField { field: field.clone(), elem: Box::new(elem), offsets_of: f.offsets_of.clone() });
+            }
             let count = match (&f.count, f.length) {
                 (Some(c), None) => Some(count_type(c)?),
                 (None, Some(Length::Rest)) => None,
@@ -258,6 +272,26 @@ fn check_fields(
                 cx.err(source, &format!("{path}.{key}"), ctx.clone(), e);
             }
         }
+        // Fields this one depends on: earlier in this struct, or in a struct that
+        // contains it (a record nested in a message).
+        for (key, dep) in [("count_field", &f.count_field), ("present_if", &f.present_if)] {
+            if let Some(dep) = dep {
+                let here = fields[..i].iter().any(|g| &g.name == dep);
+                if !here && !in_container(cx.spec, owner, dep) {
+                    cx.err(
+                        source,
+                        &format!("{path}.{key}"),
+                        ctx.clone(),
+                        format!("`{key}: {dep}` names no earlier field of `{}` or of a message containing it", owner_name(owner)),
+                    );
+                }
+            }
+        }
+        if let Some(target) = &f.offsets_of {
+            if !fields[i + 1..].iter().any(|g| &g.name == target && g.ty == "list") {
+                cx.err(source, &format!("{path}.offsets_of"), ctx.clone(), format!("`offsets_of: {target}` names no later list field"));
+            }
+        }
         if let Some(cf) = &f.code_field {
             let ok = fields[..i]
                 .iter()
@@ -272,6 +306,23 @@ fn check_fields(
             }
         }
     }
+}
+
+/// The type or message name inside a context string such as ``type `Task` ``.
+fn owner_name(owner: &str) -> &str {
+    owner.split('`').nth(1).unwrap_or(owner)
+}
+
+/// Whether some message or record that uses the record named in `owner` (directly, or
+/// as a list element) has a field called `name`.
+fn in_container(spec: &Spec, owner: &str, name: &str) -> bool {
+    let record = owner_name(owner);
+    let uses = |fields: &[FieldDef]| {
+        fields.iter().any(|f| f.ty == record || f.of.as_ref().is_some_and(|e| e.0.ty == record))
+    };
+    let has = |fields: &[FieldDef]| fields.iter().any(|f| f.name == name);
+    spec.messages.iter().any(|m| uses(&m.def.fields) && has(&m.def.fields))
+        || spec.types.iter().any(|t| uses(&t.def.fields) && (has(&t.def.fields) || t.def.name == record))
 }
 
 pub(crate) fn validate(spec: &Spec) -> Vec<SpecError> {

@@ -17,17 +17,62 @@ pub struct Reader<'a> {
     pos: usize,
     /// Offset of `buf[0]` within the outermost buffer, so errors report absolute offsets.
     base: usize,
+    /// Values of fields that later (possibly nested) fields depend on.
+    vars: Vars,
+}
+
+/// Named integer values set while encoding/decoding, read by later fields: a count kept
+/// in another field (`count_var`) or a flag deciding whether a nested field is present
+/// (`present_if`). Small and fixed-size: no allocation.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Vars {
+    names: [&'static str; 8],
+    values: [u64; 8],
+    len: usize,
+}
+
+impl Vars {
+    /// Sets `name` (replacing an earlier value).
+    #[inline]
+    pub fn set(&mut self, name: &'static str, value: u64) {
+        if let Some(i) = self.names[..self.len].iter().position(|n| *n == name) {
+            self.values[i] = value;
+        } else if self.len < self.names.len() {
+            self.names[self.len] = name;
+            self.values[self.len] = value;
+            self.len += 1;
+        } else {
+            // Definitions never nest more than a few such fields; keep the newest.
+            self.names.rotate_left(1);
+            self.values.rotate_left(1);
+            self.names[self.len - 1] = name;
+            self.values[self.len - 1] = value;
+        }
+    }
+
+    /// The value of `name`, if set.
+    #[inline]
+    pub fn get(&self, name: &'static str) -> Option<u64> {
+        self.names[..self.len].iter().rposition(|n| *n == name).map(|i| self.values[i])
+    }
 }
 
 impl<'a> Reader<'a> {
     /// Starts reading at the first byte of `buf`.
     #[inline]
     pub fn new(buf: &'a [u8]) -> Self {
-        Self {
-            buf,
-            pos: 0,
-            base: 0,
-        }
+        Self { buf, pos: 0, base: 0, vars: Vars::default() }
+    }
+
+    /// Variables set by fields decoded so far.
+    #[inline]
+    pub fn vars(&mut self) -> &mut Vars {
+        &mut self.vars
+    }
+
+    /// The value of variable `name`, or a typed error if no earlier field set it.
+    pub fn var(&self, name: &'static str) -> Result<u64, DecodeError> {
+        self.vars.get(name).ok_or_else(|| DecodeError::new(DecodeErrorKind::MissingVariable { name }, self.offset()))
     }
 
     /// Bytes not yet consumed.
@@ -91,7 +136,20 @@ impl<'a> Reader<'a> {
     pub fn sub(&mut self, n: usize) -> Result<Reader<'a>, DecodeError> {
         let base = self.offset();
         let buf = self.take(n)?;
-        Ok(Reader { buf, pos: 0, base })
+        Ok(Reader { buf, pos: 0, base, vars: self.vars })
+    }
+
+    /// Checks a count kept in another field against the bytes left (elements take at
+    /// least `min_elem` bytes each).
+    pub fn check_count(&self, n: u64, min_elem: usize) -> Result<usize, DecodeError> {
+        let n = usize::try_from(n).unwrap_or(usize::MAX);
+        if n.saturating_mul(min_elem) > self.remaining() {
+            return Err(DecodeError::new(
+                DecodeErrorKind::CountBeyondBuffer { count: n, remaining: self.remaining() },
+                self.offset(),
+            ));
+        }
+        Ok(n)
     }
 
     /// Fails with [`DecodeErrorKind::TrailingBytes`] unless every byte was consumed.
@@ -114,13 +172,25 @@ impl<'a> Reader<'a> {
 pub struct Writer<'a> {
     buf: &'a mut [u8],
     pos: usize,
+    vars: Vars,
 }
 
 impl<'a> Writer<'a> {
     /// Starts writing at the first byte of `buf`.
     #[inline]
     pub fn new(buf: &'a mut [u8]) -> Self {
-        Self { buf, pos: 0 }
+        Self { buf, pos: 0, vars: Vars::default() }
+    }
+
+    /// Variables set by fields encoded so far.
+    #[inline]
+    pub fn vars(&mut self) -> &mut Vars {
+        &mut self.vars
+    }
+
+    /// The value of variable `name`, or a typed error if no earlier field set it.
+    pub fn var(&self, name: &'static str, field: &'static str) -> Result<u64, EncodeError> {
+        self.vars.get(name).ok_or(EncodeError::MissingVariable { field, name })
     }
 
     /// Bytes written so far.
@@ -559,6 +629,11 @@ pub enum DecodeErrorKind {
         /// Size actually consumed.
         consumed: usize,
     },
+    /// A field depends on an earlier field (a count or flag) that was not decoded.
+    MissingVariable {
+        /// The variable name.
+        name: &'static str,
+    },
     /// The body is longer than the message's fields.
     TrailingBytes {
         /// Bytes left over.
@@ -655,6 +730,7 @@ impl fmt::Display for DecodeErrorKind {
                 )
             }
             Self::TrailingBytes { count } => write!(f, "{count} unexpected trailing byte(s)"),
+            Self::MissingVariable { name } => write!(f, "no earlier field sets `{name}`"),
             Self::UndefinedValue { value } => write!(f, "undefined value {value}"),
             Self::UnknownCommandCode { code } => write!(f, "unknown command code 0x{code:04X}"),
             Self::TruncatedHeader { len } => {
@@ -720,6 +796,36 @@ pub enum EncodeError {
     NotFinite {
         /// Field path.
         field: &'static str,
+    },
+    /// A field depends on an earlier field (a count or flag) that was not encoded.
+    #[error("field `{field}`: no earlier field sets `{name}`")]
+    MissingVariable {
+        /// Field path.
+        field: &'static str,
+        /// The variable name.
+        name: &'static str,
+    },
+    /// A list's length disagrees with the field that carries its count.
+    #[error("field `{field}`: {len} element(s) but `{count_field}` says {expected}")]
+    CountMismatch {
+        /// Field path.
+        field: &'static str,
+        /// Elements present.
+        len: usize,
+        /// The field holding the count.
+        count_field: &'static str,
+        /// Its value.
+        expected: u64,
+    },
+    /// An optional field is present (or absent) against the flag that governs it.
+    #[error("field `{field}`: presence disagrees with `{flag}` (the field must be {})", if *expected { "present" } else { "absent" })]
+    PresenceMismatch {
+        /// Field path.
+        field: &'static str,
+        /// The governing flag.
+        flag: &'static str,
+        /// Whether the field must be present.
+        expected: bool,
     },
     /// A value does not fit the bits of its bit field.
     #[error("field `{field}`: value {value} does not fit in {width} bit(s)")]

@@ -154,6 +154,11 @@ impl Cmp<'_> {
                 continue;
             }
             let found = self.lookup(owner, &f.name, oj);
+            if wire == Wire::Flag && found.is_none() {
+                // A presence bit with no value of its own: OpenJAUS shows it only in
+                // its presence vector, which the byte comparison covers.
+                continue;
+            }
             match (my, found) {
                 (Some(m), Some((k, o))) => {
                     used.push(k);
@@ -373,7 +378,12 @@ impl Cmp<'_> {
                     self.fail(at, format!("{my} vs OpenJAUS {theirs}"));
                 }
             }
-            Wire::List { elem, .. } => match (my.as_array(), oj.as_array()) {
+            Wire::Flag => {
+                if my.as_bool() != oj.as_bool().or(oj.as_u64().map(|v| v != 0)) {
+                    self.fail(at, format!("{my} vs OpenJAUS {oj}"));
+                }
+            }
+            Wire::List { elem, .. } | Wire::ListField { elem, .. } => match (my.as_array(), oj.as_array()) {
                 (Some(a), Some(b)) if a.len() == b.len() => {
                     for (i, (x, y)) in a.iter().zip(b).enumerate() {
                         self.value(elem, x, y, &format!("{at}[{i}]"));
