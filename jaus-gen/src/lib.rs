@@ -23,12 +23,14 @@
 //! `jaus-derive`; templates hold no byte-level code.
 
 mod context;
+mod docs;
 
 use jaus_spec::{Spec, SpecErrors};
 use minijinja::Environment;
 use std::path::{Path, PathBuf};
 
 pub use context::{build_context, Context};
+pub use docs::{render_docs, DOC_TEMPLATES};
 
 /// Templates compiled into the generator (from the workspace `templates/` directory).
 pub const DEFAULT_TEMPLATES: &[(&str, &str)] = &[

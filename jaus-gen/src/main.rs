@@ -35,6 +35,18 @@ enum Cmd {
         #[arg(long)]
         feature_gates: bool,
     },
+    /// Render the reference documentation: one Markdown page per group and an index.
+    Docs {
+        /// Directories of `*.yaml` definitions (default: the RA 3.3 set of jaus-spec).
+        #[arg(long = "spec", value_name = "DIR")]
+        spec: Vec<PathBuf>,
+        /// Extra definition files.
+        #[arg(long = "overlay", value_name = "FILE")]
+        overlays: Vec<PathBuf>,
+        /// Output directory.
+        #[arg(long, value_name = "DIR")]
+        out: PathBuf,
+    },
     /// Validate definitions only; print every problem as file:line:column and exit 1.
     Check {
         /// Directories of `*.yaml` definitions (default: the RA 3.3 set of jaus-spec).
@@ -89,6 +101,11 @@ fn main() -> ExitCode {
                 }
             })
         }
+        Cmd::Docs { spec, overlays, out } => builder(spec, overlays).load().and_then(|s| {
+            let files = jaus_gen::render_docs(&s, &out)?;
+            println!("wrote {} page(s) to {}", files.len(), out.display());
+            Ok(())
+        }),
         Cmd::Check { spec, overlays } => builder(spec, overlays).load().map(|s| {
             println!(
                 "ok: {} messages, {} types, {} components in {} file(s)",

@@ -85,3 +85,26 @@ fn invalid_definitions_fail_with_positions() {
     );
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn committed_reference_docs_are_up_to_date() {
+    let spec = jaus_spec::load_dirs(&[jaus_spec::defs_dir()]).unwrap();
+    let dir = std::env::temp_dir().join(format!("jaus-gen-docs-{}", std::process::id()));
+    let files = jaus_gen::render_docs(&spec, &dir).unwrap();
+    let committed = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../docs/messages");
+    let mut stale = Vec::new();
+    for f in &files {
+        let name = f.file_name().unwrap();
+        let fresh = std::fs::read_to_string(f).unwrap();
+        if std::fs::read_to_string(committed.join(name)).ok().as_deref() != Some(fresh.as_str()) {
+            stale.push(name.to_string_lossy().into_owned());
+        }
+    }
+    let extra = std::fs::read_dir(&committed).map(|d| d.count()).unwrap_or(0);
+    std::fs::remove_dir_all(&dir).ok();
+    assert!(
+        stale.is_empty() && extra == files.len(),
+        "docs/messages is stale ({stale:?}; {extra} committed vs {} generated): run `cargo run -p jaus-gen -- docs --out docs/messages`",
+        files.len()
+    );
+}
