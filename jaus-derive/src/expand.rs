@@ -216,7 +216,10 @@ fn classify(
 
     if let Some((bit, span)) = a.flag {
         if name.as_deref() != Some("bool") {
-            errors.error(span, "`flag` applies to a `bool` field: it is a presence bit with no bytes");
+            errors.error(
+                span,
+                "`flag` applies to a `bool` field: it is a presence bit with no bytes",
+            );
             return None;
         }
         return Some(Shape::Flag(bit));
@@ -231,14 +234,19 @@ fn classify(
             return None;
         }
         let elem = match &a.scaled {
-            Some(sc) if type_name(inner).as_deref() == Some("f64") => Elem::Scaled(scaled_spec(sc, errors)?),
+            Some(sc) if type_name(inner).as_deref() == Some("f64") => {
+                Elem::Scaled(scaled_spec(sc, errors)?)
+            }
             Some(sc) => {
                 errors.error(sc.span, "`scaled` applies to `Vec<f64>`");
                 return None;
             }
             None => Elem::Plain(inner.clone()),
         };
-        return Some(Shape::ListVar { var: var.clone(), elem });
+        return Some(Shape::ListVar {
+            var: var.clone(),
+            elem,
+        });
     }
 
     // Scaled values.
@@ -431,11 +439,20 @@ fn struct_model(input: &DeriveInput, c: &ContainerAttrs, errors: &mut Errors) ->
                 errors.error(span, "`flag` needs a presence vector: add `#[jaus(presence = u8|u16|u32)]` to the struct");
             } else if let Some(p) = model.presence {
                 if b >= p.bits() {
-                    errors.error(span, format!("flag bit {b} is out of range for a {} presence vector", p.ident()));
+                    errors.error(
+                        span,
+                        format!(
+                            "flag bit {b} is out of range for a {} presence vector",
+                            p.ident()
+                        ),
+                    );
                 }
             }
             if let Some((_, other)) = used_bits.iter().find(|(u, _)| *u == b) {
-                errors.error(span, format!("presence bit {b} is already used by field `{other}`"));
+                errors.error(
+                    span,
+                    format!("presence bit {b} is already used by field `{other}`"),
+                );
             }
             used_bits.push((b, ident.to_string()));
         }
@@ -487,14 +504,25 @@ fn struct_model(input: &DeriveInput, c: &ContainerAttrs, errors: &mut Errors) ->
             (None, false) => None,
         };
         if let Some((_, span)) = &a.var {
-            if !(is_int_type(ty).is_some_and(Int::unsigned) || type_name(ty).as_deref() == Some("bool")) || optional.is_some() {
-                errors.error(*span, "`var` applies to an unsigned integer or `bool` field (not optional)");
+            if !(is_int_type(ty).is_some_and(Int::unsigned)
+                || type_name(ty).as_deref() == Some("bool"))
+                || optional.is_some()
+            {
+                errors.error(
+                    *span,
+                    "`var` applies to an unsigned integer or `bool` field (not optional)",
+                );
             }
         }
         if let Some((_, span)) = &a.offsets {
-            let ok = generic_inner(ty, "Vec").is_some_and(|t| type_name(t).as_deref() == Some("u32")) && a.count_var.is_some();
+            let ok = generic_inner(ty, "Vec")
+                .is_some_and(|t| type_name(t).as_deref() == Some("u32"))
+                && a.count_var.is_some();
             if !ok {
-                errors.error(*span, "`offsets` applies to a `Vec<u32>` field with `count_var`");
+                errors.error(
+                    *span,
+                    "`offsets` applies to a `Vec<u32>` field with `count_var`",
+                );
             }
         }
         if let Some(shape) = classify(ty, &a, fspan, i + 1 == n, errors) {
@@ -504,7 +532,10 @@ fn struct_model(input: &DeriveInput, c: &ContainerAttrs, errors: &mut Errors) ->
                 present_if,
                 var: a.var.as_ref().map(|(v, _)| v.clone()),
                 counts: None,
-                offsets_of: a.offsets.as_ref().map(|(v, _)| Ident::new(v, Span::call_site())),
+                offsets_of: a
+                    .offsets
+                    .as_ref()
+                    .map(|(v, _)| Ident::new(v, Span::call_site())),
                 patched_by: None,
                 ident,
                 bit,
@@ -521,7 +552,12 @@ fn struct_model(input: &DeriveInput, c: &ContainerAttrs, errors: &mut Errors) ->
                 Shape::ListVar { var, .. } => Some(var.clone()),
                 _ => None,
             };
-            (f.ident.clone(), var, f.bit.is_some() || f.present_if.is_some(), f.offsets_of.is_some())
+            (
+                f.ident.clone(),
+                var,
+                f.bit.is_some() || f.present_if.is_some(),
+                f.offsets_of.is_some(),
+            )
         })
         .collect();
     for f in &mut model.fields {
@@ -532,12 +568,20 @@ fn struct_model(input: &DeriveInput, c: &ContainerAttrs, errors: &mut Errors) ->
                 .map(|(id, _, opt, _)| (id.clone(), *opt));
         }
     }
-    let offsets: Vec<(Ident, Ident)> =
-        model.fields.iter().filter_map(|f| f.offsets_of.clone().map(|t| (f.ident.clone(), t))).collect();
+    let offsets: Vec<(Ident, Ident)> = model
+        .fields
+        .iter()
+        .filter_map(|f| f.offsets_of.clone().map(|t| (f.ident.clone(), t)))
+        .collect();
     for (off, target) in offsets {
         match model.fields.iter_mut().find(|f| f.ident == target) {
-            Some(t) if matches!(t.shape, Shape::ListVar { .. } | Shape::List { .. }) => t.patched_by = Some(off),
-            _ => errors.error(off.span(), format!("`offsets` names `{target}`, which is not a list field of this struct")),
+            Some(t) if matches!(t.shape, Shape::ListVar { .. } | Shape::List { .. }) => {
+                t.patched_by = Some(off)
+            }
+            _ => errors.error(
+                off.span(),
+                format!("`offsets` names `{target}`, which is not a list field of this struct"),
+            ),
         }
     }
     model
@@ -722,11 +766,19 @@ fn decode_expr(shape: &Shape, k: &TokenStream) -> TokenStream {
         Shape::ListVar { var, elem } => {
             let var = lit(var);
             let (ty, min, read) = match elem {
-                Elem::Plain(ty) => (quote!(#ty), quote!(<#ty as #codec::Decode>::MIN_LEN), quote!(<#ty as #codec::Decode>::decode(r)?)),
+                Elem::Plain(ty) => (
+                    quote!(#ty),
+                    quote!(<#ty as #codec::Decode>::MIN_LEN),
+                    quote!(<#ty as #codec::Decode>::decode(r)?),
+                ),
                 Elem::Scaled(s) => {
                     let (t, lo, hi) = scaled_args(s);
                     let n = s.int.bytes();
-                    (quote!(f64), quote!(#n), quote!(#codec::scale_from::<#t>(<#t as #codec::Decode>::decode(r)?, #lo, #hi)))
+                    (
+                        quote!(f64),
+                        quote!(#n),
+                        quote!(#codec::scale_from::<#t>(<#t as #codec::Decode>::decode(r)?, #lo, #hi)),
+                    )
                 }
             };
             quote!((|r: &mut #codec::Reader<'_>| -> ::core::result::Result<::std::vec::Vec<#ty>, #err> {
@@ -870,7 +922,10 @@ pub fn message(input: &DeriveInput, is_message: bool) -> TokenStream {
                     Some(target) => {
                         let slot = format_ident!("__offsets_{}", id);
                         prelude.push(quote!(let mut #slot: usize = 0;));
-                        (quote!(self.#target.len()), quote! { let _ = #v; #slot = w.reserve(4 * n)?; })
+                        (
+                            quote!(self.#target.len()),
+                            quote! { let _ = #v; #slot = w.reserve(4 * n)?; },
+                        )
                     }
                     None => {
                         let patch = f.patched_by.as_ref().map(|o| {
@@ -880,7 +935,10 @@ pub fn message(input: &DeriveInput, is_message: bool) -> TokenStream {
                                 w.patch(#slot + 4 * i, &here.to_le_bytes());
                             }
                         });
-                        (quote!(#v.len()), quote!(for (i, e) in #v.iter().enumerate() { let _ = i; #patch #each }))
+                        (
+                            quote!(#v.len()),
+                            quote!(for (i, e) in #v.iter().enumerate() { let _ = i; #patch #each }),
+                        )
                     }
                 };
                 quote! {
@@ -949,9 +1007,13 @@ pub fn message(input: &DeriveInput, is_message: bool) -> TokenStream {
                     // when that list is here, and published for nested lists.
                     (Some(name), counts) => {
                         let name = lit(name);
-                        let Shape::Plain(ty) = &f.shape else { unreachable!("checked: var fields are integers") };
+                        let Shape::Plain(ty) = &f.shape else {
+                            unreachable!("checked: var fields are integers")
+                        };
                         let value = match counts {
-                            Some((list, true)) => quote!(match &self.#list { Some(l) => Some(l.len()), None => None }),
+                            Some((list, true)) => {
+                                quote!(match &self.#list { Some(l) => Some(l.len()), None => None })
+                            }
                             Some((list, false)) => quote!(Some(self.#list.len())),
                             None => quote!(None::<usize>),
                         };

@@ -262,11 +262,16 @@ fn map_wire(w: &Wire, rt: &str) -> Mapped {
             m.doc
                 .extend(e.doc.into_iter().map(|d| format!("Each element: {d}")));
         }
-        Wire::ListField { field, elem, offsets_of } => {
+        Wire::ListField {
+            field,
+            elem,
+            offsets_of,
+        } => {
             let e = map_wire(elem, rt);
             m.ty = format!("Vec<{}>", e.ty);
             m.attr.push(format!("count_var = \"{field}\""));
-            m.doc.push(format!("Its element count is the field `{field}`."));
+            m.doc
+                .push(format!("Its element count is the field `{field}`."));
             if let Some(t) = offsets_of {
                 m.attr.push(format!("offsets = \"{t}\""));
                 m.doc.push(format!(
@@ -350,7 +355,10 @@ fn field_ctx(spec: &Spec, f: &FieldDef, rt: &str) -> FieldCtx {
             if serde.iter().any(|s| s.contains("hex::serde")) {
                 serde = vec![format!("with = \"{rt}::hex::serde_opt\"")];
             }
-            serde.insert(0, "default, skip_serializing_if = \"Option::is_none\"".into());
+            serde.insert(
+                0,
+                "default, skip_serializing_if = \"Option::is_none\"".into(),
+            );
             format!("Option<{}>", m.ty)
         }
         (Some(b), _) => {

@@ -9,8 +9,14 @@ use std::path::{Path, PathBuf};
 
 /// Templates of the documentation (from the workspace `templates/docs/`).
 pub const DOC_TEMPLATES: &[(&str, &str)] = &[
-    ("group.md.j2", include_str!("../../templates/docs/group.md.j2")),
-    ("index.md.j2", include_str!("../../templates/docs/index.md.j2")),
+    (
+        "group.md.j2",
+        include_str!("../../templates/docs/group.md.j2"),
+    ),
+    (
+        "index.md.j2",
+        include_str!("../../templates/docs/index.md.j2"),
+    ),
 ];
 
 #[derive(Debug, Serialize)]
@@ -46,7 +52,11 @@ struct DocGroup {
 }
 
 fn one_line(s: Option<&str>) -> String {
-    s.unwrap_or("").split_whitespace().collect::<Vec<_>>().join(" ").replace('|', "\\|")
+    s.unwrap_or("")
+        .split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ")
+        .replace('|', "\\|")
 }
 
 fn type_link(spec: &Spec, name: &str, here: &str) -> String {
@@ -73,11 +83,17 @@ fn wire_text(spec: &Spec, w: &Wire, here: &str) -> (String, String) {
         Wire::F64 => ("f64".into(), String::new()),
         Wire::Scaled { int, lo, hi } => {
             let d = divisor(*int);
-            (format!("scaled {}", int.rust()), format!("[{lo}, {hi}], step {:.3e}", (hi - lo) / d))
+            (
+                format!("scaled {}", int.rust()),
+                format!("[{lo}, {hi}], step {:.3e}", (hi - lo) / d),
+            )
         }
         Wire::Named { name, size, .. } => {
             let t = type_link(spec, name, here);
-            (size.map_or(t.clone(), |s| format!("{t} (size {})", s.rust())), String::new())
+            (
+                size.map_or(t.clone(), |s| format!("{t} (size {})", s.rust())),
+                String::new(),
+            )
         }
         Wire::Str(len) => (len_text(len, "string"), String::new()),
         Wire::Bytes(len) => (len_text(len, "bytes"), String::new()),
@@ -86,14 +102,22 @@ fn wire_text(spec: &Spec, w: &Wire, here: &str) -> (String, String) {
             let c = count.map_or("to end".to_string(), |c| format!("count {}", c.rust()));
             (format!("list of {e} ({c})"), r)
         }
-        Wire::ListField { field, elem, offsets_of } => {
+        Wire::ListField {
+            field,
+            elem,
+            offsets_of,
+        } => {
             let (e, r) = wire_text(spec, elem, here);
-            let extra = offsets_of.as_ref().map_or(String::new(), |t| format!(", byte offsets of `{t}`"));
+            let extra = offsets_of
+                .as_ref()
+                .map_or(String::new(), |t| format!(", byte offsets of `{t}`"));
             (format!("list of {e} (count in `{field}`{extra})"), r)
         }
         Wire::Flag => ("flag (no bytes)".into(), String::new()),
         Wire::Packet { size } => (
-            size.map_or("JAUS message with header".into(), |s| format!("JAUS message with header (size {})", s.rust())),
+            size.map_or("JAUS message with header".into(), |s| {
+                format!("JAUS message with header (size {})", s.rust())
+            }),
             String::new(),
         ),
     }
@@ -122,9 +146,19 @@ fn doc_fields(spec: &Spec, fields: &[FieldDef], here: &str) -> Vec<DocField> {
             };
             let mut description = one_line(f.description.as_deref());
             if let Some(c) = &f.code_field {
-                description.push_str(&format!(" (message code in `{c}`{})", if f.complement { ", complement" } else { "" }));
+                description.push_str(&format!(
+                    " (message code in `{c}`{})",
+                    if f.complement { ", complement" } else { "" }
+                ));
             }
-            DocField { name: f.name.clone(), ty, unit: f.unit.clone().unwrap_or_default(), range, presence, description }
+            DocField {
+                name: f.name.clone(),
+                ty,
+                unit: f.unit.clone().unwrap_or_default(),
+                range,
+                presence,
+                description,
+            }
         })
         .collect()
 }
@@ -148,10 +182,21 @@ pub fn render_docs(spec: &Spec, out: &Path) -> Result<Vec<PathBuf>, Error> {
             .map(|m| DocItem {
                 name: m.def.name.clone(),
                 code: m.def.code.to_string(),
-                title: m.def.title.clone().unwrap_or_else(|| jaus_spec::title_of(&m.def.name)),
-                kind: if m.def.experimental { "experimental".into() } else { String::new() },
+                title: m
+                    .def
+                    .title
+                    .clone()
+                    .unwrap_or_else(|| jaus_spec::title_of(&m.def.name)),
+                kind: if m.def.experimental {
+                    "experimental".into()
+                } else {
+                    String::new()
+                },
                 description: one_line(m.def.description.as_deref()),
-                report: spec.report_of(&m.def).map(|r| r.def.name.clone()).unwrap_or_default(),
+                report: spec
+                    .report_of(&m.def)
+                    .map(|r| r.def.name.clone())
+                    .unwrap_or_default(),
                 presence: m.def.presence.clone().unwrap_or_default(),
                 fields: doc_fields(spec, &m.def.fields, &g.name),
                 values: Vec::new(),
@@ -167,7 +212,13 @@ pub fn render_docs(spec: &Spec, out: &Path) -> Result<Vec<PathBuf>, Error> {
                     TypeKind::Enum => d
                         .values
                         .iter()
-                        .map(|v| (v.value.to_string(), v.name.clone(), one_line(v.description.as_deref())))
+                        .map(|v| {
+                            (
+                                v.value.to_string(),
+                                v.name.clone(),
+                                one_line(v.description.as_deref()),
+                            )
+                        })
                         .collect(),
                     TypeKind::Bitfield => d
                         .bits
@@ -186,9 +237,21 @@ pub fn render_docs(spec: &Spec, out: &Path) -> Result<Vec<PathBuf>, Error> {
                         .iter()
                         .map(|v| {
                             let ty = v.ty.as_deref().map_or("(none)".to_string(), |t| {
-                                wire_text(spec, &spec.wire(&FieldDef { ty: t.to_string(), ..FieldDef::default() }), &g.name).0
+                                wire_text(
+                                    spec,
+                                    &spec.wire(&FieldDef {
+                                        ty: t.to_string(),
+                                        ..FieldDef::default()
+                                    }),
+                                    &g.name,
+                                )
+                                .0
                             });
-                            (v.tag.to_string(), format!("{} — {ty}", v.name), one_line(v.description.as_deref()))
+                            (
+                                v.tag.to_string(),
+                                format!("{} — {ty}", v.name),
+                                one_line(v.description.as_deref()),
+                            )
                         })
                         .collect(),
                     TypeKind::Record => Vec::new(),
@@ -200,7 +263,10 @@ pub fn render_docs(spec: &Spec, out: &Path) -> Result<Vec<PathBuf>, Error> {
                     kind: format!("{:?}", d.kind).to_lowercase(),
                     description: one_line(d.description.as_deref()),
                     report: String::new(),
-                    presence: d.presence.clone().unwrap_or_else(|| d.repr.clone().unwrap_or_default()),
+                    presence: d
+                        .presence
+                        .clone()
+                        .unwrap_or_else(|| d.repr.clone().unwrap_or_default()),
                     fields: doc_fields(spec, &d.fields, &g.name),
                     values,
                 }
@@ -214,14 +280,21 @@ pub fn render_docs(spec: &Spec, out: &Path) -> Result<Vec<PathBuf>, Error> {
             types,
         });
     }
-    std::fs::create_dir_all(out).map_err(|source| Error::Io { path: out.to_path_buf(), source })?;
+    std::fs::create_dir_all(out).map_err(|source| Error::Io {
+        path: out.to_path_buf(),
+        source,
+    })?;
     let mut files = Vec::new();
-    let index = env.get_template("index.md.j2")?.render(minijinja::context! { groups => &groups })?;
+    let index = env
+        .get_template("index.md.j2")?
+        .render(minijinja::context! { groups => &groups })?;
     let p = out.join("index.md");
     crate::write_if_changed(&p, &index)?;
     files.push(p);
     for g in &groups {
-        let page = env.get_template("group.md.j2")?.render(minijinja::context! { group => g })?;
+        let page = env
+            .get_template("group.md.j2")?
+            .render(minijinja::context! { group => g })?;
         let p = out.join(format!("{}.md", g.name));
         crate::write_if_changed(&p, &page)?;
         files.push(p);

@@ -101,7 +101,11 @@ fn main() -> ExitCode {
                 }
             })
         }
-        Cmd::Docs { spec, overlays, out } => builder(spec, overlays).load().and_then(|s| {
+        Cmd::Docs {
+            spec,
+            overlays,
+            out,
+        } => builder(spec, overlays).load().and_then(|s| {
             let files = jaus_gen::render_docs(&s, &out)?;
             println!("wrote {} page(s) to {}", files.len(), out.display());
             Ok(())

@@ -96,11 +96,17 @@ fn committed_reference_docs_are_up_to_date() {
     for f in &files {
         let name = f.file_name().unwrap();
         let fresh = std::fs::read_to_string(f).unwrap();
-        if std::fs::read_to_string(committed.join(name)).ok().as_deref() != Some(fresh.as_str()) {
+        if std::fs::read_to_string(committed.join(name))
+            .ok()
+            .as_deref()
+            != Some(fresh.as_str())
+        {
             stale.push(name.to_string_lossy().into_owned());
         }
     }
-    let extra = std::fs::read_dir(&committed).map(|d| d.count()).unwrap_or(0);
+    let extra = std::fs::read_dir(&committed)
+        .map(|d| d.count())
+        .unwrap_or(0);
     std::fs::remove_dir_all(&dir).ok();
     assert!(
         stale.is_empty() && extra == files.len(),

@@ -76,7 +76,10 @@ pub(crate) fn resolve(spec: &Spec, f: &FieldDef) -> Result<Wire, String> {
     )?;
     no("code_field", f.code_field.is_none() || ty == "bytes")?;
     no("count_field", f.count_field.is_none() || ty == "list")?;
-    no("offsets_of", f.offsets_of.is_none() || (ty == "list" && f.count_field.is_some()))?;
+    no(
+        "offsets_of",
+        f.offsets_of.is_none() || (ty == "list" && f.count_field.is_some()),
+    )?;
     if ty == "flag" {
         if f.bit.is_none() {
             return Err("a `flag` is a presence-vector bit: give its `bit`".into());
@@ -274,7 +277,10 @@ fn check_fields(
         }
         // Fields this one depends on: earlier in this struct, or in a struct that
         // contains it (a record nested in a message).
-        for (key, dep) in [("count_field", &f.count_field), ("present_if", &f.present_if)] {
+        for (key, dep) in [
+            ("count_field", &f.count_field),
+            ("present_if", &f.present_if),
+        ] {
             if let Some(dep) = dep {
                 let here = fields[..i].iter().any(|g| &g.name == dep);
                 if !here && !in_container(cx.spec, owner, dep) {
@@ -288,8 +294,16 @@ fn check_fields(
             }
         }
         if let Some(target) = &f.offsets_of {
-            if !fields[i + 1..].iter().any(|g| &g.name == target && g.ty == "list") {
-                cx.err(source, &format!("{path}.offsets_of"), ctx.clone(), format!("`offsets_of: {target}` names no later list field"));
+            if !fields[i + 1..]
+                .iter()
+                .any(|g| &g.name == target && g.ty == "list")
+            {
+                cx.err(
+                    source,
+                    &format!("{path}.offsets_of"),
+                    ctx.clone(),
+                    format!("`offsets_of: {target}` names no later list field"),
+                );
             }
         }
         if let Some(cf) = &f.code_field {
@@ -318,11 +332,18 @@ fn owner_name(owner: &str) -> &str {
 fn in_container(spec: &Spec, owner: &str, name: &str) -> bool {
     let record = owner_name(owner);
     let uses = |fields: &[FieldDef]| {
-        fields.iter().any(|f| f.ty == record || f.of.as_ref().is_some_and(|e| e.0.ty == record))
+        fields
+            .iter()
+            .any(|f| f.ty == record || f.of.as_ref().is_some_and(|e| e.0.ty == record))
     };
     let has = |fields: &[FieldDef]| fields.iter().any(|f| f.name == name);
-    spec.messages.iter().any(|m| uses(&m.def.fields) && has(&m.def.fields))
-        || spec.types.iter().any(|t| uses(&t.def.fields) && (has(&t.def.fields) || t.def.name == record))
+    spec.messages
+        .iter()
+        .any(|m| uses(&m.def.fields) && has(&m.def.fields))
+        || spec
+            .types
+            .iter()
+            .any(|t| uses(&t.def.fields) && (has(&t.def.fields) || t.def.name == record))
 }
 
 pub(crate) fn validate(spec: &Spec) -> Vec<SpecError> {

@@ -53,7 +53,10 @@ impl Vars {
     /// The value of `name`, if set.
     #[inline]
     pub fn get(&self, name: &'static str) -> Option<u64> {
-        self.names[..self.len].iter().rposition(|n| *n == name).map(|i| self.values[i])
+        self.names[..self.len]
+            .iter()
+            .rposition(|n| *n == name)
+            .map(|i| self.values[i])
     }
 }
 
@@ -61,7 +64,12 @@ impl<'a> Reader<'a> {
     /// Starts reading at the first byte of `buf`.
     #[inline]
     pub fn new(buf: &'a [u8]) -> Self {
-        Self { buf, pos: 0, base: 0, vars: Vars::default() }
+        Self {
+            buf,
+            pos: 0,
+            base: 0,
+            vars: Vars::default(),
+        }
     }
 
     /// Variables set by fields decoded so far.
@@ -72,7 +80,9 @@ impl<'a> Reader<'a> {
 
     /// The value of variable `name`, or a typed error if no earlier field set it.
     pub fn var(&self, name: &'static str) -> Result<u64, DecodeError> {
-        self.vars.get(name).ok_or_else(|| DecodeError::new(DecodeErrorKind::MissingVariable { name }, self.offset()))
+        self.vars.get(name).ok_or_else(|| {
+            DecodeError::new(DecodeErrorKind::MissingVariable { name }, self.offset())
+        })
     }
 
     /// Bytes not yet consumed.
@@ -136,7 +146,12 @@ impl<'a> Reader<'a> {
     pub fn sub(&mut self, n: usize) -> Result<Reader<'a>, DecodeError> {
         let base = self.offset();
         let buf = self.take(n)?;
-        Ok(Reader { buf, pos: 0, base, vars: self.vars })
+        Ok(Reader {
+            buf,
+            pos: 0,
+            base,
+            vars: self.vars,
+        })
     }
 
     /// Checks a count kept in another field against the bytes left (elements take at
@@ -145,7 +160,10 @@ impl<'a> Reader<'a> {
         let n = usize::try_from(n).unwrap_or(usize::MAX);
         if n.saturating_mul(min_elem) > self.remaining() {
             return Err(DecodeError::new(
-                DecodeErrorKind::CountBeyondBuffer { count: n, remaining: self.remaining() },
+                DecodeErrorKind::CountBeyondBuffer {
+                    count: n,
+                    remaining: self.remaining(),
+                },
                 self.offset(),
             ));
         }
@@ -179,7 +197,11 @@ impl<'a> Writer<'a> {
     /// Starts writing at the first byte of `buf`.
     #[inline]
     pub fn new(buf: &'a mut [u8]) -> Self {
-        Self { buf, pos: 0, vars: Vars::default() }
+        Self {
+            buf,
+            pos: 0,
+            vars: Vars::default(),
+        }
     }
 
     /// Variables set by fields encoded so far.
@@ -190,7 +212,9 @@ impl<'a> Writer<'a> {
 
     /// The value of variable `name`, or a typed error if no earlier field set it.
     pub fn var(&self, name: &'static str, field: &'static str) -> Result<u64, EncodeError> {
-        self.vars.get(name).ok_or(EncodeError::MissingVariable { field, name })
+        self.vars
+            .get(name)
+            .ok_or(EncodeError::MissingVariable { field, name })
     }
 
     /// Bytes written so far.

@@ -153,7 +153,51 @@ impl Cmp<'_> {
                 self.bitfield(owner, f, name, my, oj, &here, &mut used);
                 continue;
             }
-            let found = self.lookup(owner, &f.name, oj);
+            let rule = self.names.get(&format!("{owner}.{}", f.name)).cloned();
+            if rule.as_deref() == Some("-") {
+                // A field OpenJAUS does not expose (a count or offsets it recomputes);
+                // the byte comparison covers it.
+                continue;
+            }
+            // `key * factor`: OpenJAUS holds the value in other units.
+            let factor = rule
+                .as_deref()
+                .and_then(|r| r.split_once('*'))
+                .and_then(|(_, f)| f.trim().parse::<f64>().ok());
+            let found = match (&rule, factor) {
+                (Some(r), Some(_)) => {
+                    let key = r.split('*').next().unwrap_or("").trim();
+                    get_path(oj, key).map(|v| (key.split('.').next().unwrap_or("").to_string(), v))
+                }
+                _ => self.lookup(owner, &f.name, oj),
+            };
+            let scaled_oj;
+            let found = match (found, factor) {
+                (Some((k, o)), Some(x)) => {
+                    scaled_oj = o.as_f64().map_or(Value::Null, |v| serde_json::json!(v * x));
+                    Some((k, &scaled_oj))
+                }
+                (f, _) => f,
+            };
+            // OpenJAUS keeps some lists of records as a record of lists (one list per
+            // field); compare element-wise after transposing.
+            let transposed;
+            let found = match (found, &wire) {
+                (None, Wire::List { elem, .. } | Wire::ListField { elem, .. }) => {
+                    match elem.as_ref() {
+                        Wire::Named {
+                            name,
+                            kind: TypeKind::Record,
+                            ..
+                        } => {
+                            transposed = self.transpose(name, oj, &mut used);
+                            transposed.as_ref().map(|v| (String::new(), v))
+                        }
+                        _ => None,
+                    }
+                }
+                (f, _) => f,
+            };
             if wire == Wire::Flag && found.is_none() {
                 // A presence bit with no value of its own: OpenJAUS shows it only in
                 // its presence vector, which the byte comparison covers.
@@ -164,7 +208,7 @@ impl Cmp<'_> {
                     used.push(k);
                     self.value(&wire, m, o, &here);
                 }
-                (None, None) if f.bit.is_some() => {}
+                (None, None) if f.bit.is_some() || f.present_if.is_some() => {}
                 (None, Some((k, o))) => {
                     used.push(k);
                     self.fail(&here, format!("absent here but OpenJAUS has {o}"));
@@ -177,9 +221,23 @@ impl Cmp<'_> {
             }
         }
         for (k, v) in oj {
+            // Counts OpenJAUS reports next to the lists they count.
             let ignorable = matches!(
                 k.as_str(),
-                "presenceVector" | "count" | "subsystemCount" | "dataSize" | "commandCode"
+                "presenceVector"
+                    | "count"
+                    | "subsystemCount"
+                    | "dataSize"
+                    | "commandCode"
+                    | "objectCount"
+                    | "numMsgs"
+                    | "numMsgsToRemove"
+                    | "numberInterfaces"
+                    | "numJoints"
+                    | "numPoses"
+                    | "numCommands"
+                    | "numChildren"
+                    | "bufferSizeBytes"
             );
             if !used.contains(k) && !ignorable {
                 self.fail(
@@ -188,6 +246,34 @@ impl Cmp<'_> {
                 );
             }
         }
+    }
+
+    /// Builds `[{a: x0, b: y0}, ...]` from OpenJAUS's `{a: [x0, ...], b: [y0, ...]}` when
+    /// every field of the record `ty` is such a list in `oj`.
+    fn transpose(
+        &self,
+        ty: &str,
+        oj: &Map<String, Value>,
+        used: &mut Vec<String>,
+    ) -> Option<Value> {
+        let fields = &self.spec.ty(ty)?.def.fields;
+        let mut cols = Vec::new();
+        for f in fields {
+            let (k, v) = self.lookup(ty, &f.name, oj)?;
+            cols.push((f.name.clone(), k, v.as_array()?));
+        }
+        let n = cols.first()?.2.len();
+        if cols.iter().any(|c| c.2.len() != n) {
+            return None;
+        }
+        used.extend(cols.iter().map(|c| c.1.clone()));
+        Some(Value::Array(
+            (0..n)
+                .map(|i| {
+                    Value::Object(cols.iter().map(|c| (c.0.clone(), c.2[i].clone())).collect())
+                })
+                .collect(),
+        ))
     }
 
     #[allow(clippy::too_many_arguments)]
@@ -236,7 +322,7 @@ impl Cmp<'_> {
             };
             match (my, raw) {
                 (Some(m), Some(r)) if raw_of(m) == r => {}
-                (None, None) if f.bit.is_some() => {}
+                (None, None) if f.bit.is_some() || f.present_if.is_some() => {}
                 (Some(m), r) => self.fail(at, format!("bits {} vs OpenJAUS {r:?}", raw_of(m))),
                 (None, r) => self.fail(at, format!("absent here but OpenJAUS has {r:?}")),
             }
@@ -383,14 +469,16 @@ impl Cmp<'_> {
                     self.fail(at, format!("{my} vs OpenJAUS {oj}"));
                 }
             }
-            Wire::List { elem, .. } | Wire::ListField { elem, .. } => match (my.as_array(), oj.as_array()) {
-                (Some(a), Some(b)) if a.len() == b.len() => {
-                    for (i, (x, y)) in a.iter().zip(b).enumerate() {
-                        self.value(elem, x, y, &format!("{at}[{i}]"));
+            Wire::List { elem, .. } | Wire::ListField { elem, .. } => {
+                match (my.as_array(), oj.as_array()) {
+                    (Some(a), Some(b)) if a.len() == b.len() => {
+                        for (i, (x, y)) in a.iter().zip(b).enumerate() {
+                            self.value(elem, x, y, &format!("{at}[{i}]"));
+                        }
                     }
+                    _ => self.fail(at, format!("list {my} vs OpenJAUS {oj}")),
                 }
-                _ => self.fail(at, format!("list {my} vs OpenJAUS {oj}")),
-            },
+            }
             Wire::Packet { .. } => {
                 if my["body"].as_str() != oj["data"].as_str() {
                     self.fail(

@@ -161,7 +161,7 @@ fn record_strategy(spec: &Spec, fields: &[FieldDef]) -> BoxedStrategy<Value> {
         .map(|f| {
             let name = f.name.clone();
             let s = wire_strategy(spec, &spec.wire(f)).prop_map(move |v| (name.clone(), v));
-            if f.bit.is_some() {
+            if f.bit.is_some() && spec.wire(f) != Wire::Flag || f.present_if.is_some() {
                 prop::option::of(s).boxed()
             } else {
                 s.prop_map(Some).boxed()
