@@ -1050,6 +1050,13 @@ pub fn message(input: &DeriveInput, is_message: bool) -> TokenStream {
         }
         None => (quote!(), quote!()),
     };
+    // Records (which may nest, even recursively) count their depth. On an error the
+    // reader is abandoned, so only the success path needs to leave.
+    let (enter, leave) = if is_message || model.fields.is_empty() {
+        (quote!(), quote!())
+    } else {
+        (quote!(r.enter()?;), quote!(r.leave();))
+    };
     let construct = if model.unit {
         quote!(#ident)
     } else {
@@ -1093,8 +1100,10 @@ pub fn message(input: &DeriveInput, is_message: bool) -> TokenStream {
             #[inline]
             fn decode(r: &mut #codec::Reader<'_>) -> ::core::result::Result<Self, #codec::DecodeError> {
                 #unused_r
+                #enter
                 #pv_decode
                 #(#decodes)*
+                #leave
                 Ok(#construct)
             }
         }

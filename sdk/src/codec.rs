@@ -19,7 +19,13 @@ pub struct Reader<'a> {
     base: usize,
     /// Values of fields that later (possibly nested) fields depend on.
     vars: Vars,
+    /// Nesting depth of records being decoded (bounded: recursive types such as task
+    /// trees must not exhaust the stack on hostile input).
+    depth: u16,
 }
+
+/// Deepest nesting of records a decoder accepts.
+pub const MAX_DEPTH: u16 = 64;
 
 /// Named integer values set while encoding/decoding, read by later fields: a count kept
 /// in another field (`count_var`) or a flag deciding whether a nested field is present
@@ -69,6 +75,7 @@ impl<'a> Reader<'a> {
             pos: 0,
             base: 0,
             vars: Vars::default(),
+            depth: 0,
         }
     }
 
@@ -76,6 +83,25 @@ impl<'a> Reader<'a> {
     #[inline]
     pub fn vars(&mut self) -> &mut Vars {
         &mut self.vars
+    }
+
+    /// Enters a nested record; fails beyond [`MAX_DEPTH`].
+    #[inline]
+    pub fn enter(&mut self) -> Result<(), DecodeError> {
+        if self.depth >= MAX_DEPTH {
+            return Err(DecodeError::new(
+                DecodeErrorKind::TooDeep { max: MAX_DEPTH },
+                self.offset(),
+            ));
+        }
+        self.depth += 1;
+        Ok(())
+    }
+
+    /// Leaves a nested record.
+    #[inline]
+    pub fn leave(&mut self) {
+        self.depth = self.depth.saturating_sub(1);
     }
 
     /// The value of variable `name`, or a typed error if no earlier field set it.
@@ -151,6 +177,7 @@ impl<'a> Reader<'a> {
             pos: 0,
             base,
             vars: self.vars,
+            depth: self.depth,
         })
     }
 
@@ -653,6 +680,11 @@ pub enum DecodeErrorKind {
         /// Size actually consumed.
         consumed: usize,
     },
+    /// Records nest deeper than [`MAX_DEPTH`].
+    TooDeep {
+        /// The limit.
+        max: u16,
+    },
     /// A field depends on an earlier field (a count or flag) that was not decoded.
     MissingVariable {
         /// The variable name.
@@ -755,6 +787,7 @@ impl fmt::Display for DecodeErrorKind {
             }
             Self::TrailingBytes { count } => write!(f, "{count} unexpected trailing byte(s)"),
             Self::MissingVariable { name } => write!(f, "no earlier field sets `{name}`"),
+            Self::TooDeep { max } => write!(f, "records nested deeper than {max} levels"),
             Self::UndefinedValue { value } => write!(f, "undefined value {value}"),
             Self::UnknownCommandCode { code } => write!(f, "unknown command code 0x{code:04X}"),
             Self::TruncatedHeader { len } => {

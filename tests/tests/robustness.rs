@@ -147,3 +147,28 @@ fn garbage_packets_are_rejected_not_panicked_on() {
         }
     }
 }
+
+#[test]
+fn a_hostile_task_tree_nesting_is_refused_without_exhausting_the_stack() {
+    // Spool Mission: mission id, append flag, then 20 000 tasks each with one child.
+    let mut body = vec![1, 0, 0];
+    for id in 0..20_000u16 {
+        body.extend_from_slice(&id.to_le_bytes());
+        body.extend_from_slice(&1u16.to_le_bytes()); // one child
+        body.extend_from_slice(&0u32.to_le_bytes()); // its offset
+        body.extend_from_slice(&0u16.to_le_bytes()); // no messages
+    }
+    body.extend_from_slice(&[0, 0, 0, 0, 0, 0]); // a leaf
+    let err = Message::decode(CommandCode(0x0E00), &body).unwrap_err();
+    assert!(err.to_string().contains("nested deeper than"), "{err}");
+    // A tree as deep as allowed still decodes.
+    let mut ok = vec![1, 0, 0];
+    for id in 0..(jaus::codec::MAX_DEPTH - 1) {
+        ok.extend_from_slice(&id.to_le_bytes());
+        ok.extend_from_slice(&1u16.to_le_bytes());
+        ok.extend_from_slice(&0u32.to_le_bytes());
+        ok.extend_from_slice(&0u16.to_le_bytes());
+    }
+    ok.extend_from_slice(&[0, 0, 0, 0, 0, 0]);
+    assert!(Message::decode(CommandCode(0x0E00), &ok).is_ok());
+}
