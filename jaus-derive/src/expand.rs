@@ -85,6 +85,8 @@ enum Shape {
     /// A list whose count is the value of an earlier field (`count_var`).
     ListVar {
         var: String,
+        /// `count_var = "n - 1"`: the count is the variable minus this.
+        minus: u64,
         elem: Elem,
     },
     /// A presence-vector bit with no bytes of its own (`flag = N` on a `bool`).
@@ -243,8 +245,20 @@ fn classify(
             }
             None => Elem::Plain(inner.clone()),
         };
+        // `name` or `name - N`.
+        let (name, minus) = match var.split_once('-') {
+            Some((n, m)) => match m.trim().parse::<u64>() {
+                Ok(m) => (n.trim().to_string(), m),
+                Err(_) => {
+                    errors.error(*span, "`count_var` is a field name, optionally minus a constant: \"n\" or \"n - 1\"");
+                    return None;
+                }
+            },
+            None => (var.trim().to_string(), 0),
+        };
         return Some(Shape::ListVar {
-            var: var.clone(),
+            var: name,
+            minus,
             elem,
         });
     }
@@ -549,7 +563,7 @@ fn struct_model(input: &DeriveInput, c: &ContainerAttrs, errors: &mut Errors) ->
         .iter()
         .map(|f| {
             let var = match &f.shape {
-                Shape::ListVar { var, .. } => Some(var.clone()),
+                Shape::ListVar { var, minus: 0, .. } => Some(var.clone()),
                 _ => None,
             };
             (
@@ -763,7 +777,7 @@ fn decode_expr(shape: &Shape, k: &TokenStream) -> TokenStream {
             Len::Rest if *nul => quote!(Ok::<_, #err>(#codec::get_rest_string(r))),
             Len::Rest => quote!(Ok::<_, #err>(#codec::latin1_to_string(r.rest()))),
         },
-        Shape::ListVar { var, elem } => {
+        Shape::ListVar { var, minus, elem } => {
             let var = lit(var);
             let (ty, min, read) = match elem {
                 Elem::Plain(ty) => (
@@ -782,7 +796,7 @@ fn decode_expr(shape: &Shape, k: &TokenStream) -> TokenStream {
                 }
             };
             quote!((|r: &mut #codec::Reader<'_>| -> ::core::result::Result<::std::vec::Vec<#ty>, #err> {
-                let n = r.var(#var)?;
+                let n = r.var(#var)?.saturating_sub(#minus);
                 let n = r.check_count(n, #min)?;
                 let mut out = ::std::vec::Vec::with_capacity(n);
                 for _ in 0..n {
@@ -907,7 +921,7 @@ pub fn message(input: &DeriveInput, is_message: bool) -> TokenStream {
         };
         let path = &f.path;
         let enc = match &f.shape {
-            Shape::ListVar { var, elem } => {
+            Shape::ListVar { var, minus, elem } => {
                 let var = lit(var);
                 let each = match elem {
                     Elem::Plain(_) => quote!(#codec::Encode::encode(e, w)?;),
@@ -942,7 +956,7 @@ pub fn message(input: &DeriveInput, is_message: bool) -> TokenStream {
                     }
                 };
                 quote! {
-                    let expected = w.var(#var, #path)?;
+                    let expected = w.var(#var, #path)?.saturating_sub(#minus);
                     let n = #n;
                     if n as u64 != expected {
                         return Err(#codec::EncodeError::CountMismatch { field: #path, len: n, count_field: #var, expected });

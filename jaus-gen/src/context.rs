@@ -389,7 +389,11 @@ fn field_ctx(spec: &Spec, f: &FieldDef, rt: &str) -> FieldCtx {
 fn vars(spec: &Spec) -> Vec<String> {
     fn walk(fields: &[FieldDef], out: &mut Vec<String>) {
         for f in fields {
-            out.extend(f.count_field.iter().cloned());
+            out.extend(
+                f.count_field
+                    .iter()
+                    .map(|c| c.split('-').next().unwrap_or(c).trim().to_string()),
+            );
             out.extend(f.present_if.iter().cloned());
             if let Some(e) = &f.of {
                 walk(std::slice::from_ref(&e.0), out);

@@ -277,10 +277,21 @@ fn check_fields(
         }
         // Fields this one depends on: earlier in this struct, or in a struct that
         // contains it (a record nested in a message).
-        for (key, dep) in [
-            ("count_field", &f.count_field),
-            ("present_if", &f.present_if),
-        ] {
+        let count_dep = f
+            .count_field
+            .as_deref()
+            .map(|c| c.split('-').next().unwrap_or(c).trim().to_string());
+        if let Some((_, m)) = f.count_field.as_deref().and_then(|c| c.split_once('-')) {
+            if m.trim().parse::<u64>().is_err() {
+                cx.err(
+                    source,
+                    &format!("{path}.count_field"),
+                    ctx.clone(),
+                    "`count_field` is a field name, optionally minus a constant (`num_joints - 1`)",
+                );
+            }
+        }
+        for (key, dep) in [("count_field", &count_dep), ("present_if", &f.present_if)] {
             if let Some(dep) = dep {
                 let here = fields[..i].iter().any(|g| &g.name == dep);
                 if !here && !in_container(cx.spec, owner, dep) {

@@ -100,6 +100,38 @@ struct Cmp<'a> {
     errors: Vec<String>,
 }
 
+/// `key[i]`, `key[-1]` (from the end) or `key[..-1]` (all but the last) of an OpenJAUS
+/// list.
+fn index_path(obj: &Map<String, Value>, path: &str) -> Option<Value> {
+    let (key, rest) = path.split_once('[')?;
+    let idx = rest.strip_suffix(']')?;
+    // A list OpenJAUS leaves out when it is empty.
+    let empty = Vec::new();
+    let list = match obj.get(key) {
+        Some(v) => v.as_array()?,
+        None if idx.contains("..") => &empty,
+        None => return None,
+    };
+    let n = list.len() as i64;
+    let at = |i: i64| if i < 0 { n + i } else { i };
+    match idx.split_once("..") {
+        Some((a, b)) => {
+            let a = if a.is_empty() { 0 } else { at(a.parse().ok()?) };
+            let b = if b.is_empty() {
+                n
+            } else {
+                at(b.parse().ok()?).max(0)
+            };
+            (0 <= a && a <= b && b <= n)
+                .then(|| Value::Array(list[a as usize..b as usize].to_vec()))
+        }
+        None => {
+            let i = at(idx.parse().ok()?);
+            (0..n).contains(&i).then(|| list[i as usize].clone())
+        }
+    }
+}
+
 fn get_path<'v>(obj: &'v Map<String, Value>, path: &str) -> Option<&'v Value> {
     let mut parts = path.split('.');
     let mut cur = obj.get(parts.next()?)?;
@@ -139,7 +171,20 @@ impl Cmp<'_> {
         oj: &Map<String, Value>,
         at: &str,
     ) {
-        let mut used: Vec<String> = Vec::new();
+        let used = self.fields_used(owner, defs, mine, oj, at, Vec::new());
+        self.check_unused(owner, oj, &used, at);
+    }
+
+    /// Compares the fields of `owner`; returns the OpenJAUS keys used.
+    fn fields_used(
+        &mut self,
+        owner: &str,
+        defs: &[FieldDef],
+        mine: &Map<String, Value>,
+        oj: &Map<String, Value>,
+        at: &str,
+        mut used: Vec<String>,
+    ) -> Vec<String> {
         for f in defs {
             let here = format!("{at}.{}", f.name);
             let wire = self.spec.wire(f);
@@ -157,6 +202,40 @@ impl Cmp<'_> {
             if rule.as_deref() == Some("-") {
                 // A field OpenJAUS does not expose (a count or offsets it recomputes);
                 // the byte comparison covers it.
+                continue;
+            }
+            if rule.as_deref() == Some(".") {
+                // A record whose fields OpenJAUS keeps in the enclosing object.
+                let inner = match &wire {
+                    Wire::Named { name, .. } => self
+                        .spec
+                        .ty(name)
+                        .map(|t| (name.clone(), t.def.fields.clone())),
+                    _ => None,
+                };
+                match (my.and_then(Value::as_object), inner) {
+                    (Some(m), Some((name, defs))) => {
+                        used = self.fields_used(&name, &defs, m, oj, &here, used)
+                    }
+                    (None, _) if f.present_if.is_some() || f.bit.is_some() => {}
+                    _ => self.fail(&here, "cannot compare a flattened record".into()),
+                }
+                continue;
+            }
+            if let Some(r) = rule
+                .as_deref()
+                .filter(|r| r.contains('[') && !oj.contains_key(*r))
+            {
+                // An element or a slice of an OpenJAUS list.
+                let key = r.split('[').next().unwrap_or("").to_string();
+                match (my, index_path(oj, r)) {
+                    (Some(m), Some(o)) => {
+                        used.push(key);
+                        self.value(&wire, m, &o, &here);
+                    }
+                    (None, None) => {}
+                    (m, o) => self.fail(&here, format!("{m:?} vs OpenJAUS {o:?}")),
+                }
                 continue;
             }
             // `key * factor`: OpenJAUS holds the value in other units.
@@ -220,6 +299,10 @@ impl Cmp<'_> {
                 (None, None) => self.fail(&here, "missing on both sides".into()),
             }
         }
+        used
+    }
+
+    fn check_unused(&mut self, owner: &str, oj: &Map<String, Value>, used: &[String], at: &str) {
         for (k, v) in oj {
             // Counts OpenJAUS reports next to the lists they count.
             let ignorable = matches!(
@@ -239,7 +322,7 @@ impl Cmp<'_> {
                     | "numChildren"
                     | "bufferSizeBytes"
             );
-            if !used.contains(k) && !ignorable {
+            if !used.iter().any(|u| u == k) && !ignorable {
                 self.fail(
                     at,
                     format!("OpenJAUS field `{k}` = {v} matches no field of {owner}"),
@@ -359,6 +442,8 @@ impl Cmp<'_> {
                 let same = match (my.as_i64(), oj.as_i64(), my.as_u64(), oj.as_u64()) {
                     (Some(a), Some(b), _, _) => a == b,
                     (_, _, Some(a), Some(b)) => a == b,
+                    // OpenJAUS holds some raw integers in floating-point fields.
+                    _ if oj.is_f64() => my.as_f64() == oj.as_f64(),
                     _ => oj.as_bool().map(u64::from) == my.as_u64(),
                 };
                 if !same {
@@ -416,6 +501,27 @@ impl Cmp<'_> {
                         let Some(var) = def.variants.iter().find(|v| v.name == vname) else {
                             return self.fail(at, format!("unknown variant in {my}"));
                         };
+                        if let Some(tag_key) = self.names.get(&format!("{name}.tag")).cloned() {
+                            // OpenJAUS keeps the tag and the variant's fields in one object.
+                            if Some(var.tag) != oj.get(&tag_key).and_then(Value::as_u64) {
+                                return self.fail(
+                                    at,
+                                    format!("variant {vname} (tag {}) vs OpenJAUS {oj}", var.tag),
+                                );
+                            }
+                            let rec = var
+                                .ty
+                                .as_deref()
+                                .and_then(|t| self.spec.ty(t))
+                                .map(|t| (t.def.name.clone(), t.def.fields.clone()));
+                            if let (Some((rname, defs)), Some(p), Some(o)) =
+                                (rec, payload.as_object(), oj.as_object())
+                            {
+                                let used = self.fields_used(&rname, &defs, p, o, at, vec![tag_key]);
+                                self.check_unused(&rname, o, &used, at);
+                            }
+                            return;
+                        }
                         if Some(var.tag) != oj.get("dataType").and_then(Value::as_u64) {
                             return self.fail(
                                 at,
