@@ -1566,8 +1566,55 @@ pub fn union(input: &DeriveInput) -> TokenStream {
             }
         }
     }
-    let _ = format_ident!("x");
+    // Tag and value apart: for unions whose tag is carried elsewhere (a type code in
+    // another field or message).
+    let tags = variants.iter().map(|(v, val, p)| {
+        if p.is_some() {
+            quote!(Self::#v(_) => #val)
+        } else {
+            quote!(Self::#v => #val)
+        }
+    });
+    let value_encs = variants.iter().map(|(v, _, p)| {
+        if p.is_some() {
+            quote!(Self::#v(x) => #codec::Encode::encode(x, w))
+        } else {
+            quote!(Self::#v => Ok(()))
+        }
+    });
+    let value_lens = variants.iter().map(|(v, _, p)| {
+        if p.is_some() {
+            quote!(Self::#v(x) => #codec::Encode::encoded_len(x))
+        } else {
+            quote!(Self::#v => 0)
+        }
+    });
     quote! {
+        impl #ident {
+            /// The tag of this variant.
+            pub fn tag(&self) -> u64 {
+                match self { #(#tags,)* }
+            }
+
+            /// Reads the value of the variant with tag `tag` (the tag itself is not read).
+            pub fn decode_value(tag: u64, r: &mut #codec::Reader<'_>) -> ::core::result::Result<Self, #codec::DecodeError> {
+                let at = r.offset();
+                match tag {
+                    #(#decs,)*
+                    other => Err(#codec::DecodeError::new(#codec::DecodeErrorKind::UndefinedValue { value: other }, at)),
+                }
+            }
+
+            /// Writes the value without the tag.
+            pub fn encode_value(&self, w: &mut #codec::Writer<'_>) -> ::core::result::Result<(), #codec::EncodeError> {
+                match self { #(#value_encs,)* }
+            }
+
+            /// Bytes of the value without the tag.
+            pub fn value_len(&self) -> usize {
+                match self { #(#value_lens,)* }
+            }
+        }
         impl #codec::Encode for #ident {
             #[inline]
             fn encoded_len(&self) -> usize { match self { #(#lens,)* } }
@@ -1581,9 +1628,12 @@ pub fn union(input: &DeriveInput) -> TokenStream {
             fn decode(r: &mut #codec::Reader<'_>) -> ::core::result::Result<Self, #codec::DecodeError> {
                 let at = r.offset();
                 let tag = <#tt as #codec::Decode>::decode(r)?;
-                match tag as u64 {
-                    #(#decs,)*
-                    other => Err(#codec::DecodeError::new(#codec::DecodeErrorKind::UndefinedValue { value: other }, at)),
+                match Self::decode_value(tag as u64, r) {
+                    // An undefined tag is reported where the tag is.
+                    Err(e) if matches!(e.kind(), #codec::DecodeErrorKind::UndefinedValue { .. }) && e.offset() == at + #n => {
+                        Err(#codec::DecodeError::new(e.kind().clone(), at))
+                    }
+                    other => other,
                 }
             }
         }

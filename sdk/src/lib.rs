@@ -58,6 +58,8 @@ extern crate self as jaus;
 pub mod cli;
 pub mod codec;
 pub mod hex;
+#[cfg(feature = "payload")]
+pub mod payload;
 pub mod wire;
 
 pub use jaus_derive::{JausBits, JausEnum, JausMessage, JausRecord, JausUnion};

@@ -1,0 +1,161 @@
+//! Payload data elements: the values of Set/Report Payload Data Element, which can only
+//! be read with the type codes of the payload's interfaces (from its Report Payload
+//! Interface). The messages keep the elements as raw bytes, so they always round-trip;
+//! this module reads and writes them given those type codes.
+//!
+//! ```
+//! use jaus::messages::{PayloadValue, SetPayloadDataElement};
+//! use jaus::payload::{DataElement, PayloadTypes};
+//!
+//! // Interface 1 is an unsigned short, interface 2 a boolean.
+//! let types = PayloadTypes::new(vec![5, 18]);
+//! let set = SetPayloadDataElement::with_elements(&[
+//!     DataElement { index: 2, value: PayloadValue::Boolean(1) },
+//!     DataElement { index: 1, value: PayloadValue::UnsignedShort(600) },
+//! ])
+//! .unwrap();
+//! assert_eq!(set.elements, [2, 1, 1, 0x58, 0x02]);
+//! assert_eq!(set.data_elements(&types).unwrap()[1].value, PayloadValue::UnsignedShort(600));
+//! ```
+
+use crate::codec::{DecodeError, DecodeErrorKind, EncodeError, Reader, Writer};
+use crate::messages::{PayloadValue, ReportPayloadDataElement, SetPayloadDataElement};
+
+/// Type codes of a payload's interfaces, in interface-index order (index 1 first).
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct PayloadTypes {
+    codes: Vec<u8>,
+}
+
+impl PayloadTypes {
+    /// From the type codes of the interfaces, in index order.
+    pub fn new(codes: Vec<u8>) -> Self {
+        Self { codes }
+    }
+
+    /// The type code of 1-based interface `index`.
+    pub fn type_of(&self, index: u8) -> Option<u8> {
+        usize::from(index)
+            .checked_sub(1)
+            .and_then(|i| self.codes.get(i))
+            .copied()
+    }
+}
+
+/// One data element: an interface index and its value.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DataElement {
+    /// 1-based interface index.
+    pub index: u8,
+    /// The value; its variant is the interface's type code.
+    pub value: PayloadValue,
+}
+
+/// Reads `count` elements from `bytes`.
+pub fn decode_elements(
+    count: u8,
+    bytes: &[u8],
+    types: &PayloadTypes,
+) -> Result<Vec<DataElement>, DecodeError> {
+    let mut r = Reader::new(bytes);
+    let mut out = Vec::with_capacity(usize::from(count).min(bytes.len()));
+    for _ in 0..count {
+        let at = r.offset();
+        let index = u8::from_le_bytes(r.array()?);
+        let code = types.type_of(index).ok_or_else(|| {
+            DecodeError::new(
+                DecodeErrorKind::UndefinedValue {
+                    value: u64::from(index),
+                },
+                at,
+            )
+            .in_field("DataElement.index")
+        })?;
+        let value = PayloadValue::decode_value(u64::from(code), &mut r)
+            .map_err(|e| e.in_field("DataElement.value"))?;
+        out.push(DataElement { index, value });
+    }
+    r.finish()?;
+    Ok(out)
+}
+
+/// Writes elements: for each, the index then the value without its type code.
+pub fn encode_elements(elements: &[DataElement]) -> Result<(u8, Vec<u8>), EncodeError> {
+    let count = u8::try_from(elements.len()).map_err(|_| EncodeError::CountOverflow {
+        field: "DataElement",
+        count: elements.len(),
+        max: 255,
+    })?;
+    let len = elements.iter().map(|e| 1 + e.value.value_len()).sum();
+    let mut out = vec![0u8; len];
+    let mut w = Writer::new(&mut out);
+    for e in elements {
+        w.put(&[e.index])?;
+        e.value.encode_value(&mut w)?;
+    }
+    Ok((count, out))
+}
+
+impl SetPayloadDataElement {
+    /// The message carrying `elements` (indexes into the command interfaces).
+    pub fn with_elements(elements: &[DataElement]) -> Result<Self, EncodeError> {
+        let (element_count, elements) = encode_elements(elements)?;
+        Ok(Self {
+            element_count,
+            elements,
+        })
+    }
+
+    /// The elements, read with the type codes of the payload's command interfaces.
+    pub fn data_elements(
+        &self,
+        command_interfaces: &PayloadTypes,
+    ) -> Result<Vec<DataElement>, DecodeError> {
+        decode_elements(self.element_count, &self.elements, command_interfaces)
+    }
+}
+
+impl ReportPayloadDataElement {
+    /// The message carrying `elements` (indexes into the information interfaces).
+    pub fn with_elements(elements: &[DataElement]) -> Result<Self, EncodeError> {
+        let (element_count, elements) = encode_elements(elements)?;
+        Ok(Self {
+            element_count,
+            elements,
+        })
+    }
+
+    /// The elements, read with the type codes of the payload's information interfaces.
+    pub fn data_elements(
+        &self,
+        information_interfaces: &PayloadTypes,
+    ) -> Result<Vec<DataElement>, DecodeError> {
+        decode_elements(self.element_count, &self.elements, information_interfaces)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn unknown_index_and_short_data_are_typed_errors() {
+        let types = PayloadTypes::new(vec![2]);
+        assert!(
+            decode_elements(1, &[2, 0, 0, 0, 0], &types).is_err(),
+            "index 2 has no interface"
+        );
+        assert!(
+            decode_elements(1, &[1, 0, 0], &types).is_err(),
+            "an integer needs 4 bytes"
+        );
+        assert!(
+            decode_elements(1, &[1, 0, 0, 0, 0, 9], &types).is_err(),
+            "trailing bytes"
+        );
+        assert_eq!(
+            decode_elements(1, &[1, 1, 0, 0, 0], &types).unwrap()[0].value,
+            PayloadValue::Integer(1)
+        );
+    }
+}
