@@ -144,19 +144,20 @@ impl<'a> Reader<'a> {
     /// Consumes a fixed-size array.
     #[inline]
     pub fn array<const N: usize>(&mut self) -> Result<[u8; N], DecodeError> {
-        if self.remaining() < N {
-            return Err(DecodeError::new(
-                DecodeErrorKind::Truncated {
-                    needed: N,
-                    available: self.remaining(),
-                },
-                self.offset(),
-            ));
+        // One bounds check on the hot path; the error is built out of line.
+        match self.buf.get(self.pos..).and_then(<[u8]>::first_chunk::<N>) {
+            Some(a) => {
+                self.pos += N;
+                Ok(*a)
+            }
+            None => Err(self.truncated(N)),
         }
-        let mut out = [0u8; N];
-        out.copy_from_slice(&self.buf[self.pos..self.pos + N]);
-        self.pos += N;
-        Ok(out)
+    }
+
+    #[cold]
+    #[inline(never)]
+    fn truncated(&self, needed: usize) -> DecodeError {
+        DecodeError::new(DecodeErrorKind::Truncated { needed, available: self.remaining() }, self.offset())
     }
 
     /// Consumes every remaining byte.
@@ -198,6 +199,7 @@ impl<'a> Reader<'a> {
     }
 
     /// Fails with [`DecodeErrorKind::TrailingBytes`] unless every byte was consumed.
+    #[inline]
     pub fn finish(&self) -> Result<(), DecodeError> {
         if self.remaining() == 0 {
             Ok(())
@@ -324,6 +326,7 @@ pub trait Decode: Sized {
     fn decode(r: &mut Reader<'_>) -> Result<Self, DecodeError>;
 
     /// Decodes a whole buffer, failing if bytes are left over.
+    #[inline]
     fn from_bytes(bytes: &[u8]) -> Result<Self, DecodeError> {
         let mut r = Reader::new(bytes);
         let v = Self::decode(&mut r)?;

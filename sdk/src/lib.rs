@@ -73,6 +73,7 @@ pub trait JausMessage: codec::Encode + codec::Decode {
     const NAME: &'static str;
 
     /// Decodes a whole body, naming this message in any error.
+    #[inline]
     fn decode_body(body: &[u8]) -> Result<Self, codec::DecodeError> {
         Self::from_bytes(body).map_err(|e| e.in_message(Self::NAME))
     }
