@@ -54,6 +54,8 @@ enum Len {
     Fixed(usize),
     Size(Int),
     Rest,
+    /// Up to and including a NUL byte.
+    Nul,
 }
 
 #[allow(clippy::large_enum_variant)] // built once per field at compile time
@@ -91,6 +93,11 @@ enum Shape {
     },
     /// A presence-vector bit with no bytes of its own (`flag = N` on a `bool`).
     Flag(u32),
+    /// A union whose tag is the value of an earlier field (`tag_var`).
+    TagVar {
+        ty: Type,
+        var: String,
+    },
     Sized {
         size: Int,
         ty: Type,
@@ -208,8 +215,31 @@ fn classify(
         (Some((n, _)), _, _) => Some(Len::Fixed(n)),
         (_, Some(s), _) => Some(Len::Size(s)),
         (_, _, Some(_)) => Some(Len::Rest),
+        _ if a.nul_terminated.is_some() => Some(Len::Nul),
         _ => None,
     };
+    if let Some(span) = a.nul_terminated {
+        if name.as_deref() != Some("String") || lens > 0 {
+            errors.error(
+                span,
+                "`nul_terminated` applies to a `String` field without `fixed`, `size` or `rest`",
+            );
+            return None;
+        }
+    }
+    if let Some((var, span)) = &a.tag_var {
+        if lens > 0 || a.count.is_some() || a.scaled.is_some() || is_int_type(ty).is_some() {
+            errors.error(
+                *span,
+                "`tag_var` applies to a field whose type is a `JausUnion`",
+            );
+            return None;
+        }
+        return Some(Shape::TagVar {
+            ty: ty.clone(),
+            var: var.clone(),
+        });
+    }
     if let Some(span) = a.nul {
         if !(name.as_deref() == Some("String") && a.rest.is_some()) {
             errors.error(span, "`nul` only applies to a `String` field with `rest`");
@@ -630,9 +660,10 @@ fn len_expr(shape: &Shape, v: &TokenStream, k: &TokenStream) -> TokenStream {
                 let c = s.bytes();
                 quote!(#c + #v.len())
             }
-            Len::Rest => quote!(#v.len()),
+            Len::Rest | Len::Nul => quote!(#v.len()),
         },
         Shape::Str { len, nul, .. } => match len {
+            Len::Nul => quote!(#codec::latin1_len(#v) + 1),
             Len::Fixed(n) => quote!(#n),
             Len::Size(s) => {
                 let c = s.bytes();
@@ -655,6 +686,7 @@ fn len_expr(shape: &Shape, v: &TokenStream, k: &TokenStream) -> TokenStream {
             }
         },
         Shape::Flag(_) => quote!(0usize),
+        Shape::TagVar { .. } => quote!(#v.value_len()),
     }
 }
 
@@ -667,6 +699,16 @@ fn encode_stmt(shape: &Shape, v: &TokenStream, path: &LitStr, k: &TokenStream) -
     match shape {
         // Written by the caller, which knows the neighbouring fields.
         Shape::ListVar { .. } | Shape::Flag(_) => quote!(let _ = #v;),
+        Shape::TagVar { var, .. } => {
+            let var = lit(var);
+            quote! {
+                let expected = w.var(#var, #path)?;
+                if #v.tag() != expected {
+                    return Err(#codec::EncodeError::TagMismatch { field: #path, tag: #v.tag(), tag_field: #var, expected });
+                }
+                #v.encode_value(w)?;
+            }
+        }
         Shape::Plain(_) => quote!(#codec::Encode::encode(#v, w)?;),
         Shape::Scaled(s) => {
             let (t, lo, hi) = scaled_args(s);
@@ -692,9 +734,10 @@ fn encode_stmt(shape: &Shape, v: &TokenStream, path: &LitStr, k: &TokenStream) -
                 let c = s.ident();
                 quote!(#codec::put_count::<#c>(w, #v.len(), #path)?; w.put(#v)?;)
             }
-            Len::Rest => quote!(w.put(#v)?;),
+            Len::Rest | Len::Nul => quote!(w.put(#v)?;),
         },
         Shape::Str { len, nul, .. } => match len {
+            Len::Nul => quote!(#codec::put_cstring(w, #v, #path)?;),
             Len::Fixed(n) => quote!(#codec::put_fixed_string(w, #v, #n, #path)?;),
             Len::Size(s) => {
                 let c = s.ident();
@@ -762,7 +805,7 @@ fn decode_expr(shape: &Shape, k: &TokenStream) -> TokenStream {
                 let c = s.ident();
                 quote!(#codec::get_count::<#c>(r, 1).and_then(|n| r.take(n)).map(|b| b.to_vec()))
             }
-            Len::Rest => quote!(Ok::<_, #err>(r.rest().to_vec())),
+            Len::Rest | Len::Nul => quote!(Ok::<_, #err>(r.rest().to_vec())),
         },
         Shape::Str {
             len,
@@ -774,9 +817,14 @@ fn decode_expr(shape: &Shape, k: &TokenStream) -> TokenStream {
                 let c = s.ident();
                 quote!(#codec::get_count::<#c>(r, 1).and_then(|n| r.take(n)).map(#codec::latin1_to_string))
             }
+            Len::Nul => quote!(#codec::get_cstring(r)),
             Len::Rest if *nul => quote!(Ok::<_, #err>(#codec::get_rest_string(r))),
             Len::Rest => quote!(Ok::<_, #err>(#codec::latin1_to_string(r.rest()))),
         },
+        Shape::TagVar { ty, var } => {
+            let var = lit(var);
+            quote!(r.var(#var).and_then(|tag| <#ty>::decode_value(tag, r)))
+        }
         Shape::ListVar { var, minus, elem } => {
             let var = lit(var);
             let (ty, min, read) = match elem {
@@ -853,7 +901,10 @@ fn min_len(shape: &Shape, k: &TokenStream) -> TokenStream {
             quote!(#n)
         }
         Shape::Bytes(Len::Rest) | Shape::Str { len: Len::Rest, .. } => quote!(0usize),
-        Shape::ListVar { .. } | Shape::Flag(_) => quote!(0usize),
+        Shape::Str { len: Len::Nul, .. } => quote!(1usize),
+        Shape::ListVar { .. } | Shape::Flag(_) | Shape::TagVar { .. } | Shape::Bytes(Len::Nul) => {
+            quote!(0usize)
+        }
     }
 }
 

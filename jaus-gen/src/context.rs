@@ -214,10 +214,21 @@ fn map_wire(w: &Wire, rt: &str) -> Mapped {
                 (hi - lo) / d
             ));
         }
-        Wire::Named { name, size, .. } => {
+        Wire::Named {
+            name,
+            size,
+            tag_field,
+            ..
+        } => {
             m.ty = name.clone();
             if let Some(s) = size {
                 m.attr.push(format!("size = {}", s.rust()));
+            }
+            if let Some(t) = tag_field {
+                m.attr.push(format!("tag_var = \"{t}\""));
+                m.doc.push(format!(
+                    "Its tag is the field `{t}`, not sent with the value."
+                ));
             }
         }
         Wire::Str(len) => {
@@ -316,6 +327,10 @@ fn len_attrs(m: &mut Mapped, len: Len, what: &str) {
                 c.rust()
             ));
         }
+        Len::Nul => {
+            m.attr.push("nul_terminated".into());
+            m.doc.push(format!("A NUL-terminated {what}."));
+        }
         Len::Rest { nul } => {
             m.attr.push("rest".into());
             m.doc.push("Runs to the end of the body.".into());
@@ -395,6 +410,7 @@ fn vars(spec: &Spec) -> Vec<String> {
                     .map(|c| c.split('-').next().unwrap_or(c).trim().to_string()),
             );
             out.extend(f.present_if.iter().cloned());
+            out.extend(f.tag_field.iter().cloned());
             if let Some(e) = &f.of {
                 walk(std::slice::from_ref(&e.0), out);
             }

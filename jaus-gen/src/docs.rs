@@ -73,6 +73,7 @@ fn len_text(len: &Len, what: &str) -> String {
         Len::Prefix(i) => format!("{what} (length {})", i.rust()),
         Len::Rest { nul: true } => format!("{what} (to end, NUL-terminated)"),
         Len::Rest { nul: false } => format!("{what} (to end)"),
+        Len::Nul => format!("{what} (NUL-terminated)"),
     }
 }
 
@@ -88,8 +89,16 @@ fn wire_text(spec: &Spec, w: &Wire, here: &str) -> (String, String) {
                 format!("[{lo}, {hi}], step {:.3e}", (hi - lo) / d),
             )
         }
-        Wire::Named { name, size, .. } => {
+        Wire::Named {
+            name,
+            size,
+            tag_field,
+            ..
+        } => {
             let t = type_link(spec, name, here);
+            let t = tag_field
+                .as_ref()
+                .map_or(t.clone(), |f| format!("{t} (tag in `{f}`)"));
             (
                 size.map_or(t.clone(), |s| format!("{t} (size {})", s.rust())),
                 String::new(),

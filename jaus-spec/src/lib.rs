@@ -233,6 +233,8 @@ pub enum Len {
         /// A NUL terminator is written (strings).
         nul: bool,
     },
+    /// Up to and including a NUL byte (C string).
+    Nul,
 }
 
 /// A field's wire form, resolved.
@@ -261,6 +263,8 @@ pub enum Wire {
         kind: TypeKind,
         /// Size prefix type.
         size: Option<Int>,
+        /// For a union: the earlier field holding its tag (not sent with the value).
+        tag_field: Option<String>,
     },
     /// 8-bit text.
     Str(Len),

@@ -144,6 +144,10 @@ pub struct FieldDef {
     /// later list field; computed on encode, informational on decode.
     #[serde(default)]
     pub offsets_of: Option<String>,
+    /// For a union-typed field: the earlier field holding its tag, which is then not
+    /// sent with the value (a type code given elsewhere).
+    #[serde(default)]
+    pub tag_field: Option<String>,
     /// Size prefix (byte length) type for a nested value or embedded message.
     #[serde(default)]
     pub size: Option<String>,
@@ -197,6 +201,8 @@ pub enum Length {
     Fixed(usize),
     /// To the end of the body.
     Rest,
+    /// Up to and including a NUL byte.
+    Nul,
 }
 
 impl<'de> Deserialize<'de> for Length {
@@ -218,9 +224,11 @@ impl<'de> Deserialize<'de> for Length {
             fn visit_str<E: de::Error>(self, v: &str) -> Result<Length, E> {
                 if v == "rest" {
                     Ok(Length::Rest)
+                } else if v == "nul" {
+                    Ok(Length::Nul)
                 } else {
                     Err(E::custom(format!(
-                        "`{v}` is not a length: use a number or `rest`"
+                        "`{v}` is not a length: use a number, `rest` or `nul`"
                     )))
                 }
             }

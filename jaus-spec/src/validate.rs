@@ -109,6 +109,8 @@ pub(crate) fn resolve(spec: &Spec, f: &FieldDef) -> Result<Wire, String> {
             (Some(_), Some(_)) => Err("give either `length` or `count`, not both".into()),
             (Some(Length::Fixed(n)), None) => Ok(Len::Fixed { n, accept_short: f.accept_short }),
             (Some(Length::Rest), None) => Ok(Len::Rest { nul: f.nul }),
+            (Some(Length::Nul), None) if ty == "string" => Ok(Len::Nul),
+            (Some(Length::Nul), None) => Err("`length: nul` applies to a string".into()),
             (None, Some(c)) => Ok(Len::Prefix(count_type(c)?)),
             (None, None) => Err(format!(
                 "count field missing: a `{ty}` needs `length: N` (fixed), `length: rest` or `count: u8|u16|u32` (length prefix)"
@@ -149,6 +151,9 @@ pub(crate) fn resolve(spec: &Spec, f: &FieldDef) -> Result<Wire, String> {
             let count = match (&f.count, f.length) {
                 (Some(c), None) => Some(count_type(c)?),
                 (None, Some(Length::Rest)) => None,
+                (None, Some(Length::Nul)) => {
+                    return Err("a list takes `count: T` or `length: rest`, not `nul`".into())
+                }
                 (None, Some(Length::Fixed(_))) => {
                     return Err("a list takes `count: T` or `length: rest`, not a fixed length".into())
                 }
@@ -162,7 +167,10 @@ pub(crate) fn resolve(spec: &Spec, f: &FieldDef) -> Result<Wire, String> {
         name => match spec.ty(name) {
             Some(t) => {
                 no("count", f.count.is_none())?;
-                Ok(Wire::Named { name: name.to_string(), kind: t.def.kind, size })
+                if f.tag_field.is_some() && t.def.kind != TypeKind::Union {
+                    return Err("`tag_field` applies to a union-typed field".into());
+                }
+                Ok(Wire::Named { name: name.to_string(), kind: t.def.kind, size, tag_field: f.tag_field.clone() })
             }
             None => Err(format!(
                 "unknown type `{name}`: use a basic type (u8, u16, u32, u64, i16, i32, i64, f32, f64 or their JAUS names), string, bytes, list, message, or a type defined under `types:`"
@@ -273,6 +281,16 @@ fn check_fields(
                     "type"
                 };
                 cx.err(source, &format!("{path}.{key}"), ctx.clone(), e);
+            }
+        }
+        if let Some(tf) = &f.tag_field {
+            if !fields[..i].iter().any(|g| &g.name == tf) && !in_container(cx.spec, owner, tf) {
+                cx.err(
+                    source,
+                    &format!("{path}.tag_field"),
+                    ctx.clone(),
+                    format!("`tag_field: {tf}` names no earlier field"),
+                );
             }
         }
         // Fields this one depends on: earlier in this struct, or in a struct that

@@ -157,7 +157,19 @@ impl<'a> Reader<'a> {
     #[cold]
     #[inline(never)]
     fn truncated(&self, needed: usize) -> DecodeError {
-        DecodeError::new(DecodeErrorKind::Truncated { needed, available: self.remaining() }, self.offset())
+        DecodeError::new(
+            DecodeErrorKind::Truncated {
+                needed,
+                available: self.remaining(),
+            },
+            self.offset(),
+        )
+    }
+
+    /// The remaining bytes, without consuming them.
+    #[inline]
+    pub fn peek_rest(&self) -> &'a [u8] {
+        &self.buf[self.pos..]
     }
 
     /// Consumes every remaining byte.
@@ -628,6 +640,33 @@ pub fn put_fixed_bytes(
     w.zeros(len - b.len())
 }
 
+/// Writes a NUL-terminated string (the text may not contain NUL).
+pub fn put_cstring(w: &mut Writer<'_>, s: &str, field: &'static str) -> Result<(), EncodeError> {
+    if s.contains('\0') {
+        return Err(EncodeError::NulInText { field });
+    }
+    put_latin1(w, s, field)?;
+    w.put(&[0])
+}
+
+/// Reads a NUL-terminated string.
+pub fn get_cstring(r: &mut Reader<'_>) -> Result<String, DecodeError> {
+    let at = r.offset();
+    let rest = r.peek_rest();
+    let Some(end) = rest.iter().position(|&b| b == 0) else {
+        return Err(DecodeError::new(
+            DecodeErrorKind::Truncated {
+                needed: rest.len() + 1,
+                available: rest.len(),
+            },
+            at,
+        ));
+    };
+    let text = latin1_to_string(&rest[..end]);
+    r.take(end + 1)?;
+    Ok(text)
+}
+
 /// Reads a string that runs to the end of the body; trailing NULs are dropped.
 pub fn get_rest_string(r: &mut Reader<'_>) -> String {
     let raw = r.rest();
@@ -886,6 +925,24 @@ pub enum EncodeError {
         flag: &'static str,
         /// Whether the field must be present.
         expected: bool,
+    },
+    /// A union's tag disagrees with the field that carries it.
+    #[error("field `{field}`: the value is of type code {tag} but `{tag_field}` says {expected}")]
+    TagMismatch {
+        /// Field path.
+        field: &'static str,
+        /// Tag of the value.
+        tag: u64,
+        /// The field carrying the tag.
+        tag_field: &'static str,
+        /// Its value.
+        expected: u64,
+    },
+    /// A NUL-terminated string contains a NUL.
+    #[error("field `{field}`: a NUL-terminated string cannot contain NUL")]
+    NulInText {
+        /// Field path.
+        field: &'static str,
     },
     /// A value does not fit the bits of its bit field.
     #[error("field `{field}`: value {value} does not fit in {width} bit(s)")]

@@ -19,7 +19,9 @@
 //! ```
 
 use crate::codec::{DecodeError, DecodeErrorKind, EncodeError, Reader, Writer};
-use crate::messages::{PayloadValue, ReportPayloadDataElement, SetPayloadDataElement};
+use crate::messages::{
+    PayloadValue, ReportPayloadDataElement, ReportPayloadInterface, SetPayloadDataElement,
+};
 
 /// Type codes of a payload's interfaces, in interface-index order (index 1 first).
 #[derive(Debug, Clone, PartialEq, Eq, Default)]
@@ -31,6 +33,30 @@ impl PayloadTypes {
     /// From the type codes of the interfaces, in index order.
     pub fn new(codes: Vec<u8>) -> Self {
         Self { codes }
+    }
+
+    /// Type codes of the command interfaces of a payload interface (for Set Payload Data
+    /// Element).
+    pub fn commands(interface: &ReportPayloadInterface) -> Self {
+        Self::new(
+            interface
+                .command_interfaces
+                .iter()
+                .map(|i| i.type_code)
+                .collect(),
+        )
+    }
+
+    /// Type codes of the information interfaces of a payload interface (for Report
+    /// Payload Data Element).
+    pub fn information(interface: &ReportPayloadInterface) -> Self {
+        Self::new(
+            interface
+                .information_interfaces
+                .iter()
+                .map(|i| i.type_code)
+                .collect(),
+        )
     }
 
     /// The type code of 1-based interface `index`.
@@ -137,6 +163,85 @@ impl ReportPayloadDataElement {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::codec::{Decode, Encode};
+    use crate::messages::{PayloadCommandInterface, PayloadInformationInterface};
+
+    #[test]
+    fn an_interface_round_trips_and_types_its_data_elements() {
+        let cmd = PayloadCommandInterface {
+            identifier: "flail speed".into(),
+            type_code: 5,
+            units: 12,
+            blocking: 1,
+            min_value: PayloadValue::UnsignedShort(0),
+            default_value: PayloadValue::UnsignedShort(100),
+            max_value: PayloadValue::UnsignedShort(900),
+            enumeration: String::new(),
+            hmi_recommendation: Some(3),
+            hmi_x: None,
+            hmi_y: None,
+            hmi_width: None,
+            hmi_height: None,
+        };
+        let info = PayloadInformationInterface {
+            identifier: "armed".into(),
+            command_association: 1,
+            type_code: 18,
+            units: 0,
+            min_value: PayloadValue::Boolean(0),
+            default_value: PayloadValue::Boolean(0),
+            max_value: PayloadValue::Boolean(1),
+            enumeration: "off,on".into(),
+            hmi_recommendation: Some(1),
+            hmi_x: None,
+            hmi_y: None,
+            hmi_width: None,
+            hmi_height: None,
+        };
+        let iface = ReportPayloadInterface {
+            has_hmi_recommendation: true,
+            has_hmi_x: false,
+            has_hmi_y: false,
+            has_hmi_width: false,
+            has_hmi_height: false,
+            command_interface_count: 0,
+            information_interface_count: 0,
+            command_interfaces: vec![cmd.clone()],
+            information_interfaces: vec![info],
+        };
+        let bytes = iface.to_bytes().unwrap();
+        // Presence vector, counts, then the identifier as a C string.
+        assert_eq!(&bytes[..3], &[0b1, 1, 1]);
+        assert_eq!(&bytes[3..15], b"flail speed\0");
+        let back = ReportPayloadInterface::from_bytes(&bytes).unwrap();
+        assert_eq!(back.command_interfaces[0], cmd);
+        assert_eq!(back.command_interface_count, 1);
+
+        let report = ReportPayloadDataElement::with_elements(&[DataElement {
+            index: 1,
+            value: PayloadValue::Boolean(1),
+        }])
+        .unwrap();
+        let values = report
+            .data_elements(&PayloadTypes::information(&back))
+            .unwrap();
+        assert_eq!(values[0].value, PayloadValue::Boolean(1));
+
+        // A value whose type disagrees with its interface's type code is refused.
+        let mut wrong = iface.clone();
+        wrong.command_interfaces[0].max_value = PayloadValue::Integer(900);
+        assert!(matches!(
+            wrong.to_bytes(),
+            Err(EncodeError::TagMismatch { .. })
+        ));
+        // So is an HMI field without its flag.
+        let mut wrong = iface;
+        wrong.has_hmi_recommendation = false;
+        assert!(matches!(
+            wrong.to_bytes(),
+            Err(EncodeError::PresenceMismatch { .. })
+        ));
+    }
 
     #[test]
     fn unknown_index_and_short_data_are_typed_errors() {

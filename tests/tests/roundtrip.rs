@@ -195,8 +195,43 @@ fn record_strategy(spec: &Spec, fields: &[FieldDef], depth: u32) -> BoxedStrateg
             }
         })
         .collect();
+    // Unions whose tag lives in another field: make the tag field and every such union
+    // agree with the first union's variant.
+    let tagged: Vec<(String, String, Vec<(String, u64)>)> = fields
+        .iter()
+        .filter_map(|f| {
+            let tag = f.tag_field.clone()?;
+            let variants = spec
+                .ty(&f.ty)?
+                .def
+                .variants
+                .iter()
+                .map(|v| (v.name.clone(), v.tag))
+                .collect();
+            Some((f.name.clone(), tag, variants))
+        })
+        .collect();
     parts
-        .prop_map(|p| Value::Object(p.into_iter().flatten().collect::<Map<_, _>>()))
+        .prop_map(move |p| {
+            let mut obj = p.into_iter().flatten().collect::<Map<_, _>>();
+            if let Some((first, tag_field, variants)) = tagged.first() {
+                if let Some(v) = obj.get(first).cloned() {
+                    let name = v
+                        .as_object()
+                        .and_then(|o| o.keys().next().cloned())
+                        .or(v.as_str().map(String::from));
+                    if let Some(tag) =
+                        name.and_then(|n| variants.iter().find(|(vn, _)| *vn == n).map(|x| x.1))
+                    {
+                        obj.insert(tag_field.clone(), json!(tag));
+                    }
+                    for (other, _, _) in &tagged[1..] {
+                        obj.insert(other.clone(), v.clone());
+                    }
+                }
+            }
+            Value::Object(obj)
+        })
         .boxed()
 }
 
@@ -328,9 +363,11 @@ fn random_values_of_every_message_round_trip() {
                 Ok(b) => b,
                 // Random values that contradict a count or flag kept in another field
                 // are refused with a typed error, as they must be; skip those cases.
-                Err(EncodeError::CountMismatch { .. } | EncodeError::PresenceMismatch { .. }) => {
-                    return Err(TestCaseError::reject("inconsistent dependent fields"))
-                }
+                Err(
+                    EncodeError::CountMismatch { .. }
+                    | EncodeError::PresenceMismatch { .. }
+                    | EncodeError::TagMismatch { .. },
+                ) => return Err(TestCaseError::reject("inconsistent dependent fields")),
                 Err(e) => return Err(TestCaseError::fail(format!("encode: {e}"))),
             };
             let back = Message::decode(msg.code(), &bytes)
