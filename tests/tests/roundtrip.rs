@@ -170,6 +170,9 @@ fn wire_strategy(spec: &Spec, w: &Wire, depth: u32) -> BoxedStrategy<Value> {
     }
 }
 
+/// A union field whose tag is another field: (field, tag field, variant names and tags).
+type Tagged = (String, String, Vec<(String, u64)>);
+
 fn record_strategy(spec: &Spec, fields: &[FieldDef], depth: u32) -> BoxedStrategy<Value> {
     let parts: Vec<BoxedStrategy<Option<(String, Value)>>> = fields
         .iter()
@@ -197,7 +200,7 @@ fn record_strategy(spec: &Spec, fields: &[FieldDef], depth: u32) -> BoxedStrateg
         .collect();
     // Unions whose tag lives in another field: make the tag field and every such union
     // agree with the first union's variant.
-    let tagged: Vec<(String, String, Vec<(String, u64)>)> = fields
+    let tagged: Vec<Tagged> = fields
         .iter()
         .filter_map(|f| {
             let tag = f.tag_field.clone()?;
