@@ -26,6 +26,13 @@
 //! | `size = T` | `String`, `Vec<u8>`, any codec type | byte length as unsigned `T`, then the bytes |
 //! | `fixed = N` | `String`, `Vec<u8>` | exactly N bytes, NUL padded; with `accept_short` a shorter final field is accepted on decode |
 //! | `rest` | `String`, `Vec<u8>`, `Vec<E>` (last field) | everything to the end of the body; `nul` adds a terminating NUL to a string |
+//! | `nul_terminated` | `String` | the text and a NUL byte |
+//! | `var = "name"` | unsigned integer or `bool` | publishes the value for later (possibly nested) fields; a count of a sibling `count_var` list is computed from it on encode |
+//! | `count_var = "name"` / `"name - N"` | `Vec<E>` | no prefix: the count is the value of the earlier field `name` (minus `N`); checked on encode |
+//! | `flag = N` | `bool` | presence bit `N` with no bytes of its own |
+//! | `present_if = "name"` | `Option<T>` | present exactly when the earlier field `name` is non-zero; checked on encode |
+//! | `offsets = "list"` | `Vec<u32>` with `count_var` | byte offsets of the elements of `list` from the start of the body, computed on encode |
+//! | `tag_var = "name"` | a `JausUnion` type | the value without its tag; the tag is the earlier field `name`, checked on encode |
 
 mod attr;
 mod expand;
