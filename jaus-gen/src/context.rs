@@ -207,7 +207,7 @@ fn map_wire(w: &Wire, rt: &str) -> Mapped {
                 fmt_f64(*lo),
                 fmt_f64(*hi)
             ));
-            let d = divisor(*int);
+            let d = int.divisor();
             m.doc.push(format!(
                 "Range `[{lo}, {hi}]`, carried as a scaled `{}` (resolution {:.3e}).",
                 int.rust(),
@@ -297,17 +297,6 @@ fn map_wire(w: &Wire, rt: &str) -> Mapped {
         Wire::Flag => m.ty = "bool".into(),
     }
     m
-}
-
-fn divisor(i: Int) -> f64 {
-    match i {
-        Int::U8 => 255.0,
-        Int::U16 => 65_535.0,
-        Int::U32 | Int::I32 => 4_294_967_294.0,
-        Int::I16 => 65_534.0,
-        Int::U64 => 18_446_744_073_709_551_615.0,
-        Int::I64 => 18_446_744_073_709_551_614.0,
-    }
 }
 
 fn len_attrs(m: &mut Mapped, len: Len, what: &str) {

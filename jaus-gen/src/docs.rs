@@ -83,7 +83,7 @@ fn wire_text(spec: &Spec, w: &Wire, here: &str) -> (String, String) {
         Wire::F32 => ("f32".into(), String::new()),
         Wire::F64 => ("f64".into(), String::new()),
         Wire::Scaled { int, lo, hi } => {
-            let d = divisor(*int);
+            let d = int.divisor();
             (
                 format!("scaled {}", int.rust()),
                 format!("[{lo}, {hi}], step {:.3e}", (hi - lo) / d),
@@ -129,17 +129,6 @@ fn wire_text(spec: &Spec, w: &Wire, here: &str) -> (String, String) {
             }),
             String::new(),
         ),
-    }
-}
-
-fn divisor(i: Int) -> f64 {
-    match i {
-        Int::U8 => 255.0,
-        Int::U16 => 65_535.0,
-        Int::U32 | Int::I32 => 4_294_967_294.0,
-        Int::I16 => 65_534.0,
-        Int::U64 => 18_446_744_073_709_551_615.0,
-        Int::I64 => 18_446_744_073_709_551_614.0,
     }
 }
 

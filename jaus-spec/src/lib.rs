@@ -210,6 +210,19 @@ impl Int {
     pub fn unsigned(self) -> bool {
         matches!(self, Int::U8 | Int::U16 | Int::U32 | Int::U64)
     }
+    /// Divisor `D` of a scaled value carried in this type: `scale = (hi - lo) / D`
+    /// (those of OpenJAUS 3.3, which the reference vectors follow; see the README).
+    pub fn divisor(self) -> f64 {
+        match self {
+            Int::U8 => 255.0,
+            Int::U16 => 65_535.0,
+            Int::U32 | Int::I32 => 4_294_967_294.0,
+            Int::I16 => 65_534.0,
+            Int::U64 => 18_446_744_073_709_551_615.0,
+            Int::I64 => 18_446_744_073_709_551_614.0,
+        }
+    }
+
     /// True for types usable as a count, size or presence vector (u8, u16, u32).
     pub fn is_count(self) -> bool {
         matches!(self, Int::U8 | Int::U16 | Int::U32)

@@ -445,7 +445,7 @@ impl Cmp<'_> {
                 }
             }
             Wire::Scaled { int, lo, hi } => {
-                let step = (hi - lo) / divisor(*int);
+                let step = (hi - lo) / int.divisor();
                 let (a, b) = (
                     my.as_f64().unwrap_or(f64::NAN),
                     oj.as_f64().unwrap_or(f64::NAN),
@@ -822,18 +822,6 @@ fn inner_first_field(spec: &Spec, fields: &[FieldDef], list: &str) -> Option<Str
     let f = fields.iter().find(|f| f.name == list)?;
     let t = spec.ty(&f.of.as_ref()?.0.ty)?;
     t.def.fields.first().map(|g| g.name.clone())
-}
-
-fn divisor(i: jaus_spec::Int) -> f64 {
-    use jaus_spec::Int;
-    match i {
-        Int::U8 => 255.0,
-        Int::U16 => 65_535.0,
-        Int::U32 | Int::I32 => 4_294_967_294.0,
-        Int::I16 => 65_534.0,
-        Int::U64 => 18_446_744_073_709_551_615.0,
-        Int::I64 => 18_446_744_073_709_551_614.0,
-    }
 }
 
 #[test]

@@ -242,12 +242,7 @@ fn record_strategy(spec: &Spec, fields: &[FieldDef], depth: u32) -> BoxedStrateg
 fn close(spec: &Spec, w: &Wire, a: &Value, b: &Value, at: &str) -> Result<(), String> {
     match (w, a, b) {
         (Wire::Scaled { int, lo, hi }, Value::Number(x), Value::Number(y)) => {
-            let d = match int {
-                Int::U8 => 255.0,
-                Int::U16 => 65535.0,
-                Int::I16 => 65534.0,
-                _ => 4_294_967_294.0,
-            };
+            let d = int.divisor();
             let step = (hi - lo) / d;
             let want = x.as_f64().unwrap().clamp(*lo, *hi);
             let got = y.as_f64().unwrap();
