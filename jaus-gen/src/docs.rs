@@ -2,7 +2,7 @@
 //! rendered from `templates/docs/`.
 
 use crate::Error;
-use jaus_spec::{FieldDef, Int, Len, Spec, TypeKind, Wire};
+use jaus_spec::{FieldDef, Len, Spec, TypeKind, Wire};
 use minijinja::Environment;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
