@@ -95,10 +95,12 @@ pub fn run_lines(
 pub fn print_messages(out: &mut impl Write, group: Option<&str>) {
     let _ = writeln!(out, "{:<8} {:<40} {:<22} report", "code", "name", "group");
     let mut n = 0;
-    for m in MESSAGES
+    let mut rows: Vec<_> = MESSAGES
         .iter()
         .filter(|m| group.is_none_or(|g| g == m.group))
-    {
+        .collect();
+    rows.sort_by_key(|m| m.code);
+    for m in rows {
         n += 1;
         let _ = writeln!(
             out,
