@@ -984,20 +984,31 @@ pub fn message(input: &DeriveInput, is_message: bool) -> TokenStream {
                 let (n, body) = match &f.offsets_of {
                     // Offsets are computed, never taken from the value: reserve them
                     // now and patch each while the target list is written.
+                    // Offsets given with one per element are written as given (a received
+                    // message re-encodes byte for byte); otherwise they are computed:
+                    // reserved now and patched while the target list is written.
                     Some(target) => {
                         let slot = format_ident!("__offsets_{}", id);
-                        prelude.push(quote!(let mut #slot: usize = 0;));
+                        prelude.push(quote!(let mut #slot: ::core::option::Option<usize> = None;));
                         (
                             quote!(self.#target.len()),
-                            quote! { let _ = #v; #slot = w.reserve(4 * n)?; },
+                            quote! {
+                                if #v.len() == n {
+                                    for o in #v.iter() { #codec::Encode::encode(o, w)?; }
+                                } else {
+                                    #slot = Some(w.reserve(4 * n)?);
+                                }
+                            },
                         )
                     }
                     None => {
                         let patch = f.patched_by.as_ref().map(|o| {
                             let slot = format_ident!("__offsets_{}", o);
                             quote! {
-                                let here = u32::try_from(w.position()).unwrap_or(u32::MAX);
-                                w.patch(#slot + 4 * i, &here.to_le_bytes());
+                                if let Some(at) = #slot {
+                                    let here = u32::try_from(w.position()).unwrap_or(u32::MAX);
+                                    w.patch(at + 4 * i, &here.to_le_bytes());
+                                }
                             }
                         });
                         (

@@ -9,7 +9,7 @@
 //!
 //! | derive | for | container attributes |
 //! |---|---|---|
-//! | `JausMessage` | a struct that is a whole message body | `code = 0x....` (required), `presence = u8\|u16\|u32`, `crate = "path"` |
+//! | `JausMessage` | a struct that is a whole message body | `code = 0x....` (required), `presence = u8\|u16\|u32`, `name = "Title"`, `crate = "path"` |
 //! | `JausRecord` | a struct nested in messages (list element, shared type) | `presence = ...`, `crate = ...` |
 //! | `JausEnum` | an enum of named values (`Name = 3` or `#[jaus(value = 3)] Name`) | `repr = u8\|u16\|u32`; optional `#[jaus(unknown)] Unknown(T)` variant preserving undefined values |
 //! | `JausBits` | a struct of named bits of one integer | `repr = ...`; fields `#[jaus(bit = N)] bool`, `#[jaus(bits = A..=B)] uN`, `#[jaus(reserved)] uN` |
@@ -31,7 +31,7 @@
 //! | `count_var = "name"` / `"name - N"` | `Vec<E>` | no prefix: the count is the value of the earlier field `name` (minus `N`); checked on encode |
 //! | `flag = N` | `bool` | presence bit `N` with no bytes of its own |
 //! | `present_if = "name"` | `Option<T>` | present exactly when the earlier field `name` is non-zero; checked on encode |
-//! | `offsets = "list"` | `Vec<u32>` with `count_var` | byte offsets of the elements of `list` from the start of the body, computed on encode |
+//! | `offsets = "list"` | `Vec<u32>` with `count_var` | byte offsets of the elements of `list` from the start of the body: computed on encode when empty, written as given with one per element |
 //! | `tag_var = "name"` | a `JausUnion` type | the value without its tag; the tag is the earlier field `name`, checked on encode |
 
 mod attr;

@@ -139,6 +139,8 @@ pub struct VariantCtx {
     pub tag: u64,
     /// Payload type, if any.
     pub ty: Option<String>,
+    /// `serde(...)` contents for the payload, if any.
+    pub serde: String,
     /// Doc lines.
     pub doc: Vec<String>,
 }
@@ -197,8 +199,10 @@ fn map_wire(w: &Wire, rt: &str) -> Mapped {
     };
     match w {
         Wire::Int(i) => m.ty = i.rust().into(),
-        Wire::F32 => m.ty = "f32".into(),
-        Wire::F64 => m.ty = "f64".into(),
+        Wire::F32 | Wire::F64 => {
+            m.ty = if *w == Wire::F32 { "f32" } else { "f64" }.into();
+            m.serde.push(format!("with = \"{rt}::codec::serde_float\""));
+        }
         Wire::Scaled { int, lo, hi } => {
             m.ty = "f64".into();
             m.attr.push(format!(
@@ -359,6 +363,9 @@ fn field_ctx(spec: &Spec, f: &FieldDef, rt: &str) -> FieldCtx {
             if serde.iter().any(|s| s.contains("hex::serde")) {
                 serde = vec![format!("with = \"{rt}::hex::serde_opt\"")];
             }
+            if serde.iter().any(|s| s.contains("serde_float")) {
+                serde = vec![format!("with = \"{rt}::codec::serde_float::option\"")];
+            }
             serde.insert(
                 0,
                 "default, skip_serializing_if = \"Option::is_none\"".into(),
@@ -370,6 +377,9 @@ fn field_ctx(spec: &Spec, f: &FieldDef, rt: &str) -> FieldCtx {
             doc.push(format!("Optional: presence bit {b}."));
             if serde.iter().any(|s| s.contains("hex::serde")) {
                 serde = vec![format!("with = \"{rt}::hex::serde_opt\"")];
+            }
+            if serde.iter().any(|s| s.contains("serde_float")) {
+                serde = vec![format!("with = \"{rt}::codec::serde_float::option\"")];
             }
             serde.insert(
                 0,
@@ -561,10 +571,8 @@ pub fn build_context(spec: &Spec, gates: bool, rt: &str) -> Context {
                 tc.variants = d
                     .variants
                     .iter()
-                    .map(|v| VariantCtx {
-                        name: v.name.clone(),
-                        tag: v.tag,
-                        ty: v.ty.as_ref().map(|t| {
+                    .map(|v| {
+                        let m = v.ty.as_ref().map(|t| {
                             map_wire(
                                 &spec.wire(&FieldDef {
                                     ty: t.clone(),
@@ -572,9 +580,14 @@ pub fn build_context(spec: &Spec, gates: bool, rt: &str) -> Context {
                                 }),
                                 rt,
                             )
-                            .ty
-                        }),
-                        doc: doc_lines(v.description.as_deref()),
+                        });
+                        VariantCtx {
+                            name: v.name.clone(),
+                            tag: v.tag,
+                            serde: m.as_ref().map(|m| m.serde.join(", ")).unwrap_or_default(),
+                            ty: m.map(|m| m.ty),
+                            doc: doc_lines(v.description.as_deref()),
+                        }
                     })
                     .collect();
             }

@@ -67,7 +67,7 @@ pub mod acme {
         #[jaus(tag = 1)]
         Level(u16),
         #[jaus(tag = 2)]
-        Temperature(f32),
+        Temperature(#[cfg_attr(all(), serde(with = "::jaus::codec::serde_float"))] f32),
         #[jaus(tag = 3)]
         Missing,
     }

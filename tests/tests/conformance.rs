@@ -731,99 +731,6 @@ fn check_payload_elements(
     }
 }
 
-/// Whether a field (transitively) holds a list of computed offsets.
-fn has_offsets(spec: &Spec, fields: &[FieldDef]) -> bool {
-    fields.iter().any(|f| {
-        f.offsets_of.is_some()
-            || spec
-                .ty(&f.ty)
-                .is_some_and(|t| t.def.name != f.ty || has_offsets(spec, &t.def.fields))
-            || f.of
-                .as_ref()
-                .and_then(|e| spec.ty(&e.0.ty))
-                .is_some_and(|t| t.def.fields.iter().any(|g| g.offsets_of.is_some()))
-    })
-}
-
-/// The JSON of a message with every computed-offsets list removed (recursively).
-fn strip_offsets(spec: &Spec, fields: &[FieldDef], v: &Value) -> Value {
-    let Some(obj) = v.as_object() else {
-        return v.clone();
-    };
-    let mut out = Map::new();
-    for f in fields {
-        let Some(x) = obj.get(&f.name) else { continue };
-        if f.offsets_of.is_some() {
-            continue;
-        }
-        let inner = spec
-            .ty(&f.ty)
-            .or_else(|| f.of.as_ref().and_then(|e| spec.ty(&e.0.ty)));
-        let x = match (inner, x) {
-            (Some(t), Value::Array(a)) => Value::Array(
-                a.iter()
-                    .map(|e| strip_offsets(spec, &t.def.fields, e))
-                    .collect(),
-            ),
-            (Some(t), Value::Object(_)) => strip_offsets(spec, &t.def.fields, x),
-            _ => x.clone(),
-        };
-        out.insert(f.name.clone(), x);
-    }
-    Value::Object(out)
-}
-
-/// Every computed offset points at the bytes of the first (u16) field of its element.
-fn offsets_point_at_elements(spec: &Spec, fields: &[FieldDef], v: &Value, body: &[u8]) -> bool {
-    let Some(obj) = v.as_object() else {
-        return true;
-    };
-    fields.iter().all(|f| {
-        let Some(x) = obj.get(&f.name) else {
-            return true;
-        };
-        let inner = spec
-            .ty(&f.ty)
-            .or_else(|| f.of.as_ref().and_then(|e| spec.ty(&e.0.ty)));
-        let here = match &f.offsets_of {
-            Some(target) => {
-                let offs = x.as_array().cloned().unwrap_or_default();
-                let elems = obj
-                    .get(target)
-                    .and_then(Value::as_array)
-                    .cloned()
-                    .unwrap_or_default();
-                let first = inner_first_field(spec, fields, target);
-                offs.len() == elems.len()
-                    && offs.iter().zip(&elems).all(|(o, e)| {
-                        let at = o.as_u64().unwrap_or(u64::MAX) as usize;
-                        let want = first
-                            .as_deref()
-                            .and_then(|n| e[n].as_u64())
-                            .unwrap_or(u64::MAX);
-                        body.get(at..at + 2)
-                            .map(|b| u64::from(u16::from_le_bytes([b[0], b[1]])))
-                            == Some(want)
-                    })
-            }
-            None => true,
-        };
-        here && match (inner, x) {
-            (Some(t), Value::Array(a)) => a
-                .iter()
-                .all(|e| offsets_point_at_elements(spec, &t.def.fields, e, body)),
-            (Some(t), Value::Object(_)) => offsets_point_at_elements(spec, &t.def.fields, x, body),
-            _ => true,
-        }
-    })
-}
-
-fn inner_first_field(spec: &Spec, fields: &[FieldDef], list: &str) -> Option<String> {
-    let f = fields.iter().find(|f| f.name == list)?;
-    let t = spec.ty(&f.of.as_ref()?.0.ty)?;
-    t.def.fields.first().map(|g| g.name.clone())
-}
-
 #[test]
 fn openjaus_vectors_decode_reencode_and_match_field_values() {
     let spec = jaus_spec::load_dirs(&[jaus_spec::defs_dir()]).expect("definitions validate");
@@ -835,7 +742,6 @@ fn openjaus_vectors_decode_reencode_and_match_field_values() {
     let mut per_group: BTreeMap<String, (usize, usize)> = BTreeMap::new();
     let mut uncovered: BTreeMap<String, usize> = BTreeMap::new();
     let vectors = vectors();
-    let mut offsets_recomputed = 0;
     assert_eq!(vectors.len(), 1264, "the full reference set is present");
     for v in &vectors {
         let at = format!("{} [{}]", v.message, v.variant);
@@ -871,29 +777,7 @@ fn openjaus_vectors_decode_reencode_and_match_field_values() {
             body: message.to_bytes().expect("re-encode"),
         };
         let ours = reencoded.to_bytes().unwrap();
-        if ours != v.bytes && has_offsets(&spec, &def.def.fields) {
-            // OpenJAUS computes child offsets relative to the parent below the first
-            // level of a task tree (WIRE.md §13.5); ours are absolute. Proof that this
-            // is the only difference: same length, the same message once the offsets
-            // are set aside, and every offset of ours points at its element.
-            let theirs = serde_json::to_value(&message).unwrap();
-            let again = serde_json::to_value(
-                Message::decode(packet.header.command_code, &ours[16..]).unwrap(),
-            )
-            .unwrap();
-            let proof = ours.len() == v.bytes.len()
-                && strip_offsets(&spec, &def.def.fields, &theirs["fields"])
-                    == strip_offsets(&spec, &def.def.fields, &again["fields"])
-                && offsets_point_at_elements(&spec, &def.def.fields, &again["fields"], &ours[16..]);
-            if proof {
-                offsets_recomputed += 1;
-            } else {
-                cmp.fail(
-                    &at,
-                    "re-encoded bytes differ beyond the recomputed offsets".into(),
-                );
-            }
-        } else if ours != v.bytes {
+        if ours != v.bytes {
             cmp.fail(
                 &at,
                 format!(
@@ -924,7 +808,6 @@ fn openjaus_vectors_decode_reencode_and_match_field_values() {
     for (g, (n, ok)) in &per_group {
         println!("{g:<24} {n:>8} {ok:>8}");
     }
-    println!("vectors whose OpenJAUS child offsets were relative and are absolute here: {offsets_recomputed}");
     println!(
         "not defined: {} message types, {} vectors",
         uncovered.len(),

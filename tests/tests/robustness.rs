@@ -12,10 +12,41 @@ fn vector_packets() -> Vec<Vec<u8>> {
         "/data/openjaus33.jsonl"
     ))
     .unwrap();
-    text.lines()
+    let mut packets: Vec<Vec<u8>> = text
+        .lines()
         .filter_map(|l| serde_json::from_str::<serde_json::Value>(l).ok())
         .map(|v| jaus::hex::decode(v["hex"].as_str().unwrap()).unwrap())
-        .collect()
+        .collect();
+    // The two messages of the set that have no reference vector get seeds of their own.
+    packets.extend(extra_seeds().iter().map(|m| {
+        let header = jaus::Header::new(
+            m.code(),
+            jaus::Address::new(1, 2, 3, 4),
+            jaus::Address::new(5, 6, 7, 8),
+        );
+        jaus::Packet::new(header, m.to_bytes().unwrap())
+            .to_bytes()
+            .unwrap()
+    }));
+    packets
+}
+
+fn extra_seeds() -> Vec<Message> {
+    let json = [
+        r#"{"message":"SetVksFeatureClassMetadata","fields":{"metadata_option":"Overwrite","feature_class_id":77,"metadata":"buildings, 2 floors"}}"#,
+        r#"{"message":"ReportPayloadInterface","fields":{"has_hmi_recommendation":true,"has_hmi_x":true,"has_hmi_y":true,"has_hmi_width":false,"has_hmi_height":false,
+            "command_interface_count":0,"information_interface_count":0,
+            "command_interfaces":[{"identifier":"flail","type_code":5,"units":3,"blocking":1,"min_value":{"UnsignedShort":0},"default_value":{"UnsignedShort":10},"max_value":{"UnsignedShort":900},"enumeration":"","hmi_recommendation":2,"hmi_x":10,"hmi_y":20}],
+            "information_interfaces":[{"identifier":"armed","command_association":1,"type_code":18,"units":0,"min_value":{"Boolean":0},"default_value":{"Boolean":0},"max_value":{"Boolean":1},"enumeration":"off,on","hmi_recommendation":1,"hmi_x":5,"hmi_y":6},
+                                      {"identifier":"temp","command_association":0,"type_code":9,"units":7,"min_value":{"LongFloat":-40.0},"default_value":{"LongFloat":20.0},"max_value":{"LongFloat":125.0},"enumeration":"","hmi_recommendation":0,"hmi_x":0,"hmi_y":0}]}}"#,
+    ];
+    let seeds: Vec<Message> = json
+        .iter()
+        .map(|j| serde_json::from_str(j).unwrap())
+        .collect();
+    assert!(matches!(seeds[0], Message::SetVksFeatureClassMetadata(_)));
+    assert!(matches!(seeds[1], Message::ReportPayloadInterface(_)));
+    seeds
 }
 
 /// Decodes a body; if it decodes, checks that it re-encodes, and that encoding is then
@@ -131,6 +162,11 @@ fn a_million_random_mutations_never_panic() {
     println!(
         "mutations: {} decoded, {} rejected with a typed error",
         ok, err
+    );
+    assert_eq!(
+        packets.len(),
+        1264 + 2,
+        "every message of the set is mutated"
     );
     assert!(ok + err >= 1_000_000);
     assert!(err > 0 && ok > 0);

@@ -35,6 +35,20 @@ enum Cmd {
     Tour,
 }
 
+/// Lines of standard input. A line that is not UTF-8 is kept (lossily converted) so
+/// that it is reported as a bad line instead of ending the input.
+fn stdin_lines() -> impl Iterator<Item = String> {
+    std::io::stdin()
+        .lock()
+        .split(b'\n')
+        .map_while(Result::ok)
+        .map(|l| {
+            let l = l.strip_suffix(b"\r").unwrap_or(&l).to_vec();
+            String::from_utf8(l)
+                .unwrap_or_else(|e| String::from_utf8_lossy(e.as_bytes()).into_owned())
+        })
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let stdout = std::io::stdout();
@@ -48,16 +62,13 @@ fn main() -> ExitCode {
         }
         Cmd::Decode { hex } => {
             let lines: Box<dyn Iterator<Item = String>> = if hex.is_empty() {
-                Box::new(std::io::stdin().lock().lines().map_while(Result::ok))
+                Box::new(stdin_lines())
             } else {
                 Box::new(hex.into_iter())
             };
             cli::run_lines(lines, &mut out, &mut err, cli::decode_line)
         }
-        Cmd::Encode => {
-            let lines = std::io::stdin().lock().lines().map_while(Result::ok);
-            cli::run_lines(lines, &mut out, &mut err, cli::encode_line)
-        }
+        Cmd::Encode => cli::run_lines(stdin_lines(), &mut out, &mut err, cli::encode_line),
         Cmd::Tour => cli::tour(&mut out),
     };
     let _ = out.flush();

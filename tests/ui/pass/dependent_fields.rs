@@ -72,12 +72,12 @@ fn main() {
     let wrong = Objects { buffered: false, ..o };
     assert!(matches!(wrong.to_bytes(), Err(EncodeError::PresenceMismatch { .. })));
 
-    // Offsets of children are absolute positions in the body, whatever the value says.
+    // Offsets left empty are computed: absolute positions in the body.
     let leaf = |id| Task { id, child_count: 0, child_offsets: vec![], children: vec![] };
     let root = Task {
         id: 1,
         child_count: 2,
-        child_offsets: vec![999, 999],
+        child_offsets: vec![],
         children: vec![leaf(2), Task { id: 3, child_count: 1, child_offsets: vec![], children: vec![leaf(4)] }],
     };
     let b = root.to_bytes().unwrap();
@@ -89,4 +89,10 @@ fn main() {
     let back = Task::from_bytes(&b).unwrap();
     assert_eq!(back.children[1].children[0].id, 4);
     assert_eq!(back.child_offsets, vec![at(4) as u32, at(8) as u32]);
+    // Offsets given with one per child (as received) are written as given, so a
+    // received message re-encodes byte for byte.
+    let given = Task { child_offsets: vec![999, 998], ..back.clone() };
+    let b2 = given.to_bytes().unwrap();
+    assert_eq!(&b2[4..12], &[0xE7, 3, 0, 0, 0xE6, 3, 0, 0]);
+    assert_eq!(Task::from_bytes(&b2).unwrap(), given);
 }
