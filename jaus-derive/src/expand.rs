@@ -846,7 +846,7 @@ fn decode_expr(shape: &Shape, k: &TokenStream) -> TokenStream {
             quote!((|r: &mut #codec::Reader<'_>| -> ::core::result::Result<::std::vec::Vec<#ty>, #err> {
                 let n = r.var(#var)?.saturating_sub(#minus);
                 let n = r.check_count(n, #min)?;
-                let mut out = ::std::vec::Vec::with_capacity(n);
+                let mut out = ::std::vec::Vec::with_capacity(n.min(r.remaining()));
                 for _ in 0..n {
                     out.push(#read);
                 }

@@ -142,6 +142,9 @@ pub(crate) fn resolve(spec: &Spec, f: &FieldDef) -> Result<Wire, String> {
                 return Err("a list element has no `name` or `bit`".into());
             }
             let elem = resolve(spec, &elem.0).map_err(|e| format!("list element: {e}"))?;
+            if matches!(elem, Wire::Str(_) | Wire::Bytes(_)) {
+                return Err("a list element cannot be a string or blob: make it a field of a record".into());
+            }
             if let Some(field) = &f.count_field {
                 if f.count.is_some() || f.length.is_some() {
                     return Err("give one of `count`, `count_field` and `length: rest`".into());
@@ -309,6 +312,30 @@ fn check_fields(
                 );
             }
         }
+        // The field depended on must be able to carry a count or a flag.
+        for (key, dep) in [
+            ("count_field", &count_dep),
+            ("present_if", &f.present_if),
+            ("tag_field", &f.tag_field),
+        ] {
+            let Some(dep) = dep else { continue };
+            let target = fields[..i]
+                .iter()
+                .find(|g| &g.name == dep)
+                .or_else(|| container_field(cx.spec, owner, dep));
+            if let Some(t) = target {
+                let ok = Int::parse(&t.ty).is_some_and(Int::unsigned)
+                    || (key == "present_if" && t.ty == "flag");
+                if !ok {
+                    cx.err(
+                        source,
+                        &format!("{path}.{key}"),
+                        ctx.clone(),
+                        format!("`{key}: {dep}` names a field of type `{}`; it must be an unsigned integer{}", t.ty, if key == "present_if" { " or a flag" } else { "" }),
+                    );
+                }
+            }
+        }
         for (key, dep) in [("count_field", &count_dep), ("present_if", &f.present_if)] {
             if let Some(dep) = dep {
                 let here = fields[..i].iter().any(|g| &g.name == dep);
@@ -354,6 +381,22 @@ fn check_fields(
 /// The type or message name inside a context string such as ``type `Task` ``.
 fn owner_name(owner: &str) -> &str {
     owner.split('`').nth(1).unwrap_or(owner)
+}
+
+/// The field called `name` of a message or record that uses the record named in `owner`.
+fn container_field<'s>(spec: &'s Spec, owner: &str, name: &str) -> Option<&'s FieldDef> {
+    let record = owner_name(owner);
+    let uses = |fields: &[FieldDef]| {
+        fields
+            .iter()
+            .any(|f| f.ty == record || f.of.as_ref().is_some_and(|e| e.0.ty == record))
+    };
+    spec.messages
+        .iter()
+        .map(|m| &m.def.fields)
+        .chain(spec.types.iter().map(|t| &t.def.fields))
+        .filter(|fields| uses(fields))
+        .find_map(|fields| fields.iter().find(|f| f.name == name))
 }
 
 /// Whether some message or record that uses the record named in `owner` (directly, or
@@ -510,6 +553,14 @@ pub(crate) fn validate(spec: &Spec) -> Vec<SpecError> {
                 check_fields(&mut cx, t.source, &t.path, &ctx, &d.presence, &d.fields)
             }
             TypeKind::Enum => {
+                if d.values.is_empty() {
+                    cx.err(
+                        t.source,
+                        &format!("{}.values", t.path),
+                        ctx.clone(),
+                        "an enum needs at least one named value",
+                    );
+                }
                 let r = need_repr(&mut cx, "an enum", true);
                 let mut vals: HashMap<u64, &str> = HashMap::new();
                 for (i, v) in d.values.iter().enumerate() {
@@ -614,6 +665,33 @@ pub(crate) fn validate(spec: &Spec) -> Vec<SpecError> {
                     }
                 }
             }
+        }
+    }
+
+    // A record may hold itself only through a list (which can be empty).
+    for t in spec.types.iter().filter(|t| t.def.kind == TypeKind::Record) {
+        let mut stack: Vec<&str> = vec![t.def.name.as_str()];
+        let mut seen: Vec<&str> = Vec::new();
+        let mut cycle = false;
+        while let Some(name) = stack.pop() {
+            let Some(r) = spec.ty(name) else { continue };
+            for f in &r.def.fields {
+                if f.ty == t.def.name {
+                    cycle = true;
+                }
+                if spec.ty(&f.ty).is_some() && !seen.contains(&f.ty.as_str()) {
+                    seen.push(f.ty.as_str());
+                    stack.push(f.ty.as_str());
+                }
+            }
+        }
+        if cycle {
+            cx.err(
+                t.source,
+                &format!("{}.name", t.path),
+                format!("type `{}`", t.def.name),
+                "the record contains itself other than through a list, so it has no finite size: hold the nested records in a list",
+            );
         }
     }
 

@@ -198,7 +198,7 @@ impl<'a> Reader<'a> {
     /// least `min_elem` bytes each).
     pub fn check_count(&self, n: u64, min_elem: usize) -> Result<usize, DecodeError> {
         let n = usize::try_from(n).unwrap_or(usize::MAX);
-        if n.saturating_mul(min_elem) > self.remaining() {
+        if !count_fits(n, min_elem, self.remaining()) {
             return Err(DecodeError::new(
                 DecodeErrorKind::CountBeyondBuffer {
                     count: n,
@@ -414,7 +414,7 @@ pub fn put_count<C: CountRepr>(
 pub fn get_count<C: CountRepr>(r: &mut Reader<'_>, min_elem: usize) -> Result<usize, DecodeError> {
     let at = r.offset();
     let n = C::decode(r)?.to_usize();
-    if n.saturating_mul(min_elem) > r.remaining() {
+    if !count_fits(n, min_elem, r.remaining()) {
         return Err(DecodeError::new(
             DecodeErrorKind::CountBeyondBuffer {
                 count: n,
@@ -450,9 +450,34 @@ pub fn decode_list<C: CountRepr, T: Decode>(r: &mut Reader<'_>) -> Result<Vec<T>
 pub fn decode_rest<T: Decode>(r: &mut Reader<'_>) -> Result<Vec<T>, DecodeError> {
     let mut v = Vec::new();
     while r.remaining() > 0 {
+        let before = r.remaining();
         v.push(T::decode(r)?);
+        if r.remaining() == before {
+            // An element that takes no bytes would repeat forever.
+            return Err(DecodeError::new(
+                DecodeErrorKind::CountBeyondBuffer {
+                    count: v.len(),
+                    remaining: before,
+                },
+                r.offset(),
+            ));
+        }
     }
     Ok(v)
+}
+
+/// Most elements a list of elements that may take no bytes can have beyond the bytes
+/// left (such lists must still be bounded: a count from the wire could claim billions).
+pub const MAX_EMPTY_ELEMENTS: usize = 65_535;
+
+/// Whether `n` elements of at least `min_elem` bytes can come from `remaining` bytes.
+#[inline]
+fn count_fits(n: usize, min_elem: usize, remaining: usize) -> bool {
+    if min_elem == 0 {
+        n <= remaining.saturating_add(MAX_EMPTY_ELEMENTS)
+    } else {
+        n.saturating_mul(min_elem) <= remaining
+    }
 }
 
 // ---------------------------------------------------------------------------------
@@ -1032,6 +1057,28 @@ mod tests {
         assert!(u32::decode(&mut r).is_err());
         assert!(r.take(usize::MAX).is_err());
         assert_eq!(u16::decode(&mut r).unwrap(), 0x0201);
+    }
+
+    #[derive(Debug, PartialEq, crate::JausRecord)]
+    struct Empty {}
+
+    #[test]
+    fn lists_of_elements_that_take_no_bytes_are_bounded() {
+        // A u32 count claiming four billion empty elements is refused at once.
+        let err =
+            decode_list::<u32, Empty>(&mut Reader::new(&[0xFF, 0xFF, 0xFF, 0xFF])).unwrap_err();
+        assert!(matches!(
+            err.kind(),
+            DecodeErrorKind::CountBeyondBuffer { .. }
+        ));
+        assert_eq!(
+            decode_list::<u16, Empty>(&mut Reader::new(&[3, 0]))
+                .unwrap()
+                .len(),
+            3
+        );
+        // Elements to the end of the body must make progress.
+        assert!(decode_rest::<Empty>(&mut Reader::new(&[1])).is_err());
     }
 
     #[test]
