@@ -283,9 +283,38 @@ pub fn render_docs(spec: &Spec, out: &Path) -> Result<Vec<PathBuf>, Error> {
         source,
     })?;
     let mut files = Vec::new();
+    let mut by_code: Vec<(String, String, String, String)> = groups
+        .iter()
+        .flat_map(|g| {
+            g.messages.iter().map(|m| {
+                (
+                    m.code.clone(),
+                    m.title.clone(),
+                    m.name.to_lowercase(),
+                    g.name.clone(),
+                )
+            })
+        })
+        .collect();
+    by_code.sort();
+    let titles: std::collections::HashMap<&str, &str> = groups
+        .iter()
+        .map(|g| (g.name.as_str(), g.title.as_str()))
+        .collect();
+    let by_code: Vec<_> = by_code
+        .into_iter()
+        .map(|(code, title, anchor, group)| {
+            let group_title = titles
+                .get(group.as_str())
+                .copied()
+                .unwrap_or_default()
+                .to_string();
+            minijinja::context! { code, title, anchor, group, group_title }
+        })
+        .collect();
     let index = env
         .get_template("index.md.j2")?
-        .render(minijinja::context! { groups => &groups })?;
+        .render(minijinja::context! { groups => &groups, by_code => by_code })?;
     let p = out.join("index.md");
     crate::write_if_changed(&p, &index)?;
     files.push(p);

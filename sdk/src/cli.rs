@@ -132,7 +132,7 @@ pub const REFERENCE_PACKETS: &[(&str, &str)] = &[
 ];
 
 /// `jaus tour`: decodes the reference packets, shows their JSON, re-encodes them and
-/// checks the bytes are identical; then builds a message from typed values.
+/// checks the bytes are identical.
 pub fn tour(out: &mut impl Write) -> bool {
     let mut ok = true;
     let _ = writeln!(

@@ -877,6 +877,10 @@ impl fmt::Display for DecodeError {
         if let Some(field) = self.0.field {
             write!(f, " in field `{field}`")?;
         }
+        // A command code is not a position in the body.
+        if matches!(self.0.kind, DecodeErrorKind::UnknownCommandCode { .. }) {
+            return Ok(());
+        }
         write!(f, " at byte {}", self.0.offset)
     }
 }
