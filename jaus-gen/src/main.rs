@@ -1,6 +1,6 @@
-//! `jaus-gen`: validate JAUS definitions and generate Rust from them.
+//! `jaus-gen`: validate JAUS definitions and generate Rust (and docs) from them.
 
-use clap::{Parser, Subcommand};
+use clap::{Args, Parser, Subcommand};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -15,16 +15,23 @@ struct Cli {
     cmd: Cmd,
 }
 
+/// Which definitions to load.
+#[derive(Args)]
+struct SpecArgs {
+    /// Directories of `*.yaml` definitions (default: the RA 3.3 set of jaus-spec).
+    #[arg(long = "spec", value_name = "DIR")]
+    spec: Vec<PathBuf>,
+    /// Extra definition files loaded after the directories.
+    #[arg(long = "overlay", value_name = "FILE")]
+    overlays: Vec<PathBuf>,
+}
+
 #[derive(Subcommand)]
 enum Cmd {
     /// Validate definitions and write the generated Rust (`messages.rs`) to a directory.
     Generate {
-        /// Directories of `*.yaml` definitions (default: the RA 3.3 set of jaus-spec).
-        #[arg(long = "spec", value_name = "DIR")]
-        spec: Vec<PathBuf>,
-        /// Extra definition files loaded after the directories.
-        #[arg(long = "overlay", value_name = "FILE")]
-        overlays: Vec<PathBuf>,
+        #[command(flatten)]
+        defs: SpecArgs,
         /// Output directory.
         #[arg(long, value_name = "DIR")]
         out: PathBuf,
@@ -37,38 +44,30 @@ enum Cmd {
     },
     /// Render the reference documentation: one Markdown page per group and an index.
     Docs {
-        /// Directories of `*.yaml` definitions (default: the RA 3.3 set of jaus-spec).
-        #[arg(long = "spec", value_name = "DIR")]
-        spec: Vec<PathBuf>,
-        /// Extra definition files.
-        #[arg(long = "overlay", value_name = "FILE")]
-        overlays: Vec<PathBuf>,
+        #[command(flatten)]
+        defs: SpecArgs,
         /// Output directory.
         #[arg(long, value_name = "DIR")]
         out: PathBuf,
     },
     /// Validate definitions only; print every problem as file:line:column and exit 1.
     Check {
-        /// Directories of `*.yaml` definitions (default: the RA 3.3 set of jaus-spec).
-        #[arg(long = "spec", value_name = "DIR")]
-        spec: Vec<PathBuf>,
-        /// Extra definition files.
-        #[arg(long = "overlay", value_name = "FILE")]
-        overlays: Vec<PathBuf>,
+        #[command(flatten)]
+        defs: SpecArgs,
     },
 }
 
-fn builder(spec: Vec<PathBuf>, overlays: Vec<PathBuf>) -> jaus_gen::Builder {
-    let dirs = if spec.is_empty() && overlays.is_empty() {
+fn builder(defs: SpecArgs) -> jaus_gen::Builder {
+    let dirs = if defs.spec.is_empty() && defs.overlays.is_empty() {
         vec![jaus_spec::defs_dir()]
     } else {
-        spec
+        defs.spec
     };
     let mut b = jaus_gen::Builder::new().emit_rerun_if_changed(false);
     for d in dirs {
         b = b.spec_dir(d);
     }
-    for o in overlays {
+    for o in defs.overlays {
         b = b.overlay(o);
     }
     b
@@ -78,15 +77,12 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.cmd {
         Cmd::Generate {
-            spec,
-            overlays,
+            defs,
             out,
             templates,
             feature_gates,
         } => {
-            let mut b = builder(spec, overlays)
-                .out_dir(&out)
-                .feature_gates(feature_gates);
+            let mut b = builder(defs).out_dir(&out).feature_gates(feature_gates);
             if let Some(t) = templates {
                 b = b.templates_dir(t);
             }
@@ -101,16 +97,12 @@ fn main() -> ExitCode {
                 }
             })
         }
-        Cmd::Docs {
-            spec,
-            overlays,
-            out,
-        } => builder(spec, overlays).load().and_then(|s| {
+        Cmd::Docs { defs, out } => builder(defs).load().and_then(|s| {
             let files = jaus_gen::render_docs(&s, &out)?;
             println!("wrote {} page(s) to {}", files.len(), out.display());
             Ok(())
         }),
-        Cmd::Check { spec, overlays } => builder(spec, overlays).load().map(|s| {
+        Cmd::Check { defs } => builder(defs).load().map(|s| {
             println!(
                 "ok: {} messages, {} types, {} components in {} file(s)",
                 s.messages.len(),

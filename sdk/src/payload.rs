@@ -122,42 +122,27 @@ pub fn encode_elements(elements: &[DataElement]) -> Result<(u8, Vec<u8>), Encode
     Ok((count, out))
 }
 
-impl SetPayloadDataElement {
-    /// The message carrying `elements` (indexes into the command interfaces).
-    pub fn with_elements(elements: &[DataElement]) -> Result<Self, EncodeError> {
-        let (element_count, elements) = encode_elements(elements)?;
-        Ok(Self {
-            element_count,
-            elements,
-        })
-    }
+/// The data-element API of the two messages that carry payload values.
+macro_rules! data_element_api {
+    ($($msg:ident: $side:literal;)*) => {$(
+        impl $msg {
+            #[doc = concat!("The message carrying `elements` (indexes into the ", $side, " interfaces).")]
+            pub fn with_elements(elements: &[DataElement]) -> Result<Self, EncodeError> {
+                let (element_count, elements) = encode_elements(elements)?;
+                Ok(Self { element_count, elements })
+            }
 
-    /// The elements, read with the type codes of the payload's command interfaces.
-    pub fn data_elements(
-        &self,
-        command_interfaces: &PayloadTypes,
-    ) -> Result<Vec<DataElement>, DecodeError> {
-        decode_elements(self.element_count, &self.elements, command_interfaces)
-    }
+            #[doc = concat!("The elements, read with the type codes of the payload's ", $side, " interfaces.")]
+            pub fn data_elements(&self, interfaces: &PayloadTypes) -> Result<Vec<DataElement>, DecodeError> {
+                decode_elements(self.element_count, &self.elements, interfaces)
+            }
+        }
+    )*};
 }
 
-impl ReportPayloadDataElement {
-    /// The message carrying `elements` (indexes into the information interfaces).
-    pub fn with_elements(elements: &[DataElement]) -> Result<Self, EncodeError> {
-        let (element_count, elements) = encode_elements(elements)?;
-        Ok(Self {
-            element_count,
-            elements,
-        })
-    }
-
-    /// The elements, read with the type codes of the payload's information interfaces.
-    pub fn data_elements(
-        &self,
-        information_interfaces: &PayloadTypes,
-    ) -> Result<Vec<DataElement>, DecodeError> {
-        decode_elements(self.element_count, &self.elements, information_interfaces)
-    }
+data_element_api! {
+    SetPayloadDataElement: "command";
+    ReportPayloadDataElement: "information";
 }
 
 #[cfg(test)]
