@@ -22,6 +22,7 @@
 //! Generated structs carry `#[derive(JausMessage)]` and field attributes of
 //! `jaus-derive`; templates hold no byte-level code.
 
+mod components;
 mod context;
 mod docs;
 
@@ -29,6 +30,7 @@ use jaus_spec::{Spec, SpecErrors};
 use minijinja::Environment;
 use std::path::{Path, PathBuf};
 
+pub use components::{build_components, ComponentCtx};
 pub use context::{build_context, Context};
 pub use docs::{render_docs, DOC_TEMPLATES};
 
@@ -39,6 +41,10 @@ pub const DEFAULT_TEMPLATES: &[(&str, &str)] = &[
         include_str!("../../templates/messages.rs.j2"),
     ),
     ("items.rs.j2", include_str!("../../templates/items.rs.j2")),
+    (
+        "components.rs.j2",
+        include_str!("../../templates/components.rs.j2"),
+    ),
 ];
 
 /// What can go wrong while generating.
@@ -92,14 +98,19 @@ pub struct Builder {
 /// What one generation run produced.
 #[derive(Debug)]
 pub struct Generated {
-    /// The formatted Rust source.
+    /// The formatted Rust source of the messages (`messages.rs`).
     pub code: String,
+    /// The formatted Rust source of the component skeletons (`components.rs`), which
+    /// needs the `jaus` component runtime.
+    pub components: String,
     /// Files written.
     pub files: Vec<PathBuf>,
     /// Number of messages generated.
     pub messages: usize,
     /// Number of named types generated.
     pub types: usize,
+    /// Number of component interfaces generated.
+    pub component_count: usize,
 }
 
 impl Builder {
@@ -190,12 +201,19 @@ impl Builder {
         env.add_global("rt", rt);
         env.add_global("serde_cfg", self.serde_cfg.as_deref().unwrap_or("any()"));
         let raw = env.get_template("messages.rs.j2")?.render(&ctx)?;
-        let code = format_code(&raw, self.out_dir.as_deref())?;
+        let code = format_code(&raw, self.out_dir.as_deref(), "messages")?;
+        let comps = build_components(&spec, self.feature_gates);
+        let raw = env
+            .get_template("components.rs.j2")?
+            .render(minijinja::context! { components => &comps })?;
+        let components = format_code(&raw, self.out_dir.as_deref(), "components")?;
         Ok(Generated {
             code,
+            components,
             files: Vec::new(),
             messages: spec.messages.len(),
             types: spec.types.len(),
+            component_count: comps.len(),
         })
     }
 
@@ -213,6 +231,9 @@ impl Builder {
         })?;
         let path = out.join("messages.rs");
         write_if_changed(&path, &g.code)?;
+        g.files.push(path);
+        let path = out.join("components.rs");
+        write_if_changed(&path, &g.components)?;
         g.files.push(path);
         Ok(g)
     }
@@ -255,15 +276,15 @@ pub fn write_if_changed(path: &Path, text: &str) -> Result<(), Error> {
 }
 
 /// Parses and pretty-prints generated code. On a syntax error the raw text is written
-/// next to the output (`messages.unformatted.rs`) and the error points into it.
-pub fn format_code(raw: &str, out_dir: Option<&Path>) -> Result<String, Error> {
+/// next to the output (`NAME.unformatted.rs`) and the error points into it.
+pub fn format_code(raw: &str, out_dir: Option<&Path>, name: &str) -> Result<String, Error> {
     match syn::parse_file(raw) {
         Ok(file) => Ok(prettyplease::unparse(&file)),
         Err(e) => {
             let dir = out_dir
                 .map(Path::to_path_buf)
                 .unwrap_or_else(std::env::temp_dir);
-            let path = dir.join("messages.unformatted.rs");
+            let path = dir.join(format!("{name}.unformatted.rs"));
             let _ = std::fs::create_dir_all(&dir);
             let _ = std::fs::write(&path, raw);
             let start = e.span().start();

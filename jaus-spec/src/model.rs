@@ -328,21 +328,81 @@ pub struct VariantDef {
     pub description: Option<String>,
 }
 
-/// A component interface (the component layer builds on these).
+/// A component interface: what the generated trait and the component runtime build on.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ComponentDef {
     /// PascalCase name.
     pub name: String,
-    /// Component id (Part 1).
+    /// Component id (Part 1; 1-254).
     pub id: u8,
-    /// Function of the component.
+    /// The Part 1 "Function" text.
+    pub function: String,
+    /// The Part 1 "Description" text.
     #[serde(default)]
     pub description: Option<String>,
-    /// Messages it accepts.
+    /// Command-class messages it executes; the runtime takes them only from the
+    /// component in control.
+    #[serde(default)]
+    pub commands: Vec<String>,
+    /// Queries it answers and messages it consumes, from any sender.
     #[serde(default)]
     pub accepts: Vec<String>,
-    /// Messages it may send.
+    /// Messages it sends on its own initiative (replies to accepted queries are implied).
     #[serde(default)]
     pub emits: Vec<String>,
+    /// May send and receive any message (Part 1 command and control components).
+    #[serde(default)]
+    pub any_message: bool,
+    /// Behaviour rules of Part 1, one sentence each (rendered into the docs).
+    #[serde(default)]
+    pub rules: Vec<String>,
+    /// Component-specific sub-states of the core Ready state.
+    #[serde(default)]
+    pub modes: Option<ModesDef>,
+}
+
+/// Sub-states of Ready and the legal transitions between them.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ModesDef {
+    /// What the modes track.
+    #[serde(default)]
+    pub description: Option<String>,
+    /// The mode on entering Ready (and after leaving it).
+    pub initial: String,
+    /// The modes.
+    pub states: Vec<ModeDef>,
+    /// The legal transitions.
+    #[serde(default)]
+    pub transitions: Vec<TransitionDef>,
+}
+
+/// One mode.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ModeDef {
+    /// PascalCase name.
+    pub name: String,
+    /// Meaning.
+    #[serde(default)]
+    pub description: Option<String>,
+}
+
+/// One legal mode transition.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TransitionDef {
+    /// snake_case name.
+    pub name: String,
+    /// Modes it may start from.
+    pub from: Vec<String>,
+    /// Mode it leads to.
+    pub to: String,
+    /// Core state the component enters with it (`Standby` or `Failure`).
+    #[serde(default)]
+    pub core: Option<String>,
+    /// When it happens.
+    #[serde(default)]
+    pub description: Option<String>,
 }

@@ -57,6 +57,8 @@ extern crate self as jaus;
 #[cfg(feature = "serde")]
 pub mod cli;
 pub mod codec;
+#[cfg(feature = "component")]
+pub mod component;
 pub mod hex;
 #[cfg(feature = "payload")]
 pub mod payload;
@@ -107,6 +109,14 @@ impl MessageInfo {
     pub fn of(code: CommandCode) -> Option<&'static MessageInfo> {
         messages::MESSAGES.iter().find(|m| m.code == code)
     }
+}
+
+/// The generated component skeletons: per component of Part 1 (and the node manager)
+/// a module with the vendor trait, its interface, its modes and the dispatch that runs
+/// it under [`component::Component`].
+#[cfg(feature = "component")]
+pub mod components {
+    include!(concat!(env!("OUT_DIR"), "/components.rs"));
 }
 
 /// The generated message set: one struct per message, shared types, and the

@@ -1,0 +1,1099 @@
+//! The component runtime: everything a JAUS component does whatever its function.
+//!
+//! A [`Component`] wraps a [`Behaviour`] (the generated `Dispatch` of a component
+//! trait, see [`crate::components`]) and handles the core of RA 3.3 itself: the core
+//! states, Set/Query Component Authority, component control, Query Component Status,
+//! Set/Query Time, the heartbeat, service connections (provider and requester side) and
+//! events. It is sans-IO in the manner of `quinn-proto`: it is fed
+//! [`handle`](Component::handle)`(now, header, body)` and
+//! [`handle_timeout`](Component::handle_timeout)`(now)`, and hands back messages to
+//! send ([`poll_transmit`](Component::poll_transmit)) and the next time it wants to be
+//! woken ([`poll_timeout`](Component::poll_timeout)). No socket, thread or wall clock
+//! is used, so a whole system runs deterministically on a virtual clock
+//! ([`local::LocalBus`]).
+//!
+//! # Rules this runtime applies (and why)
+//!
+//! * **Control.** The commands of a component interface (`commands:` in its
+//!   definition) and the core commands Set Component Authority, Shutdown, Standby,
+//!   Resume, Reset, Set Time and Release Component Control are executed only when sent by
+//!   the component in control ([`ControlPolicy::ControllerOnly`], the default, as the
+//!   successor standard requires). [`ControlPolicy::Open`] instead accepts them from
+//!   anyone while no component holds control, as OpenJAUS 3.3 does. Request Component
+//!   Control follows OpenJAUS (WIRE.md §5.3) with one addition: a requester whose
+//!   authority is below the component's own authority gets Confirm Component Control
+//!   "insufficient authority".
+//! * **Emergency.** Set Emergency is honoured from **any** sender, controller or not:
+//!   an emergency stop that can be refused is not one. The runtime remembers who set it;
+//!   the component leaves Emergency (to Standby) only when every one of them has sent
+//!   Clear Emergency. A Clear Emergency from a component that did not set one is ignored
+//!   and counted. While in Emergency, Reset, Standby and Resume are refused and no
+//!   interface command is executed.
+//! * **Refusals.** A refused message is counted in [`Stats`] and logged with its name,
+//!   sender and reason; if the sender asked for an acknowledgement it gets a NAK. Nothing
+//!   a vendor has not implemented crashes the component: it is counted as unsupported.
+//! * **Bounds.** The outgoing queue, the service connections, the events and the set of
+//!   emergency senders all have a configured capacity; what does not fit is refused (with
+//!   the JAUS response code for it) or dropped and counted.
+
+mod clock;
+pub mod local;
+mod services;
+mod state;
+
+use std::collections::VecDeque;
+use std::marker::PhantomData;
+use std::time::{Duration, Instant};
+
+pub use state::{CoreState, CoreTransition, Modes, NoModes, NoTransition, TransitionError};
+
+use crate::codec::{Encode, EncodeError};
+use crate::messages::*;
+use crate::wire::AckNak;
+use crate::{Address, CommandCode, Header, JausMessage};
+use services::{EventTable, ProviderTable, RequesterTable};
+
+/// The static description of a component interface, generated from its definition.
+pub trait Interface: Send + 'static {
+    /// Component name.
+    const NAME: &'static str;
+    /// Component id (Part 1).
+    const ID: u8;
+    /// The Part 1 function text.
+    const FUNCTION: &'static str;
+    /// Commands executed only for the controlling component.
+    const COMMANDS: &'static [CommandCode];
+    /// Messages accepted from anyone (queries it answers, reports it consumes).
+    const ACCEPTS: &'static [CommandCode];
+    /// Messages it sends on its own initiative.
+    const EMITS: &'static [CommandCode];
+    /// Takes and sends any message (command and control components).
+    const ANY_MESSAGE: bool;
+    /// Its sub-states of Ready.
+    type Modes: Modes;
+}
+
+/// Implemented by an interface for every message its definition lets it send:
+/// [`Context::send`] does not compile for any other message.
+pub trait Emits<M: JausMessage>: Interface {}
+
+/// Why a component did not act on a message.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum Refused {
+    /// The vendor did not implement this message.
+    #[error("not supported by this component")]
+    Unsupported,
+    /// The message is understood but its content cannot be executed (a value out of
+    /// range, NaN, an unknown waypoint, ...).
+    #[error("{0}")]
+    Invalid(String),
+}
+
+/// What the generated `Dispatch` of a component trait implements; the runtime drives
+/// it.
+pub trait Behaviour: Send + 'static {
+    /// The interface this behaviour serves.
+    type Interface: Interface;
+
+    /// Handles a message that is not a core message. Returns the report answering a
+    /// query (sent back by the runtime), `None` for anything else.
+    fn handle(
+        &mut self,
+        ctx: &mut Context<'_, Self::Interface>,
+        msg: &Message,
+    ) -> Result<Option<Message>, Refused>;
+
+    /// Called in Initialize; an error puts the component in Failure.
+    fn initialize(&mut self, ctx: &mut Context<'_, Self::Interface>) -> Result<(), String> {
+        let _ = ctx;
+        Ok(())
+    }
+
+    /// Called after every core state change.
+    fn state_changed(
+        &mut self,
+        ctx: &mut Context<'_, Self::Interface>,
+        from: CoreState,
+        to: CoreState,
+    ) {
+        let _ = (ctx, from, to);
+    }
+
+    /// Called every [`Config::tick`] (except in Shutdown).
+    fn tick(&mut self, ctx: &mut Context<'_, Self::Interface>) {
+        let _ = ctx;
+    }
+}
+
+/// Who may send the controlled commands.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum ControlPolicy {
+    /// Only the component in control (none when nobody holds control).
+    #[default]
+    ControllerOnly,
+    /// The component in control, or anyone while nobody holds control (OpenJAUS 3.3).
+    Open,
+}
+
+/// Settings of one component.
+#[derive(Debug, Clone)]
+pub struct Config {
+    /// The component's own authority (Set Component Authority changes it).
+    pub authority: u8,
+    /// Who may send controlled commands.
+    pub control: ControlPolicy,
+    /// Period of Report Heartbeat Pulse to the node manager (`None`: no heartbeat).
+    pub heartbeat: Option<Duration>,
+    /// Where heartbeats go (`None`: component 1, instance 1 of this node).
+    pub node_manager: Option<Address>,
+    /// Period of [`Behaviour::tick`] and of the "every change" event checks.
+    pub tick: Duration,
+    /// Highest rate granted to a service connection or periodic event, Hz.
+    pub max_rate_hz: f64,
+    /// Most service connections served at once.
+    pub max_service_connections: usize,
+    /// Most events served at once.
+    pub max_events: usize,
+    /// Most service connections this component requests at once.
+    pub max_subscriptions: usize,
+    /// Most messages waiting in the outgoing queue.
+    pub outbox_capacity: usize,
+    /// Most distinct emergency senders remembered.
+    pub max_emergency_senders: usize,
+    /// Identification text (`None`: the component name).
+    pub identification: Option<String>,
+    /// UTC (since 1970-01-01) at the first instant the component sees, if known.
+    pub utc: Option<Duration>,
+}
+
+impl Default for Config {
+    fn default() -> Self {
+        Self {
+            authority: 0,
+            control: ControlPolicy::ControllerOnly,
+            heartbeat: Some(Duration::from_secs(1)),
+            node_manager: None,
+            tick: Duration::from_millis(50),
+            max_rate_hz: 100.0,
+            max_service_connections: 32,
+            max_events: 32,
+            max_subscriptions: 32,
+            outbox_capacity: 1024,
+            max_emergency_senders: 16,
+            identification: None,
+            utc: None,
+        }
+    }
+}
+
+/// Counters of what the component received, did and dropped.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Stats {
+    /// Messages received.
+    pub received: u64,
+    /// Messages sent (taken from the outgoing queue).
+    pub sent: u64,
+    /// Bodies that did not decode.
+    pub decode_errors: u64,
+    /// Messages addressed to another component.
+    pub misaddressed: u64,
+    /// Messages the vendor did not implement.
+    pub unsupported: u64,
+    /// Controlled commands from a component not in control.
+    pub not_controller: u64,
+    /// Messages refused in the current core state (or illegal core transitions asked).
+    pub wrong_state: u64,
+    /// Messages refused as invalid by the vendor code.
+    pub invalid: u64,
+    /// Clear Emergency from a component that set no emergency.
+    pub foreign_clear_emergency: u64,
+    /// Emergency senders not remembered because the set was full.
+    pub emergency_overflow: u64,
+    /// Outgoing messages dropped because the queue was full.
+    pub outbox_dropped: u64,
+    /// Reports a service connection or event could not produce.
+    pub report_failures: u64,
+    /// Service connections or events refused.
+    pub subscriptions_refused: u64,
+}
+
+/// A message to send: its header (destination, flags, sequence number) and its body.
+/// `message` is `None` for an acknowledgement (ACK/NAK carry no body).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Transmit {
+    /// Header; the data size is set when encoded.
+    pub header: Header,
+    /// The message.
+    pub message: Option<Message>,
+}
+
+impl Transmit {
+    /// The encoded body.
+    pub fn body(&self) -> Result<Vec<u8>, EncodeError> {
+        match &self.message {
+            Some(m) => m.to_bytes(),
+            None => Ok(Vec::new()),
+        }
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct Controller {
+    address: Address,
+    authority: u8,
+}
+
+/// The runtime state of a component, apart from the vendor behaviour.
+struct Core<I: Interface> {
+    address: Address,
+    config: Config,
+    now: Instant,
+    started: bool,
+    needs_init: bool,
+    state: CoreState,
+    mode: I::Modes,
+    authority: u8,
+    controller: Option<Controller>,
+    emergencies: Vec<Address>,
+    held_control: Vec<Address>,
+    clock: clock::Clock,
+    source: Option<Address>,
+    outbox: VecDeque<Transmit>,
+    stats: Stats,
+    next_heartbeat: Option<Instant>,
+    next_tick: Instant,
+    changes: VecDeque<(CoreState, CoreState)>,
+    provider: ProviderTable,
+    events: EventTable,
+    requester: RequesterTable,
+}
+
+/// What a behaviour sees of the runtime while it handles a message or a tick.
+pub struct Context<'a, I: Interface> {
+    core: &'a mut Core<I>,
+    _i: PhantomData<I>,
+}
+
+impl<I: Interface> std::fmt::Debug for Context<'_, I> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Context")
+            .field("component", &I::NAME)
+            .field("address", &self.core.address)
+            .field("state", &self.core.state)
+            .field("mode", &self.core.mode)
+            .finish()
+    }
+}
+
+impl<I: Interface> Context<'_, I> {
+    /// The current (virtual or real) instant.
+    pub fn now(&self) -> Instant {
+        self.core.now
+    }
+
+    /// This component's address.
+    pub fn address(&self) -> Address {
+        self.core.address
+    }
+
+    /// The sender of the message being handled (`None` in ticks and initialisation).
+    pub fn source(&self) -> Option<Address> {
+        self.core.source
+    }
+
+    /// The core state.
+    pub fn state(&self) -> CoreState {
+        self.core.state
+    }
+
+    /// The component mode (meaningful in Ready; the initial mode otherwise).
+    pub fn mode(&self) -> I::Modes {
+        self.core.mode
+    }
+
+    /// The component in control, if any.
+    pub fn controller(&self) -> Option<Address> {
+        self.core.controller.map(|c| c.address)
+    }
+
+    /// Whether `target` has confirmed this component's control request.
+    pub fn has_control_of(&self, target: Address) -> bool {
+        self.core.held_control.contains(&target)
+    }
+
+    /// Current UTC (since 1970-01-01), when the clock is set.
+    pub fn utc(&self) -> Option<Duration> {
+        self.core.clock.utc(self.core.now)
+    }
+
+    /// Sends `msg` to `to`. Only messages the interface may emit compile here.
+    pub fn send<M>(&mut self, to: Address, msg: M)
+    where
+        I: Emits<M>,
+        M: JausMessage + Into<Message>,
+    {
+        self.core.send(to, msg.into(), false, 0);
+    }
+
+    /// Moves to another mode. Allowed only in Ready and along a transition of the
+    /// definition; a transition with a core effect (e.g. back to Standby at the final
+    /// waypoint) also changes the core state.
+    pub fn transition(
+        &mut self,
+        t: <I::Modes as Modes>::Transition,
+    ) -> Result<I::Modes, TransitionError> {
+        if self.core.state != CoreState::Ready {
+            return Err(TransitionError {
+                machine: I::NAME,
+                from: self.core.state.name(),
+                transition: <I::Modes as Modes>::transition_name(t),
+            });
+        }
+        let next = self.core.mode.apply(t)?;
+        self.core.mode = next;
+        if let Some(core) = <I::Modes as Modes>::core_effect(t) {
+            self.core.set_state(core)?;
+        }
+        Ok(self.core.mode)
+    }
+
+    /// Reports a fault: the component enters Failure.
+    pub fn fail(&mut self, reason: &str) -> Result<CoreState, TransitionError> {
+        tracing::warn!(component = I::NAME, address = %self.core.address, "failure: {reason}");
+        self.core.set_state(CoreTransition::Fail)
+    }
+
+    /// Asks `target` for control with this component's authority.
+    pub fn request_control(&mut self, target: Address) {
+        let authority = self.core.authority;
+        self.core.send(
+            target,
+            RequestComponentControl {
+                authority_code: authority,
+            }
+            .into(),
+            false,
+            0,
+        );
+    }
+
+    /// Gives control of `target` back.
+    pub fn release_control(&mut self, target: Address) {
+        self.core.held_control.retain(|a| *a != target);
+        self.core
+            .send(target, ReleaseComponentControl {}.into(), false, 0);
+    }
+
+    /// Sends `msg` to a component this one controls (or tries to): core commands such as
+    /// Resume, Standby and Set Emergency, and core queries.
+    pub fn send_core<M: CoreMessage>(&mut self, to: Address, msg: M) {
+        self.core.send(to, msg.into(), false, 0);
+    }
+
+    /// Asks `provider` for a service connection streaming report `report` at `rate_hz`
+    /// with presence vector `presence`. The reports arrive as ordinary messages. Returns
+    /// false when [`Config::max_subscriptions`] are already open.
+    pub fn create_service_connection(
+        &mut self,
+        provider: Address,
+        report: CommandCode,
+        rate_hz: f64,
+        presence: u32,
+    ) -> bool {
+        self.core.subscribe(provider, report, rate_hz, presence)
+    }
+
+    /// Ends the service connection on `report` from `provider`.
+    pub fn terminate_service_connection(&mut self, provider: Address, report: CommandCode) {
+        self.core.unsubscribe(provider, report);
+    }
+
+    /// Whether `provider` confirmed a service connection on `report`.
+    pub fn service_connection_active(&self, provider: Address, report: CommandCode) -> bool {
+        self.core.requester.is_active(provider, report)
+    }
+}
+
+/// Core messages any component may send with [`Context::send_core`].
+pub trait CoreMessage: JausMessage + Into<Message> {}
+macro_rules! core_messages {
+    ($($t:ty),* $(,)?) => { $(impl CoreMessage for $t {})* };
+}
+core_messages!(
+    Shutdown,
+    Standby,
+    Resume,
+    Reset,
+    SetEmergency,
+    ClearEmergency,
+    SetComponentAuthority,
+    SetTime,
+    QueryComponentAuthority,
+    QueryComponentStatus,
+    QueryComponentControl,
+    QueryTime,
+    QueryServices,
+    QueryIdentification,
+    QueryHeartbeatPulse,
+    CreateEvent,
+    UpdateEvent,
+    CancelEvent,
+    QueryEvents,
+);
+
+impl<I: Interface> Core<I> {
+    fn new(address: Address, config: Config, now: Instant) -> Self {
+        Self {
+            address,
+            authority: config.authority,
+            now,
+            started: false,
+            needs_init: true,
+            state: CoreState::Initialize,
+            mode: <I::Modes as Modes>::INITIAL,
+            controller: None,
+            emergencies: Vec::new(),
+            held_control: Vec::new(),
+            clock: clock::Clock::default(),
+            source: None,
+            outbox: VecDeque::new(),
+            stats: Stats::default(),
+            next_heartbeat: None,
+            next_tick: now,
+            changes: VecDeque::new(),
+            provider: ProviderTable::default(),
+            events: EventTable::default(),
+            requester: RequesterTable::default(),
+            config,
+        }
+    }
+
+    fn header(&self, code: CommandCode, to: Address) -> Header {
+        Header::new(code, to, self.address)
+    }
+
+    fn push(&mut self, t: Transmit) {
+        if self.outbox.len() >= self.config.outbox_capacity {
+            self.stats.outbox_dropped += 1;
+            tracing::warn!(
+                component = I::NAME,
+                address = %self.address,
+                message = t.message.as_ref().map_or("ack/nak", |m| m.name()),
+                "outgoing queue full ({}): message dropped",
+                self.config.outbox_capacity
+            );
+            return;
+        }
+        self.outbox.push_back(t);
+    }
+
+    fn send(&mut self, to: Address, message: Message, sc: bool, seq: u16) {
+        let mut header = self.header(message.code(), to);
+        header.service_connection = sc;
+        header.sequence_number = seq;
+        self.push(Transmit {
+            header,
+            message: Some(message),
+        });
+    }
+
+    fn ack(&mut self, request: &Header, ok: bool) {
+        if request.ack_nak != AckNak::Request {
+            return;
+        }
+        let mut header = self.header(request.command_code, request.source);
+        header.ack_nak = if ok { AckNak::Ack } else { AckNak::Nak };
+        self.push(Transmit {
+            header,
+            message: None,
+        });
+    }
+
+    fn set_state(&mut self, t: CoreTransition) -> Result<CoreState, TransitionError> {
+        let from = self.state;
+        let to = from.apply(t)?;
+        if to != from {
+            self.state = to;
+            self.mode = <I::Modes as Modes>::INITIAL;
+            tracing::info!(component = I::NAME, address = %self.address, "{from} -> {to} ({})", t.name());
+            if self.changes.len() < 64 {
+                self.changes.push_back((from, to));
+            }
+        }
+        Ok(to)
+    }
+
+    fn may_command(&self, source: Address) -> bool {
+        match (self.controller, self.config.control) {
+            (Some(c), _) => c.address == source,
+            (None, ControlPolicy::Open) => true,
+            (None, ControlPolicy::ControllerOnly) => false,
+        }
+    }
+
+    fn subscribe(&mut self, provider: Address, report: CommandCode, rate: f64, pv: u32) -> bool {
+        if !self
+            .requester
+            .add(provider, report, rate, pv, self.config.max_subscriptions)
+        {
+            self.stats.subscriptions_refused += 1;
+            return false;
+        }
+        let msg = CreateServiceConnection {
+            service_connection_command_code: report.0,
+            requested_periodic_update_rate: rate,
+            presence_vector: pv,
+        };
+        self.send(provider, msg.into(), true, 0);
+        true
+    }
+
+    fn unsubscribe(&mut self, provider: Address, report: CommandCode) {
+        if let Some(instance) = self.requester.remove(provider, report) {
+            let msg = TerminateServiceConnection {
+                service_connection_command_code: report.0,
+                instance_id: instance,
+            };
+            self.send(provider, msg.into(), true, 0);
+        }
+    }
+}
+
+/// A component: the runtime around a behaviour.
+pub struct Component<B: Behaviour> {
+    core: Core<B::Interface>,
+    behaviour: B,
+}
+
+impl<B: Behaviour> std::fmt::Debug for Component<B> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Component")
+            .field("name", &<B::Interface as Interface>::NAME)
+            .field("address", &self.core.address)
+            .field("state", &self.core.state)
+            .field("mode", &self.core.mode)
+            .field("controller", &self.core.controller)
+            .field("stats", &self.core.stats)
+            .finish()
+    }
+}
+
+impl<B: Behaviour> Component<B> {
+    /// A component at `address` (its component id should be the interface id) that
+    /// starts at `now` in Initialize.
+    pub fn new(address: Address, behaviour: B, config: Config, now: Instant) -> Self {
+        let mut core = Core::new(address, config, now);
+        if let Some(utc) = core.config.utc {
+            core.clock.set(now, utc);
+        }
+        Self { core, behaviour }
+    }
+
+    /// The address.
+    pub fn address(&self) -> Address {
+        self.core.address
+    }
+
+    /// The core state.
+    pub fn state(&self) -> CoreState {
+        self.core.state
+    }
+
+    /// The mode.
+    pub fn mode(&self) -> <B::Interface as Interface>::Modes {
+        self.core.mode
+    }
+
+    /// The component in control and its authority.
+    pub fn controller(&self) -> Option<(Address, u8)> {
+        self.core.controller.map(|c| (c.address, c.authority))
+    }
+
+    /// The component's own authority.
+    pub fn authority(&self) -> u8 {
+        self.core.authority
+    }
+
+    /// Counters.
+    pub fn stats(&self) -> Stats {
+        self.core.stats
+    }
+
+    /// Number of service connections served.
+    pub fn service_connections(&self) -> usize {
+        self.core.provider.len()
+    }
+
+    /// Number of events served.
+    pub fn events(&self) -> usize {
+        self.core.events.len()
+    }
+
+    /// The vendor behaviour.
+    pub fn behaviour(&self) -> &B {
+        &self.behaviour
+    }
+
+    /// The vendor behaviour, mutably.
+    pub fn behaviour_mut(&mut self) -> &mut B {
+        &mut self.behaviour
+    }
+
+    /// Forgets everything about `gone` (the node layer calls this when a component
+    /// disappears): control held by it, its service connections and events.
+    pub fn forget(&mut self, gone: Address) {
+        if self.core.controller.is_some_and(|c| c.address == gone) {
+            self.core.controller = None;
+        }
+        self.core.provider.remove_requester(gone);
+        self.core.events.remove_requester(gone);
+        self.core.held_control.retain(|a| *a != gone);
+    }
+
+    /// Hands a received message (header and body) to the component.
+    pub fn handle(&mut self, now: Instant, header: &Header, body: &[u8]) {
+        self.advance(now);
+        self.core.stats.received += 1;
+        if !header.destination.matches(&self.core.address) {
+            self.core.stats.misaddressed += 1;
+            return;
+        }
+        if header.ack_nak == AckNak::Ack || header.ack_nak == AckNak::Nak {
+            return;
+        }
+        let msg = match Message::decode(header.command_code, body) {
+            Ok(m) => m,
+            Err(e) => {
+                self.core.stats.decode_errors += 1;
+                tracing::warn!(
+                    component = <B::Interface as Interface>::NAME,
+                    address = %self.core.address,
+                    source = %header.source,
+                    code = %header.command_code,
+                    "undecodable message dropped: {e}"
+                );
+                self.core.ack(header, false);
+                return;
+            }
+        };
+        let ok = self.dispatch(header, &msg);
+        self.core.ack(header, ok);
+        self.notify_changes();
+    }
+
+    /// Hands a typed message to the component (as if decoded from `header`).
+    pub fn handle_message(&mut self, now: Instant, header: &Header, msg: &Message) {
+        self.advance(now);
+        self.core.stats.received += 1;
+        if !header.destination.matches(&self.core.address) {
+            self.core.stats.misaddressed += 1;
+            return;
+        }
+        let ok = self.dispatch(header, msg);
+        self.core.ack(header, ok);
+        self.notify_changes();
+    }
+
+    /// Runs what is due at `now`: initialisation, heartbeat, tick, service connections,
+    /// events.
+    pub fn handle_timeout(&mut self, now: Instant) {
+        self.advance(now);
+        let now = self.core.now;
+        if self.core.state == CoreState::Shutdown {
+            return;
+        }
+        if let (Some(due), Some(period)) = (self.core.next_heartbeat, self.core.config.heartbeat) {
+            if due <= now {
+                let nm = self.core.config.node_manager.unwrap_or(Address {
+                    component: 1,
+                    instance: 1,
+                    ..self.core.address
+                });
+                if <B::Interface as Interface>::ID != 1 {
+                    self.core.send(nm, ReportHeartbeatPulse {}.into(), false, 0);
+                }
+                self.core.next_heartbeat = Some(next_after(due, period, now));
+            }
+        }
+        if self.core.next_tick <= now {
+            self.core.next_tick = next_after(self.core.next_tick, self.core.config.tick, now);
+            self.core.source = None;
+            self.behaviour.tick(&mut Context {
+                core: &mut self.core,
+                _i: PhantomData,
+            });
+            self.notify_changes();
+            self.check_change_events();
+        }
+        self.run_service_connections(now);
+        self.run_periodic_events(now);
+        self.notify_changes();
+    }
+
+    /// The next instant [`handle_timeout`](Self::handle_timeout) must be called.
+    pub fn poll_timeout(&self) -> Option<Instant> {
+        if !self.core.started || self.core.needs_init {
+            return Some(self.core.now);
+        }
+        if self.core.state == CoreState::Shutdown {
+            return None;
+        }
+        let mut t = self.core.next_tick;
+        if let Some(h) = self.core.next_heartbeat {
+            t = t.min(h);
+        }
+        if let Some(s) = self.core.provider.next_due() {
+            t = t.min(s);
+        }
+        if let Some(e) = self.core.events.next_due() {
+            t = t.min(e);
+        }
+        Some(t)
+    }
+
+    /// The next message to send.
+    pub fn poll_transmit(&mut self) -> Option<Transmit> {
+        let t = self.core.outbox.pop_front()?;
+        self.core.stats.sent += 1;
+        Some(t)
+    }
+
+    fn advance(&mut self, now: Instant) {
+        if now > self.core.now {
+            self.core.now = now;
+        }
+        if !self.core.started {
+            self.core.started = true;
+            self.core.next_heartbeat = self.core.config.heartbeat.map(|_| self.core.now);
+            self.core.next_tick = self.core.now;
+        }
+        if self.core.needs_init && self.core.state == CoreState::Initialize {
+            self.core.needs_init = false;
+            self.core.source = None;
+            let r = self.behaviour.initialize(&mut Context {
+                core: &mut self.core,
+                _i: PhantomData,
+            });
+            let t = match r {
+                Ok(()) => CoreTransition::Initialized,
+                Err(reason) => {
+                    tracing::error!(
+                        component = <B::Interface as Interface>::NAME,
+                        address = %self.core.address,
+                        "initialisation failed: {reason}"
+                    );
+                    CoreTransition::Fail
+                }
+            };
+            // Initialize -> Standby/Failure is always legal unless the vendor changed
+            // the state meanwhile; then the vendor's state stands.
+            let _ = self.core.set_state(t);
+            self.notify_changes();
+        }
+    }
+
+    fn notify_changes(&mut self) {
+        while let Some((from, to)) = self.core.changes.pop_front() {
+            if to == CoreState::Initialize {
+                self.core.needs_init = true;
+            }
+            self.core.source = None;
+            self.behaviour.state_changed(
+                &mut Context {
+                    core: &mut self.core,
+                    _i: PhantomData,
+                },
+                from,
+                to,
+            );
+        }
+    }
+
+    fn refuse(&mut self, header: &Header, msg: &Message, why: Refusal) -> bool {
+        let s = &mut self.core.stats;
+        match &why {
+            Refusal::NotController => s.not_controller += 1,
+            Refusal::State(_) => s.wrong_state += 1,
+            Refusal::Vendor(Refused::Unsupported) => s.unsupported += 1,
+            Refusal::Vendor(Refused::Invalid(_)) => s.invalid += 1,
+        }
+        tracing::debug!(
+            component = <B::Interface as Interface>::NAME,
+            address = %self.core.address,
+            source = %header.source,
+            message = msg.name(),
+            "refused: {why}"
+        );
+        false
+    }
+
+    /// Runs one message; returns whether it was accepted (for ACK/NAK).
+    fn dispatch(&mut self, header: &Header, msg: &Message) -> bool {
+        let source = header.source;
+        self.core.source = Some(source);
+        if let Some(r) = self.core_message(header, msg) {
+            return match r {
+                Ok(()) => true,
+                Err(why) => self.refuse(header, msg, why),
+            };
+        }
+        if let Message::Event(ev) = msg {
+            // An event notification carries a report: handle the report as if it had
+            // arrived directly.
+            return match Message::decode(CommandCode(ev.report_message_code), &ev.report_message) {
+                Ok(inner) => {
+                    let h = Header {
+                        command_code: inner.code(),
+                        ..*header
+                    };
+                    self.dispatch(&h, &inner)
+                }
+                Err(e) => {
+                    self.core.stats.decode_errors += 1;
+                    tracing::warn!(
+                        component = <B::Interface as Interface>::NAME,
+                        source = %source,
+                        "event {} carries an undecodable report: {e}",
+                        ev.event_id
+                    );
+                    false
+                }
+            };
+        }
+        let state = self.core.state;
+        if state == CoreState::Shutdown {
+            return self.refuse(header, msg, Refusal::State(state));
+        }
+        let code = msg.code();
+        if <B::Interface as Interface>::COMMANDS.contains(&code) {
+            if !self.core.may_command(source) {
+                return self.refuse(header, msg, Refusal::NotController);
+            }
+            if !matches!(state, CoreState::Ready | CoreState::Standby) {
+                return self.refuse(header, msg, Refusal::State(state));
+            }
+        }
+        let r = self.behaviour.handle(
+            &mut Context {
+                core: &mut self.core,
+                _i: PhantomData,
+            },
+            msg,
+        );
+        match r {
+            Ok(Some(reply)) => {
+                self.core.send(source, reply, false, 0);
+                true
+            }
+            Ok(None) => true,
+            Err(e) => self.refuse(header, msg, Refusal::Vendor(e)),
+        }
+    }
+
+    /// Answers a query for a service connection or an event: core queries by the
+    /// runtime, the others by the behaviour.
+    fn answer(&mut self, requester: Address, query: &Message) -> Result<Message, Refused> {
+        if let Some(r) = self.core_report(query) {
+            return Ok(r);
+        }
+        let code = query.code();
+        let iface_ok = <B::Interface as Interface>::ANY_MESSAGE
+            || <B::Interface as Interface>::ACCEPTS.contains(&code);
+        if !iface_ok || self.core.state == CoreState::Shutdown {
+            return Err(Refused::Unsupported);
+        }
+        self.core.source = Some(requester);
+        let r = self.behaviour.handle(
+            &mut Context {
+                core: &mut self.core,
+                _i: PhantomData,
+            },
+            query,
+        );
+        match r {
+            Ok(Some(report)) => Ok(report),
+            Ok(None) => Err(Refused::Unsupported),
+            Err(e) => Err(e),
+        }
+    }
+
+    /// The report of a core query, answered by the runtime.
+    fn core_report(&self, query: &Message) -> Option<Message> {
+        let c = &self.core;
+        Some(match query {
+            Message::QueryComponentAuthority(_) => ReportComponentAuthority {
+                authority_code: c.authority,
+            }
+            .into(),
+            Message::QueryComponentStatus(_) => ReportComponentStatus {
+                primary_status_code: c.state.to_wire(),
+                secondary_status_code: 0,
+            }
+            .into(),
+            Message::QueryComponentControl(_) => {
+                let (a, auth) = c
+                    .controller
+                    .map_or((Address::default(), 0), |k| (k.address, k.authority));
+                ReportComponentControl {
+                    subsystem_id: a.subsystem,
+                    node_id: a.node,
+                    component_id: a.component,
+                    instance_id: a.instance,
+                    authority_code: auth,
+                }
+                .into()
+            }
+            Message::QueryTime(q) => {
+                let stamps = c.clock.stamps(c.now);
+                ReportTime {
+                    time_stamp: stamps.filter(|_| q.presence_vector & 1 != 0).map(|s| s.0),
+                    date_stamp: stamps.filter(|_| q.presence_vector & 2 != 0).map(|s| s.1),
+                }
+                .into()
+            }
+            Message::QueryHeartbeatPulse(_) => ReportHeartbeatPulse {}.into(),
+            Message::QueryServices(_) => self.services().into(),
+            Message::QueryIdentification(q) if q.query_field == QueryLevel::Component => {
+                ReportIdentification {
+                    query_type: QueryLevel::Component,
+                    authority: c.authority,
+                    identification_type: 0,
+                    identification: c
+                        .config
+                        .identification
+                        .clone()
+                        .unwrap_or_else(|| <B::Interface as Interface>::NAME.to_string()),
+                }
+                .into()
+            }
+            Message::QueryEvents(q) => self.core.events.report(q).into(),
+            _ => return None,
+        })
+    }
+
+    fn services(&self) -> ReportServices {
+        let entry = |code: &CommandCode| ServiceCommand {
+            command_code: code.0,
+            presence_vector: 0,
+        };
+        let core = JausService {
+            service_type: 0,
+            input_commands: jaus_core_inputs().iter().map(entry).collect(),
+            output_commands: jaus_core_outputs().iter().map(entry).collect(),
+        };
+        type I<B> = <B as Behaviour>::Interface;
+        let inputs: Vec<ServiceCommand> = I::<B>::COMMANDS
+            .iter()
+            .chain(I::<B>::ACCEPTS)
+            .map(entry)
+            .collect();
+        let outputs: Vec<ServiceCommand> = I::<B>::EMITS
+            .iter()
+            .copied()
+            .chain(
+                I::<B>::ACCEPTS
+                    .iter()
+                    .filter_map(|c| c.complement().filter(|_| c.0 >= 0x2000 && c.0 < 0x4000)),
+            )
+            .map(|c| entry(&c))
+            .collect();
+        ReportServices {
+            services: vec![
+                core,
+                JausService {
+                    service_type: u16::from(I::<B>::ID),
+                    input_commands: inputs,
+                    output_commands: outputs,
+                },
+            ],
+        }
+    }
+}
+
+/// Why a message was not acted on.
+#[derive(Debug)]
+enum Refusal {
+    NotController,
+    State(CoreState),
+    Vendor(Refused),
+}
+
+impl std::fmt::Display for Refusal {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Refusal::NotController => f.write_str("sender is not the component in control"),
+            Refusal::State(s) => write!(f, "not allowed in {s}"),
+            Refusal::Vendor(r) => write!(f, "{r}"),
+        }
+    }
+}
+
+/// The next due time after `due` with `period`, never in the past of `now` (a component
+/// that was not woken for a while does not burst to catch up).
+fn next_after(due: Instant, period: Duration, now: Instant) -> Instant {
+    let next = due + period;
+    if next <= now {
+        now + period
+    } else {
+        next
+    }
+}
+
+/// The core inputs listed in Report Services (service type 0), as OpenJAUS lists them.
+fn jaus_core_inputs() -> &'static [CommandCode] {
+    const C: &[CommandCode] = &[
+        CommandCode(0x0001),
+        CommandCode(0x0002),
+        CommandCode(0x0003),
+        CommandCode(0x0004),
+        CommandCode(0x0005),
+        CommandCode(0x0006),
+        CommandCode(0x0007),
+        CommandCode(0x0008),
+        CommandCode(0x0009),
+        CommandCode(0x000A),
+        CommandCode(0x000B),
+        CommandCode(0x000C),
+        CommandCode(0x000D),
+        CommandCode(0x000E),
+        CommandCode(0x000F),
+        CommandCode(0x0010),
+        CommandCode(0x0011),
+        CommandCode(0x01F0),
+        CommandCode(0x01F1),
+        CommandCode(0x01F2),
+        CommandCode(0x2001),
+        CommandCode(0x2002),
+        CommandCode(0x200D),
+        CommandCode(0x2011),
+        CommandCode(0x21F0),
+        CommandCode(0x2202),
+        CommandCode(0x2B00),
+        CommandCode(0x2B03),
+    ];
+    C
+}
+
+/// The core outputs listed in Report Services.
+fn jaus_core_outputs() -> &'static [CommandCode] {
+    const C: &[CommandCode] = &[
+        CommandCode(0x0008),
+        CommandCode(0x0009),
+        CommandCode(0x000C),
+        CommandCode(0x000D),
+        CommandCode(0x000F),
+        CommandCode(0x0010),
+        CommandCode(0x01F3),
+        CommandCode(0x01F4),
+        CommandCode(0x4001),
+        CommandCode(0x4002),
+        CommandCode(0x400D),
+        CommandCode(0x4011),
+        CommandCode(0x41F0),
+        CommandCode(0x41F1),
+        CommandCode(0x4202),
+        CommandCode(0x4B00),
+        CommandCode(0x4B03),
+    ];
+    C
+}
