@@ -99,7 +99,10 @@ pub(crate) fn wrap(text: &str, width: usize) -> Vec<String> {
     for para in text.split("\n\n") {
         let mut line = String::new();
         for word in para.split_whitespace() {
-            if !line.is_empty() && line.len() + 1 + word.len() > width {
+            // Never start a line with something Markdown reads as a list marker.
+            let marker = matches!(word, "+" | "-" | "*")
+                || word.strip_suffix('.').is_some_and(|n| !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()));
+            if !line.is_empty() && line.len() + 1 + word.len() > width && !marker {
                 out.push(std::mem::take(&mut line));
             }
             if !line.is_empty() {
@@ -332,5 +335,6 @@ mod tests {
         assert_eq!(pascal("arrive_final"), "ArriveFinal");
         let w = wrap("aaa bbb ccc\n\nddd", 7);
         assert_eq!(w, ["aaa bbb", "ccc", "", "ddd"]);
+        assert_eq!(wrap("aaa bbb + ccc", 7), ["aaa bbb +", "ccc"]);
     }
 }

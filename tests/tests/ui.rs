@@ -7,3 +7,14 @@ fn derive_ui() {
     t.pass("ui/pass/*.rs");
     t.compile_fail("ui/fail/*.rs");
 }
+
+/// Generated component skeletons: a vendor implementation builds and runs; a handler
+/// with the wrong message or report type, a handler outside the interface, sending a
+/// message the interface does not emit, and another component's mode transition are
+/// compile errors.
+#[test]
+fn component_ui() {
+    let t = trybuild::TestCases::new();
+    t.pass("ui/components/pass/*.rs");
+    t.compile_fail("ui/components/fail/*.rs");
+}

@@ -73,9 +73,14 @@ pub trait Interface: Send + 'static {
     type Modes: Modes;
 }
 
-/// Implemented by an interface for every message its definition lets it send:
-/// [`Context::send`] does not compile for any other message.
-pub trait Emits<M: JausMessage>: Interface {}
+/// Implemented by a message for every interface whose definition lets it send that
+/// message (`emits:`): [`Context::send`] does not compile for any other message.
+#[diagnostic::on_unimplemented(
+    message = "`{I}` does not emit `{Self}`",
+    label = "`{Self}` is not among the messages this component may send",
+    note = "add the message to `emits:` of the component definition (YAML) if the component really sends it, or use `Context::send_core` for core messages"
+)]
+pub trait EmittedBy<I: Interface>: JausMessage {}
 
 /// Why a component did not act on a message.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
@@ -327,11 +332,7 @@ impl<I: Interface> Context<'_, I> {
     }
 
     /// Sends `msg` to `to`. Only messages the interface may emit compile here.
-    pub fn send<M>(&mut self, to: Address, msg: M)
-    where
-        I: Emits<M>,
-        M: JausMessage + Into<Message>,
-    {
+    pub fn send<M: EmittedBy<I> + Into<Message>>(&mut self, to: Address, msg: M) {
         self.core.send(to, msg.into(), false, 0);
     }
 
