@@ -101,7 +101,9 @@ pub(crate) fn wrap(text: &str, width: usize) -> Vec<String> {
         for word in para.split_whitespace() {
             // Never start a line with something Markdown reads as a list marker.
             let marker = matches!(word, "+" | "-" | "*")
-                || word.strip_suffix('.').is_some_and(|n| !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()));
+                || word
+                    .strip_suffix('.')
+                    .is_some_and(|n| !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()));
             if !line.is_empty() && line.len() + 1 + word.len() > width && !marker {
                 out.push(std::mem::take(&mut line));
             }

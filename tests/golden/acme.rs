@@ -285,6 +285,21 @@ impl Message {
         }
     }
 }
+impl From<QueryTanks> for Message {
+    fn from(m: QueryTanks) -> Self {
+        Self::QueryTanks(m)
+    }
+}
+impl From<ReportTanks> for Message {
+    fn from(m: ReportTanks) -> Self {
+        Self::ReportTanks(m)
+    }
+}
+impl From<ReplayTanks> for Message {
+    fn from(m: ReplayTanks) -> Self {
+        Self::ReplayTanks(m)
+    }
+}
 impl Encode for Message {
     fn encoded_len(&self) -> usize {
         self.body().encoded_len()

@@ -133,13 +133,14 @@ mod tests {
     fn calendar_conversion_matches_known_dates() {
         assert_eq!(days_from_civil(1970, 1, 1), 0);
         assert_eq!(days_from_civil(2000, 3, 1), 11_017);
-        // 2026-11-22 is 20,414 days after the epoch.
-        assert_eq!(days_from_civil(2026, 11, 22), 20_414);
-        for z in [0, 59, 60, 11_016, 11_017, 20_414, 47_541] {
+        // 2026-11-22 is 20,779 days after the epoch.
+        assert_eq!(days_from_civil(2026, 11, 22), 20_779);
+        for z in [0, 59, 60, 11_016, 11_017, 20_779, 47_541] {
             let (y, m, d) = civil_from_days(z);
             assert_eq!(days_from_civil(y, m, d), z);
         }
         assert_eq!(civil_from_days(11_016), (2000, 2, 29));
+        assert_eq!(civil_from_days(47_541), (2100, 3, 1));
     }
 
     #[test]
