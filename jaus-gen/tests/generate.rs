@@ -15,7 +15,50 @@ fn same_input_gives_byte_identical_output() {
     let a = ra33().render().unwrap();
     let b = ra33().render().unwrap();
     assert_eq!(a.code, b.code);
+    assert_eq!(a.components, b.components);
     assert!(a.messages >= 90, "{} messages", a.messages);
+}
+
+#[test]
+fn every_component_gets_a_documented_trait_interface_and_dispatch() {
+    let g = ra33().render().unwrap();
+    let spec = jaus_spec::load_dirs(&[jaus_spec::defs_dir()]).unwrap();
+    assert_eq!(g.component_count, spec.components.len());
+    assert!(
+        g.component_count >= 30,
+        "Part 1 components and the node manager"
+    );
+    let code = &g.components;
+    for c in &spec.components {
+        let name = &c.def.name;
+        assert!(
+            code.contains(&format!("pub trait {name}: Send + 'static")),
+            "{name}"
+        );
+        assert!(
+            code.contains(&format!("const ID: u8 = {};", c.def.id)),
+            "{name}"
+        );
+        assert!(
+            code.contains(&format!("const NAME: &'static str = \"{name}\";")),
+            "{name}"
+        );
+    }
+    // Function text, rules and the definition's position are in the trait docs.
+    let wpd = &code[code.find("pub trait GlobalWaypointDriver").unwrap() - 4000
+        ..code.find("pub trait GlobalWaypointDriver").unwrap()];
+    assert!(
+        wpd.contains("The function of the Global Waypoint Driver is to determine"),
+        "{wpd}"
+    );
+    assert!(wpd.contains("# Rules (Part 1)"));
+    assert!(wpd.contains("Defined in `platform.yaml:"));
+    // Typed handlers, typed query replies, a mode machine with the core effect.
+    assert!(code.contains("fn on_set_global_waypoint("));
+    assert!(code.contains("-> Result<ReportGlobalPose, Refused>"));
+    assert!(code.contains("Transition::Arrive => Some(CoreTransition::Standby)"));
+    assert!(code.contains("impl EmittedBy<Interface> for SetWrenchEffort {}"));
+    assert!(code.contains("#[cfg(feature = \"platform\")]\npub mod global_waypoint_driver"));
 }
 
 #[test]
