@@ -59,6 +59,8 @@ pub mod cli;
 pub mod codec;
 #[cfg(feature = "component")]
 pub mod component;
+#[cfg(feature = "cores")]
+pub mod cores;
 pub mod hex;
 #[cfg(feature = "payload")]
 pub mod payload;

@@ -331,6 +331,11 @@ impl<I: Interface> Context<'_, I> {
         self.core.clock.utc(self.core.now)
     }
 
+    /// The JAUS time and date stamps of now, when the clock is set.
+    pub fn time_stamps(&self) -> Option<(TimeStamp, DateStamp)> {
+        self.core.clock.stamps(self.core.now)
+    }
+
     /// Sends `msg` to `to`. Only messages the interface may emit compile here.
     pub fn send<M: EmittedBy<I> + Into<Message>>(&mut self, to: Address, msg: M) {
         self.core.send(to, msg.into(), false, 0);

@@ -1,0 +1,19 @@
+//! Hand-written control cores for the platform components of Part 1 §5.3, generic over
+//! small hardware traits ([`hardware`]), and a simulated vehicle ([`sim`]) that stands in
+//! for the hardware so every core runs end to end.
+//!
+//! | component | core | hardware |
+//! |---|---|---|
+//! | Global / Local Pose Sensor, Velocity State Sensor | [`sensors`] | [`hardware::GlobalPoseSource`], [`hardware::LocalPoseSource`], [`hardware::VelocitySource`] |
+//! | Primitive Driver | [`drivers::PrimitiveDriverCore`] | [`hardware::Actuators`] |
+//! | Reflexive Driver | [`drivers::ReflexiveDriverCore`] | [`drivers::ObstacleSource`] |
+//! | Global / Local Vector Driver | [`drivers::VectorDriverCore`] | — (pose by service connection) |
+//! | Global / Local Waypoint Driver, Path Segment Driver | [`drivers::Navigator`] | — |
+
+pub mod drivers;
+pub mod geo;
+pub mod hardware;
+pub mod motion;
+pub mod path;
+pub mod sensors;
+pub mod sim;

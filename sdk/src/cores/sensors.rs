@@ -1,0 +1,115 @@
+//! Global Pose, Local Pose and Velocity State Sensors over the hardware traits. The
+//! runtime turns the query handlers into service connections and events as well.
+
+use nalgebra::UnitQuaternion;
+
+use super::hardware::{GlobalPoseSource, LocalPoseSource, VelocitySource};
+use crate::component::Refused;
+use crate::components::global_pose_sensor::{self, GlobalPoseSensor};
+use crate::components::local_pose_sensor::{self, LocalPoseSensor};
+use crate::components::velocity_state_sensor::{self, VelocityStateSensor};
+use crate::messages::*;
+
+/// Roll, pitch, yaw of an attitude, each wrapped to (-π, π].
+fn rpy(q: &UnitQuaternion<f64>) -> (f64, f64, f64) {
+    q.euler_angles()
+}
+
+fn bit(pv: u16, b: u16) -> bool {
+    pv & (1 << b) != 0
+}
+
+fn time_stamp<I: crate::component::Interface>(
+    ctx: &crate::component::Context<'_, I>,
+) -> Option<TimeStamp> {
+    ctx.time_stamps().map(|(t, _)| t)
+}
+
+/// A Global Pose Sensor reading a [`GlobalPoseSource`].
+#[derive(Debug)]
+pub struct GlobalPoseSensorCore<S>(pub S);
+
+impl<S: GlobalPoseSource> GlobalPoseSensor for GlobalPoseSensorCore<S> {
+    fn on_query_global_pose(
+        &mut self,
+        ctx: &mut global_pose_sensor::Ctx<'_>,
+        q: &QueryGlobalPose,
+    ) -> Result<ReportGlobalPose, Refused> {
+        let f = self
+            .0
+            .global_pose(ctx.now())
+            .ok_or_else(|| Refused::Invalid("no global pose fix".into()))?;
+        let (roll, pitch, yaw) = rpy(&f.attitude);
+        let pv = q.presence_vector;
+        Ok(ReportGlobalPose {
+            latitude: bit(pv, 0).then_some(f.latitude),
+            longitude: bit(pv, 1).then_some(f.longitude),
+            elevation: bit(pv, 2).then_some(f.elevation),
+            position_rms: bit(pv, 3).then_some(f.position_rms.min(100.0)),
+            roll: bit(pv, 4).then_some(roll),
+            pitch: bit(pv, 5).then_some(pitch),
+            yaw: bit(pv, 6).then_some(yaw),
+            attitude_rms: None,
+            time_stamp: if bit(pv, 8) { time_stamp(ctx) } else { None },
+        })
+    }
+}
+
+/// A Local Pose Sensor reading a [`LocalPoseSource`].
+#[derive(Debug)]
+pub struct LocalPoseSensorCore<S>(pub S);
+
+impl<S: LocalPoseSource> LocalPoseSensor for LocalPoseSensorCore<S> {
+    fn on_query_local_pose(
+        &mut self,
+        ctx: &mut local_pose_sensor::Ctx<'_>,
+        q: &QueryLocalPose,
+    ) -> Result<ReportLocalPose, Refused> {
+        let p = self
+            .0
+            .local_pose(ctx.now())
+            .ok_or_else(|| Refused::Invalid("no local pose".into()))?;
+        let (roll, pitch, yaw) = rpy(&p.attitude);
+        let pv = q.presence_vector;
+        Ok(ReportLocalPose {
+            x: bit(pv, 0).then_some(p.position.x),
+            y: bit(pv, 1).then_some(p.position.y),
+            z: bit(pv, 2).then_some(p.position.z),
+            position_rms: None,
+            roll: bit(pv, 4).then_some(roll),
+            pitch: bit(pv, 5).then_some(pitch),
+            yaw: bit(pv, 6).then_some(yaw),
+            attitude_rms: None,
+            time_stamp: if bit(pv, 8) { time_stamp(ctx) } else { None },
+        })
+    }
+}
+
+/// A Velocity State Sensor reading a [`VelocitySource`].
+#[derive(Debug)]
+pub struct VelocityStateSensorCore<S>(pub S);
+
+impl<S: VelocitySource> VelocityStateSensor for VelocityStateSensorCore<S> {
+    fn on_query_velocity_state(
+        &mut self,
+        ctx: &mut velocity_state_sensor::Ctx<'_>,
+        q: &QueryVelocityState,
+    ) -> Result<ReportVelocityState, Refused> {
+        let v = self
+            .0
+            .velocity(ctx.now())
+            .ok_or_else(|| Refused::Invalid("no velocity state".into()))?;
+        let pv = q.presence_vector;
+        Ok(ReportVelocityState {
+            velocity_x: bit(pv, 0).then_some(v.linear.x),
+            velocity_y: bit(pv, 1).then_some(v.linear.y),
+            velocity_z: bit(pv, 2).then_some(v.linear.z),
+            velocity_rms: None,
+            roll_rate: bit(pv, 4).then_some(v.angular.x),
+            pitch_rate: bit(pv, 5).then_some(v.angular.y),
+            yaw_rate: bit(pv, 6).then_some(v.angular.z),
+            rate_rms: None,
+            time_stamp: if bit(pv, 8) { time_stamp(ctx) } else { None },
+        })
+    }
+}
