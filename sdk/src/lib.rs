@@ -61,6 +61,8 @@ pub mod codec;
 pub mod component;
 #[cfg(feature = "cores")]
 pub mod cores;
+#[cfg(feature = "cores")]
+pub mod demo;
 pub mod hex;
 #[cfg(feature = "payload")]
 pub mod payload;

@@ -17,10 +17,9 @@ use super::motion::{wrench_message, wrench_of, DriverConfig, Motion};
 use super::path::{Path, PathSegment};
 use crate::component::{Context, CoreState, EmittedBy, Interface, Modes, Refused};
 use crate::components::{
-    global_path_segment_driver as gpsd, global_vector_driver as gvd,
-    global_waypoint_driver as gwd, local_path_segment_driver as lpsd,
-    local_vector_driver as lvd, local_waypoint_driver as lwd, primitive_driver as pd,
-    reflexive_driver as rd,
+    global_path_segment_driver as gpsd, global_vector_driver as gvd, global_waypoint_driver as gwd,
+    local_path_segment_driver as lpsd, local_vector_driver as lvd, local_waypoint_driver as lwd,
+    primitive_driver as pd, reflexive_driver as rd,
 };
 use crate::messages::*;
 use crate::{Address, CommandCode};
@@ -255,10 +254,14 @@ impl<O: ObstacleSource> ReflexiveDriverCore<O> {
         let c = &self.config;
         let mut out = w;
         out.linear.x = w.linear.x.clamp(-c.max_linear_effort, c.max_linear_effort);
-        out.rotational.z = w.rotational.z.clamp(-c.max_rotational_effort, c.max_rotational_effort);
+        out.rotational.z = w
+            .rotational
+            .z
+            .clamp(-c.max_rotational_effort, c.max_rotational_effort);
         if let Some(d) = self.obstacles.obstacle_distance(now) {
             if out.linear.x > 0.0 && d < c.slow_distance {
-                let k = ((d - c.stop_distance) / (c.slow_distance - c.stop_distance)).clamp(0.0, 1.0);
+                let k =
+                    ((d - c.stop_distance) / (c.slow_distance - c.stop_distance)).clamp(0.0, 1.0);
                 out.linear.x *= k;
                 if k == 0.0 {
                     out.resistive_linear.x = 100.0;
@@ -280,7 +283,9 @@ impl<O: ObstacleSource> rd::ReflexiveDriver for ReflexiveDriverCore<O> {
     ) -> Result<(), Refused> {
         let w = wrench_of(msg);
         if !w.is_valid() {
-            return Err(Refused::Invalid("wrench effort out of range or not finite".into()));
+            return Err(Refused::Invalid(
+                "wrench effort out of range or not finite".into(),
+            ));
         }
         let now = ctx.now();
         self.commanded = Some((now, w));
@@ -406,6 +411,7 @@ impl<M: Clone> VectorDriverCore<M> {
     {
         self.commanded = None;
         self.motion.stop(ctx);
+        self.motion.release_output(ctx);
     }
 }
 
@@ -419,22 +425,50 @@ impl gvd::GlobalVectorDriver for GlobalVectorDriverCore {
         self.motion.subscribe(ctx, ReportGlobalPose::CODE);
         Ok(())
     }
-    fn on_set_global_vector(&mut self, ctx: &mut gvd::Ctx<'_>, m: &SetGlobalVector) -> Result<(), Refused> {
+    fn on_set_global_vector(
+        &mut self,
+        ctx: &mut gvd::Ctx<'_>,
+        m: &SetGlobalVector,
+    ) -> Result<(), Refused> {
         let v = Vector {
             speed: m.speed.unwrap_or(0.0),
-            heading: m.heading.unwrap_or_else(|| self.motion.pose(ctx.now()).map_or(0.0, |p| p.1)),
+            heading: m
+                .heading
+                .unwrap_or_else(|| self.motion.pose(ctx.now()).map_or(0.0, |p| p.1)),
         };
         self.set(ctx.now(), v, m.clone())
     }
-    fn on_query_global_vector(&mut self, _ctx: &mut gvd::Ctx<'_>, _q: &QueryGlobalVector) -> Result<ReportGlobalVector, Refused> {
-        let m = self.commanded.as_ref().map(|c| c.2.clone()).unwrap_or_default();
-        Ok(ReportGlobalVector { speed: m.speed, altitude: m.altitude, heading: m.heading, roll: m.roll, pitch: m.pitch })
+    fn on_query_global_vector(
+        &mut self,
+        _ctx: &mut gvd::Ctx<'_>,
+        _q: &QueryGlobalVector,
+    ) -> Result<ReportGlobalVector, Refused> {
+        let m = self
+            .commanded
+            .as_ref()
+            .map(|c| c.2.clone())
+            .unwrap_or_default();
+        Ok(ReportGlobalVector {
+            speed: m.speed,
+            altitude: m.altitude,
+            heading: m.heading,
+            roll: m.roll,
+            pitch: m.pitch,
+        })
     }
-    fn on_report_global_pose(&mut self, ctx: &mut gvd::Ctx<'_>, r: &ReportGlobalPose) -> Result<(), Refused> {
+    fn on_report_global_pose(
+        &mut self,
+        ctx: &mut gvd::Ctx<'_>,
+        r: &ReportGlobalPose,
+    ) -> Result<(), Refused> {
         self.motion.on_global_pose(ctx.now(), r);
         Ok(())
     }
-    fn on_report_velocity_state(&mut self, ctx: &mut gvd::Ctx<'_>, r: &ReportVelocityState) -> Result<(), Refused> {
+    fn on_report_velocity_state(
+        &mut self,
+        ctx: &mut gvd::Ctx<'_>,
+        r: &ReportVelocityState,
+    ) -> Result<(), Refused> {
         self.motion.on_velocity(ctx.now(), r);
         Ok(())
     }
@@ -453,18 +487,44 @@ impl lvd::LocalVectorDriver for LocalVectorDriverCore {
         self.motion.subscribe(ctx, ReportLocalPose::CODE);
         Ok(())
     }
-    fn on_set_local_vector(&mut self, ctx: &mut lvd::Ctx<'_>, m: &SetLocalVector) -> Result<(), Refused> {
-        self.set(ctx.now(), Vector { speed: m.speed, heading: m.heading }, m.clone())
+    fn on_set_local_vector(
+        &mut self,
+        ctx: &mut lvd::Ctx<'_>,
+        m: &SetLocalVector,
+    ) -> Result<(), Refused> {
+        self.set(
+            ctx.now(),
+            Vector {
+                speed: m.speed,
+                heading: m.heading,
+            },
+            m.clone(),
+        )
     }
-    fn on_query_local_vector(&mut self, _ctx: &mut lvd::Ctx<'_>, _q: &QueryLocalVector) -> Result<ReportLocalVector, Refused> {
-        let (speed, heading) = self.commanded.as_ref().map_or((0.0, 0.0), |c| (c.1.speed, c.1.heading));
+    fn on_query_local_vector(
+        &mut self,
+        _ctx: &mut lvd::Ctx<'_>,
+        _q: &QueryLocalVector,
+    ) -> Result<ReportLocalVector, Refused> {
+        let (speed, heading) = self
+            .commanded
+            .as_ref()
+            .map_or((0.0, 0.0), |c| (c.1.speed, c.1.heading));
         Ok(ReportLocalVector { speed, heading })
     }
-    fn on_report_local_pose(&mut self, ctx: &mut lvd::Ctx<'_>, r: &ReportLocalPose) -> Result<(), Refused> {
+    fn on_report_local_pose(
+        &mut self,
+        ctx: &mut lvd::Ctx<'_>,
+        r: &ReportLocalPose,
+    ) -> Result<(), Refused> {
         self.motion.on_local_pose(ctx.now(), r);
         Ok(())
     }
-    fn on_report_velocity_state(&mut self, ctx: &mut lvd::Ctx<'_>, r: &ReportVelocityState) -> Result<(), Refused> {
+    fn on_report_velocity_state(
+        &mut self,
+        ctx: &mut lvd::Ctx<'_>,
+        r: &ReportVelocityState,
+    ) -> Result<(), Refused> {
         self.motion.on_velocity(ctx.now(), r);
         Ok(())
     }
@@ -509,7 +569,9 @@ pub trait Element: Clone + std::fmt::Debug + Send + 'static {
 
 fn check_lat_lon(lat: f64, lon: f64, what: &str) -> Result<(), String> {
     if !(lat.is_finite() && lon.is_finite()) || lat.abs() > 90.0 || lon.abs() > 180.0 {
-        return Err(format!("{what}: latitude {lat} / longitude {lon} out of range"));
+        return Err(format!(
+            "{what}: latitude {lat} / longitude {lon} out of range"
+        ));
     }
     Ok(())
 }
@@ -683,7 +745,10 @@ impl<E: Element> Navigator<E> {
     /// The element being driven toward.
     pub fn active_element(&self) -> Option<u16> {
         let t = self.tracker.as_ref()?;
-        let i = t.ends.partition_point(|e| *e < t.s + 1e-9).min(t.ends.len().saturating_sub(1));
+        let i = t
+            .ends
+            .partition_point(|e| *e < t.s + 1e-9)
+            .min(t.ends.len().saturating_sub(1));
         self.elements.get(i).map(Element::number)
     }
 
@@ -700,7 +765,8 @@ impl<E: Element> Navigator<E> {
             n if n == self.elements.len() => {
                 if navigating {
                     let frame = self.motion.frame();
-                    let (Some(t), Some(g)) = (self.tracker.as_mut(), e.geometry(frame.as_ref())) else {
+                    let (Some(t), Some(g)) = (self.tracker.as_mut(), e.geometry(frame.as_ref()))
+                    else {
                         return Err(Refused::Invalid("no frame for a global element yet".into()));
                     };
                     extend(&mut t.path, &mut t.ends, g);
@@ -710,8 +776,8 @@ impl<E: Element> Navigator<E> {
             n if n < self.elements.len() && !navigating => self.elements[n] = e.clone(),
             n if n < self.elements.len() => {
                 return Err(Refused::Invalid(format!(
-                    "element {n} is part of the list being driven: send element 0 to start a new list"
-                )))
+                "element {n} is part of the list being driven: send element 0 to start a new list"
+            )))
             }
             n => {
                 return Err(Refused::Invalid(format!(
@@ -728,7 +794,9 @@ impl<E: Element> Navigator<E> {
         finite(speed, "travel speed")?;
         let max = self.motion.config.max_speed;
         if !(0.0..=max).contains(&speed) {
-            return Err(Refused::Invalid(format!("travel speed {speed} m/s outside 0..={max} m/s")));
+            return Err(Refused::Invalid(format!(
+                "travel speed {speed} m/s outside 0..={max} m/s"
+            )));
         }
         self.travel_speed = speed;
         Ok(())
@@ -744,8 +812,12 @@ impl<E: Element> Navigator<E> {
         Some(Tracker { path, ends, s: 0.0 })
     }
 
-    fn state_changed<I: NavInterface>(&mut self, ctx: &mut Context<'_, I>, from: CoreState, to: CoreState)
-    where
+    fn state_changed<I: NavInterface>(
+        &mut self,
+        ctx: &mut Context<'_, I>,
+        from: CoreState,
+        to: CoreState,
+    ) where
         SetWrenchEffort: EmittedBy<I>,
     {
         if from == CoreState::Standby && to == CoreState::Ready {
@@ -755,6 +827,7 @@ impl<E: Element> Navigator<E> {
         if to != CoreState::Ready {
             self.tracker = None;
             self.motion.stop(ctx);
+            self.motion.release_output(ctx);
         }
     }
 
@@ -768,7 +841,10 @@ impl<E: Element> Navigator<E> {
         self.motion.hold_output(ctx);
         let now = ctx.now();
         if !I::navigating(ctx.mode()) {
-            if !self.elements.is_empty() && self.travel_speed > 0.0 && ctx.transition(I::START).is_ok() {
+            if !self.elements.is_empty()
+                && self.travel_speed > 0.0
+                && ctx.transition(I::START).is_ok()
+            {
                 self.tracker = None;
             } else {
                 self.motion.stop(ctx);
@@ -789,7 +865,10 @@ impl<E: Element> Navigator<E> {
             return;
         };
         let len = t.path.length();
-        if let Some(p) = t.path.project(pos, t.s - 0.2, t.s + c.lookahead * 2.0 + 0.5) {
+        if let Some(p) = t
+            .path
+            .project(pos, t.s - 0.2, t.s + c.lookahead * 2.0 + 0.5)
+        {
             t.s = t.s.max(p.s);
         }
         let end = t.path.at(len);
@@ -809,11 +888,18 @@ impl<E: Element> Navigator<E> {
             self.motion.stop(ctx);
             return;
         }
-        let target = if len - t.s <= c.lookahead { end } else { t.path.at(t.s + c.lookahead) };
+        let target = if len - t.s <= c.lookahead {
+            end
+        } else {
+            t.path.at(t.s + c.lookahead)
+        };
         let d = target - pos;
         let heading = d.y.atan2(d.x);
         let remaining = (len - t.s).max(to_end);
-        let speed = self.travel_speed.min((2.0 * c.deceleration * remaining).sqrt()).max(0.05);
+        let speed = self
+            .travel_speed
+            .min((2.0 * c.deceleration * remaining).sqrt())
+            .max(0.05);
         self.motion.drive(ctx, speed, heading);
     }
 }
@@ -836,18 +922,33 @@ fn extend(path: &mut Path, ends: &mut Vec<f64>, g: Geometry) {
 
 macro_rules! navigator_common {
     ($m:ident) => {
-        fn on_set_travel_speed(&mut self, _ctx: &mut $m::Ctx<'_>, m: &SetTravelSpeed) -> Result<(), Refused> {
+        fn on_set_travel_speed(
+            &mut self,
+            _ctx: &mut $m::Ctx<'_>,
+            m: &SetTravelSpeed,
+        ) -> Result<(), Refused> {
             self.set_speed(m.speed)
         }
-        fn on_query_travel_speed(&mut self, _ctx: &mut $m::Ctx<'_>, _q: &QueryTravelSpeed) -> Result<ReportTravelSpeed, Refused> {
-            Ok(ReportTravelSpeed { speed: self.travel_speed })
+        fn on_query_travel_speed(
+            &mut self,
+            _ctx: &mut $m::Ctx<'_>,
+            _q: &QueryTravelSpeed,
+        ) -> Result<ReportTravelSpeed, Refused> {
+            Ok(ReportTravelSpeed {
+                speed: self.travel_speed,
+            })
         }
-        fn on_report_velocity_state(&mut self, ctx: &mut $m::Ctx<'_>, r: &ReportVelocityState) -> Result<(), Refused> {
+        fn on_report_velocity_state(
+            &mut self,
+            ctx: &mut $m::Ctx<'_>,
+            r: &ReportVelocityState,
+        ) -> Result<(), Refused> {
             self.motion.on_velocity(ctx.now(), r);
             Ok(())
         }
         fn initialize(&mut self, ctx: &mut $m::Ctx<'_>) -> Result<(), String> {
-            self.motion.subscribe(ctx, <$m::Interface as NavInterface>::POSE_REPORT);
+            self.motion
+                .subscribe(ctx, <$m::Interface as NavInterface>::POSE_REPORT);
             Ok(())
         }
         fn state_changed(&mut self, ctx: &mut $m::Ctx<'_>, from: CoreState, to: CoreState) {
@@ -861,17 +962,46 @@ macro_rules! navigator_common {
 
 impl gwd::GlobalWaypointDriver for GlobalWaypointDriverCore {
     navigator_common!(gwd);
-    fn on_set_global_waypoint(&mut self, ctx: &mut gwd::Ctx<'_>, m: &SetGlobalWaypoint) -> Result<(), Refused> {
+    fn on_set_global_waypoint(
+        &mut self,
+        ctx: &mut gwd::Ctx<'_>,
+        m: &SetGlobalWaypoint,
+    ) -> Result<(), Refused> {
         self.set_element(ctx, m)
     }
-    fn on_query_global_waypoint(&mut self, _ctx: &mut gwd::Ctx<'_>, q: &QueryGlobalWaypoint) -> Result<ReportGlobalWaypoint, Refused> {
-        let w = self.elements.get(usize::from(q.waypoint_number)).ok_or_else(|| Refused::Invalid(format!("no waypoint {}", q.waypoint_number)))?;
-        Ok(ReportGlobalWaypoint { waypoint_number: w.waypoint_number, latitude: w.latitude, longitude: w.longitude, elevation: w.elevation, roll: w.roll, pitch: w.pitch, yaw: w.yaw })
+    fn on_query_global_waypoint(
+        &mut self,
+        _ctx: &mut gwd::Ctx<'_>,
+        q: &QueryGlobalWaypoint,
+    ) -> Result<ReportGlobalWaypoint, Refused> {
+        let w = self
+            .elements
+            .get(usize::from(q.waypoint_number))
+            .ok_or_else(|| Refused::Invalid(format!("no waypoint {}", q.waypoint_number)))?;
+        Ok(ReportGlobalWaypoint {
+            waypoint_number: w.waypoint_number,
+            latitude: w.latitude,
+            longitude: w.longitude,
+            elevation: w.elevation,
+            roll: w.roll,
+            pitch: w.pitch,
+            yaw: w.yaw,
+        })
     }
-    fn on_query_waypoint_count(&mut self, _ctx: &mut gwd::Ctx<'_>, _q: &QueryWaypointCount) -> Result<ReportWaypointCount, Refused> {
-        Ok(ReportWaypointCount { waypoint_count: self.elements.len() as u16 })
+    fn on_query_waypoint_count(
+        &mut self,
+        _ctx: &mut gwd::Ctx<'_>,
+        _q: &QueryWaypointCount,
+    ) -> Result<ReportWaypointCount, Refused> {
+        Ok(ReportWaypointCount {
+            waypoint_count: self.elements.len() as u16,
+        })
     }
-    fn on_report_global_pose(&mut self, ctx: &mut gwd::Ctx<'_>, r: &ReportGlobalPose) -> Result<(), Refused> {
+    fn on_report_global_pose(
+        &mut self,
+        ctx: &mut gwd::Ctx<'_>,
+        r: &ReportGlobalPose,
+    ) -> Result<(), Refused> {
         self.motion.on_global_pose(ctx.now(), r);
         Ok(())
     }
@@ -879,17 +1009,46 @@ impl gwd::GlobalWaypointDriver for GlobalWaypointDriverCore {
 
 impl lwd::LocalWaypointDriver for LocalWaypointDriverCore {
     navigator_common!(lwd);
-    fn on_set_local_waypoint(&mut self, ctx: &mut lwd::Ctx<'_>, m: &SetLocalWaypoint) -> Result<(), Refused> {
+    fn on_set_local_waypoint(
+        &mut self,
+        ctx: &mut lwd::Ctx<'_>,
+        m: &SetLocalWaypoint,
+    ) -> Result<(), Refused> {
         self.set_element(ctx, m)
     }
-    fn on_query_local_waypoint(&mut self, _ctx: &mut lwd::Ctx<'_>, q: &QueryLocalWaypoint) -> Result<ReportLocalWaypoint, Refused> {
-        let w = self.elements.get(usize::from(q.waypoint_number)).ok_or_else(|| Refused::Invalid(format!("no waypoint {}", q.waypoint_number)))?;
-        Ok(ReportLocalWaypoint { waypoint_number: w.waypoint_number, x: w.x, y: w.y, z: w.z, roll: w.roll, pitch: w.pitch, yaw: w.yaw })
+    fn on_query_local_waypoint(
+        &mut self,
+        _ctx: &mut lwd::Ctx<'_>,
+        q: &QueryLocalWaypoint,
+    ) -> Result<ReportLocalWaypoint, Refused> {
+        let w = self
+            .elements
+            .get(usize::from(q.waypoint_number))
+            .ok_or_else(|| Refused::Invalid(format!("no waypoint {}", q.waypoint_number)))?;
+        Ok(ReportLocalWaypoint {
+            waypoint_number: w.waypoint_number,
+            x: w.x,
+            y: w.y,
+            z: w.z,
+            roll: w.roll,
+            pitch: w.pitch,
+            yaw: w.yaw,
+        })
     }
-    fn on_query_waypoint_count(&mut self, _ctx: &mut lwd::Ctx<'_>, _q: &QueryWaypointCount) -> Result<ReportWaypointCount, Refused> {
-        Ok(ReportWaypointCount { waypoint_count: self.elements.len() as u16 })
+    fn on_query_waypoint_count(
+        &mut self,
+        _ctx: &mut lwd::Ctx<'_>,
+        _q: &QueryWaypointCount,
+    ) -> Result<ReportWaypointCount, Refused> {
+        Ok(ReportWaypointCount {
+            waypoint_count: self.elements.len() as u16,
+        })
     }
-    fn on_report_local_pose(&mut self, ctx: &mut lwd::Ctx<'_>, r: &ReportLocalPose) -> Result<(), Refused> {
+    fn on_report_local_pose(
+        &mut self,
+        ctx: &mut lwd::Ctx<'_>,
+        r: &ReportLocalPose,
+    ) -> Result<(), Refused> {
         self.motion.on_local_pose(ctx.now(), r);
         Ok(())
     }
@@ -897,11 +1056,24 @@ impl lwd::LocalWaypointDriver for LocalWaypointDriverCore {
 
 impl gpsd::GlobalPathSegmentDriver for GlobalPathSegmentDriverCore {
     navigator_common!(gpsd);
-    fn on_set_global_path_segment(&mut self, ctx: &mut gpsd::Ctx<'_>, m: &SetGlobalPathSegment) -> Result<(), Refused> {
+    fn on_set_global_path_segment(
+        &mut self,
+        ctx: &mut gpsd::Ctx<'_>,
+        m: &SetGlobalPathSegment,
+    ) -> Result<(), Refused> {
         self.set_element(ctx, m)
     }
-    fn on_query_global_path_segment(&mut self, _ctx: &mut gpsd::Ctx<'_>, q: &QueryGlobalPathSegment) -> Result<ReportGlobalPathSegment, Refused> {
-        let s = self.elements.get(usize::from(q.path_segment_number)).ok_or_else(|| Refused::Invalid(format!("no path segment {}", q.path_segment_number)))?;
+    fn on_query_global_path_segment(
+        &mut self,
+        _ctx: &mut gpsd::Ctx<'_>,
+        q: &QueryGlobalPathSegment,
+    ) -> Result<ReportGlobalPathSegment, Refused> {
+        let s = self
+            .elements
+            .get(usize::from(q.path_segment_number))
+            .ok_or_else(|| {
+                Refused::Invalid(format!("no path segment {}", q.path_segment_number))
+            })?;
         Ok(ReportGlobalPathSegment {
             path_segment_number: s.path_segment_number,
             p1_latitude: s.p1_latitude,
@@ -913,10 +1085,20 @@ impl gpsd::GlobalPathSegmentDriver for GlobalPathSegmentDriverCore {
             weighting_factor: s.weighting_factor,
         })
     }
-    fn on_query_path_segment_count(&mut self, _ctx: &mut gpsd::Ctx<'_>, _q: &QueryPathSegmentCount) -> Result<ReportPathSegmentCount, Refused> {
-        Ok(ReportPathSegmentCount { path_segment_count: self.elements.len() as u16 })
+    fn on_query_path_segment_count(
+        &mut self,
+        _ctx: &mut gpsd::Ctx<'_>,
+        _q: &QueryPathSegmentCount,
+    ) -> Result<ReportPathSegmentCount, Refused> {
+        Ok(ReportPathSegmentCount {
+            path_segment_count: self.elements.len() as u16,
+        })
     }
-    fn on_report_global_pose(&mut self, ctx: &mut gpsd::Ctx<'_>, r: &ReportGlobalPose) -> Result<(), Refused> {
+    fn on_report_global_pose(
+        &mut self,
+        ctx: &mut gpsd::Ctx<'_>,
+        r: &ReportGlobalPose,
+    ) -> Result<(), Refused> {
         self.motion.on_global_pose(ctx.now(), r);
         Ok(())
     }
@@ -924,11 +1106,24 @@ impl gpsd::GlobalPathSegmentDriver for GlobalPathSegmentDriverCore {
 
 impl lpsd::LocalPathSegmentDriver for LocalPathSegmentDriverCore {
     navigator_common!(lpsd);
-    fn on_set_local_path_segment(&mut self, ctx: &mut lpsd::Ctx<'_>, m: &SetLocalPathSegment) -> Result<(), Refused> {
+    fn on_set_local_path_segment(
+        &mut self,
+        ctx: &mut lpsd::Ctx<'_>,
+        m: &SetLocalPathSegment,
+    ) -> Result<(), Refused> {
         self.set_element(ctx, m)
     }
-    fn on_query_local_path_segment(&mut self, _ctx: &mut lpsd::Ctx<'_>, q: &QueryLocalPathSegment) -> Result<ReportLocalPathSegment, Refused> {
-        let s = self.elements.get(usize::from(q.path_segment_number)).ok_or_else(|| Refused::Invalid(format!("no path segment {}", q.path_segment_number)))?;
+    fn on_query_local_path_segment(
+        &mut self,
+        _ctx: &mut lpsd::Ctx<'_>,
+        q: &QueryLocalPathSegment,
+    ) -> Result<ReportLocalPathSegment, Refused> {
+        let s = self
+            .elements
+            .get(usize::from(q.path_segment_number))
+            .ok_or_else(|| {
+                Refused::Invalid(format!("no path segment {}", q.path_segment_number))
+            })?;
         Ok(ReportLocalPathSegment {
             path_segment_number: s.path_segment_number,
             p1_x: s.p1_x,
@@ -940,10 +1135,20 @@ impl lpsd::LocalPathSegmentDriver for LocalPathSegmentDriverCore {
             weighting_factor: s.weighting_factor,
         })
     }
-    fn on_query_path_segment_count(&mut self, _ctx: &mut lpsd::Ctx<'_>, _q: &QueryPathSegmentCount) -> Result<ReportPathSegmentCount, Refused> {
-        Ok(ReportPathSegmentCount { path_segment_count: self.elements.len() as u16 })
+    fn on_query_path_segment_count(
+        &mut self,
+        _ctx: &mut lpsd::Ctx<'_>,
+        _q: &QueryPathSegmentCount,
+    ) -> Result<ReportPathSegmentCount, Refused> {
+        Ok(ReportPathSegmentCount {
+            path_segment_count: self.elements.len() as u16,
+        })
     }
-    fn on_report_local_pose(&mut self, ctx: &mut lpsd::Ctx<'_>, r: &ReportLocalPose) -> Result<(), Refused> {
+    fn on_report_local_pose(
+        &mut self,
+        ctx: &mut lpsd::Ctx<'_>,
+        r: &ReportLocalPose,
+    ) -> Result<(), Refused> {
         self.motion.on_local_pose(ctx.now(), r);
         Ok(())
     }

@@ -50,7 +50,9 @@ impl LocalFrame {
         }
         Vector2::new(
             dlat * (self.meridian_radius + self.elevation),
-            dlon.to_radians() * (self.normal_radius + self.elevation) * self.latitude.to_radians().cos(),
+            dlon.to_radians()
+                * (self.normal_radius + self.elevation)
+                * self.latitude.to_radians().cos(),
         )
     }
 

@@ -39,9 +39,15 @@ impl Wrench {
 
     /// Whether every component is finite and in its range.
     pub fn is_valid(&self) -> bool {
-        let prop = |v: &Vector3<f64>| v.iter().all(|x| x.is_finite() && (-100.0..=100.0).contains(x));
+        let prop = |v: &Vector3<f64>| {
+            v.iter()
+                .all(|x| x.is_finite() && (-100.0..=100.0).contains(x))
+        };
         let res = |v: &Vector3<f64>| v.iter().all(|x| x.is_finite() && (0.0..=100.0).contains(x));
-        prop(&self.linear) && prop(&self.rotational) && res(&self.resistive_linear) && res(&self.resistive_rotational)
+        prop(&self.linear)
+            && prop(&self.rotational)
+            && res(&self.resistive_linear)
+            && res(&self.resistive_rotational)
     }
 }
 

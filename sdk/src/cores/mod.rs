@@ -17,3 +17,6 @@ pub mod motion;
 pub mod path;
 pub mod sensors;
 pub mod sim;
+
+/// The `nalgebra` the cores use at their API (poses, quaternions, vectors).
+pub use nalgebra;

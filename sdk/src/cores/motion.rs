@@ -10,7 +10,9 @@ use nalgebra::{Vector2, Vector3};
 use super::geo::{wrap_angle, LocalFrame};
 use super::hardware::Wrench;
 use crate::component::{Context, EmittedBy, Interface};
-use crate::messages::{ReportGlobalPose, ReportLocalPose, ReportVelocityState, Resume, SetWrenchEffort};
+use crate::messages::{
+    ReportGlobalPose, ReportLocalPose, ReportVelocityState, Resume, SetWrenchEffort,
+};
 use crate::{Address, CommandCode};
 
 /// Settings shared by the vector, waypoint and path-segment drivers.
@@ -120,7 +122,9 @@ impl Motion {
 
     /// Takes a global pose report.
     pub fn on_global_pose(&mut self, now: Instant, r: &ReportGlobalPose) {
-        let (Some(lat), Some(lon)) = (r.latitude, r.longitude) else { return };
+        let (Some(lat), Some(lon)) = (r.latitude, r.longitude) else {
+            return;
+        };
         if !(lat.is_finite() && lon.is_finite()) {
             return;
         }
@@ -133,7 +137,9 @@ impl Motion {
 
     /// Takes a local pose report.
     pub fn on_local_pose(&mut self, now: Instant, r: &ReportLocalPose) {
-        let (Some(x), Some(y)) = (r.x, r.y) else { return };
+        let (Some(x), Some(y)) = (r.x, r.y) else {
+            return;
+        };
         let yaw = r.yaw.unwrap_or_else(|| self.pose.map_or(0.0, |p| p.2));
         self.pose = Some((now, Vector2::new(x, y), yaw));
     }
@@ -196,11 +202,25 @@ impl Motion {
         }
     }
 
-    /// Drives at `speed` (m/s) toward `heading` (rad).
+    /// Gives control of the output component back (call on leaving Ready, after
+    /// [`stop`](Self::stop)), so another driver can take it.
+    pub fn release_output<I: Interface>(&mut self, ctx: &mut Context<'_, I>) {
+        if ctx.has_control_of(self.config.output) {
+            ctx.release_control(self.config.output);
+        }
+        self.resumed_output = false;
+        self.last_request = None;
+    }
+
+    /// Drives at `speed` (m/s) toward `heading` (rad). Nothing is sent before the
+    /// output component has granted control.
     pub fn drive<I: Interface>(&mut self, ctx: &mut Context<'_, I>, speed: f64, heading: f64)
     where
         SetWrenchEffort: EmittedBy<I>,
     {
+        if !ctx.has_control_of(self.config.output) {
+            return;
+        }
         let now = ctx.now();
         let Some((_, yaw)) = self.pose(now) else {
             self.watchdog_stop(ctx);
@@ -212,18 +232,23 @@ impl Motion {
         // Slow down while the heading is far off, so the vehicle turns before it goes.
         let speed = speed * err.cos().max(0.0);
         let measured = self.speed(now).unwrap_or(speed);
-        let linear = (speed / c.max_speed + c.speed_gain * (speed - measured) / c.max_speed) * 100.0;
+        let linear =
+            (speed / c.max_speed + c.speed_gain * (speed - measured) / c.max_speed) * 100.0;
         let w = Wrench {
             linear: Vector3::new(linear.clamp(-100.0, 100.0), 0.0, 0.0),
-            rotational: Vector3::new(0.0, 0.0, (yaw_rate / c.max_yaw_rate * 100.0).clamp(-100.0, 100.0)),
+            rotational: Vector3::new(
+                0.0,
+                0.0,
+                (yaw_rate / c.max_yaw_rate * 100.0).clamp(-100.0, 100.0),
+            ),
             ..Wrench::ZERO
         };
         self.stopped = false;
         self.send(ctx, w);
     }
 
-    /// Stops the vehicle (brakes), sending the stop once per call while not stopped
-    /// and again every call thereafter only if `repeat`.
+    /// Stops the vehicle: sends brakes once (the Primitive Driver's own watchdog keeps
+    /// it braked when no further wrench arrives).
     pub fn stop<I: Interface>(&mut self, ctx: &mut Context<'_, I>)
     where
         SetWrenchEffort: EmittedBy<I>,

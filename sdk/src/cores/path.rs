@@ -48,7 +48,10 @@ impl PathSegment {
 
     /// Length of the curve, by summing a fine polyline.
     pub fn length(&self) -> f64 {
-        self.sample(256).windows(2).map(|w| (w[1] - w[0]).norm()).sum()
+        self.sample(256)
+            .windows(2)
+            .map(|w| (w[1] - w[0]).norm())
+            .sum()
     }
 }
 
@@ -126,10 +129,17 @@ impl Path {
             1 => self.points[0],
             _ => {
                 let s = s.clamp(0.0, self.length());
-                let i = self.arc.partition_point(|a| *a < s).clamp(1, self.points.len() - 1);
+                let i = self
+                    .arc
+                    .partition_point(|a| *a < s)
+                    .clamp(1, self.points.len() - 1);
                 let (a, b) = (self.points[i - 1], self.points[i]);
                 let seg = self.arc[i] - self.arc[i - 1];
-                let t = if seg > 0.0 { (s - self.arc[i - 1]) / seg } else { 0.0 };
+                let t = if seg > 0.0 {
+                    (s - self.arc[i - 1]) / seg
+                } else {
+                    0.0
+                };
                 a + (b - a) * t
             }
         }
@@ -187,7 +197,11 @@ mod tests {
         let m = fig_5_12().point(0.5);
         assert!((m - Vector3::new(3.0, 3.6, 0.0)).norm() < 1e-12, "{m}");
         // w1 = 1 is the ordinary quadratic Bézier: (P0 + 2 P1 + P2) / 4 = [3, 3.25].
-        let b = PathSegment { w1: 1.0, ..fig_5_12() }.point(0.5);
+        let b = PathSegment {
+            w1: 1.0,
+            ..fig_5_12()
+        }
+        .point(0.5);
         assert!((b - Vector3::new(3.0, 3.25, 0.0)).norm() < 1e-12, "{b}");
     }
 
@@ -212,7 +226,11 @@ mod tests {
         let dist = |w1: f64| (PathSegment { w1, ..fig_5_12() }.point(0.5) - fig_5_12().p1).norm();
         assert!(dist(0.5) > dist(1.0) && dist(1.0) > dist(1.5) && dist(1.5) > dist(5.0));
         // w1 = 0 degenerates to the chord from P0 to P2.
-        let chord = PathSegment { w1: 0.0, ..fig_5_12() }.point(0.5);
+        let chord = PathSegment {
+            w1: 0.0,
+            ..fig_5_12()
+        }
+        .point(0.5);
         assert!((chord - Vector3::new(3.0, 1.5, 0.0)).norm() < 1e-12);
     }
 
@@ -227,11 +245,16 @@ mod tests {
         };
         let ta = a.derivative(1.0).normalize();
         let tb = b.derivative(0.0).normalize();
-        assert!((ta - tb).norm() < 1e-12, "P1-P2 and P2-P3 are collinear: {ta} {tb}");
+        assert!(
+            (ta - tb).norm() < 1e-12,
+            "P1-P2 and P2-P3 are collinear: {ta} {tb}"
+        );
         let mut path = Path::default();
         path.push_segment(&a);
         path.push_segment(&b);
-        let p = path.project(Vector2::new(3.0, 3.6), 0.0, f64::INFINITY).unwrap();
+        let p = path
+            .project(Vector2::new(3.0, 3.6), 0.0, f64::INFINITY)
+            .unwrap();
         assert!(p.distance < 1e-3);
         assert!((path.at(path.length()) - Vector2::new(8.0, -1.0)).norm() < 1e-9);
     }

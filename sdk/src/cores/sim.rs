@@ -127,7 +127,11 @@ impl GroundVehicle {
         let target_w = e.rotational.z.clamp(-100.0, 100.0) / 100.0 * p.max_yaw_rate;
         self.speed += (target_v - self.speed) * (dt / p.speed_lag).min(1.0);
         let brake = e.resistive_linear.x.clamp(0.0, 100.0) / 100.0 * p.max_brake * dt;
-        self.speed = if self.speed.abs() <= brake { 0.0 } else { self.speed - brake * self.speed.signum() };
+        self.speed = if self.speed.abs() <= brake {
+            0.0
+        } else {
+            self.speed - brake * self.speed.signum()
+        };
         self.yaw_rate += (target_w - self.yaw_rate) * (dt / p.yaw_lag).min(1.0);
         self.yaw = wrap_angle(self.yaw + self.yaw_rate * dt);
         let d = Vector2::new(self.yaw.cos(), self.yaw.sin()) * self.speed * dt;
@@ -277,11 +281,20 @@ mod tests {
     #[test]
     fn brakes_stop_the_vehicle_and_noise_is_seeded() {
         let t0 = Instant::now();
-        let params = VehicleParams { position_noise: 0.1, ..Default::default() };
+        let params = VehicleParams {
+            position_noise: 0.1,
+            ..Default::default()
+        };
         let mut a = SimVehicle::new(params.clone());
         let mut b = SimVehicle::new(params);
         for v in [&mut a, &mut b] {
-            v.apply(t0, &Wrench { linear: Vector3::new(100.0, 0.0, 0.0), ..Wrench::ZERO });
+            v.apply(
+                t0,
+                &Wrench {
+                    linear: Vector3::new(100.0, 0.0, 0.0),
+                    ..Wrench::ZERO
+                },
+            );
             v.apply(t0 + Duration::from_secs(2), &Wrench::brake());
         }
         let pa = a.local_pose(t0 + Duration::from_secs(4)).unwrap();

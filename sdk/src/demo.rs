@@ -1,0 +1,705 @@
+//! The `jaus demo` main job: a complete simulated subsystem on the in-process bus.
+//!
+//! Node 1 of subsystem 1 hosts the Primitive Driver, the Global and Local Pose
+//! Sensors, the Velocity State Sensor, the Global Waypoint Driver and the Local Path
+//! Segment Driver, all over one simulated skid-steer vehicle. An operator (a System
+//! Commander on node 2) takes control of both drivers, sends a waypoint mission in
+//! WGS 84, then the two path segments of Part 1 Figures 5-12 and 5-14, waiting each time
+//! for the driver to report Standby (Part 1: back to Standby at the final point). The
+//! run reports arrival times and the cross-track error of every leg, measured on the
+//! vehicle's true trajectory against the commanded path, and draws both in an SVG.
+
+use std::fmt::Write as _;
+use std::path::PathBuf;
+use std::time::{Duration, Instant};
+
+use nalgebra::{Vector2, Vector3};
+
+use crate::component::local::LocalBus;
+use crate::component::{Config, CoreState, Refused};
+use crate::components::system_commander::{self, Ctx, SystemCommander};
+use crate::components::{
+    global_pose_sensor, global_waypoint_driver, local_path_segment_driver, local_pose_sensor,
+    primitive_driver, velocity_state_sensor,
+};
+use crate::cores::drivers::{
+    GlobalWaypointDriverCore, LocalPathSegmentDriverCore, PrimitiveConfig, PrimitiveDriverCore,
+};
+use crate::cores::geo::LocalFrame;
+use crate::cores::motion::DriverConfig;
+use crate::cores::path::{Path, PathSegment};
+use crate::cores::sensors::{GlobalPoseSensorCore, LocalPoseSensorCore, VelocityStateSensorCore};
+use crate::cores::sim::{SimVehicle, VehicleParams};
+use crate::messages::*;
+use crate::Address;
+
+/// Addresses of the demo subsystem.
+pub mod addr {
+    use crate::Address;
+    /// Primitive Driver.
+    pub const PD: Address = Address::new(1, 1, 33, 1);
+    /// Global Pose Sensor.
+    pub const GPS: Address = Address::new(1, 1, 38, 1);
+    /// Local Pose Sensor.
+    pub const LPS: Address = Address::new(1, 1, 41, 1);
+    /// Velocity State Sensor.
+    pub const VSS: Address = Address::new(1, 1, 42, 1);
+    /// Global Waypoint Driver.
+    pub const GWD: Address = Address::new(1, 1, 45, 1);
+    /// Local Path Segment Driver.
+    pub const LPSD: Address = Address::new(1, 1, 48, 1);
+    /// The operator (System Commander).
+    pub const OCU: Address = Address::new(1, 2, 40, 1);
+}
+
+/// Options of a demo run.
+#[derive(Debug, Clone)]
+pub struct Options {
+    /// Seed of the sensor noise.
+    pub seed: u64,
+    /// Standard deviation of the position noise of the pose sensors, m.
+    pub position_noise: f64,
+    /// Waypoint travel speed, m/s.
+    pub waypoint_speed: f64,
+    /// Path-segment travel speed, m/s.
+    pub path_speed: f64,
+    /// Run at wall-clock speed instead of as fast as possible.
+    pub realtime: bool,
+    /// Print progress every this much simulated time (`None`: quiet).
+    pub progress: Option<Duration>,
+    /// Where to write `demo.svg` (`None`: no plot).
+    pub out: Option<PathBuf>,
+    /// Give up after this much simulated time.
+    pub timeout: Duration,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Self {
+            seed: 7,
+            position_noise: 0.02,
+            waypoint_speed: 1.0,
+            path_speed: 0.5,
+            realtime: false,
+            progress: None,
+            out: None,
+            timeout: Duration::from_secs(300),
+        }
+    }
+}
+
+/// The WGS 84 origin of the demo's local frame (x north, y east).
+pub const ORIGIN: (f64, f64, f64) = (29.6436, -82.3549, 40.0);
+
+/// The waypoint mission, local metres (sent as WGS 84); it ends at P0 of Figure 5-12,
+/// arriving along the direction of P0→P1.
+pub const WAYPOINTS: [(f64, f64); 5] = [
+    (10.0, 0.0),
+    (10.0, -6.0),
+    (-3.0, -6.0),
+    (-1.0, -1.0),
+    (1.0, 2.0),
+];
+
+/// The path segments of Part 1 Figures 5-12 and 5-14: (P1, P2, w1); P0 of the first is
+/// the vehicle's position, [1, 2, 0].
+pub const SEGMENTS: [SegmentDef; 2] = [
+    ((3.0, 5.0), (5.0, 1.0), 1.5),
+    ((6.0, -1.0), (8.0, -1.0), 2.0),
+];
+
+/// A path segment as sent: P1 (x, y), P2 (x, y), w1.
+pub type SegmentDef = ((f64, f64), (f64, f64), f64);
+
+/// Named commanded legs.
+type Legs = Vec<(String, Path)>;
+
+/// One leg of the run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Leg {
+    /// "waypoint 2", "path segment 0".
+    pub name: String,
+    /// Simulated time the leg's end was reached, s (`None`: never).
+    pub arrival: Option<f64>,
+    /// Cross-track error RMS, m.
+    pub xte_rms: f64,
+    /// Cross-track error maximum, m.
+    pub xte_max: f64,
+}
+
+/// What a run measured.
+#[derive(Debug, Clone)]
+pub struct Report {
+    /// Every leg, in order.
+    pub legs: Vec<Leg>,
+    /// When the waypoint driver returned to Standby, s.
+    pub waypoints_done: Option<f64>,
+    /// When the path-segment driver returned to Standby, s.
+    pub path_done: Option<f64>,
+    /// Distance from the final point of each phase when it ended, m.
+    pub final_errors: Vec<f64>,
+    /// Simulated duration, s.
+    pub duration: f64,
+    /// Messages delivered on the bus.
+    pub messages: u64,
+    /// The plot written, if any.
+    pub svg: Option<PathBuf>,
+    /// The commanded paths and the driven trajectory (local metres).
+    pub commanded: Vec<Vec<Vector2<f64>>>,
+    /// The driven trajectory.
+    pub trail: Vec<Vector2<f64>>,
+}
+
+/// The scripted operator.
+#[derive(Debug, Default)]
+struct Operator {
+    step: Step,
+    waypoint_speed: f64,
+    path_speed: f64,
+    seen_ready: bool,
+    started: Option<Instant>,
+    waypoints_done: Option<Instant>,
+    path_done: Option<Instant>,
+    path_started: Option<Instant>,
+    next_query: Option<Instant>,
+}
+
+#[derive(Debug, Default, Clone, Copy, PartialEq, Eq)]
+enum Step {
+    #[default]
+    TakeControl,
+    StartWaypoints,
+    Waypoints,
+    StartPath,
+    Path,
+    Done,
+}
+
+impl Operator {
+    fn watch(&mut self, ctx: &mut Ctx<'_>, driver: Address) {
+        let now = ctx.now();
+        if self.next_query.is_none_or(|t| now >= t) {
+            self.next_query = Some(now + Duration::from_millis(100));
+            ctx.send(driver, QueryComponentStatus {});
+        }
+    }
+}
+
+impl SystemCommander for Operator {
+    fn tick(&mut self, ctx: &mut Ctx<'_>) {
+        let now = ctx.now();
+        self.started.get_or_insert(now);
+        let frame = LocalFrame::new(ORIGIN.0, ORIGIN.1, ORIGIN.2);
+        match self.step {
+            Step::TakeControl => {
+                if ctx.has_control_of(addr::GWD) && ctx.has_control_of(addr::LPSD) {
+                    self.step = Step::StartWaypoints;
+                } else if self.next_query.is_none_or(|t| now >= t) {
+                    self.next_query = Some(now + Duration::from_millis(500));
+                    ctx.request_control(addr::GWD);
+                    ctx.request_control(addr::LPSD);
+                }
+            }
+            Step::StartWaypoints => {
+                ctx.send_core(addr::GWD, Resume {});
+                for (i, (x, y)) in WAYPOINTS.iter().enumerate() {
+                    let (latitude, longitude) = frame.to_global(Vector2::new(*x, *y));
+                    ctx.send(
+                        addr::GWD,
+                        SetGlobalWaypoint {
+                            waypoint_number: i as u16,
+                            latitude,
+                            longitude,
+                            ..Default::default()
+                        },
+                    );
+                }
+                // After Resume: Part 1 resets the travel speed on Standby -> Ready.
+                ctx.send(
+                    addr::GWD,
+                    SetTravelSpeed {
+                        speed: self.waypoint_speed,
+                    },
+                );
+                self.seen_ready = false;
+                self.step = Step::Waypoints;
+            }
+            Step::Waypoints => self.watch(ctx, addr::GWD),
+            Step::StartPath => {
+                ctx.send_core(addr::LPSD, Resume {});
+                for (i, (p1, p2, w1)) in SEGMENTS.iter().enumerate() {
+                    ctx.send(
+                        addr::LPSD,
+                        SetLocalPathSegment {
+                            path_segment_number: i as u16,
+                            p1_x: p1.0,
+                            p1_y: p1.1,
+                            p1_z: None,
+                            p2_x: p2.0,
+                            p2_y: p2.1,
+                            p2_z: None,
+                            weighting_factor: *w1,
+                        },
+                    );
+                }
+                ctx.send(
+                    addr::LPSD,
+                    SetTravelSpeed {
+                        speed: self.path_speed,
+                    },
+                );
+                self.path_started = Some(now);
+                self.seen_ready = false;
+                self.step = Step::Path;
+            }
+            Step::Path => self.watch(ctx, addr::LPSD),
+            Step::Done => {}
+        }
+    }
+
+    fn on_other_message(
+        &mut self,
+        ctx: &mut Ctx<'_>,
+        msg: &Message,
+    ) -> Result<Option<Message>, Refused> {
+        if let Message::ReportComponentStatus(s) = msg {
+            let state = CoreState::from_wire(s.primary_status_code);
+            let from = ctx.source();
+            let (driver, next) = match self.step {
+                Step::Waypoints => (addr::GWD, Step::StartPath),
+                Step::Path => (addr::LPSD, Step::Done),
+                _ => return Ok(None),
+            };
+            if from != Some(driver) {
+                return Ok(None);
+            }
+            match state {
+                Some(CoreState::Ready) => self.seen_ready = true,
+                Some(CoreState::Standby) if self.seen_ready => {
+                    match self.step {
+                        Step::Waypoints => self.waypoints_done = Some(ctx.now()),
+                        _ => self.path_done = Some(ctx.now()),
+                    }
+                    self.step = next;
+                }
+                _ => {}
+            }
+        }
+        Ok(None)
+    }
+}
+
+fn driver_config(pose_sensor: Address) -> DriverConfig {
+    DriverConfig {
+        output: addr::PD,
+        pose_sensor,
+        velocity_sensor: Some(addr::VSS),
+        origin: Some(LocalFrame::new(ORIGIN.0, ORIGIN.1, ORIGIN.2)),
+        ..DriverConfig::default()
+    }
+}
+
+/// Builds the demo subsystem on a bus starting at `t0`; returns the bus and the vehicle.
+pub fn build(t0: Instant, opts: &Options) -> (LocalBus, SimVehicle) {
+    let vehicle = SimVehicle::new(VehicleParams {
+        position_noise: opts.position_noise,
+        heading_noise: opts.position_noise * 0.5,
+        seed: opts.seed,
+        origin: LocalFrame::new(ORIGIN.0, ORIGIN.1, ORIGIN.2),
+        start: (Vector2::zeros(), 0.0),
+        ..VehicleParams::default()
+    });
+    let cfg = Config {
+        utc: Some(Duration::from_secs(1_795_000_000)),
+        ..Config::default()
+    };
+    let mut bus = LocalBus::new(t0);
+    let pd = PrimitiveDriverCore::new(vehicle.clone(), PrimitiveConfig::default());
+    bus.add(primitive_driver::component(addr::PD, pd, cfg.clone(), t0));
+    bus.add(global_pose_sensor::component(
+        addr::GPS,
+        GlobalPoseSensorCore(vehicle.clone()),
+        cfg.clone(),
+        t0,
+    ));
+    bus.add(local_pose_sensor::component(
+        addr::LPS,
+        LocalPoseSensorCore(vehicle.clone()),
+        cfg.clone(),
+        t0,
+    ));
+    bus.add(velocity_state_sensor::component(
+        addr::VSS,
+        VelocityStateSensorCore(vehicle.clone()),
+        cfg.clone(),
+        t0,
+    ));
+    let gwd = GlobalWaypointDriverCore::new(driver_config(addr::GPS));
+    bus.add(global_waypoint_driver::component(
+        addr::GWD,
+        gwd,
+        cfg.clone(),
+        t0,
+    ));
+    let lpsd = LocalPathSegmentDriverCore::new(driver_config(addr::LPS));
+    bus.add(local_path_segment_driver::component(
+        addr::LPSD,
+        lpsd,
+        cfg.clone(),
+        t0,
+    ));
+    let ocu = Operator {
+        waypoint_speed: opts.waypoint_speed,
+        path_speed: opts.path_speed,
+        ..Operator::default()
+    };
+    bus.add(system_commander::component(addr::OCU, ocu, cfg, t0));
+    (bus, vehicle)
+}
+
+type Ocu = crate::component::Component<system_commander::Dispatch<Operator>>;
+
+/// Runs the demo; `print` receives progress lines.
+pub fn run(opts: &Options, mut print: impl FnMut(&str)) -> Result<Report, String> {
+    let t0 = Instant::now();
+    let (mut bus, vehicle) = build(t0, opts);
+    let slice = Duration::from_millis(100);
+    let mut next_progress = Duration::ZERO;
+    let wall = Instant::now();
+    loop {
+        let elapsed = bus.now() - t0;
+        let (step, wp_done, path_done) = {
+            let o = &bus
+                .get::<Ocu>(addr::OCU)
+                .ok_or("operator missing")?
+                .behaviour()
+                .0;
+            (o.step, o.waypoints_done, o.path_done)
+        };
+        if let Some(every) = opts.progress {
+            if elapsed >= next_progress || step == Step::Done {
+                next_progress = elapsed + every;
+                let v = vehicle.lock();
+                let p = v.position();
+                print(&format!(
+                    "t = {:6.1} s  {:<16} x {:6.2} m  y {:6.2} m  heading {:6.1}°  speed {:4.2} m/s",
+                    elapsed.as_secs_f64(),
+                    match step {
+                        Step::TakeControl => "taking control",
+                        Step::StartWaypoints | Step::Waypoints => "waypoints",
+                        Step::StartPath | Step::Path => "path segments",
+                        Step::Done => "done",
+                    },
+                    p.x,
+                    p.y,
+                    v.yaw().to_degrees(),
+                    v.speed()
+                ));
+            }
+        }
+        if step == Step::Done {
+            return Ok(measure(t0, &bus, &vehicle, wp_done, path_done, opts));
+        }
+        if elapsed > opts.timeout {
+            return Err(format!(
+                "the mission did not finish within {:?} of simulated time (stuck at {step:?})",
+                opts.timeout
+            ));
+        }
+        bus.run_for(slice);
+        if opts.realtime {
+            let target = wall + (bus.now() - t0);
+            let now = Instant::now();
+            if target > now {
+                std::thread::sleep(target - now);
+            }
+        }
+    }
+}
+
+/// Legs of the commanded paths: waypoint legs are straight lines from the previous
+/// point; path segments are the curves of Part 1.
+fn commanded_legs() -> (Legs, Legs) {
+    let mut wp = Vec::new();
+    let mut from = Vector2::new(0.0, 0.0);
+    for (i, (x, y)) in WAYPOINTS.iter().enumerate() {
+        let to = Vector2::new(*x, *y);
+        wp.push((format!("waypoint {i}"), Path::new([from, to])));
+        from = to;
+    }
+    let mut ps = Vec::new();
+    let mut p0 = from;
+    for (i, (p1, p2, w1)) in SEGMENTS.iter().enumerate() {
+        let seg = PathSegment {
+            p0: Vector3::new(p0.x, p0.y, 0.0),
+            p1: Vector3::new(p1.0, p1.1, 0.0),
+            p2: Vector3::new(p2.0, p2.1, 0.0),
+            w1: *w1,
+        };
+        let mut path = Path::default();
+        path.push_segment(&seg);
+        ps.push((format!("path segment {i}"), path));
+        p0 = Vector2::new(p2.0, p2.1);
+    }
+    (wp, ps)
+}
+
+fn measure(
+    t0: Instant,
+    bus: &LocalBus,
+    vehicle: &SimVehicle,
+    wp_done: Option<Instant>,
+    path_done: Option<Instant>,
+    opts: &Options,
+) -> Report {
+    let secs = |t: Option<Instant>| t.map(|t| (t - t0).as_secs_f64());
+    let v = vehicle.lock();
+    let trail: Vec<(f64, Vector2<f64>)> = v
+        .trail()
+        .iter()
+        .map(|(d, p)| (d.as_secs_f64(), *p))
+        .collect();
+    let (wp_legs, path_legs) = commanded_legs();
+    let wp_end = secs(wp_done).unwrap_or(f64::INFINITY);
+    let path_end = secs(path_done).unwrap_or(f64::INFINITY);
+    let mut legs = Vec::new();
+    let phases = [(&wp_legs, 0.0, wp_end), (&path_legs, wp_end, path_end)];
+    for (phase_legs, start, end) in phases {
+        // Points of this phase, assigned to the leg they are nearest to, moving forward
+        // only (a point near a corner belongs to the leg being driven).
+        let pts: Vec<&(f64, Vector2<f64>)> = trail
+            .iter()
+            .filter(|(t, _)| *t >= start && *t <= end)
+            .collect();
+        let mut leg = 0usize;
+        let mut errs: Vec<Vec<f64>> = vec![Vec::new(); phase_legs.len()];
+        let mut arrivals: Vec<Option<f64>> = vec![None; phase_legs.len()];
+        for (t, p) in pts {
+            while leg + 1 < phase_legs.len() {
+                let here = phase_legs[leg].1.project(*p, 0.0, f64::INFINITY);
+                let next = phase_legs[leg + 1].1.project(*p, 0.0, f64::INFINITY);
+                let end_reached = here.is_some_and(|h| h.s >= phase_legs[leg].1.length() - 0.3);
+                match (here, next) {
+                    (Some(h), Some(n)) if end_reached && n.distance <= h.distance => {
+                        arrivals[leg] = Some(*t);
+                        leg += 1;
+                    }
+                    _ => break,
+                }
+            }
+            if let Some(h) = phase_legs[leg].1.project(*p, 0.0, f64::INFINITY) {
+                errs[leg].push(h.distance);
+            }
+        }
+        if end.is_finite() {
+            arrivals[phase_legs.len() - 1] = Some(end);
+        }
+        for (i, (name, _)) in phase_legs.iter().enumerate() {
+            let e = &errs[i];
+            let rms = if e.is_empty() {
+                0.0
+            } else {
+                (e.iter().map(|x| x * x).sum::<f64>() / e.len() as f64).sqrt()
+            };
+            legs.push(Leg {
+                name: name.clone(),
+                arrival: arrivals[i],
+                xte_rms: rms,
+                xte_max: e.iter().copied().fold(0.0, f64::max),
+            });
+        }
+    }
+    let at = |t: f64| {
+        trail
+            .iter()
+            .find(|(s, _)| *s >= t)
+            .or(trail.last())
+            .map(|(_, p)| *p)
+            .unwrap_or_default()
+    };
+    let final_errors = vec![
+        (at(wp_end) - Vector2::new(WAYPOINTS[4].0, WAYPOINTS[4].1)).norm(),
+        (at(path_end) - Vector2::new(SEGMENTS[1].1 .0, SEGMENTS[1].1 .1)).norm(),
+    ];
+    let commanded: Vec<Vec<Vector2<f64>>> = wp_legs
+        .iter()
+        .chain(&path_legs)
+        .map(|(_, p)| p.points().to_vec())
+        .collect();
+    let trail_points: Vec<Vector2<f64>> = trail.iter().map(|(_, p)| *p).collect();
+    let mut report = Report {
+        legs,
+        waypoints_done: secs(wp_done),
+        path_done: secs(path_done),
+        final_errors,
+        duration: (bus.now() - t0).as_secs_f64(),
+        messages: bus.stats().delivered,
+        svg: None,
+        commanded,
+        trail: trail_points,
+    };
+    drop(v);
+    if let Some(dir) = &opts.out {
+        let path = dir.join("demo.svg");
+        if std::fs::create_dir_all(dir).is_ok() && std::fs::write(&path, svg(&report)).is_ok() {
+            report.svg = Some(path);
+        }
+    }
+    report
+}
+
+/// An SVG of the commanded paths (blue, waypoints and control points marked) and the
+/// driven trajectory (red). x (north) is drawn up, y (east) to the right.
+pub fn svg(r: &Report) -> String {
+    let controls: Vec<Vector2<f64>> = SEGMENTS
+        .iter()
+        .flat_map(|(p1, p2, _)| [Vector2::new(p1.0, p1.1), Vector2::new(p2.0, p2.1)])
+        .collect();
+    let all = r
+        .commanded
+        .iter()
+        .flatten()
+        .chain(&r.trail)
+        .chain(&controls);
+    let (mut lo, mut hi) = (
+        Vector2::repeat(f64::INFINITY),
+        Vector2::repeat(f64::NEG_INFINITY),
+    );
+    for p in all {
+        lo = lo.inf(p);
+        hi = hi.sup(p);
+    }
+    let margin = 1.0;
+    let scale = 40.0;
+    let (w, h) = (
+        ((hi.y - lo.y + 2.0 * margin) * scale).max(480.0),
+        (hi.x - lo.x + 2.0 * margin) * scale,
+    );
+    let px = |p: &Vector2<f64>| ((p.y - lo.y + margin) * scale, (hi.x - p.x + margin) * scale);
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w:.0}" height="{:.0}" viewBox="0 0 {w:.0} {:.0}" font-family="sans-serif" font-size="13">"#,
+        h + 60.0,
+        h + 60.0
+    );
+    let _ = writeln!(s, r##"<rect width="100%" height="100%" fill="#fff"/>"##);
+    // 1 m grid.
+    let mut x = lo.x.floor();
+    while x <= hi.x.ceil() {
+        let (_, yy) = px(&Vector2::new(x, lo.y));
+        let _ = writeln!(
+            s,
+            r##"<line x1="0" y1="{yy:.1}" x2="{w:.0}" y2="{yy:.1}" stroke="#eee"/>"##
+        );
+        x += 1.0;
+    }
+    let mut y = lo.y.floor();
+    while y <= hi.y.ceil() {
+        let (xx, _) = px(&Vector2::new(lo.x, y));
+        let _ = writeln!(
+            s,
+            r##"<line x1="{xx:.1}" y1="0" x2="{xx:.1}" y2="{h:.0}" stroke="#eee"/>"##
+        );
+        y += 1.0;
+    }
+    let poly = |pts: &[Vector2<f64>]| {
+        pts.iter()
+            .map(|p| {
+                let (a, b) = px(p);
+                format!("{a:.1},{b:.1}")
+            })
+            .collect::<Vec<_>>()
+            .join(" ")
+    };
+    for c in &r.commanded {
+        let _ = writeln!(
+            s,
+            r##"<polyline points="{}" fill="none" stroke="#1f5fbf" stroke-width="3" stroke-opacity="0.5"/>"##,
+            poly(c)
+        );
+    }
+    let _ = writeln!(
+        s,
+        r##"<polyline points="{}" fill="none" stroke="#d62728" stroke-width="1.5"/>"##,
+        poly(&r.trail)
+    );
+    for (i, (x, y)) in WAYPOINTS.iter().enumerate() {
+        let (a, b) = px(&Vector2::new(*x, *y));
+        let _ = writeln!(
+            s,
+            r##"<circle cx="{a:.1}" cy="{b:.1}" r="5" fill="#1f5fbf"/><text x="{:.1}" y="{:.1}">W{i}</text>"##,
+            a + 7.0,
+            b - 7.0
+        );
+    }
+    for (i, (p1, p2, _)) in SEGMENTS.iter().enumerate() {
+        let (a, b) = px(&Vector2::new(p1.0, p1.1));
+        let _ = writeln!(
+            s,
+            r##"<rect x="{:.1}" y="{:.1}" width="8" height="8" fill="none" stroke="#555"/><text x="{:.1}" y="{:.1}" fill="#555">P{}</text>"##,
+            a - 4.0,
+            b - 4.0,
+            a + 7.0,
+            b - 7.0,
+            2 * i + 1
+        );
+        let (a, b) = px(&Vector2::new(p2.0, p2.1));
+        let _ = writeln!(
+            s,
+            r##"<circle cx="{a:.1}" cy="{b:.1}" r="4" fill="#555"/><text x="{:.1}" y="{:.1}" fill="#555">P{}</text>"##,
+            a + 7.0,
+            b + 14.0,
+            2 * i + 2
+        );
+    }
+    let _ = writeln!(
+        s,
+        r##"<text x="10" y="{:.0}"><tspan fill="#1f5fbf">━ commanded: waypoint legs, Part 1 path segments</tspan></text><text x="10" y="{:.0}"><tspan fill="#d62728">━ driven</tspan> (1 m grid; x north up, y east right)</text>"##,
+        h + 22.0,
+        h + 44.0
+    );
+    s.push_str("</svg>\n");
+    s
+}
+
+/// The report as text.
+pub fn summary(r: &Report) -> String {
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "{:<16} {:>10} {:>12} {:>12}",
+        "leg", "arrival", "xte RMS", "xte max"
+    );
+    for l in &r.legs {
+        let _ = writeln!(
+            s,
+            "{:<16} {:>10} {:>10.3} m {:>10.3} m",
+            l.name,
+            l.arrival.map_or("—".to_string(), |t| format!("{t:.1} s")),
+            l.xte_rms,
+            l.xte_max
+        );
+    }
+    let _ = writeln!(
+        s,
+        "waypoints: Standby at {}, {:.3} m from the final waypoint",
+        r.waypoints_done.map_or("—".into(), |t| format!("{t:.1} s")),
+        r.final_errors[0]
+    );
+    let _ = writeln!(
+        s,
+        "path segments: Standby at {}, {:.3} m from P4",
+        r.path_done.map_or("—".into(), |t| format!("{t:.1} s")),
+        r.final_errors[1]
+    );
+    let _ = write!(
+        s,
+        "{:.1} s simulated, {} messages on the bus",
+        r.duration, r.messages
+    );
+    if let Some(p) = &r.svg {
+        let _ = write!(s, "\nplot: {}", p.display());
+    }
+    s
+}
