@@ -1,8 +1,9 @@
 //! The `jaus demo` main job: a complete simulated subsystem on the in-process bus.
 //!
-//! Node 1 of subsystem 1 hosts the Primitive Driver, the Global and Local Pose
-//! Sensors, the Velocity State Sensor, the Global Waypoint Driver and the Local Path
-//! Segment Driver, all over one simulated skid-steer vehicle. An operator (a System
+//! Node 1 of subsystem 1 hosts the Primitive Driver, the Reflexive Driver, the Global
+//! and Local Pose Sensors, the Velocity State Sensor, the Global Waypoint Driver and the
+//! Local Path Segment Driver, all over one simulated skid-steer vehicle; the drivers
+//! drive through the Reflexive Driver (Part 1 Figures 5-9 and 5-16). An operator (a System
 //! Commander on node 2) takes control of both drivers, sends a waypoint mission in
 //! WGS 84, then the two path segments of Part 1 Figures 5-12 and 5-14, waiting each time
 //! for the driver to report Standby (Part 1: back to Standby at the final point). The
@@ -20,10 +21,11 @@ use crate::component::{Config, CoreState, Refused};
 use crate::components::system_commander::{self, Ctx, SystemCommander};
 use crate::components::{
     global_pose_sensor, global_waypoint_driver, local_path_segment_driver, local_pose_sensor,
-    primitive_driver, velocity_state_sensor,
+    primitive_driver, reflexive_driver, velocity_state_sensor,
 };
 use crate::cores::drivers::{
     GlobalWaypointDriverCore, LocalPathSegmentDriverCore, PrimitiveConfig, PrimitiveDriverCore,
+    ReflexiveConfig, ReflexiveDriverCore,
 };
 use crate::cores::geo::LocalFrame;
 use crate::cores::motion::DriverConfig;
@@ -38,6 +40,8 @@ pub mod addr {
     use crate::Address;
     /// Primitive Driver.
     pub const PD: Address = Address::new(1, 1, 33, 1);
+    /// Reflexive Driver.
+    pub const RD: Address = Address::new(1, 1, 43, 1);
     /// Global Pose Sensor.
     pub const GPS: Address = Address::new(1, 1, 38, 1);
     /// Local Pose Sensor.
@@ -291,7 +295,8 @@ impl SystemCommander for Operator {
 
 fn driver_config(pose_sensor: Address) -> DriverConfig {
     DriverConfig {
-        output: addr::PD,
+        // Part 1 Figures 5-9 and 5-16: driving through the Reflexive Driver.
+        output: addr::RD,
         pose_sensor,
         velocity_sensor: Some(addr::VSS),
         origin: Some(LocalFrame::new(ORIGIN.0, ORIGIN.1, ORIGIN.2)),
@@ -316,6 +321,14 @@ pub fn build(t0: Instant, opts: &Options) -> (LocalBus, SimVehicle) {
     let mut bus = LocalBus::new(t0);
     let pd = PrimitiveDriverCore::new(vehicle.clone(), PrimitiveConfig::default());
     bus.add(primitive_driver::component(addr::PD, pd, cfg.clone(), t0));
+    let rd = ReflexiveDriverCore::new(
+        (),
+        ReflexiveConfig {
+            output: addr::PD,
+            ..Default::default()
+        },
+    );
+    bus.add(reflexive_driver::component(addr::RD, rd, cfg.clone(), t0));
     bus.add(global_pose_sensor::component(
         addr::GPS,
         GlobalPoseSensorCore(vehicle.clone()),
