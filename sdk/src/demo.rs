@@ -83,7 +83,7 @@ impl Default for Options {
             seed: 7,
             position_noise: 0.02,
             waypoint_speed: 1.0,
-            path_speed: 0.5,
+            path_speed: 1.0,
             realtime: false,
             progress: None,
             out: None,

@@ -230,8 +230,19 @@ fn watchdog_stops_the_vehicle_when_pose_goes_stale() {
     start_mission(&mut bus, 1.0);
     bus.run_for(Duration::from_secs(4));
     assert!(vehicle.lock().speed() > 0.8);
-    // The pose sensor falls silent.
+    // The pose sensor falls silent: brakes within 0.5 s (TARGETS.md).
     bus.set_filter(|h| h.source != LPS);
+    let mut braked_after = None;
+    for i in 1..=40 {
+        bus.run_for(ms(25));
+        let pd = bus.get::<Pd>(PD).unwrap();
+        if pd.behaviour().0.applied().resistive_linear.x > 0.0 {
+            braked_after = Some(i * 25);
+            break;
+        }
+    }
+    let braked_after = braked_after.expect("the driver braked");
+    assert!(braked_after <= 500, "braked {braked_after} ms after the pose stopped");
     bus.run_for(Duration::from_secs(2));
     assert!(
         vehicle.lock().speed().abs() < 0.02,

@@ -45,7 +45,7 @@ pub struct PrimitiveConfig {
 impl Default for PrimitiveConfig {
     fn default() -> Self {
         Self {
-            command_timeout: Duration::from_millis(500),
+            command_timeout: Duration::from_millis(300),
         }
     }
 }

@@ -58,7 +58,7 @@ impl Default for DriverConfig {
             pose_sensor: Address::new(1, 1, 41, 1),
             velocity_sensor: Some(Address::new(1, 1, 42, 1)),
             feedback_rate_hz: 20.0,
-            feedback_timeout: Duration::from_millis(500),
+            feedback_timeout: Duration::from_millis(300),
             command_timeout: Some(Duration::from_secs(2)),
             max_speed: 2.0,
             max_yaw_rate: 1.5,
