@@ -64,6 +64,8 @@ pub mod cores;
 #[cfg(feature = "cores")]
 pub mod demo;
 pub mod hex;
+#[cfg(feature = "net")]
+pub mod net;
 #[cfg(feature = "payload")]
 pub mod payload;
 pub mod wire;

@@ -304,6 +304,13 @@ impl Header {
         }
     }
 
+    /// The 16 header bytes with `data_size` as given (the body length of this packet).
+    pub fn encode_with_size(&self, data_size: usize) -> Result<[u8; HEADER_LEN], EncodeError> {
+        let mut b = [0u8; HEADER_LEN];
+        self.put(&mut Writer::new(&mut b), data_size)?;
+        Ok(b)
+    }
+
     /// Writes the header with `data_size` as given.
     fn put(&self, w: &mut Writer<'_>, data_size: usize) -> Result<(), EncodeError> {
         let check = |field: &'static str, v: u64, width: u32| {

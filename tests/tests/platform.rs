@@ -242,7 +242,10 @@ fn watchdog_stops_the_vehicle_when_pose_goes_stale() {
         }
     }
     let braked_after = braked_after.expect("the driver braked");
-    assert!(braked_after <= 500, "braked {braked_after} ms after the pose stopped");
+    assert!(
+        braked_after <= 500,
+        "braked {braked_after} ms after the pose stopped"
+    );
     bus.run_for(Duration::from_secs(2));
     assert!(
         vehicle.lock().speed().abs() < 0.02,

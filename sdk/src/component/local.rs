@@ -38,6 +38,11 @@ pub trait Endpoint: Send + 'static {
     fn poll_transmit(&mut self) -> Option<Transmit>;
     /// When to be woken next.
     fn poll_timeout(&self) -> Option<Instant>;
+    /// A component this endpoint may have dealt with is gone (the node layer saw it
+    /// time out): end control, service connections and events involving it.
+    fn forget(&mut self, gone: Address) {
+        let _ = gone;
+    }
     /// For [`LocalBus::get`].
     fn as_any(&self) -> &dyn Any;
     /// For [`LocalBus::get_mut`].
@@ -59,6 +64,9 @@ impl<B: Behaviour> Endpoint for Component<B> {
     }
     fn poll_timeout(&self) -> Option<Instant> {
         Component::poll_timeout(self)
+    }
+    fn forget(&mut self, gone: Address) {
+        Component::forget(self, gone);
     }
     fn as_any(&self) -> &dyn Any {
         self

@@ -1,0 +1,537 @@
+//! The node manager component (id 1): identification, configuration and subsystem list
+//! of its node, heartbeats, and the system tree built by discovery (WIRE.md §8).
+
+use std::collections::BTreeMap;
+use std::time::{Duration, Instant};
+
+use crate::component::Refused;
+use crate::components::node_manager::{Ctx, NodeManager};
+use crate::messages::*;
+use crate::Address;
+
+/// What is known about one component of the system.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct ComponentInfo {
+    /// Identification text, once answered.
+    pub name: Option<String>,
+    /// Service types it reported (component ids; 0 = core), once answered.
+    pub services: Option<Vec<u16>>,
+}
+
+/// What is known about one node.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct NodeInfo {
+    /// Identification text, once answered.
+    pub name: Option<String>,
+    /// Components by (component id, instance).
+    pub components: BTreeMap<(u8, u8), ComponentInfo>,
+    /// Whether a Report Configuration was received.
+    pub configured: bool,
+    /// When it was last heard from.
+    pub last_heard: Instant,
+}
+
+/// What is known about one subsystem.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct SubsystemInfo {
+    /// Identification text, once answered.
+    pub name: Option<String>,
+    /// Nodes by id.
+    pub nodes: BTreeMap<u8, NodeInfo>,
+}
+
+/// The system as this node manager sees it.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct SystemTree {
+    /// Subsystems by id (this node's own subsystem included, with this node).
+    pub subsystems: BTreeMap<u8, SubsystemInfo>,
+}
+
+impl SystemTree {
+    /// Every component address known.
+    pub fn components(&self) -> Vec<Address> {
+        let mut v = Vec::new();
+        for (ss, s) in &self.subsystems {
+            for (n, node) in &s.nodes {
+                for (c, i) in node.components.keys() {
+                    v.push(Address::new(*ss, *n, *c, *i));
+                }
+            }
+        }
+        v
+    }
+
+    /// Whether node `node` of subsystem `ss` is known.
+    pub fn has_node(&self, ss: u8, node: u8) -> bool {
+        self.subsystems
+            .get(&ss)
+            .is_some_and(|s| s.nodes.contains_key(&node))
+    }
+
+    /// A readable multi-line view.
+    pub fn render(&self) -> String {
+        use std::fmt::Write as _;
+        let mut out = String::new();
+        for (ss, s) in &self.subsystems {
+            let _ = writeln!(
+                out,
+                "subsystem {ss} {}",
+                s.name
+                    .as_deref()
+                    .map(|n| format!("'{n}'"))
+                    .unwrap_or_default()
+            );
+            for (n, node) in &s.nodes {
+                let _ = writeln!(
+                    out,
+                    "  node {n} {}",
+                    node.name
+                        .as_deref()
+                        .map(|n| format!("'{n}'"))
+                        .unwrap_or_default()
+                );
+                for ((c, i), info) in &node.components {
+                    let _ = writeln!(
+                        out,
+                        "    {ss}.{n}.{c}.{i} {}{}",
+                        info.name
+                            .as_deref()
+                            .map(|n| format!("'{n}'"))
+                            .unwrap_or_else(|| "(unidentified)".into()),
+                        info.services
+                            .as_ref()
+                            .map(|s| format!(" services {s:?}"))
+                            .unwrap_or_default()
+                    );
+                }
+            }
+        }
+        out
+    }
+}
+
+/// Settings of the node manager.
+#[derive(Debug, Clone)]
+pub struct ManagerConfig {
+    /// Subsystem name (answer to Query Identification, subsystem).
+    pub subsystem_name: String,
+    /// Node name (answer to Query Identification, node).
+    pub node_name: String,
+    /// Heartbeat period.
+    pub heartbeat: Duration,
+    /// A node not heard from for this long is removed.
+    pub node_timeout: Duration,
+    /// Where heartbeats go (every node manager of the system by default).
+    pub heartbeat_to: Address,
+}
+
+impl Default for ManagerConfig {
+    fn default() -> Self {
+        Self {
+            subsystem_name: "jaus-rs subsystem".into(),
+            node_name: "jaus-rs node".into(),
+            heartbeat: Duration::from_secs(1),
+            node_timeout: Duration::from_secs(5),
+            heartbeat_to: Address::new(255, 255, 1, 1),
+        }
+    }
+}
+
+/// The node manager's behaviour: answers for its node and discovers the others.
+#[derive(Debug)]
+pub struct NodeManagerCore {
+    config: ManagerConfig,
+    me: Address,
+    locals: Vec<Address>,
+    tree: SystemTree,
+    next_heartbeat: Option<Instant>,
+    next_requery: Option<Instant>,
+    gone: Vec<Address>,
+}
+
+impl NodeManagerCore {
+    /// For the node manager at `me` (component 1).
+    pub fn new(me: Address, config: ManagerConfig) -> Self {
+        Self {
+            config,
+            me,
+            // The node manager is a component of its node (OpenJAUS lists it too).
+            locals: vec![me],
+            tree: SystemTree::default(),
+            next_heartbeat: None,
+            next_requery: None,
+            gone: Vec::new(),
+        }
+    }
+
+    /// Registers a local component (the node layer calls this).
+    pub fn add_local(&mut self, a: Address) {
+        if !self.locals.contains(&a) {
+            self.locals.push(a);
+            self.locals.sort();
+        }
+    }
+
+    /// The system tree.
+    pub fn tree(&self) -> &SystemTree {
+        &self.tree
+    }
+
+    /// Components that disappeared since the last call.
+    pub fn take_gone(&mut self) -> Vec<Address> {
+        std::mem::take(&mut self.gone)
+    }
+
+    fn own_node(&self) -> NodeConfiguration {
+        NodeConfiguration {
+            node_id: self.me.node,
+            components: self
+                .locals
+                .iter()
+                .map(|a| ComponentConfiguration {
+                    component_id: a.component,
+                    instance_id: a.instance,
+                })
+                .collect(),
+        }
+    }
+
+    fn node_mut(&mut self, ss: u8, node: u8, now: Instant) -> &mut NodeInfo {
+        self.tree
+            .subsystems
+            .entry(ss)
+            .or_default()
+            .nodes
+            .entry(node)
+            .or_insert_with(|| NodeInfo {
+                name: None,
+                components: BTreeMap::new(),
+                configured: false,
+                last_heard: now,
+            })
+    }
+
+    fn refresh_self(&mut self, now: Instant) {
+        let (ss, n) = (self.me.subsystem, self.me.node);
+        let name = self.config.node_name.clone();
+        let sname = self.config.subsystem_name.clone();
+        let locals = self.locals.clone();
+        let node = self.node_mut(ss, n, now);
+        node.name = Some(name);
+        node.configured = true;
+        node.last_heard = now;
+        for a in locals {
+            let c = node
+                .components
+                .entry((a.component, a.instance))
+                .or_default();
+            if a.component == 1 {
+                c.name = Some("NodeManager".into());
+                c.services = Some(vec![0, 1]);
+            }
+        }
+        if let Some(s) = self.tree.subsystems.get_mut(&ss) {
+            s.name = Some(sname);
+        }
+    }
+}
+
+impl NodeManager for NodeManagerCore {
+    fn on_query_identification(
+        &mut self,
+        _ctx: &mut Ctx<'_>,
+        q: &QueryIdentification,
+    ) -> Result<ReportIdentification, Refused> {
+        let name = match q.query_field {
+            QueryLevel::Subsystem => self.config.subsystem_name.clone(),
+            QueryLevel::Node => self.config.node_name.clone(),
+            QueryLevel::System => return Err(Refused::Unsupported),
+            _ => return Err(Refused::Invalid("unknown identification level".into())),
+        };
+        Ok(ReportIdentification {
+            query_type: q.query_field,
+            authority: 0,
+            identification_type: 0,
+            identification: name,
+        })
+    }
+
+    fn on_query_configuration(
+        &mut self,
+        ctx: &mut Ctx<'_>,
+        q: &QueryConfiguration,
+    ) -> Result<ReportConfiguration, Refused> {
+        self.refresh_self(ctx.now());
+        match q.query_field {
+            QueryLevel::Node => Ok(ReportConfiguration {
+                nodes: vec![self.own_node()],
+            }),
+            QueryLevel::Subsystem => {
+                let nodes = self
+                    .tree
+                    .subsystems
+                    .get(&self.me.subsystem)
+                    .map(|s| {
+                        s.nodes
+                            .iter()
+                            .map(|(n, info)| NodeConfiguration {
+                                node_id: *n,
+                                components: info
+                                    .components
+                                    .keys()
+                                    .map(|(c, i)| ComponentConfiguration {
+                                        component_id: *c,
+                                        instance_id: *i,
+                                    })
+                                    .collect(),
+                            })
+                            .collect()
+                    })
+                    .unwrap_or_default();
+                Ok(ReportConfiguration { nodes })
+            }
+            _ => Err(Refused::Unsupported),
+        }
+    }
+
+    fn on_query_subsystem_list(
+        &mut self,
+        ctx: &mut Ctx<'_>,
+        _q: &QuerySubsystemList,
+    ) -> Result<ReportSubsystemList, Refused> {
+        self.refresh_self(ctx.now());
+        let subsystems = self
+            .tree
+            .subsystems
+            .iter()
+            .filter_map(|(ss, s)| {
+                s.nodes.keys().next().map(|n| SubsystemEntry {
+                    subsystem_id: *ss,
+                    node_id: *n,
+                    component_id: 1,
+                    instance_id: 1,
+                })
+            })
+            .collect();
+        Ok(ReportSubsystemList { subsystems })
+    }
+
+    fn on_report_heartbeat_pulse(
+        &mut self,
+        ctx: &mut Ctx<'_>,
+        _r: &ReportHeartbeatPulse,
+    ) -> Result<(), Refused> {
+        let Some(src) = ctx.source() else {
+            return Ok(());
+        };
+        let now = ctx.now();
+        if src.subsystem == self.me.subsystem && src.node == self.me.node {
+            return Ok(());
+        }
+        let node = self.node_mut(src.subsystem, src.node, now);
+        node.last_heard = now;
+        // Any component that heartbeats is part of the tree.
+        node.components
+            .entry((src.component, src.instance))
+            .or_default();
+        let (named, configured) = (node.name.is_some(), node.configured);
+        let nm = Address::new(src.subsystem, src.node, 1, 1);
+        if !named {
+            ctx.send(
+                nm,
+                QueryIdentification {
+                    query_field: QueryLevel::Node,
+                },
+            );
+        }
+        if !configured {
+            ctx.send(
+                nm,
+                QueryConfiguration {
+                    query_field: QueryLevel::Node,
+                },
+            );
+        }
+        if src.subsystem != self.me.subsystem
+            && self
+                .tree
+                .subsystems
+                .get(&src.subsystem)
+                .is_some_and(|s| s.name.is_none())
+        {
+            ctx.send(
+                nm,
+                QueryIdentification {
+                    query_field: QueryLevel::Subsystem,
+                },
+            );
+        }
+        Ok(())
+    }
+
+    fn on_report_identification(
+        &mut self,
+        ctx: &mut Ctx<'_>,
+        r: &ReportIdentification,
+    ) -> Result<(), Refused> {
+        let Some(src) = ctx.source() else {
+            return Ok(());
+        };
+        let now = ctx.now();
+        let name = r.identification.trim_end_matches('\0').to_string();
+        match r.query_type {
+            QueryLevel::Subsystem => {
+                self.tree.subsystems.entry(src.subsystem).or_default().name = Some(name);
+            }
+            QueryLevel::Node => self.node_mut(src.subsystem, src.node, now).name = Some(name),
+            QueryLevel::Component => {
+                self.node_mut(src.subsystem, src.node, now)
+                    .components
+                    .entry((src.component, src.instance))
+                    .or_default()
+                    .name = Some(name);
+            }
+            _ => {}
+        }
+        Ok(())
+    }
+
+    fn on_report_configuration(
+        &mut self,
+        ctx: &mut Ctx<'_>,
+        r: &ReportConfiguration,
+    ) -> Result<(), Refused> {
+        let Some(src) = ctx.source() else {
+            return Ok(());
+        };
+        let now = ctx.now();
+        for n in &r.nodes {
+            if src.subsystem == self.me.subsystem && n.node_id == self.me.node {
+                continue;
+            }
+            let node = self.node_mut(src.subsystem, n.node_id, now);
+            node.configured = true;
+            let listed: Vec<(u8, u8)> = n
+                .components
+                .iter()
+                .map(|c| (c.component_id, c.instance_id))
+                .collect();
+            let removed: Vec<(u8, u8)> = node
+                .components
+                .keys()
+                .copied()
+                .filter(|k| !listed.contains(k))
+                .collect();
+            for k in &removed {
+                node.components.remove(k);
+            }
+            self.gone.extend(
+                removed
+                    .iter()
+                    .map(|k| Address::new(src.subsystem, n.node_id, k.0, k.1)),
+            );
+            let node = self.node_mut(src.subsystem, n.node_id, now);
+            let mut new = Vec::new();
+            for k in listed {
+                if let std::collections::btree_map::Entry::Vacant(e) = node.components.entry(k) {
+                    e.insert(ComponentInfo::default());
+                    new.push(Address::new(src.subsystem, n.node_id, k.0, k.1));
+                }
+            }
+            for a in new {
+                ctx.send(
+                    a,
+                    QueryIdentification {
+                        query_field: QueryLevel::Component,
+                    },
+                );
+                ctx.send(a, QueryServices {});
+            }
+        }
+        Ok(())
+    }
+
+    fn on_report_services(&mut self, ctx: &mut Ctx<'_>, r: &ReportServices) -> Result<(), Refused> {
+        let Some(src) = ctx.source() else {
+            return Ok(());
+        };
+        let now = ctx.now();
+        self.node_mut(src.subsystem, src.node, now)
+            .components
+            .entry((src.component, src.instance))
+            .or_default()
+            .services = Some(r.services.iter().map(|s| s.service_type).collect());
+        Ok(())
+    }
+
+    fn on_confirm_event_request(
+        &mut self,
+        _ctx: &mut Ctx<'_>,
+        _m: &ConfirmEventRequest,
+    ) -> Result<(), Refused> {
+        Ok(())
+    }
+
+    fn on_reject_event_request(
+        &mut self,
+        _ctx: &mut Ctx<'_>,
+        _m: &RejectEventRequest,
+    ) -> Result<(), Refused> {
+        Ok(())
+    }
+
+    fn tick(&mut self, ctx: &mut Ctx<'_>) {
+        let now = ctx.now();
+        self.refresh_self(now);
+        if self.next_heartbeat.is_none_or(|t| now >= t) {
+            self.next_heartbeat = Some(now + self.config.heartbeat);
+            ctx.send(self.config.heartbeat_to, ReportHeartbeatPulse {});
+        }
+        // Components (here or elsewhere) not yet identified: ask, again every heartbeat
+        // period while unanswered (queries and answers may be lost).
+        if self.next_requery.is_none_or(|t| now >= t) {
+            self.next_requery = Some(now + self.config.heartbeat);
+            let me = self.me;
+            let pending: Vec<Address> = self
+                .tree
+                .components()
+                .into_iter()
+                .filter(|a| *a != me)
+                .filter(|a| {
+                    let n = &self.tree.subsystems[&a.subsystem].nodes[&a.node];
+                    let c = &n.components[&(a.component, a.instance)];
+                    c.name.is_none() || c.services.is_none()
+                })
+                .collect();
+            for a in pending {
+                ctx.send(
+                    a,
+                    QueryIdentification {
+                        query_field: QueryLevel::Component,
+                    },
+                );
+                ctx.send(a, QueryServices {});
+            }
+        }
+        // Staleness: remote nodes not heard from within the timeout are removed, with
+        // their components.
+        let timeout = self.config.node_timeout;
+        let me = self.me;
+        let mut gone = Vec::new();
+        for (ss, s) in &mut self.tree.subsystems {
+            s.nodes.retain(|n, info| {
+                let stale = !(*ss == me.subsystem && *n == me.node)
+                    && now.saturating_duration_since(info.last_heard) > timeout;
+                if stale {
+                    for (c, i) in info.components.keys() {
+                        gone.push(Address::new(*ss, *n, *c, *i));
+                    }
+                    tracing::info!(node = %Address::new(*ss, *n, 1, 1), "node timed out; removed from the system tree");
+                }
+                !stale
+            });
+        }
+        self.tree.subsystems.retain(|_, s| !s.nodes.is_empty());
+        self.gone.extend(gone);
+    }
+}

@@ -1,0 +1,432 @@
+//! A node, sans-IO: its node manager and local components, routing between them and
+//! one UDP interface. Inputs are `(now, peer, datagram)` and timeouts; outputs are
+//! datagrams for peers and the next wake-up time.
+
+use std::collections::{HashMap, VecDeque};
+use std::net::SocketAddr;
+use std::time::Instant;
+
+use super::framing::{split, Framing, Reassembler, ReassemblyLimits, ReassemblyStats};
+use super::manager::{ManagerConfig, NodeManagerCore, SystemTree};
+use crate::component::local::Endpoint;
+use crate::component::{Component, Config};
+use crate::components::node_manager;
+use crate::wire::{DataFlag, Header, HEADER_LEN};
+use crate::Address;
+
+/// Settings of a node.
+#[derive(Debug, Clone)]
+pub struct NodeConfig {
+    /// Subsystem id (1-254).
+    pub subsystem: u8,
+    /// Node id (1-254).
+    pub node: u8,
+    /// Node manager settings (names, heartbeat, node timeout).
+    pub manager: ManagerConfig,
+    /// Framing of the UDP interface.
+    pub framing: Framing,
+    /// Peers always sent broadcasts and messages to nodes not yet located.
+    pub peers: Vec<SocketAddr>,
+    /// Reassembly limits.
+    pub reassembly: ReassemblyLimits,
+    /// Most datagrams waiting to be sent.
+    pub max_outbox: usize,
+    /// Settings of the node manager component.
+    pub component: Config,
+}
+
+impl Default for NodeConfig {
+    fn default() -> Self {
+        Self {
+            subsystem: 1,
+            node: 1,
+            manager: ManagerConfig::default(),
+            framing: Framing::Judp,
+            peers: Vec::new(),
+            reassembly: ReassemblyLimits::default(),
+            max_outbox: 8192,
+            component: Config::default(),
+        }
+    }
+}
+
+/// A datagram to send.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Datagram {
+    /// The peer.
+    pub to: SocketAddr,
+    /// Framed bytes.
+    pub bytes: Vec<u8>,
+}
+
+/// Counters of the interface and the routing.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct NetStats {
+    /// Datagrams received.
+    pub received: u64,
+    /// Datagrams sent (taken from the queue).
+    pub sent: u64,
+    /// Messages delivered to local components (from anywhere).
+    pub delivered_local: u64,
+    /// Dropped: bad transport framing.
+    pub bad_framing: u64,
+    /// Dropped: bad JAUS header or data size not matching the datagram.
+    pub bad_packet: u64,
+    /// Dropped: looped back from this very node.
+    pub from_self: u64,
+    /// Dropped: addressed to another node (nothing is forwarded between nodes).
+    pub not_for_us: u64,
+    /// Dropped: no local component matches the destination.
+    pub no_such_component: u64,
+    /// Dropped: the outgoing queue was full.
+    pub outbox_full: u64,
+    /// Dropped: a message that could not be encoded or split.
+    pub encode_errors: u64,
+    /// Messages sent to every peer because their node is not located yet.
+    pub flooded: u64,
+}
+
+type Manager = Component<node_manager::Dispatch<NodeManagerCore>>;
+
+/// A node: node manager, local components, one UDP interface.
+pub struct Node {
+    config: NodeConfig,
+    now: Instant,
+    manager: Manager,
+    locals: Vec<Box<dyn Endpoint>>,
+    peers: HashMap<(u8, u8), SocketAddr>,
+    reassembler: Reassembler,
+    outbox: VecDeque<Datagram>,
+    local_queue: VecDeque<(Header, Vec<u8>)>,
+    stats: NetStats,
+}
+
+impl std::fmt::Debug for Node {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Node")
+            .field("address", &self.manager.address())
+            .field("locals", &self.locals.len())
+            .field("peers", &self.peers)
+            .field("stats", &self.stats)
+            .finish()
+    }
+}
+
+/// Most local deliveries in one run of the routing loop (two local components that
+/// answer each other forever cannot starve the node).
+const MAX_LOCAL_ROUNDS: usize = 100_000;
+
+impl Node {
+    /// A node starting at `now` with its node manager at `subsystem.node.1.1`.
+    pub fn new(config: NodeConfig, now: Instant) -> Self {
+        let me = Address::new(config.subsystem, config.node, 1, 1);
+        let core = NodeManagerCore::new(me, config.manager.clone());
+        let manager = node_manager::component(me, core, config.component.clone(), now);
+        Self {
+            reassembler: Reassembler::new(config.reassembly),
+            config,
+            now,
+            manager,
+            locals: Vec::new(),
+            peers: HashMap::new(),
+            outbox: VecDeque::new(),
+            local_queue: VecDeque::new(),
+            stats: NetStats::default(),
+        }
+    }
+
+    /// The node manager's address.
+    pub fn address(&self) -> Address {
+        self.manager.address()
+    }
+
+    /// Adds a local component; it must be on this node.
+    pub fn add(&mut self, endpoint: impl Endpoint) -> Result<Address, String> {
+        let a = endpoint.address();
+        if a.subsystem != self.config.subsystem
+            || a.node != self.config.node
+            || !a.is_valid()
+            || a.component == 1
+        {
+            return Err(format!(
+                "component {a} cannot join node {}.{} (wrong subsystem/node, or an invalid id)",
+                self.config.subsystem, self.config.node
+            ));
+        }
+        if self.locals.iter().any(|e| e.address() == a) {
+            return Err(format!("component {a} is already on this node"));
+        }
+        self.manager.behaviour_mut().0.add_local(a);
+        self.locals.push(Box::new(endpoint));
+        Ok(a)
+    }
+
+    /// The system tree.
+    pub fn tree(&self) -> &SystemTree {
+        self.manager.behaviour().0.tree()
+    }
+
+    /// Interface counters.
+    pub fn stats(&self) -> NetStats {
+        self.stats
+    }
+
+    /// Reassembly counters.
+    pub fn reassembly(&self) -> (ReassemblyStats, usize) {
+        (self.reassembler.stats(), self.reassembler.buffered())
+    }
+
+    /// Peers located so far, by (subsystem, node).
+    pub fn peers(&self) -> &HashMap<(u8, u8), SocketAddr> {
+        &self.peers
+    }
+
+    /// The local component at `a`, as a `T`.
+    pub fn get<T: 'static>(&self, a: Address) -> Option<&T> {
+        self.locals
+            .iter()
+            .find(|e| e.address() == a)
+            .and_then(|e| e.as_any().downcast_ref())
+    }
+
+    /// The local component at `a`, as a mutable `T`.
+    pub fn get_mut<T: 'static>(&mut self, a: Address) -> Option<&mut T> {
+        self.locals
+            .iter_mut()
+            .find(|e| e.address() == a)
+            .and_then(|e| e.as_any_mut().downcast_mut())
+    }
+
+    /// Queues a message from a local address (as if that component sent it).
+    pub fn send(&mut self, now: Instant, header: Header, body: Vec<u8>) {
+        self.advance(now);
+        self.route(header, body, true);
+        self.pump();
+    }
+
+    /// A datagram arrived from `peer`.
+    pub fn handle_datagram(&mut self, now: Instant, peer: SocketAddr, datagram: &[u8]) {
+        self.advance(now);
+        self.stats.received += 1;
+        let packet = match self.config.framing.decode(datagram) {
+            Ok(p) => p,
+            Err(e) => {
+                self.stats.bad_framing += 1;
+                tracing::debug!(%peer, "datagram dropped: {e}");
+                return;
+            }
+        };
+        let header = match Header::parse(packet) {
+            Ok(h) if packet.len() - HEADER_LEN == usize::from(h.data_size) => h,
+            Ok(h) => {
+                self.stats.bad_packet += 1;
+                tracing::debug!(%peer, "datagram dropped: data size {} but {} body bytes", h.data_size, packet.len() - HEADER_LEN);
+                return;
+            }
+            Err(e) => {
+                self.stats.bad_packet += 1;
+                tracing::debug!(%peer, "datagram dropped: {e}");
+                return;
+            }
+        };
+        let src = header.source;
+        if src.subsystem == self.config.subsystem && src.node == self.config.node {
+            self.stats.from_self += 1;
+            return;
+        }
+        if !src.is_valid() || src.subsystem == 255 || src.node == 255 {
+            self.stats.bad_packet += 1;
+            return;
+        }
+        // Learn where that node is.
+        self.peers.insert((src.subsystem, src.node), peer);
+        let body = packet[HEADER_LEN..].to_vec();
+        let (header, body) = if header.data_flag == DataFlag::Single {
+            (header, body)
+        } else {
+            match self.reassembler.push(now, &header, &body) {
+                Some(m) => m,
+                None => return,
+            }
+        };
+        self.route(header, body, false);
+        self.pump();
+    }
+
+    /// Time passed.
+    pub fn handle_timeout(&mut self, now: Instant) {
+        self.advance(now);
+        self.reassembler.expire(self.now);
+        if self.manager.poll_timeout().is_some_and(|t| t <= self.now) {
+            self.manager.handle_timeout(self.now);
+        }
+        for e in &mut self.locals {
+            if e.poll_timeout().is_some_and(|t| t <= self.now) {
+                e.handle_timeout(self.now);
+            }
+        }
+        self.pump();
+    }
+
+    /// The next datagram to send.
+    pub fn poll_transmit(&mut self) -> Option<Datagram> {
+        let d = self.outbox.pop_front()?;
+        self.stats.sent += 1;
+        Some(d)
+    }
+
+    /// When [`handle_timeout`](Self::handle_timeout) must next be called.
+    pub fn poll_timeout(&self) -> Option<Instant> {
+        let mut t = self.manager.poll_timeout();
+        for e in &self.locals {
+            t = match (t, e.poll_timeout()) {
+                (Some(a), Some(b)) => Some(a.min(b)),
+                (a, b) => a.or(b),
+            };
+        }
+        match (t, self.reassembler.next_timeout()) {
+            (Some(a), Some(b)) => Some(a.min(b)),
+            (a, b) => a.or(b),
+        }
+    }
+
+    fn advance(&mut self, now: Instant) {
+        if now > self.now {
+            self.now = now;
+        }
+    }
+
+    /// Moves everything the components want to send, and delivers local messages,
+    /// until nothing is left.
+    fn pump(&mut self) {
+        for _ in 0..MAX_LOCAL_ROUNDS {
+            let mut out = Vec::new();
+            while let Some(t) = self.manager.poll_transmit() {
+                out.push(t);
+            }
+            for e in &mut self.locals {
+                while let Some(t) = e.poll_transmit() {
+                    out.push(t);
+                }
+            }
+            for t in out {
+                match t.body() {
+                    Ok(body) => self.route(t.header, body, true),
+                    Err(e) => {
+                        self.stats.encode_errors += 1;
+                        tracing::warn!(code = %t.header.command_code, source = %t.header.source, "not sent: {e}");
+                    }
+                }
+            }
+            let Some((h, body)) = self.local_queue.pop_front() else {
+                if self.manager_gone() {
+                    continue;
+                }
+                return;
+            };
+            self.deliver(&h, &body);
+        }
+        tracing::warn!("routing loop limit reached; the rest waits for the next event");
+    }
+
+    /// Tells local components about components that disappeared; true if any.
+    fn manager_gone(&mut self) -> bool {
+        let gone = self.manager.behaviour_mut().0.take_gone();
+        for g in &gone {
+            self.manager.forget(*g);
+            for e in &mut self.locals {
+                e.forget(*g);
+            }
+        }
+        !gone.is_empty()
+    }
+
+    fn is_here(&self, d: Address) -> bool {
+        (d.subsystem == self.config.subsystem || d.subsystem == 255)
+            && (d.node == self.config.node || d.node == 255)
+    }
+
+    fn route(&mut self, header: Header, body: Vec<u8>, from_local: bool) {
+        let d = header.destination;
+        let here = self.is_here(d);
+        let only_here = d.subsystem == self.config.subsystem && d.node == self.config.node;
+        if from_local && !only_here {
+            self.send_network(&header, &body);
+        }
+        if here {
+            if self.local_queue.len() >= self.config.max_outbox {
+                self.stats.outbox_full += 1;
+            } else {
+                self.local_queue.push_back((header, body));
+            }
+        } else if !from_local {
+            self.stats.not_for_us += 1;
+        }
+    }
+
+    fn deliver(&mut self, header: &Header, body: &[u8]) {
+        let d = header.destination;
+        let mut any = false;
+        let now = self.now;
+        if d.matches(&self.manager.address()) && header.source != self.manager.address() {
+            self.manager.handle(now, header, body);
+            any = true;
+        }
+        for e in &mut self.locals {
+            let a = e.address();
+            if d.matches(&a) && header.source != a {
+                e.handle(now, header, body);
+                any = true;
+            }
+        }
+        if any {
+            self.stats.delivered_local += 1;
+        } else if d.component != 255 && d.instance != 255 {
+            self.stats.no_such_component += 1;
+        }
+    }
+
+    fn send_network(&mut self, header: &Header, body: &[u8]) {
+        let packets = match split(header, body) {
+            Ok(p) => p,
+            Err(e) => {
+                self.stats.encode_errors += 1;
+                tracing::warn!(code = %header.command_code, "not sent: {e}");
+                return;
+            }
+        };
+        let d = header.destination;
+        let targets: Vec<SocketAddr> = if d.subsystem == 255 || d.node == 255 {
+            let mut t: Vec<SocketAddr> = self.config.peers.clone();
+            for p in self.peers.values() {
+                if !t.contains(p) {
+                    t.push(*p);
+                }
+            }
+            t.sort();
+            t
+        } else if let Some(p) = self.peers.get(&(d.subsystem, d.node)) {
+            vec![*p]
+        } else {
+            self.stats.flooded += 1;
+            self.config.peers.clone()
+        };
+        for to in targets {
+            for p in &packets {
+                if self.outbox.len() >= self.config.max_outbox {
+                    self.stats.outbox_full += 1;
+                    return;
+                }
+                self.outbox.push_back(Datagram {
+                    to,
+                    bytes: self.config.framing.encode(p),
+                });
+            }
+        }
+    }
+
+    /// Clock of the node.
+    pub fn now(&self) -> Instant {
+        self.now
+    }
+}

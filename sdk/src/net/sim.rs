@@ -1,0 +1,213 @@
+//! A simulated UDP network with a virtual clock: nodes exchange datagrams that may be
+//! dropped, duplicated and delayed (hence reordered), with a seeded RNG so that a run is
+//! exactly reproducible. For deterministic multi-node tests.
+
+use std::collections::BTreeMap;
+use std::net::{Ipv4Addr, SocketAddr, SocketAddrV4};
+use std::time::{Duration, Instant};
+
+use rand::rngs::StdRng;
+use rand::{Rng, SeedableRng};
+
+use super::node::Node;
+
+/// How the links misbehave.
+#[derive(Debug, Clone, Copy)]
+pub struct LinkModel {
+    /// Probability a datagram is lost.
+    pub drop: f64,
+    /// Probability a datagram is delivered twice.
+    pub duplicate: f64,
+    /// Smallest one-way delay.
+    pub min_delay: Duration,
+    /// Largest one-way delay (uniform between the two: datagrams get reordered).
+    pub max_delay: Duration,
+}
+
+impl Default for LinkModel {
+    fn default() -> Self {
+        Self {
+            drop: 0.0,
+            duplicate: 0.0,
+            min_delay: Duration::from_micros(200),
+            max_delay: Duration::from_micros(200),
+        }
+    }
+}
+
+/// Counters of the simulated network.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct SimStats {
+    /// Datagrams sent by nodes.
+    pub sent: u64,
+    /// Datagrams delivered.
+    pub delivered: u64,
+    /// Datagrams lost on purpose.
+    pub dropped: u64,
+    /// Extra copies delivered.
+    pub duplicated: u64,
+    /// Datagrams to an address with no node.
+    pub unreachable: u64,
+}
+
+/// Nodes on a simulated network. Node `i` has the address 10.0.0.(i+1):3794.
+#[derive(Debug)]
+pub struct SimNet {
+    now: Instant,
+    nodes: Vec<Option<Node>>,
+    in_flight: BTreeMap<(Instant, u64), (SocketAddr, SocketAddr, Vec<u8>)>,
+    seq: u64,
+    rng: StdRng,
+    model: LinkModel,
+    stats: SimStats,
+}
+
+impl SimNet {
+    /// An empty network at `start` with `model` links and RNG `seed`.
+    pub fn new(start: Instant, model: LinkModel, seed: u64) -> Self {
+        Self {
+            now: start,
+            nodes: Vec::new(),
+            in_flight: BTreeMap::new(),
+            seq: 0,
+            rng: StdRng::seed_from_u64(seed),
+            model,
+            stats: SimStats::default(),
+        }
+    }
+
+    /// The address of node slot `i`.
+    pub fn addr(i: usize) -> SocketAddr {
+        SocketAddr::V4(SocketAddrV4::new(
+            Ipv4Addr::new(10, 0, 0, (i + 1) as u8),
+            3794,
+        ))
+    }
+
+    /// Adds a node; returns its slot.
+    pub fn add(&mut self, node: Node) -> usize {
+        self.nodes.push(Some(node));
+        self.nodes.len() - 1
+    }
+
+    /// Removes a node (a crash): it neither sends nor receives any more.
+    pub fn kill(&mut self, i: usize) -> Option<Node> {
+        self.nodes.get_mut(i).and_then(Option::take)
+    }
+
+    /// The node in slot `i`, if alive.
+    pub fn node(&self, i: usize) -> Option<&Node> {
+        self.nodes.get(i).and_then(Option::as_ref)
+    }
+
+    /// The node in slot `i`, mutably.
+    pub fn node_mut(&mut self, i: usize) -> Option<&mut Node> {
+        self.nodes.get_mut(i).and_then(Option::as_mut)
+    }
+
+    /// Changes the link model.
+    pub fn set_model(&mut self, model: LinkModel) {
+        self.model = model;
+    }
+
+    /// Counters.
+    pub fn stats(&self) -> SimStats {
+        self.stats
+    }
+
+    /// The virtual time.
+    pub fn now(&self) -> Instant {
+        self.now
+    }
+
+    /// Injects a raw datagram (garbage, in a test) to node `i` from `from`.
+    pub fn inject(&mut self, i: usize, from: SocketAddr, bytes: Vec<u8>) {
+        let at = self.now + self.model.min_delay;
+        self.in_flight
+            .insert((at, self.seq), (from, Self::addr(i), bytes));
+        self.seq += 1;
+    }
+
+    fn random(&mut self) -> f64 {
+        self.rng.gen::<f64>()
+    }
+
+    fn collect(&mut self) {
+        for i in 0..self.nodes.len() {
+            let mut out = Vec::new();
+            if let Some(n) = self.nodes[i].as_mut() {
+                while let Some(d) = n.poll_transmit() {
+                    out.push(d);
+                }
+            }
+            for d in out {
+                self.stats.sent += 1;
+                if self.random() < self.model.drop {
+                    self.stats.dropped += 1;
+                    continue;
+                }
+                let copies = if self.random() < self.model.duplicate {
+                    2
+                } else {
+                    1
+                };
+                self.stats.duplicated += copies - 1;
+                for _ in 0..copies {
+                    let span = self.model.max_delay.saturating_sub(self.model.min_delay);
+                    let delay = self.model.min_delay + span.mul_f64(self.random());
+                    self.in_flight.insert(
+                        (self.now + delay, self.seq),
+                        (Self::addr(i), d.to, d.bytes.clone()),
+                    );
+                    self.seq += 1;
+                }
+            }
+        }
+    }
+
+    /// Runs for `d` of virtual time.
+    pub fn run_for(&mut self, d: Duration) {
+        let end = self.now + d;
+        loop {
+            self.collect();
+            let next_packet = self.in_flight.keys().next().map(|k| k.0);
+            let next_timer = self
+                .nodes
+                .iter()
+                .flatten()
+                .filter_map(Node::poll_timeout)
+                .min();
+            let next = match (next_packet, next_timer) {
+                (Some(a), Some(b)) => a.min(b),
+                (a, b) => match a.or(b) {
+                    Some(t) => t,
+                    None => break,
+                },
+            };
+            if next > end {
+                break;
+            }
+            self.now = self.now.max(next);
+            let now = self.now;
+            if next_packet.is_some_and(|p| p <= now) {
+                if let Some((_, (from, to, bytes))) = self.in_flight.pop_first() {
+                    let slot = (0..self.nodes.len()).find(|i| Self::addr(*i) == to);
+                    match slot.and_then(|i| self.nodes[i].as_mut()) {
+                        Some(n) => {
+                            n.handle_datagram(now, from, &bytes);
+                            self.stats.delivered += 1;
+                        }
+                        None => self.stats.unreachable += 1,
+                    }
+                }
+                continue;
+            }
+            for n in self.nodes.iter_mut().flatten() {
+                if n.poll_timeout().is_some_and(|t| t <= now) {
+                    n.handle_timeout(now);
+                }
+            }
+        }
+        self.now = self.now.max(end);
+    }
+}

@@ -1,0 +1,53 @@
+//! The I/O shell: one blocking UDP socket driving a sans-IO [`Node`] with the real clock.
+
+use std::io::ErrorKind;
+use std::net::{SocketAddr, UdpSocket};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::{Duration, Instant};
+
+use super::node::Node;
+
+/// Largest datagram read (JUDP or OPC framing plus a full 4096-byte packet).
+const MAX_DATAGRAM: usize = 8 + 4096 + 64;
+
+/// Runs `node` on a socket bound to `bind` until `stop` is set (checked at least every
+/// 100 ms) or `until` passes. `on_tick` runs after every event with the node, for a
+/// caller that watches it (printing, sending).
+pub fn run(
+    node: &mut Node,
+    bind: SocketAddr,
+    stop: &AtomicBool,
+    until: Option<Instant>,
+    mut on_tick: impl FnMut(&mut Node),
+) -> std::io::Result<()> {
+    let socket = UdpSocket::bind(bind)?;
+    tracing::info!(%bind, node = %node.address(), "node up");
+    let mut buf = vec![0u8; MAX_DATAGRAM];
+    loop {
+        if stop.load(Ordering::Relaxed) || until.is_some_and(|u| Instant::now() >= u) {
+            return Ok(());
+        }
+        let now = Instant::now();
+        let wait = node
+            .poll_timeout()
+            .map_or(Duration::from_millis(100), |t| {
+                t.saturating_duration_since(now)
+            })
+            .clamp(Duration::from_micros(100), Duration::from_millis(100));
+        socket.set_read_timeout(Some(wait))?;
+        match socket.recv_from(&mut buf) {
+            Ok((n, peer)) => node.handle_datagram(Instant::now(), peer, &buf[..n]),
+            Err(e) if matches!(e.kind(), ErrorKind::WouldBlock | ErrorKind::TimedOut) => {}
+            // A previous send to a closed port (ICMP unreachable on some systems).
+            Err(e) if e.kind() == ErrorKind::ConnectionReset => {}
+            Err(e) => return Err(e),
+        }
+        node.handle_timeout(Instant::now());
+        on_tick(node);
+        while let Some(d) = node.poll_transmit() {
+            if let Err(e) = socket.send_to(&d.bytes, d.to) {
+                tracing::debug!(to = %d.to, "send failed: {e}");
+            }
+        }
+    }
+}
