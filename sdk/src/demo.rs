@@ -16,7 +16,7 @@ use std::time::{Duration, Instant};
 
 use nalgebra::{Vector2, Vector3};
 
-use crate::component::local::LocalBus;
+use crate::component::local::{Endpoint, LocalBus};
 use crate::component::{Config, CoreState, Refused};
 use crate::components::system_commander::{self, Ctx, SystemCommander};
 use crate::components::{
@@ -156,7 +156,7 @@ pub struct Report {
 
 /// The scripted operator.
 #[derive(Debug, Default)]
-struct Operator {
+pub struct Operator {
     step: Step,
     waypoint_speed: f64,
     path_speed: f64,
@@ -304,8 +304,10 @@ fn driver_config(pose_sensor: Address) -> DriverConfig {
     }
 }
 
-/// Builds the demo subsystem on a bus starting at `t0`; returns the bus and the vehicle.
-pub fn build(t0: Instant, opts: &Options) -> (LocalBus, SimVehicle) {
+/// The vehicle side of the demo (node 1.1): primitive and reflexive drivers, pose and
+/// velocity sensors, the global waypoint and local path-segment drivers, over one
+/// simulated vehicle.
+pub fn vehicle(t0: Instant, opts: &Options) -> (Vec<Box<dyn Endpoint>>, SimVehicle) {
     let vehicle = SimVehicle::new(VehicleParams {
         position_noise: opts.position_noise,
         heading_noise: opts.position_noise * 0.5,
@@ -314,13 +316,8 @@ pub fn build(t0: Instant, opts: &Options) -> (LocalBus, SimVehicle) {
         start: (Vector2::zeros(), 0.0),
         ..VehicleParams::default()
     });
-    let cfg = Config {
-        utc: Some(Duration::from_secs(1_795_000_000)),
-        ..Config::default()
-    };
-    let mut bus = LocalBus::new(t0);
+    let cfg = config();
     let pd = PrimitiveDriverCore::new(vehicle.clone(), PrimitiveConfig::default());
-    bus.add(primitive_driver::component(addr::PD, pd, cfg.clone(), t0));
     let rd = ReflexiveDriverCore::new(
         (),
         ReflexiveConfig {
@@ -328,49 +325,87 @@ pub fn build(t0: Instant, opts: &Options) -> (LocalBus, SimVehicle) {
             ..Default::default()
         },
     );
-    bus.add(reflexive_driver::component(addr::RD, rd, cfg.clone(), t0));
-    bus.add(global_pose_sensor::component(
-        addr::GPS,
-        GlobalPoseSensorCore(vehicle.clone()),
-        cfg.clone(),
-        t0,
-    ));
-    bus.add(local_pose_sensor::component(
-        addr::LPS,
-        LocalPoseSensorCore(vehicle.clone()),
-        cfg.clone(),
-        t0,
-    ));
-    bus.add(velocity_state_sensor::component(
-        addr::VSS,
-        VelocityStateSensorCore(vehicle.clone()),
-        cfg.clone(),
-        t0,
-    ));
     let gwd = GlobalWaypointDriverCore::new(driver_config(addr::GPS));
-    bus.add(global_waypoint_driver::component(
-        addr::GWD,
-        gwd,
-        cfg.clone(),
-        t0,
-    ));
     let lpsd = LocalPathSegmentDriverCore::new(driver_config(addr::LPS));
-    bus.add(local_path_segment_driver::component(
-        addr::LPSD,
-        lpsd,
-        cfg.clone(),
-        t0,
-    ));
+    let parts: Vec<Box<dyn Endpoint>> = vec![
+        Box::new(primitive_driver::component(addr::PD, pd, cfg.clone(), t0)),
+        Box::new(reflexive_driver::component(addr::RD, rd, cfg.clone(), t0)),
+        Box::new(global_pose_sensor::component(
+            addr::GPS,
+            GlobalPoseSensorCore(vehicle.clone()),
+            cfg.clone(),
+            t0,
+        )),
+        Box::new(local_pose_sensor::component(
+            addr::LPS,
+            LocalPoseSensorCore(vehicle.clone()),
+            cfg.clone(),
+            t0,
+        )),
+        Box::new(velocity_state_sensor::component(
+            addr::VSS,
+            VelocityStateSensorCore(vehicle.clone()),
+            cfg.clone(),
+            t0,
+        )),
+        Box::new(global_waypoint_driver::component(
+            addr::GWD,
+            gwd,
+            cfg.clone(),
+            t0,
+        )),
+        Box::new(local_path_segment_driver::component(
+            addr::LPSD,
+            lpsd,
+            cfg,
+            t0,
+        )),
+    ];
+    (parts, vehicle)
+}
+
+/// The operator side of the demo (1.2.40.1).
+pub fn operator(t0: Instant, opts: &Options) -> Ocu {
     let ocu = Operator {
         waypoint_speed: opts.waypoint_speed,
         path_speed: opts.path_speed,
         ..Operator::default()
     };
-    bus.add(system_commander::component(addr::OCU, ocu, cfg, t0));
+    system_commander::component(addr::OCU, ocu, config(), t0)
+}
+
+fn config() -> Config {
+    Config {
+        utc: Some(Duration::from_secs(1_795_000_000)),
+        ..Config::default()
+    }
+}
+
+/// Builds the demo subsystem on a bus starting at `t0`; returns the bus and the vehicle.
+pub fn build(t0: Instant, opts: &Options) -> (LocalBus, SimVehicle) {
+    let (parts, vehicle) = vehicle(t0, opts);
+    let mut bus = LocalBus::new(t0);
+    for p in parts {
+        bus.add_boxed(p);
+    }
+    bus.add(operator(t0, opts));
     (bus, vehicle)
 }
 
-type Ocu = crate::component::Component<system_commander::Dispatch<Operator>>;
+/// Progress of the operator: (phase, waypoints done at, path done at).
+pub fn progress(ocu: &Ocu) -> (&'static str, Option<Instant>, Option<Instant>) {
+    let o = &ocu.behaviour().0;
+    let phase = match o.step {
+        Step::TakeControl => "taking control",
+        Step::StartWaypoints | Step::Waypoints => "waypoints",
+        Step::StartPath | Step::Path => "path segments",
+        Step::Done => "done",
+    };
+    (phase, o.waypoints_done, o.path_done)
+}
+
+/// The operator component.
+pub type Ocu = crate::component::Component<system_commander::Dispatch<Operator>>;
 
 /// Runs the demo; `print` receives progress lines.
 pub fn run(opts: &Options, mut print: impl FnMut(&str)) -> Result<Report, String> {

@@ -66,6 +66,8 @@ pub mod demo;
 pub mod hex;
 #[cfg(feature = "net")]
 pub mod net;
+#[cfg(all(feature = "cli", feature = "net", feature = "cores"))]
+pub mod netcli;
 #[cfg(feature = "payload")]
 pub mod payload;
 pub mod wire;

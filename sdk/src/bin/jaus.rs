@@ -33,6 +33,41 @@ enum Cmd {
     Encode,
     /// Walk through the SDK: build messages, encode packets, decode them back.
     Tour,
+    /// Run a node from a configuration file (YAML: subsystem, node, bind, framing,
+    /// peers, host); prints the system tree whenever it changes.
+    Node {
+        /// The configuration file.
+        #[arg(long)]
+        config: std::path::PathBuf,
+        /// Stop after this many seconds (default: run until interrupted).
+        #[arg(long)]
+        seconds: Option<f64>,
+    },
+    /// Listen for a while and print the system tree seen on the network.
+    Discover {
+        #[command(flatten)]
+        net: NetArgs,
+    },
+    /// Send one message (JSON as `jaus decode` prints it) and print what comes back.
+    Send {
+        #[command(flatten)]
+        net: NetArgs,
+        /// Destination address (subsystem.node.component.instance).
+        #[arg(long)]
+        to: jaus::Address,
+        /// The message: {"message": "QueryGlobalPose", "fields": {"presence_vector": 3}}.
+        message: String,
+    },
+    /// Like `send`, and exit 1 if no reply arrived.
+    Query {
+        #[command(flatten)]
+        net: NetArgs,
+        /// Destination address.
+        #[arg(long)]
+        to: jaus::Address,
+        /// The query.
+        message: String,
+    },
     /// Run a simulated subsystem: an operator takes control, drives a waypoint mission
     /// and the path segments of Part 1 Figures 5-12/5-14; prints arrival times and
     /// cross-track errors per leg and plots the run.
@@ -52,7 +87,54 @@ enum Cmd {
         /// Progress line every this many simulated seconds (0: none).
         #[arg(long, default_value_t = 5.0)]
         progress: f64,
+        /// Run only the operator (node 1.2), driving a vehicle hosted by `jaus node`
+        /// (`host: [vehicle]`) over UDP.
+        #[arg(long)]
+        ocu_only: bool,
+        /// With --ocu-only: the local socket.
+        #[arg(long, default_value = "127.0.0.1:3795")]
+        bind: std::net::SocketAddr,
+        /// With --ocu-only: the vehicle node's socket.
+        #[arg(long, default_value = "127.0.0.1:3794")]
+        peer: Vec<std::net::SocketAddr>,
     },
+}
+
+/// Network options of the one-shot commands.
+#[derive(clap::Args)]
+struct NetArgs {
+    /// This tool's own address (its node manager is SS.NODE.1.1).
+    #[arg(long, default_value = "1.250.40.1")]
+    me: jaus::Address,
+    /// Local socket.
+    #[arg(long, default_value = "127.0.0.1:0")]
+    bind: std::net::SocketAddr,
+    /// Peer node sockets.
+    #[arg(long, default_value = "127.0.0.1:3794")]
+    peer: Vec<std::net::SocketAddr>,
+    /// Framing: judp or opc.
+    #[arg(long, default_value = "judp")]
+    framing: String,
+    /// Seconds to listen.
+    #[arg(long, default_value_t = 2.0)]
+    wait: f64,
+}
+
+impl NetArgs {
+    fn client(&self) -> Result<jaus::netcli::Client, String> {
+        let framing = match self.framing.as_str() {
+            "judp" => jaus::net::Framing::Judp,
+            "opc" => jaus::net::Framing::Opc,
+            other => return Err(format!("unknown framing `{other}` (judp or opc)")),
+        };
+        Ok(jaus::netcli::Client {
+            me: self.me,
+            bind: self.bind,
+            peers: self.peer.clone(),
+            framing,
+            wait: std::time::Duration::from_secs_f64(self.wait.max(0.0)),
+        })
+    }
 }
 
 /// Lines of standard input. A line that is not UTF-8 is kept (lossily converted) so
@@ -67,6 +149,17 @@ fn stdin_lines() -> impl Iterator<Item = String> {
             String::from_utf8(l)
                 .unwrap_or_else(|e| String::from_utf8_lossy(e.as_bytes()).into_owned())
         })
+}
+
+/// Prints an error line; true on success.
+fn report(err: &mut impl Write, r: Result<(), String>) -> bool {
+    match r {
+        Ok(()) => true,
+        Err(e) => {
+            let _ = writeln!(err, "error: {e}");
+            false
+        }
+    }
 }
 
 fn main() -> ExitCode {
@@ -90,12 +183,55 @@ fn main() -> ExitCode {
         }
         Cmd::Encode => cli::run_lines(stdin_lines(), &mut out, &mut err, cli::encode_line),
         Cmd::Tour => cli::tour(&mut out),
+        Cmd::Node { config, seconds } => {
+            let d = seconds.map(|s| std::time::Duration::from_secs_f64(s.max(0.0)));
+            report(&mut err, jaus::netcli::node(&config, d, &mut out))
+        }
+        Cmd::Discover { net } => report(
+            &mut err,
+            net.client()
+                .and_then(|c| jaus::netcli::discover(&c, &mut out)),
+        ),
+        Cmd::Send { net, to, message } => report(
+            &mut err,
+            net.client()
+                .and_then(|c| jaus::netcli::send(&c, to, &message, &mut out))
+                .map(|_| ()),
+        ),
+        Cmd::Query { net, to, message } => report(
+            &mut err,
+            net.client()
+                .and_then(|c| jaus::netcli::send(&c, to, &message, &mut out))
+                .and_then(|n| {
+                    if n == 0 {
+                        Err(format!("no reply from {to}"))
+                    } else {
+                        Ok(())
+                    }
+                }),
+        ),
+        Cmd::Demo {
+            ocu_only: true,
+            bind,
+            peer,
+            ..
+        } => report(
+            &mut err,
+            jaus::netcli::demo_operator(
+                bind,
+                peer,
+                jaus::net::Framing::Judp,
+                std::time::Duration::from_secs(180),
+                &mut out,
+            ),
+        ),
         Cmd::Demo {
             seed,
             noise,
             realtime,
             out: dir,
             progress,
+            ..
         } => {
             let opts = jaus::demo::Options {
                 seed,

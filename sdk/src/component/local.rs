@@ -256,6 +256,13 @@ impl LocalBus {
         a
     }
 
+    /// Adds a boxed endpoint; returns its address.
+    pub fn add_boxed(&mut self, endpoint: Box<dyn Endpoint>) -> Address {
+        let a = endpoint.address();
+        self.endpoints.push(endpoint);
+        a
+    }
+
     /// Removes the endpoint at `address` (a crash, in a test).
     pub fn remove(&mut self, address: Address) -> bool {
         let before = self.endpoints.len();

@@ -142,6 +142,11 @@ impl Node {
 
     /// Adds a local component; it must be on this node.
     pub fn add(&mut self, endpoint: impl Endpoint) -> Result<Address, String> {
+        self.add_boxed(Box::new(endpoint))
+    }
+
+    /// Adds a boxed local component; it must be on this node.
+    pub fn add_boxed(&mut self, endpoint: Box<dyn Endpoint>) -> Result<Address, String> {
         let a = endpoint.address();
         if a.subsystem != self.config.subsystem
             || a.node != self.config.node
@@ -157,7 +162,7 @@ impl Node {
             return Err(format!("component {a} is already on this node"));
         }
         self.manager.behaviour_mut().0.add_local(a);
-        self.locals.push(Box::new(endpoint));
+        self.locals.push(endpoint);
         Ok(a)
     }
 

@@ -1,0 +1,49 @@
+//! Shared by the tests that run the `jaus` binary as a process.
+//!
+//! The binary belongs to the `jaus` package, so `CARGO_BIN_EXE_jaus` is not available
+//! here. It is found next to the test's executable (`<target>/<profile>/jaus`, the test
+//! runs from `<target>/<profile>/deps/`) after one `cargo build -p jaus --bin jaus`,
+//! which is a quick no-op when the binary is up to date and keeps it from going stale.
+//! `JAUS_BIN` overrides the path (and skips the build).
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::sync::OnceLock;
+
+/// Path of the `jaus` binary, built once per test process.
+pub fn jaus_bin() -> &'static Path {
+    static BIN: OnceLock<PathBuf> = OnceLock::new();
+    BIN.get_or_init(|| {
+        if let Some(p) = std::env::var_os("JAUS_BIN") {
+            return PathBuf::from(p);
+        }
+        let exe = std::env::current_exe().expect("test executable path");
+        let deps = exe.parent().expect("deps directory");
+        let profile_dir = if deps.file_name().is_some_and(|n| n == "deps") {
+            deps.parent().expect("profile directory")
+        } else {
+            deps
+        };
+        let bin = profile_dir.join(format!("jaus{}", std::env::consts::EXE_SUFFIX));
+        let target_dir = profile_dir.parent().expect("target directory");
+        let mut cmd = Command::new(env!("CARGO"));
+        cmd.args(["build", "--quiet", "-p", "jaus", "--bin", "jaus"])
+            .arg("--manifest-path")
+            .arg(Path::new(env!("CARGO_MANIFEST_DIR")).join("../Cargo.toml"))
+            .arg("--target-dir")
+            .arg(target_dir);
+        match profile_dir.file_name().and_then(|n| n.to_str()) {
+            Some("debug") | None => {}
+            Some("release") => {
+                cmd.arg("--release");
+            }
+            Some(other) => {
+                cmd.args(["--profile", other]);
+            }
+        }
+        let status = cmd.status().expect("run cargo build");
+        assert!(status.success(), "cargo build -p jaus --bin jaus failed");
+        assert!(bin.is_file(), "jaus binary not found at {}", bin.display());
+        bin
+    })
+}
