@@ -9,9 +9,12 @@ use std::process::ExitCode;
 #[command(
     name = "jaus",
     version,
-    about = "JAUS RA 3.3 toolkit: message catalogue, packet decoder and encoder"
+    about = "JAUS RA 3.3 toolkit: message catalogue, packet decoder and encoder, nodes, the simulated-vehicle demo"
 )]
 struct Cli {
+    /// More log output on stderr (-v info, -vv debug, -vvv trace); default: warnings.
+    #[arg(short, long, action = clap::ArgAction::Count, global = true)]
+    verbose: u8,
     #[command(subcommand)]
     cmd: Cmd,
 }
@@ -164,6 +167,17 @@ fn report(err: &mut impl Write, r: Result<(), String>) -> bool {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    let level = match cli.verbose {
+        0 => tracing::Level::WARN,
+        1 => tracing::Level::INFO,
+        2 => tracing::Level::DEBUG,
+        _ => tracing::Level::TRACE,
+    };
+    tracing_subscriber::fmt()
+        .with_max_level(level)
+        .with_writer(std::io::stderr)
+        .with_ansi(std::io::IsTerminal::is_terminal(&std::io::stderr()))
+        .init();
     let stdout = std::io::stdout();
     let mut out = stdout.lock();
     let stderr = std::io::stderr();
