@@ -341,6 +341,13 @@ impl<I: Interface> Context<'_, I> {
         self.core.send(to, msg.into(), false, 0);
     }
 
+    /// Sends a message whose type is only known at run time, such as an element of a
+    /// spooled mission. Unlike [`send`](Self::send) this is not checked against the
+    /// interface's `emits:`; use it only to pass on messages the component was given.
+    pub fn forward(&mut self, to: Address, msg: Message) {
+        self.core.send(to, msg, false, 0);
+    }
+
     /// Moves to another mode. Allowed only in Ready and along a transition of the
     /// definition; a transition with a core effect (e.g. back to Standby at the final
     /// waypoint) also changes the core state.

@@ -565,6 +565,8 @@ pub trait Element: Clone + std::fmt::Debug + Send + 'static {
     fn validate(&self) -> Result<(), String>;
     /// Its geometry in the local frame (`frame` converts global coordinates).
     fn geometry(&self, frame: Option<&LocalFrame>) -> Option<Geometry>;
+    /// The element a message carries, if it is one.
+    fn from_message(m: &Message) -> Option<Self>;
 }
 
 fn check_lat_lon(lat: f64, lon: f64, what: &str) -> Result<(), String> {
@@ -584,6 +586,12 @@ fn check_xy(x: f64, y: f64, what: &str) -> Result<(), String> {
 }
 
 impl Element for SetGlobalWaypoint {
+    fn from_message(m: &Message) -> Option<Self> {
+        match m {
+            Message::SetGlobalWaypoint(e) => Some(e.clone()),
+            _ => None,
+        }
+    }
     fn number(&self) -> u16 {
         self.waypoint_number
     }
@@ -596,6 +604,12 @@ impl Element for SetGlobalWaypoint {
 }
 
 impl Element for SetLocalWaypoint {
+    fn from_message(m: &Message) -> Option<Self> {
+        match m {
+            Message::SetLocalWaypoint(e) => Some(e.clone()),
+            _ => None,
+        }
+    }
     fn number(&self) -> u16 {
         self.waypoint_number
     }
@@ -615,6 +629,12 @@ fn check_w1(w1: f64) -> Result<(), String> {
 }
 
 impl Element for SetGlobalPathSegment {
+    fn from_message(m: &Message) -> Option<Self> {
+        match m {
+            Message::SetGlobalPathSegment(e) => Some(e.clone()),
+            _ => None,
+        }
+    }
     fn number(&self) -> u16 {
         self.path_segment_number
     }
@@ -633,6 +653,12 @@ impl Element for SetGlobalPathSegment {
 }
 
 impl Element for SetLocalPathSegment {
+    fn from_message(m: &Message) -> Option<Self> {
+        match m {
+            Message::SetLocalPathSegment(e) => Some(e.clone()),
+            _ => None,
+        }
+    }
     fn number(&self) -> u16 {
         self.path_segment_number
     }
@@ -699,6 +725,8 @@ pub struct Navigator<E> {
     travel_speed: f64,
     tracker: Option<Tracker>,
     arrivals: u32,
+    /// Spooler, mission, task and uid to report finished at the final point.
+    spooled: Option<(Address, u16, u16, u16)>,
 }
 
 /// The Global Waypoint Driver.
@@ -719,7 +747,45 @@ impl<E: Element> Navigator<E> {
             travel_speed: 0.0,
             tracker: None,
             arrivals: 0,
+            spooled: None,
         }
+    }
+
+    /// Applies the elements of a Spool Mission as if they had come one by one; the last
+    /// blocking one is reported finished at the final point.
+    fn spool<I: NavInterface>(
+        &mut self,
+        ctx: &Context<'_, I>,
+        m: &SpoolMission,
+    ) -> Result<(), Refused> {
+        fn flat<'a>(t: &'a MissionTask, out: &mut Vec<(u16, &'a MissionCommand)>) {
+            out.extend(t.messages.iter().map(|c| (t.task_id, c)));
+            for c in &t.children {
+                flat(c, out);
+            }
+        }
+        let mut cmds = Vec::new();
+        flat(&m.root, &mut cmds);
+        for (task, c) in cmds {
+            let msg = Message::decode(c.message.header.command_code, &c.message.body)
+                .map_err(|e| Refused::Invalid(format!("spooled message {}: {e}", c.uid)))?;
+            match (&msg, E::from_message(&msg)) {
+                (Message::SetTravelSpeed(t), _) => self.set_speed(t.speed)?,
+                (_, Some(e)) => self.set_element(ctx, &e)?,
+                _ => {
+                    return Err(Refused::Invalid(format!(
+                        "spooled message {} ({}) is not for a {}",
+                        c.uid,
+                        msg.name(),
+                        I::NAME
+                    )))
+                }
+            }
+            if c.blocking != 0 {
+                self.spooled = ctx.source().map(|s| (s, m.mission_id, task, c.uid));
+            }
+        }
+        Ok(())
     }
 
     /// The loaded elements.
@@ -834,6 +900,7 @@ impl<E: Element> Navigator<E> {
     fn tick<I: NavInterface>(&mut self, ctx: &mut Context<'_, I>)
     where
         SetWrenchEffort: EmittedBy<I>,
+        ReportMissionStatus: EmittedBy<I>,
     {
         if ctx.state() != CoreState::Ready {
             return;
@@ -879,6 +946,19 @@ impl<E: Element> Navigator<E> {
             self.tracker = None;
             self.arrivals += 1;
             tracing::info!(component = I::NAME, address = %ctx.address(), "final point reached");
+            if let Some((spooler, mission, task, uid)) = self.spooled.take() {
+                ctx.send(
+                    spooler,
+                    ReportMissionStatus {
+                        status_type: MissionStatusType::Message,
+                        status: MissionStatus::Finished,
+                        secondary_status: MissionSecondaryStatus::NoError,
+                        mission_id: mission,
+                        task_id: task,
+                        task_msg_id: uid,
+                    },
+                );
+            }
             if let Err(e) = ctx.transition(I::ARRIVE) {
                 tracing::warn!(component = I::NAME, "{e}");
             }
@@ -928,6 +1008,23 @@ macro_rules! navigator_common {
             m: &SetTravelSpeed,
         ) -> Result<(), Refused> {
             self.set_speed(m.speed)
+        }
+        fn on_spool_mission(
+            &mut self,
+            ctx: &mut $m::Ctx<'_>,
+            m: &SpoolMission,
+        ) -> Result<(), Refused> {
+            self.spool(ctx, m)
+        }
+        fn on_query_spooling_preference(
+            &mut self,
+            _ctx: &mut $m::Ctx<'_>,
+            _q: &QuerySpoolingPreference,
+        ) -> Result<ReportSpoolingPreference, Refused> {
+            Ok(ReportSpoolingPreference {
+                spool_type: SpoolingLimitType::MessageCount,
+                data: 4096,
+            })
         }
         fn on_query_travel_speed(
             &mut self,

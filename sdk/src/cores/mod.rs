@@ -9,6 +9,7 @@
 //! | Reflexive Driver | [`drivers::ReflexiveDriverCore`] | [`drivers::ObstacleSource`] |
 //! | Global / Local Vector Driver | [`drivers::VectorDriverCore`] | — (pose by service connection) |
 //! | Global / Local Waypoint Driver, Path Segment Driver | [`drivers::Navigator`] | — |
+//! | Mission Spooler | [`spooler::MissionSpoolerCore`] | — |
 
 pub mod drivers;
 pub mod geo;
@@ -17,6 +18,7 @@ pub mod motion;
 pub mod path;
 pub mod sensors;
 pub mod sim;
+pub mod spooler;
 
 /// The `nalgebra` the cores use at their API (poses, quaternions, vectors).
 pub use nalgebra;
