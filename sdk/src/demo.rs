@@ -21,7 +21,7 @@ use crate::component::{Config, CoreState, Refused};
 use crate::components::system_commander::{self, Ctx, SystemCommander};
 use crate::components::{
     global_pose_sensor, global_waypoint_driver, local_path_segment_driver, local_pose_sensor,
-    primitive_driver, reflexive_driver, velocity_state_sensor,
+    mission_spooler, primitive_driver, reflexive_driver, velocity_state_sensor,
 };
 use crate::cores::drivers::{
     GlobalWaypointDriverCore, LocalPathSegmentDriverCore, PrimitiveConfig, PrimitiveDriverCore,
@@ -32,6 +32,7 @@ use crate::cores::motion::DriverConfig;
 use crate::cores::path::{Path, PathSegment};
 use crate::cores::sensors::{GlobalPoseSensorCore, LocalPoseSensorCore, VelocityStateSensorCore};
 use crate::cores::sim::{SimVehicle, VehicleParams};
+use crate::cores::spooler::{command, MissionSpoolerCore, SpoolerConfig};
 use crate::messages::*;
 use crate::Address;
 
@@ -52,6 +53,8 @@ pub mod addr {
     pub const GWD: Address = Address::new(1, 1, 45, 1);
     /// Local Path Segment Driver.
     pub const LPSD: Address = Address::new(1, 1, 48, 1);
+    /// Mission Spooler.
+    pub const MS: Address = Address::new(1, 1, 36, 1);
     /// The operator (System Commander).
     pub const OCU: Address = Address::new(1, 2, 40, 1);
 }
@@ -118,6 +121,10 @@ pub type SegmentDef = ((f64, f64), (f64, f64), f64);
 /// Named commanded legs.
 type Legs = Vec<(String, Path)>;
 
+/// The spooled mission (local metres, sent as WGS 84): a blocking move, a payload action
+/// (the horn of the primitive driver's discrete devices), a blocking move home.
+pub const MISSION: [(f64, f64); 2] = [(3.0, -4.0), (0.0, 0.0)];
+
 /// One leg of the run.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Leg {
@@ -140,6 +147,10 @@ pub struct Report {
     pub waypoints_done: Option<f64>,
     /// When the path-segment driver returned to Standby, s.
     pub path_done: Option<f64>,
+    /// When the spooler reported the mission finished, s.
+    pub mission_done: Option<f64>,
+    /// When the operator saw the mission's payload action (the horn), s.
+    pub horn_at: Option<f64>,
     /// Distance from the final point of each phase when it ended, m.
     pub final_errors: Vec<f64>,
     /// Simulated duration, s.
@@ -164,6 +175,8 @@ pub struct Operator {
     started: Option<Instant>,
     waypoints_done: Option<Instant>,
     path_done: Option<Instant>,
+    mission_done: Option<Instant>,
+    horn_at: Option<Instant>,
     path_started: Option<Instant>,
     next_query: Option<Instant>,
 }
@@ -176,6 +189,8 @@ enum Step {
     Waypoints,
     StartPath,
     Path,
+    StartMission,
+    Mission,
     Done,
 }
 
@@ -257,6 +272,33 @@ impl SystemCommander for Operator {
                 self.step = Step::Path;
             }
             Step::Path => self.watch(ctx, addr::LPSD),
+            Step::StartMission => {
+                // Hand the drivers to the spooler and give it the mission.
+                for d in [addr::GWD, addr::LPSD] {
+                    if ctx.has_control_of(d) {
+                        ctx.release_control(d);
+                    }
+                }
+                if !ctx.has_control_of(addr::MS) {
+                    if self.next_query.is_none_or(|t| now >= t) {
+                        self.next_query = Some(now + Duration::from_millis(500));
+                        ctx.request_control(addr::MS);
+                    }
+                    return;
+                }
+                ctx.send_core(addr::MS, Resume {});
+                let m = mission_message(&frame, self.waypoint_speed);
+                ctx.send(addr::MS, m);
+                ctx.send(addr::MS, RunMission { mission_id: 1 });
+                self.step = Step::Mission;
+            }
+            Step::Mission => {
+                let now = ctx.now();
+                if self.horn_at.is_none() && self.next_query.is_none_or(|t| now >= t) {
+                    self.next_query = Some(now + Duration::from_millis(100));
+                    ctx.send(addr::PD, QueryDiscreteDevices { presence_vector: 2 });
+                }
+            }
             Step::Done => {}
         }
     }
@@ -266,12 +308,28 @@ impl SystemCommander for Operator {
         ctx: &mut Ctx<'_>,
         msg: &Message,
     ) -> Result<Option<Message>, Refused> {
+        match msg {
+            Message::ReportMissionStatus(r)
+                if self.step == Step::Mission
+                    && r.status_type == MissionStatusType::Mission
+                    && r.status == MissionStatus::Finished =>
+            {
+                self.mission_done = Some(ctx.now());
+                self.step = Step::Done;
+            }
+            Message::ReportDiscreteDevices(d)
+                if self.horn_at.is_none() && d.parking_brake_and_horn.is_some_and(|p| p.horn) =>
+            {
+                self.horn_at = Some(ctx.now());
+            }
+            _ => {}
+        }
         if let Message::ReportComponentStatus(s) = msg {
             let state = CoreState::from_wire(s.primary_status_code);
             let from = ctx.source();
             let (driver, next) = match self.step {
                 Step::Waypoints => (addr::GWD, Step::StartPath),
-                Step::Path => (addr::LPSD, Step::Done),
+                Step::Path => (addr::LPSD, Step::StartMission),
                 _ => return Ok(None),
             };
             if from != Some(driver) {
@@ -290,6 +348,64 @@ impl SystemCommander for Operator {
             }
         }
         Ok(None)
+    }
+}
+
+/// The Spool Mission of the third phase.
+fn mission_message(frame: &LocalFrame, speed: f64) -> SpoolMission {
+    // Every message here encodes (fixed fields in range); an encoding error would be a
+    // bug of this function, so fall back to an empty body rather than panic.
+    let cmd = |uid: u16, to: Address, m: Message, blocking: bool| {
+        command(uid, addr::MS, to, &m, blocking).unwrap_or(MissionCommand {
+            uid,
+            message: crate::Packet::new(crate::Header::new(m.code(), to, addr::MS), Vec::new()),
+            blocking: u8::from(blocking),
+        })
+    };
+    let goto = |uid: u16, (x, y): (f64, f64)| {
+        let (latitude, longitude) = frame.to_global(Vector2::new(x, y));
+        let w = SetGlobalWaypoint {
+            waypoint_number: 0,
+            latitude,
+            longitude,
+            ..Default::default()
+        };
+        vec![
+            cmd(uid, addr::GWD, Resume {}.into(), false),
+            cmd(uid + 1, addr::GWD, SetTravelSpeed { speed }.into(), false),
+            cmd(uid + 2, addr::GWD, w.into(), true),
+        ]
+    };
+    let leaf = |id: u16, messages: Vec<MissionCommand>| MissionTask {
+        task_id: id,
+        child_count: 0,
+        child_offsets: Vec::new(),
+        messages,
+        children: Vec::new(),
+    };
+    let horn = SetDiscreteDevices {
+        parking_brake_and_horn: Some(ParkingBrakeHorn {
+            parking_brake: false,
+            horn: true,
+            reserved: 0,
+        }),
+        ..Default::default()
+    };
+    let children = vec![
+        leaf(1, goto(10, MISSION[0])),
+        leaf(2, vec![cmd(20, addr::PD, horn.into(), false)]),
+        leaf(3, goto(30, MISSION[1])),
+    ];
+    SpoolMission {
+        mission_id: 1,
+        append_flag: 0,
+        root: MissionTask {
+            task_id: 0,
+            child_count: 3,
+            child_offsets: vec![0; 3],
+            messages: Vec::new(),
+            children,
+        },
     }
 }
 
@@ -357,7 +473,18 @@ pub fn vehicle(t0: Instant, opts: &Options) -> (Vec<Box<dyn Endpoint>>, SimVehic
         Box::new(local_path_segment_driver::component(
             addr::LPSD,
             lpsd,
-            cfg,
+            cfg.clone(),
+            t0,
+        )),
+        // The spooler outranks the reflexive driver so that it can borrow the primitive
+        // driver for the mission's payload action (the horn).
+        Box::new(mission_spooler::component(
+            addr::MS,
+            MissionSpoolerCore::new(SpoolerConfig::default()),
+            Config {
+                authority: 100,
+                ..cfg
+            },
             t0,
         )),
     ];
@@ -371,7 +498,16 @@ pub fn operator(t0: Instant, opts: &Options) -> Ocu {
         path_speed: opts.path_speed,
         ..Operator::default()
     };
-    system_commander::component(addr::OCU, ocu, config(), t0)
+    // The operator outranks everything it commands.
+    system_commander::component(
+        addr::OCU,
+        ocu,
+        Config {
+            authority: 200,
+            ..config()
+        },
+        t0,
+    )
 }
 
 fn config() -> Config {
@@ -392,16 +528,32 @@ pub fn build(t0: Instant, opts: &Options) -> (LocalBus, SimVehicle) {
     (bus, vehicle)
 }
 
-/// Progress of the operator: (phase, waypoints done at, path done at).
-pub fn progress(ocu: &Ocu) -> (&'static str, Option<Instant>, Option<Instant>) {
+/// Progress of the operator: (phase, waypoints done at, path done at, mission done at).
+pub fn progress(
+    ocu: &Ocu,
+) -> (
+    &'static str,
+    Option<Instant>,
+    Option<Instant>,
+    Option<Instant>,
+) {
     let o = &ocu.behaviour().0;
-    let phase = match o.step {
+    (
+        phase_name(o.step),
+        o.waypoints_done,
+        o.path_done,
+        o.mission_done,
+    )
+}
+
+fn phase_name(s: Step) -> &'static str {
+    match s {
         Step::TakeControl => "taking control",
         Step::StartWaypoints | Step::Waypoints => "waypoints",
         Step::StartPath | Step::Path => "path segments",
+        Step::StartMission | Step::Mission => "spooled mission",
         Step::Done => "done",
-    };
-    (phase, o.waypoints_done, o.path_done)
+    }
 }
 
 /// The operator component.
@@ -416,13 +568,17 @@ pub fn run(opts: &Options, mut print: impl FnMut(&str)) -> Result<Report, String
     let wall = Instant::now();
     loop {
         let elapsed = bus.now() - t0;
-        let (step, wp_done, path_done) = {
+        let (step, done_at, horn_at) = {
             let o = &bus
                 .get::<Ocu>(addr::OCU)
                 .ok_or("operator missing")?
                 .behaviour()
                 .0;
-            (o.step, o.waypoints_done, o.path_done)
+            (
+                o.step,
+                [o.waypoints_done, o.path_done, o.mission_done],
+                o.horn_at,
+            )
         };
         if let Some(every) = opts.progress {
             if elapsed >= next_progress || step == Step::Done {
@@ -432,12 +588,7 @@ pub fn run(opts: &Options, mut print: impl FnMut(&str)) -> Result<Report, String
                 print(&format!(
                     "t = {:6.1} s  {:<16} x {:6.2} m  y {:6.2} m  heading {:6.1}°  speed {:4.2} m/s",
                     elapsed.as_secs_f64(),
-                    match step {
-                        Step::TakeControl => "taking control",
-                        Step::StartWaypoints | Step::Waypoints => "waypoints",
-                        Step::StartPath | Step::Path => "path segments",
-                        Step::Done => "done",
-                    },
+                    phase_name(step),
                     p.x,
                     p.y,
                     v.yaw().to_degrees(),
@@ -446,7 +597,7 @@ pub fn run(opts: &Options, mut print: impl FnMut(&str)) -> Result<Report, String
             }
         }
         if step == Step::Done {
-            return Ok(measure(t0, &bus, &vehicle, wp_done, path_done, opts));
+            return Ok(measure(t0, &bus, &vehicle, done_at, horn_at, opts));
         }
         if elapsed > opts.timeout {
             return Err(format!(
@@ -467,7 +618,7 @@ pub fn run(opts: &Options, mut print: impl FnMut(&str)) -> Result<Report, String
 
 /// Legs of the commanded paths: waypoint legs are straight lines from the previous
 /// point; path segments are the curves of Part 1.
-fn commanded_legs() -> (Legs, Legs) {
+fn commanded_legs() -> (Legs, Legs, Legs) {
     let mut wp = Vec::new();
     let mut from = Vector2::new(0.0, 0.0);
     for (i, (x, y)) in WAYPOINTS.iter().enumerate() {
@@ -489,17 +640,24 @@ fn commanded_legs() -> (Legs, Legs) {
         ps.push((format!("path segment {i}"), path));
         p0 = Vector2::new(p2.0, p2.1);
     }
-    (wp, ps)
+    let mut ms = Vec::new();
+    for (i, (x, y)) in MISSION.iter().enumerate() {
+        let to = Vector2::new(*x, *y);
+        ms.push((format!("mission move {i}"), Path::new([p0, to])));
+        p0 = to;
+    }
+    (wp, ps, ms)
 }
 
 fn measure(
     t0: Instant,
     bus: &LocalBus,
     vehicle: &SimVehicle,
-    wp_done: Option<Instant>,
-    path_done: Option<Instant>,
+    done_at: [Option<Instant>; 3],
+    horn_at: Option<Instant>,
     opts: &Options,
 ) -> Report {
+    let [wp_done, path_done, mission_done] = done_at;
     let secs = |t: Option<Instant>| t.map(|t| (t - t0).as_secs_f64());
     let v = vehicle.lock();
     let trail: Vec<(f64, Vector2<f64>)> = v
@@ -507,11 +665,16 @@ fn measure(
         .iter()
         .map(|(d, p)| (d.as_secs_f64(), *p))
         .collect();
-    let (wp_legs, path_legs) = commanded_legs();
+    let (wp_legs, path_legs, mission_legs) = commanded_legs();
     let wp_end = secs(wp_done).unwrap_or(f64::INFINITY);
     let path_end = secs(path_done).unwrap_or(f64::INFINITY);
+    let mission_end = secs(mission_done).unwrap_or(f64::INFINITY);
     let mut legs = Vec::new();
-    let phases = [(&wp_legs, 0.0, wp_end), (&path_legs, wp_end, path_end)];
+    let phases = [
+        (&wp_legs, 0.0, wp_end),
+        (&path_legs, wp_end, path_end),
+        (&mission_legs, path_end, mission_end),
+    ];
     for (phase_legs, start, end) in phases {
         // Points of this phase, assigned to the leg they are nearest to, moving forward
         // only (a point near a corner belongs to the leg being driven).
@@ -568,10 +731,12 @@ fn measure(
     let final_errors = vec![
         (at(wp_end) - Vector2::new(WAYPOINTS[4].0, WAYPOINTS[4].1)).norm(),
         (at(path_end) - Vector2::new(SEGMENTS[1].1 .0, SEGMENTS[1].1 .1)).norm(),
+        (at(mission_end) - Vector2::new(MISSION[1].0, MISSION[1].1)).norm(),
     ];
     let commanded: Vec<Vec<Vector2<f64>>> = wp_legs
         .iter()
         .chain(&path_legs)
+        .chain(&mission_legs)
         .map(|(_, p)| p.points().to_vec())
         .collect();
     let trail_points: Vec<Vector2<f64>> = trail.iter().map(|(_, p)| *p).collect();
@@ -579,6 +744,8 @@ fn measure(
         legs,
         waypoints_done: secs(wp_done),
         path_done: secs(path_done),
+        mission_done: secs(mission_done),
+        horn_at: secs(horn_at),
         final_errors,
         duration: (bus.now() - t0).as_secs_f64(),
         messages: bus.stats().delivered,
@@ -740,6 +907,13 @@ pub fn summary(r: &Report) -> String {
         "path segments: Standby at {}, {:.3} m from P4",
         r.path_done.map_or("—".into(), |t| format!("{t:.1} s")),
         r.final_errors[1]
+    );
+    let _ = writeln!(
+        s,
+        "spooled mission: finished at {} (payload action seen at {}), {:.3} m from home",
+        r.mission_done.map_or("—".into(), |t| format!("{t:.1} s")),
+        r.horn_at.map_or("—".into(), |t| format!("{t:.1} s")),
+        r.final_errors[2]
     );
     let _ = write!(
         s,

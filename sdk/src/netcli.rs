@@ -8,7 +8,8 @@ use std::sync::atomic::AtomicBool;
 use std::time::{Duration, Instant};
 
 use crate::codec::Encode;
-use crate::component::local::Probe;
+use crate::component::{Component, Config, Refused};
+use crate::components::system_commander::{self, Ctx, SystemCommander};
 use crate::messages::Message;
 use crate::net::{udp, Framing, Node, NodeConfig};
 use crate::{Address, Header};
@@ -164,6 +165,33 @@ pub struct Client {
     pub wait: Duration,
 }
 
+/// The CLI's own component: a System Commander that records what it receives. Being a
+/// real component, it answers the core queries (identification, services, status) other
+/// node managers send it during discovery.
+#[derive(Debug, Default)]
+pub struct Recorder {
+    received: Vec<(Address, Message)>,
+}
+
+/// Most messages the CLI keeps.
+const RECORD_LIMIT: usize = 100_000;
+
+impl SystemCommander for Recorder {
+    fn on_other_message(
+        &mut self,
+        ctx: &mut Ctx<'_>,
+        msg: &Message,
+    ) -> Result<Option<Message>, Refused> {
+        if self.received.len() < RECORD_LIMIT {
+            self.received
+                .push((ctx.source().unwrap_or_default(), msg.clone()));
+        }
+        Ok(None)
+    }
+}
+
+type Tool = Component<system_commander::Dispatch<Recorder>>;
+
 impl Client {
     fn node(&self, t0: Instant) -> Result<Node, String> {
         let mut c = NodeConfig {
@@ -176,7 +204,16 @@ impl Client {
         c.manager.node_name = "jaus CLI".into();
         let mut node = Node::new(c, t0);
         if self.me.component != 1 {
-            node.add(Probe::new(self.me))?;
+            let cfg = Config {
+                heartbeat: None,
+                ..Config::default()
+            };
+            node.add(system_commander::component(
+                self.me,
+                Recorder::default(),
+                cfg,
+                t0,
+            ))?;
         }
         Ok(node)
     }
@@ -218,21 +255,17 @@ pub fn send(c: &Client, to: Address, json: &str, out: &mut impl Write) -> Result
         }
     })
     .map_err(|e| format!("{}: {e}", c.bind))?;
-    let probe = node.get::<Probe>(me).ok_or("no local component")?;
+    let tool = node.get::<Tool>(me).ok_or("no local component")?;
+    let asked_heartbeat = matches!(msg, Message::QueryHeartbeatPulse(_));
     let mut n = 0;
-    for r in probe.received() {
-        // Discovery chatter of the remote node managers is not an answer.
-        if matches!(
-            r.message,
-            Message::ReportHeartbeatPulse(_)
-                | Message::QueryIdentification(_)
-                | Message::QueryServices(_)
-        ) {
+    for (source, m) in &tool.behaviour().0.received {
+        // Heartbeats broadcast by the other nodes are not an answer (unless asked for).
+        if matches!(m, Message::ReportHeartbeatPulse(_)) && !asked_heartbeat {
             continue;
         }
         let line = serde_json::json!({
-            "source": r.header.source.to_string(),
-            "message": &r.message,
+            "source": source.to_string(),
+            "message": m,
         });
         let _ = writeln!(out, "{line}");
         n += 1;
@@ -270,23 +303,29 @@ pub fn demo_operator(
             return;
         }
         if let Some(o) = n.get::<crate::demo::Ocu>(crate::demo::addr::OCU) {
-            let (phase, wp, path) = crate::demo::progress(o);
+            let (phase, wp, path, mission) = crate::demo::progress(o);
             if phase != last {
                 let _ = writeln!(out, "t = {:6.1} s  {phase}", t0.elapsed().as_secs_f64());
                 let _ = out.flush();
                 last = phase;
             }
             if phase == "done" {
-                done = Some((wp, path));
+                done = Some((wp, path, mission));
                 stop.store(true, std::sync::atomic::Ordering::Relaxed);
             }
         }
     })
     .map_err(|e| format!("{bind}: {e}"))?;
     match done {
-        Some((wp, path)) => {
+        Some((wp, path, mission)) => {
             let s = |t: Option<Instant>| t.map_or("—".into(), |t| format!("{:.1} s", (t - t0).as_secs_f64()));
-            let _ = writeln!(out, "waypoints: Standby at {}; path segments: Standby at {}", s(wp), s(path));
+            let _ = writeln!(
+                out,
+                "waypoints: Standby at {}; path segments: Standby at {}; spooled mission finished at {}",
+                s(wp),
+                s(path),
+                s(mission)
+            );
             Ok(())
         }
         None => Err(format!("the mission did not finish within {timeout:?} (is `jaus node` with host: [vehicle] running and reachable?)")),

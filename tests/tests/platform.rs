@@ -34,7 +34,11 @@ const INTRUDER: Address = Address::new(1, 3, 40, 1);
 #[test]
 fn demo_drives_the_waypoint_mission_and_the_part1_path_segments() {
     let report = demo::run(&demo::Options::default(), |_| {}).expect("demo finishes");
-    assert_eq!(report.legs.len(), 7);
+    assert_eq!(
+        report.legs.len(),
+        9,
+        "5 waypoint legs, 2 path segments, 2 spooled moves"
+    );
     for leg in &report.legs {
         assert!(leg.arrival.is_some(), "{} never reached", leg.name);
         let limit = if leg.name.starts_with("path") {
@@ -58,6 +62,21 @@ fn demo_drives_the_waypoint_mission_and_the_part1_path_segments() {
     // Part 1: back to Standby at the final point, within the arrival tolerance (plus
     // the distance coasted while braking).
     assert!(report.waypoints_done.is_some() && report.path_done.is_some());
+    // The spooled mission: blocking move, payload action, blocking move home.
+    let (horn, done) = (
+        report.horn_at.expect("payload action"),
+        report.mission_done.expect("mission finished"),
+    );
+    let path_done = report.path_done.unwrap();
+    assert!(
+        horn > path_done && horn < done,
+        "payload action during the mission: {horn} (path done {path_done}, mission done {done})"
+    );
+    assert!(
+        report.final_errors[2] < 0.2,
+        "home missed by {:.3} m",
+        report.final_errors[2]
+    );
     for e in &report.final_errors {
         assert!(*e < 0.2, "final point missed by {e:.3} m");
     }
@@ -92,8 +111,8 @@ fn demo_writes_a_plot_of_path_and_trajectory() {
     assert!(svg.starts_with("<svg"));
     assert_eq!(
         svg.matches("<polyline").count(),
-        8,
-        "7 commanded legs + the trajectory"
+        10,
+        "9 commanded legs + the trajectory"
     );
     let _ = std::fs::remove_dir_all(dir);
 }

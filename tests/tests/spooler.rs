@@ -532,3 +532,16 @@ fn bad_missions_are_refused() {
     assert_eq!(s.invalid, 2, "duplicate uids, unknown mission");
     assert_eq!(s.not_controller, 1);
 }
+
+#[test]
+fn a_long_mission_is_paced_and_nothing_is_dropped() {
+    let (mut bus, _) = bus();
+    let msgs: Vec<MissionCommand> = (1..=3000u16)
+        .map(|u| cmd(u, PAYLOAD, gear(u % 250), false))
+        .collect();
+    spool(&mut bus, 9, task(1, msgs, vec![]));
+    bus.run_for(Duration::from_secs(6));
+    assert_eq!(payload_uids(&bus, PAYLOAD).len(), 3000);
+    assert!(mission_finished(&bus, 9));
+    assert_eq!(bus.get::<Spooler>(MS).unwrap().stats().outbox_dropped, 0);
+}

@@ -158,7 +158,7 @@ impl<A: Actuators> pd::PrimitiveDriver for PrimitiveDriverCore<A> {
             if now.saturating_duration_since(*t) > self.config.command_timeout {
                 self.commanded = None;
                 self.watchdog_trips += 1;
-                tracing::warn!(address = %ctx.address(), "primitive driver: wrench not refreshed; braking");
+                tracing::info!(address = %ctx.address(), "primitive driver: wrench not refreshed; braking");
                 self.apply(now, Wrench::brake());
             }
         }

@@ -17,6 +17,9 @@
 //!   Mission (Part 1 Figure 5-31); its "finished" reports come back here.
 //! * Every "finished" (message or mission) is reported to the component that spooled the
 //!   mission.
+//! * Control of a destination is requested (with the spooler's authority) before its
+//!   first message and released once the mission has no more messages for it, so the
+//!   component's usual controller gets it back.
 //! * Pause and abort apply to a whole mission (task 0) or one task; Remove and Replace
 //!   Messages change only messages not yet sent.
 //!
@@ -49,6 +52,9 @@ pub struct SpoolerConfig {
     pub max_depth: usize,
     /// The message-count limit this spooler reports in Report Spooling Preference.
     pub preference: i32,
+    /// Most messages sent per tick (keeps the component's outgoing queue from
+    /// overflowing on long non-blocking stretches).
+    pub max_per_tick: usize,
 }
 
 impl Default for SpoolerConfig {
@@ -61,6 +67,7 @@ impl Default for SpoolerConfig {
             max_messages: 1_000_000,
             max_depth: 64,
             preference: 1000,
+            max_per_tick: 128,
         }
     }
 }
@@ -291,7 +298,8 @@ impl MissionSpoolerCore {
         let Some(id) = self.running else { return };
         let now = ctx.now();
         let me = ctx.address();
-        for _ in 0..10_000 {
+        let mut budget = self.config.max_per_tick.max(1);
+        while budget > 0 {
             let Some(m) = self.missions.get(&id) else {
                 return;
             };
@@ -413,7 +421,13 @@ impl MissionSpoolerCore {
             if start_remote {
                 m.remote_started.push(target);
             }
+            // Control is held only while the mission has messages for that component.
+            let more_for_target = m.items[i..].iter().any(|it| {
+                it.state == ItemState::Pending
+                    && self_route(&self.config, me, it.cmd.message.header.destination) == target
+            });
             self.sent += cmds.len() as u64;
+            budget = budget.saturating_sub(cmds.len().max(1));
             match delivery {
                 Delivery::Raw | Delivery::Probing(_) => {
                     for c in &cmds {
@@ -446,6 +460,10 @@ impl MissionSpoolerCore {
                     }
                 }
             }
+            if !more_for_target && ctx.has_control_of(target) {
+                ctx.release_control(target);
+                self.control_asked.remove(&target);
+            }
         }
     }
 
@@ -476,6 +494,19 @@ impl MissionSpoolerCore {
         );
         self.pump(ctx);
     }
+}
+
+fn self_route(config: &SpoolerConfig, me: Address, dest: Address) -> Address {
+    if dest.subsystem != me.subsystem {
+        if let Some(s) = config
+            .remote_spoolers
+            .iter()
+            .find(|s| s.subsystem == dest.subsystem)
+        {
+            return *s;
+        }
+    }
+    dest
 }
 
 fn wire_status(s: MissionState) -> MissionStatus {
