@@ -9,6 +9,7 @@
 //! | Reflexive Driver | [`drivers::ReflexiveDriverCore`] | [`drivers::ObstacleSource`] |
 //! | Global / Local Vector Driver | [`drivers::VectorDriverCore`] | — (pose by service connection) |
 //! | Global / Local Waypoint Driver, Path Segment Driver | [`drivers::Navigator`] | — |
+//! | World Model Vector Knowledge Store (feature `world_model`) | [`world_model::WorldModelCore`] over [`world_model::VectorStore`] | — (an in-memory store with an R*-tree) |
 
 pub mod drivers;
 pub mod geo;
@@ -17,6 +18,8 @@ pub mod motion;
 pub mod path;
 pub mod sensors;
 pub mod sim;
+#[cfg(feature = "world_model")]
+pub mod world_model;
 
 /// The `nalgebra` the cores use at their API (poses, quaternions, vectors).
 pub use nalgebra;
