@@ -10,6 +10,7 @@
 //! | Global / Local Vector Driver | [`drivers::VectorDriverCore`] | — (pose by service connection) |
 //! | Global / Local Waypoint Driver, Path Segment Driver | [`drivers::Navigator`] | — |
 //! | Mission Spooler | [`spooler::MissionSpoolerCore`] | — |
+//! | World Model Vector Knowledge Store (feature `world_model`) | [`world_model::WorldModelCore`] over [`world_model::VectorStore`] | — (an in-memory store with an R*-tree) |
 
 pub mod drivers;
 pub mod geo;
@@ -19,6 +20,8 @@ pub mod path;
 pub mod sensors;
 pub mod sim;
 pub mod spooler;
+#[cfg(feature = "world_model")]
+pub mod world_model;
 
 /// The `nalgebra` the cores use at their API (poses, quaternions, vectors).
 pub use nalgebra;
