@@ -997,7 +997,7 @@ fn index_agrees_with_a_linear_scan() {
         let (clat, clon) = (lat + r.f(-0.05, 0.05), lon + r.f(-0.05, 0.05));
         let clon = if clon > 180.0 { clon - 360.0 } else { clon };
         let (shape, pts) = random_shape(&mut r, clat.min(90.0), clon, 0.001);
-        let buffer = if r.next() % 2 == 0 {
+        let buffer = if r.next().is_multiple_of(2) {
             0.0
         } else {
             r.f(0.0, 50.0) as f32
