@@ -372,3 +372,85 @@ fn the_simulation_is_deterministic() {
     };
     assert_eq!(run(11), run(11));
 }
+
+fn datagram(msg: impl Into<Message>, from: Address, to: Address) -> Vec<u8> {
+    let msg = msg.into();
+    let body = msg.to_bytes().unwrap();
+    let mut p = Header::new(msg.code(), to, from)
+        .encode_with_size(body.len())
+        .unwrap()
+        .to_vec();
+    p.extend_from_slice(&body);
+    Framing::Judp.encode(&p)
+}
+
+#[test]
+fn external_components_join_through_the_node_socket_and_time_out() {
+    let t0 = Instant::now();
+    let mut node = node(1, 1, t0);
+    node.add(global_pose_sensor::component(
+        GPS,
+        Gps,
+        Config::default(),
+        t0,
+    ))
+    .unwrap();
+    let ext: std::net::SocketAddr = "127.0.0.1:40000".parse().unwrap();
+    let remote: std::net::SocketAddr = "10.0.0.2:3794".parse().unwrap();
+    let camera = Address::new(1, 1, 37, 1);
+    // A process on this node announces itself with its heartbeat.
+    node.handle_datagram(
+        t0,
+        ext,
+        &datagram(ReportHeartbeatPulse {}, camera, Address::new(1, 1, 1, 1)),
+    );
+    assert_eq!(node.external().collect::<Vec<_>>(), [(camera, ext)]);
+    // A datagram claiming the id of a built-in component is not a new component.
+    node.handle_datagram(
+        t0,
+        ext,
+        &datagram(ReportHeartbeatPulse {}, GPS, Address::new(1, 1, 1, 1)),
+    );
+    assert_eq!(node.external().count(), 1);
+    assert_eq!(node.stats().from_self, 1);
+    // A query from another node reaches it over its own socket ...
+    while node.poll_transmit().is_some() {}
+    node.handle_datagram(t0, remote, &datagram(QueryComponentStatus {}, OCU, camera));
+    let out: Vec<_> = std::iter::from_fn(|| node.poll_transmit()).collect();
+    assert!(
+        out.iter()
+            .any(|d| d.to == ext && d.bytes[5 + 2..5 + 4] == [0x02, 0x20]),
+        "{out:?}"
+    );
+    // ... and its reply is routed back to that node.
+    node.handle_datagram(
+        t0,
+        ext,
+        &datagram(
+            ReportComponentStatus {
+                primary_status_code: ComponentState::Ready,
+                secondary_status_code: 0,
+            },
+            camera,
+            OCU,
+        ),
+    );
+    let out: Vec<_> = std::iter::from_fn(|| node.poll_transmit()).collect();
+    assert!(
+        out.iter()
+            .any(|d| d.to == remote && d.bytes[5 + 2..5 + 4] == [0x02, 0x40]),
+        "{out:?}"
+    );
+    // It is part of the node's configuration ...
+    node.handle_timeout(t0 + Duration::from_millis(100));
+    assert!(node.tree().subsystems[&1].nodes[&1]
+        .components
+        .contains_key(&(37, 1)));
+    // ... until it falls silent.
+    node.handle_timeout(t0 + Duration::from_secs(4));
+    assert_eq!(node.external().count(), 0);
+    assert_eq!(node.stats().external_timed_out, 1);
+    assert!(!node.tree().subsystems[&1].nodes[&1]
+        .components
+        .contains_key(&(37, 1)));
+}

@@ -172,6 +172,20 @@ impl NodeManagerCore {
         }
     }
 
+    /// Unregisters a local component (an external one that timed out).
+    pub fn remove_local(&mut self, a: Address) {
+        self.locals.retain(|x| *x != a);
+        if let Some(n) = self
+            .tree
+            .subsystems
+            .get_mut(&a.subsystem)
+            .and_then(|s| s.nodes.get_mut(&a.node))
+        {
+            n.components.remove(&(a.component, a.instance));
+        }
+        self.gone.push(a);
+    }
+
     /// The system tree.
     pub fn tree(&self) -> &SystemTree {
         &self.tree

@@ -1,5 +1,8 @@
 //! A node, sans-IO: its node manager and local components, routing between them and
-//! one UDP interface. Inputs are `(now, peer, datagram)` and timeouts; outputs are
+//! one UDP interface. Components in other processes join through the same socket: a
+//! datagram whose source is this node's subsystem and node (and not a built-in id)
+//! registers an external component at the datagram's address; it is routed like a
+//! built-in component and removed after [`NodeConfig::external_timeout`] of silence. Inputs are `(now, peer, datagram)` and timeouts; outputs are
 //! datagrams for peers and the next wake-up time.
 
 use std::collections::{HashMap, VecDeque};
@@ -33,6 +36,11 @@ pub struct NodeConfig {
     pub max_outbox: usize,
     /// Settings of the node manager component.
     pub component: Config,
+    /// Most external components (other processes using this node's socket).
+    pub max_external: usize,
+    /// An external component not heard from for this long is removed (they heartbeat
+    /// every second).
+    pub external_timeout: std::time::Duration,
 }
 
 impl Default for NodeConfig {
@@ -46,6 +54,8 @@ impl Default for NodeConfig {
             reassembly: ReassemblyLimits::default(),
             max_outbox: 8192,
             component: Config::default(),
+            max_external: 64,
+            external_timeout: std::time::Duration::from_secs(3),
         }
     }
 }
@@ -84,6 +94,10 @@ pub struct NetStats {
     pub encode_errors: u64,
     /// Messages sent to every peer because their node is not located yet.
     pub flooded: u64,
+    /// External components refused (table full, or an id a built-in component has).
+    pub external_refused: u64,
+    /// External components removed after their timeout.
+    pub external_timed_out: u64,
 }
 
 type Manager = Component<node_manager::Dispatch<NodeManagerCore>>;
@@ -94,6 +108,8 @@ pub struct Node {
     now: Instant,
     manager: Manager,
     locals: Vec<Box<dyn Endpoint>>,
+    /// Components of this node in other processes: address → (socket, last heard).
+    external: HashMap<Address, (SocketAddr, Instant)>,
     peers: HashMap<(u8, u8), SocketAddr>,
     reassembler: Reassembler,
     outbox: VecDeque<Datagram>,
@@ -128,6 +144,7 @@ impl Node {
             now,
             manager,
             locals: Vec::new(),
+            external: HashMap::new(),
             peers: HashMap::new(),
             outbox: VecDeque::new(),
             local_queue: VecDeque::new(),
@@ -235,7 +252,8 @@ impl Node {
             }
         };
         let src = header.source;
-        if src.subsystem == self.config.subsystem && src.node == self.config.node {
+        let mine = src.subsystem == self.config.subsystem && src.node == self.config.node;
+        if mine && !self.accept_external(now, src, peer) {
             self.stats.from_self += 1;
             return;
         }
@@ -244,7 +262,9 @@ impl Node {
             return;
         }
         // Learn where that node is.
-        self.peers.insert((src.subsystem, src.node), peer);
+        if !mine {
+            self.peers.insert((src.subsystem, src.node), peer);
+        }
         let body = packet[HEADER_LEN..].to_vec();
         let (header, body) = if header.data_flag == DataFlag::Single {
             (header, body)
@@ -254,14 +274,60 @@ impl Node {
                 None => return,
             }
         };
-        self.route(header, body, false);
+        // A message of an external component is routed like one of a built-in component.
+        self.route(header, body, mine);
         self.pump();
+    }
+
+    /// A datagram with this node's subsystem and node as its source: an external
+    /// component (another process using this node's socket) unless the id belongs to
+    /// the node manager or a built-in component, or the table is full.
+    fn accept_external(&mut self, now: Instant, src: Address, peer: SocketAddr) -> bool {
+        if !src.is_valid()
+            || src.component == 255
+            || src.instance == 255
+            || src == self.manager.address()
+            || self.locals.iter().any(|e| e.address() == src)
+        {
+            return false;
+        }
+        if let Some(e) = self.external.get_mut(&src) {
+            *e = (peer, now);
+            return true;
+        }
+        if self.external.len() >= self.config.max_external {
+            self.stats.external_refused += 1;
+            return false;
+        }
+        tracing::info!(component = %src, %peer, "external component joined");
+        self.external.insert(src, (peer, now));
+        self.manager.behaviour_mut().0.add_local(src);
+        true
+    }
+
+    /// External components of this node and where they are.
+    pub fn external(&self) -> impl Iterator<Item = (Address, SocketAddr)> + '_ {
+        self.external.iter().map(|(a, (p, _))| (*a, *p))
     }
 
     /// Time passed.
     pub fn handle_timeout(&mut self, now: Instant) {
         self.advance(now);
         self.reassembler.expire(self.now);
+        let limit = self.config.external_timeout;
+        let now = self.now;
+        let gone: Vec<Address> = self
+            .external
+            .iter()
+            .filter(|(_, (_, t))| now.saturating_duration_since(*t) > limit)
+            .map(|(a, _)| *a)
+            .collect();
+        for a in gone {
+            self.external.remove(&a);
+            self.stats.external_timed_out += 1;
+            self.manager.behaviour_mut().0.remove_local(a);
+            tracing::info!(component = %a, "external component timed out");
+        }
         if self.manager.poll_timeout().is_some_and(|t| t <= self.now) {
             self.manager.handle_timeout(self.now);
         }
@@ -289,10 +355,15 @@ impl Node {
                 (a, b) => a.or(b),
             };
         }
-        match (t, self.reassembler.next_timeout()) {
-            (Some(a), Some(b)) => Some(a.min(b)),
-            (a, b) => a.or(b),
-        }
+        let ext = self
+            .external
+            .values()
+            .map(|(_, last)| *last + self.config.external_timeout)
+            .min();
+        [self.reassembler.next_timeout(), ext]
+            .into_iter()
+            .flatten()
+            .fold(t, |acc, x| Some(acc.map_or(x, |a: Instant| a.min(x))))
     }
 
     fn advance(&mut self, now: Instant) {
@@ -382,6 +453,32 @@ impl Node {
             if d.matches(&a) && header.source != a {
                 e.handle(now, header, body);
                 any = true;
+            }
+        }
+        let targets: Vec<SocketAddr> = self
+            .external
+            .iter()
+            .filter(|(a, _)| d.matches(a) && header.source != **a)
+            .map(|(_, (p, _))| *p)
+            .collect();
+        if !targets.is_empty() {
+            any = true;
+            match split(header, body) {
+                Ok(packets) => {
+                    for to in targets {
+                        for p in &packets {
+                            if self.outbox.len() >= self.config.max_outbox {
+                                self.stats.outbox_full += 1;
+                                break;
+                            }
+                            self.outbox.push_back(Datagram {
+                                to,
+                                bytes: self.config.framing.encode(p),
+                            });
+                        }
+                    }
+                }
+                Err(_) => self.stats.encode_errors += 1,
             }
         }
         if any {
