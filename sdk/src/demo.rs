@@ -9,6 +9,12 @@
 //! for the driver to report Standby (Part 1: back to Standby at the final point). The
 //! run reports arrival times and the cross-track error of every leg, measured on the
 //! vehicle's true trajectory against the commanded path, and draws both in an SVG.
+//!
+//! Third phase: the operator stores an obstacle in the World Model Vector Knowledge
+//! Store, queries it for objects along the first leg of its mission (a line region with a
+//! clearance buffer), plans a detour waypoint round what it finds, and spools the
+//! mission — blocking moves, a payload action (the horn), a blocking move home — to the
+//! Mission Spooler, which drives the waypoint driver.
 
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -22,6 +28,7 @@ use crate::components::system_commander::{self, Ctx, SystemCommander};
 use crate::components::{
     global_pose_sensor, global_waypoint_driver, local_path_segment_driver, local_pose_sensor,
     mission_spooler, primitive_driver, reflexive_driver, velocity_state_sensor,
+    world_model_vector_knowledge_store,
 };
 use crate::cores::drivers::{
     GlobalWaypointDriverCore, LocalPathSegmentDriverCore, PrimitiveConfig, PrimitiveDriverCore,
@@ -33,6 +40,7 @@ use crate::cores::path::{Path, PathSegment};
 use crate::cores::sensors::{GlobalPoseSensorCore, LocalPoseSensorCore, VelocityStateSensorCore};
 use crate::cores::sim::{SimVehicle, VehicleParams};
 use crate::cores::spooler::{command, MissionSpoolerCore, SpoolerConfig};
+use crate::cores::world_model::{WorldModelConfig, WorldModelCore};
 use crate::messages::*;
 use crate::Address;
 
@@ -55,6 +63,8 @@ pub mod addr {
     pub const LPSD: Address = Address::new(1, 1, 48, 1);
     /// Mission Spooler.
     pub const MS: Address = Address::new(1, 1, 36, 1);
+    /// World Model Vector Knowledge Store.
+    pub const WM: Address = Address::new(1, 1, 61, 1);
     /// The operator (System Commander).
     pub const OCU: Address = Address::new(1, 2, 40, 1);
 }
@@ -125,6 +135,14 @@ type Legs = Vec<(String, Path)>;
 /// (the horn of the primitive driver's discrete devices), a blocking move home.
 pub const MISSION: [(f64, f64); 2] = [(3.0, -4.0), (0.0, 0.0)];
 
+/// An obstacle the operator stores in the world model before the mission: centre
+/// (local metres) and radius (the object's region buffer), on the straight line from P4
+/// to the first mission point, so the operator's planner must go round it.
+pub const OBSTACLE: ((f64, f64), f64) = ((5.5, -2.5), 0.6);
+
+/// Clearance the operator's planner keeps from a stored obstacle's buffer, m.
+pub const CLEARANCE: f64 = 0.6;
+
 /// One leg of the run.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Leg {
@@ -151,6 +169,11 @@ pub struct Report {
     pub mission_done: Option<f64>,
     /// When the operator saw the mission's payload action (the horn), s.
     pub horn_at: Option<f64>,
+    /// Closest approach of the vehicle to the obstacle's centre during the mission, m
+    /// (the obstacle's radius is `OBSTACLE.1`).
+    pub obstacle_clearance: f64,
+    /// The mission's moves as the operator planned them from the world model.
+    pub planned: Vec<(f64, f64)>,
     /// Distance from the final point of each phase when it ended, m.
     pub final_errors: Vec<f64>,
     /// Simulated duration, s.
@@ -177,6 +200,10 @@ pub struct Operator {
     path_done: Option<Instant>,
     mission_done: Option<Instant>,
     horn_at: Option<Instant>,
+    /// The mission's move targets as planned (a detour first if an obstacle is in the way).
+    planned: Vec<(f64, f64)>,
+    /// Obstacles the world model returned for the first leg.
+    obstacles_found: usize,
     path_started: Option<Instant>,
     next_query: Option<Instant>,
 }
@@ -190,6 +217,8 @@ enum Step {
     StartPath,
     Path,
     StartMission,
+    StoreObstacle,
+    PlanMission,
     Mission,
     Done,
 }
@@ -287,11 +316,62 @@ impl SystemCommander for Operator {
                     return;
                 }
                 ctx.send_core(addr::MS, Resume {});
-                let m = mission_message(&frame, self.waypoint_speed);
-                ctx.send(addr::MS, m);
-                ctx.send(addr::MS, RunMission { mission_id: 1 });
-                self.step = Step::Mission;
+                self.step = Step::StoreObstacle;
             }
+            Step::StoreObstacle => {
+                // Store the obstacle in the world model, then ask it what lies along the
+                // first leg of the mission.
+                let ((x, y), r) = OBSTACLE;
+                let (latitude, longitude) = frame.to_global(Vector2::new(x, y));
+                ctx.send(
+                    addr::WM,
+                    CreateVksObjects {
+                        buffered: true,
+                        message_properties: 0,
+                        request_id: 1,
+                        objects: vec![VksObject {
+                            object_type: VksObjectType::Point,
+                            buffer: Some(r as f32),
+                            feature_classes: vec![VksFeatureClass {
+                                id: 1,
+                                attribute: VksAttribute::Default,
+                            }],
+                            points: vec![VksPoint {
+                                latitude,
+                                longitude,
+                            }],
+                        }],
+                    },
+                );
+                let from = Vector2::new(SEGMENTS[1].1 .0, SEGMENTS[1].1 .1);
+                let to = Vector2::new(MISSION[0].0, MISSION[0].1);
+                let region_points = [from, to]
+                    .iter()
+                    .map(|p| {
+                        let (latitude, longitude) = frame.to_global(*p);
+                        VksPoint {
+                            latitude,
+                            longitude,
+                        }
+                    })
+                    .collect();
+                ctx.send(
+                    addr::WM,
+                    QueryVksObjects {
+                        filter_by_class_ids: false,
+                        filter_by_attributes: false,
+                        response_presence_vector: 1,
+                        request_id: 2,
+                        object_ids: None,
+                        region_type: Some(VksObjectType::Line),
+                        region_buffer: Some(CLEARANCE as f32),
+                        feature_classes: None,
+                        region_points: Some(region_points),
+                    },
+                );
+                self.step = Step::PlanMission;
+            }
+            Step::PlanMission => {}
             Step::Mission => {
                 let now = ctx.now();
                 if self.horn_at.is_none() && self.next_query.is_none_or(|t| now >= t) {
@@ -309,6 +389,26 @@ impl SystemCommander for Operator {
         msg: &Message,
     ) -> Result<Option<Message>, Refused> {
         match msg {
+            Message::ReportVksObjects(r) if self.step == Step::PlanMission && r.request_id == 2 => {
+                let frame = LocalFrame::new(ORIGIN.0, ORIGIN.1, ORIGIN.2);
+                let from = Vector2::new(SEGMENTS[1].1 .0, SEGMENTS[1].1 .1);
+                let to = Vector2::new(MISSION[0].0, MISSION[0].1);
+                let mut plan = Vec::new();
+                for o in r.objects.iter().flatten() {
+                    let Some(p) = o.points.first() else { continue };
+                    let c = frame.to_local(p.latitude, p.longitude);
+                    plan.push(detour(from, to, c, f64::from(o.buffer)));
+                    self.obstacles_found += 1;
+                }
+                plan.extend(MISSION);
+                self.planned = plan.clone();
+                ctx.send(
+                    addr::MS,
+                    mission_message(&frame, self.waypoint_speed, &plan),
+                );
+                ctx.send(addr::MS, RunMission { mission_id: 1 });
+                self.step = Step::Mission;
+            }
             Message::ReportMissionStatus(r)
                 if self.step == Step::Mission
                     && r.status_type == MissionStatusType::Mission
@@ -352,7 +452,7 @@ impl SystemCommander for Operator {
 }
 
 /// The Spool Mission of the third phase.
-fn mission_message(frame: &LocalFrame, speed: f64) -> SpoolMission {
+fn mission_message(frame: &LocalFrame, speed: f64, moves: &[(f64, f64)]) -> SpoolMission {
     // Every message here encodes (fixed fields in range); an encoding error would be a
     // bug of this function, so fall back to an empty body rather than panic.
     let cmd = |uid: u16, to: Address, m: Message, blocking: bool| {
@@ -391,22 +491,47 @@ fn mission_message(frame: &LocalFrame, speed: f64) -> SpoolMission {
         }),
         ..Default::default()
     };
-    let children = vec![
-        leaf(1, goto(10, MISSION[0])),
-        leaf(2, vec![cmd(20, addr::PD, horn.into(), false)]),
-        leaf(3, goto(30, MISSION[1])),
-    ];
+    // Every move but the last, then the payload action, then the move home.
+    let (home, outbound) = moves
+        .split_last()
+        .map_or((MISSION[1], &[][..]), |(h, o)| (*h, o));
+    let mut children: Vec<MissionTask> = outbound
+        .iter()
+        .enumerate()
+        .map(|(i, m)| leaf(i as u16 + 1, goto(10 * (i as u16 + 1), *m)))
+        .collect();
+    let n = children.len() as u16;
+    children.push(leaf(n + 1, vec![cmd(500, addr::PD, horn.into(), false)]));
+    children.push(leaf(n + 2, goto(600, home)));
+    let count = children.len();
     SpoolMission {
         mission_id: 1,
         append_flag: 0,
         root: MissionTask {
             task_id: 0,
-            child_count: 3,
-            child_offsets: vec![0; 3],
+            child_count: count as u16,
+            child_offsets: vec![0; count],
             messages: Vec::new(),
             children,
         },
     }
+}
+
+/// A waypoint that takes the leg `from` → `to` round an obstacle at `c` with buffer `r`:
+/// beside the obstacle's projection on the leg, `r` + [`CLEARANCE`] + a margin for the
+/// corner the vehicle cuts, on the side the obstacle leaves free.
+fn detour(from: Vector2<f64>, to: Vector2<f64>, c: Vector2<f64>, r: f64) -> (f64, f64) {
+    let d = (to - from)
+        .try_normalize(1e-9)
+        .unwrap_or(Vector2::new(1.0, 0.0));
+    let along = (c - from).dot(&d).clamp(0.0, (to - from).norm());
+    let foot = from + d * along;
+    let mut n = Vector2::new(-d.y, d.x);
+    if (c - foot).dot(&n) > 0.0 {
+        n = -n;
+    }
+    let p = c + n * (r + CLEARANCE + 0.3) - (c - foot);
+    (p.x, p.y)
 }
 
 fn driver_config(pose_sensor: Address) -> DriverConfig {
@@ -473,6 +598,12 @@ pub fn vehicle(t0: Instant, opts: &Options) -> (Vec<Box<dyn Endpoint>>, SimVehic
         Box::new(local_path_segment_driver::component(
             addr::LPSD,
             lpsd,
+            cfg.clone(),
+            t0,
+        )),
+        Box::new(world_model_vector_knowledge_store::component(
+            addr::WM,
+            WorldModelCore::new(WorldModelConfig::default()),
             cfg.clone(),
             t0,
         )),
@@ -551,7 +682,9 @@ fn phase_name(s: Step) -> &'static str {
         Step::TakeControl => "taking control",
         Step::StartWaypoints | Step::Waypoints => "waypoints",
         Step::StartPath | Step::Path => "path segments",
-        Step::StartMission | Step::Mission => "spooled mission",
+        Step::StartMission | Step::StoreObstacle | Step::PlanMission | Step::Mission => {
+            "spooled mission"
+        }
         Step::Done => "done",
     }
 }
@@ -597,7 +730,13 @@ pub fn run(opts: &Options, mut print: impl FnMut(&str)) -> Result<Report, String
             }
         }
         if step == Step::Done {
-            return Ok(measure(t0, &bus, &vehicle, done_at, horn_at, opts));
+            let planned = bus
+                .get::<Ocu>(addr::OCU)
+                .map(|o| o.behaviour().0.planned.clone())
+                .unwrap_or_default();
+            return Ok(measure(
+                t0, &bus, &vehicle, done_at, horn_at, &planned, opts,
+            ));
         }
         if elapsed > opts.timeout {
             return Err(format!(
@@ -618,7 +757,7 @@ pub fn run(opts: &Options, mut print: impl FnMut(&str)) -> Result<Report, String
 
 /// Legs of the commanded paths: waypoint legs are straight lines from the previous
 /// point; path segments are the curves of Part 1.
-fn commanded_legs() -> (Legs, Legs, Legs) {
+fn commanded_legs(mission: &[(f64, f64)]) -> (Legs, Legs, Legs) {
     let mut wp = Vec::new();
     let mut from = Vector2::new(0.0, 0.0);
     for (i, (x, y)) in WAYPOINTS.iter().enumerate() {
@@ -641,7 +780,7 @@ fn commanded_legs() -> (Legs, Legs, Legs) {
         p0 = Vector2::new(p2.0, p2.1);
     }
     let mut ms = Vec::new();
-    for (i, (x, y)) in MISSION.iter().enumerate() {
+    for (i, (x, y)) in mission.iter().enumerate() {
         let to = Vector2::new(*x, *y);
         ms.push((format!("mission move {i}"), Path::new([p0, to])));
         p0 = to;
@@ -655,6 +794,7 @@ fn measure(
     vehicle: &SimVehicle,
     done_at: [Option<Instant>; 3],
     horn_at: Option<Instant>,
+    planned: &[(f64, f64)],
     opts: &Options,
 ) -> Report {
     let [wp_done, path_done, mission_done] = done_at;
@@ -665,7 +805,7 @@ fn measure(
         .iter()
         .map(|(d, p)| (d.as_secs_f64(), *p))
         .collect();
-    let (wp_legs, path_legs, mission_legs) = commanded_legs();
+    let (wp_legs, path_legs, mission_legs) = commanded_legs(planned);
     let wp_end = secs(wp_done).unwrap_or(f64::INFINITY);
     let path_end = secs(path_done).unwrap_or(f64::INFINITY);
     let mission_end = secs(mission_done).unwrap_or(f64::INFINITY);
@@ -728,6 +868,12 @@ fn measure(
             .map(|(_, p)| *p)
             .unwrap_or_default()
     };
+    let ((ox, oy), _) = OBSTACLE;
+    let obstacle_clearance = trail
+        .iter()
+        .filter(|(t, _)| *t >= path_end && *t <= mission_end)
+        .map(|(_, p)| (p - Vector2::new(ox, oy)).norm())
+        .fold(f64::INFINITY, f64::min);
     let final_errors = vec![
         (at(wp_end) - Vector2::new(WAYPOINTS[4].0, WAYPOINTS[4].1)).norm(),
         (at(path_end) - Vector2::new(SEGMENTS[1].1 .0, SEGMENTS[1].1 .1)).norm(),
@@ -746,6 +892,8 @@ fn measure(
         path_done: secs(path_done),
         mission_done: secs(mission_done),
         horn_at: secs(horn_at),
+        obstacle_clearance,
+        planned: planned.to_vec(),
         final_errors,
         duration: (bus.now() - t0).as_secs_f64(),
         messages: bus.stats().delivered,
@@ -839,6 +987,17 @@ pub fn svg(r: &Report) -> String {
         r##"<polyline points="{}" fill="none" stroke="#d62728" stroke-width="1.5"/>"##,
         poly(&r.trail)
     );
+    {
+        let ((ox, oy), r) = OBSTACLE;
+        let (a, b) = px(&Vector2::new(ox, oy));
+        let _ = writeln!(
+            s,
+            r##"<circle cx="{a:.1}" cy="{b:.1}" r="{:.1}" fill="#999" fill-opacity="0.35" stroke="#555"/><text x="{:.1}" y="{:.1}" fill="#555">obstacle (world model)</text>"##,
+            r * scale,
+            a + r * scale + 4.0,
+            b + 4.0
+        );
+    }
     for (i, (x, y)) in WAYPOINTS.iter().enumerate() {
         let (a, b) = px(&Vector2::new(*x, *y));
         let _ = writeln!(
@@ -914,6 +1073,16 @@ pub fn summary(r: &Report) -> String {
         r.mission_done.map_or("—".into(), |t| format!("{t:.1} s")),
         r.horn_at.map_or("—".into(), |t| format!("{t:.1} s")),
         r.final_errors[2]
+    );
+    let _ = writeln!(
+        s,
+        "world model: obstacle r = {:.1} m at ({:.1}, {:.1}) planned around via ({:.2}, {:.2}); closest approach {:.2} m from its centre",
+        OBSTACLE.1,
+        OBSTACLE.0 .0,
+        OBSTACLE.0 .1,
+        r.planned.first().map_or(f64::NAN, |p| p.0),
+        r.planned.first().map_or(f64::NAN, |p| p.1),
+        r.obstacle_clearance
     );
     let _ = write!(
         s,

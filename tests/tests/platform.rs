@@ -36,8 +36,8 @@ fn demo_drives_the_waypoint_mission_and_the_part1_path_segments() {
     let report = demo::run(&demo::Options::default(), |_| {}).expect("demo finishes");
     assert_eq!(
         report.legs.len(),
-        9,
-        "5 waypoint legs, 2 path segments, 2 spooled moves"
+        10,
+        "5 waypoint legs, 2 path segments, 3 spooled moves (a detour first)"
     );
     for leg in &report.legs {
         assert!(leg.arrival.is_some(), "{} never reached", leg.name);
@@ -77,6 +77,15 @@ fn demo_drives_the_waypoint_mission_and_the_part1_path_segments() {
         "home missed by {:.3} m",
         report.final_errors[2]
     );
+    // The operator asked the world model what lies on the first mission leg, found the
+    // obstacle it stored, and planned round it: the vehicle never touched its buffer.
+    assert_eq!(report.planned.len(), 3, "{:?}", report.planned);
+    let radius = jaus::demo::OBSTACLE.1;
+    assert!(
+        report.obstacle_clearance > radius + 0.3,
+        "closest approach {:.2} m to an obstacle of radius {radius} m",
+        report.obstacle_clearance
+    );
     for e in &report.final_errors {
         assert!(*e < 0.2, "final point missed by {e:.3} m");
     }
@@ -111,8 +120,8 @@ fn demo_writes_a_plot_of_path_and_trajectory() {
     assert!(svg.starts_with("<svg"));
     assert_eq!(
         svg.matches("<polyline").count(),
-        10,
-        "9 commanded legs + the trajectory"
+        11,
+        "10 commanded legs + the trajectory"
     );
     let _ = std::fs::remove_dir_all(dir);
 }

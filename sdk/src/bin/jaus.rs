@@ -257,7 +257,7 @@ fn main() -> ExitCode {
             };
             let _ = writeln!(
                 out,
-                "JAUS demo: subsystem 1 node 1 (primitive and reflexive drivers, pose and velocity sensors, global waypoint and local path-segment drivers, mission spooler, over a simulated skid-steer vehicle), operator 1.2.40.1"
+                "JAUS demo: subsystem 1 node 1 (primitive and reflexive drivers, pose and velocity sensors, global waypoint and local path-segment drivers, mission spooler, world model, over a simulated skid-steer vehicle), operator 1.2.40.1"
             );
             match jaus::demo::run(&opts, |line| {
                 let _ = writeln!(std::io::stdout(), "{line}");
