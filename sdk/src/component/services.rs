@@ -878,37 +878,28 @@ struct EventSetup {
     query: Option<Vec<u8>>,
 }
 
-impl EventSetup {
-    fn from_create(m: &CreateEvent) -> Self {
-        Self {
-            report_code: m.report_message_code,
-            event_type: m.event_type,
-            boundary: m.event_boundary,
-            limit_field: m.limit_data_field,
-            lower: m.lower_limit.clone(),
-            upper: m.upper_limit.clone(),
-            state: m.state_limit.clone(),
-            minimum_rate: m.requested_minimum_rate,
-            rate: m.requested_update_rate,
-            query: m.query_message.clone(),
+/// Create Event and Update Event carry the same set-up fields (Update adds the event id).
+macro_rules! event_setup_from {
+    ($($m:ty => $f:ident),*) => {
+        impl EventSetup {
+            $(fn $f(m: &$m) -> Self {
+                Self {
+                    report_code: m.report_message_code,
+                    event_type: m.event_type,
+                    boundary: m.event_boundary,
+                    limit_field: m.limit_data_field,
+                    lower: m.lower_limit.clone(),
+                    upper: m.upper_limit.clone(),
+                    state: m.state_limit.clone(),
+                    minimum_rate: m.requested_minimum_rate,
+                    rate: m.requested_update_rate,
+                    query: m.query_message.clone(),
+                }
+            })*
         }
-    }
-
-    fn from_update(m: &UpdateEvent) -> Self {
-        Self {
-            report_code: m.report_message_code,
-            event_type: m.event_type,
-            boundary: m.event_boundary,
-            limit_field: m.limit_data_field,
-            lower: m.lower_limit.clone(),
-            upper: m.upper_limit.clone(),
-            state: m.state_limit.clone(),
-            minimum_rate: m.requested_minimum_rate,
-            rate: m.requested_update_rate,
-            query: m.query_message.clone(),
-        }
-    }
+    };
 }
+event_setup_from!(CreateEvent => from_create, UpdateEvent => from_update);
 
 trait ToBytesOpt {
     fn to_bytes_opt(&self) -> Option<Vec<u8>>;
