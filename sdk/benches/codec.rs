@@ -8,7 +8,7 @@ use jaus::codec::{Decode, Encode, Writer};
 use jaus::messages::{ReportGlobalPose, SetGlobalPathSegment, SetWrenchEffort};
 
 fn body(i: usize) -> Vec<u8> {
-    jaus::hex::decode(jaus::cli::REFERENCE_PACKETS[i].1).unwrap()[16..].to_vec()
+    jaus::hex::decode(jaus::json::REFERENCE_PACKETS[i].1).unwrap()[16..].to_vec()
 }
 
 fn bench_one<M: Encode + Decode>(c: &mut Criterion, name: &str, body: &[u8]) {

@@ -54,20 +54,16 @@
 
 extern crate self as jaus;
 
-#[cfg(feature = "serde")]
-pub mod cli;
 pub mod codec;
 #[cfg(feature = "component")]
 pub mod component;
 #[cfg(feature = "cores")]
 pub mod cores;
-#[cfg(feature = "cores")]
-pub mod demo;
 pub mod hex;
+#[cfg(feature = "serde")]
+pub mod json;
 #[cfg(feature = "net")]
 pub mod net;
-#[cfg(all(feature = "cli", feature = "net", feature = "cores"))]
-pub mod netcli;
 #[cfg(feature = "payload")]
 pub mod payload;
 pub mod wire;

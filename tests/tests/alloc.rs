@@ -50,9 +50,9 @@ fn body(hex: &str) -> Vec<u8> {
 
 #[test]
 fn fixed_size_messages_decode_and_encode_without_allocating() {
-    let pose = body(jaus::cli::REFERENCE_PACKETS[0].1);
-    let wrench = body(jaus::cli::REFERENCE_PACKETS[1].1);
-    let segment = body(jaus::cli::REFERENCE_PACKETS[2].1);
+    let pose = body(jaus::json::REFERENCE_PACKETS[0].1);
+    let wrench = body(jaus::json::REFERENCE_PACKETS[1].1);
+    let segment = body(jaus::json::REFERENCE_PACKETS[2].1);
     let mut out = [0u8; 64];
 
     let n = allocations(|| {

@@ -1,6 +1,6 @@
 //! The `jaus` command-line tool, run as a process: `decode`, `encode` and `messages`.
 //!
-//! The binary belongs to the `jaus` package, so `CARGO_BIN_EXE_jaus` is not available
+//! The binary belongs to the `jaus-cli` package, so `CARGO_BIN_EXE_jaus` is not available
 //! here. It is found next to this test's executable (`<target>/<profile>/jaus`, the test
 //! runs from `<target>/<profile>/deps/`) after one `cargo build -p jaus --bin jaus`,
 //! which is a quick no-op when the binary is up to date and keeps it from going stale.

@@ -11,10 +11,10 @@ use jaus::component::{Component, Config, Refused};
 use jaus::components::global_pose_sensor::{self, Ctx, GlobalPoseSensor};
 use jaus::messages::*;
 use jaus::net::framing::{Framing, ReassemblyLimits};
-use jaus::net::sim::{LinkModel, SimNet};
 use jaus::net::{Node, NodeConfig};
 use jaus::wire::DataFlag;
 use jaus::{Address, Header, JausMessage};
+use jaus_sim::network::{LinkModel, SimNet};
 
 const GPS: Address = Address::new(1, 1, 38, 1);
 const OCU: Address = Address::new(1, 2, 40, 1);

@@ -17,10 +17,10 @@ use jaus::cores::drivers::{
 };
 use jaus::cores::motion::DriverConfig;
 use jaus::cores::sensors::{LocalPoseSensorCore, VelocityStateSensorCore};
-use jaus::cores::sim::{SimVehicle, VehicleParams};
-use jaus::demo;
 use jaus::messages::*;
 use jaus::Address;
+use jaus_sim::demo;
+use jaus_sim::vehicle::{SimVehicle, VehicleParams};
 
 const PD: Address = Address::new(1, 1, 33, 1);
 const RD: Address = Address::new(1, 1, 43, 1);
@@ -80,7 +80,7 @@ fn demo_drives_the_waypoint_mission_and_the_part1_path_segments() {
     // The operator asked the world model what lies on the first mission leg, found the
     // obstacle it stored, and planned round it: the vehicle never touched its buffer.
     assert_eq!(report.planned.len(), 3, "{:?}", report.planned);
-    let radius = jaus::demo::OBSTACLE.1;
+    let radius = jaus_sim::demo::OBSTACLE.1;
     assert!(
         report.obstacle_clearance > radius + 0.3,
         "closest approach {:.2} m to an obstacle of radius {radius} m",
@@ -108,15 +108,9 @@ fn demo_drives_the_waypoint_mission_and_the_part1_path_segments() {
 #[test]
 fn demo_writes_a_plot_of_path_and_trajectory() {
     let dir = std::env::temp_dir().join(format!("jaus-demo-{}", std::process::id()));
-    let report = demo::run(
-        &demo::Options {
-            out: Some(dir.clone()),
-            ..Default::default()
-        },
-        |_| {},
-    )
-    .unwrap();
-    let svg = std::fs::read_to_string(report.svg.expect("plot written")).unwrap();
+    let report = demo::run(&demo::Options::default(), |_| {}).unwrap();
+    let path = jaus_cli::report::write_svg(&report, &dir).expect("plot written");
+    let svg = std::fs::read_to_string(path).unwrap();
     assert!(svg.starts_with("<svg"));
     assert_eq!(
         svg.matches("<polyline").count(),

@@ -15,10 +15,10 @@ use jaus::components::{
 use jaus::cores::drivers::{LocalWaypointDriverCore, PrimitiveConfig, PrimitiveDriverCore};
 use jaus::cores::motion::DriverConfig;
 use jaus::cores::sensors::{LocalPoseSensorCore, VelocityStateSensorCore};
-use jaus::cores::sim::{SimVehicle, VehicleParams};
 use jaus::cores::spooler::{command, Delivery, MissionSpoolerCore, SpoolerConfig};
 use jaus::messages::*;
 use jaus::Address;
+use jaus_sim::vehicle::{SimVehicle, VehicleParams};
 
 const MS: Address = Address::new(1, 1, 36, 1);
 const PD: Address = Address::new(1, 1, 33, 1);

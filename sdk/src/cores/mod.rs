@@ -1,6 +1,6 @@
 //! Hand-written control cores for the platform components of Part 1 §5.3, generic over
-//! small hardware traits ([`hardware`]), and a simulated vehicle ([`sim`]) that stands in
-//! for the hardware so every core runs end to end.
+//! small hardware traits ([`hardware`]). The `jaus-sim` crate implements those traits with a
+//! simulated vehicle, so every core runs end to end without hardware.
 //!
 //! | component | core | hardware |
 //! |---|---|---|
@@ -18,7 +18,6 @@ pub mod hardware;
 pub mod motion;
 pub mod path;
 pub mod sensors;
-pub mod sim;
 pub mod spooler;
 #[cfg(feature = "world_model")]
 pub mod world_model;

@@ -1,8 +1,8 @@
 //! Shared by the tests that run the `jaus` binary as a process.
 //!
-//! The binary belongs to the `jaus` package, so `CARGO_BIN_EXE_jaus` is not available
+//! The binary belongs to the `jaus-cli` package, so `CARGO_BIN_EXE_jaus` is not available
 //! here. It is found next to the test's executable (`<target>/<profile>/jaus`, the test
-//! runs from `<target>/<profile>/deps/`) after one `cargo build -p jaus --bin jaus`,
+//! runs from `<target>/<profile>/deps/`) after one `cargo build -p jaus-cli --bin jaus`,
 //! which is a quick no-op when the binary is up to date and keeps it from going stale.
 //! `JAUS_BIN` overrides the path (and skips the build).
 
@@ -27,7 +27,7 @@ pub fn jaus_bin() -> &'static Path {
         let bin = profile_dir.join(format!("jaus{}", std::env::consts::EXE_SUFFIX));
         let target_dir = profile_dir.parent().expect("target directory");
         let mut cmd = Command::new(env!("CARGO"));
-        cmd.args(["build", "--quiet", "-p", "jaus", "--bin", "jaus"])
+        cmd.args(["build", "--quiet", "-p", "jaus-cli", "--bin", "jaus"])
             .arg("--manifest-path")
             .arg(Path::new(env!("CARGO_MANIFEST_DIR")).join("../Cargo.toml"))
             .arg("--target-dir")
@@ -42,7 +42,10 @@ pub fn jaus_bin() -> &'static Path {
             }
         }
         let status = cmd.status().expect("run cargo build");
-        assert!(status.success(), "cargo build -p jaus --bin jaus failed");
+        assert!(
+            status.success(),
+            "cargo build -p jaus-cli --bin jaus failed"
+        );
         assert!(bin.is_file(), "jaus binary not found at {}", bin.display());
         bin
     })

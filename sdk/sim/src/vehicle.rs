@@ -11,8 +11,8 @@ use rand::rngs::StdRng;
 use rand::SeedableRng;
 use rand_distr::{Distribution, Normal};
 
-use super::geo::{wrap_angle, LocalFrame};
-use super::hardware::{
+use jaus::cores::geo::{wrap_angle, LocalFrame};
+use jaus::cores::hardware::{
     Actuators, GlobalPose, GlobalPoseSource, LocalPose, LocalPoseSource, VelocitySource,
     VelocityState, Wrench,
 };

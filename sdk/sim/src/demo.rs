@@ -16,37 +16,35 @@
 //! mission — blocking moves, a payload action (the horn), a blocking move home — to the
 //! Mission Spooler, which drives the waypoint driver.
 
-use std::fmt::Write as _;
-use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
 use nalgebra::{Vector2, Vector3};
 
-use crate::component::local::{Endpoint, LocalBus};
-use crate::component::{Config, CoreState, Refused};
-use crate::components::system_commander::{self, Ctx, SystemCommander};
-use crate::components::{
+use crate::vehicle::{SimVehicle, VehicleParams};
+use jaus::component::local::{Endpoint, LocalBus};
+use jaus::component::{Config, CoreState, Refused};
+use jaus::components::system_commander::{self, Ctx, SystemCommander};
+use jaus::components::{
     global_pose_sensor, global_waypoint_driver, local_path_segment_driver, local_pose_sensor,
     mission_spooler, primitive_driver, reflexive_driver, velocity_state_sensor,
     world_model_vector_knowledge_store,
 };
-use crate::cores::drivers::{
+use jaus::cores::drivers::{
     GlobalWaypointDriverCore, LocalPathSegmentDriverCore, PrimitiveConfig, PrimitiveDriverCore,
     ReflexiveConfig, ReflexiveDriverCore,
 };
-use crate::cores::geo::LocalFrame;
-use crate::cores::motion::DriverConfig;
-use crate::cores::path::{Path, PathSegment};
-use crate::cores::sensors::{GlobalPoseSensorCore, LocalPoseSensorCore, VelocityStateSensorCore};
-use crate::cores::sim::{SimVehicle, VehicleParams};
-use crate::cores::spooler::{command, MissionSpoolerCore, SpoolerConfig};
-use crate::cores::world_model::{WorldModelConfig, WorldModelCore};
-use crate::messages::*;
-use crate::Address;
+use jaus::cores::geo::LocalFrame;
+use jaus::cores::motion::DriverConfig;
+use jaus::cores::path::{Path, PathSegment};
+use jaus::cores::sensors::{GlobalPoseSensorCore, LocalPoseSensorCore, VelocityStateSensorCore};
+use jaus::cores::spooler::{command, MissionSpoolerCore, SpoolerConfig};
+use jaus::cores::world_model::{WorldModelConfig, WorldModelCore};
+use jaus::messages::*;
+use jaus::Address;
 
 /// Addresses of the demo subsystem.
 pub mod addr {
-    use crate::Address;
+    use jaus::Address;
     /// Primitive Driver.
     pub const PD: Address = Address::new(1, 1, 33, 1);
     /// Reflexive Driver.
@@ -84,8 +82,6 @@ pub struct Options {
     pub realtime: bool,
     /// Print progress every this much simulated time (`None`: quiet).
     pub progress: Option<Duration>,
-    /// Where to write `demo.svg` (`None`: no plot).
-    pub out: Option<PathBuf>,
     /// Give up after this much simulated time.
     pub timeout: Duration,
 }
@@ -99,7 +95,6 @@ impl Default for Options {
             path_speed: 1.0,
             realtime: false,
             progress: None,
-            out: None,
             timeout: Duration::from_secs(300),
         }
     }
@@ -180,8 +175,6 @@ pub struct Report {
     pub duration: f64,
     /// Messages delivered on the bus.
     pub messages: u64,
-    /// The plot written, if any.
-    pub svg: Option<PathBuf>,
     /// The commanded paths and the driven trajectory (local metres).
     pub commanded: Vec<Vec<Vector2<f64>>>,
     /// The driven trajectory.
@@ -458,7 +451,7 @@ fn mission_message(frame: &LocalFrame, speed: f64, moves: &[(f64, f64)]) -> Spoo
     let cmd = |uid: u16, to: Address, m: Message, blocking: bool| {
         command(uid, addr::MS, to, &m, blocking).unwrap_or(MissionCommand {
             uid,
-            message: crate::Packet::new(crate::Header::new(m.code(), to, addr::MS), Vec::new()),
+            message: jaus::Packet::new(jaus::Header::new(m.code(), to, addr::MS), Vec::new()),
             blocking: u8::from(blocking),
         })
     };
@@ -690,7 +683,7 @@ fn phase_name(s: Step) -> &'static str {
 }
 
 /// The operator component.
-pub type Ocu = crate::component::Component<system_commander::Dispatch<Operator>>;
+pub type Ocu = jaus::component::Component<system_commander::Dispatch<Operator>>;
 
 /// Runs the demo; `print` receives progress lines.
 pub fn run(opts: &Options, mut print: impl FnMut(&str)) -> Result<Report, String> {
@@ -734,9 +727,7 @@ pub fn run(opts: &Options, mut print: impl FnMut(&str)) -> Result<Report, String
                 .get::<Ocu>(addr::OCU)
                 .map(|o| o.behaviour().0.planned.clone())
                 .unwrap_or_default();
-            return Ok(measure(
-                t0, &bus, &vehicle, done_at, horn_at, &planned, opts,
-            ));
+            return Ok(measure(t0, &bus, &vehicle, done_at, horn_at, &planned));
         }
         if elapsed > opts.timeout {
             return Err(format!(
@@ -795,7 +786,6 @@ fn measure(
     done_at: [Option<Instant>; 3],
     horn_at: Option<Instant>,
     planned: &[(f64, f64)],
-    opts: &Options,
 ) -> Report {
     let [wp_done, path_done, mission_done] = done_at;
     let secs = |t: Option<Instant>| t.map(|t| (t - t0).as_secs_f64());
@@ -886,7 +876,7 @@ fn measure(
         .map(|(_, p)| p.points().to_vec())
         .collect();
     let trail_points: Vec<Vector2<f64>> = trail.iter().map(|(_, p)| *p).collect();
-    let mut report = Report {
+    let report = Report {
         legs,
         waypoints_done: secs(wp_done),
         path_done: secs(path_done),
@@ -897,200 +887,9 @@ fn measure(
         final_errors,
         duration: (bus.now() - t0).as_secs_f64(),
         messages: bus.stats().delivered,
-        svg: None,
         commanded,
         trail: trail_points,
     };
     drop(v);
-    if let Some(dir) = &opts.out {
-        let path = dir.join("demo.svg");
-        if std::fs::create_dir_all(dir).is_ok() && std::fs::write(&path, svg(&report)).is_ok() {
-            report.svg = Some(path);
-        }
-    }
     report
-}
-
-/// An SVG of the commanded paths (blue, waypoints and control points marked) and the
-/// driven trajectory (red). x (north) is drawn up, y (east) to the right.
-pub fn svg(r: &Report) -> String {
-    let controls: Vec<Vector2<f64>> = SEGMENTS
-        .iter()
-        .flat_map(|(p1, p2, _)| [Vector2::new(p1.0, p1.1), Vector2::new(p2.0, p2.1)])
-        .collect();
-    let all = r
-        .commanded
-        .iter()
-        .flatten()
-        .chain(&r.trail)
-        .chain(&controls);
-    let (mut lo, mut hi) = (
-        Vector2::repeat(f64::INFINITY),
-        Vector2::repeat(f64::NEG_INFINITY),
-    );
-    for p in all {
-        lo = lo.inf(p);
-        hi = hi.sup(p);
-    }
-    let margin = 1.0;
-    let scale = 40.0;
-    let (w, h) = (
-        ((hi.y - lo.y + 2.0 * margin) * scale).max(480.0),
-        (hi.x - lo.x + 2.0 * margin) * scale,
-    );
-    let px = |p: &Vector2<f64>| ((p.y - lo.y + margin) * scale, (hi.x - p.x + margin) * scale);
-    let mut s = String::new();
-    let _ = writeln!(
-        s,
-        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w:.0}" height="{:.0}" viewBox="0 0 {w:.0} {:.0}" font-family="sans-serif" font-size="13">"#,
-        h + 60.0,
-        h + 60.0
-    );
-    let _ = writeln!(s, r##"<rect width="100%" height="100%" fill="#fff"/>"##);
-    // 1 m grid.
-    let mut x = lo.x.floor();
-    while x <= hi.x.ceil() {
-        let (_, yy) = px(&Vector2::new(x, lo.y));
-        let _ = writeln!(
-            s,
-            r##"<line x1="0" y1="{yy:.1}" x2="{w:.0}" y2="{yy:.1}" stroke="#eee"/>"##
-        );
-        x += 1.0;
-    }
-    let mut y = lo.y.floor();
-    while y <= hi.y.ceil() {
-        let (xx, _) = px(&Vector2::new(lo.x, y));
-        let _ = writeln!(
-            s,
-            r##"<line x1="{xx:.1}" y1="0" x2="{xx:.1}" y2="{h:.0}" stroke="#eee"/>"##
-        );
-        y += 1.0;
-    }
-    let poly = |pts: &[Vector2<f64>]| {
-        pts.iter()
-            .map(|p| {
-                let (a, b) = px(p);
-                format!("{a:.1},{b:.1}")
-            })
-            .collect::<Vec<_>>()
-            .join(" ")
-    };
-    for c in &r.commanded {
-        let _ = writeln!(
-            s,
-            r##"<polyline points="{}" fill="none" stroke="#1f5fbf" stroke-width="3" stroke-opacity="0.5"/>"##,
-            poly(c)
-        );
-    }
-    let _ = writeln!(
-        s,
-        r##"<polyline points="{}" fill="none" stroke="#d62728" stroke-width="1.5"/>"##,
-        poly(&r.trail)
-    );
-    {
-        let ((ox, oy), r) = OBSTACLE;
-        let (a, b) = px(&Vector2::new(ox, oy));
-        let _ = writeln!(
-            s,
-            r##"<circle cx="{a:.1}" cy="{b:.1}" r="{:.1}" fill="#999" fill-opacity="0.35" stroke="#555"/><text x="{:.1}" y="{:.1}" fill="#555">obstacle (world model)</text>"##,
-            r * scale,
-            a + r * scale + 4.0,
-            b + 4.0
-        );
-    }
-    for (i, (x, y)) in WAYPOINTS.iter().enumerate() {
-        let (a, b) = px(&Vector2::new(*x, *y));
-        let _ = writeln!(
-            s,
-            r##"<circle cx="{a:.1}" cy="{b:.1}" r="5" fill="#1f5fbf"/><text x="{:.1}" y="{:.1}">W{i}</text>"##,
-            a + 7.0,
-            b - 7.0
-        );
-    }
-    for (i, (p1, p2, _)) in SEGMENTS.iter().enumerate() {
-        let (a, b) = px(&Vector2::new(p1.0, p1.1));
-        let _ = writeln!(
-            s,
-            r##"<rect x="{:.1}" y="{:.1}" width="8" height="8" fill="none" stroke="#555"/><text x="{:.1}" y="{:.1}" fill="#555">P{}</text>"##,
-            a - 4.0,
-            b - 4.0,
-            a + 7.0,
-            b - 7.0,
-            2 * i + 1
-        );
-        let (a, b) = px(&Vector2::new(p2.0, p2.1));
-        let _ = writeln!(
-            s,
-            r##"<circle cx="{a:.1}" cy="{b:.1}" r="4" fill="#555"/><text x="{:.1}" y="{:.1}" fill="#555">P{}</text>"##,
-            a + 7.0,
-            b + 14.0,
-            2 * i + 2
-        );
-    }
-    let _ = writeln!(
-        s,
-        r##"<text x="10" y="{:.0}"><tspan fill="#1f5fbf">━ commanded: waypoint legs, Part 1 path segments</tspan></text><text x="10" y="{:.0}"><tspan fill="#d62728">━ driven</tspan> (1 m grid; x north up, y east right)</text>"##,
-        h + 22.0,
-        h + 44.0
-    );
-    s.push_str("</svg>\n");
-    s
-}
-
-/// The report as text.
-pub fn summary(r: &Report) -> String {
-    let mut s = String::new();
-    let _ = writeln!(
-        s,
-        "{:<16} {:>10} {:>12} {:>12}",
-        "leg", "arrival", "xte RMS", "xte max"
-    );
-    for l in &r.legs {
-        let _ = writeln!(
-            s,
-            "{:<16} {:>10} {:>10.3} m {:>10.3} m",
-            l.name,
-            l.arrival.map_or("—".to_string(), |t| format!("{t:.1} s")),
-            l.xte_rms,
-            l.xte_max
-        );
-    }
-    let _ = writeln!(
-        s,
-        "waypoints: Standby at {}, {:.3} m from the final waypoint",
-        r.waypoints_done.map_or("—".into(), |t| format!("{t:.1} s")),
-        r.final_errors[0]
-    );
-    let _ = writeln!(
-        s,
-        "path segments: Standby at {}, {:.3} m from P4",
-        r.path_done.map_or("—".into(), |t| format!("{t:.1} s")),
-        r.final_errors[1]
-    );
-    let _ = writeln!(
-        s,
-        "spooled mission: finished at {} (payload action seen at {}), {:.3} m from home",
-        r.mission_done.map_or("—".into(), |t| format!("{t:.1} s")),
-        r.horn_at.map_or("—".into(), |t| format!("{t:.1} s")),
-        r.final_errors[2]
-    );
-    let _ = writeln!(
-        s,
-        "world model: obstacle r = {:.1} m at ({:.1}, {:.1}) planned around via ({:.2}, {:.2}); closest approach {:.2} m from its centre",
-        OBSTACLE.1,
-        OBSTACLE.0 .0,
-        OBSTACLE.0 .1,
-        r.planned.first().map_or(f64::NAN, |p| p.0),
-        r.planned.first().map_or(f64::NAN, |p| p.1),
-        r.obstacle_clearance
-    );
-    let _ = write!(
-        s,
-        "{:.1} s simulated, {} messages on the bus",
-        r.duration, r.messages
-    );
-    if let Some(p) = &r.svg {
-        let _ = write!(s, "\nplot: {}", p.display());
-    }
-    s
 }

@@ -1,7 +1,7 @@
 //! `jaus`: the command-line tool of the SDK.
 
 use clap::{Parser, Subcommand};
-use jaus::cli;
+use jaus_cli::{commands, report};
 use std::io::{BufRead, Write};
 use std::process::ExitCode;
 
@@ -124,13 +124,13 @@ struct NetArgs {
 }
 
 impl NetArgs {
-    fn client(&self) -> Result<jaus::netcli::Client, String> {
+    fn client(&self) -> Result<jaus_cli::net::Client, String> {
         let framing = match self.framing.as_str() {
             "judp" => jaus::net::Framing::Judp,
             "opc" => jaus::net::Framing::Opc,
             other => return Err(format!("unknown framing `{other}` (judp or opc)")),
         };
-        Ok(jaus::netcli::Client {
+        Ok(jaus_cli::net::Client {
             me: self.me,
             bind: self.bind,
             peers: self.peer.clone(),
@@ -184,7 +184,7 @@ fn main() -> ExitCode {
     let mut err = stderr.lock();
     let ok = match cli.cmd {
         Cmd::Messages { group } => {
-            cli::print_messages(&mut out, group.as_deref());
+            commands::print_messages(&mut out, group.as_deref());
             true
         }
         Cmd::Decode { hex } => {
@@ -193,29 +193,31 @@ fn main() -> ExitCode {
             } else {
                 Box::new(hex.into_iter())
             };
-            cli::run_lines(lines, &mut out, &mut err, cli::decode_line)
+            commands::run_lines(lines, &mut out, &mut err, jaus::json::decode_line)
         }
-        Cmd::Encode => cli::run_lines(stdin_lines(), &mut out, &mut err, cli::encode_line),
-        Cmd::Tour => cli::tour(&mut out),
+        Cmd::Encode => {
+            commands::run_lines(stdin_lines(), &mut out, &mut err, jaus::json::encode_line)
+        }
+        Cmd::Tour => commands::tour(&mut out),
         Cmd::Node { config, seconds } => {
             let d = seconds.map(|s| std::time::Duration::from_secs_f64(s.max(0.0)));
-            report(&mut err, jaus::netcli::node(&config, d, &mut out))
+            report(&mut err, jaus_cli::net::node(&config, d, &mut out))
         }
         Cmd::Discover { net } => report(
             &mut err,
             net.client()
-                .and_then(|c| jaus::netcli::discover(&c, &mut out)),
+                .and_then(|c| jaus_cli::net::discover(&c, &mut out)),
         ),
         Cmd::Send { net, to, message } => report(
             &mut err,
             net.client()
-                .and_then(|c| jaus::netcli::send(&c, to, &message, &mut out))
+                .and_then(|c| jaus_cli::net::send(&c, to, &message, &mut out))
                 .map(|_| ()),
         ),
         Cmd::Query { net, to, message } => report(
             &mut err,
             net.client()
-                .and_then(|c| jaus::netcli::send(&c, to, &message, &mut out))
+                .and_then(|c| jaus_cli::net::send(&c, to, &message, &mut out))
                 .and_then(|n| {
                     if n == 0 {
                         Err(format!("no reply from {to}"))
@@ -231,7 +233,7 @@ fn main() -> ExitCode {
             ..
         } => report(
             &mut err,
-            jaus::netcli::demo_operator(
+            jaus_cli::net::demo_operator(
                 bind,
                 peer,
                 jaus::net::Framing::Judp,
@@ -247,11 +249,10 @@ fn main() -> ExitCode {
             progress,
             ..
         } => {
-            let opts = jaus::demo::Options {
+            let opts = jaus_sim::demo::Options {
                 seed,
                 position_noise: noise.max(0.0),
                 realtime,
-                out: Some(dir),
                 progress: (progress > 0.0).then(|| std::time::Duration::from_secs_f64(progress)),
                 ..Default::default()
             };
@@ -259,12 +260,21 @@ fn main() -> ExitCode {
                 out,
                 "JAUS demo: subsystem 1 node 1 (primitive and reflexive drivers, pose and velocity sensors, global waypoint and local path-segment drivers, mission spooler, world model, over a simulated skid-steer vehicle), operator 1.2.40.1"
             );
-            match jaus::demo::run(&opts, |line| {
+            match jaus_sim::demo::run(&opts, |line| {
                 let _ = writeln!(std::io::stdout(), "{line}");
             }) {
-                Ok(report) => {
-                    let _ = writeln!(out, "{}", jaus::demo::summary(&report));
-                    true
+                Ok(run) => {
+                    let _ = writeln!(out, "{}", report::summary(&run));
+                    match report::write_svg(&run, &dir) {
+                        Ok(path) => {
+                            let _ = writeln!(out, "plot: {}", path.display());
+                            true
+                        }
+                        Err(e) => {
+                            let _ = writeln!(err, "error: {}: {e}", dir.display());
+                            false
+                        }
+                    }
                 }
                 Err(e) => {
                     let _ = writeln!(err, "demo failed: {e}");

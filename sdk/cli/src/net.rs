@@ -7,12 +7,12 @@ use std::path::Path;
 use std::sync::atomic::AtomicBool;
 use std::time::{Duration, Instant};
 
-use crate::codec::Encode;
-use crate::component::{Component, Config, Refused};
-use crate::components::system_commander::{self, Ctx, SystemCommander};
-use crate::messages::Message;
-use crate::net::{udp, Framing, Node, NodeConfig};
-use crate::{Address, Header};
+use jaus::codec::Encode;
+use jaus::component::{Component, Config, Refused};
+use jaus::components::system_commander::{self, Ctx, SystemCommander};
+use jaus::messages::Message;
+use jaus::net::{udp, Framing, Node, NodeConfig};
+use jaus::{Address, Header};
 
 /// A node configuration file (YAML).
 ///
@@ -119,7 +119,7 @@ pub fn node(config: &Path, duration: Option<Duration>, out: &mut impl Write) -> 
     let t0 = Instant::now();
     let mut node = Node::new(file.node_config(), t0);
     if file.host.iter().any(|h| h == "vehicle") {
-        let (parts, _vehicle) = crate::demo::vehicle(t0, &crate::demo::Options::default());
+        let (parts, _vehicle) = jaus_sim::demo::vehicle(t0, &jaus_sim::demo::Options::default());
         for p in parts {
             node.add_boxed(p)?;
         }
@@ -293,8 +293,8 @@ pub fn demo_operator(
     };
     c.manager.node_name = "operator".into();
     let mut node = Node::new(c, t0);
-    let opts = crate::demo::Options::default();
-    node.add(crate::demo::operator(t0, &opts))?;
+    let opts = jaus_sim::demo::Options::default();
+    node.add(jaus_sim::demo::operator(t0, &opts))?;
     let stop = AtomicBool::new(false);
     let mut last = "";
     let mut done = None;
@@ -302,8 +302,8 @@ pub fn demo_operator(
         if done.is_some() {
             return;
         }
-        if let Some(o) = n.get::<crate::demo::Ocu>(crate::demo::addr::OCU) {
-            let (phase, wp, path, mission) = crate::demo::progress(o);
+        if let Some(o) = n.get::<jaus_sim::demo::Ocu>(jaus_sim::demo::addr::OCU) {
+            let (phase, wp, path, mission) = jaus_sim::demo::progress(o);
             if phase != last {
                 let _ = writeln!(out, "t = {:6.1} s  {phase}", t0.elapsed().as_secs_f64());
                 let _ = out.flush();

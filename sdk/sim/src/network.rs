@@ -9,7 +9,7 @@ use std::time::{Duration, Instant};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 
-use super::node::Node;
+use jaus::net::Node;
 
 /// How the links misbehave.
 #[derive(Debug, Clone, Copy)]

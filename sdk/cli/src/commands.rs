@@ -1,0 +1,101 @@
+//! The offline commands of the `jaus` CLI: the message catalogue, `decode`/`encode` of
+//! JSON lines, and the tour.
+
+use std::io::Write;
+
+use jaus::json::{decode_line, encode_line, REFERENCE_PACKETS};
+use jaus::messages::MESSAGES;
+
+/// Runs `f` over every non-empty line, printing results to `out` and one error line
+/// per failure to `err`. Returns false if any line failed.
+pub fn run_lines(
+    lines: impl Iterator<Item = String>,
+    out: &mut impl Write,
+    err: &mut impl Write,
+    f: impl Fn(&str) -> Result<String, String>,
+) -> bool {
+    let mut ok = true;
+    for (i, line) in lines.enumerate() {
+        if line.trim().is_empty() {
+            continue;
+        }
+        match f(&line) {
+            Ok(s) => {
+                let _ = writeln!(out, "{s}");
+            }
+            Err(e) => {
+                ok = false;
+                let _ = writeln!(err, "line {}: {e}", i + 1);
+            }
+        }
+    }
+    ok
+}
+
+/// Prints the message catalogue as a table.
+pub fn print_messages(out: &mut impl Write, group: Option<&str>) {
+    let _ = writeln!(out, "{:<8} {:<40} {:<22} report", "code", "name", "group");
+    let mut n = 0;
+    let mut rows: Vec<_> = MESSAGES
+        .iter()
+        .filter(|m| group.is_none_or(|g| g == m.group))
+        .collect();
+    rows.sort_by_key(|m| m.code);
+    for m in rows {
+        n += 1;
+        let _ = writeln!(
+            out,
+            "{:<8} {:<40} {:<22} {}",
+            m.code.to_string(),
+            if m.experimental {
+                format!("{} (experimental)", m.name)
+            } else {
+                m.name.to_string()
+            },
+            m.group,
+            m.report.unwrap_or("")
+        );
+    }
+    let _ = writeln!(out, "{n} messages");
+}
+
+/// `jaus tour`: decodes the reference packets, shows their JSON, re-encodes them and
+/// checks the bytes are identical.
+pub fn tour(out: &mut impl Write) -> bool {
+    let mut ok = true;
+    let _ = writeln!(
+        out,
+        "JAUS RA 3.3 SDK: {} messages in {} groups\n",
+        MESSAGES.len(),
+        groups().len()
+    );
+    for (title, hex) in REFERENCE_PACKETS {
+        let _ = writeln!(out, "{title}\n  packet  {hex}");
+        match decode_line(hex).and_then(|json| {
+            let back = encode_line(&json)?;
+            Ok((json, back))
+        }) {
+            Ok((json, back)) => {
+                let same = back == *hex;
+                ok &= same;
+                let _ = writeln!(out, "  decoded {json}");
+                let _ = writeln!(
+                    out,
+                    "  re-encoded identical: {}\n",
+                    if same { "yes" } else { "NO" }
+                );
+            }
+            Err(e) => {
+                ok = false;
+                let _ = writeln!(out, "  error: {e}\n");
+            }
+        }
+    }
+    ok
+}
+
+fn groups() -> Vec<&'static str> {
+    let mut g: Vec<&str> = MESSAGES.iter().map(|m| m.group).collect();
+    g.dedup();
+    g
+}

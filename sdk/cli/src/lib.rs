@@ -1,0 +1,15 @@
+//! # jaus-cli — the `jaus` command-line tool
+//!
+//! The binary's commands live in this library so that they are testable:
+//!
+//! * [`commands`]: the offline commands (`messages`, `decode`, `encode`, `tour`);
+//! * [`net`]: the network commands (`node`, `discover`, `send`, `query`, the demo's
+//!   operator over UDP);
+//! * [`report`]: the demo's table and SVG plot.
+//!
+//! The SDK (`jaus`) carries none of this: a vendor's build pulls no clap, serde_yaml or
+//! tracing-subscriber.
+
+pub mod commands;
+pub mod net;
+pub mod report;

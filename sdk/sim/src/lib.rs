@@ -1,0 +1,21 @@
+//! # jaus-sim — simulators that stand in for hardware and networks
+//!
+//! Everything here exists so that the `jaus` SDK runs end to end on a laptop and in
+//! tests, with no vehicle and no network:
+//!
+//! * [`vehicle`]: a simulated skid-steer ground vehicle implementing every hardware
+//!   trait of `jaus::cores::hardware` (actuators, global/local pose, velocity), on the
+//!   caller's (virtual or real) clock, with seeded sensor noise;
+//! * [`network`]: [`network::SimNet`], several sans-IO [`jaus::net::Node`]s on a
+//!   simulated lossy network (drops, duplicates, delays) with a virtual clock;
+//! * [`demo`]: the scenario of `jaus demo`, a complete simulated subsystem (drivers,
+//!   sensors, spooler, world model) and a scripted operator, measured leg by leg.
+//!
+//! The SDK itself does not depend on this crate; tests, benchmarks and the `jaus` CLI do.
+
+pub mod demo;
+pub mod network;
+pub mod vehicle;
+
+pub use network::{LinkModel, SimNet};
+pub use vehicle::{SimVehicle, VehicleParams};
