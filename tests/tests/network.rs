@@ -454,3 +454,131 @@ fn external_components_join_through_the_node_socket_and_time_out() {
         .components
         .contains_key(&(37, 1)));
 }
+
+/// Issue 19, defect 1: a component process joins a node that every other node already
+/// knows, then leaves. Every node manager subscribes to the others' configuration
+/// (Create Event, every change), so all trees follow: the join within 1 s, the leave
+/// within 1 s of the node's own 3 s timeout of the silent component.
+#[test]
+fn configuration_changes_reach_every_tree_by_events() {
+    let mut net = system(3);
+    net.set_model(LinkModel::default());
+    let t0 = net.now();
+    net.run_for(Duration::from_secs(4));
+    for slot in 1..3 {
+        let n1 = &net.node(slot).unwrap().tree().subsystems[&1].nodes[&1];
+        assert!(
+            matches!(
+                n1.subscription,
+                jaus::net::manager::Subscription::Confirmed(_)
+            ),
+            "node {} subscribed to node 1's configuration: {:?}",
+            slot + 1,
+            n1.subscription
+        );
+    }
+    // A second Global Pose Sensor in its own process, attached to node 1's socket.
+    let camera = Address::new(1, 1, 38, 2);
+    let mut process = jaus::net::Attached::new(
+        jaus::net::AttachedConfig {
+            subsystem: 1,
+            node: 1,
+            node_socket: SimNet::addr(0),
+            framing: Framing::Judp,
+            reassembly: ReassemblyLimits::default(),
+            max_outbox: 1024,
+        },
+        net.now(),
+    );
+    process
+        .add(global_pose_sensor::component(
+            camera,
+            Gps,
+            Config::default(),
+            net.now(),
+        ))
+        .unwrap();
+    let slot = net.add_at("10.0.0.1:40000".parse().unwrap(), process);
+    let joined = net.now();
+    let has = |net: &SimNet, i: usize| {
+        net.node(i).unwrap().tree().subsystems[&1].nodes[&1]
+            .components
+            .contains_key(&(38, 2))
+    };
+    let mut seen = [None; 3];
+    while net.now() < joined + Duration::from_secs(3) {
+        net.run_for(Duration::from_millis(10));
+        for (i, s) in seen.iter_mut().enumerate() {
+            if s.is_none() && has(&net, i) {
+                *s = Some(net.now() - joined);
+            }
+        }
+    }
+    for (i, s) in seen.iter().enumerate() {
+        let s = s.unwrap_or_else(|| panic!("node {} never saw the new component", i + 1));
+        assert!(
+            s <= Duration::from_secs(1),
+            "node {} saw it after {s:?}",
+            i + 1
+        );
+    }
+    // Identified and its services known, like any other component.
+    net.run_for(Duration::from_secs(2));
+    let info = &net.node(2).unwrap().tree().subsystems[&1].nodes[&1].components[&(38, 2)];
+    assert_eq!(info.name.as_deref(), Some("GlobalPoseSensor"));
+    assert_eq!(info.services.as_deref(), Some(&[0, 38][..]));
+    // The process dies.
+    net.kill(slot);
+    let died = net.now();
+    let mut gone = [None; 3];
+    while net.now() < died + Duration::from_secs(6) {
+        net.run_for(Duration::from_millis(10));
+        for (i, g) in gone.iter_mut().enumerate() {
+            if g.is_none() && !has(&net, i) {
+                *g = Some(net.now() - died);
+            }
+        }
+    }
+    for (i, g) in gone.iter().enumerate() {
+        let g = g.unwrap_or_else(|| panic!("node {} never removed it", i + 1));
+        assert!(
+            g <= Duration::from_secs(4),
+            "node {} removed it after {g:?}",
+            i + 1
+        );
+    }
+    println!(
+        "join seen after {seen:?}; leave seen after {gone:?} (from {:?})",
+        t0.elapsed()
+    );
+}
+
+/// Issue 19: under 5 % loss an Event may be lost; the periodic re-query repairs the
+/// tree within the refresh period (10 s).
+#[test]
+fn configuration_is_repaired_under_loss() {
+    let mut net = system(4);
+    net.run_for(Duration::from_secs(4));
+    let camera = Address::new(1, 1, 38, 2);
+    let now = net.now();
+    net.node_mut(0)
+        .unwrap()
+        .add(global_pose_sensor::component(
+            camera,
+            Gps,
+            Config::default(),
+            now,
+        ))
+        .unwrap();
+    net.run_for(Duration::from_secs(11));
+    for i in 0..3 {
+        assert!(
+            net.node(i).unwrap().tree().subsystems[&1].nodes[&1]
+                .components
+                .contains_key(&(38, 2)),
+            "node {}: {}",
+            i + 1,
+            net.node(i).unwrap().tree().render()
+        );
+    }
+}

@@ -4,6 +4,7 @@ use clap::{Parser, Subcommand};
 use jaus_cli::{commands, report};
 use std::io::{BufRead, Write};
 use std::process::ExitCode;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 #[derive(Parser)]
 #[command(
@@ -51,25 +52,55 @@ enum Cmd {
         #[command(flatten)]
         net: NetArgs,
     },
-    /// Send one message (JSON as `jaus decode` prints it) and print what comes back.
+    /// Send messages in one session (arguments, or JSON lines on stdin as they come),
+    /// each after the previous one was answered; prints every message addressed to this
+    /// tool as a timestamped JSON line as it arrives. Control taken in the session is
+    /// held (heartbeats keep this tool in the system) and given back at the end.
     Send {
         #[command(flatten)]
         net: NetArgs,
-        /// Destination address (subsystem.node.component.instance).
+        /// Destination (subsystem.node.component.instance) of messages without a header.
         #[arg(long)]
-        to: jaus::Address,
-        /// The message: {"message": "QueryGlobalPose", "fields": {"presence_vector": 3}}.
-        message: String,
+        to: Option<jaus::Address>,
+        /// Stay this many seconds after the last message (holding control, printing
+        /// what arrives); default: until every message is answered or --wait passed.
+        #[arg(long)]
+        hold: Option<f64>,
+        /// Messages: {"message": "SetTravelSpeed", "fields": {"speed": 2.0}}; `fields` may
+        /// be left out for a message without fields. None: JSON lines from stdin.
+        messages: Vec<String>,
     },
-    /// Like `send`, and exit 1 if no reply arrived.
+    /// Send queries and print their reports; returns as soon as every query is answered
+    /// and exits 1 if one was not within --wait.
     Query {
         #[command(flatten)]
         net: NetArgs,
         /// Destination address.
         #[arg(long)]
-        to: jaus::Address,
-        /// The query.
-        message: String,
+        to: Option<jaus::Address>,
+        /// The queries (as for `send`).
+        messages: Vec<String>,
+    },
+    /// Print every message addressed to this tool as it arrives (timestamped JSON
+    /// lines) until interrupted: service connections (--sc), events, replies to the
+    /// messages given.
+    Watch {
+        #[command(flatten)]
+        net: NetArgs,
+        /// Provider of the service connections, and destination of the messages.
+        #[arg(long)]
+        to: Option<jaus::Address>,
+        /// A service connection to open: REPORT@HZ[:PRESENCE], e.g. ReportGlobalPose@2:0x1ff.
+        #[arg(long)]
+        sc: Vec<String>,
+        /// Stop after this many seconds (default: until interrupted).
+        #[arg(long)]
+        seconds: Option<f64>,
+        /// Also print queries and heartbeats sent to this tool.
+        #[arg(long)]
+        all: bool,
+        /// Messages to send first (as for `send`).
+        messages: Vec<String>,
     },
     /// Run a simulated subsystem: an operator takes control, drives a waypoint mission
     /// and the path segments of Part 1 Figures 5-12/5-14; prints arrival times and
@@ -103,22 +134,27 @@ enum Cmd {
     },
 }
 
-/// Network options of the one-shot commands.
+/// Network options of the commands that act as a component.
 #[derive(clap::Args)]
 struct NetArgs {
-    /// This tool's own address (its node manager is SS.NODE.1.1).
+    /// This tool's own address (a System Commander). On the node of a peer, the tool
+    /// joins that node as one of its components; else it runs a node of its own.
     #[arg(long, default_value = "1.250.40.1")]
     me: jaus::Address,
-    /// Local socket.
-    #[arg(long, default_value = "127.0.0.1:0")]
-    bind: std::net::SocketAddr,
+    /// Local socket (default: port 3794 on an address of its own, e.g. 127.0.0.2:3794,
+    /// because JUDP peers answer port 3794 of the sender's address).
+    #[arg(long)]
+    bind: Option<std::net::SocketAddr>,
+    /// auto (join the peer's node when --me is on it), join, or node.
+    #[arg(long, default_value = "auto")]
+    mode: jaus_cli::net::Mode,
     /// Peer node sockets.
     #[arg(long, default_value = "127.0.0.1:3794")]
     peer: Vec<std::net::SocketAddr>,
     /// Framing: judp or opc.
     #[arg(long, default_value = "judp")]
     framing: String,
-    /// Seconds to listen.
+    /// Seconds to wait for answers (discover: to listen).
     #[arg(long, default_value_t = 2.0)]
     wait: f64,
 }
@@ -136,6 +172,7 @@ impl NetArgs {
             peers: self.peer.clone(),
             framing,
             wait: std::time::Duration::from_secs_f64(self.wait.max(0.0)),
+            mode: self.mode,
         })
     }
 }
@@ -165,8 +202,100 @@ fn report(err: &mut impl Write, r: Result<(), String>) -> bool {
     }
 }
 
+/// Set on Ctrl-C: sessions end cleanly (service connections ended, control released).
+static STOP: AtomicBool = AtomicBool::new(false);
+
+/// `REPORT@HZ[:PRESENCE]` of `watch --sc`.
+fn parse_sc(
+    s: &str,
+    to: Option<jaus::Address>,
+) -> Result<(jaus::Address, jaus::CommandCode, f64, u32), String> {
+    let to = to.ok_or("--sc needs --to: the component that provides the report")?;
+    let (name, rest) = s.split_once('@').ok_or_else(|| {
+        format!("--sc {s}: expected REPORT@HZ[:PRESENCE], e.g. ReportGlobalPose@2:0x1ff")
+    })?;
+    let (hz, pv) = match rest.split_once(':') {
+        Some((hz, pv)) => (hz, Some(pv)),
+        None => (rest, None),
+    };
+    let info = jaus::messages::MESSAGES
+        .iter()
+        .find(|m| m.name == name)
+        .ok_or_else(|| format!("--sc {s}: no message named `{name}` (see `jaus messages`)"))?;
+    let hz: f64 = hz
+        .parse()
+        .map_err(|_| format!("--sc {s}: `{hz}` is not a rate in Hz"))?;
+    if !(hz.is_finite() && hz > 0.0) {
+        return Err(format!("--sc {s}: the rate must be above 0 Hz"));
+    }
+    let pv = match pv {
+        None => 0,
+        Some(p) => {
+            let r = match p.strip_prefix("0x").or_else(|| p.strip_prefix("0X")) {
+                Some(h) => u32::from_str_radix(h, 16),
+                None => p.parse(),
+            };
+            r.map_err(|_| format!("--sc {s}: `{p}` is not a presence vector (decimal or 0x hex)"))?
+        }
+    };
+    Ok((to, info.code, hz, pv))
+}
+
+/// Runs one operator session; an error when a command was refused, input was bad, or
+/// nothing came back at all.
+#[allow(clippy::too_many_arguments)]
+fn session(
+    net: &NetArgs,
+    to: Option<jaus::Address>,
+    messages: &[String],
+    hold: Option<f64>,
+    until_answered: bool,
+    scs: &[(jaus::Address, jaus::CommandCode, f64, u32)],
+    all: bool,
+    out: &mut impl Write,
+) -> Result<jaus_cli::net::Outcome, String> {
+    let c = net.client()?;
+    let mut parsed = Vec::new();
+    for m in messages {
+        let (dest, msg) = jaus_cli::net::parse_message(m)?;
+        let dest = dest
+            .or(to)
+            .ok_or_else(|| format!("{}: no destination: give --to ADDRESS", msg.name()))?;
+        parsed.push((dest, msg));
+    }
+    let script = jaus_cli::net::Script {
+        messages: parsed,
+        stdin: messages.is_empty() && scs.is_empty() && hold.is_none_or(f64::is_finite),
+        service_connections: scs.to_vec(),
+        all,
+        until_answered,
+        hold: hold
+            .filter(|h| h.is_finite())
+            .map(std::time::Duration::from_secs_f64),
+        to,
+    };
+    let stderr = std::io::stderr();
+    let o = c.session(&script, &STOP, out, &mut stderr.lock())?;
+    if !o.heard {
+        return Err(jaus_cli::net::silence_hint(
+            &c.bind
+                .unwrap_or_else(|| "0.0.0.0:3794".parse().expect("literal")),
+            &c.peers,
+            c.wait,
+        ));
+    }
+    if o.naks > 0 {
+        return Err(format!("{} command(s) refused (NAK)", o.naks));
+    }
+    if o.bad_lines > 0 {
+        return Err(format!("{} bad input line(s)", o.bad_lines));
+    }
+    Ok(o)
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    let _ = ctrlc::set_handler(|| STOP.store(true, Ordering::Relaxed));
     let level = match cli.verbose {
         0 => tracing::Level::WARN,
         1 => tracing::Level::INFO,
@@ -201,29 +330,83 @@ fn main() -> ExitCode {
         Cmd::Tour => commands::tour(&mut out),
         Cmd::Node { config, seconds } => {
             let d = seconds.map(|s| std::time::Duration::from_secs_f64(s.max(0.0)));
-            report(&mut err, jaus_cli::net::node(&config, d, &mut out))
+            report(&mut err, jaus_cli::net::node(&config, d, &STOP, &mut out))
         }
         Cmd::Discover { net } => report(
             &mut err,
-            net.client()
-                .and_then(|c| jaus_cli::net::discover(&c, &mut out)),
+            net.client().and_then(|c| {
+                let (tree, heard) = c.discover(&STOP)?;
+                let _ = write!(out, "{}", tree.render());
+                if heard {
+                    Ok(())
+                } else {
+                    Err(jaus_cli::net::silence_hint(
+                        &c.bind
+                            .unwrap_or_else(|| "0.0.0.0:3794".parse().expect("literal")),
+                        &c.peers,
+                        c.wait,
+                    ))
+                }
+            }),
         ),
-        Cmd::Send { net, to, message } => report(
+        Cmd::Send {
+            net,
+            to,
+            hold,
+            messages,
+        } => report(
             &mut err,
-            net.client()
-                .and_then(|c| jaus_cli::net::send(&c, to, &message, &mut out))
-                .map(|_| ()),
+            session(
+                &net,
+                to,
+                &messages,
+                hold.map(|h| h.max(0.0)),
+                hold.is_none(),
+                &[],
+                false,
+                &mut out,
+            )
+            .map(|_| ()),
         ),
-        Cmd::Query { net, to, message } => report(
+        Cmd::Query { net, to, messages } => report(
             &mut err,
-            net.client()
-                .and_then(|c| jaus_cli::net::send(&c, to, &message, &mut out))
-                .and_then(|n| {
-                    if n == 0 {
-                        Err(format!("no reply from {to}"))
-                    } else {
-                        Ok(())
-                    }
+            session(&net, to, &messages, None, true, &[], false, &mut out).and_then(|o| {
+                if o.answered < o.sent {
+                    Err(format!(
+                        "{} of {} queries unanswered within {} s",
+                        o.sent - o.answered,
+                        o.sent,
+                        net.wait
+                    ))
+                } else {
+                    Ok(())
+                }
+            }),
+        ),
+        Cmd::Watch {
+            net,
+            to,
+            sc,
+            seconds,
+            all,
+            messages,
+        } => report(
+            &mut err,
+            sc.iter()
+                .map(|s| parse_sc(s, to))
+                .collect::<Result<Vec<_>, String>>()
+                .and_then(|scs| {
+                    session(
+                        &net,
+                        to,
+                        &messages,
+                        Some(seconds.unwrap_or(f64::INFINITY)),
+                        false,
+                        &scs,
+                        all,
+                        &mut out,
+                    )
+                    .map(|_| ())
                 }),
         ),
         Cmd::Demo {

@@ -1,18 +1,46 @@
-//! The network commands of the `jaus` CLI: `node`, `discover`, `send`, `query`, and the
-//! operator-only demo.
+//! The network commands of the `jaus` CLI: `node`, `discover`, the operator's session
+//! (`send`, `query`, `watch`) and the demo's operator over UDP.
+//!
+//! # The CLI's place in a system
+//!
+//! The CLI is a real component (a System Commander at `--me`), never a second voice for
+//! a node manager it is not:
+//!
+//! * when `--me` is on the node it talks to (e.g. `--me 20.1.40.1` with the peer being
+//!   node 20.1), it **joins that node** as one of its components through the node's
+//!   socket ([`jaus::net::Attached`]): no node manager of its own, heartbeats to the
+//!   node's manager, identification and services answered by its runtime;
+//! * otherwise it runs a **node of its own** (`--me`'s subsystem and node, its own node
+//!   manager) beside the peers.
+//!
+//! `--mode auto` (the default) decides by asking the peers for the identification of
+//! `--me`'s node before anything else: a node that answers as that node is joined.
+//!
+//! # Sockets
+//!
+//! JUDP peers such as OpenJAUS send every reply to **port 3794 of the sender's IP
+//! address**. The default bind is therefore `auto`: port 3794 on a loopback address of
+//! its own (127.0.0.2, .3, ...) when the peers are on loopback, else `0.0.0.0:3794`.
 
-use std::io::Write;
-use std::net::SocketAddr;
+use std::collections::VecDeque;
+use std::io::{BufRead, Write};
+use std::net::{IpAddr, Ipv4Addr, SocketAddr, UdpSocket};
 use std::path::Path;
-use std::sync::atomic::AtomicBool;
-use std::time::{Duration, Instant};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::mpsc;
+use std::time::{Duration, Instant, SystemTime, UNIX_EPOCH};
 
 use jaus::codec::Encode;
 use jaus::component::{Component, Config, Refused};
 use jaus::components::system_commander::{self, Ctx, SystemCommander};
-use jaus::messages::Message;
-use jaus::net::{udp, Framing, Node, NodeConfig};
-use jaus::{Address, Header};
+use jaus::json::JsonPacket;
+use jaus::messages::{Message, ReleaseComponentControl};
+use jaus::net::framing::{Reassembler, ReassemblyLimits};
+use jaus::net::{
+    udp, Attached, AttachedConfig, Datagram, Framing, Node, NodeConfig, Participant, SystemTree,
+};
+use jaus::wire::{AckNak, DataFlag, MessageClass, HEADER_LEN};
+use jaus::{Address, CommandCode, Header, JausMessage};
 
 /// A node configuration file (YAML).
 ///
@@ -77,12 +105,6 @@ impl NodeFile {
                 ));
             }
         }
-        if !f.host.is_empty() && (f.subsystem, f.node) != (1, 1) {
-            return Err(format!(
-                "{}: the built-in vehicle uses the demo addresses: subsystem 1, node 1",
-                path.display()
-            ));
-        }
         Ok(f)
     }
 
@@ -112,16 +134,68 @@ impl NodeFile {
     }
 }
 
+/// Shows a system tree at most once per `every`, and only when it changed.
+#[derive(Debug)]
+pub struct TreePrinter {
+    every: Duration,
+    shown_version: Option<u64>,
+    shown_text: String,
+    last: Option<Instant>,
+}
+
+impl TreePrinter {
+    /// At most once per `every`.
+    pub fn new(every: Duration) -> Self {
+        Self {
+            every,
+            shown_version: None,
+            shown_text: String::new(),
+            last: None,
+        }
+    }
+
+    /// The text to print now, if any: the tree is rendered only when its version moved
+    /// and `every` has passed since the last print, and printed only if the text
+    /// differs.
+    pub fn poll(&mut self, now: Instant, version: u64, tree: &SystemTree) -> Option<String> {
+        if self.shown_version == Some(version)
+            || self
+                .last
+                .is_some_and(|t| now.saturating_duration_since(t) < self.every)
+        {
+            return None;
+        }
+        self.shown_version = Some(version);
+        let text = tree.render();
+        if text == self.shown_text {
+            return None;
+        }
+        self.last = Some(now);
+        self.shown_text.clone_from(&text);
+        Some(text)
+    }
+}
+
 /// `jaus node --config FILE`: runs a node until interrupted (or for `duration`),
-/// printing the system tree whenever it changes.
-pub fn node(config: &Path, duration: Option<Duration>, out: &mut impl Write) -> Result<(), String> {
+/// printing the system tree when it changed, at most once a second.
+pub fn node(
+    config: &Path,
+    duration: Option<Duration>,
+    stop: &AtomicBool,
+    out: &mut impl Write,
+) -> Result<(), String> {
     let file = NodeFile::load(config)?;
     let t0 = Instant::now();
     let mut node = Node::new(file.node_config(), t0);
     if file.host.iter().any(|h| h == "vehicle") {
-        let (parts, _vehicle) = jaus_sim::demo::vehicle(t0, &jaus_sim::demo::Options::default());
+        let (parts, _vehicle) = jaus_sim::demo::vehicle_at(
+            t0,
+            &jaus_sim::demo::Options::default(),
+            file.subsystem,
+            file.node,
+        );
         for p in parts {
-            node.add_boxed(p)?;
+            node.add_boxed(p).map_err(|e| e.to_string())?;
         }
     }
     let _ = writeln!(
@@ -133,144 +207,738 @@ pub fn node(config: &Path, duration: Option<Duration>, out: &mut impl Write) -> 
         file.peers
     );
     let _ = out.flush();
-    let stop = AtomicBool::new(false);
-    let mut last = String::new();
-    udp::run(&mut node, file.bind, &stop, duration.map(|d| t0 + d), |n| {
-        let now = n.tree().render();
-        if now != last {
+    let mut printer = TreePrinter::new(Duration::from_secs(1));
+    udp::run(&mut node, file.bind, stop, duration.map(|d| t0 + d), |n| {
+        let now = Instant::now();
+        if let Some(text) = printer.poll(now, n.tree_version(), n.tree()) {
             let _ = writeln!(
                 out,
-                "--- system tree at {:.1} s\n{now}",
+                "--- system tree at {:.1} s\n{text}",
                 t0.elapsed().as_secs_f64()
             );
             let _ = out.flush();
-            last = now;
         }
     })
     .map_err(|e| format!("{}: {e}", file.bind))
 }
 
-/// Options of the one-shot commands (`discover`, `send`, `query`).
+/// How the CLI takes its place (see the module docs).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Mode {
+    /// Join the peer that answers as `--me`'s node; else run a node of its own.
+    #[default]
+    Auto,
+    /// Join the peer's node as one of its components.
+    Join,
+    /// Run a node of its own.
+    Node,
+}
+
+impl std::str::FromStr for Mode {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "auto" => Ok(Mode::Auto),
+            "join" => Ok(Mode::Join),
+            "node" => Ok(Mode::Node),
+            other => Err(format!("unknown mode `{other}` (auto, join or node)")),
+        }
+    }
+}
+
+/// Options of the network commands that act as a component (`discover`, `send`,
+/// `query`, `watch`).
 #[derive(Debug, Clone)]
 pub struct Client {
-    /// This node's address (its components use it).
+    /// This tool's address (a System Commander).
     pub me: Address,
-    /// Local socket.
-    pub bind: SocketAddr,
+    /// Local socket (`None`: chosen as the module docs say).
+    pub bind: Option<SocketAddr>,
     /// Peers.
     pub peers: Vec<SocketAddr>,
     /// Framing.
     pub framing: Framing,
-    /// How long to listen.
+    /// How long to wait for answers.
     pub wait: Duration,
+    /// How to take a place in the system.
+    pub mode: Mode,
 }
 
-/// The CLI's own component: a System Commander that records what it receives. Being a
-/// real component, it answers the core queries (identification, services, status) other
-/// node managers send it during discovery.
+/// The CLI's own component: a System Commander whose runtime answers the discovery
+/// queries of node managers, and which opens and ends the service connections it is
+/// asked for.
 #[derive(Debug, Default)]
-pub struct Recorder {
-    received: Vec<(Address, Message)>,
+pub struct Commander {
+    /// Service connections to open: (provider, report, rate, presence vector).
+    pub open: Vec<(Address, CommandCode, f64, u32)>,
+    /// Service connections to end.
+    pub close: Vec<(Address, CommandCode)>,
 }
 
-/// Most messages the CLI keeps.
-const RECORD_LIMIT: usize = 100_000;
-
-impl SystemCommander for Recorder {
+impl SystemCommander for Commander {
     fn on_other_message(
         &mut self,
-        ctx: &mut Ctx<'_>,
-        msg: &Message,
+        _ctx: &mut Ctx<'_>,
+        _msg: &Message,
     ) -> Result<Option<Message>, Refused> {
-        if self.received.len() < RECORD_LIMIT {
-            self.received
-                .push((ctx.source().unwrap_or_default(), msg.clone()));
-        }
+        // Everything addressed to the CLI is printed by the session's tap.
         Ok(None)
     }
+
+    fn tick(&mut self, ctx: &mut Ctx<'_>) {
+        for (p, r, hz, pv) in self.open.drain(..) {
+            ctx.create_service_connection(p, r, hz, pv);
+        }
+        for (p, r) in self.close.drain(..) {
+            ctx.terminate_service_connection(p, r);
+        }
+    }
 }
 
-type Tool = Component<system_commander::Dispatch<Recorder>>;
+type Tool = Component<system_commander::Dispatch<Commander>>;
+
+/// The CLI on the network: a node of its own or components attached to the peer's node.
+#[derive(Debug)]
+enum Link {
+    Node(Box<Node>),
+    Attached(Box<Attached>),
+}
+
+impl Link {
+    fn host(&mut self) -> &mut dyn Participant {
+        match self {
+            Link::Node(n) => n.as_mut(),
+            Link::Attached(a) => a.as_mut(),
+        }
+    }
+
+    fn tool(&mut self, me: Address) -> Option<&mut Tool> {
+        match self {
+            Link::Node(n) => n.get_mut::<Tool>(me),
+            Link::Attached(a) => a.get_mut::<Tool>(me),
+        }
+    }
+
+    fn send(&mut self, now: Instant, header: Header, body: Vec<u8>) {
+        match self {
+            Link::Node(n) => n.send(now, header, body),
+            Link::Attached(a) => a.send(now, header, body),
+        }
+    }
+
+    /// Whether messages to `to` can go now (its node located, or attached).
+    fn reaches(&self, to: Address) -> bool {
+        match self {
+            Link::Node(n) => {
+                to.subsystem == 255
+                    || to.node == 255
+                    || n.peers().contains_key(&(to.subsystem, to.node))
+            }
+            Link::Attached(_) => true,
+        }
+    }
+}
+
+/// One line of output: a packet received (or sent, for the record) with its time.
+#[derive(Debug, serde::Serialize)]
+struct Line<'a> {
+    /// Seconds since the session started.
+    t: f64,
+    /// UTC, seconds since 1970-01-01.
+    utc: f64,
+    #[serde(flatten)]
+    packet: &'a JsonPacket,
+}
+
+/// An acknowledgement line (ACK/NAK carry no body).
+#[derive(Debug, serde::Serialize)]
+struct AckLine<'a> {
+    t: f64,
+    utc: f64,
+    header: &'a Header,
+    /// The message acknowledged.
+    acknowledges: &'a str,
+}
+
+/// A packet addressed to the CLI that did not decode.
+#[derive(Debug, serde::Serialize)]
+struct RawLine<'a> {
+    t: f64,
+    utc: f64,
+    header: &'a Header,
+    error: String,
+    body: String,
+}
+
+/// What the tap saw of one datagram.
+enum Tapped {
+    Packet(Box<JsonPacket>),
+    Ack(Header),
+    Raw(Header, Vec<u8>, String),
+}
+
+/// Reads what arrives for the CLI, before the hosts do, so that every message is
+/// printed with its real header (flags, service-connection sequence numbers) and ACK/NAK
+/// replies are seen.
+struct Tap {
+    me: Address,
+    framing: Framing,
+    reassembler: Reassembler,
+}
+
+impl Tap {
+    fn see(&mut self, now: Instant, datagram: &[u8]) -> Option<Tapped> {
+        let packet = self.framing.decode(datagram).ok()?;
+        let header = Header::parse(packet).ok()?;
+        if packet.len() - HEADER_LEN != usize::from(header.data_size)
+            || !header.destination.matches(&self.me)
+            || header.source == self.me
+        {
+            return None;
+        }
+        if matches!(header.ack_nak, AckNak::Ack | AckNak::Nak) {
+            return Some(Tapped::Ack(header));
+        }
+        let body = &packet[HEADER_LEN..];
+        let (header, body) = if header.data_flag == DataFlag::Single {
+            (header, body.to_vec())
+        } else {
+            self.reassembler.push(now, &header, body)?
+        };
+        Some(match Message::decode(header.command_code, &body) {
+            Ok(message) => Tapped::Packet(Box::new(JsonPacket { header, message })),
+            Err(e) => Tapped::Raw(header, body, e.to_string()),
+        })
+    }
+}
+
+/// What the session does with its time.
+#[derive(Debug, Clone, Default)]
+pub struct Script {
+    /// Messages to send, in order, each to its destination.
+    pub messages: Vec<(Address, Message)>,
+    /// Also take messages from standard input (JSON lines), as they come.
+    pub stdin: bool,
+    /// Service connections to open: (provider, report, rate Hz, presence vector).
+    pub service_connections: Vec<(Address, CommandCode, f64, u32)>,
+    /// Print incoming query messages and heartbeats too.
+    pub all: bool,
+    /// End as soon as every message sent is answered (query → its report, command →
+    /// ACK or NAK), or `wait` after the last one was sent when some are not.
+    pub until_answered: bool,
+    /// Stay this long after the last message (holding control, watching): `None` runs
+    /// until interrupted.
+    pub hold: Option<Duration>,
+    /// Default destination of stdin lines without one.
+    pub to: Option<Address>,
+}
+
+/// What a session saw.
+#[derive(Debug, Default, Clone, PartialEq, Eq)]
+pub struct Outcome {
+    /// Messages printed.
+    pub printed: usize,
+    /// Messages sent.
+    pub sent: usize,
+    /// Sent messages answered (report, ACK or NAK).
+    pub answered: usize,
+    /// NAKs received.
+    pub naks: usize,
+    /// Whether anything at all came from a peer.
+    pub heard: bool,
+    /// Whether the CLI joined the peer's node (else it ran a node of its own).
+    pub joined: bool,
+    /// Bad input lines.
+    pub bad_lines: usize,
+}
+
+/// A message parsed from the CLI: `{"message": NAME, "fields": {...}}` (`fields` may be
+/// left out for a message without fields), or the whole packet as `jaus decode` prints
+/// it (its header's destination is then used when no `--to` is given).
+pub fn parse_message(json: &str) -> Result<(Option<Address>, Message), String> {
+    let mut v: serde_json::Value =
+        serde_json::from_str(json).map_err(|e| format!("bad JSON: {e}"))?;
+    let obj = v
+        .as_object_mut()
+        .ok_or("a message is a JSON object: {\"message\": NAME, \"fields\": {...}}")?;
+    if !obj.contains_key("fields") {
+        obj.insert(
+            "fields".into(),
+            serde_json::Value::Object(Default::default()),
+        );
+    }
+    let to = obj
+        .get("header")
+        .and_then(|h| h.get("destination"))
+        .and_then(|d| serde_json::from_value::<Address>(d.clone()).ok());
+    let name = obj
+        .get("message")
+        .and_then(|m| m.as_str())
+        .ok_or("missing \"message\": the message name, e.g. \"QueryGlobalPose\"")?
+        .to_string();
+    obj.remove("header");
+    let msg: Message = serde_json::from_value(v).map_err(|e| format!("{name}: {e}"))?;
+    Ok((to, msg))
+}
+
+/// Picks the local socket: the one asked for, or port 3794 on an address of its own
+/// (see the module docs).
+pub fn bind_socket(bind: Option<SocketAddr>, peers: &[SocketAddr]) -> Result<UdpSocket, String> {
+    if let Some(b) = bind {
+        return UdpSocket::bind(b).map_err(|e| format!("cannot bind {b}: {e}"));
+    }
+    let loopback = !peers.is_empty() && peers.iter().all(|p| p.ip().is_loopback());
+    if loopback {
+        for x in 2..=254u8 {
+            let ip = IpAddr::V4(Ipv4Addr::new(127, 0, 0, x));
+            if peers.iter().any(|p| p.ip() == ip) {
+                continue;
+            }
+            if let Ok(s) = UdpSocket::bind(SocketAddr::new(ip, 3794)) {
+                return Ok(s);
+            }
+        }
+        return Err("no free port 3794 on 127.0.0.2-254: JUDP peers answer port 3794 of the sender's address; give --bind ADDRESS:3794 with an address of this host".into());
+    }
+    let any = SocketAddr::new(IpAddr::V4(Ipv4Addr::UNSPECIFIED), 3794);
+    UdpSocket::bind(any).map_err(|e| {
+        format!("cannot bind {any}: {e}. JUDP peers (OpenJAUS) answer port 3794 of the sender's address, so this tool needs port 3794 on an address of its own: give --bind ADDRESS:3794 (or --bind ADDRESS:0 when the peer is a jaus node, which answers any port)")
+    })
+}
+
+/// Says why nothing came back when nothing did.
+pub fn silence_hint(socket: &SocketAddr, peers: &[SocketAddr], wait: Duration) -> String {
+    format!(
+        "no datagram from {peers:?} within {:.1} s. Is a node running there? JUDP peers (OpenJAUS) send their answers to port 3794 of the sender's IP address: this tool listened on {socket}{}",
+        wait.as_secs_f64(),
+        if socket.port() == 3794 {
+            "".to_string()
+        } else {
+            "; bind to port 3794 of an address of your own (--bind 127.0.0.2:3794)".to_string()
+        }
+    )
+}
+
+fn unix_now() -> f64 {
+    SystemTime::now()
+        .duration_since(UNIX_EPOCH)
+        .map_or(0.0, |d| d.as_secs_f64())
+}
 
 impl Client {
-    fn node(&self, t0: Instant) -> Result<Node, String> {
-        let mut c = NodeConfig {
-            subsystem: self.me.subsystem,
-            node: self.me.node,
-            framing: self.framing,
-            peers: self.peers.clone(),
-            ..NodeConfig::default()
+    /// Asks the peers who speaks for `--me`'s node: the peer whose node manager answers
+    /// as that node is joined.
+    fn probe(&self, socket: &UdpSocket) -> Option<SocketAddr> {
+        let nm = Address::new(self.me.subsystem, self.me.node, 1, 1);
+        let q = jaus::messages::QueryIdentification {
+            query_field: jaus::messages::QueryLevel::Node,
         };
-        c.manager.node_name = "jaus CLI".into();
-        let mut node = Node::new(c, t0);
-        if self.me.component != 1 {
-            let cfg = Config {
-                heartbeat: None,
-                ..Config::default()
+        let header = Header::new(jaus::messages::QueryIdentification::CODE, nm, self.me);
+        let body = q.to_bytes().ok()?;
+        let packet = jaus::Packet::new(header, body).to_bytes().ok()?;
+        let bytes = self.framing.encode(&packet);
+        for p in &self.peers {
+            let _ = socket.send_to(&bytes, p);
+        }
+        let deadline = Instant::now() + Duration::from_millis(400);
+        let mut buf = vec![0u8; 8192];
+        while let Some(left) = deadline.checked_duration_since(Instant::now()) {
+            let _ = socket.set_read_timeout(Some(left.max(Duration::from_millis(1))));
+            let Ok((n, from)) = socket.recv_from(&mut buf) else {
+                break;
             };
-            node.add(system_commander::component(
-                self.me,
-                Recorder::default(),
-                cfg,
-                t0,
-            ))?;
+            let Ok(packet) = self.framing.decode(&buf[..n]) else {
+                continue;
+            };
+            if let Ok(h) = Header::parse(packet) {
+                if h.source == nm && h.command_code == jaus::messages::ReportIdentification::CODE {
+                    return Some(from);
+                }
+            }
         }
-        Ok(node)
+        None
     }
-}
 
-/// `jaus discover`: listens, then prints the system tree.
-pub fn discover(c: &Client, out: &mut impl Write) -> Result<(), String> {
-    let t0 = Instant::now();
-    let mut node = c.node(t0)?;
-    let stop = AtomicBool::new(false);
-    udp::run(&mut node, c.bind, &stop, Some(t0 + c.wait), |_| {})
-        .map_err(|e| format!("{}: {e}", c.bind))?;
-    let _ = write!(out, "{}", node.tree().render());
-    Ok(())
-}
+    fn link(&self, socket: &UdpSocket, t0: Instant) -> Result<Link, String> {
+        if !self.me.is_valid() || self.me.component == 1 {
+            return Err(format!(
+                "--me {}: not a component address (ids 1-254, component not 1: the node manager's)",
+                self.me
+            ));
+        }
+        let join = match self.mode {
+            Mode::Node => None,
+            Mode::Join => Some(
+                self.probe(socket)
+                    .or(self.peers.first().copied())
+                    .ok_or("--mode join needs a --peer: the socket of the node to join")?,
+            ),
+            Mode::Auto => self.probe(socket),
+        };
+        let tool = system_commander::component(
+            self.me,
+            Commander::default(),
+            Config {
+                identification: Some("jaus CLI".into()),
+                ..Config::default()
+            },
+            t0,
+        );
+        Ok(match join {
+            Some(node_socket) => {
+                tracing::info!(me = %self.me, %node_socket, "joining the node as one of its components");
+                let mut a = Attached::new(
+                    AttachedConfig {
+                        subsystem: self.me.subsystem,
+                        node: self.me.node,
+                        node_socket,
+                        framing: self.framing,
+                        reassembly: ReassemblyLimits::default(),
+                        max_outbox: 8192,
+                    },
+                    t0,
+                );
+                a.add(tool).map_err(|e| e.to_string())?;
+                Link::Attached(Box::new(a))
+            }
+            None => {
+                let mut c = NodeConfig {
+                    subsystem: self.me.subsystem,
+                    node: self.me.node,
+                    framing: self.framing,
+                    peers: self.peers.clone(),
+                    ..NodeConfig::default()
+                };
+                c.manager.node_name = "jaus CLI".into();
+                c.manager.subsystem_name = "jaus CLI".into();
+                let mut node = Node::new(c, t0);
+                node.add(tool).map_err(|e| e.to_string())?;
+                Link::Node(Box::new(node))
+            }
+        })
+    }
 
-/// `jaus send` / `jaus query`: sends `json` (a message as `jaus decode` prints it:
-/// `{"message": NAME, "fields": {...}}`) to `to`, then prints every message received
-/// within the wait as a JSON line.
-pub fn send(c: &Client, to: Address, json: &str, out: &mut impl Write) -> Result<usize, String> {
-    let msg: Message = serde_json::from_str(json).map_err(|e| format!("bad message JSON: {e}"))?;
-    let body = msg.to_bytes().map_err(|e| format!("{}: {e}", msg.name()))?;
-    let t0 = Instant::now();
-    let mut node = c.node(t0)?;
-    let stop = AtomicBool::new(false);
-    let mut sent = false;
-    let me = c.me;
-    udp::run(&mut node, c.bind, &stop, Some(t0 + c.wait), |n| {
-        // Once the destination's node is located (or at once for a broadcast), send.
-        if !sent
-            && (n.peers().contains_key(&(to.subsystem, to.node))
-                || to.subsystem == 255
-                || to.node == 255
-                || t0.elapsed() > Duration::from_millis(300))
-        {
-            sent = true;
+    /// Runs one session: takes its place, sends `script`'s messages in order (each
+    /// after the previous one was answered, or after a short pause when the receiver
+    /// does not acknowledge), opens its service connections, prints every message
+    /// addressed to it as a timestamped JSON line as it arrives, and at the end ends
+    /// its service connections and gives back the control it took.
+    pub fn session(
+        &self,
+        script: &Script,
+        stop: &AtomicBool,
+        out: &mut impl Write,
+        err: &mut impl Write,
+    ) -> Result<Outcome, String> {
+        let socket = bind_socket(self.bind, &self.peers)?;
+        let local = socket.local_addr().map_err(|e| e.to_string())?;
+        let t0 = Instant::now();
+        let mut link = self.link(&socket, t0)?;
+        let mut outcome = Outcome {
+            joined: matches!(link, Link::Attached(_)),
+            ..Outcome::default()
+        };
+        let me = self.me;
+        let lines = script.stdin.then(stdin_reader);
+        let mut queue: VecDeque<(Address, Message)> = script.messages.iter().cloned().collect();
+        let mut stdin_open = lines.is_some();
+        // The message waiting for its answer: (code answering it, destination, deadline).
+        let mut pending: Option<(Option<CommandCode>, Address, CommandCode, Instant)> = None;
+        let mut last_sent: Option<Instant> = None;
+        let mut controlled: Vec<Address> = Vec::new();
+        let mut opened = false;
+        let mut tap = Tap {
+            me,
+            framing: self.framing,
+            reassembler: Reassembler::new(ReassemblyLimits::default()),
+        };
+        let mut done = false;
+        let step = Duration::from_millis(500);
+        let mut buf = vec![0u8; 8 + 4096 + 64];
+        let _ = socket.set_nonblocking(false);
+        loop {
             let now = Instant::now();
-            n.send(now, Header::new(msg.code(), to, me), body.clone());
+            if stop.load(Ordering::Relaxed) {
+                break;
+            }
+            // Input lines.
+            if let Some(rx) = &lines {
+                loop {
+                    match rx.try_recv() {
+                        Ok(line) => {
+                            if line.trim().is_empty() {
+                                continue;
+                            }
+                            match parse_message(&line) {
+                                Ok((to, m)) => match to.or(script.to) {
+                                    Some(to) => queue.push_back((to, m)),
+                                    None => {
+                                        outcome.bad_lines += 1;
+                                        let _ = writeln!(err, "error: {}: no destination (--to, or a header with a destination)", m.name());
+                                    }
+                                },
+                                Err(e) => {
+                                    outcome.bad_lines += 1;
+                                    let _ = writeln!(err, "error: {e}");
+                                }
+                            }
+                        }
+                        Err(mpsc::TryRecvError::Empty) => break,
+                        Err(mpsc::TryRecvError::Disconnected) => {
+                            stdin_open = false;
+                            break;
+                        }
+                    }
+                }
+            }
+            // The next message, once the previous one is answered or timed out.
+            if pending.is_some_and(|p| now >= p.3) {
+                pending = None;
+            }
+            if pending.is_none() {
+                if let Some((to, _)) = queue.front() {
+                    if link.reaches(*to)
+                        || now.saturating_duration_since(t0) > Duration::from_millis(300)
+                    {
+                        let (to, msg) = queue.pop_front().expect("front checked");
+                        let body = msg.to_bytes().map_err(|e| format!("{}: {e}", msg.name()))?;
+                        let code = msg.code();
+                        let mut header = Header::new(code, to, me);
+                        let class = code.class();
+                        if class == MessageClass::Command {
+                            header.ack_nak = AckNak::Request;
+                        }
+                        if matches!(msg, Message::RequestComponentControl(_)) {
+                            controlled.push(to);
+                        }
+                        if matches!(msg, Message::ReleaseComponentControl(_)) {
+                            controlled.retain(|a| *a != to);
+                        }
+                        let answer = match class {
+                            MessageClass::Query => jaus::MessageInfo::of(code)
+                                .and_then(|i| i.report)
+                                .and_then(|r| jaus::messages::MESSAGES.iter().find(|m| m.name == r))
+                                .map(|m| m.code)
+                                .or(code.complement()),
+                            _ => None,
+                        };
+                        let wait = if class == MessageClass::Query {
+                            self.wait
+                        } else {
+                            step
+                        };
+                        pending = Some((answer, to, code, now + wait));
+                        link.send(now, header, body);
+                        outcome.sent += 1;
+                        last_sent = Some(now);
+                    }
+                }
+            }
+            if !opened && !script.service_connections.is_empty() {
+                opened = true;
+                if let Some(t) = link.tool(me) {
+                    t.behaviour_mut()
+                        .0
+                        .open
+                        .extend(script.service_connections.iter().copied());
+                }
+            }
+            // Done?
+            let idle = queue.is_empty() && pending.is_none() && !stdin_open;
+            if idle && !done {
+                let since = last_sent.unwrap_or(t0);
+                let all_answered = outcome.answered >= outcome.sent;
+                let finished = match script.hold {
+                    Some(h) => now.saturating_duration_since(since) >= h,
+                    None => false,
+                } || (script.until_answered
+                    && (all_answered || now.saturating_duration_since(since) >= self.wait));
+                if finished {
+                    done = true;
+                }
+            }
+            if done {
+                break;
+            }
+            // The network.
+            let host = link.host();
+            let wake = host
+                .poll_timeout()
+                .map_or(Duration::from_millis(50), |t| {
+                    t.saturating_duration_since(Instant::now())
+                })
+                .clamp(Duration::from_micros(100), Duration::from_millis(50));
+            let _ = socket.set_read_timeout(Some(wake));
+            match socket.recv_from(&mut buf) {
+                Ok((n, from)) => {
+                    let now = Instant::now();
+                    if self.peers.contains(&from) || matches!(link, Link::Attached(_)) {
+                        outcome.heard = true;
+                    }
+                    if let Some(seen) = tap.see(now, &buf[..n]) {
+                        let (t, utc) = ((now - t0).as_secs_f64(), unix_now());
+                        match seen {
+                            Tapped::Ack(h) => {
+                                let name =
+                                    jaus::MessageInfo::of(h.command_code).map_or("?", |i| i.name);
+                                if let Some(p) =
+                                    pending.filter(|p| p.1 == h.source && p.2 == h.command_code)
+                                {
+                                    let _ = p;
+                                    pending = None;
+                                }
+                                outcome.answered += 1;
+                                if h.ack_nak == AckNak::Nak {
+                                    outcome.naks += 1;
+                                    let _ = writeln!(err, "NAK from {} for {name}: refused (the receiver's log names the reason)", h.source);
+                                }
+                                let line = AckLine {
+                                    t,
+                                    utc,
+                                    header: &h,
+                                    acknowledges: name,
+                                };
+                                let _ = writeln!(
+                                    out,
+                                    "{}",
+                                    serde_json::to_string(&line).unwrap_or_default()
+                                );
+                                outcome.printed += 1;
+                            }
+                            Tapped::Packet(p) => {
+                                let code = p.header.command_code;
+                                if pending.is_some_and(|q| {
+                                    q.0 == Some(code) && q.1.matches(&p.header.source)
+                                }) {
+                                    pending = None;
+                                    outcome.answered += 1;
+                                }
+                                let noise = code.class() == MessageClass::Query
+                                    || matches!(p.message, Message::ReportHeartbeatPulse(_));
+                                if script.all || !noise {
+                                    let line = Line { t, utc, packet: &p };
+                                    let _ = writeln!(
+                                        out,
+                                        "{}",
+                                        serde_json::to_string(&line).unwrap_or_default()
+                                    );
+                                    outcome.printed += 1;
+                                }
+                            }
+                            Tapped::Raw(h, body, e) => {
+                                let line = RawLine {
+                                    t,
+                                    utc,
+                                    header: &h,
+                                    error: e,
+                                    body: jaus::hex::encode(&body),
+                                };
+                                let _ = writeln!(
+                                    out,
+                                    "{}",
+                                    serde_json::to_string(&line).unwrap_or_default()
+                                );
+                                outcome.printed += 1;
+                            }
+                        }
+                        let _ = out.flush();
+                    }
+                    link.host().handle_datagram(now, from, &buf[..n]);
+                }
+                Err(e)
+                    if matches!(
+                        e.kind(),
+                        std::io::ErrorKind::WouldBlock
+                            | std::io::ErrorKind::TimedOut
+                            | std::io::ErrorKind::ConnectionReset
+                    ) => {}
+                Err(e) => return Err(format!("{local}: {e}")),
+            }
+            let host = link.host();
+            host.handle_timeout(Instant::now());
+            flush(host, &socket);
         }
-    })
-    .map_err(|e| format!("{}: {e}", c.bind))?;
-    let tool = node.get::<Tool>(me).ok_or("no local component")?;
-    let asked_heartbeat = matches!(msg, Message::QueryHeartbeatPulse(_));
-    let mut n = 0;
-    for (source, m) in &tool.behaviour().0.received {
-        // Heartbeats broadcast by the other nodes are not an answer (unless asked for).
-        if matches!(m, Message::ReportHeartbeatPulse(_)) && !asked_heartbeat {
-            continue;
+        // End cleanly: service connections ended, control given back.
+        let now = Instant::now();
+        if let Some(t) = link.tool(me) {
+            let sc: Vec<(Address, CommandCode)> = script
+                .service_connections
+                .iter()
+                .map(|s| (s.0, s.1))
+                .collect();
+            t.behaviour_mut().0.close.extend(sc);
         }
-        let line = serde_json::json!({
-            "source": source.to_string(),
-            "message": m,
-        });
-        let _ = writeln!(out, "{line}");
-        n += 1;
+        for to in controlled {
+            if let Ok(body) = (ReleaseComponentControl {}).to_bytes() {
+                link.send(
+                    now,
+                    Header::new(ReleaseComponentControl::CODE, to, me),
+                    body,
+                );
+            }
+        }
+        let host = link.host();
+        host.handle_timeout(now + Duration::from_millis(60));
+        flush(host, &socket);
+        Ok(outcome)
     }
-    Ok(n)
+
+    /// `jaus discover`: a node of its own listens for `wait`, then the system tree.
+    pub fn discover(&self, stop: &AtomicBool) -> Result<(SystemTree, bool), String> {
+        let socket = bind_socket(self.bind, &self.peers)?;
+        let t0 = Instant::now();
+        let client = Client {
+            mode: Mode::Node,
+            ..self.clone()
+        };
+        let Link::Node(mut node) = client.link(&socket, t0)? else {
+            return Err("discover runs a node of its own".into());
+        };
+        let mut heard = false;
+        let peers = self.peers.clone();
+        let end = t0 + self.wait;
+        let mut buf = vec![0u8; 8 + 4096 + 64];
+        while Instant::now() < end && !stop.load(Ordering::Relaxed) {
+            let _ = socket.set_read_timeout(Some(Duration::from_millis(20)));
+            if let Ok((n, from)) = socket.recv_from(&mut buf) {
+                heard |= peers.contains(&from);
+                node.handle_datagram(Instant::now(), from, &buf[..n]);
+            }
+            node.handle_timeout(Instant::now());
+            flush(node.as_mut(), &socket);
+        }
+        Ok((node.tree().clone(), heard))
+    }
+
+    /// The socket this client would use, for messages.
+    pub fn describe_bind(&self) -> String {
+        self.bind
+            .map_or("auto (port 3794 on an address of its own)".into(), |b| {
+                b.to_string()
+            })
+    }
+}
+
+fn flush(host: &mut dyn Participant, socket: &UdpSocket) {
+    while let Some(Datagram { to, bytes }) = host.poll_transmit() {
+        if let Err(e) = socket.send_to(&bytes, to) {
+            tracing::debug!(%to, "send failed: {e}");
+        }
+    }
+}
+
+/// Standard input, line by line, on a thread of its own.
+fn stdin_reader() -> mpsc::Receiver<String> {
+    let (tx, rx) = mpsc::channel();
+    std::thread::spawn(move || {
+        for line in std::io::stdin().lock().lines() {
+            let Ok(line) = line else { break };
+            if tx.send(line).is_err() {
+                break;
+            }
+        }
+    });
+    rx
 }
 
 /// `jaus demo --ocu-only`: the demo's operator on its own node (1.2), driving a vehicle
@@ -294,7 +962,8 @@ pub fn demo_operator(
     c.manager.node_name = "operator".into();
     let mut node = Node::new(c, t0);
     let opts = jaus_sim::demo::Options::default();
-    node.add(jaus_sim::demo::operator(t0, &opts))?;
+    node.add(jaus_sim::demo::operator(t0, &opts))
+        .map_err(|e| e.to_string())?;
     let stop = AtomicBool::new(false);
     let mut last = "";
     let mut done = None;
@@ -311,7 +980,7 @@ pub fn demo_operator(
             }
             if phase == "done" {
                 done = Some((wp, path, mission));
-                stop.store(true, std::sync::atomic::Ordering::Relaxed);
+                stop.store(true, Ordering::Relaxed);
             }
         }
     })

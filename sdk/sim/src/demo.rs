@@ -65,6 +65,11 @@ pub mod addr {
     pub const WM: Address = Address::new(1, 1, 61, 1);
     /// The operator (System Commander).
     pub const OCU: Address = Address::new(1, 2, 40, 1);
+
+    /// `a` moved to node `node` of subsystem `ss`.
+    pub const fn on(a: Address, ss: u8, node: u8) -> Address {
+        Address::new(ss, node, a.component, a.instance)
+    }
 }
 
 /// Options of a demo run.
@@ -527,12 +532,12 @@ fn detour(from: Vector2<f64>, to: Vector2<f64>, c: Vector2<f64>, r: f64) -> (f64
     (p.x, p.y)
 }
 
-fn driver_config(pose_sensor: Address) -> DriverConfig {
+fn driver_config(pose_sensor: Address, ss: u8, node: u8) -> DriverConfig {
     DriverConfig {
         // Part 1 Figures 5-9 and 5-16: driving through the Reflexive Driver.
-        output: addr::RD,
+        output: addr::on(addr::RD, ss, node),
         pose_sensor,
-        velocity_sensor: Some(addr::VSS),
+        velocity_sensor: Some(addr::on(addr::VSS, ss, node)),
         origin: Some(LocalFrame::new(ORIGIN.0, ORIGIN.1, ORIGIN.2)),
         ..DriverConfig::default()
     }
@@ -542,6 +547,18 @@ fn driver_config(pose_sensor: Address) -> DriverConfig {
 /// velocity sensors, the global waypoint and local path-segment drivers, over one
 /// simulated vehicle.
 pub fn vehicle(t0: Instant, opts: &Options) -> (Vec<Box<dyn Endpoint>>, SimVehicle) {
+    vehicle_at(t0, opts, 1, 1)
+}
+
+/// [`vehicle`] on node `node` of subsystem `ss` (the components keep their ids and
+/// instances of [`addr`]; the drivers' outputs and sensors follow them).
+pub fn vehicle_at(
+    t0: Instant,
+    opts: &Options,
+    ss: u8,
+    node: u8,
+) -> (Vec<Box<dyn Endpoint>>, SimVehicle) {
+    let at = |a: Address| addr::on(a, ss, node);
     let vehicle = SimVehicle::new(VehicleParams {
         position_noise: opts.position_noise,
         heading_noise: opts.position_noise * 0.5,
@@ -555,47 +572,57 @@ pub fn vehicle(t0: Instant, opts: &Options) -> (Vec<Box<dyn Endpoint>>, SimVehic
     let rd = ReflexiveDriverCore::new(
         (),
         ReflexiveConfig {
-            output: addr::PD,
+            output: at(addr::PD),
             ..Default::default()
         },
     );
-    let gwd = GlobalWaypointDriverCore::new(driver_config(addr::GPS));
-    let lpsd = LocalPathSegmentDriverCore::new(driver_config(addr::LPS));
+    let gwd = GlobalWaypointDriverCore::new(driver_config(at(addr::GPS), ss, node));
+    let lpsd = LocalPathSegmentDriverCore::new(driver_config(at(addr::LPS), ss, node));
     let parts: Vec<Box<dyn Endpoint>> = vec![
-        Box::new(primitive_driver::component(addr::PD, pd, cfg.clone(), t0)),
-        Box::new(reflexive_driver::component(addr::RD, rd, cfg.clone(), t0)),
+        Box::new(primitive_driver::component(
+            at(addr::PD),
+            pd,
+            cfg.clone(),
+            t0,
+        )),
+        Box::new(reflexive_driver::component(
+            at(addr::RD),
+            rd,
+            cfg.clone(),
+            t0,
+        )),
         Box::new(global_pose_sensor::component(
-            addr::GPS,
+            at(addr::GPS),
             GlobalPoseSensorCore(vehicle.clone()),
             cfg.clone(),
             t0,
         )),
         Box::new(local_pose_sensor::component(
-            addr::LPS,
+            at(addr::LPS),
             LocalPoseSensorCore(vehicle.clone()),
             cfg.clone(),
             t0,
         )),
         Box::new(velocity_state_sensor::component(
-            addr::VSS,
+            at(addr::VSS),
             VelocityStateSensorCore(vehicle.clone()),
             cfg.clone(),
             t0,
         )),
         Box::new(global_waypoint_driver::component(
-            addr::GWD,
+            at(addr::GWD),
             gwd,
             cfg.clone(),
             t0,
         )),
         Box::new(local_path_segment_driver::component(
-            addr::LPSD,
+            at(addr::LPSD),
             lpsd,
             cfg.clone(),
             t0,
         )),
         Box::new(world_model_vector_knowledge_store::component(
-            addr::WM,
+            at(addr::WM),
             WorldModelCore::new(WorldModelConfig::default()),
             cfg.clone(),
             t0,
@@ -603,7 +630,7 @@ pub fn vehicle(t0: Instant, opts: &Options) -> (Vec<Box<dyn Endpoint>>, SimVehic
         // The spooler outranks the reflexive driver so that it can borrow the primitive
         // driver for the mission's payload action (the horn).
         Box::new(mission_spooler::component(
-            addr::MS,
+            at(addr::MS),
             MissionSpoolerCore::new(SpoolerConfig::default()),
             Config {
                 authority: 100,

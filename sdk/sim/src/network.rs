@@ -9,7 +9,7 @@ use std::time::{Duration, Instant};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 
-use jaus::net::Node;
+use jaus::net::{Node, Participant};
 
 /// How the links misbehave.
 #[derive(Debug, Clone, Copy)]
@@ -54,7 +54,8 @@ pub struct SimStats {
 #[derive(Debug)]
 pub struct SimNet {
     now: Instant,
-    nodes: Vec<Option<Node>>,
+    nodes: Vec<Option<Box<dyn Participant>>>,
+    addrs: Vec<SocketAddr>,
     in_flight: BTreeMap<(Instant, u64), (SocketAddr, SocketAddr, Vec<u8>)>,
     seq: u64,
     rng: StdRng,
@@ -68,6 +69,7 @@ impl SimNet {
         Self {
             now: start,
             nodes: Vec::new(),
+            addrs: Vec::new(),
             in_flight: BTreeMap::new(),
             seq: 0,
             rng: StdRng::seed_from_u64(seed),
@@ -84,28 +86,56 @@ impl SimNet {
         ))
     }
 
-    /// Adds a node; returns its slot.
-    pub fn add(&mut self, node: Node) -> usize {
-        self.nodes.push(Some(node));
+    /// Adds a node at [`SimNet::addr`] of its slot; returns the slot.
+    pub fn add(&mut self, node: impl Participant) -> usize {
+        let at = Self::addr(self.nodes.len());
+        self.add_at(at, node)
+    }
+
+    /// Adds a participant (a node, attached components, ...) at a socket address of
+    /// its own, e.g. another port on a node's host; returns its slot.
+    pub fn add_at(&mut self, at: SocketAddr, participant: impl Participant) -> usize {
+        self.nodes.push(Some(Box::new(participant)));
+        self.addrs.push(at);
         self.nodes.len() - 1
     }
 
-    /// Removes a node (a crash): it neither sends nor receives any more.
-    pub fn kill(&mut self, i: usize) -> Option<Node> {
+    /// The socket address of slot `i`.
+    pub fn address_of(&self, i: usize) -> Option<SocketAddr> {
+        self.addrs.get(i).copied()
+    }
+
+    /// Removes slot `i` from the network (a crash): it receives and sends nothing more.
+    pub fn kill(&mut self, i: usize) -> Option<Box<dyn Participant>> {
         self.nodes.get_mut(i).and_then(Option::take)
     }
 
-    /// The node in slot `i`, if alive.
+    /// The node in slot `i`.
     pub fn node(&self, i: usize) -> Option<&Node> {
-        self.nodes.get(i).and_then(Option::as_ref)
+        self.get(i)
     }
 
     /// The node in slot `i`, mutably.
     pub fn node_mut(&mut self, i: usize) -> Option<&mut Node> {
-        self.nodes.get_mut(i).and_then(Option::as_mut)
+        self.get_mut(i)
     }
 
-    /// Changes the link model.
+    /// The participant in slot `i`, as a `T`.
+    pub fn get<T: 'static>(&self, i: usize) -> Option<&T> {
+        self.nodes
+            .get(i)
+            .and_then(Option::as_ref)
+            .and_then(|p| p.as_any().downcast_ref())
+    }
+
+    /// The participant in slot `i`, as a mutable `T`.
+    pub fn get_mut<T: 'static>(&mut self, i: usize) -> Option<&mut T> {
+        self.nodes
+            .get_mut(i)
+            .and_then(Option::as_mut)
+            .and_then(|p| p.as_any_mut().downcast_mut())
+    }
+
     pub fn set_model(&mut self, model: LinkModel) {
         self.model = model;
     }
@@ -124,7 +154,7 @@ impl SimNet {
     pub fn inject(&mut self, i: usize, from: SocketAddr, bytes: Vec<u8>) {
         let at = self.now + self.model.min_delay;
         self.in_flight
-            .insert((at, self.seq), (from, Self::addr(i), bytes));
+            .insert((at, self.seq), (from, self.addrs[i], bytes));
         self.seq += 1;
     }
 
@@ -157,7 +187,7 @@ impl SimNet {
                     let delay = self.model.min_delay + span.mul_f64(self.random());
                     self.in_flight.insert(
                         (self.now + delay, self.seq),
-                        (Self::addr(i), d.to, d.bytes.clone()),
+                        (self.addrs[i], d.to, d.bytes.clone()),
                     );
                     self.seq += 1;
                 }
@@ -175,7 +205,7 @@ impl SimNet {
                 .nodes
                 .iter()
                 .flatten()
-                .filter_map(Node::poll_timeout)
+                .filter_map(|n| n.poll_timeout())
                 .min();
             let next = match (next_packet, next_timer) {
                 (Some(a), Some(b)) => a.min(b),
@@ -191,7 +221,7 @@ impl SimNet {
             let now = self.now;
             if next_packet.is_some_and(|p| p <= now) {
                 if let Some((_, (from, to, bytes))) = self.in_flight.pop_first() {
-                    let slot = (0..self.nodes.len()).find(|i| Self::addr(*i) == to);
+                    let slot = self.addrs.iter().position(|a| *a == to);
                     match slot.and_then(|i| self.nodes[i].as_mut()) {
                         Some(n) => {
                             n.handle_datagram(now, from, &bytes);

@@ -83,15 +83,32 @@ pub trait Interface: Send + 'static {
 pub trait EmittedBy<I: Interface>: JausMessage {}
 
 /// Why a component did not act on a message.
-#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum Refused {
     /// The vendor did not implement this message.
     #[error("not supported by this component")]
     Unsupported,
-    /// The message is understood but its content cannot be executed (a value out of
-    /// range, NaN, an unknown waypoint, ...).
+    /// The message is understood but its content cannot be executed (NaN, an unknown
+    /// waypoint, a mission that is running, ...).
     #[error("{0}")]
     Invalid(String),
+    /// A field's value is outside what this component accepts (its own limit, which
+    /// may be narrower than the field's range on the wire).
+    #[error(
+        "field `{field}` = {value} {unit} is outside this component's limit [{min}, {max}] {unit}"
+    )]
+    OutOfRange {
+        /// The field, as named in the message definition.
+        field: &'static str,
+        /// The value received.
+        value: f64,
+        /// Lowest accepted value.
+        min: f64,
+        /// Highest accepted value.
+        max: f64,
+        /// Unit of the values.
+        unit: &'static str,
+    },
 }
 
 /// What the generated `Dispatch` of a component trait implements; the runtime drives
@@ -828,15 +845,19 @@ impl<B: Behaviour> Component<B> {
             Refusal::NotController => s.not_controller += 1,
             Refusal::State(_) => s.wrong_state += 1,
             Refusal::Vendor(Refused::Unsupported) => s.unsupported += 1,
-            Refusal::Vendor(Refused::Invalid(_)) => s.invalid += 1,
+            Refusal::Vendor(Refused::Invalid(_) | Refused::OutOfRange { .. }) => s.invalid += 1,
         }
-        tracing::debug!(
-            component = <B::Interface as Interface>::NAME,
-            address = %self.core.address,
-            source = %header.source,
-            message = msg.name(),
-            "refused: {why}"
+        let (component, address, source) = (
+            <B::Interface as Interface>::NAME,
+            self.core.address,
+            header.source,
         );
+        if matches!(why, Refusal::Vendor(Refused::Unsupported)) {
+            // Normal when peers probe what a component offers.
+            tracing::debug!(component, %address, %source, message = msg.name(), "refused: {why}");
+        } else {
+            tracing::warn!(component, %address, %source, message = msg.name(), "refused: {why}");
+        }
         false
     }
 

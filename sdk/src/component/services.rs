@@ -463,9 +463,7 @@ impl<B: Behaviour> Component<B> {
             Err(Refused::Unsupported) => {
                 return refuse(self, ServiceConnectionResponse::ComponentNotCapable)
             }
-            Err(Refused::Invalid(_)) => {
-                return refuse(self, ServiceConnectionResponse::InvalidParameter)
-            }
+            Err(_) => return refuse(self, ServiceConnectionResponse::InvalidParameter),
         }
         let granted = rate.min(self.core.config.max_rate_hz).min(MAX_JAUS_RATE);
         let now = self.core.now;
@@ -638,8 +636,8 @@ impl<B: Behaviour> Component<B> {
                     "this component does not answer that query",
                 )
             }
-            Err(Refused::Invalid(why)) => {
-                return reject(self, EventResponseCode::InvalidEventSetup, &why)
+            Err(why) => {
+                return reject(self, EventResponseCode::InvalidEventSetup, &why.to_string())
             }
         }
         let now = self.core.now;

@@ -375,10 +375,13 @@ impl<M: Clone> VectorDriverCore<M> {
         finite(v.speed, "speed")?;
         finite(v.heading, "heading")?;
         if v.speed < 0.0 || v.speed > self.motion.config.max_speed {
-            return Err(Refused::Invalid(format!(
-                "speed {} m/s outside 0..={} m/s",
-                v.speed, self.motion.config.max_speed
-            )));
+            return Err(Refused::OutOfRange {
+                field: "speed",
+                value: v.speed,
+                min: 0.0,
+                max: self.motion.config.max_speed,
+                unit: "m/s",
+            });
         }
         self.commanded = Some((now, v, m));
         Ok(())
@@ -860,9 +863,13 @@ impl<E: Element> Navigator<E> {
         finite(speed, "travel speed")?;
         let max = self.motion.config.max_speed;
         if !(0.0..=max).contains(&speed) {
-            return Err(Refused::Invalid(format!(
-                "travel speed {speed} m/s outside 0..={max} m/s"
-            )));
+            return Err(Refused::OutOfRange {
+                field: "speed",
+                value: speed,
+                min: 0.0,
+                max,
+                unit: "m/s",
+            });
         }
         self.travel_speed = speed;
         Ok(())

@@ -4,10 +4,11 @@
 use std::collections::BTreeMap;
 use std::time::{Duration, Instant};
 
+use crate::codec::Encode;
 use crate::component::Refused;
 use crate::components::node_manager::{Ctx, NodeManager};
 use crate::messages::*;
-use crate::Address;
+use crate::{Address, JausMessage};
 
 /// What is known about one component of the system.
 #[derive(Debug, Clone, Default, PartialEq, Eq)]
@@ -29,6 +30,25 @@ pub struct NodeInfo {
     pub configured: bool,
     /// When it was last heard from.
     pub last_heard: Instant,
+    /// This node manager's subscription to the node's configuration events.
+    pub subscription: Subscription,
+    /// When its configuration was last asked for (`None`: never).
+    pub config_asked: Option<Instant>,
+}
+
+/// The state of a node manager's subscription to another node's configuration
+/// (Create Event, every change, on Report Configuration of that node).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Subscription {
+    /// Not asked yet (or the node is this node).
+    #[default]
+    None,
+    /// Create Event sent at that instant, not answered yet.
+    Requested(Instant),
+    /// Confirmed with this event id: configuration changes arrive as Events.
+    Confirmed(u8),
+    /// Refused: the configuration is only re-queried periodically.
+    Rejected,
 }
 
 /// What is known about one subsystem.
@@ -123,6 +143,15 @@ pub struct ManagerConfig {
     pub node_timeout: Duration,
     /// Where heartbeats go (every node manager of the system by default).
     pub heartbeat_to: Address,
+    /// Every other node's configuration is asked for again at this period, whatever
+    /// its events say (an Event lost on the network is repaired within this time).
+    pub config_refresh: Duration,
+    /// A heartbeat arriving after a silence longer than this (the node may have
+    /// restarted and forgotten our subscription) makes the manager ask for the node's
+    /// configuration and subscribe to it again.
+    pub heartbeat_gap: Duration,
+    /// An unanswered Create Event is sent again after this long.
+    pub subscribe_retry: Duration,
 }
 
 impl Default for ManagerConfig {
@@ -133,6 +162,9 @@ impl Default for ManagerConfig {
             heartbeat: Duration::from_secs(1),
             node_timeout: Duration::from_secs(5),
             heartbeat_to: Address::new(255, 255, 1, 1),
+            config_refresh: Duration::from_secs(10),
+            heartbeat_gap: Duration::from_millis(2500),
+            subscribe_retry: Duration::from_secs(3),
         }
     }
 }
@@ -147,6 +179,8 @@ pub struct NodeManagerCore {
     next_heartbeat: Option<Instant>,
     next_requery: Option<Instant>,
     gone: Vec<Address>,
+    changes: u64,
+    request_id: u8,
 }
 
 impl NodeManagerCore {
@@ -161,6 +195,8 @@ impl NodeManagerCore {
             next_heartbeat: None,
             next_requery: None,
             gone: Vec::new(),
+            changes: 0,
+            request_id: 0,
         }
     }
 
@@ -169,12 +205,14 @@ impl NodeManagerCore {
         if !self.locals.contains(&a) {
             self.locals.push(a);
             self.locals.sort();
+            self.changes += 1;
         }
     }
 
     /// Unregisters a local component (an external one that timed out).
     pub fn remove_local(&mut self, a: Address) {
         self.locals.retain(|x| *x != a);
+        self.changes += 1;
         if let Some(n) = self
             .tree
             .subsystems
@@ -189,6 +227,13 @@ impl NodeManagerCore {
     /// The system tree.
     pub fn tree(&self) -> &SystemTree {
         &self.tree
+    }
+
+    /// A counter that moves whenever the tree may have changed (a node or component
+    /// added or removed, a name or service list learned): compare it instead of the
+    /// tree to know when to show the tree again.
+    pub fn tree_version(&self) -> u64 {
+        self.changes
     }
 
     /// Components that disappeared since the last call.
@@ -222,7 +267,72 @@ impl NodeManagerCore {
                 components: BTreeMap::new(),
                 configured: false,
                 last_heard: now,
+                subscription: Subscription::None,
+                config_asked: None,
             })
+    }
+
+    /// Asks node `ss.node` for its configuration (node level) and, unless already
+    /// subscribed or refused, subscribes to its configuration events (every change),
+    /// as OpenJAUS node managers do for each other (WIRE.md §7.3, §8.3).
+    fn track_configuration(&mut self, ctx: &mut Ctx<'_>, ss: u8, node: u8, resubscribe: bool) {
+        let now = ctx.now();
+        let request_id = self.request_id;
+        let retry = self.config.subscribe_retry;
+        let info = self.node_mut(ss, node, now);
+        info.config_asked = Some(now);
+        let subscribe = match info.subscription {
+            Subscription::None | Subscription::Rejected => {
+                resubscribe || info.subscription == Subscription::None
+            }
+            Subscription::Requested(at) => {
+                resubscribe || now.saturating_duration_since(at) >= retry
+            }
+            Subscription::Confirmed(_) => resubscribe,
+        };
+        let old = match info.subscription {
+            Subscription::Confirmed(id) if subscribe => Some(id),
+            _ => None,
+        };
+        if subscribe {
+            info.subscription = Subscription::Requested(now);
+        }
+        let nm = Address::new(ss, node, 1, 1);
+        ctx.send(
+            nm,
+            QueryConfiguration {
+                query_field: QueryLevel::Node,
+            },
+        );
+        if let Some(id) = old {
+            // The node may still hold the old event (it did not restart): end it so that
+            // it does not send every change twice. OpenJAUS matches the query's code.
+            ctx.send_core(
+                nm,
+                CancelEvent {
+                    request_id,
+                    message_code: Some(QueryConfiguration::CODE.0),
+                    event_id: Some(id),
+                },
+            );
+        }
+        if subscribe {
+            self.request_id = self.request_id.wrapping_add(1);
+            ctx.send(
+                nm,
+                CreateEvent {
+                    request_id,
+                    report_message_code: ReportConfiguration::CODE.0,
+                    event_type: EventType::EveryChange,
+                    query_message: QueryConfiguration {
+                        query_field: QueryLevel::Node,
+                    }
+                    .to_bytes()
+                    .ok(),
+                    ..Default::default()
+                },
+            );
+        }
     }
 
     fn refresh_self(&mut self, now: Instant) {
@@ -342,13 +452,18 @@ impl NodeManager for NodeManagerCore {
         if src.subsystem == self.me.subsystem && src.node == self.me.node {
             return Ok(());
         }
+        let gap = self.config.heartbeat_gap;
         let node = self.node_mut(src.subsystem, src.node, now);
+        let known = node.components.contains_key(&(src.component, src.instance));
+        let silent_for = now.saturating_duration_since(node.last_heard);
         node.last_heard = now;
-        // Any component that heartbeats is part of the tree.
-        node.components
-            .entry((src.component, src.instance))
-            .or_default();
-        let (named, configured) = (node.name.is_some(), node.configured);
+        let (named, configured, asked) = (node.name.is_some(), node.configured, node.config_asked);
+        if !configured {
+            // Until the node answers, any component that heartbeats stands for it.
+            node.components
+                .entry((src.component, src.instance))
+                .or_default();
+        }
         let nm = Address::new(src.subsystem, src.node, 1, 1);
         if !named {
             ctx.send(
@@ -358,13 +473,15 @@ impl NodeManager for NodeManagerCore {
                 },
             );
         }
-        if !configured {
-            ctx.send(
-                nm,
-                QueryConfiguration {
-                    query_field: QueryLevel::Node,
-                },
-            );
+        let recently =
+            asked.is_some_and(|t| now.saturating_duration_since(t) < Duration::from_secs(1));
+        if asked.is_some() && silent_for > gap {
+            // After a silence the node may have restarted: ask again and subscribe anew.
+            tracing::debug!(node = %nm, gap = ?silent_for, "heartbeat after a gap: configuration asked again");
+            self.track_configuration(ctx, src.subsystem, src.node, true);
+        } else if (!configured || !known) && !recently {
+            // Not configured yet, or a component the configuration does not list.
+            self.track_configuration(ctx, src.subsystem, src.node, false);
         }
         if src.subsystem != self.me.subsystem
             && self
@@ -396,14 +513,20 @@ impl NodeManager for NodeManagerCore {
         match r.query_type {
             QueryLevel::Subsystem => {
                 self.tree.subsystems.entry(src.subsystem).or_default().name = Some(name);
+                self.changes += 1;
             }
-            QueryLevel::Node => self.node_mut(src.subsystem, src.node, now).name = Some(name),
+            QueryLevel::Node => {
+                self.node_mut(src.subsystem, src.node, now).name = Some(name);
+                self.changes += 1;
+            }
             QueryLevel::Component => {
-                self.node_mut(src.subsystem, src.node, now)
-                    .components
-                    .entry((src.component, src.instance))
-                    .or_default()
-                    .name = Some(name);
+                let node = self.node_mut(src.subsystem, src.node, now);
+                // Only components the configuration lists (a late answer from one that
+                // left does not bring it back).
+                if let Some(c) = node.components.get_mut(&(src.component, src.instance)) {
+                    c.name = Some(name);
+                    self.changes += 1;
+                }
             }
             _ => {}
         }
@@ -438,6 +561,10 @@ impl NodeManager for NodeManagerCore {
                 .collect();
             for k in &removed {
                 node.components.remove(k);
+                tracing::info!(component = %Address::new(src.subsystem, n.node_id, k.0, k.1), "left the configuration of its node");
+            }
+            if !removed.is_empty() {
+                self.changes += 1;
             }
             self.gone.extend(
                 removed
@@ -452,7 +579,11 @@ impl NodeManager for NodeManagerCore {
                     new.push(Address::new(src.subsystem, n.node_id, k.0, k.1));
                 }
             }
+            if !new.is_empty() {
+                self.changes += 1;
+            }
             for a in new {
+                tracing::info!(component = %a, "joined the configuration of its node");
                 ctx.send(
                     a,
                     QueryIdentification {
@@ -470,27 +601,64 @@ impl NodeManager for NodeManagerCore {
             return Ok(());
         };
         let now = ctx.now();
-        self.node_mut(src.subsystem, src.node, now)
+        if let Some(c) = self
+            .node_mut(src.subsystem, src.node, now)
             .components
-            .entry((src.component, src.instance))
-            .or_default()
-            .services = Some(r.services.iter().map(|s| s.service_type).collect());
+            .get_mut(&(src.component, src.instance))
+        {
+            c.services = Some(r.services.iter().map(|s| s.service_type).collect());
+            self.changes += 1;
+        }
         Ok(())
     }
 
     fn on_confirm_event_request(
         &mut self,
-        _ctx: &mut Ctx<'_>,
-        _m: &ConfirmEventRequest,
+        ctx: &mut Ctx<'_>,
+        m: &ConfirmEventRequest,
     ) -> Result<(), Refused> {
+        // Matched by sender and report code: OpenJAUS does not echo the request id.
+        let Some(src) = ctx.source() else {
+            return Ok(());
+        };
+        if m.message_code != ReportConfiguration::CODE.0 || (src.component, src.instance) != (1, 1)
+        {
+            return Ok(());
+        }
+        if let Some(node) = self
+            .tree
+            .subsystems
+            .get_mut(&src.subsystem)
+            .and_then(|s| s.nodes.get_mut(&src.node))
+        {
+            node.subscription = if m.response_code == EventResponseCode::Successful {
+                Subscription::Confirmed(m.event_id)
+            } else {
+                Subscription::Rejected
+            };
+        }
         Ok(())
     }
 
     fn on_reject_event_request(
         &mut self,
-        _ctx: &mut Ctx<'_>,
-        _m: &RejectEventRequest,
+        ctx: &mut Ctx<'_>,
+        m: &RejectEventRequest,
     ) -> Result<(), Refused> {
+        let Some(src) = ctx.source() else {
+            return Ok(());
+        };
+        if let Some(node) = self
+            .tree
+            .subsystems
+            .get_mut(&src.subsystem)
+            .and_then(|s| s.nodes.get_mut(&src.node))
+        {
+            if matches!(node.subscription, Subscription::Requested(_)) {
+                tracing::info!(node = %src, reason = ?m.response_code, "configuration events refused; the configuration is re-queried every {:?}", self.config.config_refresh);
+                node.subscription = Subscription::Rejected;
+            }
+        }
         Ok(())
     }
 
@@ -526,6 +694,24 @@ impl NodeManager for NodeManagerCore {
                 );
                 ctx.send(a, QueryServices {});
             }
+            // Configuration of every other node: asked again every `config_refresh`
+            // (events may be lost), and an unanswered subscription sent again.
+            let (refresh, retry) = (self.config.config_refresh, self.config.subscribe_retry);
+            let due: Vec<(u8, u8)> = self
+                .tree
+                .subsystems
+                .iter()
+                .flat_map(|(ss, s)| s.nodes.iter().map(move |(n, info)| (*ss, *n, info)))
+                .filter(|(ss, n, _)| !(*ss == me.subsystem && *n == me.node))
+                .filter(|(_, _, info)| {
+                    info.config_asked.is_some_and(|t| now.saturating_duration_since(t) >= refresh)
+                        || matches!(info.subscription, Subscription::Requested(t) if now.saturating_duration_since(t) >= retry)
+                })
+                .map(|(ss, n, _)| (ss, n))
+                .collect();
+            for (ss, n) in due {
+                self.track_configuration(ctx, ss, n, false);
+            }
         }
         // Staleness: remote nodes not heard from within the timeout are removed, with
         // their components.
@@ -546,6 +732,9 @@ impl NodeManager for NodeManagerCore {
             });
         }
         self.tree.subsystems.retain(|_, s| !s.nodes.is_empty());
+        if !gone.is_empty() {
+            self.changes += 1;
+        }
         self.gone.extend(gone);
     }
 }

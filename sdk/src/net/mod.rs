@@ -3,11 +3,60 @@
 //! components and the network ([`node`]) and a thin blocking UDP shell ([`udp`]). The
 //! `jaus-sim` crate runs nodes on a simulated lossy network with a virtual clock.
 
+//!
+//! Two hosts drive components on a UDP interface, both [`Participant`]s: a [`Node`]
+//! (its own node manager, routing for the node) and [`Attached`] (components in a
+//! process of their own, joined to a node through its socket).
+
+pub mod attached;
 pub mod framing;
 pub mod manager;
 pub mod node;
 pub mod udp;
 
+use std::net::SocketAddr;
+use std::time::Instant;
+
+pub use attached::{Attached, AttachedConfig, AttachedStats};
 pub use framing::{Framing, Reassembler, ReassemblyLimits};
 pub use manager::{ManagerConfig, SystemTree};
 pub use node::{Datagram, NetStats, Node, NodeConfig};
+
+use crate::Address;
+
+/// Something that lives on a UDP interface, sans-IO: fed datagrams and timeouts, it
+/// hands back datagrams to send and the next instant it wants to be woken. The shells
+/// ([`udp::run`], a simulated network) drive any of them the same way.
+pub trait Participant: std::fmt::Debug + Send + 'static {
+    /// A datagram arrived from `peer`.
+    fn handle_datagram(&mut self, now: Instant, peer: SocketAddr, datagram: &[u8]);
+    /// Time passed.
+    fn handle_timeout(&mut self, now: Instant);
+    /// The next datagram to send.
+    fn poll_transmit(&mut self) -> Option<Datagram>;
+    /// When [`handle_timeout`](Self::handle_timeout) must next be called.
+    fn poll_timeout(&self) -> Option<Instant>;
+    /// For downcasting to the concrete host.
+    fn as_any(&self) -> &dyn std::any::Any;
+    /// For downcasting to the concrete host.
+    fn as_any_mut(&mut self) -> &mut dyn std::any::Any;
+}
+
+/// Why a component could not be added to a host.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum NetError {
+    /// Its address is on another subsystem or node, or uses an id no component may
+    /// have (0, 255, or 1: the node manager's).
+    #[error("component {component} cannot join node {subsystem}.{node}: it is on another subsystem or node, or its id is reserved (0, 255, or 1 for the node manager)")]
+    NotOnThisNode {
+        /// The component's address.
+        component: Address,
+        /// The node's subsystem.
+        subsystem: u8,
+        /// The node's id.
+        node: u8,
+    },
+    /// A component with that address is already there.
+    #[error("component {0} is already on this node")]
+    Duplicate(Address),
+}

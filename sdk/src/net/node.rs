@@ -11,6 +11,7 @@ use std::time::Instant;
 
 use super::framing::{split, Framing, Reassembler, ReassemblyLimits, ReassemblyStats};
 use super::manager::{ManagerConfig, NodeManagerCore, SystemTree};
+use super::{NetError, Participant};
 use crate::component::local::Endpoint;
 use crate::component::{Component, Config};
 use crate::components::node_manager;
@@ -158,25 +159,26 @@ impl Node {
     }
 
     /// Adds a local component; it must be on this node.
-    pub fn add(&mut self, endpoint: impl Endpoint) -> Result<Address, String> {
+    pub fn add(&mut self, endpoint: impl Endpoint) -> Result<Address, NetError> {
         self.add_boxed(Box::new(endpoint))
     }
 
     /// Adds a boxed local component; it must be on this node.
-    pub fn add_boxed(&mut self, endpoint: Box<dyn Endpoint>) -> Result<Address, String> {
+    pub fn add_boxed(&mut self, endpoint: Box<dyn Endpoint>) -> Result<Address, NetError> {
         let a = endpoint.address();
         if a.subsystem != self.config.subsystem
             || a.node != self.config.node
             || !a.is_valid()
             || a.component == 1
         {
-            return Err(format!(
-                "component {a} cannot join node {}.{} (wrong subsystem/node, or an invalid id)",
-                self.config.subsystem, self.config.node
-            ));
+            return Err(NetError::NotOnThisNode {
+                component: a,
+                subsystem: self.config.subsystem,
+                node: self.config.node,
+            });
         }
         if self.locals.iter().any(|e| e.address() == a) {
-            return Err(format!("component {a} is already on this node"));
+            return Err(NetError::Duplicate(a));
         }
         self.manager.behaviour_mut().0.add_local(a);
         self.locals.push(endpoint);
@@ -186,6 +188,12 @@ impl Node {
     /// The system tree.
     pub fn tree(&self) -> &SystemTree {
         self.manager.behaviour().0.tree()
+    }
+
+    /// Moves whenever the system tree may have changed (see
+    /// [`NodeManagerCore::tree_version`](super::manager::NodeManagerCore::tree_version)).
+    pub fn tree_version(&self) -> u64 {
+        self.manager.behaviour().0.tree_version()
     }
 
     /// Interface counters.
@@ -319,7 +327,7 @@ impl Node {
         let gone: Vec<Address> = self
             .external
             .iter()
-            .filter(|(_, (_, t))| now.saturating_duration_since(*t) > limit)
+            .filter(|(_, (_, t))| now.saturating_duration_since(*t) >= limit)
             .map(|(a, _)| *a)
             .collect();
         for a in gone {
@@ -530,5 +538,31 @@ impl Node {
     /// Clock of the node.
     pub fn now(&self) -> Instant {
         self.now
+    }
+}
+
+impl Participant for Node {
+    fn handle_datagram(&mut self, now: Instant, peer: SocketAddr, datagram: &[u8]) {
+        Node::handle_datagram(self, now, peer, datagram);
+    }
+
+    fn handle_timeout(&mut self, now: Instant) {
+        Node::handle_timeout(self, now);
+    }
+
+    fn poll_transmit(&mut self) -> Option<Datagram> {
+        Node::poll_transmit(self)
+    }
+
+    fn poll_timeout(&self) -> Option<Instant> {
+        Node::poll_timeout(self)
+    }
+
+    fn as_any(&self) -> &dyn std::any::Any {
+        self
+    }
+
+    fn as_any_mut(&mut self) -> &mut dyn std::any::Any {
+        self
     }
 }

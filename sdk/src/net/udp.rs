@@ -5,23 +5,35 @@ use std::net::{SocketAddr, UdpSocket};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
-use super::node::Node;
+use super::Participant;
 
 /// Largest datagram read (JUDP or OPC framing plus a full 4096-byte packet).
 const MAX_DATAGRAM: usize = 8 + 4096 + 64;
 
-/// Runs `node` on a socket bound to `bind` until `stop` is set (checked at least every
-/// 100 ms) or `until` passes. `on_tick` runs after every event with the node, for a
-/// caller that watches it (printing, sending).
-pub fn run(
-    node: &mut Node,
+/// Runs `node` (a [`Node`](super::Node), [`Attached`](super::Attached) components, ...)
+/// on a socket bound to `bind` until `stop` is set (checked at least every 100 ms) or
+/// `until` passes. `on_tick` runs after every event with the node, for a caller that
+/// watches it (printing, sending).
+pub fn run<P: Participant>(
+    node: &mut P,
     bind: SocketAddr,
     stop: &AtomicBool,
     until: Option<Instant>,
-    mut on_tick: impl FnMut(&mut Node),
+    on_tick: impl FnMut(&mut P),
 ) -> std::io::Result<()> {
     let socket = UdpSocket::bind(bind)?;
-    tracing::info!(%bind, node = %node.address(), "node up");
+    run_on(node, &socket, stop, until, on_tick)
+}
+
+/// [`run`] on a socket the caller has bound.
+pub fn run_on<P: Participant>(
+    node: &mut P,
+    socket: &UdpSocket,
+    stop: &AtomicBool,
+    until: Option<Instant>,
+    mut on_tick: impl FnMut(&mut P),
+) -> std::io::Result<()> {
+    tracing::info!(bind = ?socket.local_addr().ok(), "up");
     let mut buf = vec![0u8; MAX_DATAGRAM];
     loop {
         if stop.load(Ordering::Relaxed) || until.is_some_and(|u| Instant::now() >= u) {

@@ -1,0 +1,318 @@
+//! Components in a process of their own, attached to a node they do not run: every
+//! message goes to, and comes from, that node's socket, and the node's manager routes
+//! them like its built-in components (see [`Node`](super::Node): a datagram from the
+//! node's own subsystem and node registers an external component). No node manager
+//! runs here, so nothing speaks for the node but the node itself; the components'
+//! runtime heartbeats to `subsystem.node.1.1` keep them registered.
+//!
+//! This is how a tool joins a running subsystem as one of its components (the `jaus`
+//! CLI with `--me` on the node it talks to), and how a vendor runs a component in its
+//! own process beside a node.
+
+use std::collections::VecDeque;
+use std::net::SocketAddr;
+use std::time::Instant;
+
+use super::framing::{split, Framing, Reassembler, ReassemblyLimits, ReassemblyStats};
+use super::node::Datagram;
+use super::{NetError, Participant};
+use crate::component::local::Endpoint;
+use crate::wire::{DataFlag, Header, HEADER_LEN};
+use crate::Address;
+
+/// Settings of [`Attached`].
+#[derive(Debug, Clone)]
+pub struct AttachedConfig {
+    /// Subsystem id of the node joined.
+    pub subsystem: u8,
+    /// Node id of the node joined.
+    pub node: u8,
+    /// The node's socket.
+    pub node_socket: SocketAddr,
+    /// Framing the node speaks.
+    pub framing: Framing,
+    /// Reassembly limits.
+    pub reassembly: ReassemblyLimits,
+    /// Most datagrams (and local deliveries) waiting.
+    pub max_outbox: usize,
+}
+
+/// Counters of [`Attached`].
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct AttachedStats {
+    /// Datagrams received.
+    pub received: u64,
+    /// Datagrams sent.
+    pub sent: u64,
+    /// Dropped: not from the node's socket.
+    pub foreign: u64,
+    /// Dropped: bad framing or header.
+    pub bad_packet: u64,
+    /// Dropped: no hosted component matches the destination.
+    pub no_such_component: u64,
+    /// Dropped: a queue was full.
+    pub outbox_full: u64,
+    /// Dropped: a message that could not be encoded or split.
+    pub encode_errors: u64,
+}
+
+/// Components attached to a node through its socket (sans-IO).
+pub struct Attached {
+    config: AttachedConfig,
+    now: Instant,
+    components: Vec<Box<dyn Endpoint>>,
+    reassembler: Reassembler,
+    outbox: VecDeque<Datagram>,
+    local_queue: VecDeque<(Header, Vec<u8>)>,
+    stats: AttachedStats,
+}
+
+impl std::fmt::Debug for Attached {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Attached")
+            .field("node", &(self.config.subsystem, self.config.node))
+            .field("node_socket", &self.config.node_socket)
+            .field("components", &self.components.len())
+            .field("stats", &self.stats)
+            .finish()
+    }
+}
+
+impl Attached {
+    /// Nothing attached yet, starting at `now`.
+    pub fn new(config: AttachedConfig, now: Instant) -> Self {
+        Self {
+            reassembler: Reassembler::new(config.reassembly),
+            config,
+            now,
+            components: Vec::new(),
+            outbox: VecDeque::new(),
+            local_queue: VecDeque::new(),
+            stats: AttachedStats::default(),
+        }
+    }
+
+    /// Adds a component; its address must be on the node joined (and not the node
+    /// manager's).
+    pub fn add(&mut self, endpoint: impl Endpoint) -> Result<Address, NetError> {
+        let a = endpoint.address();
+        if a.subsystem != self.config.subsystem
+            || a.node != self.config.node
+            || !a.is_valid()
+            || a.component == 1
+        {
+            return Err(NetError::NotOnThisNode {
+                component: a,
+                subsystem: self.config.subsystem,
+                node: self.config.node,
+            });
+        }
+        if self.components.iter().any(|e| e.address() == a) {
+            return Err(NetError::Duplicate(a));
+        }
+        self.components.push(Box::new(endpoint));
+        Ok(a)
+    }
+
+    /// The hosted component at `a`, as a `T`.
+    pub fn get<T: 'static>(&self, a: Address) -> Option<&T> {
+        self.components
+            .iter()
+            .find(|e| e.address() == a)
+            .and_then(|e| e.as_any().downcast_ref())
+    }
+
+    /// The hosted component at `a`, as a mutable `T`.
+    pub fn get_mut<T: 'static>(&mut self, a: Address) -> Option<&mut T> {
+        self.components
+            .iter_mut()
+            .find(|e| e.address() == a)
+            .and_then(|e| e.as_any_mut().downcast_mut())
+    }
+
+    /// Sends a message as if a hosted component sent it.
+    pub fn send(&mut self, now: Instant, header: Header, body: Vec<u8>) {
+        self.advance(now);
+        self.route(header, body);
+        self.pump();
+    }
+
+    /// Counters.
+    pub fn stats(&self) -> AttachedStats {
+        self.stats
+    }
+
+    /// Reassembly counters and bytes buffered.
+    pub fn reassembly(&self) -> (ReassemblyStats, usize) {
+        (self.reassembler.stats(), self.reassembler.buffered())
+    }
+
+    fn advance(&mut self, now: Instant) {
+        if now > self.now {
+            self.now = now;
+        }
+    }
+
+    fn hosted(&self, d: Address) -> bool {
+        (d.subsystem == self.config.subsystem || d.subsystem == 255)
+            && (d.node == self.config.node || d.node == 255)
+            && self.components.iter().any(|e| d.matches(&e.address()))
+    }
+
+    /// From a hosted component: to a sibling directly, to everyone else (broadcasts
+    /// included) through the node.
+    fn route(&mut self, header: Header, body: Vec<u8>) {
+        let d = header.destination;
+        let only_sibling = d.component != 255
+            && d.instance != 255
+            && d.subsystem == self.config.subsystem
+            && d.node == self.config.node
+            && self.hosted(d);
+        if !only_sibling {
+            self.send_to_node(&header, &body);
+        }
+        if self.hosted(d) {
+            self.queue_local(header, body);
+        }
+    }
+
+    fn queue_local(&mut self, header: Header, body: Vec<u8>) {
+        if self.local_queue.len() >= self.config.max_outbox {
+            self.stats.outbox_full += 1;
+        } else {
+            self.local_queue.push_back((header, body));
+        }
+    }
+
+    fn send_to_node(&mut self, header: &Header, body: &[u8]) {
+        match split(header, body) {
+            Ok(packets) => {
+                for p in &packets {
+                    if self.outbox.len() >= self.config.max_outbox {
+                        self.stats.outbox_full += 1;
+                        return;
+                    }
+                    self.outbox.push_back(Datagram {
+                        to: self.config.node_socket,
+                        bytes: self.config.framing.encode(p),
+                    });
+                }
+            }
+            Err(e) => {
+                self.stats.encode_errors += 1;
+                tracing::warn!(code = %header.command_code, source = %header.source, "not sent: {e}");
+            }
+        }
+    }
+
+    fn pump(&mut self) {
+        for _ in 0..100_000 {
+            let mut out = Vec::new();
+            for e in &mut self.components {
+                while let Some(t) = e.poll_transmit() {
+                    out.push(t);
+                }
+            }
+            for t in out {
+                match t.body() {
+                    Ok(body) => self.route(t.header, body),
+                    Err(e) => {
+                        self.stats.encode_errors += 1;
+                        tracing::warn!(code = %t.header.command_code, source = %t.header.source, "not sent: {e}");
+                    }
+                }
+            }
+            let Some((h, body)) = self.local_queue.pop_front() else {
+                return;
+            };
+            let now = self.now;
+            let mut any = false;
+            for e in &mut self.components {
+                let a = e.address();
+                if h.destination.matches(&a) && h.source != a {
+                    e.handle(now, &h, &body);
+                    any = true;
+                }
+            }
+            if !any {
+                self.stats.no_such_component += 1;
+            }
+        }
+        tracing::warn!("routing loop limit reached; the rest waits for the next event");
+    }
+}
+
+impl Participant for Attached {
+    fn handle_datagram(&mut self, now: Instant, peer: SocketAddr, datagram: &[u8]) {
+        self.advance(now);
+        self.stats.received += 1;
+        if peer != self.config.node_socket {
+            self.stats.foreign += 1;
+            tracing::debug!(%peer, "datagram not from the node joined ({}): dropped", self.config.node_socket);
+            return;
+        }
+        let packet = match self.config.framing.decode(datagram) {
+            Ok(p) => p,
+            Err(e) => {
+                self.stats.bad_packet += 1;
+                tracing::debug!(%peer, "datagram dropped: {e}");
+                return;
+            }
+        };
+        let header = match Header::parse(packet) {
+            Ok(h) if packet.len() - HEADER_LEN == usize::from(h.data_size) => h,
+            _ => {
+                self.stats.bad_packet += 1;
+                return;
+            }
+        };
+        let body = &packet[HEADER_LEN..];
+        let (header, body) = if header.data_flag == DataFlag::Single {
+            (header, body.to_vec())
+        } else {
+            match self.reassembler.push(now, &header, body) {
+                Some(m) => m,
+                None => return,
+            }
+        };
+        if self.hosted(header.destination) {
+            self.queue_local(header, body);
+        } else {
+            self.stats.no_such_component += 1;
+        }
+        self.pump();
+    }
+
+    fn handle_timeout(&mut self, now: Instant) {
+        self.advance(now);
+        self.reassembler.expire(self.now);
+        for e in &mut self.components {
+            if e.poll_timeout().is_some_and(|t| t <= self.now) {
+                e.handle_timeout(self.now);
+            }
+        }
+        self.pump();
+    }
+
+    fn poll_transmit(&mut self) -> Option<Datagram> {
+        let d = self.outbox.pop_front()?;
+        self.stats.sent += 1;
+        Some(d)
+    }
+
+    fn poll_timeout(&self) -> Option<Instant> {
+        self.components
+            .iter()
+            .filter_map(|e| e.poll_timeout())
+            .chain(self.reassembler.next_timeout())
+            .min()
+    }
+
+    fn as_any(&self) -> &dyn std::any::Any {
+        self
+    }
+
+    fn as_any_mut(&mut self) -> &mut dyn std::any::Any {
+        self
+    }
+}
