@@ -37,8 +37,10 @@
 //!   the JAUS response code for it) or dropped and counted.
 
 mod clock;
+mod connections;
+mod control;
+mod events;
 pub mod local;
-mod services;
 mod state;
 
 use std::collections::VecDeque;
@@ -51,7 +53,8 @@ use crate::codec::{Encode, EncodeError};
 use crate::messages::*;
 use crate::wire::AckNak;
 use crate::{Address, CommandCode, Header, JausMessage};
-use services::{EventTable, ProviderTable, RequesterTable};
+use connections::{ProviderTable, RequesterTable};
+use events::EventTable;
 
 /// The static description of a component interface, generated from its definition.
 pub trait Interface: Send + 'static {
