@@ -39,6 +39,7 @@
 mod clock;
 mod connections;
 mod control;
+mod endpoint;
 mod events;
 pub mod local;
 mod state;
@@ -47,6 +48,7 @@ use std::collections::VecDeque;
 use std::marker::PhantomData;
 use std::time::{Duration, Instant};
 
+pub use endpoint::Endpoint;
 pub use state::{CoreState, CoreTransition, Modes, NoModes, NoTransition, TransitionError};
 
 use crate::codec::{Encode, EncodeError};
