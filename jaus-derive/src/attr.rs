@@ -215,6 +215,15 @@ pub fn for_each_item(
     failed
 }
 
+/// Skips the rest of an unknown item (up to the next `,`) so that parsing can continue
+/// and report later items too.
+pub fn skip_item(input: syn::parse::ParseStream<'_>) -> syn::Result<()> {
+    while !input.is_empty() && !input.peek(Token![,]) {
+        input.parse::<proc_macro2::TokenTree>()?;
+    }
+    Ok(())
+}
+
 fn parse_eq<T: Parse>(input: syn::parse::ParseStream<'_>) -> syn::Result<T> {
     input.parse::<Token![=]>()?;
     input.parse()
@@ -324,10 +333,7 @@ pub fn parse_field_attrs(attrs: &[Attribute], errors: &mut Errors, in_bits: bool
                         if in_bits { BITS_FIELD_KEYS } else { FIELD_KEYS }
                     ),
                 );
-                // Skip the rest of this item so parsing can continue.
-                while !input.is_empty() && !input.peek(Token![,]) {
-                    input.parse::<proc_macro2::TokenTree>()?;
-                }
+                skip_item(input)?;
             }
         }
         Ok(())
@@ -370,9 +376,7 @@ pub fn parse_container_attrs(
                     )
                 },
             );
-            while !input.is_empty() && !input.peek(Token![,]) {
-                input.parse::<proc_macro2::TokenTree>()?;
-            }
+            skip_item(input)?;
             return Ok(());
         }
         match k.as_str() {

@@ -37,21 +37,26 @@
 //!   the JAUS response code for it) or dropped and counted.
 
 mod clock;
+mod connections;
+mod control;
+mod endpoint;
+mod events;
 pub mod local;
-mod services;
 mod state;
 
 use std::collections::VecDeque;
 use std::marker::PhantomData;
 use std::time::{Duration, Instant};
 
+pub use endpoint::Endpoint;
 pub use state::{CoreState, CoreTransition, Modes, NoModes, NoTransition, TransitionError};
 
 use crate::codec::{Encode, EncodeError};
 use crate::messages::*;
 use crate::wire::AckNak;
 use crate::{Address, CommandCode, Header, JausMessage};
-use services::{EventTable, ProviderTable, RequesterTable};
+use connections::{ProviderTable, RequesterTable};
+use events::EventTable;
 
 /// The static description of a component interface, generated from its definition.
 pub trait Interface: Send + 'static {

@@ -16,7 +16,7 @@ use std::time::Instant;
 use super::framing::{split, Framing, Reassembler, ReassemblyLimits, ReassemblyStats};
 use super::node::Datagram;
 use super::{NetError, Participant};
-use crate::component::local::Endpoint;
+use crate::component::Endpoint;
 use crate::wire::{DataFlag, Header, HEADER_LEN};
 use crate::Address;
 

@@ -12,7 +12,7 @@ use std::time::Instant;
 use super::framing::{split, Framing, Reassembler, ReassemblyLimits, ReassemblyStats};
 use super::manager::{ManagerConfig, NodeManagerCore, SystemTree};
 use super::{NetError, Participant};
-use crate::component::local::Endpoint;
+use crate::component::Endpoint;
 use crate::component::{Component, Config};
 use crate::components::node_manager;
 use crate::wire::{DataFlag, Header, HEADER_LEN};

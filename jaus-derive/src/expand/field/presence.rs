@@ -1,0 +1,89 @@
+//! The presence vector: optional fields behind a presence bit (`bit = N`), flags that
+//! are a presence bit with no bytes (`flag = N`), and the vector itself, computed on
+//! encode and never stored.
+
+use super::dependent::publish_decoded;
+use super::{Parts, ValueCode};
+use crate::attr::Int;
+use crate::expand::lit;
+use crate::expand::model::FieldModel;
+use proc_macro2::{Ident, TokenStream};
+use quote::quote;
+
+/// The value of a flag: it has no bytes of its own (its presence bit is its value).
+pub(super) fn flag_value(v: &TokenStream, codec: &TokenStream) -> ValueCode {
+    let err = quote!(#codec::DecodeError);
+    ValueCode {
+        len: quote!(0usize),
+        encode: quote!(let _ = #v;),
+        decode: quote!(Ok::<bool, #err>(false)),
+        min_len: quote!(0usize),
+    }
+}
+
+/// A `bool` that is bit `bit` of the presence vector of type `p`.
+pub(super) fn flag(f: &FieldModel, bit: u32, p: &Ident, parts: &mut Parts) {
+    let id = &f.ident;
+    let set = f.var.as_ref().map(|name| {
+        let name = lit(name);
+        quote!(w.vars().set(#name, u64::from(self.#id));)
+    });
+    let set_var_dec = publish_decoded(f);
+    parts
+        .pv_sets
+        .push(quote!(if self.#id { pv |= (1 as #p) << #bit; }));
+    parts.encodes.push(quote!(#set));
+    parts
+        .decodes
+        .push(quote!(let #id = pv & ((1 as #p) << #bit) != 0; #set_var_dec));
+}
+
+/// An `Option<T>` present when bit `bit` of the presence vector of type `p` is set.
+pub(super) fn optional(
+    f: &FieldModel,
+    bit: u32,
+    p: &Ident,
+    code: &ValueCode,
+    dec: &TokenStream,
+    parts: &mut Parts,
+) {
+    let id = &f.ident;
+    let (len, enc) = (&code.len, &code.encode);
+    parts
+        .lens
+        .push(quote!(match &self.#id { Some(v) => #len, None => 0 }));
+    parts
+        .encodes
+        .push(quote!(if let Some(v) = &self.#id { #enc }));
+    parts
+        .pv_sets
+        .push(quote!(if self.#id.is_some() { pv |= (1 as #p) << #bit; }));
+    parts
+        .decodes
+        .push(quote!(let #id = if pv & ((1 as #p) << #bit) != 0 { Some(#dec) } else { None };));
+}
+
+/// Writing and reading the presence vector of type `presence` of struct `ident`, from
+/// the bits the fields set (`parts.pv_sets`).
+pub(in crate::expand) fn vector(
+    presence: Option<Int>,
+    ident: &Ident,
+    parts: &Parts,
+    codec: &TokenStream,
+) -> (TokenStream, TokenStream) {
+    let pv_sets = &parts.pv_sets;
+    match presence {
+        Some(p) => {
+            let p = p.ident();
+            let name = lit(&format!("{ident}.presence_vector"));
+            (
+                quote!(let mut pv: #p = 0; #(#pv_sets)* #codec::Encode::encode(&pv, w)?;),
+                quote!(let pv = match <#p as #codec::Decode>::decode(r) {
+                    ::core::result::Result::Ok(v) => v,
+                    ::core::result::Result::Err(e) => return ::core::result::Result::Err(e.in_field(#name)),
+                };),
+            )
+        }
+        None => (quote!(), quote!()),
+    }
+}

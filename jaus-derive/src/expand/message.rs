@@ -1,0 +1,111 @@
+//! `#[derive(JausMessage)]` and `#[derive(JausRecord)]`: the codec of a struct from the
+//! model of its fields, and the command code of a message.
+
+use super::field::{self, Parts};
+use super::model::struct_model;
+use super::{fallback, lit};
+use crate::attr::{crate_path, parse_container_attrs, Errors, Int};
+use proc_macro2::TokenStream;
+use quote::quote;
+use syn::{DeriveInput, Ident};
+
+/// Expands `JausMessage` (`is_message`) or `JausRecord`.
+pub fn message(input: &DeriveInput, is_message: bool) -> TokenStream {
+    let mut errors = Errors::default();
+    let allowed: &[&str] = if is_message {
+        &["code", "presence", "crate", "name"]
+    } else {
+        &["presence", "crate"]
+    };
+    let c = parse_container_attrs(&input.attrs, &mut errors, allowed);
+    let k = crate_path(&c);
+    if is_message && c.code.is_none() {
+        errors.error(
+            input.ident.span(),
+            "missing `#[jaus(code = 0x....)]`: every message needs its 16-bit command code",
+        );
+    }
+    let model = struct_model(input, &c, &mut errors);
+    let ident = &input.ident;
+    let (impl_g, ty_g, where_g) = input.generics.split_for_impl();
+    let codec = quote!(#k::codec);
+
+    if let Err(e) = errors.finish() {
+        return fallback(input, &k, &e, is_message);
+    }
+
+    let pv_bytes = model.presence.map_or(0, Int::bytes);
+    let names: Vec<&Ident> = model.fields.iter().map(|f| &f.ident).collect();
+    let mut parts = Parts::default();
+    for f in &model.fields {
+        field::add(f, model.presence, &k, &mut parts);
+    }
+    let (pv_encode, pv_decode) = field::presence_vector(model.presence, ident, &parts, &codec);
+    let Parts {
+        prelude,
+        lens,
+        encodes,
+        decodes,
+        mins,
+        ..
+    } = parts;
+    // Records (which may nest, even recursively) count their depth. On an error the
+    // reader is abandoned, so only the success path needs to leave.
+    let (enter, leave) = if is_message || model.fields.is_empty() {
+        (quote!(), quote!())
+    } else {
+        (quote!(r.enter()?;), quote!(r.leave();))
+    };
+    let construct = if model.unit {
+        quote!(#ident)
+    } else {
+        quote!(#ident { #(#names),* })
+    };
+    let unused_w =
+        (model.fields.is_empty() && model.presence.is_none()).then(|| quote!(let _ = w;));
+    let unused_r =
+        (model.fields.is_empty() && model.presence.is_none()).then(|| quote!(let _ = r;));
+    let msg_impl = is_message.then(|| {
+        let code = c.code.map_or(0, |(c, _)| c);
+        let name = c.name.clone().unwrap_or_else(|| lit(&ident.to_string()));
+        quote! {
+            impl #impl_g #k::JausMessage for #ident #ty_g #where_g {
+                const CODE: #k::CommandCode = #k::CommandCode(#code);
+                const NAME: &'static str = #name;
+            }
+        }
+    });
+    quote! {
+        // Scaled limits are emitted as literals (e.g. 3.141592653589793), which clippy
+        // would flag as approximations of named constants.
+        #[allow(clippy::approx_constant)]
+        impl #impl_g #codec::Encode for #ident #ty_g #where_g {
+            #[inline]
+            fn encoded_len(&self) -> usize {
+                #pv_bytes #(+ #lens)*
+            }
+            #[inline]
+            fn encode(&self, w: &mut #codec::Writer<'_>) -> ::core::result::Result<(), #codec::EncodeError> {
+                #unused_w
+                #(#prelude)*
+                #pv_encode
+                #(#encodes)*
+                Ok(())
+            }
+        }
+        #[allow(clippy::approx_constant)]
+        impl #impl_g #codec::Decode for #ident #ty_g #where_g {
+            const MIN_LEN: usize = #pv_bytes #(+ #mins)*;
+            #[inline]
+            fn decode(r: &mut #codec::Reader<'_>) -> ::core::result::Result<Self, #codec::DecodeError> {
+                #unused_r
+                #enter
+                #pv_decode
+                #(#decodes)*
+                #leave
+                Ok(#construct)
+            }
+        }
+        #msg_impl
+    }
+}

@@ -1,0 +1,297 @@
+//! Service connections: the connections this component serves (provider table), those
+//! it asked for (requester table), Create/Activate/Suspend/Terminate/Confirm Service
+//! Connection, and the periodic reports of the connections served.
+
+use std::time::{Duration, Instant};
+
+use super::{Behaviour, Component, Refusal, Refused};
+use crate::messages::*;
+use crate::{Address, CommandCode};
+
+/// JAUS rates are scaled u16 over [0, 1092] Hz.
+pub(super) const MAX_JAUS_RATE: f64 = 1092.0;
+
+pub(super) fn period_of(rate_hz: f64) -> Duration {
+    Duration::from_secs_f64(1.0 / rate_hz)
+}
+
+/// One service connection this component serves.
+#[derive(Debug, Clone)]
+struct ServedConnection {
+    requester: Address,
+    report: CommandCode,
+    instance: u8,
+    presence: u32,
+    query: Message,
+    period: Duration,
+    next_due: Instant,
+    active: bool,
+    sequence: u16,
+}
+
+#[derive(Debug, Default)]
+pub(super) struct ProviderTable {
+    served: Vec<ServedConnection>,
+}
+
+impl ProviderTable {
+    pub(super) fn len(&self) -> usize {
+        self.served.len()
+    }
+
+    pub(super) fn next_due(&self) -> Option<Instant> {
+        self.served
+            .iter()
+            .filter(|s| s.active)
+            .map(|s| s.next_due)
+            .min()
+    }
+
+    pub(super) fn remove_requester(&mut self, gone: Address) {
+        self.served.retain(|s| s.requester != gone);
+    }
+
+    fn find(
+        &mut self,
+        requester: Address,
+        report: u16,
+        instance: u8,
+    ) -> Option<&mut ServedConnection> {
+        self.served
+            .iter_mut()
+            .find(|s| s.requester == requester && s.report.0 == report && s.instance == instance)
+    }
+}
+
+/// A service connection this component asked for.
+#[derive(Debug, Clone)]
+struct Subscription {
+    provider: Address,
+    report: CommandCode,
+    instance: Option<u8>,
+}
+
+#[derive(Debug, Default)]
+pub(super) struct RequesterTable {
+    subs: Vec<Subscription>,
+}
+
+impl RequesterTable {
+    pub(super) fn add(
+        &mut self,
+        provider: Address,
+        report: CommandCode,
+        _rate: f64,
+        _pv: u32,
+        max: usize,
+    ) -> bool {
+        if self
+            .subs
+            .iter()
+            .any(|s| s.provider == provider && s.report == report)
+        {
+            return true;
+        }
+        if self.subs.len() >= max {
+            return false;
+        }
+        self.subs.push(Subscription {
+            provider,
+            report,
+            instance: None,
+        });
+        true
+    }
+
+    pub(super) fn remove(&mut self, provider: Address, report: CommandCode) -> Option<u8> {
+        let i = self
+            .subs
+            .iter()
+            .position(|s| s.provider == provider && s.report == report)?;
+        self.subs.remove(i).instance
+    }
+
+    pub(super) fn is_active(&self, provider: Address, report: CommandCode) -> bool {
+        self.subs
+            .iter()
+            .any(|s| s.provider == provider && s.report == report && s.instance.is_some())
+    }
+}
+
+/// The query whose report a service connection or event streams, built from the
+/// report code and a presence vector: the query body is the presence vector in the
+/// query's own width (0, 1, 2 or 4 bytes, whichever decodes), so no per-message table
+/// is needed.
+pub(super) fn query_for(report: CommandCode, presence: u32) -> Option<Message> {
+    let code = report.complement()?;
+    if report.0 < 0x4000 {
+        return None;
+    }
+    let bytes = presence.to_le_bytes();
+    [0usize, 1, 2, 4]
+        .into_iter()
+        .find_map(|n| Message::decode(code, &bytes[..n]).ok())
+}
+
+impl<B: Behaviour> Component<B> {
+    pub(super) fn create_sc(&mut self, source: Address, m: &CreateServiceConnection) {
+        let report = CommandCode(m.service_connection_command_code);
+        let rate = m.requested_periodic_update_rate;
+        let refuse = |c: &mut Self, code: ServiceConnectionResponse| {
+            c.core.stats.subscriptions_refused += 1;
+            let msg = ConfirmServiceConnection {
+                service_connection_command_code: report.0,
+                instance_id: 0,
+                confirmed_periodic_update_rate: 0.0,
+                response_code: code,
+            };
+            c.core.send(source, msg.into(), true, 0);
+        };
+        let Some(query) = query_for(report, m.presence_vector) else {
+            return refuse(self, ServiceConnectionResponse::ComponentNotCapable);
+        };
+        if !(rate.is_finite() && rate > 0.0) {
+            return refuse(self, ServiceConnectionResponse::InvalidParameter);
+        }
+        match self.answer(source, &query) {
+            Ok(_) => {}
+            Err(Refused::Unsupported) => {
+                return refuse(self, ServiceConnectionResponse::ComponentNotCapable)
+            }
+            Err(_) => return refuse(self, ServiceConnectionResponse::InvalidParameter),
+        }
+        let granted = rate.min(self.core.config.max_rate_hz).min(MAX_JAUS_RATE);
+        let now = self.core.now;
+        let table = &mut self.core.provider.served;
+        // Same requester, code and presence vector: re-initialise that connection.
+        let existing = table.iter().position(|s| {
+            s.requester == source && s.report == report && s.presence == m.presence_vector
+        });
+        let instance = match existing {
+            Some(i) => table[i].instance,
+            None => {
+                if table.len() >= self.core.config.max_service_connections {
+                    return refuse(self, ServiceConnectionResponse::ConnectionRefused);
+                }
+                match (0..=255u8).find(|i| {
+                    !table
+                        .iter()
+                        .any(|s| s.requester == source && s.report == report && s.instance == *i)
+                }) {
+                    Some(i) => i,
+                    None => return refuse(self, ServiceConnectionResponse::ConnectionRefused),
+                }
+            }
+        };
+        let served = ServedConnection {
+            requester: source,
+            report,
+            instance,
+            presence: m.presence_vector,
+            query,
+            period: period_of(granted),
+            next_due: now,
+            active: true,
+            sequence: 0,
+        };
+        match existing {
+            Some(i) => table[i] = served,
+            None => table.push(served),
+        }
+        let msg = ConfirmServiceConnection {
+            service_connection_command_code: report.0,
+            instance_id: instance,
+            confirmed_periodic_update_rate: granted,
+            response_code: ServiceConnectionResponse::Successful,
+        };
+        self.core.send(source, msg.into(), true, 0);
+    }
+
+    pub(super) fn sc_set_active(
+        &mut self,
+        source: Address,
+        code: u16,
+        instance: u8,
+        active: bool,
+    ) -> Result<(), Refusal> {
+        let now = self.core.now;
+        match self.core.provider.find(source, code, instance) {
+            Some(s) => {
+                if active && !s.active {
+                    s.next_due = now;
+                }
+                s.active = active;
+                Ok(())
+            }
+            None => Err(Refusal::Vendor(Refused::Invalid(format!(
+                "no service connection 0x{code:04X}/{instance} from {source}"
+            )))),
+        }
+    }
+
+    /// Terminate Service Connection: from the requester, ends the connection this
+    /// component serves; from a provider, a connection this component requested.
+    pub(super) fn terminate_sc(&mut self, source: Address, m: &TerminateServiceConnection) {
+        let (code, inst) = (m.service_connection_command_code, m.instance_id);
+        let before = self.core.provider.served.len();
+        self.core
+            .provider
+            .served
+            .retain(|s| !(s.requester == source && s.report.0 == code && s.instance == inst));
+        if before == self.core.provider.served.len() {
+            // A provider ending a connection this component requested.
+            self.core.requester.subs.retain(|s| {
+                !(s.provider == source && s.report.0 == code && s.instance == Some(inst))
+            });
+        }
+    }
+
+    pub(super) fn confirm_sc(&mut self, source: Address, m: &ConfirmServiceConnection) {
+        let code = CommandCode(m.service_connection_command_code);
+        let sub = self
+            .core
+            .requester
+            .subs
+            .iter_mut()
+            .find(|s| s.provider == source && s.report == code);
+        match (sub, m.response_code) {
+            (Some(s), ServiceConnectionResponse::Successful) => s.instance = Some(m.instance_id),
+            (Some(_), _) => {
+                self.core
+                    .requester
+                    .subs
+                    .retain(|s| !(s.provider == source && s.report == code));
+            }
+            (None, ServiceConnectionResponse::Successful) => {
+                // A connection nobody here asked for: end it (as OpenJAUS does).
+                let t = TerminateServiceConnection {
+                    service_connection_command_code: code.0,
+                    instance_id: m.instance_id,
+                };
+                self.core.send(source, t.into(), true, 0);
+            }
+            (None, _) => {}
+        }
+    }
+
+    pub(super) fn run_service_connections(&mut self, now: Instant) {
+        for i in 0..self.core.provider.served.len() {
+            let s = &self.core.provider.served[i];
+            if !s.active || s.next_due > now {
+                continue;
+            }
+            let (requester, query) = (s.requester, s.query.clone());
+            let result = self.answer(requester, &query);
+            let s = &mut self.core.provider.served[i];
+            s.next_due = super::next_after(s.next_due, s.period, now);
+            match result {
+                Ok(report) => {
+                    let seq = s.sequence;
+                    s.sequence = s.sequence.wrapping_add(1);
+                    self.core.send(requester, report, true, seq);
+                }
+                Err(_) => self.core.stats.report_failures += 1,
+            }
+        }
+    }
+}

@@ -1,0 +1,241 @@
+//! The core messages the runtime handles itself, dispatched in one place
+//! ([`Component::core_message`]), and those of them this module carries out: core state
+//! commands, authority, component control, emergency and time. Service connections
+//! are carried out in [`connections`](super::connections), events in
+//! [`events`](super::events).
+
+use super::events::EventSetup;
+use super::{
+    Behaviour, Component, Controller, CoreState, CoreTransition, Interface, Refusal, Refused,
+};
+use crate::messages::*;
+use crate::{Address, Header};
+
+impl<B: Behaviour> Component<B> {
+    /// Handles a core message; `None` when `msg` is not one.
+    pub(super) fn core_message(
+        &mut self,
+        header: &Header,
+        msg: &Message,
+    ) -> Option<Result<(), Refusal>> {
+        let source = header.source;
+        let controlled = |c: &Self| {
+            if c.core.may_command(source) {
+                Ok(())
+            } else {
+                Err(Refusal::NotController)
+            }
+        };
+        let transition = |c: &mut Self, t: CoreTransition| -> Result<(), Refusal> {
+            controlled(c)?;
+            c.core
+                .set_state(t)
+                .map(|_| ())
+                .map_err(|_| Refusal::State(c.core.state))
+        };
+        let r = match msg {
+            Message::SetComponentAuthority(m) => controlled(self).map(|()| {
+                self.core.authority = m.authority_code;
+            }),
+            Message::Shutdown(_) => transition(self, CoreTransition::Shutdown),
+            Message::Standby(_) => transition(self, CoreTransition::Standby),
+            Message::Resume(_) => transition(self, CoreTransition::Resume),
+            Message::Reset(_) => transition(self, CoreTransition::Reset),
+            Message::SetEmergency(_) => {
+                self.set_emergency(source);
+                Ok(())
+            }
+            Message::ClearEmergency(_) => {
+                self.clear_emergency(source);
+                Ok(())
+            }
+            Message::SetTime(m) => controlled(self).and_then(|()| {
+                let now = self.core.now;
+                if self
+                    .core
+                    .clock
+                    .apply(now, m.time_stamp.as_ref(), m.date_stamp.as_ref())
+                {
+                    Ok(())
+                } else {
+                    Err(Refusal::Vendor(Refused::Invalid(
+                        "Set Time carries an impossible date or time".into(),
+                    )))
+                }
+            }),
+            Message::RequestComponentControl(m) => {
+                self.request_control(source, m.authority_code);
+                Ok(())
+            }
+            Message::ReleaseComponentControl(_) => match self.core.controller {
+                Some(c) if c.address == source => {
+                    self.core.controller = None;
+                    Ok(())
+                }
+                _ => Err(Refusal::NotController),
+            },
+            Message::ConfirmComponentControl(m) => {
+                if m.response_code == ControlResponse::ControlAccepted {
+                    if !self.core.held_control.contains(&source)
+                        && self.core.held_control.len() < 64
+                    {
+                        self.core.held_control.push(source);
+                    }
+                } else {
+                    self.core.held_control.retain(|a| *a != source);
+                }
+                return Some(self.pass_on(header, msg));
+            }
+            Message::RejectComponentControl(_) => {
+                self.core.held_control.retain(|a| *a != source);
+                return Some(self.pass_on(header, msg));
+            }
+            Message::CreateServiceConnection(m) => {
+                self.create_sc(source, m);
+                Ok(())
+            }
+            Message::ActivateServiceConnection(m) => self.sc_set_active(
+                source,
+                m.service_connection_command_code,
+                m.instance_id,
+                true,
+            ),
+            Message::SuspendServiceConnection(m) => self.sc_set_active(
+                source,
+                m.service_connection_command_code,
+                m.instance_id,
+                false,
+            ),
+            Message::TerminateServiceConnection(m) => {
+                self.terminate_sc(source, m);
+                Ok(())
+            }
+            Message::ConfirmServiceConnection(m) => {
+                self.confirm_sc(source, m);
+                return Some(self.pass_on(header, msg));
+            }
+            Message::CreateEvent(m) => {
+                self.create_event(source, m.request_id, EventSetup::from_create(m), None);
+                Ok(())
+            }
+            Message::UpdateEvent(m) => {
+                self.create_event(
+                    source,
+                    m.request_id,
+                    EventSetup::from_update(m),
+                    Some(m.event_id),
+                );
+                Ok(())
+            }
+            Message::CancelEvent(m) => {
+                self.cancel_event(source, m);
+                Ok(())
+            }
+            Message::QueryIdentification(q) if q.query_field != QueryLevel::Component => {
+                return None;
+            }
+            m => {
+                let reply = self.core_report(m)?;
+                self.core.send(source, reply, false, 0);
+                Ok(())
+            }
+        };
+        Some(r)
+    }
+
+    /// Hands a core message the runtime has already acted on to the behaviour too
+    /// (replies to requests the component made).
+    fn pass_on(&mut self, header: &Header, msg: &Message) -> Result<(), Refusal> {
+        let _ = header;
+        let r = self.behaviour.handle(
+            &mut super::Context {
+                core: &mut self.core,
+                _i: std::marker::PhantomData,
+            },
+            msg,
+        );
+        match r {
+            Ok(_) | Err(Refused::Unsupported) => Ok(()),
+            Err(e) => Err(Refusal::Vendor(e)),
+        }
+    }
+
+    fn set_emergency(&mut self, source: Address) {
+        let c = &mut self.core;
+        if !c.emergencies.contains(&source) {
+            if c.emergencies.len() < c.config.max_emergency_senders {
+                c.emergencies.push(source);
+            } else {
+                c.stats.emergency_overflow += 1;
+            }
+        }
+        tracing::warn!(component = <B::Interface as Interface>::NAME, address = %c.address, source = %source, "emergency set");
+        if c.set_state(CoreTransition::SetEmergency).is_err() {
+            c.stats.wrong_state += 1;
+        }
+    }
+
+    fn clear_emergency(&mut self, source: Address) {
+        let c = &mut self.core;
+        let before = c.emergencies.len();
+        c.emergencies.retain(|a| *a != source);
+        if c.emergencies.len() == before {
+            c.stats.foreign_clear_emergency += 1;
+            tracing::warn!(
+                component = <B::Interface as Interface>::NAME,
+                address = %c.address,
+                source = %source,
+                "Clear Emergency ignored: this sender set no emergency"
+            );
+            return;
+        }
+        if c.emergencies.is_empty() && c.state == CoreState::Emergency {
+            let _ = c.set_state(CoreTransition::ClearEmergency);
+        }
+    }
+
+    /// Request Component Control (WIRE.md §5.3, plus the own-authority check).
+    fn request_control(&mut self, source: Address, authority: u8) {
+        let c = &mut self.core;
+        let confirm =
+            |r: ControlResponse| -> Message { ConfirmComponentControl { response_code: r }.into() };
+        if c.state == CoreState::Shutdown {
+            c.send(source, confirm(ControlResponse::NotAvailable), false, 0);
+            return;
+        }
+        if authority < c.authority {
+            c.send(
+                source,
+                confirm(ControlResponse::InsufficientAuthority),
+                false,
+                0,
+            );
+            return;
+        }
+        match c.controller {
+            None => {
+                c.controller = Some(Controller {
+                    address: source,
+                    authority,
+                });
+                c.send(source, confirm(ControlResponse::ControlAccepted), false, 0);
+            }
+            Some(cur) if cur.address == source => {
+                c.controller = Some(Controller {
+                    address: source,
+                    authority,
+                });
+                c.send(source, confirm(ControlResponse::ControlAccepted), false, 0);
+            }
+            Some(cur) if authority > cur.authority => {
+                c.send(cur.address, RejectComponentControl {}.into(), false, 0);
+                c.controller = Some(Controller {
+                    address: source,
+                    authority,
+                });
+                c.send(source, confirm(ControlResponse::ControlAccepted), false, 0);
+            }
+            Some(_) => c.send(source, RejectComponentControl {}.into(), false, 0),
+        }
+    }
+}
