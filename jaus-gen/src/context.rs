@@ -1,7 +1,7 @@
 //! The template context: every message and type of a spec, with Rust types, derive
 //! attributes and documentation already worked out.
 
-use jaus_spec::{Bits, Field, FieldDef, Len, Spec, TypeForm, TypeKind, Wire};
+use jaus_spec::{Bits, Code, Field, FieldDef, Len, MessageDef, Spec, TypeForm, TypeKind, Wire};
 use serde::Serialize;
 
 /// Everything the templates see.
@@ -13,6 +13,12 @@ pub struct Context {
     pub messages: Vec<MessageCtx>,
     /// Query → report pairs.
     pub queries: Vec<QueryCtx>,
+    /// Command codes (`0x0001`) of the messages the component runtime takes for every
+    /// component (`runtime: [handles]` or `[shares]`), in code order.
+    pub runtime_inputs: Vec<String>,
+    /// Command codes of the messages the component runtime sends for every component
+    /// (`runtime: [emits]`), in code order.
+    pub runtime_outputs: Vec<String>,
 }
 
 /// One group.
@@ -659,9 +665,21 @@ pub fn build_context(spec: &Spec, gates: bool, rt: &str) -> Context {
             })
         })
         .collect();
+    let runtime_codes = |role: fn(&MessageDef) -> bool| {
+        let mut codes: Vec<Code> = spec
+            .messages
+            .iter()
+            .filter(|m| role(&m.def))
+            .map(|m| m.def.code)
+            .collect();
+        codes.sort();
+        codes.iter().map(Code::to_string).collect()
+    };
     Context {
         groups,
         messages,
         queries,
+        runtime_inputs: runtime_codes(MessageDef::runtime_input),
+        runtime_outputs: runtime_codes(MessageDef::runtime_output),
     }
 }

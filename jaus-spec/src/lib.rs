@@ -217,15 +217,6 @@ pub struct Variant {
     pub wire: Option<Wire>,
 }
 
-/// Command codes the component runtime handles for every component (core commands and
-/// queries, service connections, component control, event set-up, Query Services and
-/// Query Heartbeat Pulse). A component interface may not list them.
-pub const RUNTIME_CODES: &[u16] = &[
-    0x0001, 0x0002, 0x0003, 0x0004, 0x0005, 0x0006, 0x0007, 0x0008, 0x0009, 0x000A, 0x000B, 0x000C,
-    0x000D, 0x000E, 0x000F, 0x0010, 0x0011, 0x01F0, 0x01F1, 0x01F2, 0x2001, 0x2002, 0x200D, 0x2011,
-    0x21F0, 0x2202, 0x2B03,
-];
-
 /// A component with the file it came from.
 #[derive(Debug, Clone)]
 pub struct Component {

@@ -807,6 +807,7 @@ pub(crate) fn validate(draft: Draft) -> Result<Spec, Vec<SpecError>> {
             &m.def.presence,
             &m.def.fields,
         ));
+        check_runtime(&mut cx, m, &ctx);
         let code = m.def.code.0;
         let is_query = (0x2000..0x4000).contains(&code);
         if let Some(r) = &m.def.report {
@@ -895,6 +896,29 @@ fn assemble(draft: Draft, forms: Vec<TypeForm>, bodies: Vec<Body>) -> Spec {
     }
 }
 
+/// `runtime:` names each role once, and `handles` and `shares` exclude each other.
+fn check_runtime(cx: &mut Ctx<'_>, m: &Parsed<MessageDef>, ctx: &str) {
+    let roles = &m.def.runtime;
+    for (i, role) in roles.iter().enumerate() {
+        if roles[..i].contains(role) {
+            cx.err(
+                m.source,
+                &format!("{}.runtime[{i}]", m.path),
+                ctx.to_string(),
+                format!("runtime role `{role}` is listed twice"),
+            );
+        }
+    }
+    if m.def.runtime_owned() && roles.contains(&RuntimeRole::Shares) {
+        cx.err(
+            m.source,
+            &format!("{}.runtime", m.path),
+            ctx.to_string(),
+            "runtime roles `handles` and `shares` exclude each other: `handles` keeps the message from component interfaces, `shares` lets them list it too",
+        );
+    }
+}
+
 /// Core states a mode transition may lead the component into.
 const MODE_CORE_STATES: &[&str] = &["Standby", "Failure"];
 
@@ -973,7 +997,7 @@ fn validate_components(cx: &mut Ctx<'_>) {
                         cx.err(c.source, &path, ctx.clone(), msg);
                         continue;
                     }
-                    if crate::RUNTIME_CODES.contains(&code) {
+                    if m.def.runtime_owned() {
                         cx.err(
                             c.source,
                             &path,
