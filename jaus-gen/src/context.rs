@@ -1,7 +1,7 @@
 //! The template context: every message and type of a spec, with Rust types, derive
 //! attributes and documentation already worked out.
 
-use jaus_spec::{FieldDef, Int, Len, Spec, TypeKind, Wire};
+use jaus_spec::{Bits, Code, Field, FieldDef, Len, MessageDef, Spec, TypeForm, TypeKind, Wire};
 use serde::Serialize;
 
 /// Everything the templates see.
@@ -13,6 +13,12 @@ pub struct Context {
     pub messages: Vec<MessageCtx>,
     /// Query → report pairs.
     pub queries: Vec<QueryCtx>,
+    /// Command codes (`0x0001`) of the messages the component runtime takes for every
+    /// component (`runtime: [handles]` or `[shares]`), in code order.
+    pub runtime_inputs: Vec<String>,
+    /// Command codes of the messages the component runtime sends for every component
+    /// (`runtime: [emits]`), in code order.
+    pub runtime_outputs: Vec<String>,
 }
 
 /// One group.
@@ -335,9 +341,9 @@ fn len_attrs(m: &mut Mapped, len: Len, what: &str) {
     }
 }
 
-fn field_ctx(spec: &Spec, f: &FieldDef, rt: &str) -> FieldCtx {
-    let w = spec.wire(f);
-    let mut m = map_wire(&w, rt);
+fn field_ctx(spec: &Spec, field: &Field, rt: &str) -> FieldCtx {
+    let (f, w) = (&field.def, &field.wire);
+    let mut m = map_wire(w, rt);
     if vars(spec).iter().any(|v| v == &f.name) {
         m.attr.push(format!("var = \"{}\"", f.name));
     }
@@ -352,7 +358,7 @@ fn field_ctx(spec: &Spec, f: &FieldDef, rt: &str) -> FieldCtx {
     let mut attr = m.attr;
     let mut serde = m.serde;
     let ty = match (f.bit, &f.present_if) {
-        (Some(b), _) if w == Wire::Flag => {
+        (Some(b), _) if *w == Wire::Flag => {
             attr.insert(0, format!("flag = {b}"));
             doc.push(format!("Presence-vector bit {b} (no bytes of its own)."));
             m.ty
@@ -401,7 +407,7 @@ fn field_ctx(spec: &Spec, f: &FieldDef, rt: &str) -> FieldCtx {
 /// Names of fields other fields depend on (`count_field`, `present_if`): such fields
 /// publish their value while encoding and decoding.
 fn vars(spec: &Spec) -> Vec<String> {
-    fn walk(fields: &[FieldDef], out: &mut Vec<String>) {
+    fn walk<'a>(fields: impl Iterator<Item = &'a FieldDef>, out: &mut Vec<String>) {
         for f in fields {
             out.extend(
                 f.count_field
@@ -411,37 +417,39 @@ fn vars(spec: &Spec) -> Vec<String> {
             out.extend(f.present_if.iter().cloned());
             out.extend(f.tag_field.iter().cloned());
             if let Some(e) = &f.of {
-                walk(std::slice::from_ref(&e.0), out);
+                walk(std::iter::once(&e.0), out);
             }
         }
     }
     let mut out = Vec::new();
-    for m in &spec.messages {
-        walk(&m.def.fields, &mut out);
-    }
-    for t in &spec.types {
-        walk(&t.def.fields, &mut out);
+    for fields in spec
+        .messages
+        .iter()
+        .map(|m| m.fields.as_slice())
+        .chain(spec.types.iter().map(|t| t.fields()))
+    {
+        walk(fields.iter().map(|f| &f.def), &mut out);
     }
     out.sort();
     out.dedup();
     out
 }
 
-/// Whether values of this wire form have a `Default`.
-fn has_default(spec: &Spec, w: &Wire, bit: bool) -> bool {
-    if bit {
+/// Whether a struct of these fields can derive `Default`.
+fn all_default(spec: &Spec, fields: &[Field]) -> bool {
+    fields.iter().all(|f| has_default(spec, f))
+}
+
+/// Whether values of this field have a `Default`.
+fn has_default(spec: &Spec, f: &Field) -> bool {
+    if f.def.bit.is_some() {
         return true;
     }
-    match w {
+    match &f.wire {
         Wire::Named { name, kind, .. } => match kind {
             TypeKind::Union => false,
             TypeKind::Enum | TypeKind::Bitfield => true,
-            TypeKind::Record => spec.ty(name).is_some_and(|t| {
-                t.def
-                    .fields
-                    .iter()
-                    .all(|f| has_default(spec, &spec.wire(f), f.bit.is_some()))
-            }),
+            TypeKind::Record => spec.ty(name).is_some_and(|t| all_default(spec, t.fields())),
         },
         Wire::Packet { .. } => false,
         _ => true,
@@ -472,11 +480,7 @@ pub fn build_context(spec: &Spec, gates: bool, rt: &str) -> Context {
         let mut tc = TypeCtx {
             name: d.name.clone(),
             kind: format!("{:?}", d.kind).to_lowercase(),
-            repr: d
-                .repr
-                .as_deref()
-                .and_then(Int::parse)
-                .map_or_else(String::new, |i| i.rust().to_string()),
+            repr: String::new(),
             doc: doc_lines(d.description.as_deref()),
             container_attr: String::new(),
             default: false,
@@ -486,20 +490,15 @@ pub fn build_context(spec: &Spec, gates: bool, rt: &str) -> Context {
             bits: Vec::new(),
             variants: Vec::new(),
         };
-        match d.kind {
-            TypeKind::Record => {
-                tc.container_attr = d
-                    .presence
-                    .as_deref()
-                    .and_then(Int::parse)
-                    .map_or_else(String::new, |p| format!("presence = {}", p.rust()));
-                tc.fields = d.fields.iter().map(|f| field_ctx(spec, f, rt)).collect();
-                tc.default = d
-                    .fields
-                    .iter()
-                    .all(|f| has_default(spec, &spec.wire(f), f.bit.is_some()));
+        match &t.form {
+            TypeForm::Record { presence, fields } => {
+                tc.container_attr =
+                    presence.map_or_else(String::new, |p| format!("presence = {}", p.rust()));
+                tc.fields = fields.iter().map(|f| field_ctx(spec, f, rt)).collect();
+                tc.default = all_default(spec, fields);
             }
-            TypeKind::Enum => {
+            TypeForm::Enum { repr } => {
+                tc.repr = repr.rust().to_string();
                 tc.container_attr = format!("repr = {}", tc.repr);
                 tc.values = d
                     .values
@@ -519,19 +518,19 @@ pub fn build_context(spec: &Spec, gates: bool, rt: &str) -> Context {
                 tc.default = !tc.values.is_empty();
                 tc.copy = true;
             }
-            TypeKind::Bitfield => {
+            TypeForm::Bitfield { repr, members } => {
+                tc.repr = repr.rust().to_string();
                 tc.container_attr = format!("repr = {}", tc.repr);
-                tc.bits = d
-                    .bits
+                tc.bits = members
                     .iter()
                     .map(|b| {
-                        let (ty, attr, extra) = match (b.bit, b.bits) {
-                            (Some(x), _) => (
+                        let (ty, attr, extra) = match b.bits {
+                            Bits::Flag(x) => (
                                 "bool".to_string(),
                                 format!("bit = {x}"),
                                 format!("Bit {x}."),
                             ),
-                            (None, Some([lo, hi])) => {
+                            Bits::Range { lo, hi } => {
                                 let w = hi - lo + 1;
                                 let ty = if w <= 8 {
                                     "u8"
@@ -548,15 +547,14 @@ pub fn build_context(spec: &Spec, gates: bool, rt: &str) -> Context {
                                     format!("Bits {lo}-{hi}."),
                                 )
                             }
-                            _ => ("bool".to_string(), String::new(), String::new()),
                         };
-                        let mut doc = doc_lines(b.description.as_deref());
+                        let mut doc = doc_lines(b.def.description.as_deref());
                         if !doc.is_empty() {
                             doc.push(String::new());
                         }
                         doc.push(extra);
                         BitCtx {
-                            name: b.name.clone(),
+                            name: b.def.name.clone(),
                             ty,
                             attr,
                             doc,
@@ -566,27 +564,19 @@ pub fn build_context(spec: &Spec, gates: bool, rt: &str) -> Context {
                 tc.default = true;
                 tc.copy = true;
             }
-            TypeKind::Union => {
+            TypeForm::Union { repr, variants } => {
+                tc.repr = repr.rust().to_string();
                 tc.container_attr = format!("tag = {}", tc.repr);
-                tc.variants = d
-                    .variants
+                tc.variants = variants
                     .iter()
                     .map(|v| {
-                        let m = v.ty.as_ref().map(|t| {
-                            map_wire(
-                                &spec.wire(&FieldDef {
-                                    ty: t.clone(),
-                                    ..FieldDef::default()
-                                }),
-                                rt,
-                            )
-                        });
+                        let m = v.wire.as_ref().map(|w| map_wire(w, rt));
                         VariantCtx {
-                            name: v.name.clone(),
-                            tag: v.tag,
+                            name: v.def.name.clone(),
+                            tag: v.def.tag,
                             serde: m.as_ref().map(|m| m.serde.join(", ")).unwrap_or_default(),
                             ty: m.map(|m| m.ty),
-                            doc: doc_lines(v.description.as_deref()),
+                            doc: doc_lines(v.def.description.as_deref()),
                         }
                     })
                     .collect();
@@ -623,12 +613,13 @@ pub fn build_context(spec: &Spec, gates: bool, rt: &str) -> Context {
             doc.push("Experimental (not part of RA 3.3).".into());
         }
         let mut container = vec![format!("code = {}", d.code)];
-        if let Some(p) = d.presence.as_deref().and_then(Int::parse) {
+        if let Some(p) = m.presence {
             container.push(format!("presence = {}", p.rust()));
         }
-        let embedded = d
+        let embedded = m
             .fields
             .iter()
+            .map(|f| &f.def)
             .filter_map(|f| {
                 f.code_field.as_ref().map(|c| EmbeddedCtx {
                     field: f.name.clone(),
@@ -646,11 +637,8 @@ pub fn build_context(spec: &Spec, gates: bool, rt: &str) -> Context {
             cfg: cfg_of(&m.group, gates),
             doc,
             container_attr: container.join(", "),
-            default: d
-                .fields
-                .iter()
-                .all(|f| has_default(spec, &spec.wire(f), f.bit.is_some())),
-            fields: d.fields.iter().map(|f| field_ctx(spec, f, rt)).collect(),
+            default: all_default(spec, &m.fields),
+            fields: m.fields.iter().map(|f| field_ctx(spec, f, rt)).collect(),
             embedded,
             report,
             experimental: d.experimental,
@@ -677,9 +665,21 @@ pub fn build_context(spec: &Spec, gates: bool, rt: &str) -> Context {
             })
         })
         .collect();
+    let runtime_codes = |role: fn(&MessageDef) -> bool| {
+        let mut codes: Vec<Code> = spec
+            .messages
+            .iter()
+            .filter(|m| role(&m.def))
+            .map(|m| m.def.code)
+            .collect();
+        codes.sort();
+        codes.iter().map(Code::to_string).collect()
+    };
     Context {
         groups,
         messages,
         queries,
+        runtime_inputs: runtime_codes(MessageDef::runtime_input),
+        runtime_outputs: runtime_codes(MessageDef::runtime_output),
     }
 }

@@ -2,7 +2,7 @@
 //! rendered from `templates/docs/`.
 
 use crate::Error;
-use jaus_spec::{FieldDef, Len, Spec, TypeKind, Wire};
+use jaus_spec::{Bits, Field, Len, Spec, Type, TypeForm, Wire};
 use minijinja::Environment;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
@@ -132,11 +132,12 @@ fn wire_text(spec: &Spec, w: &Wire, here: &str) -> (String, String) {
     }
 }
 
-fn doc_fields(spec: &Spec, fields: &[FieldDef], here: &str) -> Vec<DocField> {
+fn doc_fields(spec: &Spec, fields: &[Field], here: &str) -> Vec<DocField> {
     fields
         .iter()
-        .map(|f| {
-            let (ty, range) = wire_text(spec, &spec.wire(f), here);
+        .map(|field| {
+            let (ty, range) = wire_text(spec, &field.wire, here);
+            let f = &field.def;
             let presence = match (f.bit, &f.present_if) {
                 (Some(b), _) => format!("bit {b}"),
                 (None, Some(p)) => format!("if `{p}`"),
@@ -159,6 +160,67 @@ fn doc_fields(spec: &Spec, fields: &[FieldDef], here: &str) -> Vec<DocField> {
             }
         })
         .collect()
+}
+
+/// The reference entry of a named type of group `here`.
+fn doc_type(spec: &Spec, t: &Type, here: &str) -> DocItem {
+    let d = &t.def;
+    let values = match &t.form {
+        TypeForm::Enum { .. } => d
+            .values
+            .iter()
+            .map(|v| {
+                (
+                    v.value.to_string(),
+                    v.name.clone(),
+                    one_line(v.description.as_deref()),
+                )
+            })
+            .collect(),
+        TypeForm::Bitfield { members, .. } => members
+            .iter()
+            .map(|b| {
+                let at = match b.bits {
+                    Bits::Flag(x) => x.to_string(),
+                    Bits::Range { lo, hi } => format!("{lo}–{hi}"),
+                };
+                (
+                    at,
+                    b.def.name.clone(),
+                    one_line(b.def.description.as_deref()),
+                )
+            })
+            .collect(),
+        TypeForm::Union { variants, .. } => variants
+            .iter()
+            .map(|v| {
+                let ty = v
+                    .wire
+                    .as_ref()
+                    .map_or("(none)".to_string(), |w| wire_text(spec, w, here).0);
+                (
+                    v.def.tag.to_string(),
+                    format!("{} — {ty}", v.def.name),
+                    one_line(v.def.description.as_deref()),
+                )
+            })
+            .collect(),
+        TypeForm::Record { .. } => Vec::new(),
+    };
+    DocItem {
+        name: d.name.clone(),
+        code: String::new(),
+        title: d.name.clone(),
+        kind: format!("{:?}", d.kind).to_lowercase(),
+        description: one_line(d.description.as_deref()),
+        report: String::new(),
+        presence: d
+            .presence
+            .clone()
+            .unwrap_or_else(|| d.repr.clone().unwrap_or_default()),
+        fields: doc_fields(spec, t.fields(), here),
+        values,
+    }
 }
 
 /// Renders the documentation pages of `spec` into `out` (`index.md` and one page per
@@ -196,7 +258,7 @@ pub fn render_docs(spec: &Spec, out: &Path) -> Result<Vec<PathBuf>, Error> {
                     .map(|r| r.def.name.clone())
                     .unwrap_or_default(),
                 presence: m.def.presence.clone().unwrap_or_default(),
-                fields: doc_fields(spec, &m.def.fields, &g.name),
+                fields: doc_fields(spec, &m.fields, &g.name),
                 values: Vec::new(),
             })
             .collect();
@@ -204,71 +266,7 @@ pub fn render_docs(spec: &Spec, out: &Path) -> Result<Vec<PathBuf>, Error> {
             .types
             .iter()
             .filter(|t| t.group == g.name)
-            .map(|t| {
-                let d = &t.def;
-                let values = match d.kind {
-                    TypeKind::Enum => d
-                        .values
-                        .iter()
-                        .map(|v| {
-                            (
-                                v.value.to_string(),
-                                v.name.clone(),
-                                one_line(v.description.as_deref()),
-                            )
-                        })
-                        .collect(),
-                    TypeKind::Bitfield => d
-                        .bits
-                        .iter()
-                        .map(|b| {
-                            let at = match (b.bit, b.bits) {
-                                (Some(x), _) => x.to_string(),
-                                (_, Some([lo, hi])) => format!("{lo}–{hi}"),
-                                _ => String::new(),
-                            };
-                            (at, b.name.clone(), one_line(b.description.as_deref()))
-                        })
-                        .collect(),
-                    TypeKind::Union => d
-                        .variants
-                        .iter()
-                        .map(|v| {
-                            let ty = v.ty.as_deref().map_or("(none)".to_string(), |t| {
-                                wire_text(
-                                    spec,
-                                    &spec.wire(&FieldDef {
-                                        ty: t.to_string(),
-                                        ..FieldDef::default()
-                                    }),
-                                    &g.name,
-                                )
-                                .0
-                            });
-                            (
-                                v.tag.to_string(),
-                                format!("{} — {ty}", v.name),
-                                one_line(v.description.as_deref()),
-                            )
-                        })
-                        .collect(),
-                    TypeKind::Record => Vec::new(),
-                };
-                DocItem {
-                    name: d.name.clone(),
-                    code: String::new(),
-                    title: d.name.clone(),
-                    kind: format!("{:?}", d.kind).to_lowercase(),
-                    description: one_line(d.description.as_deref()),
-                    report: String::new(),
-                    presence: d
-                        .presence
-                        .clone()
-                        .unwrap_or_else(|| d.repr.clone().unwrap_or_default()),
-                    fields: doc_fields(spec, &d.fields, &g.name),
-                    values,
-                }
-            })
+            .map(|t| doc_type(spec, t, &g.name))
             .collect();
         groups.push(DocGroup {
             name: g.name.clone(),

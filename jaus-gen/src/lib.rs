@@ -21,6 +21,23 @@
 //!
 //! Generated structs carry `#[derive(JausMessage)]` and field attributes of
 //! `jaus-derive`; templates hold no byte-level code.
+//!
+//! ## Golden files
+//!
+//! `tests/golden/` holds one tiny definition file per feature of the language (scaled
+//! integers, enums, bit fields, presence vectors, lists, records, strings and blobs,
+//! unions, embedded messages, flags, offsets, feature gates, queries, runtime roles) and
+//! of the component layer (plain, commands/accepts/emits, modes, `any_message`), each
+//! with the code it generates next to it. `cargo test -p jaus-gen --test golden`
+//! compares them byte for byte and prints a unified diff of any difference, so every
+//! template or generator change is a reviewable diff; after reviewing it,
+//!
+//! ```sh
+//! UPDATE_GOLDEN=1 cargo test -p jaus-gen --test golden
+//! ```
+//!
+//! rewrites them. The workspace's `tests/tests/golden_compile.rs` compiles them against
+//! the SDK.
 
 mod components;
 mod context;

@@ -6,6 +6,12 @@
 //! ([`model`]), validates the whole set, and reports every problem with
 //! `file:line:column`, the message and field concerned, and what to fix.
 //!
+//! Validation also resolves the set, once: the [`Spec`] it returns holds every field
+//! with its wire form ([`Field::wire`]), every named type in its resolved form
+//! ([`TypeForm`]: record fields, enum and bit-field representations, bit-field members,
+//! union variants) and every presence vector type. Consumers read those; there is no
+//! resolution left to do, and nothing to fall back on.
+//!
 //! The language is documented, one example per feature, in this crate's README.md.
 //! The RA 3.3 definitions themselves live in `defs/` ([`defs_dir`]).
 //!
@@ -13,6 +19,12 @@
 //! let spec = jaus_spec::load_dirs(&[jaus_spec::defs_dir()]).unwrap();
 //! let pose = spec.message("ReportGlobalPose").unwrap();
 //! assert_eq!(pose.def.code.0, 0x4402);
+//! let latitude = &pose.fields[0];
+//! assert_eq!(latitude.def.name, "latitude");
+//! assert_eq!(
+//!     latitude.wire,
+//!     jaus_spec::Wire::Scaled { int: jaus_spec::Int::I32, lo: -90.0, hi: 90.0 }
+//! );
 //! ```
 
 pub mod location;
@@ -87,10 +99,12 @@ pub struct Source {
     pub index: LocationIndex,
 }
 
-/// A message with the file it came from.
+/// A validated message: its definition as written, where it came from, and its body
+/// resolved.
 #[derive(Debug, Clone)]
 pub struct Message {
-    /// The definition.
+    /// The definition as written (`def.fields` are the raw field definitions; read
+    /// [`Message::fields`] for their resolved form).
     pub def: MessageDef,
     /// Group name.
     pub group: String,
@@ -98,12 +112,18 @@ pub struct Message {
     pub source: usize,
     /// YAML path of the definition (`messages[3]`).
     pub path: String,
+    /// Presence vector type, if the message has one.
+    pub presence: Option<Int>,
+    /// The body's fields in wire order, each with its wire form.
+    pub fields: Vec<Field>,
 }
 
-/// A named type with the file it came from.
+/// A validated named type: its definition as written, where it came from, and its
+/// resolved form.
 #[derive(Debug, Clone)]
 pub struct Type {
-    /// The definition.
+    /// The definition as written (read [`Type::form`] for the resolved fields,
+    /// representation, members and variants).
     pub def: TypeDef,
     /// Group name.
     pub group: String,
@@ -111,16 +131,91 @@ pub struct Type {
     pub source: usize,
     /// YAML path of the definition (`types[1]`).
     pub path: String,
+    /// What the type is, resolved per kind.
+    pub form: TypeForm,
 }
 
-/// Command codes the component runtime handles for every component (core commands and
-/// queries, service connections, component control, event set-up, Query Services and
-/// Query Heartbeat Pulse). A component interface may not list them.
-pub const RUNTIME_CODES: &[u16] = &[
-    0x0001, 0x0002, 0x0003, 0x0004, 0x0005, 0x0006, 0x0007, 0x0008, 0x0009, 0x000A, 0x000B, 0x000C,
-    0x000D, 0x000E, 0x000F, 0x0010, 0x0011, 0x01F0, 0x01F1, 0x01F2, 0x2001, 0x2002, 0x200D, 0x2011,
-    0x21F0, 0x2202, 0x2B03,
-];
+impl Type {
+    /// The fields of a record, in wire order; none for the other kinds.
+    pub fn fields(&self) -> &[Field] {
+        match &self.form {
+            TypeForm::Record { fields, .. } => fields,
+            _ => &[],
+        }
+    }
+}
+
+/// A field of a message or record with its wire form, resolved once by validation.
+#[derive(Debug, Clone)]
+pub struct Field {
+    /// The definition as written (name, description, unit, presence bit, dependencies).
+    pub def: FieldDef,
+    /// How the field is carried on the wire.
+    pub wire: Wire,
+}
+
+/// The resolved form of a named type, by kind.
+#[derive(Debug, Clone)]
+pub enum TypeForm {
+    /// A sequence of fields.
+    Record {
+        /// Presence vector type, if the record has one.
+        presence: Option<Int>,
+        /// The fields in wire order.
+        fields: Vec<Field>,
+    },
+    /// Named integer values (in the definition's `values`).
+    Enum {
+        /// Integer type of the values.
+        repr: Int,
+    },
+    /// Named bits of an integer.
+    Bitfield {
+        /// The integer type.
+        repr: Int,
+        /// The members, in definition order.
+        members: Vec<Member>,
+    },
+    /// A tag followed by the value of the variant it names.
+    Union {
+        /// Integer type of the tag.
+        repr: Int,
+        /// The variants, in definition order.
+        variants: Vec<Variant>,
+    },
+}
+
+/// A member of a bit field with its bits resolved.
+#[derive(Debug, Clone)]
+pub struct Member {
+    /// The definition as written.
+    pub def: BitDef,
+    /// Where it lies.
+    pub bits: Bits,
+}
+
+/// The bits of a bit-field member.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Bits {
+    /// One bit (`bit: N`): a flag.
+    Flag(u32),
+    /// An inclusive range of bits (`bits: [lo, hi]`) holding an unsigned value.
+    Range {
+        /// Lowest bit.
+        lo: u32,
+        /// Highest bit.
+        hi: u32,
+    },
+}
+
+/// A union variant with the wire form of its value resolved.
+#[derive(Debug, Clone)]
+pub struct Variant {
+    /// The definition as written.
+    pub def: VariantDef,
+    /// The value that follows the tag; `None` for a tag-only variant.
+    pub wire: Option<Wire>,
+}
 
 /// A component with the file it came from.
 #[derive(Debug, Clone)]
@@ -146,7 +241,8 @@ pub struct Group {
     pub description: Option<String>,
 }
 
-/// A validated set of definitions.
+/// A validated set of definitions: every name resolves, and every field carries its
+/// resolved wire form ([`Field::wire`]).
 #[derive(Debug)]
 pub struct Spec {
     /// Every file read, in load order.
@@ -371,7 +467,7 @@ pub fn load<P: AsRef<Path>, Q: AsRef<Path>>(
 
 /// Loads definitions from `(path, text)` pairs (the path is used in errors only).
 pub fn load_texts(texts: Vec<(PathBuf, String)>) -> Result<Spec, SpecErrors> {
-    let mut spec = Spec {
+    let mut draft = validate::Draft {
         sources: Vec::new(),
         groups: Vec::new(),
         types: Vec::new(),
@@ -381,11 +477,11 @@ pub fn load_texts(texts: Vec<(PathBuf, String)>) -> Result<Spec, SpecErrors> {
     let mut errors = Vec::new();
     for (path, text) in texts {
         let index = LocationIndex::build(&text);
-        let source = spec.sources.len();
+        let source = draft.sources.len();
         match serde_yaml::from_str::<SpecFile>(&text) {
             Ok(file) => {
-                if !spec.groups.iter().any(|g| g.name == file.group) {
-                    spec.groups.push(Group {
+                if !draft.groups.iter().any(|g| g.name == file.group) {
+                    draft.groups.push(Group {
                         name: file.group.clone(),
                         title: file
                             .title
@@ -395,7 +491,7 @@ pub fn load_texts(texts: Vec<(PathBuf, String)>) -> Result<Spec, SpecErrors> {
                     });
                 }
                 for (i, t) in file.types.into_iter().enumerate() {
-                    spec.types.push(Type {
+                    draft.types.push(validate::Parsed {
                         def: t,
                         group: file.group.clone(),
                         source,
@@ -403,7 +499,7 @@ pub fn load_texts(texts: Vec<(PathBuf, String)>) -> Result<Spec, SpecErrors> {
                     });
                 }
                 for (i, m) in file.messages.into_iter().enumerate() {
-                    spec.messages.push(Message {
+                    draft.messages.push(validate::Parsed {
                         def: m,
                         group: file.group.clone(),
                         source,
@@ -411,7 +507,7 @@ pub fn load_texts(texts: Vec<(PathBuf, String)>) -> Result<Spec, SpecErrors> {
                     });
                 }
                 for (i, c) in file.components.into_iter().enumerate() {
-                    spec.components.push(Component {
+                    draft.components.push(Component {
                         def: c,
                         group: file.group.clone(),
                         source,
@@ -435,17 +531,12 @@ pub fn load_texts(texts: Vec<(PathBuf, String)>) -> Result<Spec, SpecErrors> {
                 });
             }
         }
-        spec.sources.push(Source { path, text, index });
+        draft.sources.push(Source { path, text, index });
     }
     if !errors.is_empty() {
         return Err(SpecErrors(errors));
     }
-    let errors = validate::validate(&spec);
-    if errors.is_empty() {
-        Ok(spec)
-    } else {
-        Err(SpecErrors(errors))
-    }
+    validate::validate(draft).map_err(SpecErrors)
 }
 
 impl Spec {
@@ -468,23 +559,27 @@ impl Spec {
     /// 0x2000) or the query's explicit `report:`; `None` for non-queries and for
     /// queries marked `no_report`.
     pub fn report_of(&self, query: &MessageDef) -> Option<&Message> {
-        if !(0x2000..0x4000).contains(&query.code.0) || query.no_report {
-            return None;
-        }
-        match &query.report {
-            Some(name) => self.message(name),
-            None => self.message_by_code(query.code.0 + 0x2000),
-        }
-    }
-
-    /// Resolves a field's wire form. Only meaningful on a validated spec.
-    pub fn wire(&self, f: &FieldDef) -> Wire {
-        validate::resolve(self, f).unwrap_or(Wire::Int(Int::U8))
+        report_of(query, |n| self.message(n), |c| self.message_by_code(c))
     }
 
     /// Every source file path (for `cargo:rerun-if-changed`).
     pub fn source_paths(&self) -> impl Iterator<Item = &Path> {
         self.sources.iter().map(|s| s.path.as_path())
+    }
+}
+
+/// The report of `query` found by name (its `report:`) or by code (the complement rule).
+fn report_of<'a, M>(
+    query: &MessageDef,
+    by_name: impl FnOnce(&str) -> Option<&'a M>,
+    by_code: impl FnOnce(u16) -> Option<&'a M>,
+) -> Option<&'a M> {
+    if !(0x2000..0x4000).contains(&query.code.0) || query.no_report {
+        return None;
+    }
+    match &query.report {
+        Some(name) => by_name(name),
+        None => by_code(query.code.0 + 0x2000),
     }
 }
 

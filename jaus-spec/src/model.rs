@@ -102,9 +102,62 @@ pub struct MessageDef {
     /// A note about interoperability (deviations of other implementations).
     #[serde(default)]
     pub interop: Option<String>,
+    /// What the component runtime does with this message for every component (the
+    /// core service of Report Services); empty for the messages components handle.
+    #[serde(default)]
+    pub runtime: Vec<RuntimeRole>,
     /// The body's fields, in wire order.
     #[serde(default)]
     pub fields: Vec<FieldDef>,
+}
+
+impl MessageDef {
+    /// The runtime takes this message for every component (`handles` or `shares`): an
+    /// input of the core service in Report Services.
+    pub fn runtime_input(&self) -> bool {
+        self.runtime
+            .iter()
+            .any(|r| matches!(r, RuntimeRole::Handles | RuntimeRole::Shares))
+    }
+
+    /// The runtime alone handles this message (`handles`): a component interface may
+    /// not list it in `commands` or `accepts`.
+    pub fn runtime_owned(&self) -> bool {
+        self.runtime.contains(&RuntimeRole::Handles)
+    }
+
+    /// The runtime sends this message for every component (`emits`): an output of the
+    /// core service in Report Services.
+    pub fn runtime_output(&self) -> bool {
+        self.runtime.contains(&RuntimeRole::Emits)
+    }
+}
+
+/// What the component runtime does with a message for every component
+/// (`runtime: [handles, emits]`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum RuntimeRole {
+    /// The runtime takes it for every component (an input of the core service); a
+    /// component interface may not list it in `commands` or `accepts`.
+    Handles,
+    /// The runtime takes it for every component (an input of the core service), and a
+    /// component interface may list it too: the runtime answers what every component
+    /// answers (Query Identification of the component itself), the component the rest
+    /// (the node manager's identification of its node and subsystem).
+    Shares,
+    /// The runtime sends it for every component (an output of the core service).
+    Emits,
+}
+
+impl fmt::Display for RuntimeRole {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            RuntimeRole::Handles => "handles",
+            RuntimeRole::Shares => "shares",
+            RuntimeRole::Emits => "emits",
+        })
+    }
 }
 
 /// A field of a message or record, or a list element.

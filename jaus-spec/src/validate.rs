@@ -1,9 +1,55 @@
-//! Validation of a whole definition set. Every rule reports with the position of the
-//! offending key and names the message/type and field concerned.
+//! Validation of a whole definition set, and resolution of every field into its wire
+//! form. Every rule reports with the position of the offending key and names the
+//! message/type and field concerned. The validated [`Spec`] is built only when no rule
+//! is broken, so every field, representation and bit-field member in it is resolved.
 
 use crate::model::*;
-use crate::{Int, Len, Spec, SpecError, Wire};
+use crate::{
+    Bits, Component, Field, Group, Int, Len, Member, Message, Source, Spec, SpecError, Type,
+    TypeForm, Variant, Wire,
+};
 use std::collections::HashMap;
+
+/// A definition as parsed, with the file it came from.
+#[derive(Debug)]
+pub(crate) struct Parsed<D> {
+    /// The definition.
+    pub def: D,
+    /// Group name.
+    pub group: String,
+    /// Index into [`Draft::sources`].
+    pub source: usize,
+    /// YAML path of the definition (`messages[3]`).
+    pub path: String,
+}
+
+/// Every file parsed, nothing checked or resolved yet.
+#[derive(Debug)]
+pub(crate) struct Draft {
+    pub sources: Vec<Source>,
+    pub groups: Vec<Group>,
+    pub types: Vec<Parsed<TypeDef>>,
+    pub messages: Vec<Parsed<MessageDef>>,
+    pub components: Vec<Component>,
+}
+
+impl Draft {
+    fn message(&self, name: &str) -> Option<&Parsed<MessageDef>> {
+        self.messages.iter().find(|m| m.def.name == name)
+    }
+
+    fn ty(&self, name: &str) -> Option<&Parsed<TypeDef>> {
+        self.types.iter().find(|t| t.def.name == name)
+    }
+
+    fn report_of(&self, query: &MessageDef) -> Option<&Parsed<MessageDef>> {
+        crate::report_of(
+            query,
+            |n| self.message(n),
+            |c| self.messages.iter().find(|m| m.def.code.0 == c),
+        )
+    }
+}
 
 const KEYWORDS: &[&str] = &[
     "as", "async", "await", "break", "const", "continue", "crate", "dyn", "else", "enum", "extern",
@@ -27,7 +73,7 @@ fn is_pascal(s: &str) -> bool {
 }
 
 struct Ctx<'a> {
-    spec: &'a Spec,
+    spec: &'a Draft,
     errors: Vec<SpecError>,
 }
 
@@ -53,7 +99,7 @@ fn count_type(name: &str) -> Result<Int, String> {
 }
 
 /// Resolves a field definition to its wire form, or says what is wrong with it.
-pub(crate) fn resolve(spec: &Spec, f: &FieldDef) -> Result<Wire, String> {
+fn resolve(spec: &Draft, f: &FieldDef) -> Result<Wire, String> {
     let ty = f.ty.as_str();
     let size = f.size.as_deref().map(count_type).transpose()?;
     let no = |what: &str, ok: bool| {
@@ -182,6 +228,11 @@ pub(crate) fn resolve(spec: &Spec, f: &FieldDef) -> Result<Wire, String> {
     }
 }
 
+/// A presence vector type and fields, resolved.
+type Body = (Option<Int>, Vec<Field>);
+
+/// Checks the presence vector and fields of a message or record and resolves them;
+/// `None` when an error was reported.
 fn check_fields(
     cx: &mut Ctx<'_>,
     source: usize,
@@ -189,7 +240,8 @@ fn check_fields(
     owner: &str,
     presence: &Option<String>,
     fields: &[FieldDef],
-) {
+) -> Option<Body> {
+    let mut resolved = Some(Vec::with_capacity(fields.len()));
     let pv = match presence {
         None => None,
         Some(p) => match Int::parse(p) {
@@ -201,6 +253,7 @@ fn check_fields(
                     owner.to_string(),
                     format!("presence vector type `{p}` must be u8, u16 or u32"),
                 );
+                resolved = None;
                 None
             }
         },
@@ -274,8 +327,15 @@ fn check_fields(
                         "a field that runs to the end of the body (`length: rest`, `accept_short`) must be the last field",
                     );
                 }
+                if let Some(r) = &mut resolved {
+                    r.push(Field {
+                        def: f.clone(),
+                        wire: w,
+                    });
+                }
             }
             Err(e) => {
+                resolved = None;
                 let key = if e.starts_with("unknown type") {
                     "type"
                 } else if e.starts_with("scale") {
@@ -376,6 +436,7 @@ fn check_fields(
             }
         }
     }
+    resolved.map(|fields| (pv, fields))
 }
 
 /// The type or message name inside a context string such as ``type `Task` ``.
@@ -384,7 +445,7 @@ fn owner_name(owner: &str) -> &str {
 }
 
 /// The field called `name` of a message or record that uses the record named in `owner`.
-fn container_field<'s>(spec: &'s Spec, owner: &str, name: &str) -> Option<&'s FieldDef> {
+fn container_field<'s>(spec: &'s Draft, owner: &str, name: &str) -> Option<&'s FieldDef> {
     let record = owner_name(owner);
     let uses = |fields: &[FieldDef]| {
         fields
@@ -401,7 +462,7 @@ fn container_field<'s>(spec: &'s Spec, owner: &str, name: &str) -> Option<&'s Fi
 
 /// Whether some message or record that uses the record named in `owner` (directly, or
 /// as a list element) has a field called `name`.
-fn in_container(spec: &Spec, owner: &str, name: &str) -> bool {
+fn in_container(spec: &Draft, owner: &str, name: &str) -> bool {
     let record = owner_name(owner);
     let uses = |fields: &[FieldDef]| {
         fields
@@ -418,7 +479,10 @@ fn in_container(spec: &Spec, owner: &str, name: &str) -> bool {
             .any(|t| uses(&t.def.fields) && (has(&t.def.fields) || t.def.name == record))
 }
 
-pub(crate) fn validate(spec: &Spec) -> Vec<SpecError> {
+/// Checks every rule on the parsed files and resolves them into a [`Spec`], or returns
+/// every problem found, in file order.
+pub(crate) fn validate(draft: Draft) -> Result<Spec, Vec<SpecError>> {
+    let spec = &draft;
     let mut cx = Ctx {
         spec,
         errors: Vec::new(),
@@ -499,7 +563,7 @@ pub(crate) fn validate(spec: &Spec) -> Vec<SpecError> {
     }
 
     // Unique command codes.
-    let mut codes: HashMap<u16, &crate::Message> = HashMap::new();
+    let mut codes: HashMap<u16, &Parsed<MessageDef>> = HashMap::new();
     for m in &spec.messages {
         if let Some(first) = codes.insert(m.def.code.0, m) {
             let o = &spec.sources[first.source];
@@ -521,6 +585,7 @@ pub(crate) fn validate(spec: &Spec) -> Vec<SpecError> {
     }
 
     // Types.
+    let mut forms = Vec::with_capacity(spec.types.len());
     for t in &spec.types {
         let ctx = format!("type `{}`", t.def.name);
         let d = &t.def;
@@ -548,9 +613,10 @@ pub(crate) fn validate(spec: &Spec) -> Vec<SpecError> {
                 }
             }
         };
-        match d.kind {
+        let form = match d.kind {
             TypeKind::Record => {
                 check_fields(&mut cx, t.source, &t.path, &ctx, &d.presence, &d.fields)
+                    .map(|(presence, fields)| TypeForm::Record { presence, fields })
             }
             TypeKind::Enum => {
                 if d.values.is_empty() {
@@ -587,20 +653,27 @@ pub(crate) fn validate(spec: &Spec) -> Vec<SpecError> {
                         }
                     }
                 }
+                r.map(|repr| TypeForm::Enum { repr })
             }
             TypeKind::Bitfield => {
-                let width =
-                    need_repr(&mut cx, "a bitfield", true).map_or(64, |r| r.bytes() as u32 * 8);
+                let repr = need_repr(&mut cx, "a bitfield", true);
+                let width = repr.map_or(64, |r| r.bytes() as u32 * 8);
+                let mut members = Some(Vec::with_capacity(d.bits.len()));
                 let mut used: u64 = 0;
                 for (i, b) in d.bits.iter().enumerate() {
                     let p = format!("{}.bits[{i}]", t.path);
-                    let (lo, hi) = match (b.bit, b.bits) {
-                        (Some(x), None) => (x, x),
-                        (None, Some([lo, hi])) => (lo, hi),
+                    let bits = match (b.bit, b.bits) {
+                        (Some(x), None) => Bits::Flag(x),
+                        (None, Some([lo, hi])) => Bits::Range { lo, hi },
                         _ => {
                             cx.err(t.source, &p, ctx.clone(), format!("member `{}` needs exactly one of `bit: N` or `bits: [low, high]`", b.name));
+                            members = None;
                             continue;
                         }
+                    };
+                    let (lo, hi) = match bits {
+                        Bits::Flag(x) => (x, x),
+                        Bits::Range { lo, hi } => (lo, hi),
                     };
                     if lo > hi || hi >= width {
                         cx.err(
@@ -612,7 +685,14 @@ pub(crate) fn validate(spec: &Spec) -> Vec<SpecError> {
                                 b.name
                             ),
                         );
+                        members = None;
                         continue;
+                    }
+                    if let Some(m) = &mut members {
+                        m.push(Member {
+                            def: b.clone(),
+                            bits,
+                        });
                     }
                     let mask = if hi - lo == 63 {
                         u64::MAX
@@ -640,9 +720,12 @@ pub(crate) fn validate(spec: &Spec) -> Vec<SpecError> {
                         );
                     }
                 }
+                repr.zip(members)
+                    .map(|(repr, members)| TypeForm::Bitfield { repr, members })
             }
             TypeKind::Union => {
-                need_repr(&mut cx, "a union tag", false);
+                let repr = need_repr(&mut cx, "a union tag", false);
+                let mut variants = Some(Vec::with_capacity(d.variants.len()));
                 let mut tags: HashMap<u64, &str> = HashMap::new();
                 for (i, v) in d.variants.iter().enumerate() {
                     let p = format!("{}.variants[{i}]", t.path);
@@ -654,18 +737,35 @@ pub(crate) fn validate(spec: &Spec) -> Vec<SpecError> {
                             format!("tag {} is already used by `{o}`", v.tag),
                         );
                     }
-                    if let Some(ty) = &v.ty {
-                        let f = FieldDef {
-                            ty: ty.clone(),
-                            ..FieldDef::default()
-                        };
-                        if let Err(e) = resolve(spec, &f) {
-                            cx.err(t.source, &format!("{p}.type"), ctx.clone(), e);
+                    let wire = match &v.ty {
+                        None => None,
+                        Some(ty) => {
+                            let f = FieldDef {
+                                ty: ty.clone(),
+                                ..FieldDef::default()
+                            };
+                            match resolve(spec, &f) {
+                                Ok(w) => Some(w),
+                                Err(e) => {
+                                    cx.err(t.source, &format!("{p}.type"), ctx.clone(), e);
+                                    variants = None;
+                                    continue;
+                                }
+                            }
                         }
+                    };
+                    if let Some(vs) = &mut variants {
+                        vs.push(Variant {
+                            def: v.clone(),
+                            wire,
+                        });
                     }
                 }
+                repr.zip(variants)
+                    .map(|(repr, variants)| TypeForm::Union { repr, variants })
             }
-        }
+        };
+        forms.push(form);
     }
 
     // A record may hold itself only through a list (which can be empty).
@@ -696,16 +796,18 @@ pub(crate) fn validate(spec: &Spec) -> Vec<SpecError> {
     }
 
     // Messages.
+    let mut bodies = Vec::with_capacity(spec.messages.len());
     for m in &spec.messages {
         let ctx = format!("message `{}`", m.def.name);
-        check_fields(
+        bodies.push(check_fields(
             &mut cx,
             m.source,
             &m.path,
             &ctx,
             &m.def.presence,
             &m.def.fields,
-        );
+        ));
+        check_runtime(&mut cx, m, &ctx);
         let code = m.def.code.0;
         let is_query = (0x2000..0x4000).contains(&code);
         if let Some(r) = &m.def.report {
@@ -740,10 +842,81 @@ pub(crate) fn validate(spec: &Spec) -> Vec<SpecError> {
 
     // Components.
     validate_components(&mut cx);
-    cx.errors.sort_by(|a, b| {
-        (&a.file, a.pos.line, a.pos.column).cmp(&(&b.file, b.pos.line, b.pos.column))
-    });
-    cx.errors
+    let mut errors = cx.errors;
+    // Every definition that could not be resolved reported why, so with no errors
+    // every form and body is there.
+    let forms: Option<Vec<TypeForm>> = forms.into_iter().collect();
+    let bodies: Option<Vec<Body>> = bodies.into_iter().collect();
+    match (forms, bodies) {
+        (Some(forms), Some(bodies)) if errors.is_empty() => Ok(assemble(draft, forms, bodies)),
+        _ => {
+            debug_assert!(
+                !errors.is_empty(),
+                "a definition failed to resolve silently"
+            );
+            errors.sort_by(|a, b| {
+                (&a.file, a.pos.line, a.pos.column).cmp(&(&b.file, b.pos.line, b.pos.column))
+            });
+            Err(errors)
+        }
+    }
+}
+
+/// The validated spec: each parsed definition with its resolved form.
+fn assemble(draft: Draft, forms: Vec<TypeForm>, bodies: Vec<Body>) -> Spec {
+    Spec {
+        sources: draft.sources,
+        groups: draft.groups,
+        types: draft
+            .types
+            .into_iter()
+            .zip(forms)
+            .map(|(t, form)| Type {
+                def: t.def,
+                group: t.group,
+                source: t.source,
+                path: t.path,
+                form,
+            })
+            .collect(),
+        messages: draft
+            .messages
+            .into_iter()
+            .zip(bodies)
+            .map(|(m, (presence, fields))| Message {
+                def: m.def,
+                group: m.group,
+                source: m.source,
+                path: m.path,
+                presence,
+                fields,
+            })
+            .collect(),
+        components: draft.components,
+    }
+}
+
+/// `runtime:` names each role once, and `handles` and `shares` exclude each other.
+fn check_runtime(cx: &mut Ctx<'_>, m: &Parsed<MessageDef>, ctx: &str) {
+    let roles = &m.def.runtime;
+    for (i, role) in roles.iter().enumerate() {
+        if roles[..i].contains(role) {
+            cx.err(
+                m.source,
+                &format!("{}.runtime[{i}]", m.path),
+                ctx.to_string(),
+                format!("runtime role `{role}` is listed twice"),
+            );
+        }
+    }
+    if m.def.runtime_owned() && roles.contains(&RuntimeRole::Shares) {
+        cx.err(
+            m.source,
+            &format!("{}.runtime", m.path),
+            ctx.to_string(),
+            "runtime roles `handles` and `shares` exclude each other: `handles` keeps the message from component interfaces, `shares` lets them list it too",
+        );
+    }
 }
 
 /// Core states a mode transition may lead the component into.
@@ -824,7 +997,7 @@ fn validate_components(cx: &mut Ctx<'_>) {
                         cx.err(c.source, &path, ctx.clone(), msg);
                         continue;
                     }
-                    if crate::RUNTIME_CODES.contains(&code) {
+                    if m.def.runtime_owned() {
                         cx.err(
                             c.source,
                             &path,

@@ -66,3 +66,41 @@ fn all_errors_are_reported_at_once() {
     let errs = jaus_spec::load_texts(vec![("inline.yaml".into(), text.into())]).unwrap_err();
     assert_eq!(errs.0.len(), 3, "{errs}");
 }
+
+#[test]
+fn a_validated_spec_carries_every_resolved_form() {
+    use jaus_spec::{Bits, Int, TypeForm, TypeKind, Wire};
+    let spec = jaus_spec::load_dirs(&[jaus_spec::defs_dir()]).unwrap_or_else(|e| panic!("{e}"));
+    // Every message field, as written, with its wire form.
+    let pose = spec.message("ReportGlobalPose").unwrap();
+    assert_eq!(pose.presence, Some(Int::U16));
+    assert_eq!(pose.fields.len(), pose.def.fields.len());
+    let lat = &pose.fields[0];
+    assert_eq!(lat.def.name, "latitude");
+    assert_eq!(
+        lat.wire,
+        Wire::Scaled {
+            int: Int::I32,
+            lo: -90.0,
+            hi: 90.0
+        }
+    );
+    assert!(pose.fields.iter().any(|f| matches!(
+        &f.wire,
+        Wire::Named { name, kind: TypeKind::Bitfield, .. } if name == "TimeStamp"
+    )));
+    // Bit-field members with their bits, union variants with the form of their value.
+    let Some(TypeForm::Bitfield { repr, members }) = spec.ty("TimeStamp").map(|t| &t.form) else {
+        panic!("TimeStamp is a bit field");
+    };
+    assert_eq!(*repr, Int::U32);
+    assert_eq!(members[0].bits, Bits::Range { lo: 0, hi: 9 });
+    let Some(TypeForm::Union { repr, variants }) = spec.ty("EventLimit").map(|t| &t.form) else {
+        panic!("EventLimit is a union");
+    };
+    assert_eq!(*repr, Int::U8);
+    assert_eq!(variants[0].wire, Some(Wire::Int(Int::U8)));
+    // Records expose their fields; other kinds have none.
+    assert!(!spec.ty("EventRecord").unwrap().fields().is_empty());
+    assert!(spec.ty("TimeStamp").unwrap().fields().is_empty());
+}

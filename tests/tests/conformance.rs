@@ -10,7 +10,7 @@
 use jaus::codec::Encode;
 use jaus::messages::Message;
 use jaus::Packet;
-use jaus_spec::{FieldDef, Spec, TypeKind, Wire};
+use jaus_spec::{Bits, Field, FieldDef, Spec, TypeForm, TypeKind, Wire};
 use serde_json::{Map, Value};
 use std::collections::{BTreeMap, HashMap};
 use std::path::Path;
@@ -151,7 +151,7 @@ impl Cmp<'_> {
     fn fields(
         &mut self,
         owner: &str,
-        defs: &[FieldDef],
+        defs: &[Field],
         mine: &Map<String, Value>,
         oj: &Map<String, Value>,
         at: &str,
@@ -164,21 +164,20 @@ impl Cmp<'_> {
     fn fields_used(
         &mut self,
         owner: &str,
-        defs: &[FieldDef],
+        defs: &[Field],
         mine: &Map<String, Value>,
         oj: &Map<String, Value>,
         at: &str,
         mut used: Vec<String>,
     ) -> Vec<String> {
-        for f in defs {
+        for Field { def: f, wire } in defs {
             let here = format!("{at}.{}", f.name);
-            let wire = self.spec.wire(f);
             let my = mine.get(&f.name);
             if let Wire::Named {
                 name,
                 kind: TypeKind::Bitfield,
                 ..
-            } = &wire
+            } = wire
             {
                 self.bitfield(owner, f, name, my, oj, &here, &mut used);
                 continue;
@@ -191,11 +190,11 @@ impl Cmp<'_> {
             }
             if rule.as_deref() == Some(".") {
                 // A record whose fields OpenJAUS keeps in the enclosing object.
-                let inner = match &wire {
+                let inner = match wire {
                     Wire::Named { name, .. } => self
                         .spec
                         .ty(name)
-                        .map(|t| (name.clone(), t.def.fields.clone())),
+                        .map(|t| (name.clone(), t.fields().to_vec())),
                     _ => None,
                 };
                 match (my.and_then(Value::as_object), inner) {
@@ -216,7 +215,7 @@ impl Cmp<'_> {
                 match (my, index_path(oj, r)) {
                     (Some(m), Some(o)) => {
                         used.push(key);
-                        self.value(&wire, m, &o, &here);
+                        self.value(wire, m, &o, &here);
                     }
                     (None, None) => {}
                     (m, o) => self.fail(&here, format!("{m:?} vs OpenJAUS {o:?}")),
@@ -246,7 +245,7 @@ impl Cmp<'_> {
             // OpenJAUS keeps some lists of records as a record of lists (one list per
             // field); compare element-wise after transposing.
             let transposed;
-            let found = match (found, &wire) {
+            let found = match (found, wire) {
                 (None, Wire::List { elem, .. } | Wire::ListField { elem, .. }) => {
                     match elem.as_ref() {
                         Wire::Named {
@@ -262,7 +261,7 @@ impl Cmp<'_> {
                 }
                 (f, _) => f,
             };
-            if wire == Wire::Flag && found.is_none() {
+            if *wire == Wire::Flag && found.is_none() {
                 // A presence bit with no value of its own: OpenJAUS shows it only in
                 // its presence vector, which the byte comparison covers.
                 continue;
@@ -270,7 +269,7 @@ impl Cmp<'_> {
             match (my, found) {
                 (Some(m), Some((k, o))) => {
                     used.push(k);
-                    self.value(&wire, m, o, &here);
+                    self.value(wire, m, o, &here);
                 }
                 (None, None) if f.bit.is_some() || f.present_if.is_some() => {}
                 (None, Some((k, o))) => {
@@ -324,9 +323,9 @@ impl Cmp<'_> {
         oj: &Map<String, Value>,
         used: &mut Vec<String>,
     ) -> Option<Value> {
-        let fields = &self.spec.ty(ty)?.def.fields;
+        let fields = self.spec.ty(ty)?.fields();
         let mut cols = Vec::new();
-        for f in fields {
+        for Field { def: f, .. } in fields {
             let (k, v) = self.lookup(ty, &f.name, oj)?;
             cols.push((f.name.clone(), k, v.as_array()?));
         }
@@ -355,13 +354,17 @@ impl Cmp<'_> {
         at: &str,
         used: &mut Vec<String>,
     ) {
-        let def = &self.spec.ty(ty).expect("bitfield type").def;
+        let Some(TypeForm::Bitfield { members, .. }) = self.spec.ty(ty).map(|t| &t.form) else {
+            unreachable!("`{ty}` is a bit field");
+        };
         let raw_of = |v: &Value| -> u64 {
-            def.bits
+            members
                 .iter()
                 .map(|b| {
-                    let lo = b.bit.or(b.bits.map(|r| r[0])).unwrap_or(0);
-                    let x = match &v[&b.name] {
+                    let lo = match b.bits {
+                        Bits::Flag(x) | Bits::Range { lo: x, .. } => x,
+                    };
+                    let x = match &v[&b.def.name] {
                         Value::Bool(t) => u64::from(*t),
                         n => n.as_u64().unwrap_or(0),
                     };
@@ -397,7 +400,7 @@ impl Cmp<'_> {
             return;
         }
         // Members flattened into the parent object.
-        for b in &def.bits {
+        for b in members.iter().map(|m| &m.def) {
             let here = format!("{at}.{}", b.name);
             match (my, self.lookup(ty, &b.name, oj)) {
                 (Some(m), Some((k, o))) => {
@@ -455,7 +458,8 @@ impl Cmp<'_> {
                 }
             }
             Wire::Named { name, kind, .. } => {
-                let def = &self.spec.ty(name).expect("named type").def;
+                let ty = self.spec.ty(name).expect("named type");
+                let def = &ty.def;
                 match kind {
                     TypeKind::Enum => {
                         let n = match my {
@@ -470,7 +474,7 @@ impl Cmp<'_> {
                         }
                     }
                     TypeKind::Record => match (my.as_object(), oj.as_object()) {
-                        (Some(m), Some(o)) => self.fields(name, &def.fields.clone(), m, o, at),
+                        (Some(m), Some(o)) => self.fields(name, ty.fields(), m, o, at),
                         _ => self.fail(at, format!("record {my} vs OpenJAUS {oj}")),
                     },
                     TypeKind::Union => {
@@ -483,9 +487,18 @@ impl Cmp<'_> {
                             Value::String(s) => (s.clone(), Value::Null),
                             _ => (String::new(), Value::Null),
                         };
-                        let Some(var) = def.variants.iter().find(|v| v.name == vname) else {
+                        let TypeForm::Union { variants, .. } = &ty.form else {
+                            unreachable!("`{name}` is a union");
+                        };
+                        let Some(var) = variants.iter().find(|v| v.def.name == vname) else {
                             return self.fail(at, format!("unknown variant in {my}"));
                         };
+                        // The named type the variant carries, if any.
+                        let inner = match &var.wire {
+                            Some(Wire::Named { name, .. }) => self.spec.ty(name),
+                            _ => None,
+                        };
+                        let var = &var.def;
                         if let Some(tag_key) = self.names.get(&format!("{name}.tag")).cloned() {
                             // OpenJAUS keeps the tag and the variant's fields in one object.
                             if Some(var.tag) != oj.get(&tag_key).and_then(Value::as_u64) {
@@ -494,11 +507,7 @@ impl Cmp<'_> {
                                     format!("variant {vname} (tag {}) vs OpenJAUS {oj}", var.tag),
                                 );
                             }
-                            let rec = var
-                                .ty
-                                .as_deref()
-                                .and_then(|t| self.spec.ty(t))
-                                .map(|t| (t.def.name.clone(), t.def.fields.clone()));
+                            let rec = inner.map(|t| (t.def.name.clone(), t.fields().to_vec()));
                             if let (Some((rname, defs)), Some(p), Some(o)) =
                                 (rec, payload.as_object(), oj.as_object())
                             {
@@ -514,18 +523,16 @@ impl Cmp<'_> {
                             );
                         }
                         let ojv = oj.get("value").cloned().unwrap_or(Value::Null);
-                        let payload =
-                            match (payload, var.ty.as_deref().and_then(|t| self.spec.ty(t))) {
-                                // A record payload compares with OpenJAUS's array form, in field order.
-                                (Value::Object(o), Some(rec)) => Value::Array(
-                                    rec.def
-                                        .fields
-                                        .iter()
-                                        .map(|f| o.get(&f.name).cloned().unwrap_or(Value::Null))
-                                        .collect(),
-                                ),
-                                (p, _) => p,
-                            };
+                        let payload = match (payload, inner) {
+                            // A record payload compares with OpenJAUS's array form, in field order.
+                            (Value::Object(o), Some(rec)) => Value::Array(
+                                rec.fields()
+                                    .iter()
+                                    .map(|f| o.get(&f.def.name).cloned().unwrap_or(Value::Null))
+                                    .collect(),
+                            ),
+                            (p, _) => p,
+                        };
                         let same = match (&payload, &ojv) {
                             (Value::Array(a), Value::Array(b)) => a == b,
                             (a, b) if a.is_f64() || b.is_f64() => {
@@ -799,7 +806,7 @@ fn openjaus_vectors_decode_reencode_and_match_field_values() {
             check_payload_elements(&mut cmp, &message, &iface, &oj, &at);
             oj.remove("elements");
         }
-        cmp.fields(&def.def.name, &def.def.fields.clone(), mine, &oj, &at);
+        cmp.fields(&def.def.name, &def.fields.clone(), mine, &oj, &at);
         if cmp.errors.len() == before {
             entry.1 += 1;
         }

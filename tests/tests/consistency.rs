@@ -1,7 +1,11 @@
 //! The definition language and the runtime agree on the scaled-integer divisors (the
-//! generator documents resolutions with the former, the codec scales with the latter).
+//! generator documents resolutions with the former, the codec scales with the latter),
+//! and the core service of Report Services says what it always said.
 
 use jaus::codec::ScaledRepr;
+use jaus::components::global_pose_sensor::{self, GlobalPoseSensor};
+use jaus::messages::{Message, QueryServices, RUNTIME_INPUTS, RUNTIME_OUTPUTS};
+use jaus::{Address, CommandCode, Header, JausMessage};
 use jaus_spec::Int;
 
 #[test]
@@ -30,4 +34,45 @@ fn every_query_in_the_catalogue_names_its_report() {
         }
     }
     assert_eq!(jaus::messages::MESSAGES.len(), 160);
+}
+
+/// The core service (type 0) of Report Services, as OpenJAUS lists it: the messages the
+/// definitions mark `runtime:`, in code order. A YAML edit that changes a flag changes
+/// what every component tells its peers; if that is the intent, change these lists too.
+#[test]
+fn the_core_service_lists_what_it_always_listed() {
+    const INPUTS: &[u16] = &[
+        0x0001, 0x0002, 0x0003, 0x0004, 0x0005, 0x0006, 0x0007, 0x0008, 0x0009, 0x000A, 0x000B,
+        0x000C, 0x000D, 0x000E, 0x000F, 0x0010, 0x0011, 0x01F0, 0x01F1, 0x01F2, 0x2001, 0x2002,
+        0x200D, 0x2011, 0x21F0, 0x2202, 0x2B00, 0x2B03,
+    ];
+    const OUTPUTS: &[u16] = &[
+        0x0008, 0x0009, 0x000C, 0x000D, 0x000F, 0x0010, 0x01F3, 0x01F4, 0x4001, 0x4002, 0x400D,
+        0x4011, 0x41F0, 0x41F1, 0x4202, 0x4B00, 0x4B03,
+    ];
+    let codes = |l: &[CommandCode]| l.iter().map(|c| c.0).collect::<Vec<_>>();
+    assert_eq!(codes(RUNTIME_INPUTS), INPUTS);
+    assert_eq!(codes(RUNTIME_OUTPUTS), OUTPUTS);
+
+    // On the wire: the Report Services of a running component.
+    struct Gps;
+    impl GlobalPoseSensor for Gps {}
+    let now = std::time::Instant::now();
+    let (me, peer) = (Address::new(1, 1, 38, 1), Address::new(1, 2, 40, 1));
+    let mut c = global_pose_sensor::component(me, Gps, Default::default(), now);
+    c.handle_timeout(now);
+    let query = Header::new(QueryServices::CODE, me, peer);
+    c.handle_message(now, &query, &Message::QueryServices(QueryServices {}));
+    let report = std::iter::from_fn(|| c.poll_transmit())
+        .find_map(|t| match t.message {
+            Some(Message::ReportServices(r)) => Some(r),
+            _ => None,
+        })
+        .expect("Report Services sent");
+    let core = &report.services[0];
+    assert_eq!(core.service_type, 0);
+    let listed =
+        |l: &[jaus::messages::ServiceCommand]| l.iter().map(|s| s.command_code).collect::<Vec<_>>();
+    assert_eq!(listed(&core.input_commands), INPUTS);
+    assert_eq!(listed(&core.output_commands), OUTPUTS);
 }

@@ -7,7 +7,7 @@
 
 use jaus::codec::{Encode, EncodeError};
 use jaus::messages::Message;
-use jaus_spec::{FieldDef, Int, Len, Spec, TypeKind, Wire};
+use jaus_spec::{Bits, Field, Int, Len, Spec, TypeForm, TypeKind, Wire};
 use proptest::prelude::*;
 use proptest::test_runner::{Config, TestCaseError, TestRunner};
 use serde_json::{json, Map, Value};
@@ -104,12 +104,12 @@ fn wire_strategy(spec: &Spec, w: &Wire, depth: u32) -> BoxedStrategy<Value> {
                 })
             })
             .boxed(),
-        Wire::Named { name, kind, .. } => {
-            let def = spec.ty(name).expect("named type").def.clone();
-            match kind {
-                TypeKind::Record => record_strategy(spec, &def.fields, depth + 1),
-                TypeKind::Enum => {
-                    let values = def.values.clone();
+        Wire::Named { name, .. } => {
+            let ty = spec.ty(name).expect("named type");
+            match &ty.form {
+                TypeForm::Record { fields, .. } => record_strategy(spec, fields, depth + 1),
+                TypeForm::Enum { .. } => {
+                    let values = ty.def.values.clone();
                     any::<u8>()
                         .prop_map(
                             move |n| match values.iter().find(|v| v.value == u64::from(n)) {
@@ -119,23 +119,21 @@ fn wire_strategy(spec: &Spec, w: &Wire, depth: u32) -> BoxedStrategy<Value> {
                         )
                         .boxed()
                 }
-                TypeKind::Bitfield => {
-                    let members: Vec<BoxedStrategy<(String, Value)>> = def
-                        .bits
+                TypeForm::Bitfield { members, .. } => {
+                    let members: Vec<BoxedStrategy<(String, Value)>> = members
                         .iter()
                         .map(|b| {
-                            let name = b.name.clone();
-                            match (b.bit, b.bits) {
-                                (Some(_), _) => any::<bool>()
+                            let name = b.def.name.clone();
+                            match b.bits {
+                                Bits::Flag(_) => any::<bool>()
                                     .prop_map(move |v| (name.clone(), json!(v)))
                                     .boxed(),
-                                (_, Some([lo, hi])) => {
+                                Bits::Range { lo, hi } => {
                                     let max = (1u64 << (hi - lo + 1)) - 1;
                                     (0..=max)
                                         .prop_map(move |v| (name.clone(), json!(v)))
                                         .boxed()
                                 }
-                                _ => unreachable!(),
                             }
                         })
                         .collect();
@@ -143,22 +141,15 @@ fn wire_strategy(spec: &Spec, w: &Wire, depth: u32) -> BoxedStrategy<Value> {
                         .prop_map(|m| Value::Object(m.into_iter().collect()))
                         .boxed()
                 }
-                TypeKind::Union => {
-                    let variants: Vec<BoxedStrategy<Value>> = def
-                        .variants
+                TypeForm::Union { variants, .. } => {
+                    let variants: Vec<BoxedStrategy<Value>> = variants
                         .iter()
                         .map(|v| {
-                            let name = v.name.clone();
-                            match &v.ty {
-                                Some(t) => {
-                                    let f = FieldDef {
-                                        ty: t.clone(),
-                                        ..FieldDef::default()
-                                    };
-                                    wire_strategy(spec, &spec.wire(&f), depth)
-                                        .prop_map(move |x| json!({ name.clone(): x }))
-                                        .boxed()
-                                }
+                            let name = v.def.name.clone();
+                            match &v.wire {
+                                Some(w) => wire_strategy(spec, w, depth)
+                                    .prop_map(move |x| json!({ name.clone(): x }))
+                                    .boxed(),
                                 None => Just(json!(name)).boxed(),
                             }
                         })
@@ -173,25 +164,25 @@ fn wire_strategy(spec: &Spec, w: &Wire, depth: u32) -> BoxedStrategy<Value> {
 /// A union field whose tag is another field: (field, tag field, variant names and tags).
 type Tagged = (String, String, Vec<(String, u64)>);
 
-fn record_strategy(spec: &Spec, fields: &[FieldDef], depth: u32) -> BoxedStrategy<Value> {
+fn record_strategy(spec: &Spec, fields: &[Field], depth: u32) -> BoxedStrategy<Value> {
     let parts: Vec<BoxedStrategy<Option<(String, Value)>>> = fields
         .iter()
-        .map(|f| {
+        .map(|Field { def: f, wire }| {
             let name = f.name.clone();
             // Fields other fields depend on (counts kept apart, presence flags) take
             // small values, so that random cases are often consistent.
-            let governs = fields.iter().any(|g| {
+            let governs = fields.iter().map(|g| &g.def).any(|g| {
                 g.present_if.as_deref() == Some(f.name.as_str())
                     || g.count_field
                         .as_deref()
                         .is_some_and(|c| c.split('-').next().unwrap_or(c).trim() == f.name)
             });
-            let s = match spec.wire(f) {
+            let s = match wire {
                 Wire::Int(_) if governs => (0u64..4).prop_map(|v| json!(v)).boxed(),
-                w => wire_strategy(spec, &w, depth),
+                w => wire_strategy(spec, w, depth),
             }
             .prop_map(move |v| (name.clone(), v));
-            if f.bit.is_some() && spec.wire(f) != Wire::Flag || f.present_if.is_some() {
+            if f.bit.is_some() && *wire != Wire::Flag || f.present_if.is_some() {
                 prop::option::of(s).boxed()
             } else {
                 s.prop_map(Some).boxed()
@@ -202,6 +193,7 @@ fn record_strategy(spec: &Spec, fields: &[FieldDef], depth: u32) -> BoxedStrateg
     // agree with the first union's variant.
     let tagged: Vec<Tagged> = fields
         .iter()
+        .map(|f| &f.def)
         .filter_map(|f| {
             let tag = f.tag_field.clone()?;
             let variants = spec
@@ -260,10 +252,7 @@ fn close(spec: &Spec, w: &Wire, a: &Value, b: &Value, at: &str) -> Result<(), St
             },
             Value::Object(x),
             Value::Object(y),
-        ) => {
-            let fields = spec.ty(name).unwrap().def.fields.clone();
-            fields_close(spec, &fields, x, y, at)
-        }
+        ) => fields_close(spec, spec.ty(name).unwrap().fields(), x, y, at),
         (
             Wire::Named {
                 name,
@@ -274,23 +263,17 @@ fn close(spec: &Spec, w: &Wire, a: &Value, b: &Value, at: &str) -> Result<(), St
             Value::Object(y),
         ) => {
             let (vn, xv) = x.iter().next().unwrap();
-            let t = spec
-                .ty(name)
-                .unwrap()
-                .def
-                .variants
+            let Some(TypeForm::Union { variants, .. }) = spec.ty(name).map(|t| &t.form) else {
+                unreachable!("`{name}` is a union");
+            };
+            let w = variants
                 .iter()
-                .find(|v| &v.name == vn)
-                .unwrap()
-                .ty
-                .clone();
-            let w = spec.wire(&FieldDef {
-                ty: t.unwrap(),
-                ..FieldDef::default()
-            });
+                .find(|v| &v.def.name == vn)
+                .and_then(|v| v.wire.as_ref())
+                .unwrap();
             close(
                 spec,
-                &w,
+                w,
                 xv,
                 y.get(vn).ok_or(format!("{at}: variant {vn} lost"))?,
                 at,
@@ -317,23 +300,24 @@ fn close(spec: &Spec, w: &Wire, a: &Value, b: &Value, at: &str) -> Result<(), St
 
 fn fields_close(
     spec: &Spec,
-    fields: &[FieldDef],
+    fields: &[Field],
     a: &Map<String, Value>,
     b: &Map<String, Value>,
     at: &str,
 ) -> Result<(), String> {
-    for f in fields {
+    for Field { def: f, wire } in fields {
         let here = format!("{at}.{}", f.name);
         // A count kept in its own field is computed from the list it counts when that
         // list is in the same record: what was sent there does not matter.
         let computed = fields
             .iter()
+            .map(|g| &g.def)
             .any(|g| g.count_field.as_deref() == Some(&f.name) && g.offsets_of.is_none());
         if computed || f.offsets_of.is_some() {
             continue;
         }
         match (a.get(&f.name), b.get(&f.name)) {
-            (Some(x), Some(y)) => close(spec, &spec.wire(f), x, y, &here)?,
+            (Some(x), Some(y)) => close(spec, wire, x, y, &here)?,
             (None, None) => {}
             (x, y) => return Err(format!("{here}: sent {x:?}, got {y:?}")),
         }
@@ -346,7 +330,7 @@ fn random_values_of_every_message_round_trip() {
     let spec = jaus_spec::load_dirs(&[jaus_spec::defs_dir()]).expect("definitions validate");
     let mut cases = 0;
     for m in &spec.messages {
-        let strategy = record_strategy(&spec, &m.def.fields, 0);
+        let strategy = record_strategy(&spec, &m.fields, 0);
         let mut runner = TestRunner::new(Config {
             cases: 48,
             failure_persistence: None,
@@ -378,7 +362,7 @@ fn random_values_of_every_message_round_trip() {
             let empty = Map::new();
             fields_close(
                 &spec,
-                &m.def.fields,
+                &m.fields,
                 input["fields"].as_object().unwrap_or(&empty),
                 out["fields"].as_object().unwrap_or(&empty),
                 &m.def.name,

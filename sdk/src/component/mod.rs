@@ -1078,61 +1078,14 @@ fn next_after(due: Instant, period: Duration, now: Instant) -> Instant {
     }
 }
 
-/// The core inputs listed in Report Services (service type 0), as OpenJAUS lists them.
+/// The core inputs listed in Report Services (service type 0), as OpenJAUS lists them:
+/// the messages the definitions mark `runtime: [handles]` or `[shares]`.
 fn jaus_core_inputs() -> &'static [CommandCode] {
-    const C: &[CommandCode] = &[
-        CommandCode(0x0001),
-        CommandCode(0x0002),
-        CommandCode(0x0003),
-        CommandCode(0x0004),
-        CommandCode(0x0005),
-        CommandCode(0x0006),
-        CommandCode(0x0007),
-        CommandCode(0x0008),
-        CommandCode(0x0009),
-        CommandCode(0x000A),
-        CommandCode(0x000B),
-        CommandCode(0x000C),
-        CommandCode(0x000D),
-        CommandCode(0x000E),
-        CommandCode(0x000F),
-        CommandCode(0x0010),
-        CommandCode(0x0011),
-        CommandCode(0x01F0),
-        CommandCode(0x01F1),
-        CommandCode(0x01F2),
-        CommandCode(0x2001),
-        CommandCode(0x2002),
-        CommandCode(0x200D),
-        CommandCode(0x2011),
-        CommandCode(0x21F0),
-        CommandCode(0x2202),
-        CommandCode(0x2B00),
-        CommandCode(0x2B03),
-    ];
-    C
+    crate::messages::RUNTIME_INPUTS
 }
 
-/// The core outputs listed in Report Services.
+/// The core outputs listed in Report Services: the messages the definitions mark
+/// `runtime: [emits]`.
 fn jaus_core_outputs() -> &'static [CommandCode] {
-    const C: &[CommandCode] = &[
-        CommandCode(0x0008),
-        CommandCode(0x0009),
-        CommandCode(0x000C),
-        CommandCode(0x000D),
-        CommandCode(0x000F),
-        CommandCode(0x0010),
-        CommandCode(0x01F3),
-        CommandCode(0x01F4),
-        CommandCode(0x4001),
-        CommandCode(0x4002),
-        CommandCode(0x400D),
-        CommandCode(0x4011),
-        CommandCode(0x41F0),
-        CommandCode(0x41F1),
-        CommandCode(0x4202),
-        CommandCode(0x4B00),
-        CommandCode(0x4B03),
-    ];
-    C
+    crate::messages::RUNTIME_OUTPUTS
 }

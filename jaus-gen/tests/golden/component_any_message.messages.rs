@@ -1,0 +1,60 @@
+use ::jaus::codec::{DecodeError, DecodeErrorKind, Encode, EncodeError, Writer};
+use ::jaus::{CommandCode, JausMessage};
+/// control messages and types.
+#[allow(clippy::module_inception)]
+pub mod control {
+    #[allow(unused_imports)]
+    use super::*;
+}
+pub use control::*;
+/// Any message of the set, by command code.
+#[allow(clippy::enum_variant_names, clippy::large_enum_variant)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(
+    all(),
+    derive(serde::Serialize, serde::Deserialize),
+    serde(tag = "message", content = "fields")
+)]
+pub enum Message {}
+impl Message {
+    /// Decodes a body of the message with command code `code`.
+    pub fn decode(
+        code: CommandCode,
+        body: &[u8],
+    ) -> ::core::result::Result<Self, DecodeError> {
+        match code.0 {
+            other => {
+                Err(
+                    DecodeError::new(
+                        DecodeErrorKind::UnknownCommandCode {
+                            code: other,
+                        },
+                        0,
+                    ),
+                )
+            }
+        }
+    }
+    /// The command code of this message.
+    pub fn code(&self) -> CommandCode {
+        match *self {}
+    }
+    /// The name of this message.
+    pub fn name(&self) -> &'static str {
+        match *self {}
+    }
+    /// The body as a value implementing [`Encode`].
+    pub fn body(&self) -> &dyn Encode {
+        match *self {}
+    }
+}
+impl Encode for Message {
+    fn encoded_len(&self) -> usize {
+        self.body().encoded_len()
+    }
+    fn encode(&self, w: &mut Writer<'_>) -> ::core::result::Result<(), EncodeError> {
+        self.body().encode(w)
+    }
+}
+/// Every message of the set: code, name, title, group and the report answering it.
+pub static MESSAGES: &[::jaus::MessageInfo] = &[];

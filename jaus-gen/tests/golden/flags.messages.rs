@@ -1,0 +1,155 @@
+use ::jaus::codec::{DecodeError, DecodeErrorKind, Encode, EncodeError, Writer};
+use ::jaus::{CommandCode, JausMessage};
+/// flags messages and types.
+#[allow(clippy::module_inception)]
+pub mod flags {
+    #[allow(unused_imports)]
+    use super::*;
+    #[derive(Debug, Clone, PartialEq, Default, ::jaus::JausRecord)]
+    #[cfg_attr(
+        all(),
+        derive(serde::Serialize, serde::Deserialize),
+        serde(deny_unknown_fields)
+    )]
+    pub struct Obstacle {
+        ///
+        /// Unit: m.
+        #[cfg_attr(all(), serde(with = "::jaus::codec::serde_float"))]
+        pub distance: f32,
+        /// Present when the message's flag is set.
+        ///
+        /// Unit: m.
+        /// Present exactly when `buffered` is set.
+        #[jaus(present_if = "buffered")]
+        #[cfg_attr(
+            all(),
+            serde(
+                default,
+                skip_serializing_if = "Option::is_none",
+                with = "::jaus::codec::serde_float::option"
+            )
+        )]
+        pub buffer: Option<f32>,
+        ///
+        /// Preceded on the wire by its length as `u8`.
+        /// Present exactly when `buffered` is set.
+        #[jaus(present_if = "buffered", size = u8)]
+        #[cfg_attr(
+            all(),
+            serde(
+                default,
+                skip_serializing_if = "Option::is_none",
+                with = "::jaus::hex::serde_opt"
+            )
+        )]
+        pub label: Option<Vec<u8>>,
+    }
+    /// Report Obstacles (0xD090).
+    #[derive(Debug, Clone, PartialEq, Default, ::jaus::JausMessage)]
+    #[cfg_attr(
+        all(),
+        derive(serde::Serialize, serde::Deserialize),
+        serde(deny_unknown_fields)
+    )]
+    #[jaus(code = 0xD090, presence = u8)]
+    pub struct ReportObstacles {
+        /// A presence bit standing for itself.
+        /// Presence-vector bit 0 (no bytes of its own).
+        #[jaus(flag = 0, var = "buffered")]
+        pub buffered: bool,
+        /// Presence-vector bit 1 (no bytes of its own).
+        #[jaus(flag = 1, var = "has_confidence")]
+        pub has_confidence: bool,
+        /// Present exactly when `has_confidence` is set.
+        #[jaus(present_if = "has_confidence")]
+        #[cfg_attr(all(), serde(default, skip_serializing_if = "Option::is_none"))]
+        pub confidence: Option<u8>,
+        #[jaus(var = "joints")]
+        pub joints: u8,
+        /// Present when `joints` is non-zero.
+        /// Present exactly when `joints` is set.
+        #[jaus(present_if = "joints")]
+        #[cfg_attr(all(), serde(default, skip_serializing_if = "Option::is_none"))]
+        pub frame: Option<u8>,
+        ///
+        /// Preceded on the wire by its element count as `u16`.
+        #[jaus(count = u16)]
+        pub obstacles: Vec<Obstacle>,
+    }
+}
+pub use flags::*;
+/// Any message of the set, by command code.
+#[allow(clippy::enum_variant_names, clippy::large_enum_variant)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(
+    all(),
+    derive(serde::Serialize, serde::Deserialize),
+    serde(tag = "message", content = "fields")
+)]
+pub enum Message {
+    /// Report Obstacles (0xD090).
+    ReportObstacles(ReportObstacles),
+}
+impl Message {
+    /// Decodes a body of the message with command code `code`.
+    pub fn decode(
+        code: CommandCode,
+        body: &[u8],
+    ) -> ::core::result::Result<Self, DecodeError> {
+        match code.0 {
+            0xD090 => ReportObstacles::decode_body(body).map(Self::ReportObstacles),
+            other => {
+                Err(
+                    DecodeError::new(
+                        DecodeErrorKind::UnknownCommandCode {
+                            code: other,
+                        },
+                        0,
+                    ),
+                )
+            }
+        }
+    }
+    /// The command code of this message.
+    pub fn code(&self) -> CommandCode {
+        match self {
+            Self::ReportObstacles(_) => ReportObstacles::CODE,
+        }
+    }
+    /// The name of this message.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Self::ReportObstacles(_) => ReportObstacles::NAME,
+        }
+    }
+    /// The body as a value implementing [`Encode`].
+    pub fn body(&self) -> &dyn Encode {
+        match self {
+            Self::ReportObstacles(m) => m,
+        }
+    }
+}
+impl From<ReportObstacles> for Message {
+    fn from(m: ReportObstacles) -> Self {
+        Self::ReportObstacles(m)
+    }
+}
+impl Encode for Message {
+    fn encoded_len(&self) -> usize {
+        self.body().encoded_len()
+    }
+    fn encode(&self, w: &mut Writer<'_>) -> ::core::result::Result<(), EncodeError> {
+        self.body().encode(w)
+    }
+}
+/// Every message of the set: code, name, title, group and the report answering it.
+pub static MESSAGES: &[::jaus::MessageInfo] = &[
+    ::jaus::MessageInfo {
+        code: CommandCode(0xD090),
+        name: "ReportObstacles",
+        title: "Report Obstacles",
+        group: "flags",
+        report: None,
+        experimental: false,
+    },
+];

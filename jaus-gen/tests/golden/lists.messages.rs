@@ -1,0 +1,181 @@
+use ::jaus::codec::{DecodeError, DecodeErrorKind, Encode, EncodeError, Writer};
+use ::jaus::{CommandCode, JausMessage};
+/// lists messages and types.
+#[allow(clippy::module_inception)]
+pub mod lists {
+    #[allow(unused_imports)]
+    use super::*;
+    #[derive(Debug, Clone, PartialEq, Default, ::jaus::JausRecord)]
+    #[cfg_attr(
+        all(),
+        derive(serde::Serialize, serde::Deserialize),
+        serde(deny_unknown_fields)
+    )]
+    pub struct Waypoint {
+        #[cfg_attr(all(), serde(with = "::jaus::codec::serde_float"))]
+        pub x: f32,
+        #[cfg_attr(all(), serde(with = "::jaus::codec::serde_float"))]
+        pub y: f32,
+    }
+    #[derive(Debug, Clone, PartialEq, Default, ::jaus::JausRecord)]
+    #[cfg_attr(
+        all(),
+        derive(serde::Serialize, serde::Deserialize),
+        serde(deny_unknown_fields)
+    )]
+    pub struct JointPose {
+        /// One per joint: the count is in the message holding this record.
+        ///
+        /// Its element count is the field `joint_count`.
+        #[jaus(count_var = "joint_count")]
+        pub angles: Vec<u16>,
+    }
+    /// Set Path (0xD040).
+    #[derive(Debug, Clone, PartialEq, Default, ::jaus::JausMessage)]
+    #[cfg_attr(
+        all(),
+        derive(serde::Serialize, serde::Deserialize),
+        serde(deny_unknown_fields)
+    )]
+    #[jaus(code = 0xD040)]
+    pub struct SetPath {
+        ///
+        /// Preceded on the wire by its element count as `u8`.
+        #[jaus(count = u8)]
+        pub flags: Vec<u8>,
+        ///
+        /// Preceded on the wire by its element count as `u16`.
+        #[jaus(count = u16)]
+        pub waypoints: Vec<Waypoint>,
+        ///
+        /// Preceded on the wire by its element count as `u32`.
+        #[jaus(count = u32)]
+        pub stamps: Vec<u32>,
+        /// To the end of the body.
+        ///
+        /// Elements run to the end of the body.
+        #[jaus(rest)]
+        pub tail: Vec<i16>,
+    }
+    /// Set Joints (0xD041).
+    #[derive(Debug, Clone, PartialEq, Default, ::jaus::JausMessage)]
+    #[cfg_attr(
+        all(),
+        derive(serde::Serialize, serde::Deserialize),
+        serde(deny_unknown_fields)
+    )]
+    #[jaus(code = 0xD041)]
+    pub struct SetJoints {
+        #[jaus(var = "joint_count")]
+        pub joint_count: u8,
+        /// As many as `joint_count`.
+        ///
+        /// Its element count is the field `joint_count`.
+        #[jaus(count_var = "joint_count")]
+        pub positions: Vec<f32>,
+        /// One fewer than joints.
+        ///
+        /// Its element count is the field `joint_count - 1`.
+        #[jaus(count_var = "joint_count - 1")]
+        pub links: Vec<u16>,
+        ///
+        /// Preceded on the wire by its element count as `u8`.
+        #[jaus(count = u8)]
+        pub poses: Vec<JointPose>,
+    }
+}
+pub use lists::*;
+/// Any message of the set, by command code.
+#[allow(clippy::enum_variant_names, clippy::large_enum_variant)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(
+    all(),
+    derive(serde::Serialize, serde::Deserialize),
+    serde(tag = "message", content = "fields")
+)]
+pub enum Message {
+    /// Set Path (0xD040).
+    SetPath(SetPath),
+    /// Set Joints (0xD041).
+    SetJoints(SetJoints),
+}
+impl Message {
+    /// Decodes a body of the message with command code `code`.
+    pub fn decode(
+        code: CommandCode,
+        body: &[u8],
+    ) -> ::core::result::Result<Self, DecodeError> {
+        match code.0 {
+            0xD040 => SetPath::decode_body(body).map(Self::SetPath),
+            0xD041 => SetJoints::decode_body(body).map(Self::SetJoints),
+            other => {
+                Err(
+                    DecodeError::new(
+                        DecodeErrorKind::UnknownCommandCode {
+                            code: other,
+                        },
+                        0,
+                    ),
+                )
+            }
+        }
+    }
+    /// The command code of this message.
+    pub fn code(&self) -> CommandCode {
+        match self {
+            Self::SetPath(_) => SetPath::CODE,
+            Self::SetJoints(_) => SetJoints::CODE,
+        }
+    }
+    /// The name of this message.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Self::SetPath(_) => SetPath::NAME,
+            Self::SetJoints(_) => SetJoints::NAME,
+        }
+    }
+    /// The body as a value implementing [`Encode`].
+    pub fn body(&self) -> &dyn Encode {
+        match self {
+            Self::SetPath(m) => m,
+            Self::SetJoints(m) => m,
+        }
+    }
+}
+impl From<SetPath> for Message {
+    fn from(m: SetPath) -> Self {
+        Self::SetPath(m)
+    }
+}
+impl From<SetJoints> for Message {
+    fn from(m: SetJoints) -> Self {
+        Self::SetJoints(m)
+    }
+}
+impl Encode for Message {
+    fn encoded_len(&self) -> usize {
+        self.body().encoded_len()
+    }
+    fn encode(&self, w: &mut Writer<'_>) -> ::core::result::Result<(), EncodeError> {
+        self.body().encode(w)
+    }
+}
+/// Every message of the set: code, name, title, group and the report answering it.
+pub static MESSAGES: &[::jaus::MessageInfo] = &[
+    ::jaus::MessageInfo {
+        code: CommandCode(0xD040),
+        name: "SetPath",
+        title: "Set Path",
+        group: "lists",
+        report: None,
+        experimental: false,
+    },
+    ::jaus::MessageInfo {
+        code: CommandCode(0xD041),
+        name: "SetJoints",
+        title: "Set Joints",
+        group: "lists",
+        report: None,
+        experimental: false,
+    },
+];

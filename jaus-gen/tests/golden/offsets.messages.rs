@@ -1,0 +1,116 @@
+use ::jaus::codec::{DecodeError, DecodeErrorKind, Encode, EncodeError, Writer};
+use ::jaus::{CommandCode, JausMessage};
+/// offsets messages and types.
+#[allow(clippy::module_inception)]
+pub mod offsets {
+    #[allow(unused_imports)]
+    use super::*;
+    /// A node of a task tree.
+    #[derive(Debug, Clone, PartialEq, Default, ::jaus::JausRecord)]
+    #[cfg_attr(
+        all(),
+        derive(serde::Serialize, serde::Deserialize),
+        serde(deny_unknown_fields)
+    )]
+    pub struct Task {
+        pub task_id: u16,
+        #[jaus(var = "child_count")]
+        pub child_count: u16,
+        ///
+        /// Its element count is the field `child_count`.
+        /// Byte offsets of the elements of `children` from the start of the body: computed on encode, informational on decode.
+        #[jaus(count_var = "child_count", offsets = "children")]
+        pub child_offsets: Vec<u32>,
+        ///
+        /// Its element count is the field `child_count`.
+        #[jaus(count_var = "child_count")]
+        pub children: Vec<Task>,
+    }
+    /// Spool Tasks (0xD0A0).
+    #[derive(Debug, Clone, PartialEq, Default, ::jaus::JausMessage)]
+    #[cfg_attr(
+        all(),
+        derive(serde::Serialize, serde::Deserialize),
+        serde(deny_unknown_fields)
+    )]
+    #[jaus(code = 0xD0A0)]
+    pub struct SpoolTasks {
+        pub root: Task,
+    }
+}
+pub use offsets::*;
+/// Any message of the set, by command code.
+#[allow(clippy::enum_variant_names, clippy::large_enum_variant)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(
+    all(),
+    derive(serde::Serialize, serde::Deserialize),
+    serde(tag = "message", content = "fields")
+)]
+pub enum Message {
+    /// Spool Tasks (0xD0A0).
+    SpoolTasks(SpoolTasks),
+}
+impl Message {
+    /// Decodes a body of the message with command code `code`.
+    pub fn decode(
+        code: CommandCode,
+        body: &[u8],
+    ) -> ::core::result::Result<Self, DecodeError> {
+        match code.0 {
+            0xD0A0 => SpoolTasks::decode_body(body).map(Self::SpoolTasks),
+            other => {
+                Err(
+                    DecodeError::new(
+                        DecodeErrorKind::UnknownCommandCode {
+                            code: other,
+                        },
+                        0,
+                    ),
+                )
+            }
+        }
+    }
+    /// The command code of this message.
+    pub fn code(&self) -> CommandCode {
+        match self {
+            Self::SpoolTasks(_) => SpoolTasks::CODE,
+        }
+    }
+    /// The name of this message.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Self::SpoolTasks(_) => SpoolTasks::NAME,
+        }
+    }
+    /// The body as a value implementing [`Encode`].
+    pub fn body(&self) -> &dyn Encode {
+        match self {
+            Self::SpoolTasks(m) => m,
+        }
+    }
+}
+impl From<SpoolTasks> for Message {
+    fn from(m: SpoolTasks) -> Self {
+        Self::SpoolTasks(m)
+    }
+}
+impl Encode for Message {
+    fn encoded_len(&self) -> usize {
+        self.body().encoded_len()
+    }
+    fn encode(&self, w: &mut Writer<'_>) -> ::core::result::Result<(), EncodeError> {
+        self.body().encode(w)
+    }
+}
+/// Every message of the set: code, name, title, group and the report answering it.
+pub static MESSAGES: &[::jaus::MessageInfo] = &[
+    ::jaus::MessageInfo {
+        code: CommandCode(0xD0A0),
+        name: "SpoolTasks",
+        title: "Spool Tasks",
+        group: "offsets",
+        report: None,
+        experimental: false,
+    },
+];

@@ -1,0 +1,167 @@
+use ::jaus::codec::{DecodeError, DecodeErrorKind, Encode, EncodeError, Writer};
+use ::jaus::{CommandCode, JausMessage};
+/// unions messages and types.
+#[allow(clippy::module_inception)]
+pub mod unions {
+    #[allow(unused_imports)]
+    use super::*;
+    #[derive(Debug, Clone, PartialEq, Default, ::jaus::JausRecord)]
+    #[cfg_attr(
+        all(),
+        derive(serde::Serialize, serde::Deserialize),
+        serde(deny_unknown_fields)
+    )]
+    pub struct Rgb {
+        pub red: u8,
+        pub green: u8,
+        pub blue: u8,
+    }
+    /// A tag, then the value of the variant it names.
+    #[derive(Debug, Clone, PartialEq, ::jaus::JausUnion)]
+    #[cfg_attr(all(), derive(serde::Serialize, serde::Deserialize))]
+    #[jaus(tag = u8)]
+    pub enum Value {
+        #[jaus(tag = 0)]
+        Byte(u8),
+        /// A double.
+        #[jaus(tag = 1)]
+        Real(#[cfg_attr(all(), serde(with = "::jaus::codec::serde_float"))] f64),
+        #[jaus(tag = 9)]
+        Colour(Rgb),
+        /// A tag with no value.
+        #[jaus(tag = 10)]
+        Missing,
+    }
+    /// Set Limit (0xD070).
+    #[derive(Debug, Clone, PartialEq, ::jaus::JausMessage)]
+    #[cfg_attr(
+        all(),
+        derive(serde::Serialize, serde::Deserialize),
+        serde(deny_unknown_fields)
+    )]
+    #[jaus(code = 0xD070)]
+    pub struct SetLimit {
+        /// The tag travels with the value.
+        pub limit: Value,
+        ///
+        /// Preceded on the wire by its element count as `u8`.
+        #[jaus(count = u8)]
+        pub history: Vec<Value>,
+    }
+    /// Set Range (0xD071).
+    #[derive(Debug, Clone, PartialEq, ::jaus::JausMessage)]
+    #[cfg_attr(
+        all(),
+        derive(serde::Serialize, serde::Deserialize),
+        serde(deny_unknown_fields)
+    )]
+    #[jaus(code = 0xD071)]
+    pub struct SetRange {
+        /// The tag of both values.
+        #[jaus(var = "value_type")]
+        pub value_type: u8,
+        ///
+        /// Its tag is the field `value_type`, not sent with the value.
+        #[jaus(tag_var = "value_type")]
+        pub low: Value,
+        ///
+        /// Its tag is the field `value_type`, not sent with the value.
+        #[jaus(tag_var = "value_type")]
+        pub high: Value,
+    }
+}
+pub use unions::*;
+/// Any message of the set, by command code.
+#[allow(clippy::enum_variant_names, clippy::large_enum_variant)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(
+    all(),
+    derive(serde::Serialize, serde::Deserialize),
+    serde(tag = "message", content = "fields")
+)]
+pub enum Message {
+    /// Set Limit (0xD070).
+    SetLimit(SetLimit),
+    /// Set Range (0xD071).
+    SetRange(SetRange),
+}
+impl Message {
+    /// Decodes a body of the message with command code `code`.
+    pub fn decode(
+        code: CommandCode,
+        body: &[u8],
+    ) -> ::core::result::Result<Self, DecodeError> {
+        match code.0 {
+            0xD070 => SetLimit::decode_body(body).map(Self::SetLimit),
+            0xD071 => SetRange::decode_body(body).map(Self::SetRange),
+            other => {
+                Err(
+                    DecodeError::new(
+                        DecodeErrorKind::UnknownCommandCode {
+                            code: other,
+                        },
+                        0,
+                    ),
+                )
+            }
+        }
+    }
+    /// The command code of this message.
+    pub fn code(&self) -> CommandCode {
+        match self {
+            Self::SetLimit(_) => SetLimit::CODE,
+            Self::SetRange(_) => SetRange::CODE,
+        }
+    }
+    /// The name of this message.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Self::SetLimit(_) => SetLimit::NAME,
+            Self::SetRange(_) => SetRange::NAME,
+        }
+    }
+    /// The body as a value implementing [`Encode`].
+    pub fn body(&self) -> &dyn Encode {
+        match self {
+            Self::SetLimit(m) => m,
+            Self::SetRange(m) => m,
+        }
+    }
+}
+impl From<SetLimit> for Message {
+    fn from(m: SetLimit) -> Self {
+        Self::SetLimit(m)
+    }
+}
+impl From<SetRange> for Message {
+    fn from(m: SetRange) -> Self {
+        Self::SetRange(m)
+    }
+}
+impl Encode for Message {
+    fn encoded_len(&self) -> usize {
+        self.body().encoded_len()
+    }
+    fn encode(&self, w: &mut Writer<'_>) -> ::core::result::Result<(), EncodeError> {
+        self.body().encode(w)
+    }
+}
+/// Every message of the set: code, name, title, group and the report answering it.
+pub static MESSAGES: &[::jaus::MessageInfo] = &[
+    ::jaus::MessageInfo {
+        code: CommandCode(0xD070),
+        name: "SetLimit",
+        title: "Set Limit",
+        group: "unions",
+        report: None,
+        experimental: false,
+    },
+    ::jaus::MessageInfo {
+        code: CommandCode(0xD071),
+        name: "SetRange",
+        title: "Set Range",
+        group: "unions",
+        report: None,
+        experimental: false,
+    },
+];
