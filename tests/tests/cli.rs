@@ -337,3 +337,58 @@ fn encode_rejects_a_header_code_that_disagrees_with_the_message() {
     // The good line is still encoded, to the original bytes.
     assert_eq!(lines(&out.stdout), [POSE]);
 }
+
+/// Issue 19: `jaus messages NAME` prints the fields (type, unit, range, bit) and an
+/// example line that `encode`/`send` accept; a mistyped name gets suggestions and exit 1.
+#[test]
+fn messages_describes_one_message_with_an_example_that_parses() {
+    let out = run(&["messages", "ReportGlobalPose"], "");
+    assert!(out.status.success());
+    let text = String::from_utf8_lossy(&out.stdout);
+    for needle in [
+        "0x4402",
+        "latitude",
+        "scaled i32",
+        "deg",
+        "[-90, 90]",
+        "presence vector: u16",
+    ] {
+        assert!(text.contains(needle), "{needle} missing:\n{text}");
+    }
+    let example = text
+        .lines()
+        .skip_while(|l| !l.starts_with("example"))
+        .nth(1)
+        .expect("example line")
+        .trim();
+    let parsed = jaus_cli::net::parse_message(example).expect("the example parses");
+    assert_eq!(parsed.1.name(), "ReportGlobalPose");
+    let bad = run(&["messages", "ReportGlobalPos"], "");
+    assert!(!bad.status.success());
+    let err = String::from_utf8_lossy(&bad.stderr);
+    assert!(err.contains("did you mean ReportGlobalPose"), "{err}");
+}
+
+/// Issue 19: `"fields"` may be left out for a message without fields, and a whole
+/// packet line as `decode` prints it is accepted with its destination.
+#[test]
+fn messages_parse_without_fields_and_from_decode_lines() {
+    let (to, m) = jaus_cli::net::parse_message(r#"{"message":"QueryHeartbeatPulse"}"#).unwrap();
+    assert_eq!((to, m.name()), (None, "QueryHeartbeatPulse"));
+    let decoded = jaus::json::decode_line(jaus::json::REFERENCE_PACKETS[0].1).unwrap();
+    let (to, m) = jaus_cli::net::parse_message(&decoded).unwrap();
+    assert_eq!(to, Some(jaus::Address::new(1, 2, 3, 4)));
+    assert_eq!(m.name(), "ReportGlobalPose");
+}
+
+/// Issue 19, defect 3: the default socket is port 3794 on a loopback address other
+/// than the peer's (JUDP peers answer port 3794 of the sender's address).
+#[test]
+fn the_default_socket_is_port_3794_on_an_address_of_its_own() {
+    let peer: std::net::SocketAddr = "127.0.0.1:3794".parse().unwrap();
+    let s = jaus_cli::net::bind_socket(None, &[peer]).unwrap();
+    let local = s.local_addr().unwrap();
+    assert_eq!(local.port(), 3794);
+    assert_ne!(local.ip(), peer.ip());
+    assert!(local.ip().is_loopback());
+}

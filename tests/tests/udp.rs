@@ -1,5 +1,7 @@
-//! Two `jaus node` processes on 127.0.0.1 discover each other over real UDP sockets, and
-//! `jaus query` gets a report from a component on one of them.
+//! `jaus node` processes and the operator's CLI over real UDP sockets on 127.0.0.1:
+//! discovery between nodes, the CLI joining a node as one of its components, sessions
+//! that hold control, refusals made visible, live service connections, and the tree
+//! printed at most once a second.
 
 mod common;
 
@@ -29,16 +31,18 @@ impl Drop for Running {
     }
 }
 
-/// Starts `jaus node` with `yaml`; its stdout lines arrive on the receiver.
+/// Starts `jaus node` with `yaml`; its stdout lines arrive on the receiver, its log
+/// goes to `<dir>/<name>.log`.
 fn node(dir: &std::path::Path, name: &str, yaml: &str) -> (Running, mpsc::Receiver<String>) {
     let cfg = dir.join(format!("{name}.yaml"));
     std::fs::write(&cfg, yaml).unwrap();
+    let log = std::fs::File::create(dir.join(format!("{name}.log"))).unwrap();
     let mut child = Command::new(jaus_bin())
         .args(["node", "--config"])
         .arg(&cfg)
         .args(["--seconds", "30"])
         .stdout(Stdio::piped())
-        .stderr(Stdio::null())
+        .stderr(log)
         .spawn()
         .expect("start jaus node");
     let out = child.stdout.take().unwrap();
@@ -128,10 +132,314 @@ fn two_node_processes_discover_each_other_and_answer_a_query() {
     let report: serde_json::Value = text
         .lines()
         .map(|l| serde_json::from_str::<serde_json::Value>(l).unwrap())
-        .find(|v| v["message"]["message"] == "ReportGlobalPose")
+        .find(|v| v["message"] == "ReportGlobalPose")
         .unwrap_or_else(|| panic!("no report in:\n{text}"));
-    assert_eq!(report["source"], "1.1.38.1");
-    let lat = report["message"]["fields"]["latitude"].as_f64().unwrap();
+    assert_eq!(report["header"]["source"], serde_json::json!([1, 1, 38, 1]));
+    let lat = report["fields"]["latitude"].as_f64().unwrap();
     assert!((lat - 29.6436).abs() < 1e-4, "{lat}");
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+/// The JSON lines of a CLI run.
+fn json_lines(out: &[u8]) -> Vec<serde_json::Value> {
+    String::from_utf8_lossy(out)
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap_or_else(|e| panic!("{e}: {l}")))
+        .collect()
+}
+
+/// A vehicle node at subsystem 20 (the vehicle is no longer bound to 1.1).
+fn vehicle20(dir: &std::path::Path) -> (Running, mpsc::Receiver<String>, u16) {
+    let pa = free_port();
+    let (n, rx) = node(
+        dir,
+        "vehicle20",
+        &format!(
+            "subsystem: 20\nnode: 1\nnode_name: vehicle\nbind: 127.0.0.1:{pa}\nhost: [vehicle]\n"
+        ),
+    );
+    wait_for(
+        &rx,
+        &["20.1.45.1 'GlobalWaypointDriver'"],
+        Duration::from_secs(10),
+    )
+    .unwrap();
+    (n, rx, pa)
+}
+
+fn cli(pa: u16, args: &[&str]) -> Command {
+    let mut c = Command::new(jaus_bin());
+    c.args(args)
+        .arg("--peer")
+        .arg(format!("127.0.0.1:{pa}"))
+        .arg("--bind")
+        .arg(format!("127.0.0.1:{}", free_port()));
+    c
+}
+
+/// Issue 19, defects 2 and 5: `--me` on the node it talks to makes the CLI one of that
+/// node's components (identified, heartbeating, never a second node manager), and one
+/// `send` session holds control across several messages.
+#[test]
+fn the_cli_joins_a_node_and_holds_control_across_a_session() {
+    let dir = std::env::temp_dir().join(format!("jaus-udp-join-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (_n, rx, pa) = vehicle20(&dir);
+    let started = Instant::now();
+    let child = cli(
+        pa,
+        &[
+            "send",
+            "--me",
+            "20.1.40.1",
+            "--to",
+            "20.1.45.1",
+            "--hold",
+            "4.5",
+        ],
+    )
+    .arg(r#"{"message":"RequestComponentControl","fields":{"authority_code":200}}"#)
+    .arg(r#"{"message":"SetTravelSpeed","fields":{"speed":1.5}}"#)
+    .arg(r#"{"message":"QueryComponentControl"}"#)
+    .stdout(Stdio::piped())
+    .stderr(Stdio::piped())
+    .spawn()
+    .unwrap();
+    // While the session holds, the node lists the CLI as a component with its name and
+    // services, and does not drop it (its 3 s timeout for silent components passes
+    // during the session): no tree printed during the session lacks it once it is in.
+    wait_for(
+        &rx,
+        &["20.1.40.1 'jaus CLI' services [0, 40]"],
+        Duration::from_secs(4),
+    )
+    .unwrap();
+    let mut trees: Vec<String> = Vec::new();
+    while started.elapsed() < Duration::from_millis(4300) {
+        if let Ok(line) = rx.recv_timeout(Duration::from_millis(50)) {
+            if line.starts_with("--- system tree") {
+                trees.push(String::new());
+            }
+            if let Some(t) = trees.last_mut() {
+                t.push_str(&line);
+                t.push('\n');
+            }
+        }
+    }
+    for t in &trees {
+        assert!(
+            t.contains("20.1.40.1 'jaus CLI'"),
+            "dropped during the session:\n{t}"
+        );
+        assert!(!t.contains("subsystem 1 "), "a second node appeared:\n{t}");
+    }
+    let out = child.wait_with_output().unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let lines = json_lines(&out.stdout);
+    let find = |name: &str| lines.iter().find(|l| l["message"] == name).cloned();
+    assert_eq!(
+        find("ConfirmComponentControl").expect("control confirmed")["fields"]["response_code"],
+        "ControlAccepted"
+    );
+    assert!(
+        lines
+            .iter()
+            .any(|l| l["acknowledges"] == "SetTravelSpeed" && l["header"]["ack_nak"] == "ack"),
+        "{lines:?}"
+    );
+    let ctl = find("ReportComponentControl").expect("control reported");
+    assert_eq!(
+        (
+            ctl["fields"]["subsystem_id"].as_u64(),
+            ctl["fields"]["component_id"].as_u64()
+        ),
+        (Some(20), Some(40)),
+        "the session still holds control: {ctl}"
+    );
+    // Once the session has ended and fallen silent, the node removes it.
+    let end = Instant::now() + Duration::from_secs(6);
+    let mut tree = String::new();
+    let mut removed = false;
+    while Instant::now() < end && !removed {
+        if let Ok(line) = rx.recv_timeout(Duration::from_millis(100)) {
+            if line.starts_with("--- system tree") {
+                tree.clear();
+            }
+            tree.push_str(&line);
+            tree.push('\n');
+            removed = tree.contains("20.1.45.1") && !tree.contains("20.1.40.1");
+        }
+    }
+    assert!(removed, "still listed after the session: {tree}");
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+/// Issue 19, defect 4: a refused command is a NAK the CLI prints (exit 1) and a warning
+/// in the node's log naming the message, the field, the limit and the sender.
+#[test]
+fn a_refused_command_is_visible_on_both_sides() {
+    let dir = std::env::temp_dir().join(format!("jaus-udp-nak-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (_n, _rx, pa) = vehicle20(&dir);
+    let out = cli(pa, &["send", "--me", "20.1.40.1", "--to", "20.1.45.1"])
+        .arg(r#"{"message":"RequestComponentControl","fields":{"authority_code":200}}"#)
+        .arg(r#"{"message":"SetTravelSpeed","fields":{"speed":50}}"#)
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("NAK from 20.1.45.1 for SetTravelSpeed"),
+        "{err}"
+    );
+    std::thread::sleep(Duration::from_millis(200));
+    let log = std::fs::read_to_string(dir.join("vehicle20.log")).unwrap();
+    let line = log
+        .lines()
+        .find(|l| l.contains("SetTravelSpeed") && l.contains("WARN"))
+        .unwrap_or_else(|| panic!("no warning in:\n{log}"));
+    for needle in [
+        "field `speed`",
+        "[0, 2] m/s",
+        "source=20.1.40.1",
+        "GlobalWaypointDriver",
+    ] {
+        assert!(line.contains(needle), "{needle} not in {line}");
+    }
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+/// Issue 19, defect 5: `query` returns when the reply arrives (not after --wait), takes
+/// a message without `fields`, and `watch` prints service-connection reports as they
+/// arrive.
+#[test]
+fn query_returns_on_the_reply_and_watch_streams_live() {
+    let dir = std::env::temp_dir().join(format!("jaus-udp-watch-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (_n, _rx, pa) = vehicle20(&dir);
+    let t = Instant::now();
+    let out = cli(
+        pa,
+        &[
+            "query",
+            "--me",
+            "20.1.40.2",
+            "--to",
+            "20.1.38.1",
+            "--wait",
+            "20",
+        ],
+    )
+    .arg(r#"{"message":"QueryHeartbeatPulse"}"#)
+    .output()
+    .unwrap();
+    let took = t.elapsed();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(took < Duration::from_secs(10), "query waited {took:?}");
+    assert!(json_lines(&out.stdout)
+        .iter()
+        .any(|l| l["message"] == "ReportHeartbeatPulse"));
+
+    let mut child = cli(
+        pa,
+        &[
+            "watch",
+            "--me",
+            "20.1.40.3",
+            "--to",
+            "20.1.38.1",
+            "--sc",
+            "ReportGlobalPose@5:0x3",
+            "--seconds",
+            "3",
+        ],
+    )
+    .stdout(Stdio::piped())
+    .stderr(Stdio::null())
+    .spawn()
+    .unwrap();
+    let started = Instant::now();
+    let stdout = child.stdout.take().unwrap();
+    let mut arrivals = Vec::new();
+    for line in BufReader::new(stdout).lines().map_while(Result::ok) {
+        let v: serde_json::Value = serde_json::from_str(&line).unwrap();
+        if v["message"] == "ReportGlobalPose" {
+            assert_eq!(v["header"]["service_connection"], true, "{v}");
+            arrivals.push((started.elapsed(), v["t"].as_f64().unwrap()));
+        }
+    }
+    child.wait().unwrap();
+    assert!(
+        arrivals.len() >= 8,
+        "{} reports in 3 s at 5 Hz",
+        arrivals.len()
+    );
+    // Live: the first report was read long before the process ended.
+    assert!(arrivals[0].0 < Duration::from_millis(2500), "{arrivals:?}");
+    let gaps: Vec<f64> = arrivals.windows(2).map(|w| w[1].1 - w[0].1).collect();
+    let mean = gaps.iter().sum::<f64>() / gaps.len() as f64;
+    assert!((mean - 0.2).abs() < 0.05, "mean period {mean} s");
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+/// Issue 19, defect 3: nothing answers → a non-zero exit naming the port-3794 rule.
+#[test]
+fn silence_names_the_port_rule() {
+    let out = Command::new(jaus_bin())
+        .args(["query", "--to", "1.1.38.1", "--wait", "0.5"])
+        .arg("--peer")
+        .arg(format!("127.0.0.1:{}", free_port()))
+        .arg("--bind")
+        .arg(format!("127.0.0.1:{}", free_port()))
+        .arg(r#"{"message":"QueryGlobalPose","fields":{"presence_vector":3}}"#)
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("port 3794 of the sender's IP address"),
+        "{err}"
+    );
+}
+
+/// Issue 19, defect 5: `jaus node` prints the tree only when it changed and at most
+/// once a second (it printed it 17 times in its first second before).
+#[test]
+fn the_node_prints_its_tree_at_most_once_a_second() {
+    let dir = std::env::temp_dir().join(format!("jaus-udp-tree-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (pa, pb) = (free_port(), free_port());
+    let (_a, rx_a) = node(
+        &dir,
+        "a",
+        &format!("subsystem: 3\nnode: 1\nbind: 127.0.0.1:{pa}\npeers: [127.0.0.1:{pb}]\nhost: [vehicle]\n"),
+    );
+    let (_b, _rx_b) = node(
+        &dir,
+        "b",
+        &format!("subsystem: 3\nnode: 2\nbind: 127.0.0.1:{pb}\npeers: [127.0.0.1:{pa}]\n"),
+    );
+    let end = Instant::now() + Duration::from_secs(4);
+    let mut times = Vec::new();
+    while Instant::now() < end {
+        if let Ok(line) = rx_a.recv_timeout(Duration::from_millis(100)) {
+            if let Some(t) = line.strip_prefix("--- system tree at ") {
+                times.push(t.trim_end_matches(" s").parse::<f64>().unwrap());
+            }
+        }
+    }
+    assert!(!times.is_empty());
+    assert!(times.len() <= 5, "{times:?}");
+    for w in times.windows(2) {
+        assert!(w[1] - w[0] >= 0.95, "{times:?}");
+    }
     let _ = std::fs::remove_dir_all(dir);
 }

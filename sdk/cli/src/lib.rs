@@ -11,5 +11,6 @@
 //! tracing-subscriber.
 
 pub mod commands;
+pub mod describe;
 pub mod net;
 pub mod report;

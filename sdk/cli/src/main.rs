@@ -27,6 +27,9 @@ enum Cmd {
         /// Only this group (e.g. `platform`).
         #[arg(long)]
         group: Option<String>,
+        /// One message: its fields with types, units, ranges, presence bits, and an
+        /// example JSON line.
+        name: Option<String>,
     },
     /// Decode packets given as hex (arguments, or stdin one per line) to JSON lines.
     Decode {
@@ -312,10 +315,20 @@ fn main() -> ExitCode {
     let stderr = std::io::stderr();
     let mut err = stderr.lock();
     let ok = match cli.cmd {
-        Cmd::Messages { group } => {
+        Cmd::Messages { group, name: None } => {
             commands::print_messages(&mut out, group.as_deref());
             true
         }
+        Cmd::Messages {
+            name: Some(name), ..
+        } => report(
+            &mut err,
+            jaus_cli::describe::builtin_spec()
+                .and_then(|spec| jaus_cli::describe::describe(&spec, &name))
+                .map(|text| {
+                    let _ = write!(out, "{text}");
+                }),
+        ),
         Cmd::Decode { hex } => {
             let lines: Box<dyn Iterator<Item = String>> = if hex.is_empty() {
                 Box::new(stdin_lines())

@@ -807,14 +807,16 @@ impl Client {
                             }
                             Tapped::Packet(p) => {
                                 let code = p.header.command_code;
-                                if pending.is_some_and(|q| {
+                                let answer = pending.is_some_and(|q| {
                                     q.0 == Some(code) && q.1.matches(&p.header.source)
-                                }) {
+                                });
+                                if answer {
                                     pending = None;
                                     outcome.answered += 1;
                                 }
-                                let noise = code.class() == MessageClass::Query
-                                    || matches!(p.message, Message::ReportHeartbeatPulse(_));
+                                let noise = !answer
+                                    && (code.class() == MessageClass::Query
+                                        || matches!(p.message, Message::ReportHeartbeatPulse(_)));
                                 if script.all || !noise {
                                     let line = Line { t, utc, packet: &p };
                                     let _ = writeln!(
