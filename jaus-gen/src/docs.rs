@@ -7,16 +7,10 @@ use minijinja::Environment;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 
-/// Templates of the documentation (from the workspace `templates/docs/`).
+/// Templates of the documentation (from the crate's `templates/docs/`).
 pub const DOC_TEMPLATES: &[(&str, &str)] = &[
-    (
-        "group.md.j2",
-        include_str!("../../templates/docs/group.md.j2"),
-    ),
-    (
-        "index.md.j2",
-        include_str!("../../templates/docs/index.md.j2"),
-    ),
+    ("group.md.j2", include_str!("../templates/docs/group.md.j2")),
+    ("index.md.j2", include_str!("../templates/docs/index.md.j2")),
 ];
 
 #[derive(Debug, Serialize)]

@@ -1,7 +1,7 @@
 //! # jaus-gen — Rust code from JAUS definitions
 //!
 //! Loads a definition set with [`jaus_spec`], turns every message and named type into a
-//! template context, renders the `minijinja` templates of the workspace's `templates/`
+//! template context, renders the `minijinja` templates of the crate's `templates/`
 //! directory (or an override directory), and formats the result with `prettyplease`.
 //! The output is deterministic: the same definitions and templates give byte-identical
 //! code.
@@ -51,16 +51,16 @@ pub use components::{build_components, ComponentCtx};
 pub use context::{build_context, Context};
 pub use docs::{render_docs, DOC_TEMPLATES};
 
-/// Templates compiled into the generator (from the workspace `templates/` directory).
+/// Templates compiled into the generator (from the crate's `templates/` directory).
 pub const DEFAULT_TEMPLATES: &[(&str, &str)] = &[
     (
         "messages.rs.j2",
-        include_str!("../../templates/messages.rs.j2"),
+        include_str!("../templates/messages.rs.j2"),
     ),
-    ("items.rs.j2", include_str!("../../templates/items.rs.j2")),
+    ("items.rs.j2", include_str!("../templates/items.rs.j2")),
     (
         "components.rs.j2",
-        include_str!("../../templates/components.rs.j2"),
+        include_str!("../templates/components.rs.j2"),
     ),
 ];
 

@@ -156,7 +156,7 @@ fn committed_reference_docs_are_up_to_date() {
     std::fs::remove_dir_all(&dir).ok();
     assert!(
         stale.is_empty() && extra == files.len(),
-        "docs/messages is stale ({stale:?}; {extra} committed vs {} generated): run `cargo run -p jaus-gen -- docs --out docs/messages`",
+        "docs/messages is stale ({stale:?}; {extra} committed vs {} generated): run `cargo run -p jaus-gen --features cli -- docs --out docs/messages`",
         files.len()
     );
 }
