@@ -95,3 +95,41 @@ pub mod serde_opt {
             .transpose()
     }
 }
+
+/// `#[serde(with = "jaus::hex::code")]` for a [`CommandCode`](crate::CommandCode): written
+/// as a number, read from a number or a hex string (`"0x4402"`).
+#[cfg(feature = "serde")]
+pub mod code {
+    use crate::CommandCode;
+    use serde::{Deserialize, Deserializer, Serialize, Serializer};
+
+    /// Serialises the code as a number.
+    pub fn serialize<S: Serializer>(c: &CommandCode, s: S) -> Result<S::Ok, S::Error> {
+        c.0.serialize(s)
+    }
+
+    /// Deserialises a code from a number or a `0x` hex string.
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<CommandCode, D::Error> {
+        #[derive(Deserialize)]
+        #[serde(untagged)]
+        enum Code {
+            Number(u16),
+            Text(String),
+        }
+        match Code::deserialize(d)? {
+            Code::Number(n) => Ok(CommandCode(n)),
+            Code::Text(t) => parse(&t).map_err(serde::de::Error::custom),
+        }
+    }
+
+    /// Parses hex with a `0x` prefix (`0x4402`) or a decimal number.
+    pub fn parse(t: &str) -> Result<CommandCode, String> {
+        let t = t.trim();
+        let r = match t.strip_prefix("0x").or_else(|| t.strip_prefix("0X")) {
+            Some(h) => u16::from_str_radix(h, 16),
+            None => t.parse(),
+        };
+        r.map(CommandCode)
+            .map_err(|_| format!("`{t}` is not a command code (a number, or hex as \"0x4402\")"))
+    }
+}

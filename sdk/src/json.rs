@@ -39,29 +39,214 @@ pub fn decode_packet(packet: &Packet) -> Result<String, String> {
     .map_err(|e| e.to_string())
 }
 
-/// Encodes one JSON line to a hex packet. The data size is computed from the body; a
-/// header command code that disagrees with the message is an error.
-pub fn encode_line(line: &str) -> Result<String, String> {
-    let p: JsonPacket = serde_json::from_str(line).map_err(|e| format!("bad JSON: {e}"))?;
-    let code = p.message.code();
-    if p.header.command_code != code {
-        return Err(format!(
-            "header command code {} does not match message {} ({code})",
-            p.header.command_code,
-            p.message.name()
-        ));
+/// Why a JSON line is not a message.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum JsonError {
+    /// Not JSON.
+    #[error("bad JSON: {0}")]
+    Syntax(String),
+    /// JSON, but not an object with a `"message"` name.
+    #[error("a message is a JSON object: {{\"message\": NAME, \"fields\": {{...}}}} (`jaus messages NAME` shows one)")]
+    NotAMessage,
+    /// No message of that name.
+    #[error("no message named `{name}`{}", suggest(.suggestions))]
+    UnknownMessage {
+        /// The name given.
+        name: String,
+        /// The closest names of the set.
+        suggestions: Vec<&'static str>,
+    },
+    /// The fields do not fit the message.
+    #[error("{message}: {error}")]
+    Fields {
+        /// The message.
+        message: String,
+        /// What serde said.
+        error: String,
+    },
+    /// The header part is wrong.
+    #[error("header: {0}")]
+    Header(String),
+}
+
+fn suggest(s: &[&str]) -> String {
+    if s.is_empty() {
+        String::new()
+    } else {
+        format!("; did you mean {}?", s.join(", "))
     }
-    let body = p
-        .message
-        .to_bytes()
-        .map_err(|e| format!("{}: {e}", p.message.name()))?;
-    let packet = Packet {
-        header: p.header,
-        body,
+}
+
+/// A header given in JSON: every field may be left out. Defaults are those of
+/// [`Header::new`] (priority 6, version 2, no flags, single packet, sequence number 0);
+/// the command code is the message's, the data size is computed; a command code that
+/// is given (a number or a hex string such as `"0x4402"`) must match the message.
+#[derive(Debug, Clone, Default, PartialEq, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct HeaderInput {
+    /// Priority 0–15.
+    pub priority: Option<u8>,
+    /// ACK/NAK field.
+    pub ack_nak: Option<crate::wire::AckNak>,
+    /// Service-connection flag.
+    pub service_connection: Option<bool>,
+    /// Experimental flag.
+    pub experimental: Option<bool>,
+    /// Version.
+    pub version: Option<u8>,
+    /// Reserved bits.
+    pub reserved: Option<u8>,
+    /// Command code (checked against the message).
+    #[serde(default, deserialize_with = "code_opt")]
+    pub command_code: Option<crate::CommandCode>,
+    /// Destination.
+    pub destination: Option<crate::Address>,
+    /// Source.
+    pub source: Option<crate::Address>,
+    /// Ignored (computed from the body).
+    pub data_size: Option<u16>,
+    /// Data flag.
+    pub data_flag: Option<crate::wire::DataFlag>,
+    /// Sequence number.
+    pub sequence_number: Option<u16>,
+}
+
+fn code_opt<'de, D: serde::Deserializer<'de>>(
+    d: D,
+) -> Result<Option<crate::CommandCode>, D::Error> {
+    crate::hex::code::deserialize(d).map(Some)
+}
+
+impl HeaderInput {
+    /// The header of `message`, with `destination`/`source` used where the JSON gave
+    /// none.
+    pub fn complete(
+        &self,
+        message: &Message,
+        destination: Option<crate::Address>,
+        source: Option<crate::Address>,
+    ) -> Result<Header, JsonError> {
+        let code = message.code();
+        if let Some(c) = self.command_code.filter(|c| *c != code) {
+            return Err(JsonError::Header(format!(
+                "command code {c} does not match message {} ({code})",
+                message.name()
+            )));
+        }
+        let need = |v: Option<crate::Address>, what: &str| {
+            v.ok_or_else(|| {
+                JsonError::Header(format!(
+                    "no {what} address (\"{what}\": [subsystem, node, component, instance])"
+                ))
+            })
+        };
+        let mut h = Header::new(
+            code,
+            need(self.destination.or(destination), "destination")?,
+            need(self.source.or(source), "source")?,
+        );
+        h.priority = self.priority.unwrap_or(h.priority);
+        h.ack_nak = self.ack_nak.unwrap_or(h.ack_nak);
+        h.service_connection = self.service_connection.unwrap_or(false);
+        h.experimental = self.experimental.unwrap_or(false);
+        h.version = self.version.unwrap_or(h.version);
+        h.reserved = self.reserved.unwrap_or(0);
+        h.data_flag = self.data_flag.unwrap_or_default();
+        h.sequence_number = self.sequence_number.unwrap_or(0);
+        Ok(h)
+    }
+}
+
+/// Names of the message set closest to `name` (case-insensitive edit distance), best
+/// first, at most three.
+pub fn closest_names(name: &str) -> Vec<&'static str> {
+    let lower = name.to_ascii_lowercase();
+    let mut scored: Vec<(usize, &'static str)> = crate::messages::MESSAGES
+        .iter()
+        .map(|m| {
+            let l = m.name.to_ascii_lowercase();
+            let d = if l.contains(&lower) || lower.contains(&l) {
+                0
+            } else {
+                distance(&lower, &l)
+            };
+            (d, m.name)
+        })
+        .collect();
+    scored.sort();
+    let best = scored.first().map_or(0, |s| s.0);
+    scored
+        .into_iter()
+        .filter(|(d, _)| *d <= best.max(1) && *d <= lower.len() / 2 + 1)
+        .take(3)
+        .map(|(_, n)| n)
+        .collect()
+}
+
+fn distance(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut row: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut prev = row[0];
+        row[0] = i + 1;
+        for (j, cb) in b.iter().enumerate() {
+            let cur = row[j + 1];
+            row[j + 1] = (prev + usize::from(ca != *cb)).min(row[j] + 1).min(cur + 1);
+            prev = cur;
+        }
+    }
+    row[b.len()]
+}
+
+/// Reads a message line: `{"message": NAME, "fields": {...}}` (`fields` may be left out
+/// for a message without fields; `"message": "Raw"` with `{"code", "body"}` for one the
+/// set does not define), optionally with a `"header"` whose fields may all be left out.
+/// Other keys (`t`, `utc` of the CLI's output) are ignored, so any line the CLI prints
+/// can be read back.
+pub fn parse_message(line: &str) -> Result<(HeaderInput, Message), JsonError> {
+    let mut v: serde_json::Value =
+        serde_json::from_str(line).map_err(|e| JsonError::Syntax(e.to_string()))?;
+    let obj = v.as_object_mut().ok_or(JsonError::NotAMessage)?;
+    let name = obj
+        .get("message")
+        .and_then(|m| m.as_str())
+        .ok_or(JsonError::NotAMessage)?
+        .to_string();
+    if name != "Raw" && !crate::messages::MESSAGES.iter().any(|m| m.name == name) {
+        return Err(JsonError::UnknownMessage {
+            suggestions: closest_names(&name),
+            name,
+        });
+    }
+    let header = match obj.remove("header") {
+        Some(h) => serde_json::from_value(h).map_err(|e| JsonError::Header(e.to_string()))?,
+        None => HeaderInput::default(),
     };
-    let bytes = packet
+    let fields = obj
+        .remove("fields")
+        .unwrap_or_else(|| serde_json::Value::Object(Default::default()));
+    let m = serde_json::json!({ "message": name, "fields": fields });
+    let message = serde_json::from_value(m).map_err(|e| JsonError::Fields {
+        message: name,
+        error: e.to_string(),
+    })?;
+    Ok((header, message))
+}
+
+/// Encodes one JSON line to a hex packet. The data size is computed from the body; the
+/// header's other fields default as [`HeaderInput`] says, but the destination and the
+/// source must be given.
+pub fn encode_line(line: &str) -> Result<String, String> {
+    let (header, message) = parse_message(line).map_err(|e| e.to_string())?;
+    let header = header
+        .complete(&message, None, None)
+        .map_err(|e| e.to_string())?;
+    let body = message
         .to_bytes()
-        .map_err(|e| format!("{}: {e}", p.message.name()))?;
+        .map_err(|e| format!("{}: {e}", message.name()))?;
+    let bytes = Packet { header, body }
+        .to_bytes()
+        .map_err(|e| format!("{}: {e}", message.name()))?;
     Ok(crate::hex::encode(&bytes))
 }
 

@@ -91,6 +91,30 @@ pub trait Query: JausMessage {
     type Report: JausMessage;
 }
 
+/// A message the message set does not define: an experimental message of another
+/// vendor, or one of a newer revision of the standard. Its command code and body are
+/// kept exactly as received, so that it is handed to a component
+/// (`on_other_message`), passed on by nodes, printed and sent by the CLI unchanged.
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct RawMessage {
+    /// Command code (decimal, or a hex string such as `"0xD123"`, in JSON).
+    #[cfg_attr(feature = "serde", serde(with = "crate::hex::code"))]
+    pub code: CommandCode,
+    /// The body (a hex string in JSON).
+    #[cfg_attr(feature = "serde", serde(with = "crate::hex::serde"))]
+    pub body: Vec<u8>,
+}
+
+impl codec::Encode for RawMessage {
+    fn encoded_len(&self) -> usize {
+        self.body.len()
+    }
+    fn encode(&self, w: &mut codec::Writer<'_>) -> Result<(), codec::EncodeError> {
+        w.put(&self.body)
+    }
+}
+
 /// A row of the message catalogue ([`messages::MESSAGES`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct MessageInfo {

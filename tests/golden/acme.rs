@@ -237,6 +237,8 @@ pub enum Message {
     ReportTanks(ReportTanks),
     /// Replay Tanks (0xD101).
     ReplayTanks(ReplayTanks),
+    /// A message this set does not define, kept as its code and body.
+    Raw(::jaus::RawMessage),
 }
 impl Message {
     /// Decodes a body of the message with command code `code`.
@@ -248,16 +250,34 @@ impl Message {
             0xD100 => QueryTanks::decode_body(body).map(Self::QueryTanks),
             0xF100 => ReportTanks::decode_body(body).map(Self::ReportTanks),
             0xD101 => ReplayTanks::decode_body(body).map(Self::ReplayTanks),
-            other => {
+            _ => {
+                Ok(
+                    Self::Raw(::jaus::RawMessage {
+                        code,
+                        body: body.to_vec(),
+                    }),
+                )
+            }
+        }
+    }
+    /// Like [`decode`](Self::decode), but a code this set does not define is an error
+    /// instead of a [`Message::Raw`].
+    pub fn decode_known(
+        code: CommandCode,
+        body: &[u8],
+    ) -> ::core::result::Result<Self, DecodeError> {
+        match Self::decode(code, body)? {
+            Self::Raw(_) => {
                 Err(
                     DecodeError::new(
                         DecodeErrorKind::UnknownCommandCode {
-                            code: other,
+                            code: code.0,
                         },
                         0,
                     ),
                 )
             }
+            m => Ok(m),
         }
     }
     /// The command code of this message.
@@ -266,6 +286,7 @@ impl Message {
             Self::QueryTanks(_) => QueryTanks::CODE,
             Self::ReportTanks(_) => ReportTanks::CODE,
             Self::ReplayTanks(_) => ReplayTanks::CODE,
+            Self::Raw(r) => r.code,
         }
     }
     /// The name of this message.
@@ -274,6 +295,7 @@ impl Message {
             Self::QueryTanks(_) => QueryTanks::NAME,
             Self::ReportTanks(_) => ReportTanks::NAME,
             Self::ReplayTanks(_) => ReplayTanks::NAME,
+            Self::Raw(_) => "Raw",
         }
     }
     /// The body as a value implementing [`Encode`].
@@ -282,6 +304,7 @@ impl Message {
             Self::QueryTanks(m) => m,
             Self::ReportTanks(m) => m,
             Self::ReplayTanks(m) => m,
+            Self::Raw(r) => r,
         }
     }
 }

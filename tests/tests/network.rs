@@ -13,7 +13,7 @@ use jaus::messages::*;
 use jaus::net::framing::{Framing, ReassemblyLimits};
 use jaus::net::{Node, NodeConfig};
 use jaus::wire::DataFlag;
-use jaus::{Address, Header, JausMessage};
+use jaus::{Address, CommandCode, Header, JausMessage};
 use jaus_sim::network::{LinkModel, SimNet};
 
 const GPS: Address = Address::new(1, 1, 38, 1);
@@ -581,4 +581,25 @@ fn configuration_is_repaired_under_loss() {
             net.node(i).unwrap().tree().render()
         );
     }
+}
+
+/// Issue 20: a message no node of the path defines (a vendor's experimental code) is
+/// routed through them unchanged and reaches the component as a raw message.
+#[test]
+fn a_message_unknown_to_every_node_passes_through_raw() {
+    let mut net = system(5);
+    net.set_model(LinkModel::default());
+    net.run_for(Duration::from_secs(3));
+    let raw = jaus::RawMessage {
+        code: CommandCode(0xD123),
+        body: vec![1, 2, 3, 0xFF],
+    };
+    send(&mut net, 1, OCU, SINK, Message::Raw(raw.clone()));
+    net.run_for(Duration::from_millis(100));
+    let sink = net.node(2).unwrap().get::<Probe>(SINK).unwrap();
+    let got: Vec<&Message> = sink
+        .messages()
+        .filter(|m| matches!(m, Message::Raw(_)))
+        .collect();
+    assert_eq!(got, [&Message::Raw(raw)]);
 }

@@ -92,6 +92,8 @@ pub enum Message {
     QueryGlobalPose(QueryGlobalPose),
     /// Report Global Pose (0x4402).
     ReportGlobalPose(ReportGlobalPose),
+    /// A message this set does not define, kept as its code and body.
+    Raw(::jaus::RawMessage),
 }
 impl Message {
     /// Decodes a body of the message with command code `code`.
@@ -106,16 +108,34 @@ impl Message {
             0x4405 => ReportWrenchEffort::decode_body(body).map(Self::ReportWrenchEffort),
             0x2402 => QueryGlobalPose::decode_body(body).map(Self::QueryGlobalPose),
             0x4402 => ReportGlobalPose::decode_body(body).map(Self::ReportGlobalPose),
-            other => {
+            _ => {
+                Ok(
+                    Self::Raw(::jaus::RawMessage {
+                        code,
+                        body: body.to_vec(),
+                    }),
+                )
+            }
+        }
+    }
+    /// Like [`decode`](Self::decode), but a code this set does not define is an error
+    /// instead of a [`Message::Raw`].
+    pub fn decode_known(
+        code: CommandCode,
+        body: &[u8],
+    ) -> ::core::result::Result<Self, DecodeError> {
+        match Self::decode(code, body)? {
+            Self::Raw(_) => {
                 Err(
                     DecodeError::new(
                         DecodeErrorKind::UnknownCommandCode {
-                            code: other,
+                            code: code.0,
                         },
                         0,
                     ),
                 )
             }
+            m => Ok(m),
         }
     }
     /// The command code of this message.
@@ -127,6 +147,7 @@ impl Message {
             Self::ReportWrenchEffort(_) => ReportWrenchEffort::CODE,
             Self::QueryGlobalPose(_) => QueryGlobalPose::CODE,
             Self::ReportGlobalPose(_) => ReportGlobalPose::CODE,
+            Self::Raw(r) => r.code,
         }
     }
     /// The name of this message.
@@ -138,6 +159,7 @@ impl Message {
             Self::ReportWrenchEffort(_) => ReportWrenchEffort::NAME,
             Self::QueryGlobalPose(_) => QueryGlobalPose::NAME,
             Self::ReportGlobalPose(_) => ReportGlobalPose::NAME,
+            Self::Raw(_) => "Raw",
         }
     }
     /// The body as a value implementing [`Encode`].
@@ -149,6 +171,7 @@ impl Message {
             Self::ReportWrenchEffort(m) => m,
             Self::QueryGlobalPose(m) => m,
             Self::ReportGlobalPose(m) => m,
+            Self::Raw(r) => r,
         }
     }
 }

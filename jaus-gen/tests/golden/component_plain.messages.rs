@@ -15,7 +15,10 @@ pub use plain::*;
     derive(serde::Serialize, serde::Deserialize),
     serde(tag = "message", content = "fields")
 )]
-pub enum Message {}
+pub enum Message {
+    /// A message this set does not define, kept as its code and body.
+    Raw(::jaus::RawMessage),
+}
 impl Message {
     /// Decodes a body of the message with command code `code`.
     pub fn decode(
@@ -23,29 +26,53 @@ impl Message {
         body: &[u8],
     ) -> ::core::result::Result<Self, DecodeError> {
         match code.0 {
-            other => {
+            _ => {
+                Ok(
+                    Self::Raw(::jaus::RawMessage {
+                        code,
+                        body: body.to_vec(),
+                    }),
+                )
+            }
+        }
+    }
+    /// Like [`decode`](Self::decode), but a code this set does not define is an error
+    /// instead of a [`Message::Raw`].
+    pub fn decode_known(
+        code: CommandCode,
+        body: &[u8],
+    ) -> ::core::result::Result<Self, DecodeError> {
+        match Self::decode(code, body)? {
+            Self::Raw(_) => {
                 Err(
                     DecodeError::new(
                         DecodeErrorKind::UnknownCommandCode {
-                            code: other,
+                            code: code.0,
                         },
                         0,
                     ),
                 )
             }
+            m => Ok(m),
         }
     }
     /// The command code of this message.
     pub fn code(&self) -> CommandCode {
-        match *self {}
+        match self {
+            Self::Raw(r) => r.code,
+        }
     }
     /// The name of this message.
     pub fn name(&self) -> &'static str {
-        match *self {}
+        match self {
+            Self::Raw(_) => "Raw",
+        }
     }
     /// The body as a value implementing [`Encode`].
     pub fn body(&self) -> &dyn Encode {
-        match *self {}
+        match self {
+            Self::Raw(r) => r,
+        }
     }
 }
 impl Encode for Message {

@@ -106,6 +106,8 @@ pub enum Message {
     ReportThing(ReportThing),
     /// Replay (0xD080).
     Replay(Replay),
+    /// A message this set does not define, kept as its code and body.
+    Raw(::jaus::RawMessage),
 }
 impl Message {
     /// Decodes a body of the message with command code `code`.
@@ -117,16 +119,34 @@ impl Message {
             0x2D00 => QueryThing::decode_body(body).map(Self::QueryThing),
             0x4D00 => ReportThing::decode_body(body).map(Self::ReportThing),
             0xD080 => Replay::decode_body(body).map(Self::Replay),
-            other => {
+            _ => {
+                Ok(
+                    Self::Raw(::jaus::RawMessage {
+                        code,
+                        body: body.to_vec(),
+                    }),
+                )
+            }
+        }
+    }
+    /// Like [`decode`](Self::decode), but a code this set does not define is an error
+    /// instead of a [`Message::Raw`].
+    pub fn decode_known(
+        code: CommandCode,
+        body: &[u8],
+    ) -> ::core::result::Result<Self, DecodeError> {
+        match Self::decode(code, body)? {
+            Self::Raw(_) => {
                 Err(
                     DecodeError::new(
                         DecodeErrorKind::UnknownCommandCode {
-                            code: other,
+                            code: code.0,
                         },
                         0,
                     ),
                 )
             }
+            m => Ok(m),
         }
     }
     /// The command code of this message.
@@ -135,6 +155,7 @@ impl Message {
             Self::QueryThing(_) => QueryThing::CODE,
             Self::ReportThing(_) => ReportThing::CODE,
             Self::Replay(_) => Replay::CODE,
+            Self::Raw(r) => r.code,
         }
     }
     /// The name of this message.
@@ -143,6 +164,7 @@ impl Message {
             Self::QueryThing(_) => QueryThing::NAME,
             Self::ReportThing(_) => ReportThing::NAME,
             Self::Replay(_) => Replay::NAME,
+            Self::Raw(_) => "Raw",
         }
     }
     /// The body as a value implementing [`Encode`].
@@ -151,6 +173,7 @@ impl Message {
             Self::QueryThing(m) => m,
             Self::ReportThing(m) => m,
             Self::Replay(m) => m,
+            Self::Raw(r) => r,
         }
     }
 }

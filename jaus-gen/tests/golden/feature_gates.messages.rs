@@ -129,6 +129,8 @@ pub enum Message {
     /// Report Global Waypoint (0x440C).
     #[cfg(feature = "sensors")]
     ReportGlobalWaypoint(ReportGlobalWaypoint),
+    /// A message this set does not define, kept as its code and body.
+    Raw(::jaus::RawMessage),
 }
 impl Message {
     /// Decodes a body of the message with command code `code`.
@@ -150,16 +152,34 @@ impl Message {
             0x440C => {
                 ReportGlobalWaypoint::decode_body(body).map(Self::ReportGlobalWaypoint)
             }
-            other => {
+            _ => {
+                Ok(
+                    Self::Raw(::jaus::RawMessage {
+                        code,
+                        body: body.to_vec(),
+                    }),
+                )
+            }
+        }
+    }
+    /// Like [`decode`](Self::decode), but a code this set does not define is an error
+    /// instead of a [`Message::Raw`].
+    pub fn decode_known(
+        code: CommandCode,
+        body: &[u8],
+    ) -> ::core::result::Result<Self, DecodeError> {
+        match Self::decode(code, body)? {
+            Self::Raw(_) => {
                 Err(
                     DecodeError::new(
                         DecodeErrorKind::UnknownCommandCode {
-                            code: other,
+                            code: code.0,
                         },
                         0,
                     ),
                 )
             }
+            m => Ok(m),
         }
     }
     /// The command code of this message.
@@ -174,6 +194,7 @@ impl Message {
             Self::ReportGlobalPose(_) => ReportGlobalPose::CODE,
             #[cfg(feature = "sensors")]
             Self::ReportGlobalWaypoint(_) => ReportGlobalWaypoint::CODE,
+            Self::Raw(r) => r.code,
         }
     }
     /// The name of this message.
@@ -188,6 +209,7 @@ impl Message {
             Self::ReportGlobalPose(_) => ReportGlobalPose::NAME,
             #[cfg(feature = "sensors")]
             Self::ReportGlobalWaypoint(_) => ReportGlobalWaypoint::NAME,
+            Self::Raw(_) => "Raw",
         }
     }
     /// The body as a value implementing [`Encode`].
@@ -202,6 +224,7 @@ impl Message {
             Self::ReportGlobalPose(m) => m,
             #[cfg(feature = "sensors")]
             Self::ReportGlobalWaypoint(m) => m,
+            Self::Raw(r) => r,
         }
     }
 }

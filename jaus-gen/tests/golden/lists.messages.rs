@@ -98,6 +98,8 @@ pub enum Message {
     SetPath(SetPath),
     /// Set Joints (0xD041).
     SetJoints(SetJoints),
+    /// A message this set does not define, kept as its code and body.
+    Raw(::jaus::RawMessage),
 }
 impl Message {
     /// Decodes a body of the message with command code `code`.
@@ -108,16 +110,34 @@ impl Message {
         match code.0 {
             0xD040 => SetPath::decode_body(body).map(Self::SetPath),
             0xD041 => SetJoints::decode_body(body).map(Self::SetJoints),
-            other => {
+            _ => {
+                Ok(
+                    Self::Raw(::jaus::RawMessage {
+                        code,
+                        body: body.to_vec(),
+                    }),
+                )
+            }
+        }
+    }
+    /// Like [`decode`](Self::decode), but a code this set does not define is an error
+    /// instead of a [`Message::Raw`].
+    pub fn decode_known(
+        code: CommandCode,
+        body: &[u8],
+    ) -> ::core::result::Result<Self, DecodeError> {
+        match Self::decode(code, body)? {
+            Self::Raw(_) => {
                 Err(
                     DecodeError::new(
                         DecodeErrorKind::UnknownCommandCode {
-                            code: other,
+                            code: code.0,
                         },
                         0,
                     ),
                 )
             }
+            m => Ok(m),
         }
     }
     /// The command code of this message.
@@ -125,6 +145,7 @@ impl Message {
         match self {
             Self::SetPath(_) => SetPath::CODE,
             Self::SetJoints(_) => SetJoints::CODE,
+            Self::Raw(r) => r.code,
         }
     }
     /// The name of this message.
@@ -132,6 +153,7 @@ impl Message {
         match self {
             Self::SetPath(_) => SetPath::NAME,
             Self::SetJoints(_) => SetJoints::NAME,
+            Self::Raw(_) => "Raw",
         }
     }
     /// The body as a value implementing [`Encode`].
@@ -139,6 +161,7 @@ impl Message {
         match self {
             Self::SetPath(m) => m,
             Self::SetJoints(m) => m,
+            Self::Raw(r) => r,
         }
     }
 }

@@ -141,6 +141,8 @@ pub enum Message {
     ReportReadings(ReportReadings),
     /// Report Mask (0xD032).
     ReportMask(ReportMask),
+    /// A message this set does not define, kept as its code and body.
+    Raw(::jaus::RawMessage),
 }
 impl Message {
     /// Decodes a body of the message with command code `code`.
@@ -152,16 +154,34 @@ impl Message {
             0xD030 => ReportPosition::decode_body(body).map(Self::ReportPosition),
             0xD031 => ReportReadings::decode_body(body).map(Self::ReportReadings),
             0xD032 => ReportMask::decode_body(body).map(Self::ReportMask),
-            other => {
+            _ => {
+                Ok(
+                    Self::Raw(::jaus::RawMessage {
+                        code,
+                        body: body.to_vec(),
+                    }),
+                )
+            }
+        }
+    }
+    /// Like [`decode`](Self::decode), but a code this set does not define is an error
+    /// instead of a [`Message::Raw`].
+    pub fn decode_known(
+        code: CommandCode,
+        body: &[u8],
+    ) -> ::core::result::Result<Self, DecodeError> {
+        match Self::decode(code, body)? {
+            Self::Raw(_) => {
                 Err(
                     DecodeError::new(
                         DecodeErrorKind::UnknownCommandCode {
-                            code: other,
+                            code: code.0,
                         },
                         0,
                     ),
                 )
             }
+            m => Ok(m),
         }
     }
     /// The command code of this message.
@@ -170,6 +190,7 @@ impl Message {
             Self::ReportPosition(_) => ReportPosition::CODE,
             Self::ReportReadings(_) => ReportReadings::CODE,
             Self::ReportMask(_) => ReportMask::CODE,
+            Self::Raw(r) => r.code,
         }
     }
     /// The name of this message.
@@ -178,6 +199,7 @@ impl Message {
             Self::ReportPosition(_) => ReportPosition::NAME,
             Self::ReportReadings(_) => ReportReadings::NAME,
             Self::ReportMask(_) => ReportMask::NAME,
+            Self::Raw(_) => "Raw",
         }
     }
     /// The body as a value implementing [`Encode`].
@@ -186,6 +208,7 @@ impl Message {
             Self::ReportPosition(m) => m,
             Self::ReportReadings(m) => m,
             Self::ReportMask(m) => m,
+            Self::Raw(r) => r,
         }
     }
 }

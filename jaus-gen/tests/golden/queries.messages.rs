@@ -105,6 +105,8 @@ pub enum Message {
     ReportTemperatureLog(ReportTemperatureLog),
     /// Query Ping (0x2D12).
     QueryPing(QueryPing),
+    /// A message this set does not define, kept as its code and body.
+    Raw(::jaus::RawMessage),
 }
 impl Message {
     /// Decodes a body of the message with command code `code`.
@@ -120,16 +122,34 @@ impl Message {
                 ReportTemperatureLog::decode_body(body).map(Self::ReportTemperatureLog)
             }
             0x2D12 => QueryPing::decode_body(body).map(Self::QueryPing),
-            other => {
+            _ => {
+                Ok(
+                    Self::Raw(::jaus::RawMessage {
+                        code,
+                        body: body.to_vec(),
+                    }),
+                )
+            }
+        }
+    }
+    /// Like [`decode`](Self::decode), but a code this set does not define is an error
+    /// instead of a [`Message::Raw`].
+    pub fn decode_known(
+        code: CommandCode,
+        body: &[u8],
+    ) -> ::core::result::Result<Self, DecodeError> {
+        match Self::decode(code, body)? {
+            Self::Raw(_) => {
                 Err(
                     DecodeError::new(
                         DecodeErrorKind::UnknownCommandCode {
-                            code: other,
+                            code: code.0,
                         },
                         0,
                     ),
                 )
             }
+            m => Ok(m),
         }
     }
     /// The command code of this message.
@@ -140,6 +160,7 @@ impl Message {
             Self::QueryHistory(_) => QueryHistory::CODE,
             Self::ReportTemperatureLog(_) => ReportTemperatureLog::CODE,
             Self::QueryPing(_) => QueryPing::CODE,
+            Self::Raw(r) => r.code,
         }
     }
     /// The name of this message.
@@ -150,6 +171,7 @@ impl Message {
             Self::QueryHistory(_) => QueryHistory::NAME,
             Self::ReportTemperatureLog(_) => ReportTemperatureLog::NAME,
             Self::QueryPing(_) => QueryPing::NAME,
+            Self::Raw(_) => "Raw",
         }
     }
     /// The body as a value implementing [`Encode`].
@@ -160,6 +182,7 @@ impl Message {
             Self::QueryHistory(m) => m,
             Self::ReportTemperatureLog(m) => m,
             Self::QueryPing(m) => m,
+            Self::Raw(r) => r,
         }
     }
 }

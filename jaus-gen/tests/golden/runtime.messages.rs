@@ -73,6 +73,8 @@ pub enum Message {
     Standby(Standby),
     /// Set Speed (0x0402).
     SetSpeed(SetSpeed),
+    /// A message this set does not define, kept as its code and body.
+    Raw(::jaus::RawMessage),
 }
 impl Message {
     /// Decodes a body of the message with command code `code`.
@@ -86,16 +88,34 @@ impl Message {
             0x000D => RequestControl::decode_body(body).map(Self::RequestControl),
             0x0003 => Standby::decode_body(body).map(Self::Standby),
             0x0402 => SetSpeed::decode_body(body).map(Self::SetSpeed),
-            other => {
+            _ => {
+                Ok(
+                    Self::Raw(::jaus::RawMessage {
+                        code,
+                        body: body.to_vec(),
+                    }),
+                )
+            }
+        }
+    }
+    /// Like [`decode`](Self::decode), but a code this set does not define is an error
+    /// instead of a [`Message::Raw`].
+    pub fn decode_known(
+        code: CommandCode,
+        body: &[u8],
+    ) -> ::core::result::Result<Self, DecodeError> {
+        match Self::decode(code, body)? {
+            Self::Raw(_) => {
                 Err(
                     DecodeError::new(
                         DecodeErrorKind::UnknownCommandCode {
-                            code: other,
+                            code: code.0,
                         },
                         0,
                     ),
                 )
             }
+            m => Ok(m),
         }
     }
     /// The command code of this message.
@@ -106,6 +126,7 @@ impl Message {
             Self::RequestControl(_) => RequestControl::CODE,
             Self::Standby(_) => Standby::CODE,
             Self::SetSpeed(_) => SetSpeed::CODE,
+            Self::Raw(r) => r.code,
         }
     }
     /// The name of this message.
@@ -116,6 +137,7 @@ impl Message {
             Self::RequestControl(_) => RequestControl::NAME,
             Self::Standby(_) => Standby::NAME,
             Self::SetSpeed(_) => SetSpeed::NAME,
+            Self::Raw(_) => "Raw",
         }
     }
     /// The body as a value implementing [`Encode`].
@@ -126,6 +148,7 @@ impl Message {
             Self::RequestControl(m) => m,
             Self::Standby(m) => m,
             Self::SetSpeed(m) => m,
+            Self::Raw(r) => r,
         }
     }
 }

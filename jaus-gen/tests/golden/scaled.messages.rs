@@ -73,6 +73,8 @@ pub use scaled::*;
 pub enum Message {
     /// Report Motion (0xD001).
     ReportMotion(ReportMotion),
+    /// A message this set does not define, kept as its code and body.
+    Raw(::jaus::RawMessage),
 }
 impl Message {
     /// Decodes a body of the message with command code `code`.
@@ -82,34 +84,55 @@ impl Message {
     ) -> ::core::result::Result<Self, DecodeError> {
         match code.0 {
             0xD001 => ReportMotion::decode_body(body).map(Self::ReportMotion),
-            other => {
+            _ => {
+                Ok(
+                    Self::Raw(::jaus::RawMessage {
+                        code,
+                        body: body.to_vec(),
+                    }),
+                )
+            }
+        }
+    }
+    /// Like [`decode`](Self::decode), but a code this set does not define is an error
+    /// instead of a [`Message::Raw`].
+    pub fn decode_known(
+        code: CommandCode,
+        body: &[u8],
+    ) -> ::core::result::Result<Self, DecodeError> {
+        match Self::decode(code, body)? {
+            Self::Raw(_) => {
                 Err(
                     DecodeError::new(
                         DecodeErrorKind::UnknownCommandCode {
-                            code: other,
+                            code: code.0,
                         },
                         0,
                     ),
                 )
             }
+            m => Ok(m),
         }
     }
     /// The command code of this message.
     pub fn code(&self) -> CommandCode {
         match self {
             Self::ReportMotion(_) => ReportMotion::CODE,
+            Self::Raw(r) => r.code,
         }
     }
     /// The name of this message.
     pub fn name(&self) -> &'static str {
         match self {
             Self::ReportMotion(_) => ReportMotion::NAME,
+            Self::Raw(_) => "Raw",
         }
     }
     /// The body as a value implementing [`Encode`].
     pub fn body(&self) -> &dyn Encode {
         match self {
             Self::ReportMotion(m) => m,
+            Self::Raw(r) => r,
         }
     }
 }

@@ -109,6 +109,8 @@ pub enum Message {
     ReportImage(ReportImage),
     /// Report Note (0xD063).
     ReportNote(ReportNote),
+    /// A message this set does not define, kept as its code and body.
+    Raw(::jaus::RawMessage),
 }
 impl Message {
     /// Decodes a body of the message with command code `code`.
@@ -121,16 +123,34 @@ impl Message {
             0xD061 => ReportIdentity::decode_body(body).map(Self::ReportIdentity),
             0xD062 => ReportImage::decode_body(body).map(Self::ReportImage),
             0xD063 => ReportNote::decode_body(body).map(Self::ReportNote),
-            other => {
+            _ => {
+                Ok(
+                    Self::Raw(::jaus::RawMessage {
+                        code,
+                        body: body.to_vec(),
+                    }),
+                )
+            }
+        }
+    }
+    /// Like [`decode`](Self::decode), but a code this set does not define is an error
+    /// instead of a [`Message::Raw`].
+    pub fn decode_known(
+        code: CommandCode,
+        body: &[u8],
+    ) -> ::core::result::Result<Self, DecodeError> {
+        match Self::decode(code, body)? {
+            Self::Raw(_) => {
                 Err(
                     DecodeError::new(
                         DecodeErrorKind::UnknownCommandCode {
-                            code: other,
+                            code: code.0,
                         },
                         0,
                     ),
                 )
             }
+            m => Ok(m),
         }
     }
     /// The command code of this message.
@@ -140,6 +160,7 @@ impl Message {
             Self::ReportIdentity(_) => ReportIdentity::CODE,
             Self::ReportImage(_) => ReportImage::CODE,
             Self::ReportNote(_) => ReportNote::CODE,
+            Self::Raw(r) => r.code,
         }
     }
     /// The name of this message.
@@ -149,6 +170,7 @@ impl Message {
             Self::ReportIdentity(_) => ReportIdentity::NAME,
             Self::ReportImage(_) => ReportImage::NAME,
             Self::ReportNote(_) => ReportNote::NAME,
+            Self::Raw(_) => "Raw",
         }
     }
     /// The body as a value implementing [`Encode`].
@@ -158,6 +180,7 @@ impl Message {
             Self::ReportIdentity(m) => m,
             Self::ReportImage(m) => m,
             Self::ReportNote(m) => m,
+            Self::Raw(r) => r,
         }
     }
 }

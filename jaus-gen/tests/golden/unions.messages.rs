@@ -84,6 +84,8 @@ pub enum Message {
     SetLimit(SetLimit),
     /// Set Range (0xD071).
     SetRange(SetRange),
+    /// A message this set does not define, kept as its code and body.
+    Raw(::jaus::RawMessage),
 }
 impl Message {
     /// Decodes a body of the message with command code `code`.
@@ -94,16 +96,34 @@ impl Message {
         match code.0 {
             0xD070 => SetLimit::decode_body(body).map(Self::SetLimit),
             0xD071 => SetRange::decode_body(body).map(Self::SetRange),
-            other => {
+            _ => {
+                Ok(
+                    Self::Raw(::jaus::RawMessage {
+                        code,
+                        body: body.to_vec(),
+                    }),
+                )
+            }
+        }
+    }
+    /// Like [`decode`](Self::decode), but a code this set does not define is an error
+    /// instead of a [`Message::Raw`].
+    pub fn decode_known(
+        code: CommandCode,
+        body: &[u8],
+    ) -> ::core::result::Result<Self, DecodeError> {
+        match Self::decode(code, body)? {
+            Self::Raw(_) => {
                 Err(
                     DecodeError::new(
                         DecodeErrorKind::UnknownCommandCode {
-                            code: other,
+                            code: code.0,
                         },
                         0,
                     ),
                 )
             }
+            m => Ok(m),
         }
     }
     /// The command code of this message.
@@ -111,6 +131,7 @@ impl Message {
         match self {
             Self::SetLimit(_) => SetLimit::CODE,
             Self::SetRange(_) => SetRange::CODE,
+            Self::Raw(r) => r.code,
         }
     }
     /// The name of this message.
@@ -118,6 +139,7 @@ impl Message {
         match self {
             Self::SetLimit(_) => SetLimit::NAME,
             Self::SetRange(_) => SetRange::NAME,
+            Self::Raw(_) => "Raw",
         }
     }
     /// The body as a value implementing [`Encode`].
@@ -125,6 +147,7 @@ impl Message {
         match self {
             Self::SetLimit(m) => m,
             Self::SetRange(m) => m,
+            Self::Raw(r) => r,
         }
     }
 }

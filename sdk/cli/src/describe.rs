@@ -13,46 +13,6 @@ pub fn builtin_spec() -> Result<Spec, String> {
     jaus_spec::load_dirs(&[jaus_spec::defs_dir()]).map_err(|e| e.to_string())
 }
 
-/// The closest message names to a mistyped one (case-insensitive edit distance), best
-/// first.
-pub fn closest<'a>(name: &str, names: impl Iterator<Item = &'a str>) -> Vec<&'a str> {
-    let lower = name.to_ascii_lowercase();
-    let mut scored: Vec<(usize, &str)> = names
-        .map(|n| {
-            let l = n.to_ascii_lowercase();
-            let d = if l.contains(&lower) || lower.contains(&l) {
-                0
-            } else {
-                distance(&lower, &l)
-            };
-            (d, n)
-        })
-        .collect();
-    scored.sort();
-    let best = scored.first().map_or(0, |s| s.0);
-    scored
-        .into_iter()
-        .filter(|(d, _)| *d <= best.max(1) && *d <= lower.len() / 2 + 1)
-        .take(3)
-        .map(|(_, n)| n)
-        .collect()
-}
-
-fn distance(a: &str, b: &str) -> usize {
-    let b: Vec<char> = b.chars().collect();
-    let mut row: Vec<usize> = (0..=b.len()).collect();
-    for (i, ca) in a.chars().enumerate() {
-        let mut prev = row[0];
-        row[0] = i + 1;
-        for (j, cb) in b.iter().enumerate() {
-            let cur = row[j + 1];
-            row[j + 1] = (prev + usize::from(ca != *cb)).min(row[j] + 1).min(cur + 1);
-            prev = cur;
-        }
-    }
-    row[b.len()]
-}
-
 fn wire_text(w: &Wire) -> String {
     match w {
         Wire::Int(i) => i.rust().to_string(),
@@ -148,7 +108,7 @@ pub fn describe(spec: &Spec, name: &str) -> Result<String, String> {
         .iter()
         .find(|m| m.def.name == name || m.def.name.eq_ignore_ascii_case(name))
         .ok_or_else(|| {
-            let near = closest(name, spec.messages.iter().map(|m| m.def.name.as_str()));
+            let near = jaus::json::closest_names(name);
             if near.is_empty() {
                 format!("no message named `{name}` (`jaus messages` lists them)")
             } else {

@@ -452,33 +452,12 @@ pub struct Outcome {
     pub bad_lines: usize,
 }
 
-/// A message parsed from the CLI: `{"message": NAME, "fields": {...}}` (`fields` may be
-/// left out for a message without fields), or the whole packet as `jaus decode` prints
-/// it (its header's destination is then used when no `--to` is given).
+/// A message given to the CLI, in the shape [`jaus::json::parse_message`] reads
+/// (`{"message": NAME, "fields": {...}}`, `fields` optional, or a whole line as `jaus
+/// decode` prints it); the destination of its header, if it has one, is returned.
 pub fn parse_message(json: &str) -> Result<(Option<Address>, Message), String> {
-    let mut v: serde_json::Value =
-        serde_json::from_str(json).map_err(|e| format!("bad JSON: {e}"))?;
-    let obj = v
-        .as_object_mut()
-        .ok_or("a message is a JSON object: {\"message\": NAME, \"fields\": {...}}")?;
-    if !obj.contains_key("fields") {
-        obj.insert(
-            "fields".into(),
-            serde_json::Value::Object(Default::default()),
-        );
-    }
-    let to = obj
-        .get("header")
-        .and_then(|h| h.get("destination"))
-        .and_then(|d| serde_json::from_value::<Address>(d.clone()).ok());
-    let name = obj
-        .get("message")
-        .and_then(|m| m.as_str())
-        .ok_or("missing \"message\": the message name, e.g. \"QueryGlobalPose\"")?
-        .to_string();
-    obj.remove("header");
-    let msg: Message = serde_json::from_value(v).map_err(|e| format!("{name}: {e}"))?;
-    Ok((to, msg))
+    let (header, message) = jaus::json::parse_message(json).map_err(|e| e.to_string())?;
+    Ok((header.destination, message))
 }
 
 /// Picks the local socket: the one asked for, or port 3794 on an address of its own
