@@ -1,4 +1,5 @@
-//! The I/O shell: one blocking UDP socket driving a sans-IO [`Node`] with the real clock.
+//! The I/O shell: one blocking UDP socket driving a sans-IO [`Participant`](super::Participant)
+//! (a [`Node`](super::Node), [`Attached`](super::Attached) components) with the real clock.
 
 use std::io::ErrorKind;
 use std::net::{SocketAddr, UdpSocket};
