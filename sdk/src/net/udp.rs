@@ -1,4 +1,4 @@
-//! The I/O shell: one blocking UDP socket driving a sans-IO [`Participant`](super::Participant)
+//! The I/O shell: one blocking UDP socket driving a sans-IO [`Participant`]
 //! (a [`Node`](super::Node), [`Attached`](super::Attached) components) with the real clock.
 
 use std::io::ErrorKind;
