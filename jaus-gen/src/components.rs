@@ -35,6 +35,8 @@ pub struct ComponentCtx {
     pub emit_codes: Vec<String>,
     /// Takes and sends any message.
     pub any_message: bool,
+    /// Commands motion: a required `stop` method.
+    pub safe_stop: bool,
     /// Sub-states of Ready.
     pub modes: Option<ModesCtx>,
     /// `file:line` of the definition.
@@ -315,6 +317,7 @@ pub fn build_components(spec: &Spec, gates: bool) -> Vec<ComponentCtx> {
                 accepts: d.accepts.iter().filter_map(code_of).collect(),
                 emit_codes: d.emits.iter().filter_map(code_of).collect(),
                 any_message: d.any_message,
+                safe_stop: d.safe_stop,
                 modes,
                 origin,
             }

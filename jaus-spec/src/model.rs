@@ -407,6 +407,10 @@ pub struct ComponentDef {
     /// May send and receive any message (Part 1 command and control components).
     #[serde(default)]
     pub any_message: bool,
+    /// Commands motion: its trait gets a required `stop` method the runtime calls on
+    /// Emergency, on leaving Ready, and when control is lost.
+    #[serde(default)]
+    pub safe_stop: bool,
     /// Behaviour rules of Part 1, one sentence each (rendered into the docs).
     #[serde(default)]
     pub rules: Vec<String>,

@@ -7,7 +7,7 @@ use std::sync::OnceLock;
 use std::time::{Duration, Instant};
 
 use jaus::component::local::{LocalBus, Probe};
-use jaus::component::{Config, CoreState, Modes, Refused, TransitionError};
+use jaus::component::{Config, CoreState, Modes, Refused, StopReason, TransitionError};
 use jaus::components::global_pose_sensor::{self, GlobalPoseSensor};
 use jaus::components::global_waypoint_driver::{self, GlobalWaypointDriver};
 use jaus::components::primitive_driver::{self, PrimitiveDriver};
@@ -30,11 +30,12 @@ fn t0() -> Instant {
     *T0.get_or_init(Instant::now)
 }
 
-/// A primitive driver that records the effort it applies.
+/// A primitive driver that records the effort it applies and why it was stopped.
 #[derive(Debug, Default)]
 struct Actuators {
     effort: f64,
     applied: u32,
+    stops: Vec<StopReason>,
 }
 
 impl PrimitiveDriver for Actuators {
@@ -63,15 +64,9 @@ impl PrimitiveDriver for Actuators {
         })
     }
 
-    fn state_changed(
-        &mut self,
-        _ctx: &mut primitive_driver::Ctx<'_>,
-        _from: CoreState,
-        to: CoreState,
-    ) {
-        if to != CoreState::Ready {
-            self.effort = 0.0;
-        }
+    fn stop(&mut self, _ctx: &mut primitive_driver::Ctx<'_>, reason: StopReason) {
+        self.effort = 0.0;
+        self.stops.push(reason);
     }
 }
 
@@ -513,6 +508,8 @@ impl GlobalWaypointDriver for Follower {
         Ok(())
     }
 
+    fn stop(&mut self, _ctx: &mut global_waypoint_driver::Ctx<'_>, _reason: StopReason) {}
+
     fn tick(&mut self, ctx: &mut global_waypoint_driver::Ctx<'_>) {
         if !self.terminated && self.fixes >= 100 {
             self.terminated = true;
@@ -941,3 +938,89 @@ fn scenarios_are_deterministic_over_100_runs() {
 }
 
 use jaus::JausMessage;
+
+/// Issue 20: the runtime stops a driver on Emergency, on Standby, and when control is
+/// lost (released, preempted, or the controller disappeared), whatever the vendor
+/// wrote in its other hooks.
+#[test]
+fn the_safe_stop_hook_runs_on_emergency_standby_and_lost_control() {
+    let mut bus = bus();
+    step(&mut bus);
+    let drive = |bus: &mut LocalBus, who: Address, authority: u8| {
+        bus.send(
+            who,
+            PD,
+            RequestComponentControl {
+                authority_code: authority,
+            },
+        );
+        bus.send(who, PD, Resume {});
+        bus.send(who, PD, effort(40.0));
+        step(bus);
+        assert_effort(bus, 40.0);
+    };
+    let stops = |bus: &LocalBus| pd(bus).behaviour().0.stops.clone();
+
+    drive(&mut bus, OCU, 10);
+    bus.send(OCU, PD, Standby {});
+    step(&mut bus);
+    assert_effort(&bus, 0.0);
+    assert_eq!(stops(&bus), [StopReason::Standby]);
+
+    bus.send(OCU, PD, Resume {});
+    bus.send(OCU, PD, effort(40.0));
+    step(&mut bus);
+    bus.send(
+        OCU3,
+        PD,
+        SetEmergency {
+            emergency_code: EmergencyCode {
+                transition_to_emergency: true,
+                reserved: 0,
+            },
+        },
+    );
+    step(&mut bus);
+    assert_effort(&bus, 0.0);
+    assert_eq!(stops(&bus)[1], StopReason::Emergency);
+    bus.send(
+        OCU3,
+        PD,
+        ClearEmergency {
+            emergency_code: ClearEmergencyCode {
+                clear_emergency: true,
+                reserved: 0,
+            },
+        },
+    );
+    step(&mut bus);
+
+    // Released by its controller.
+    drive(&mut bus, OCU, 10);
+    bus.send(OCU, PD, ReleaseComponentControl {});
+    step(&mut bus);
+    assert_effort(&bus, 0.0);
+    assert_eq!(
+        stops(&bus).last(),
+        Some(&StopReason::ControlLost { controller: OCU })
+    );
+
+    // Preempted by a higher authority.
+    drive(&mut bus, OCU, 10);
+    bus.send(OCU2, PD, RequestComponentControl { authority_code: 50 });
+    step(&mut bus);
+    assert_effort(&bus, 0.0);
+    assert_eq!(
+        stops(&bus).last(),
+        Some(&StopReason::ControlLost { controller: OCU })
+    );
+
+    // The controller disappeared from the system (the node layer forgets it).
+    drive(&mut bus, OCU2, 60);
+    bus.get_mut::<Pd>(PD).unwrap().forget(OCU2);
+    assert_effort(&bus, 0.0);
+    assert_eq!(
+        stops(&bus).last(),
+        Some(&StopReason::ControlLost { controller: OCU2 })
+    );
+}

@@ -6,7 +6,7 @@
 use std::time::{Duration, Instant};
 
 use jaus::component::local::{LocalBus, Probe};
-use jaus::component::{Component, Config, Refused};
+use jaus::component::{Component, Config, Refused, StopReason};
 use jaus::components::global_waypoint_driver::{self, GlobalWaypointDriver};
 use jaus::components::{
     local_pose_sensor, local_waypoint_driver, mission_spooler, primitive_driver,
@@ -41,6 +41,9 @@ struct OneAtATime {
 }
 
 impl GlobalWaypointDriver for OneAtATime {
+    /// A test stand-in that never moves anything.
+    fn stop(&mut self, _c: &mut global_waypoint_driver::Ctx<'_>, _r: StopReason) {}
+
     fn on_spool_mission(
         &mut self,
         _c: &mut global_waypoint_driver::Ctx<'_>,

@@ -1,7 +1,7 @@
 #[allow(unused_imports)]
 use ::jaus::component::{
     Behaviour, Component, Config, Context, CoreState, CoreTransition, EmittedBy, Modes,
-    NoModes, Refused,
+    NoModes, Refused, StopReason,
 };
 #[allow(unused_imports)]
 use ::jaus::messages::*;

@@ -1,7 +1,7 @@
 #[allow(unused_imports)]
 use ::jaus::component::{
     Behaviour, Component, Config, Context, CoreState, CoreTransition, EmittedBy, Modes,
-    NoModes, Refused,
+    NoModes, Refused, StopReason,
 };
 #[allow(unused_imports)]
 use ::jaus::messages::*;
@@ -35,6 +35,12 @@ pub mod track_driver {
     /// ([`Component`]) does everything common to all JAUS components. Run it with
     /// [`component`].
     pub trait TrackDriver: Send + 'static {
+        /// Stops all motion now (required: this component commands motion). The runtime
+        /// calls it on entering Emergency (from any state), on leaving Ready for Standby,
+        /// Shutdown or Failure, and when the component in control releases it, is
+        /// preempted or disappears; `reason` says which. Commands are refused until the
+        /// component is Ready again and controlled.
+        fn stop(&mut self, ctx: &mut Ctx<'_>, reason: StopReason);
         /// Handles [`SetWrenchEffort`] (0x0405): Set Wrench Effort.
         ///
         /// A command: the runtime calls this only when the sender is the component in control and
@@ -175,6 +181,9 @@ pub mod track_driver {
         }
         fn tick(&mut self, ctx: &mut Ctx<'_>) {
             self.0.tick(ctx)
+        }
+        fn stop(&mut self, ctx: &mut Ctx<'_>, reason: StopReason) {
+            self.0.stop(ctx, reason)
         }
     }
     /// A Track Driver component at `address` running `imp`, starting at `now`.

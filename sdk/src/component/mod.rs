@@ -116,6 +116,38 @@ pub enum Refused {
     },
 }
 
+/// Why the runtime asks a component that commands motion to stop ([`Behaviour::stop`],
+/// the `stop` method of every driver's generated trait).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StopReason {
+    /// Set Emergency arrived (from anyone); the component is in Emergency.
+    Emergency,
+    /// The component left Ready for Standby (Standby command, or its own transition).
+    Standby,
+    /// The component is shutting down.
+    Shutdown,
+    /// The component entered Failure.
+    Failure,
+    /// The component in control released it, was preempted by a higher authority, or
+    /// disappeared from the system: nobody commands the motion any more.
+    ControlLost {
+        /// The component that was in control.
+        controller: Address,
+    },
+}
+
+impl std::fmt::Display for StopReason {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            StopReason::Emergency => f.write_str("emergency"),
+            StopReason::Standby => f.write_str("standby"),
+            StopReason::Shutdown => f.write_str("shutdown"),
+            StopReason::Failure => f.write_str("failure"),
+            StopReason::ControlLost { controller } => write!(f, "control lost by {controller}"),
+        }
+    }
+}
+
 /// What the generated `Dispatch` of a component trait implements; the runtime drives
 /// it.
 pub trait Behaviour: Send + 'static {
@@ -149,6 +181,14 @@ pub trait Behaviour: Send + 'static {
     /// Called every [`Config::tick`] (except in Shutdown).
     fn tick(&mut self, ctx: &mut Context<'_, Self::Interface>) {
         let _ = ctx;
+    }
+
+    /// Stop all motion now: called by the runtime on entering Emergency (from any
+    /// state), on leaving Ready for Standby, Shutdown or Failure, and when the component
+    /// in control releases it, is preempted or disappears. Components that command
+    /// motion (`safe_stop: true` in their definition) must implement it.
+    fn stop(&mut self, ctx: &mut Context<'_, Self::Interface>, reason: StopReason) {
+        let _ = (ctx, reason);
     }
 }
 
@@ -281,6 +321,8 @@ struct Core<I: Interface> {
     mode: I::Modes,
     authority: u8,
     controller: Option<Controller>,
+    /// The controller the behaviour last knew of (to tell it when control is lost).
+    known_controller: Option<Address>,
     emergencies: Vec<Address>,
     held_control: Vec<Address>,
     clock: clock::Clock,
@@ -487,6 +529,7 @@ impl<I: Interface> Core<I> {
             state: CoreState::Initialize,
             mode: <I::Modes as Modes>::INITIAL,
             controller: None,
+            known_controller: None,
             emergencies: Vec::new(),
             held_control: Vec::new(),
             clock: clock::Clock::default(),
@@ -683,6 +726,7 @@ impl<B: Behaviour> Component<B> {
         self.core.provider.remove_requester(gone);
         self.core.events.remove_requester(gone);
         self.core.held_control.retain(|a| *a != gone);
+        self.notify_changes();
     }
 
     /// Hands a received message (header and body) to the component.
@@ -833,6 +877,16 @@ impl<B: Behaviour> Component<B> {
                 self.core.needs_init = true;
             }
             self.core.source = None;
+            let reason = match to {
+                CoreState::Emergency => Some(StopReason::Emergency),
+                CoreState::Standby if from == CoreState::Ready => Some(StopReason::Standby),
+                CoreState::Shutdown => Some(StopReason::Shutdown),
+                CoreState::Failure => Some(StopReason::Failure),
+                _ => None,
+            };
+            if let Some(reason) = reason {
+                self.stop(reason);
+            }
             self.behaviour.state_changed(
                 &mut Context {
                     core: &mut self.core,
@@ -842,6 +896,27 @@ impl<B: Behaviour> Component<B> {
                 to,
             );
         }
+        let now = self.core.controller.map(|c| c.address);
+        if let Some(lost) = self.core.known_controller.filter(|k| Some(*k) != now) {
+            self.stop(StopReason::ControlLost { controller: lost });
+        }
+        self.core.known_controller = now;
+    }
+
+    fn stop(&mut self, reason: StopReason) {
+        tracing::info!(
+            component = <B::Interface as Interface>::NAME,
+            address = %self.core.address,
+            "stop: {reason}"
+        );
+        self.core.source = None;
+        self.behaviour.stop(
+            &mut Context {
+                core: &mut self.core,
+                _i: PhantomData,
+            },
+            reason,
+        );
     }
 
     fn refuse(&mut self, header: &Header, msg: &Message, why: Refusal) -> bool {

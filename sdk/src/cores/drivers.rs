@@ -15,7 +15,7 @@ use super::geo::LocalFrame;
 use super::hardware::{Actuators, Wrench};
 use super::motion::{wrench_message, wrench_of, DriverConfig, Motion};
 use super::path::{Path, PathSegment};
-use crate::component::{Context, CoreState, EmittedBy, Interface, Modes, Refused};
+use crate::component::{Context, CoreState, EmittedBy, Interface, Modes, Refused, StopReason};
 use crate::components::{
     global_path_segment_driver as gpsd, global_vector_driver as gvd, global_waypoint_driver as gwd,
     local_path_segment_driver as lpsd, local_vector_driver as lvd, local_waypoint_driver as lwd,
@@ -143,6 +143,11 @@ impl<A: Actuators> pd::PrimitiveDriver for PrimitiveDriverCore<A> {
         _q: &QueryDiscreteDevices,
     ) -> Result<ReportDiscreteDevices, Refused> {
         Ok(self.devices.clone())
+    }
+
+    fn stop(&mut self, ctx: &mut pd::Ctx<'_>, _reason: StopReason) {
+        self.commanded = None;
+        self.apply(ctx.now(), Wrench::brake());
     }
 
     fn state_changed(&mut self, ctx: &mut pd::Ctx<'_>, _from: CoreState, to: CoreState) {
@@ -290,8 +295,8 @@ impl<O: ObstacleSource> rd::ReflexiveDriver for ReflexiveDriverCore<O> {
         let now = ctx.now();
         self.commanded = Some((now, w));
         if ctx.state() == CoreState::Ready {
-            self.modified = self.filter(now, w);
-            ctx.send(self.config.output, wrench_message(&self.modified));
+            let m = self.filter(now, w);
+            self.send_output(ctx, m);
         }
         Ok(())
     }
@@ -310,11 +315,17 @@ impl<O: ObstacleSource> rd::ReflexiveDriver for ReflexiveDriverCore<O> {
         })
     }
 
+    fn stop(&mut self, ctx: &mut rd::Ctx<'_>, _reason: StopReason) {
+        self.commanded = None;
+        self.modified = Wrench::brake();
+        if ctx.has_control_of(self.config.output) {
+            ctx.send(self.config.output, wrench_message(&self.modified));
+        }
+    }
+
     fn state_changed(&mut self, ctx: &mut rd::Ctx<'_>, _from: CoreState, to: CoreState) {
         if to != CoreState::Ready {
-            self.commanded = None;
-            self.modified = Wrench::brake();
-            ctx.send(self.config.output, wrench_message(&self.modified));
+            rd::ReflexiveDriver::stop(self, ctx, StopReason::Standby);
         }
     }
 
@@ -327,18 +338,28 @@ impl<O: ObstacleSource> rd::ReflexiveDriver for ReflexiveDriverCore<O> {
         match self.commanded {
             Some((t, _)) if now.saturating_duration_since(t) > self.config.command_timeout => {
                 self.commanded = None;
-                self.modified = Wrench::brake();
-                ctx.send(self.config.output, wrench_message(&self.modified));
+                self.send_output(ctx, Wrench::brake());
             }
-            // Re-evaluate the obstacle between commands.
+            // Re-evaluate the obstacle between commands (and send what could not be sent
+            // before the output component granted control).
             Some((_, w)) => {
                 let m = self.filter(now, w);
                 if m != self.modified {
-                    self.modified = m;
-                    ctx.send(self.config.output, wrench_message(&m));
+                    self.send_output(ctx, m);
                 }
             }
             None => {}
+        }
+    }
+}
+
+impl<O: ObstacleSource> ReflexiveDriverCore<O> {
+    /// Sends `w` to the output component if this driver controls it (a command sent
+    /// without control would only be refused there); `modified` records what was sent.
+    fn send_output(&mut self, ctx: &mut rd::Ctx<'_>, w: Wrench) {
+        if ctx.has_control_of(self.config.output) {
+            self.modified = w;
+            ctx.send(self.config.output, wrench_message(&w));
         }
     }
 }
@@ -475,6 +496,10 @@ impl gvd::GlobalVectorDriver for GlobalVectorDriverCore {
         self.motion.on_velocity(ctx.now(), r);
         Ok(())
     }
+    fn stop(&mut self, ctx: &mut gvd::Ctx<'_>, _reason: StopReason) {
+        self.commanded = None;
+        self.motion.stop(ctx);
+    }
     fn state_changed(&mut self, ctx: &mut gvd::Ctx<'_>, _from: CoreState, to: CoreState) {
         if to != CoreState::Ready {
             self.leave_ready(ctx);
@@ -530,6 +555,10 @@ impl lvd::LocalVectorDriver for LocalVectorDriverCore {
     ) -> Result<(), Refused> {
         self.motion.on_velocity(ctx.now(), r);
         Ok(())
+    }
+    fn stop(&mut self, ctx: &mut lvd::Ctx<'_>, _reason: StopReason) {
+        self.commanded = None;
+        self.motion.stop(ctx);
     }
     fn state_changed(&mut self, ctx: &mut lvd::Ctx<'_>, _from: CoreState, to: CoreState) {
         if to != CoreState::Ready {
@@ -904,6 +933,23 @@ impl<E: Element> Navigator<E> {
         }
     }
 
+    /// Stops the vehicle and forgets the path being followed; after an emergency or a
+    /// loss of control the travel speed is zero too, so that nothing moves again until a
+    /// controller sets one.
+    fn stop<I: NavInterface>(&mut self, ctx: &mut Context<'_, I>, reason: StopReason)
+    where
+        SetWrenchEffort: EmittedBy<I>,
+    {
+        self.tracker = None;
+        self.motion.stop(ctx);
+        if matches!(
+            reason,
+            StopReason::Emergency | StopReason::ControlLost { .. }
+        ) {
+            self.travel_speed = 0.0;
+        }
+    }
+
     fn tick<I: NavInterface>(&mut self, ctx: &mut Context<'_, I>)
     where
         SetWrenchEffort: EmittedBy<I>,
@@ -1057,6 +1103,9 @@ macro_rules! navigator_common {
         }
         fn state_changed(&mut self, ctx: &mut $m::Ctx<'_>, from: CoreState, to: CoreState) {
             Navigator::state_changed(self, ctx, from, to);
+        }
+        fn stop(&mut self, ctx: &mut $m::Ctx<'_>, reason: StopReason) {
+            Navigator::stop(self, ctx, reason);
         }
         fn tick(&mut self, ctx: &mut $m::Ctx<'_>) {
             Navigator::tick(self, ctx);

@@ -18,8 +18,9 @@
 //! * Every "finished" (message or mission) is reported to the component that spooled the
 //!   mission.
 //! * Control of a destination is requested (with the spooler's authority) before its
-//!   first message and released once the mission has no more messages for it, so the
-//!   component's usual controller gets it back.
+//!   first message and released once no mission has a message for it left to send or a
+//!   blocking message it is still executing (a driver stops when it loses control), so
+//!   the component's usual controller gets it back.
 //! * Pause and abort apply to a whole mission (task 0) or one task; Remove and Replace
 //!   Messages change only messages not yet sent.
 //!
@@ -421,11 +422,12 @@ impl MissionSpoolerCore {
             if start_remote {
                 m.remote_started.push(target);
             }
-            // Control is held only while the mission has messages for that component.
-            let more_for_target = m.items[i..].iter().any(|it| {
-                it.state == ItemState::Pending
-                    && self_route(&self.config, me, it.cmd.message.header.destination) == target
-            });
+            // Control is held only while the mission has messages for that component, or
+            // a blocking one it is still executing (losing control stops a driver).
+            let more_for_target = m
+                .items
+                .iter()
+                .any(|it| Self::holds(&self.config, me, it, target));
             self.sent += cmds.len() as u64;
             budget = budget.saturating_sub(cmds.len().max(1));
             match delivery {
@@ -467,6 +469,13 @@ impl MissionSpoolerCore {
         }
     }
 
+    /// Whether `it` needs control of `target` kept: not sent yet, or a blocking message
+    /// being executed.
+    fn holds(config: &SpoolerConfig, me: Address, it: &Item, target: Address) -> bool {
+        (it.state == ItemState::Pending || (it.state == ItemState::Sent && it.cmd.blocking != 0))
+            && self_route(config, me, it.cmd.message.header.destination) == target
+    }
+
     fn finished(&mut self, ctx: &mut Ctx<'_>, r: &ReportMissionStatus) {
         if r.status != MissionStatus::Finished || r.status_type != MissionStatusType::Message {
             return;
@@ -479,10 +488,21 @@ impl MissionSpoolerCore {
         };
         item.state = ItemState::Finished;
         let task = item.task;
+        let me = ctx.address();
+        let target = self_route(&self.config, me, item.cmd.message.header.destination);
         if m.waiting == Some(r.task_msg_id) {
             m.waiting = None;
         }
         let owner = m.owner;
+        let still_needed = self.missions.values().any(|m| {
+            m.items
+                .iter()
+                .any(|it| Self::holds(&self.config, me, it, target))
+        });
+        if !still_needed && ctx.has_control_of(target) {
+            ctx.release_control(target);
+            self.control_asked.remove(&target);
+        }
         Self::report(
             ctx,
             owner,

@@ -11,6 +11,7 @@ impl GlobalWaypointDriver for Driver {
         let _ = ctx.transition(Transition::Run);
         Ok(())
     }
+    fn stop(&mut self, _ctx: &mut Ctx<'_>, _reason: jaus::component::StopReason) {}
 }
 
 fn main() {}

@@ -17,6 +17,11 @@ impl GlobalWaypointDriver for Driver {
         ctx.send(self.primitive_driver, SetWrenchEffort::default());
         Ok(())
     }
+
+    fn stop(&mut self, ctx: &mut Ctx<'_>, _reason: jaus::component::StopReason) {
+        // Zero effort: the platform stops.
+        ctx.send(self.primitive_driver, SetWrenchEffort::default());
+    }
 }
 
 fn main() {
