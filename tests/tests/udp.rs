@@ -443,3 +443,40 @@ fn the_node_prints_its_tree_at_most_once_a_second() {
     }
     let _ = std::fs::remove_dir_all(dir);
 }
+
+/// Issue 19: a control request that is rejected makes `send` exit non-zero, and is not
+/// "released" at the end (only control actually granted is given back).
+#[test]
+fn a_rejected_control_request_is_an_error() {
+    let dir = std::env::temp_dir().join(format!("jaus-udp-reject-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (_n, _rx, pa) = vehicle20(&dir);
+    let holder = cli(
+        pa,
+        &[
+            "send",
+            "--me",
+            "20.1.40.1",
+            "--to",
+            "20.1.45.1",
+            "--hold",
+            "4",
+        ],
+    )
+    .arg(r#"{"message":"RequestComponentControl","fields":{"authority_code":200}}"#)
+    .stdout(Stdio::null())
+    .stderr(Stdio::null())
+    .spawn()
+    .unwrap();
+    let mut holder = Running(holder);
+    std::thread::sleep(Duration::from_millis(2000));
+    let out = cli(pa, &["send", "--me", "20.1.40.2", "--to", "20.1.45.1"])
+        .arg(r#"{"message":"RequestComponentControl","fields":{"authority_code":100}}"#)
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("control of 20.1.45.1 rejected"), "{err}");
+    let _ = holder.0.wait();
+    let _ = std::fs::remove_dir_all(dir);
+}

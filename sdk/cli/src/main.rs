@@ -142,8 +142,10 @@ enum Cmd {
 struct NetArgs {
     /// This tool's own address (a System Commander). On the node of a peer, the tool
     /// joins that node as one of its components; else it runs a node of its own.
-    #[arg(long, default_value = "1.250.40.1")]
-    me: jaus::Address,
+    /// Default: 1.N.40.1 with N in 200-253 taken from the process id, so that two
+    /// sessions at once are two nodes.
+    #[arg(long)]
+    me: Option<jaus::Address>,
     /// Local socket (default: port 3794 on an address of its own, e.g. 127.0.0.2:3794,
     /// because JUDP peers answer port 3794 of the sender's address).
     #[arg(long)]
@@ -170,7 +172,7 @@ impl NetArgs {
             other => return Err(format!("unknown framing `{other}` (judp or opc)")),
         };
         Ok(jaus_cli::net::Client {
-            me: self.me,
+            me: self.me.unwrap_or_else(jaus_cli::net::default_me),
             bind: self.bind,
             peers: self.peer.clone(),
             framing,
@@ -279,13 +281,20 @@ fn session(
     };
     let stderr = std::io::stderr();
     let o = c.session(&script, &STOP, out, &mut stderr.lock())?;
+    if let Some(conflict) = o.conflict {
+        return Err(conflict);
+    }
     if !o.heard {
         return Err(jaus_cli::net::silence_hint(
-            &c.bind
+            &o.local
+                .or(c.bind)
                 .unwrap_or_else(|| "0.0.0.0:3794".parse().expect("literal")),
             &c.peers,
             c.wait,
         ));
+    }
+    if o.rejected > 0 {
+        return Err(format!("{} control request(s) rejected", o.rejected));
     }
     if o.naks > 0 {
         return Err(format!("{} command(s) refused (NAK)", o.naks));

@@ -387,6 +387,21 @@ struct Tap {
 }
 
 impl Tap {
+    /// A datagram for a component of this tool's node that is not this tool: another
+    /// node with the same subsystem and node id is on the network.
+    fn foreign_twin(&self, datagram: &[u8]) -> Option<Address> {
+        let packet = self.framing.decode(datagram).ok()?;
+        let h = Header::parse(packet).ok()?;
+        let d = h.destination;
+        (d.subsystem == self.me.subsystem
+            && d.node == self.me.node
+            && d.component != 255
+            && d.instance != 255
+            && d.component != 1
+            && d != self.me)
+            .then_some(d)
+    }
+
     fn see(&mut self, now: Instant, datagram: &[u8]) -> Option<Tapped> {
         let packet = self.framing.decode(datagram).ok()?;
         let header = Header::parse(packet).ok()?;
@@ -450,6 +465,13 @@ pub struct Outcome {
     pub joined: bool,
     /// Bad input lines.
     pub bad_lines: usize,
+    /// Control requests rejected (Reject Component Control received).
+    pub rejected: usize,
+    /// The socket the session used.
+    pub local: Option<SocketAddr>,
+    /// Another node answers as this tool's node (`--me`'s subsystem and node): the
+    /// session stopped.
+    pub conflict: Option<String>,
 }
 
 /// A message given to the CLI, in the shape [`jaus::json::parse_message`] reads
@@ -508,11 +530,18 @@ impl Client {
     /// Asks the peers who speaks for `--me`'s node: the peer whose node manager answers
     /// as that node is joined.
     fn probe(&self, socket: &UdpSocket) -> Option<SocketAddr> {
+        // Asked of every node manager (a broadcast, so no node logs a message for a
+        // subsystem it is not); the one answering as `--me`'s node is joined. Done as soon
+        // as every peer has answered.
         let nm = Address::new(self.me.subsystem, self.me.node, 1, 1);
         let q = jaus::messages::QueryIdentification {
             query_field: jaus::messages::QueryLevel::Node,
         };
-        let header = Header::new(jaus::messages::QueryIdentification::CODE, nm, self.me);
+        let header = Header::new(
+            jaus::messages::QueryIdentification::CODE,
+            Address::new(255, 255, 1, 1),
+            self.me,
+        );
         let body = q.to_bytes().ok()?;
         let packet = jaus::Packet::new(header, body).to_bytes().ok()?;
         let bytes = self.framing.encode(&packet);
@@ -520,8 +549,12 @@ impl Client {
             let _ = socket.send_to(&bytes, p);
         }
         let deadline = Instant::now() + Duration::from_millis(400);
+        let mut answered: Vec<SocketAddr> = Vec::new();
         let mut buf = vec![0u8; 8192];
         while let Some(left) = deadline.checked_duration_since(Instant::now()) {
+            if !self.peers.is_empty() && self.peers.iter().all(|p| answered.contains(p)) {
+                break;
+            }
             let _ = socket.set_read_timeout(Some(left.max(Duration::from_millis(1))));
             let Ok((n, from)) = socket.recv_from(&mut buf) else {
                 break;
@@ -530,8 +563,11 @@ impl Client {
                 continue;
             };
             if let Ok(h) = Header::parse(packet) {
-                if h.source == nm && h.command_code == jaus::messages::ReportIdentification::CODE {
-                    return Some(from);
+                if h.command_code == jaus::messages::ReportIdentification::CODE {
+                    if h.source == nm {
+                        return Some(from);
+                    }
+                    answered.push(from);
                 }
             }
         }
@@ -615,8 +651,15 @@ impl Client {
         let mut link = self.link(&socket, t0)?;
         let mut outcome = Outcome {
             joined: matches!(link, Link::Attached(_)),
+            local: Some(local),
             ..Outcome::default()
         };
+        // Commands wait until the system knows this tool (a node manager asked for its
+        // identification or services): OpenJAUS rejects a controller it cannot find in its
+        // system tree. Queries go at once.
+        let mut known = false;
+        let known_by = Duration::from_millis(2500);
+        let mut requested: Vec<Address> = Vec::new();
         let me = self.me;
         let lines = script.stdin.then(stdin_reader);
         let mut queue: VecDeque<(Address, Message)> = script.messages.iter().cloned().collect();
@@ -675,10 +718,13 @@ impl Client {
                 pending = None;
             }
             if pending.is_none() {
-                if let Some((to, _)) = queue.front() {
-                    if link.reaches(*to)
-                        || now.saturating_duration_since(t0) > Duration::from_millis(300)
-                    {
+                if let Some((to, next)) = queue.front() {
+                    let waited = now.saturating_duration_since(t0);
+                    let ready = (link.reaches(*to) || waited > Duration::from_millis(300))
+                        && (known
+                            || next.code().class() != MessageClass::Command
+                            || waited > known_by);
+                    if ready {
                         let (to, msg) = queue.pop_front().expect("front checked");
                         let body = msg.to_bytes().map_err(|e| format!("{}: {e}", msg.name()))?;
                         let code = msg.code();
@@ -688,10 +734,11 @@ impl Client {
                             header.ack_nak = AckNak::Request;
                         }
                         if matches!(msg, Message::RequestComponentControl(_)) {
-                            controlled.push(to);
+                            requested.push(to);
                         }
                         if matches!(msg, Message::ReleaseComponentControl(_)) {
                             controlled.retain(|a| *a != to);
+                            requested.retain(|a| *a != to);
                         }
                         let answer = match class {
                             MessageClass::Query => jaus::MessageInfo::of(code)
@@ -754,6 +801,14 @@ impl Client {
                     if self.peers.contains(&from) || matches!(link, Link::Attached(_)) {
                         outcome.heard = true;
                     }
+                    if !outcome.joined {
+                        if let Some(other) = tap.foreign_twin(&buf[..n]) {
+                            let text = format!("another node answers as {}.{} (a message for {other} arrived from {from}); this tool's --me {me} is on that node: use --mode join to join it, or a --me on a node of its own", me.subsystem, me.node);
+                            let _ = writeln!(err, "error: {text}");
+                            outcome.conflict = Some(text);
+                            break;
+                        }
+                    }
                     if let Some(seen) = tap.see(now, &buf[..n]) {
                         let (t, utc) = ((now - t0).as_secs_f64(), unix_now());
                         match seen {
@@ -786,6 +841,32 @@ impl Client {
                             }
                             Tapped::Packet(p) => {
                                 let code = p.header.command_code;
+                                let from_addr = p.header.source;
+                                match &p.message {
+                                    Message::QueryIdentification(_) | Message::QueryServices(_) => {
+                                        known = true;
+                                    }
+                                    Message::ConfirmComponentControl(c)
+                                        if c.response_code
+                                            == jaus::messages::ControlResponse::ControlAccepted
+                                            && requested.contains(&from_addr) =>
+                                    {
+                                        if !controlled.contains(&from_addr) {
+                                            controlled.push(from_addr);
+                                        }
+                                    }
+                                    Message::RejectComponentControl(_) => {
+                                        if requested.contains(&from_addr)
+                                            || controlled.contains(&from_addr)
+                                        {
+                                            outcome.rejected += 1;
+                                            let _ = writeln!(err, "control of {from_addr} rejected (or taken by a component of higher authority)");
+                                        }
+                                        controlled.retain(|a| *a != from_addr);
+                                        requested.retain(|a| *a != from_addr);
+                                    }
+                                    _ => {}
+                                }
                                 let answer = pending.is_some_and(|q| {
                                     q.0 == Some(code) && q.1.matches(&p.header.source)
                                 });
@@ -980,4 +1061,11 @@ pub fn demo_operator(
         }
         None => Err(format!("the mission did not finish within {timeout:?} (is `jaus node` with host: [vehicle] running and reachable?)")),
     }
+}
+
+/// The CLI's address when `--me` is not given: 1.N.40.1 with N in 200–253 from the
+/// process id, so that two sessions running at once are two nodes, not one node at two
+/// addresses.
+pub fn default_me() -> Address {
+    Address::new(1, 200 + (std::process::id() % 54) as u8, 40, 1)
 }
