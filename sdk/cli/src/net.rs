@@ -849,11 +849,10 @@ impl Client {
                                     Message::ConfirmComponentControl(c)
                                         if c.response_code
                                             == jaus::messages::ControlResponse::ControlAccepted
-                                            && requested.contains(&from_addr) =>
+                                            && requested.contains(&from_addr)
+                                            && !controlled.contains(&from_addr) =>
                                     {
-                                        if !controlled.contains(&from_addr) {
-                                            controlled.push(from_addr);
-                                        }
+                                        controlled.push(from_addr);
                                     }
                                     Message::RejectComponentControl(_) => {
                                         if requested.contains(&from_addr)
