@@ -138,14 +138,14 @@ impl<B: Behaviour> Component<B> {
         let report = CommandCode(m.service_connection_command_code);
         let rate = m.requested_periodic_update_rate;
         let refuse = |c: &mut Self, code: ServiceConnectionResponse| {
-            c.core.stats.subscriptions_refused += 1;
+            c.rt.stats.subscriptions_refused += 1;
             let msg = ConfirmServiceConnection {
                 service_connection_command_code: report.0,
                 instance_id: 0,
                 confirmed_periodic_update_rate: 0.0,
                 response_code: code,
             };
-            c.core.send(source, msg.into(), true, 0);
+            c.rt.send(source, msg.into(), true, 0);
         };
         let Some(query) = query_for(report, m.presence_vector) else {
             return refuse(self, ServiceConnectionResponse::ComponentNotCapable);
@@ -160,9 +160,9 @@ impl<B: Behaviour> Component<B> {
             }
             Err(_) => return refuse(self, ServiceConnectionResponse::InvalidParameter),
         }
-        let granted = rate.min(self.core.config.max_rate_hz).min(MAX_JAUS_RATE);
-        let now = self.core.now;
-        let table = &mut self.core.provider.served;
+        let granted = rate.min(self.rt.config.max_rate_hz).min(MAX_JAUS_RATE);
+        let now = self.rt.now;
+        let table = &mut self.rt.provider.served;
         // Same requester, code and presence vector: re-initialise that connection.
         let existing = table.iter().position(|s| {
             s.requester == source && s.report == report && s.presence == m.presence_vector
@@ -170,7 +170,7 @@ impl<B: Behaviour> Component<B> {
         let instance = match existing {
             Some(i) => table[i].instance,
             None => {
-                if table.len() >= self.core.config.max_service_connections {
+                if table.len() >= self.rt.config.max_service_connections {
                     return refuse(self, ServiceConnectionResponse::ConnectionRefused);
                 }
                 match (0..=255u8).find(|i| {
@@ -204,7 +204,7 @@ impl<B: Behaviour> Component<B> {
             confirmed_periodic_update_rate: granted,
             response_code: ServiceConnectionResponse::Successful,
         };
-        self.core.send(source, msg.into(), true, 0);
+        self.rt.send(source, msg.into(), true, 0);
     }
 
     pub(super) fn sc_set_active(
@@ -214,8 +214,8 @@ impl<B: Behaviour> Component<B> {
         instance: u8,
         active: bool,
     ) -> Result<(), Refusal> {
-        let now = self.core.now;
-        match self.core.provider.find(source, code, instance) {
+        let now = self.rt.now;
+        match self.rt.provider.find(source, code, instance) {
             Some(s) => {
                 if active && !s.active {
                     s.next_due = now;
@@ -233,14 +233,14 @@ impl<B: Behaviour> Component<B> {
     /// component serves; from a provider, a connection this component requested.
     pub(super) fn terminate_sc(&mut self, source: Address, m: &TerminateServiceConnection) {
         let (code, inst) = (m.service_connection_command_code, m.instance_id);
-        let before = self.core.provider.served.len();
-        self.core
+        let before = self.rt.provider.served.len();
+        self.rt
             .provider
             .served
             .retain(|s| !(s.requester == source && s.report.0 == code && s.instance == inst));
-        if before == self.core.provider.served.len() {
+        if before == self.rt.provider.served.len() {
             // A provider ending a connection this component requested.
-            self.core.requester.subs.retain(|s| {
+            self.rt.requester.subs.retain(|s| {
                 !(s.provider == source && s.report.0 == code && s.instance == Some(inst))
             });
         }
@@ -249,7 +249,7 @@ impl<B: Behaviour> Component<B> {
     pub(super) fn confirm_sc(&mut self, source: Address, m: &ConfirmServiceConnection) {
         let code = CommandCode(m.service_connection_command_code);
         let sub = self
-            .core
+            .rt
             .requester
             .subs
             .iter_mut()
@@ -257,7 +257,7 @@ impl<B: Behaviour> Component<B> {
         match (sub, m.response_code) {
             (Some(s), ServiceConnectionResponse::Successful) => s.instance = Some(m.instance_id),
             (Some(_), _) => {
-                self.core
+                self.rt
                     .requester
                     .subs
                     .retain(|s| !(s.provider == source && s.report == code));
@@ -268,29 +268,29 @@ impl<B: Behaviour> Component<B> {
                     service_connection_command_code: code.0,
                     instance_id: m.instance_id,
                 };
-                self.core.send(source, t.into(), true, 0);
+                self.rt.send(source, t.into(), true, 0);
             }
             (None, _) => {}
         }
     }
 
     pub(super) fn run_service_connections(&mut self, now: Instant) {
-        for i in 0..self.core.provider.served.len() {
-            let s = &self.core.provider.served[i];
+        for i in 0..self.rt.provider.served.len() {
+            let s = &self.rt.provider.served[i];
             if !s.active || s.next_due > now {
                 continue;
             }
             let (requester, query) = (s.requester, s.query.clone());
             let result = self.answer(requester, &query);
-            let s = &mut self.core.provider.served[i];
+            let s = &mut self.rt.provider.served[i];
             s.next_due = super::next_after(s.next_due, s.period, now);
             match result {
                 Ok(report) => {
                     let seq = s.sequence;
                     s.sequence = s.sequence.wrapping_add(1);
-                    self.core.send(requester, report, true, seq);
+                    self.rt.send(requester, report, true, seq);
                 }
-                Err(_) => self.core.stats.report_failures += 1,
+                Err(_) => self.rt.stats.report_failures += 1,
             }
         }
     }

@@ -20,7 +20,7 @@ impl<B: Behaviour> Component<B> {
     ) -> Option<Result<(), Refusal>> {
         let source = header.source;
         let controlled = |c: &Self| {
-            if c.core.may_command(source) {
+            if c.rt.may_command(source) {
                 Ok(())
             } else {
                 Err(Refusal::NotController)
@@ -28,14 +28,13 @@ impl<B: Behaviour> Component<B> {
         };
         let transition = |c: &mut Self, t: CoreTransition| -> Result<(), Refusal> {
             controlled(c)?;
-            c.core
-                .set_state(t)
+            c.rt.set_state(t)
                 .map(|_| ())
-                .map_err(|_| Refusal::State(c.core.state))
+                .map_err(|_| Refusal::State(c.rt.state))
         };
         let r = match msg {
             Message::SetComponentAuthority(m) => controlled(self).map(|()| {
-                self.core.authority = m.authority_code;
+                self.rt.authority = m.authority_code;
             }),
             Message::Shutdown(_) => transition(self, CoreTransition::Shutdown),
             Message::Standby(_) => transition(self, CoreTransition::Standby),
@@ -50,9 +49,9 @@ impl<B: Behaviour> Component<B> {
                 Ok(())
             }
             Message::SetTime(m) => controlled(self).and_then(|()| {
-                let now = self.core.now;
+                let now = self.rt.now;
                 if self
-                    .core
+                    .rt
                     .clock
                     .apply(now, m.time_stamp.as_ref(), m.date_stamp.as_ref())
                 {
@@ -67,27 +66,25 @@ impl<B: Behaviour> Component<B> {
                 self.request_control(source, m.authority_code);
                 Ok(())
             }
-            Message::ReleaseComponentControl(_) => match self.core.controller {
+            Message::ReleaseComponentControl(_) => match self.rt.controller {
                 Some(c) if c.address == source => {
-                    self.core.controller = None;
+                    self.rt.controller = None;
                     Ok(())
                 }
                 _ => Err(Refusal::NotController),
             },
             Message::ConfirmComponentControl(m) => {
                 if m.response_code == ControlResponse::ControlAccepted {
-                    if !self.core.held_control.contains(&source)
-                        && self.core.held_control.len() < 64
-                    {
-                        self.core.held_control.push(source);
+                    if !self.rt.held_control.contains(&source) && self.rt.held_control.len() < 64 {
+                        self.rt.held_control.push(source);
                     }
                 } else {
-                    self.core.held_control.retain(|a| *a != source);
+                    self.rt.held_control.retain(|a| *a != source);
                 }
                 return Some(self.pass_on(header, msg));
             }
             Message::RejectComponentControl(_) => {
-                self.core.held_control.retain(|a| *a != source);
+                self.rt.held_control.retain(|a| *a != source);
                 return Some(self.pass_on(header, msg));
             }
             Message::CreateServiceConnection(m) => {
@@ -136,7 +133,7 @@ impl<B: Behaviour> Component<B> {
             }
             m => {
                 let reply = self.core_report(m)?;
-                self.core.send(source, reply, false, 0);
+                self.rt.send(source, reply, false, 0);
                 Ok(())
             }
         };
@@ -149,7 +146,7 @@ impl<B: Behaviour> Component<B> {
         let _ = header;
         let r = self.behaviour.handle(
             &mut super::Context {
-                core: &mut self.core,
+                rt: &mut self.rt,
                 _i: std::marker::PhantomData,
             },
             msg,
@@ -161,7 +158,7 @@ impl<B: Behaviour> Component<B> {
     }
 
     fn set_emergency(&mut self, source: Address) {
-        let c = &mut self.core;
+        let c = &mut self.rt;
         if !c.emergencies.contains(&source) {
             if c.emergencies.len() < c.config.max_emergency_senders {
                 c.emergencies.push(source);
@@ -176,7 +173,7 @@ impl<B: Behaviour> Component<B> {
     }
 
     fn clear_emergency(&mut self, source: Address) {
-        let c = &mut self.core;
+        let c = &mut self.rt;
         let before = c.emergencies.len();
         c.emergencies.retain(|a| *a != source);
         if c.emergencies.len() == before {
@@ -196,7 +193,7 @@ impl<B: Behaviour> Component<B> {
 
     /// Request Component Control (WIRE.md §5.3, plus the own-authority check).
     fn request_control(&mut self, source: Address, authority: u8) {
-        let c = &mut self.core;
+        let c = &mut self.rt;
         let confirm =
             |r: ControlResponse| -> Message { ConfirmComponentControl { response_code: r }.into() };
         if c.state == CoreState::Shutdown {

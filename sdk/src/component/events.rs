@@ -84,7 +84,7 @@ impl<B: Behaviour> Component<B> {
         update_of: Option<u8>,
     ) {
         let reject = |c: &mut Self, code: EventResponseCode, why: &str| {
-            c.core.stats.subscriptions_refused += 1;
+            c.rt.stats.subscriptions_refused += 1;
             tracing::debug!(
                 component = <B::Interface as Interface>::NAME,
                 source = %source,
@@ -95,7 +95,7 @@ impl<B: Behaviour> Component<B> {
                 response_code: code,
                 error_message: Some(why.to_string()),
             };
-            c.core.send(source, msg.into(), false, 0);
+            c.rt.send(source, msg.into(), false, 0);
         };
         let report = CommandCode(setup.report_code);
         let query = match &setup.query {
@@ -133,11 +133,11 @@ impl<B: Behaviour> Component<B> {
                 return reject(self, EventResponseCode::InvalidEventSetup, &why.to_string())
             }
         }
-        let now = self.core.now;
+        let now = self.rt.now;
         let rate = setup
             .rate
             .or(setup.minimum_rate)
-            .map(|r| r.min(self.core.config.max_rate_hz).min(MAX_JAUS_RATE));
+            .map(|r| r.min(self.rt.config.max_rate_hz).min(MAX_JAUS_RATE));
         let trigger = match setup.event_type {
             EventType::Periodic | EventType::PeriodicWithoutReplacement => match rate {
                 Some(r) if r.is_finite() && r > 0.0 => Trigger::Periodic {
@@ -167,7 +167,7 @@ impl<B: Behaviour> Component<B> {
                 )
             }
         };
-        let table = &mut self.core.events;
+        let table = &mut self.rt.events;
         let id = match update_of {
             Some(id) => {
                 let Some(i) = table
@@ -185,7 +185,7 @@ impl<B: Behaviour> Component<B> {
                 id
             }
             None => {
-                if table.events.len() >= self.core.config.max_events {
+                if table.events.len() >= self.rt.config.max_events {
                     return reject(
                         self,
                         EventResponseCode::ConnectionRefused,
@@ -223,7 +223,7 @@ impl<B: Behaviour> Component<B> {
             event_id: Some(id),
             query_message: None,
         };
-        self.core.events.events.push(ServedEvent {
+        self.rt.events.events.push(ServedEvent {
             requester: source,
             id,
             report,
@@ -241,11 +241,11 @@ impl<B: Behaviour> Component<B> {
             confirmed_update_rate: Some(rate.unwrap_or(0.0)),
             response_code: EventResponseCode::Successful,
         };
-        self.core.send(source, msg.into(), false, 0);
+        self.rt.send(source, msg.into(), false, 0);
     }
 
     pub(super) fn cancel_event(&mut self, source: Address, m: &CancelEvent) {
-        let t = &mut self.core.events.events;
+        let t = &mut self.rt.events.events;
         let pos = t.iter().position(|e| {
             e.requester == source
                 && m.event_id.is_none_or(|id| id == e.id)
@@ -273,11 +273,11 @@ impl<B: Behaviour> Component<B> {
             }
             .into(),
         };
-        self.core.send(source, reply, false, 0);
+        self.rt.send(source, reply, false, 0);
     }
 
     fn send_event(&mut self, i: usize, body: Vec<u8>) {
-        let e = &mut self.core.events.events[i];
+        let e = &mut self.rt.events.events[i];
         let msg = Event {
             event_id: e.id,
             report_message_code: e.report.0,
@@ -287,13 +287,13 @@ impl<B: Behaviour> Component<B> {
         e.sequence = e.sequence.wrapping_add(1);
         e.last = Some(body);
         let to = e.requester;
-        self.core.send(to, msg.into(), false, 0);
+        self.rt.send(to, msg.into(), false, 0);
     }
 
     pub(super) fn run_periodic_events(&mut self, now: Instant) {
         let mut i = 0;
-        while i < self.core.events.events.len() {
-            let e = &self.core.events.events[i];
+        while i < self.rt.events.events.len() {
+            let e = &self.rt.events.events[i];
             let Trigger::Periodic {
                 period,
                 next_due,
@@ -315,18 +315,18 @@ impl<B: Behaviour> Component<B> {
             let one_time = period.is_zero();
             match body {
                 Some(b) => {
-                    let changed = self.core.events.events[i].last.as_ref() != Some(&b);
+                    let changed = self.rt.events.events[i].last.as_ref() != Some(&b);
                     if !only_changed || changed {
                         self.send_event(i, b);
                     }
                 }
-                None => self.core.stats.report_failures += 1,
+                None => self.rt.stats.report_failures += 1,
             }
             if one_time {
-                self.core.events.events.remove(i);
+                self.rt.events.events.remove(i);
                 continue;
             }
-            if let Trigger::Periodic { next_due, .. } = &mut self.core.events.events[i].trigger {
+            if let Trigger::Periodic { next_due, .. } = &mut self.rt.events.events[i].trigger {
                 *next_due = super::next_after(*next_due, period, now);
             }
             i += 1;
@@ -334,8 +334,8 @@ impl<B: Behaviour> Component<B> {
     }
 
     pub(super) fn check_change_events(&mut self) {
-        for i in 0..self.core.events.events.len() {
-            let e = &self.core.events.events[i];
+        for i in 0..self.rt.events.events.len() {
+            let e = &self.rt.events.events[i];
             if e.trigger != Trigger::EveryChange {
                 continue;
             }
@@ -345,11 +345,11 @@ impl<B: Behaviour> Component<B> {
                 .ok()
                 .and_then(|r| r.to_bytes_opt())
             {
-                Some(b) if self.core.events.events[i].last.as_ref() != Some(&b) => {
+                Some(b) if self.rt.events.events[i].last.as_ref() != Some(&b) => {
                     self.send_event(i, b)
                 }
                 Some(_) => {}
-                None => self.core.stats.report_failures += 1,
+                None => self.rt.stats.report_failures += 1,
             }
         }
     }

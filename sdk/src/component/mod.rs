@@ -311,7 +311,7 @@ struct Controller {
 }
 
 /// The runtime state of a component, apart from the vendor behaviour.
-struct Core<I: Interface> {
+struct Runtime<I: Interface> {
     address: Address,
     config: Config,
     now: Instant,
@@ -339,7 +339,7 @@ struct Core<I: Interface> {
 
 /// What a behaviour sees of the runtime while it handles a message or a tick.
 pub struct Context<'a, I: Interface> {
-    core: &'a mut Core<I>,
+    rt: &'a mut Runtime<I>,
     _i: PhantomData<I>,
 }
 
@@ -347,9 +347,9 @@ impl<I: Interface> std::fmt::Debug for Context<'_, I> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("Context")
             .field("component", &I::NAME)
-            .field("address", &self.core.address)
-            .field("state", &self.core.state)
-            .field("mode", &self.core.mode)
+            .field("address", &self.rt.address)
+            .field("state", &self.rt.state)
+            .field("mode", &self.rt.mode)
             .finish()
     }
 }
@@ -357,59 +357,59 @@ impl<I: Interface> std::fmt::Debug for Context<'_, I> {
 impl<I: Interface> Context<'_, I> {
     /// The current (virtual or real) instant.
     pub fn now(&self) -> Instant {
-        self.core.now
+        self.rt.now
     }
 
     /// This component's address.
     pub fn address(&self) -> Address {
-        self.core.address
+        self.rt.address
     }
 
     /// The sender of the message being handled (`None` in ticks and initialisation).
     pub fn source(&self) -> Option<Address> {
-        self.core.source
+        self.rt.source
     }
 
     /// The core state.
     pub fn state(&self) -> CoreState {
-        self.core.state
+        self.rt.state
     }
 
     /// The component mode (meaningful in Ready; the initial mode otherwise).
     pub fn mode(&self) -> I::Modes {
-        self.core.mode
+        self.rt.mode
     }
 
     /// The component in control, if any.
     pub fn controller(&self) -> Option<Address> {
-        self.core.controller.map(|c| c.address)
+        self.rt.controller.map(|c| c.address)
     }
 
     /// Whether `target` has confirmed this component's control request.
     pub fn has_control_of(&self, target: Address) -> bool {
-        self.core.held_control.contains(&target)
+        self.rt.held_control.contains(&target)
     }
 
     /// Current UTC (since 1970-01-01), when the clock is set.
     pub fn utc(&self) -> Option<Duration> {
-        self.core.clock.utc(self.core.now)
+        self.rt.clock.utc(self.rt.now)
     }
 
     /// The JAUS time and date stamps of now, when the clock is set.
     pub fn time_stamps(&self) -> Option<(TimeStamp, DateStamp)> {
-        self.core.clock.stamps(self.core.now)
+        self.rt.clock.stamps(self.rt.now)
     }
 
     /// Sends `msg` to `to`. Only messages the interface may emit compile here.
     pub fn send<M: EmittedBy<I> + Into<Message>>(&mut self, to: Address, msg: M) {
-        self.core.send(to, msg.into(), false, 0);
+        self.rt.send(to, msg.into(), false, 0);
     }
 
     /// Sends a message whose type is only known at run time, such as an element of a
     /// spooled mission. Unlike [`send`](Self::send) this is not checked against the
     /// interface's `emits:`; use it only to pass on messages the component was given.
     pub fn forward(&mut self, to: Address, msg: Message) {
-        self.core.send(to, msg, false, 0);
+        self.rt.send(to, msg, false, 0);
     }
 
     /// Moves to another mode. Allowed only in Ready and along a transition of the
@@ -419,31 +419,31 @@ impl<I: Interface> Context<'_, I> {
         &mut self,
         t: <I::Modes as Modes>::Transition,
     ) -> Result<I::Modes, TransitionError> {
-        if self.core.state != CoreState::Ready {
+        if self.rt.state != CoreState::Ready {
             return Err(TransitionError {
                 machine: I::NAME,
-                from: self.core.state.name(),
+                from: self.rt.state.name(),
                 transition: <I::Modes as Modes>::transition_name(t),
             });
         }
-        let next = self.core.mode.apply(t)?;
-        self.core.mode = next;
+        let next = self.rt.mode.apply(t)?;
+        self.rt.mode = next;
         if let Some(core) = <I::Modes as Modes>::core_effect(t) {
-            self.core.set_state(core)?;
+            self.rt.set_state(core)?;
         }
-        Ok(self.core.mode)
+        Ok(self.rt.mode)
     }
 
     /// Reports a fault: the component enters Failure.
     pub fn fail(&mut self, reason: &str) -> Result<CoreState, TransitionError> {
-        tracing::warn!(component = I::NAME, address = %self.core.address, "failure: {reason}");
-        self.core.set_state(CoreTransition::Fail)
+        tracing::warn!(component = I::NAME, address = %self.rt.address, "failure: {reason}");
+        self.rt.set_state(CoreTransition::Fail)
     }
 
     /// Asks `target` for control with this component's authority.
     pub fn request_control(&mut self, target: Address) {
-        let authority = self.core.authority;
-        self.core.send(
+        let authority = self.rt.authority;
+        self.rt.send(
             target,
             RequestComponentControl {
                 authority_code: authority,
@@ -456,15 +456,15 @@ impl<I: Interface> Context<'_, I> {
 
     /// Gives control of `target` back.
     pub fn release_control(&mut self, target: Address) {
-        self.core.held_control.retain(|a| *a != target);
-        self.core
+        self.rt.held_control.retain(|a| *a != target);
+        self.rt
             .send(target, ReleaseComponentControl {}.into(), false, 0);
     }
 
     /// Sends `msg` to a component this one controls (or tries to): core commands such as
     /// Resume, Standby and Set Emergency, and core queries.
     pub fn send_core<M: CoreMessage>(&mut self, to: Address, msg: M) {
-        self.core.send(to, msg.into(), false, 0);
+        self.rt.send(to, msg.into(), false, 0);
     }
 
     /// Asks `provider` for a service connection streaming report `report` at `rate_hz`
@@ -477,17 +477,17 @@ impl<I: Interface> Context<'_, I> {
         rate_hz: f64,
         presence: u32,
     ) -> bool {
-        self.core.subscribe(provider, report, rate_hz, presence)
+        self.rt.subscribe(provider, report, rate_hz, presence)
     }
 
     /// Ends the service connection on `report` from `provider`.
     pub fn terminate_service_connection(&mut self, provider: Address, report: CommandCode) {
-        self.core.unsubscribe(provider, report);
+        self.rt.unsubscribe(provider, report);
     }
 
     /// Whether `provider` confirmed a service connection on `report`.
     pub fn service_connection_active(&self, provider: Address, report: CommandCode) -> bool {
-        self.core.requester.is_active(provider, report)
+        self.rt.requester.is_active(provider, report)
     }
 }
 
@@ -518,7 +518,7 @@ core_messages!(
     QueryEvents,
 );
 
-impl<I: Interface> Core<I> {
+impl<I: Interface> Runtime<I> {
     fn new(address: Address, config: Config, now: Instant) -> Self {
         Self {
             address,
@@ -639,7 +639,7 @@ impl<I: Interface> Core<I> {
 
 /// A component: the runtime around a behaviour.
 pub struct Component<B: Behaviour> {
-    core: Core<B::Interface>,
+    rt: Runtime<B::Interface>,
     behaviour: B,
 }
 
@@ -647,11 +647,11 @@ impl<B: Behaviour> std::fmt::Debug for Component<B> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("Component")
             .field("name", &<B::Interface as Interface>::NAME)
-            .field("address", &self.core.address)
-            .field("state", &self.core.state)
-            .field("mode", &self.core.mode)
-            .field("controller", &self.core.controller)
-            .field("stats", &self.core.stats)
+            .field("address", &self.rt.address)
+            .field("state", &self.rt.state)
+            .field("mode", &self.rt.mode)
+            .field("controller", &self.rt.controller)
+            .field("stats", &self.rt.stats)
             .finish()
     }
 }
@@ -660,51 +660,51 @@ impl<B: Behaviour> Component<B> {
     /// A component at `address` (its component id should be the interface id) that
     /// starts at `now` in Initialize.
     pub fn new(address: Address, behaviour: B, config: Config, now: Instant) -> Self {
-        let mut core = Core::new(address, config, now);
-        if let Some(utc) = core.config.utc {
-            core.clock.set(now, utc);
+        let mut rt = Runtime::new(address, config, now);
+        if let Some(utc) = rt.config.utc {
+            rt.clock.set(now, utc);
         }
-        Self { core, behaviour }
+        Self { rt, behaviour }
     }
 
     /// The address.
     pub fn address(&self) -> Address {
-        self.core.address
+        self.rt.address
     }
 
     /// The core state.
     pub fn state(&self) -> CoreState {
-        self.core.state
+        self.rt.state
     }
 
     /// The mode.
     pub fn mode(&self) -> <B::Interface as Interface>::Modes {
-        self.core.mode
+        self.rt.mode
     }
 
     /// The component in control and its authority.
     pub fn controller(&self) -> Option<(Address, u8)> {
-        self.core.controller.map(|c| (c.address, c.authority))
+        self.rt.controller.map(|c| (c.address, c.authority))
     }
 
     /// The component's own authority.
     pub fn authority(&self) -> u8 {
-        self.core.authority
+        self.rt.authority
     }
 
     /// Counters.
     pub fn stats(&self) -> Stats {
-        self.core.stats
+        self.rt.stats
     }
 
     /// Number of service connections served.
     pub fn service_connections(&self) -> usize {
-        self.core.provider.len()
+        self.rt.provider.len()
     }
 
     /// Number of events served.
     pub fn events(&self) -> usize {
-        self.core.events.len()
+        self.rt.events.len()
     }
 
     /// The vendor behaviour.
@@ -720,21 +720,21 @@ impl<B: Behaviour> Component<B> {
     /// Forgets everything about `gone` (the node layer calls this when a component
     /// disappears): control held by it, its service connections and events.
     pub fn forget(&mut self, gone: Address) {
-        if self.core.controller.is_some_and(|c| c.address == gone) {
-            self.core.controller = None;
+        if self.rt.controller.is_some_and(|c| c.address == gone) {
+            self.rt.controller = None;
         }
-        self.core.provider.remove_requester(gone);
-        self.core.events.remove_requester(gone);
-        self.core.held_control.retain(|a| *a != gone);
+        self.rt.provider.remove_requester(gone);
+        self.rt.events.remove_requester(gone);
+        self.rt.held_control.retain(|a| *a != gone);
         self.notify_changes();
     }
 
     /// Hands a received message (header and body) to the component.
     pub fn handle(&mut self, now: Instant, header: &Header, body: &[u8]) {
         self.advance(now);
-        self.core.stats.received += 1;
-        if !header.destination.matches(&self.core.address) {
-            self.core.stats.misaddressed += 1;
+        self.rt.stats.received += 1;
+        if !header.destination.matches(&self.rt.address) {
+            self.rt.stats.misaddressed += 1;
             return;
         }
         if header.ack_nak == AckNak::Ack || header.ack_nak == AckNak::Nak {
@@ -743,33 +743,33 @@ impl<B: Behaviour> Component<B> {
         let msg = match Message::decode(header.command_code, body) {
             Ok(m) => m,
             Err(e) => {
-                self.core.stats.decode_errors += 1;
+                self.rt.stats.decode_errors += 1;
                 tracing::warn!(
                     component = <B::Interface as Interface>::NAME,
-                    address = %self.core.address,
+                    address = %self.rt.address,
                     source = %header.source,
                     code = %header.command_code,
                     "undecodable message dropped: {e}"
                 );
-                self.core.ack(header, false);
+                self.rt.ack(header, false);
                 return;
             }
         };
         let ok = self.dispatch(header, &msg);
-        self.core.ack(header, ok);
+        self.rt.ack(header, ok);
         self.notify_changes();
     }
 
     /// Hands a typed message to the component (as if decoded from `header`).
     pub fn handle_message(&mut self, now: Instant, header: &Header, msg: &Message) {
         self.advance(now);
-        self.core.stats.received += 1;
-        if !header.destination.matches(&self.core.address) {
-            self.core.stats.misaddressed += 1;
+        self.rt.stats.received += 1;
+        if !header.destination.matches(&self.rt.address) {
+            self.rt.stats.misaddressed += 1;
             return;
         }
         let ok = self.dispatch(header, msg);
-        self.core.ack(header, ok);
+        self.rt.ack(header, ok);
         self.notify_changes();
     }
 
@@ -777,28 +777,28 @@ impl<B: Behaviour> Component<B> {
     /// events.
     pub fn handle_timeout(&mut self, now: Instant) {
         self.advance(now);
-        let now = self.core.now;
-        if self.core.state == CoreState::Shutdown {
+        let now = self.rt.now;
+        if self.rt.state == CoreState::Shutdown {
             return;
         }
-        if let (Some(due), Some(period)) = (self.core.next_heartbeat, self.core.config.heartbeat) {
+        if let (Some(due), Some(period)) = (self.rt.next_heartbeat, self.rt.config.heartbeat) {
             if due <= now {
-                let nm = self.core.config.node_manager.unwrap_or(Address {
+                let nm = self.rt.config.node_manager.unwrap_or(Address {
                     component: 1,
                     instance: 1,
-                    ..self.core.address
+                    ..self.rt.address
                 });
                 if <B::Interface as Interface>::ID != 1 {
-                    self.core.send(nm, ReportHeartbeatPulse {}.into(), false, 0);
+                    self.rt.send(nm, ReportHeartbeatPulse {}.into(), false, 0);
                 }
-                self.core.next_heartbeat = Some(next_after(due, period, now));
+                self.rt.next_heartbeat = Some(next_after(due, period, now));
             }
         }
-        if self.core.next_tick <= now {
-            self.core.next_tick = next_after(self.core.next_tick, self.core.config.tick, now);
-            self.core.source = None;
+        if self.rt.next_tick <= now {
+            self.rt.next_tick = next_after(self.rt.next_tick, self.rt.config.tick, now);
+            self.rt.source = None;
             self.behaviour.tick(&mut Context {
-                core: &mut self.core,
+                rt: &mut self.rt,
                 _i: PhantomData,
             });
             self.notify_changes();
@@ -811,20 +811,20 @@ impl<B: Behaviour> Component<B> {
 
     /// The next instant [`handle_timeout`](Self::handle_timeout) must be called.
     pub fn poll_timeout(&self) -> Option<Instant> {
-        if !self.core.started || self.core.needs_init {
-            return Some(self.core.now);
+        if !self.rt.started || self.rt.needs_init {
+            return Some(self.rt.now);
         }
-        if self.core.state == CoreState::Shutdown {
+        if self.rt.state == CoreState::Shutdown {
             return None;
         }
-        let mut t = self.core.next_tick;
-        if let Some(h) = self.core.next_heartbeat {
+        let mut t = self.rt.next_tick;
+        if let Some(h) = self.rt.next_heartbeat {
             t = t.min(h);
         }
-        if let Some(s) = self.core.provider.next_due() {
+        if let Some(s) = self.rt.provider.next_due() {
             t = t.min(s);
         }
-        if let Some(e) = self.core.events.next_due() {
+        if let Some(e) = self.rt.events.next_due() {
             t = t.min(e);
         }
         Some(t)
@@ -832,25 +832,25 @@ impl<B: Behaviour> Component<B> {
 
     /// The next message to send.
     pub fn poll_transmit(&mut self) -> Option<Transmit> {
-        let t = self.core.outbox.pop_front()?;
-        self.core.stats.sent += 1;
+        let t = self.rt.outbox.pop_front()?;
+        self.rt.stats.sent += 1;
         Some(t)
     }
 
     fn advance(&mut self, now: Instant) {
-        if now > self.core.now {
-            self.core.now = now;
+        if now > self.rt.now {
+            self.rt.now = now;
         }
-        if !self.core.started {
-            self.core.started = true;
-            self.core.next_heartbeat = self.core.config.heartbeat.map(|_| self.core.now);
-            self.core.next_tick = self.core.now;
+        if !self.rt.started {
+            self.rt.started = true;
+            self.rt.next_heartbeat = self.rt.config.heartbeat.map(|_| self.rt.now);
+            self.rt.next_tick = self.rt.now;
         }
-        if self.core.needs_init && self.core.state == CoreState::Initialize {
-            self.core.needs_init = false;
-            self.core.source = None;
+        if self.rt.needs_init && self.rt.state == CoreState::Initialize {
+            self.rt.needs_init = false;
+            self.rt.source = None;
             let r = self.behaviour.initialize(&mut Context {
-                core: &mut self.core,
+                rt: &mut self.rt,
                 _i: PhantomData,
             });
             let t = match r {
@@ -858,7 +858,7 @@ impl<B: Behaviour> Component<B> {
                 Err(reason) => {
                     tracing::error!(
                         component = <B::Interface as Interface>::NAME,
-                        address = %self.core.address,
+                        address = %self.rt.address,
                         "initialisation failed: {reason}"
                     );
                     CoreTransition::Fail
@@ -866,17 +866,17 @@ impl<B: Behaviour> Component<B> {
             };
             // Initialize -> Standby/Failure is always legal unless the vendor changed
             // the state meanwhile; then the vendor's state stands.
-            let _ = self.core.set_state(t);
+            let _ = self.rt.set_state(t);
             self.notify_changes();
         }
     }
 
     fn notify_changes(&mut self) {
-        while let Some((from, to)) = self.core.changes.pop_front() {
+        while let Some((from, to)) = self.rt.changes.pop_front() {
             if to == CoreState::Initialize {
-                self.core.needs_init = true;
+                self.rt.needs_init = true;
             }
-            self.core.source = None;
+            self.rt.source = None;
             let reason = match to {
                 CoreState::Emergency => Some(StopReason::Emergency),
                 CoreState::Standby if from == CoreState::Ready => Some(StopReason::Standby),
@@ -889,30 +889,30 @@ impl<B: Behaviour> Component<B> {
             }
             self.behaviour.state_changed(
                 &mut Context {
-                    core: &mut self.core,
+                    rt: &mut self.rt,
                     _i: PhantomData,
                 },
                 from,
                 to,
             );
         }
-        let now = self.core.controller.map(|c| c.address);
-        if let Some(lost) = self.core.known_controller.filter(|k| Some(*k) != now) {
+        let now = self.rt.controller.map(|c| c.address);
+        if let Some(lost) = self.rt.known_controller.filter(|k| Some(*k) != now) {
             self.stop(StopReason::ControlLost { controller: lost });
         }
-        self.core.known_controller = now;
+        self.rt.known_controller = now;
     }
 
     fn stop(&mut self, reason: StopReason) {
         tracing::info!(
             component = <B::Interface as Interface>::NAME,
-            address = %self.core.address,
+            address = %self.rt.address,
             "stop: {reason}"
         );
-        self.core.source = None;
+        self.rt.source = None;
         self.behaviour.stop(
             &mut Context {
-                core: &mut self.core,
+                rt: &mut self.rt,
                 _i: PhantomData,
             },
             reason,
@@ -920,7 +920,7 @@ impl<B: Behaviour> Component<B> {
     }
 
     fn refuse(&mut self, header: &Header, msg: &Message, why: Refusal) -> bool {
-        let s = &mut self.core.stats;
+        let s = &mut self.rt.stats;
         match &why {
             Refusal::NotController => s.not_controller += 1,
             Refusal::State(_) => s.wrong_state += 1,
@@ -929,7 +929,7 @@ impl<B: Behaviour> Component<B> {
         }
         let (component, address, source) = (
             <B::Interface as Interface>::NAME,
-            self.core.address,
+            self.rt.address,
             header.source,
         );
         if matches!(why, Refusal::Vendor(Refused::Unsupported)) {
@@ -944,7 +944,7 @@ impl<B: Behaviour> Component<B> {
     /// Runs one message; returns whether it was accepted (for ACK/NAK).
     fn dispatch(&mut self, header: &Header, msg: &Message) -> bool {
         let source = header.source;
-        self.core.source = Some(source);
+        self.rt.source = Some(source);
         if let Some(r) = self.core_message(header, msg) {
             return match r {
                 Ok(()) => true,
@@ -963,7 +963,7 @@ impl<B: Behaviour> Component<B> {
                     self.dispatch(&h, &inner)
                 }
                 Err(e) => {
-                    self.core.stats.decode_errors += 1;
+                    self.rt.stats.decode_errors += 1;
                     tracing::warn!(
                         component = <B::Interface as Interface>::NAME,
                         source = %source,
@@ -974,13 +974,13 @@ impl<B: Behaviour> Component<B> {
                 }
             };
         }
-        let state = self.core.state;
+        let state = self.rt.state;
         if state == CoreState::Shutdown {
             return self.refuse(header, msg, Refusal::State(state));
         }
         let code = msg.code();
         if <B::Interface as Interface>::COMMANDS.contains(&code) {
-            if !self.core.may_command(source) {
+            if !self.rt.may_command(source) {
                 return self.refuse(header, msg, Refusal::NotController);
             }
             if !matches!(state, CoreState::Ready | CoreState::Standby) {
@@ -989,14 +989,14 @@ impl<B: Behaviour> Component<B> {
         }
         let r = self.behaviour.handle(
             &mut Context {
-                core: &mut self.core,
+                rt: &mut self.rt,
                 _i: PhantomData,
             },
             msg,
         );
         match r {
             Ok(Some(reply)) => {
-                self.core.send(source, reply, false, 0);
+                self.rt.send(source, reply, false, 0);
                 true
             }
             Ok(None) => true,
@@ -1013,13 +1013,13 @@ impl<B: Behaviour> Component<B> {
         let code = query.code();
         let iface_ok = <B::Interface as Interface>::ANY_MESSAGE
             || <B::Interface as Interface>::ACCEPTS.contains(&code);
-        if !iface_ok || self.core.state == CoreState::Shutdown {
+        if !iface_ok || self.rt.state == CoreState::Shutdown {
             return Err(Refused::Unsupported);
         }
-        self.core.source = Some(requester);
+        self.rt.source = Some(requester);
         let r = self.behaviour.handle(
             &mut Context {
-                core: &mut self.core,
+                rt: &mut self.rt,
                 _i: PhantomData,
             },
             query,
@@ -1033,7 +1033,7 @@ impl<B: Behaviour> Component<B> {
 
     /// The report of a core query, answered by the runtime.
     fn core_report(&self, query: &Message) -> Option<Message> {
-        let c = &self.core;
+        let c = &self.rt;
         Some(match query {
             Message::QueryComponentAuthority(_) => ReportComponentAuthority {
                 authority_code: c.authority,
@@ -1080,7 +1080,7 @@ impl<B: Behaviour> Component<B> {
                 }
                 .into()
             }
-            Message::QueryEvents(q) => self.core.events.report(q).into(),
+            Message::QueryEvents(q) => self.rt.events.report(q).into(),
             _ => return None,
         })
     }
