@@ -142,8 +142,8 @@ enum Cmd {
 struct NetArgs {
     /// This tool's own address (a System Commander). On the node of a peer, the tool
     /// joins that node as one of its components; else it runs a node of its own.
-    /// Default: 1.N.40.1 with N in 200-253 taken from the process id, so that two
-    /// sessions at once are two nodes.
+    /// Default: S.1.40.1 with S in 200-253 taken from the process id, so that two
+    /// sessions at once are two subsystems (OpenJAUS keeps one address per subsystem).
     #[arg(long)]
     me: Option<jaus::Address>,
     /// Local socket (default: port 3794 on an address of its own, e.g. 127.0.0.2:3794,

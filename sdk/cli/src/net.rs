@@ -1062,9 +1062,10 @@ pub fn demo_operator(
     }
 }
 
-/// The CLI's address when `--me` is not given: 1.N.40.1 with N in 200–253 from the
-/// process id, so that two sessions running at once are two nodes, not one node at two
-/// addresses.
+/// The CLI's address when `--me` is not given: S.1.40.1 with S in 200–253 from the
+/// process id. Each session is a subsystem of its own because OpenJAUS keeps one IP
+/// address per subsystem: two sessions as two nodes of one subsystem, on two sockets,
+/// would split its traffic between them (seen in the OpenJAUS trial).
 pub fn default_me() -> Address {
-    Address::new(1, 200 + (std::process::id() % 54) as u8, 40, 1)
+    Address::new(200 + (std::process::id() % 54) as u8, 1, 40, 1)
 }
