@@ -547,10 +547,8 @@ fn configuration_changes_reach_every_tree_by_events() {
             i + 1
         );
     }
-    println!(
-        "join seen after {seen:?}; leave seen after {gone:?} (from {:?})",
-        t0.elapsed()
-    );
+    println!("join seen after {seen:?}; leave seen after {gone:?}");
+    let _ = t0;
 }
 
 /// Issue 19: under 5 % loss an Event may be lost; the periodic re-query repairs the
