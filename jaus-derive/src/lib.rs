@@ -33,6 +33,15 @@
 //! | `present_if = "name"` | `Option<T>` | present exactly when the earlier field `name` is non-zero; checked on encode |
 //! | `offsets = "list"` | `Vec<u32>` with `count_var` | byte offsets of the elements of `list` from the start of the body: computed on encode when empty, written as given with one per element |
 //! | `tag_var = "name"` | a `JausUnion` type | the value without its tag; the tag is the earlier field `name`, checked on encode |
+//!
+//! Fields are encoded in the order they are declared, whatever their presence bits. A
+//! newer revision of a message appends optional fields under bits above every bit the
+//! older one defines, so a `JausMessage` decoder that finds set bits it does not define
+//! decodes the fields it knows and skips the rest of the body; they are never
+//! re-emitted. Where that cannot be done safely (an undefined bit in a `JausRecord`, whose
+//! end is then unknown; one below a defined bit; one with a present `rest` field) the
+//! decoder returns `DecodeErrorKind::UndefinedPresenceBit` (see
+//! `jaus::codec::check_presence`).
 
 mod attr;
 mod expand;

@@ -718,7 +718,9 @@ pub struct DecodeError(Box<DecodeErrorInner>);
 struct DecodeErrorInner {
     kind: DecodeErrorKind,
     offset: usize,
-    field: Option<&'static str>,
+    /// The fields being decoded, innermost first (`Record.field`, then the field of
+    /// the enclosing record or message that holds it, ...).
+    path: Vec<&'static str>,
     message: Option<&'static str>,
 }
 
@@ -757,10 +759,19 @@ pub enum DecodeErrorKind {
         /// The variable name.
         name: &'static str,
     },
-    /// The body is longer than the message's fields.
+    /// The body is longer than the message's fields (and no presence bit the
+    /// definition does not know is set).
     TrailingBytes {
         /// Bytes left over.
         count: usize,
+    },
+    /// A presence bit the definition does not define is set where the fields a newer
+    /// revision adds under it cannot be skipped (see [`check_presence`]).
+    UndefinedPresenceBit {
+        /// The lowest such bit.
+        bit: u32,
+        /// Why its fields cannot be skipped.
+        why: UndefinedBit,
     },
     /// A tag of a tagged union, or a value of a closed enumeration, that the
     /// definition does not name.
@@ -787,6 +798,75 @@ pub enum DecodeErrorKind {
     },
 }
 
+/// Why the fields under an undefined presence bit cannot be skipped
+/// ([`DecodeErrorKind::UndefinedPresenceBit`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum UndefinedBit {
+    /// The presence vector is a nested record's: the end of that record is not known.
+    InRecord,
+    /// The bit is below this defined bit: newer fields are only known to come after
+    /// the known ones when their bits are above every defined bit.
+    BelowDefinedBit(u32),
+    /// The message's last field runs to the end of the body (`rest`) and is present.
+    RestField,
+}
+
+/// Checks the presence vector `pv` of a message body (`outermost`) or of a nested
+/// record against the bits its definition defines (`known`); `rest_present` says
+/// whether the last field runs to the end of the body and is present. `at` is the
+/// offset of the presence vector.
+///
+/// The forward-compatibility rule: a newer revision of a message appends optional
+/// fields at the end of the body, under presence bits above every bit the older
+/// revision defines. So when bits the definition does not define are set in a message
+/// body, the known fields come first and the decoder skips the rest of the body (whose
+/// size the header gives): `Ok(true)`. Where that cannot be known to hold, the
+/// undefined bit is a [`DecodeErrorKind::UndefinedPresenceBit`]: in a nested record
+/// (where the end of the record is not known), below a defined bit, or when the last
+/// field runs to the end of the body. `Ok(false)`: every set bit is defined.
+#[inline]
+pub fn check_presence(
+    pv: u64,
+    known: u64,
+    outermost: bool,
+    rest_present: bool,
+    at: usize,
+) -> Result<bool, DecodeError> {
+    let unknown = pv & !known;
+    if unknown == 0 {
+        return Ok(false);
+    }
+    undefined_presence(unknown, known, outermost, rest_present, at)
+}
+
+#[cold]
+#[inline(never)]
+fn undefined_presence(
+    unknown: u64,
+    known: u64,
+    outermost: bool,
+    rest_present: bool,
+    at: usize,
+) -> Result<bool, DecodeError> {
+    let bit = unknown.trailing_zeros();
+    // The lowest defined bit above the lowest undefined one, if any.
+    let above = known & !((2u64 << bit).wrapping_sub(1));
+    let why = if !outermost {
+        UndefinedBit::InRecord
+    } else if above != 0 {
+        UndefinedBit::BelowDefinedBit(above.trailing_zeros())
+    } else if rest_present {
+        UndefinedBit::RestField
+    } else {
+        return Ok(true);
+    };
+    Err(DecodeError::new(
+        DecodeErrorKind::UndefinedPresenceBit { bit, why },
+        at,
+    ))
+}
+
 impl DecodeError {
     /// A new error without field context.
     #[cold]
@@ -794,15 +874,18 @@ impl DecodeError {
         Self(Box::new(DecodeErrorInner {
             kind,
             offset,
-            field: None,
+            path: Vec::new(),
             message: None,
         }))
     }
 
-    /// Attaches the field being decoded, keeping an inner (more precise) one.
+    /// Attaches the field being decoded: the first call names the innermost field,
+    /// later calls the fields that enclose it (see [`DecodeError::path`]).
     #[cold]
     pub fn in_field(mut self, field: &'static str) -> Self {
-        self.0.field.get_or_insert(field);
+        if self.0.path.last() != Some(&field) {
+            self.0.path.push(field);
+        }
         self
     }
 
@@ -825,7 +908,13 @@ impl DecodeError {
 
     /// `Type.field` where decoding failed (innermost), if known.
     pub fn field(&self) -> Option<&'static str> {
-        self.0.field
+        self.0.path.first().copied()
+    }
+
+    /// Where decoding failed, innermost field first, then each field that holds it:
+    /// `["VksPoint.latitude", "VksObject.points", "ReportVksObjects.objects"]`.
+    pub fn path(&self) -> &[&'static str] {
+        &self.0.path
     }
 
     /// Name of the message being decoded, if known.
@@ -853,6 +942,26 @@ impl fmt::Display for DecodeErrorKind {
                 )
             }
             Self::TrailingBytes { count } => write!(f, "{count} unexpected trailing byte(s)"),
+            Self::UndefinedPresenceBit { bit, why } => {
+                write!(f, "presence bit {bit} is not defined by this revision: ")?;
+                match why {
+                    UndefinedBit::InRecord => write!(
+                        f,
+                        "the size of what a newer revision adds under it inside a nested \
+                         record is unknown, so nothing after it can be decoded"
+                    ),
+                    UndefinedBit::BelowDefinedBit(k) => write!(
+                        f,
+                        "it lies below defined bit {k}, so a newer revision may place its \
+                         field before known ones, whose positions are then unknown"
+                    ),
+                    UndefinedBit::RestField => write!(
+                        f,
+                        "the body ends with a field that runs to its end, which would \
+                         swallow what a newer revision appends"
+                    ),
+                }
+            }
             Self::MissingVariable { name } => write!(f, "no earlier field sets `{name}`"),
             Self::TooDeep { max } => write!(f, "records nested deeper than {max} levels"),
             Self::UndefinedValue { value } => write!(f, "undefined value {value}"),
@@ -874,8 +983,11 @@ impl fmt::Display for DecodeError {
             write!(f, "{m}: ")?;
         }
         write!(f, "{}", self.0.kind)?;
-        if let Some(field) = self.0.field {
+        if let Some((field, outer)) = self.0.path.split_first() {
             write!(f, " in field `{field}`")?;
+            for o in outer {
+                write!(f, " of `{o}`")?;
+            }
         }
         // A command code is not a position in the body.
         if matches!(self.0.kind, DecodeErrorKind::UnknownCommandCode { .. }) {

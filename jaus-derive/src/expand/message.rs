@@ -2,7 +2,7 @@
 //! model of its fields, and the command code of a message.
 
 use super::field::{self, Parts};
-use super::model::struct_model;
+use super::model::{struct_model, Shape};
 use super::{fallback, lit};
 use crate::attr::{crate_path, parse_container_attrs, Errors, Int};
 use proc_macro2::TokenStream;
@@ -40,7 +40,36 @@ pub fn message(input: &DeriveInput, is_message: bool) -> TokenStream {
     for f in &model.fields {
         field::add(f, model.presence, &k, &mut parts);
     }
-    let (pv_encode, pv_decode) = field::presence_vector(model.presence, ident, &parts, &codec);
+    // Bits the definition defines, and whether a last field that runs to the end of
+    // the body is present (fields appended by a newer revision would be taken for it).
+    let known = model
+        .fields
+        .iter()
+        .filter_map(|f| match f.shape {
+            Shape::Flag(b) => Some(b),
+            _ => f.bit,
+        })
+        .fold(0u64, |m, b| m | 1u64 << b);
+    let rest_present = match model.fields.last() {
+        Some(f) if f.shape.runs_to_end() => match (f.bit, model.presence) {
+            (Some(b), Some(p)) => {
+                let p = p.ident();
+                quote!(pv & ((1 as #p) << #b) != 0)
+            }
+            _ => quote!(true),
+        },
+        _ => quote!(false),
+    };
+    let pv = field::presence_vector(
+        model.presence,
+        ident,
+        &parts,
+        &codec,
+        is_message,
+        known,
+        &rest_present,
+    );
+    let (pv_encode, pv_decode, pv_skip) = (pv.encode, pv.decode, pv.skip);
     let Parts {
         prelude,
         lens,
@@ -102,6 +131,7 @@ pub fn message(input: &DeriveInput, is_message: bool) -> TokenStream {
                 #enter
                 #pv_decode
                 #(#decodes)*
+                #pv_skip
                 #leave
                 Ok(#construct)
             }

@@ -67,6 +67,18 @@ pub(super) enum Shape {
     },
 }
 
+impl Shape {
+    /// Whether the field takes every byte left in the body (`rest`).
+    pub(super) fn runs_to_end(&self) -> bool {
+        matches!(
+            self,
+            Shape::Bytes(Len::Rest)
+                | Shape::Str { len: Len::Rest, .. }
+                | Shape::List { count: None, .. }
+        )
+    }
+}
+
 /// One field: its wire shape, presence and links to the fields it depends on.
 pub(super) struct FieldModel {
     pub(super) ident: Ident,
