@@ -76,8 +76,39 @@ pub fn message(input: &DeriveInput, is_message: bool) -> TokenStream {
         encodes,
         decodes,
         mins,
+        clamps,
         ..
     } = parts;
+    let unused_w =
+        (model.fields.is_empty() && model.presence.is_none()).then(|| quote!(let _ = w;));
+    let encode_body = quote! {
+        #unused_w
+        #(#prelude)*
+        #pv_encode
+        #(#encodes)*
+        Ok(())
+    };
+    // A message names itself in an error of a field of a record inside it (the
+    // closure is inlined; it only gives the fields' `?` and `return` a place to end).
+    let encode_body = if is_message {
+        let name = c.name.clone().unwrap_or_else(|| lit(&ident.to_string()));
+        quote! {
+            match (|| -> ::core::result::Result<(), #codec::EncodeError> { #encode_body })() {
+                ::core::result::Result::Err(e) => ::core::result::Result::Err(e.in_message(#name)),
+                ok => ok,
+            }
+        }
+    } else {
+        encode_body
+    };
+    let clamp_fn = (!clamps.is_empty()).then(|| {
+        quote! {
+            #[inline]
+            fn clamp_to_range(&mut self) {
+                #(#clamps)*
+            }
+        }
+    });
     // Records (which may nest, even recursively) count their depth. On an error the
     // reader is abandoned, so only the success path needs to leave.
     let (enter, leave) = if is_message || model.fields.is_empty() {
@@ -90,8 +121,6 @@ pub fn message(input: &DeriveInput, is_message: bool) -> TokenStream {
     } else {
         quote!(#ident { #(#names),* })
     };
-    let unused_w =
-        (model.fields.is_empty() && model.presence.is_none()).then(|| quote!(let _ = w;));
     let unused_r =
         (model.fields.is_empty() && model.presence.is_none()).then(|| quote!(let _ = r;));
     let msg_impl = is_message.then(|| {
@@ -114,13 +143,11 @@ pub fn message(input: &DeriveInput, is_message: bool) -> TokenStream {
                 #pv_bytes #(+ #lens)*
             }
             #[inline]
+            #[allow(clippy::redundant_closure_call)]
             fn encode(&self, w: &mut #codec::Writer<'_>) -> ::core::result::Result<(), #codec::EncodeError> {
-                #unused_w
-                #(#prelude)*
-                #pv_encode
-                #(#encodes)*
-                Ok(())
+                #encode_body
             }
+            #clamp_fn
         }
         #[allow(clippy::approx_constant)]
         impl #impl_g #codec::Decode for #ident #ty_g #where_g {

@@ -31,6 +31,8 @@ pub(super) struct ScaledSpec {
     pub(super) int: Int,
     pub(super) lo: f64,
     pub(super) hi: f64,
+    /// Unit of the real value (empty if none), for error messages.
+    pub(super) unit: String,
 }
 
 /// The wire form of one field.

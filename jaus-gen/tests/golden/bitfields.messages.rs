@@ -124,6 +124,12 @@ impl Message {
             Self::SetLights(m) => m,
         }
     }
+    /// The body as a mutable value implementing [`Encode`].
+    pub fn body_mut(&mut self) -> &mut dyn Encode {
+        match self {
+            Self::SetLights(m) => m,
+        }
+    }
 }
 impl From<SetLights> for Message {
     fn from(m: SetLights) -> Self {
@@ -136,6 +142,9 @@ impl Encode for Message {
     }
     fn encode(&self, w: &mut Writer<'_>) -> ::core::result::Result<(), EncodeError> {
         self.body().encode(w)
+    }
+    fn clamp_to_range(&mut self) {
+        self.body_mut().clamp_to_range()
     }
 }
 /// Every message of the set: code, name, title, group and the report answering it.

@@ -66,6 +66,12 @@ impl Message {
             Self::SetGlobalWaypoint(m) => m,
         }
     }
+    /// The body as a mutable value implementing [`Encode`].
+    pub fn body_mut(&mut self) -> &mut dyn Encode {
+        match self {
+            Self::SetGlobalWaypoint(m) => m,
+        }
+    }
 }
 impl From<SetGlobalWaypoint> for Message {
     fn from(m: SetGlobalWaypoint) -> Self {
@@ -78,6 +84,9 @@ impl Encode for Message {
     }
     fn encode(&self, w: &mut Writer<'_>) -> ::core::result::Result<(), EncodeError> {
         self.body().encode(w)
+    }
+    fn clamp_to_range(&mut self) {
+        self.body_mut().clamp_to_range()
     }
 }
 /// Every message of the set: code, name, title, group and the report answering it.
