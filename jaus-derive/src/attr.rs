@@ -175,9 +175,11 @@ pub struct FieldAttrs {
     pub offsets: Option<(String, Span)>,
     pub nul_terminated: Option<Span>,
     pub tag_var: Option<(String, Span)>,
+    /// Unit of a scaled value, for error messages.
+    pub unit: Option<(String, Span)>,
 }
 
-pub const FIELD_KEYS: &str = "bit, scaled(T, lo, hi), count = T, size = T, fixed = N, rest, nul, accept_short, var, count_var, present_if, flag, offsets, nul_terminated, tag_var";
+pub const FIELD_KEYS: &str = "bit, scaled(T, lo, hi), unit, count = T, size = T, fixed = N, rest, nul, accept_short, var, count_var, present_if, flag, offsets, nul_terminated, tag_var";
 pub const BITS_FIELD_KEYS: &str = "bit = N, bits = A..=B, reserved";
 
 /// Calls `f` on every `key` or `key = ...` / `key(...)` item of every `#[jaus(...)]`.
@@ -308,13 +310,14 @@ pub fn parse_field_attrs(attrs: &[Attribute], errors: &mut Errors, in_bits: bool
             }
             "rest" if !in_bits => set(&mut out.rest, key.span(), key, errors),
             "nul_terminated" if !in_bits => set(&mut out.nul_terminated, key.span(), key, errors),
-            "var" | "count_var" | "present_if" | "offsets" | "tag_var" if !in_bits => {
+            "var" | "count_var" | "present_if" | "offsets" | "tag_var" | "unit" if !in_bits => {
                 let lit: LitStr = parse_eq(input)?;
                 let slot = match k.as_str() {
                     "var" => &mut out.var,
                     "count_var" => &mut out.count_var,
                     "present_if" => &mut out.present_if,
                     "tag_var" => &mut out.tag_var,
+                    "unit" => &mut out.unit,
                     _ => &mut out.offsets,
                 };
                 set(slot, (lit.value(), lit.span()), key, errors);

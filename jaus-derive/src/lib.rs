@@ -21,7 +21,8 @@
 //! |---|---|---|
 //! | (none) | integers, `f32`, `f64`, any `Encode + Decode` type | the value, little-endian |
 //! | `bit = N` | `Option<T>` | present iff bit N of the presence vector is set; the presence vector is computed on encode, never stored |
-//! | `scaled(T, lo, hi)` | `f64`, `Vec<f64>` | integer `T` with `value = n * (hi - lo) / D + bias` |
+//! | `scaled(T, lo, hi)` | `f64`, `Vec<f64>` | integer `T` with `value = n * (hi - lo) / D + bias`; a value beyond the limits is an encode error (`jaus::codec::scale_to`) |
+//! | `unit = "deg"` | a `scaled` field | the unit named in its out-of-range errors |
 //! | `count = T` | `Vec<E>` | element count as unsigned `T`, then the elements |
 //! | `size = T` | `String`, `Vec<u8>`, any codec type | byte length as unsigned `T`, then the bytes |
 //! | `fixed = N` | `String`, `Vec<u8>` | exactly N bytes, NUL padded; with `accept_short` a shorter final field is accepted on decode |
@@ -33,6 +34,19 @@
 //! | `present_if = "name"` | `Option<T>` | present exactly when the earlier field `name` is non-zero; checked on encode |
 //! | `offsets = "list"` | `Vec<u32>` with `count_var` | byte offsets of the elements of `list` from the start of the body: computed on encode when empty, written as given with one per element |
 //! | `tag_var = "name"` | a `JausUnion` type | the value without its tag; the tag is the earlier field `name`, checked on encode |
+//!
+//! `JausMessage`, `JausRecord` and `JausUnion` also implement
+//! `Encode::clamp_to_range`, which clamps every scaled field to its limits, through
+//! nested records, lists, optional fields and union variants.
+//!
+//! Fields are encoded in the order they are declared, whatever their presence bits. A
+//! newer revision of a message appends optional fields under bits above every bit the
+//! older one defines, so a `JausMessage` decoder that finds set bits it does not define
+//! decodes the fields it knows and skips the rest of the body; they are never
+//! re-emitted. Where that cannot be done safely (an undefined bit in a `JausRecord`, whose
+//! end is then unknown; one below a defined bit; one with a present `rest` field) the
+//! decoder returns `DecodeErrorKind::UndefinedPresenceBit` (see
+//! `jaus::codec::check_presence`).
 
 mod attr;
 mod expand;

@@ -344,6 +344,17 @@ fn len_attrs(m: &mut Mapped, len: Len, what: &str) {
 fn field_ctx(spec: &Spec, field: &Field, rt: &str) -> FieldCtx {
     let (f, w) = (&field.def, &field.wire);
     let mut m = map_wire(w, rt);
+    // The unit of a scaled value (of the field, or of each element of a list) goes into
+    // the encoder's error messages.
+    let unit = f
+        .unit
+        .as_ref()
+        .or(f.of.as_ref().and_then(|e| e.0.unit.as_ref()));
+    if let Some(u) = unit {
+        if let Some(i) = m.attr.iter().position(|a| a.starts_with("scaled(")) {
+            m.attr.insert(i + 1, format!("unit = {u:?}"));
+        }
+    }
     if vars(spec).iter().any(|v| v == &f.name) {
         m.attr.push(format!("var = \"{}\"", f.name));
     }

@@ -78,7 +78,7 @@ fn generated_code_is_documented_from_the_yaml() {
         "{lat}"
     );
     assert!(
-        lat.contains("#[jaus(bit = 0, scaled(i32, -90.0, 90.0))]"),
+        lat.contains("#[jaus(bit = 0, scaled(i32, -90.0, 90.0), unit = \"deg\")]"),
         "{lat}"
     );
     assert!(code.contains("#[cfg(feature = \"platform\")]"));

@@ -326,6 +326,28 @@ pub trait Encode {
         debug_assert_eq!(w.position(), out.len(), "encoded_len disagrees with encode");
         Ok(out)
     }
+
+    /// Clamps every scaled field of the value to its limits, through nested records,
+    /// lists, optional fields and unions; NaN is left as it is (and stays an encode
+    /// error). Encoding refuses a value beyond its field's limits
+    /// ([`EncodeError::OutOfRange`], see [`scale_to`]); call this first to saturate
+    /// instead. Values received are never clamped.
+    ///
+    /// The derives implement it for messages, records and unions; every other type
+    /// has no scaled field and keeps this default, which does nothing.
+    #[inline]
+    fn clamp_to_range(&mut self) {}
+
+    /// The value with every scaled field clamped to its limits
+    /// ([`Encode::clamp_to_range`]).
+    #[inline]
+    fn clamped(mut self) -> Self
+    where
+        Self: Sized,
+    {
+        self.clamp_to_range();
+        self
+    }
 }
 
 /// A value that can be read back from its JAUS wire encoding.
@@ -532,36 +554,97 @@ fn scale_bias<T: ScaledRepr>(lo: f64, hi: f64) -> (f64, f64) {
     (sf, bias)
 }
 
-/// Real value → integer: clamp to the limits `[lo, hi]`, then round to nearest.
+/// A scaled field as its encoder sees it: its path, limits and unit. The derive emits
+/// one constant per scaled field; encode errors refer to it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ScaledField {
+    /// `Type.field`.
+    pub field: &'static str,
+    /// Lower limit.
+    pub lo: f64,
+    /// Upper limit.
+    pub hi: f64,
+    /// Unit of the real value (`deg`, `m/s`), or empty.
+    pub unit: &'static str,
+}
+
+/// Real value → integer of the scaled field `s`: round to nearest (ties away from zero).
 ///
-/// Every integer an encoder following this rule produces decodes to a value that
-/// re-encodes to the same integer. Two integers lie outside the limits and are never
-/// produced (the most negative value of a signed type, whose range is symmetric, and
-/// `u32::MAX` under the OpenJAUS divisor 2³²−2); a received one decodes faithfully, one
-/// step beyond the limit, and re-encodes clamped to the limit.
+/// A value in `[lo, hi]` is encoded. A value beyond a limit is an
+/// [`EncodeError::OutOfRange`], as are NaN and the infinities, with one exception:
+/// a finite value whose nearest integer is at most one count beyond the integer of the
+/// limit (so less than 1.5 resolution steps beyond it) is encoded as the limit. That
+/// margin holds the two integers that lie outside the limits and that this encoder
+/// never produces (the most negative value of a signed type, whose range is symmetric,
+/// and `u32::MAX` under the OpenJAUS divisor 2³²−2): a received one decodes faithfully,
+/// one step beyond the limit, and re-encodes as the limit. It also absorbs rounding
+/// noise of computations that end at a limit. Every integer this encoder produces
+/// decodes to a value that re-encodes to the same integer.
+///
+/// [`Encode::clamp_to_range`] clamps every scaled field of a value to its limits first,
+/// for callers who want saturation rather than an error.
 #[inline(always)]
-pub fn scale_to<T: ScaledRepr>(
-    v: f64,
-    lo: f64,
-    hi: f64,
-    field: &'static str,
-) -> Result<T, EncodeError> {
-    if !v.is_finite() {
-        return Err(EncodeError::NotFinite { field });
+pub fn scale_to<T: ScaledRepr>(v: f64, s: &'static ScaledField) -> Result<T, EncodeError> {
+    // One test for NaN, the infinities and values beyond the limits.
+    if !(v >= s.lo && v <= s.hi) {
+        return beyond_limits(v, s);
     }
+    Ok(to_count(v, s.lo, s.hi))
+}
+
+/// The integer of an in-range value.
+#[inline(always)]
+fn to_count<T: ScaledRepr>(v: f64, lo: f64, hi: f64) -> T {
     let (sf, bias) = scale_bias::<T>(lo, hi);
     // Divide (not multiply by the inverse): exact ties such as 50 % in a u8 [0, 100]
     // then round as OpenJAUS rounds them (128).
-    let counts = (v.clamp(lo, hi) - bias) / sf;
+    let counts = (v - bias) / sf;
     // Round half away from zero by truncating `x ± 0.5` (a single conversion
-    // instruction; `f64::round` is a library call on baseline x86-64).
+    // instruction; `f64::round` is a library call on baseline x86-64). `from_count` is
+    // an `as` conversion: it truncates toward zero and saturates at the type's limits.
     let x = if counts >= 0.0 {
         counts + 0.5
     } else {
         counts - 0.5
     };
-    // `from_count` is an `as` conversion: it truncates toward zero.
-    Ok(T::from_count(x.clamp(T::MIN_F, T::MAX_F)))
+    T::from_count(x)
+}
+
+/// The nearest integer count of `v` (as a float, so that it cannot overflow).
+fn nearest_count<T: ScaledRepr>(v: f64, lo: f64, hi: f64) -> f64 {
+    let (sf, bias) = scale_bias::<T>(lo, hi);
+    ((v - bias) / sf).round()
+}
+
+#[cold]
+#[inline(never)]
+fn beyond_limits<T: ScaledRepr>(v: f64, s: &'static ScaledField) -> Result<T, EncodeError> {
+    let (lo, hi) = (s.lo, s.hi);
+    let n = nearest_count::<T>(v, lo, hi);
+    if v < lo && n >= nearest_count::<T>(lo, lo, hi) - 1.0 {
+        return Ok(to_count(lo, lo, hi));
+    }
+    if v > hi && n <= nearest_count::<T>(hi, lo, hi) + 1.0 {
+        return Ok(to_count(hi, lo, hi));
+    }
+    Err(EncodeError::OutOfRange {
+        scaled: s,
+        value: v,
+        message: None,
+    })
+}
+
+/// `v` clamped to `[lo, hi]` (NaN stays NaN): what [`Encode::clamp_to_range`] does to
+/// a scaled field.
+#[inline]
+pub fn clamp_scaled(v: f64, lo: f64, hi: f64) -> f64 {
+    if v < lo {
+        lo
+    } else if v > hi {
+        hi
+    } else {
+        v
+    }
 }
 
 /// Integer → real value: `n * scale + bias`.
@@ -718,7 +801,9 @@ pub struct DecodeError(Box<DecodeErrorInner>);
 struct DecodeErrorInner {
     kind: DecodeErrorKind,
     offset: usize,
-    field: Option<&'static str>,
+    /// The fields being decoded, innermost first (`Record.field`, then the field of
+    /// the enclosing record or message that holds it, ...).
+    path: Vec<&'static str>,
     message: Option<&'static str>,
 }
 
@@ -757,10 +842,19 @@ pub enum DecodeErrorKind {
         /// The variable name.
         name: &'static str,
     },
-    /// The body is longer than the message's fields.
+    /// The body is longer than the message's fields (and no presence bit the
+    /// definition does not know is set).
     TrailingBytes {
         /// Bytes left over.
         count: usize,
+    },
+    /// A presence bit the definition does not define is set where the fields a newer
+    /// revision adds under it cannot be skipped (see [`check_presence`]).
+    UndefinedPresenceBit {
+        /// The lowest such bit.
+        bit: u32,
+        /// Why its fields cannot be skipped.
+        why: UndefinedBit,
     },
     /// A tag of a tagged union, or a value of a closed enumeration, that the
     /// definition does not name.
@@ -787,6 +881,75 @@ pub enum DecodeErrorKind {
     },
 }
 
+/// Why the fields under an undefined presence bit cannot be skipped
+/// ([`DecodeErrorKind::UndefinedPresenceBit`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum UndefinedBit {
+    /// The presence vector is a nested record's: the end of that record is not known.
+    InRecord,
+    /// The bit is below this defined bit: newer fields are only known to come after
+    /// the known ones when their bits are above every defined bit.
+    BelowDefinedBit(u32),
+    /// The message's last field runs to the end of the body (`rest`) and is present.
+    RestField,
+}
+
+/// Checks the presence vector `pv` of a message body (`outermost`) or of a nested
+/// record against the bits its definition defines (`known`); `rest_present` says
+/// whether the last field runs to the end of the body and is present. `at` is the
+/// offset of the presence vector.
+///
+/// The forward-compatibility rule: a newer revision of a message appends optional
+/// fields at the end of the body, under presence bits above every bit the older
+/// revision defines. So when bits the definition does not define are set in a message
+/// body, the known fields come first and the decoder skips the rest of the body (whose
+/// size the header gives): `Ok(true)`. Where that cannot be known to hold, the
+/// undefined bit is a [`DecodeErrorKind::UndefinedPresenceBit`]: in a nested record
+/// (where the end of the record is not known), below a defined bit, or when the last
+/// field runs to the end of the body. `Ok(false)`: every set bit is defined.
+#[inline]
+pub fn check_presence(
+    pv: u64,
+    known: u64,
+    outermost: bool,
+    rest_present: bool,
+    at: usize,
+) -> Result<bool, DecodeError> {
+    let unknown = pv & !known;
+    if unknown == 0 {
+        return Ok(false);
+    }
+    undefined_presence(unknown, known, outermost, rest_present, at)
+}
+
+#[cold]
+#[inline(never)]
+fn undefined_presence(
+    unknown: u64,
+    known: u64,
+    outermost: bool,
+    rest_present: bool,
+    at: usize,
+) -> Result<bool, DecodeError> {
+    let bit = unknown.trailing_zeros();
+    // The lowest defined bit above the lowest undefined one, if any.
+    let above = known & !((2u64 << bit).wrapping_sub(1));
+    let why = if !outermost {
+        UndefinedBit::InRecord
+    } else if above != 0 {
+        UndefinedBit::BelowDefinedBit(above.trailing_zeros())
+    } else if rest_present {
+        UndefinedBit::RestField
+    } else {
+        return Ok(true);
+    };
+    Err(DecodeError::new(
+        DecodeErrorKind::UndefinedPresenceBit { bit, why },
+        at,
+    ))
+}
+
 impl DecodeError {
     /// A new error without field context.
     #[cold]
@@ -794,15 +957,18 @@ impl DecodeError {
         Self(Box::new(DecodeErrorInner {
             kind,
             offset,
-            field: None,
+            path: Vec::new(),
             message: None,
         }))
     }
 
-    /// Attaches the field being decoded, keeping an inner (more precise) one.
+    /// Attaches the field being decoded: the first call names the innermost field,
+    /// later calls the fields that enclose it (see [`DecodeError::path`]).
     #[cold]
     pub fn in_field(mut self, field: &'static str) -> Self {
-        self.0.field.get_or_insert(field);
+        if self.0.path.last() != Some(&field) {
+            self.0.path.push(field);
+        }
         self
     }
 
@@ -825,7 +991,13 @@ impl DecodeError {
 
     /// `Type.field` where decoding failed (innermost), if known.
     pub fn field(&self) -> Option<&'static str> {
-        self.0.field
+        self.0.path.first().copied()
+    }
+
+    /// Where decoding failed, innermost field first, then each field that holds it:
+    /// `["VksPoint.latitude", "VksObject.points", "ReportVksObjects.objects"]`.
+    pub fn path(&self) -> &[&'static str] {
+        &self.0.path
     }
 
     /// Name of the message being decoded, if known.
@@ -853,6 +1025,26 @@ impl fmt::Display for DecodeErrorKind {
                 )
             }
             Self::TrailingBytes { count } => write!(f, "{count} unexpected trailing byte(s)"),
+            Self::UndefinedPresenceBit { bit, why } => {
+                write!(f, "presence bit {bit} is not defined by this revision: ")?;
+                match why {
+                    UndefinedBit::InRecord => write!(
+                        f,
+                        "the size of what a newer revision adds under it inside a nested \
+                         record is unknown, so nothing after it can be decoded"
+                    ),
+                    UndefinedBit::BelowDefinedBit(k) => write!(
+                        f,
+                        "it lies below defined bit {k}, so a newer revision may place its \
+                         field before known ones, whose positions are then unknown"
+                    ),
+                    UndefinedBit::RestField => write!(
+                        f,
+                        "the body ends with a field that runs to its end, which would \
+                         swallow what a newer revision appends"
+                    ),
+                }
+            }
             Self::MissingVariable { name } => write!(f, "no earlier field sets `{name}`"),
             Self::TooDeep { max } => write!(f, "records nested deeper than {max} levels"),
             Self::UndefinedValue { value } => write!(f, "undefined value {value}"),
@@ -874,8 +1066,11 @@ impl fmt::Display for DecodeError {
             write!(f, "{m}: ")?;
         }
         write!(f, "{}", self.0.kind)?;
-        if let Some(field) = self.0.field {
+        if let Some((field, outer)) = self.0.path.split_first() {
             write!(f, " in field `{field}`")?;
+            for o in outer {
+                write!(f, " of `{o}`")?;
+            }
         }
         // A command code is not a position in the body.
         if matches!(self.0.kind, DecodeErrorKind::UnknownCommandCode { .. }) {
@@ -919,11 +1114,16 @@ pub enum EncodeError {
         /// Fixed length.
         max: usize,
     },
-    /// A scaled value is NaN or infinite.
-    #[error("field `{field}`: value is not finite")]
-    NotFinite {
-        /// Field path.
-        field: &'static str,
+    /// A scaled value is beyond its field's limits, or NaN or infinite (see
+    /// [`scale_to`] for the exact rule; [`Encode::clamp_to_range`] saturates instead).
+    #[error("{}", OutOfRangeText { scaled, value: *value, message: *message })]
+    OutOfRange {
+        /// The field, its limits and unit.
+        scaled: &'static ScaledField,
+        /// The value given.
+        value: f64,
+        /// The message being encoded, when the field belongs to a record inside it.
+        message: Option<&'static str>,
     },
     /// A field depends on an earlier field (a count or flag) that was not encoded.
     #[error("field `{field}`: no earlier field sets `{name}`")]
@@ -1001,58 +1201,173 @@ pub enum EncodeError {
     },
 }
 
+impl EncodeError {
+    /// Attaches the message being encoded to an error in a field of a record inside it
+    /// (the path of a message's own field already names the message).
+    #[cold]
+    pub fn in_message(mut self, name: &'static str) -> Self {
+        if let Self::OutOfRange { message, .. } = &mut self {
+            message.get_or_insert(name);
+        }
+        self
+    }
+}
+
+/// `ReportGlobalPose.latitude: 129.5 outside [-90, 90] deg`, with `Message: ` in front
+/// when the field belongs to a record inside the message.
+struct OutOfRangeText<'a> {
+    scaled: &'a ScaledField,
+    value: f64,
+    message: Option<&'static str>,
+}
+
+impl fmt::Display for OutOfRangeText<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let s = self.scaled;
+        if let Some(m) = self.message {
+            let own = s.field.strip_prefix(m).is_some_and(|r| r.starts_with('.'));
+            if !own {
+                write!(f, "{m}: ")?;
+            }
+        }
+        let is = if self.value.is_nan() {
+            "is not in"
+        } else {
+            "outside"
+        };
+        write!(f, "{}: {} {is} [{}, {}]", s.field, self.value, s.lo, s.hi)?;
+        if !s.unit.is_empty() {
+            write!(f, " {}", s.unit)?;
+        }
+        Ok(())
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A scaled field with limits `[lo, hi]` (leaked: tests only).
+    fn f(lo: f64, hi: f64) -> &'static ScaledField {
+        Box::leak(Box::new(ScaledField {
+            field: "T.x",
+            lo,
+            hi,
+            unit: "",
+        }))
+    }
 
     #[test]
     fn scaled_examples_from_wire_md() {
         // (value, lo, hi, expected integer) — the OpenJAUS table of WIRE.md §2.2, with
         // round-to-nearest for negatives (−50 % → −16384, −100 % → −32767).
-        assert_eq!(scale_to::<i16>(50.0, -100.0, 100.0, "").unwrap(), 16384);
-        assert_eq!(scale_to::<i16>(-50.0, -100.0, 100.0, "").unwrap(), -16384);
-        assert_eq!(scale_to::<i16>(100.0, -100.0, 100.0, "").unwrap(), 32767);
-        assert_eq!(scale_to::<i16>(-100.0, -100.0, 100.0, "").unwrap(), -32767);
-        assert_eq!(scale_to::<u8>(50.0, 0.0, 100.0, "").unwrap(), 128);
-        assert_eq!(scale_to::<u16>(10.0, 0.0, 1092.0, "").unwrap(), 600);
-        assert_eq!(scale_to::<i32>(29.0, -90.0, 90.0, "").unwrap(), 691_966_953);
-        assert_eq!(scale_to::<u32>(1.5, 0.0, 100.0, "").unwrap(), 64_424_509);
+        let pct = f(-100.0, 100.0);
+        assert_eq!(scale_to::<i16>(50.0, pct).unwrap(), 16384);
+        assert_eq!(scale_to::<i16>(-50.0, pct).unwrap(), -16384);
+        assert_eq!(scale_to::<i16>(100.0, pct).unwrap(), 32767);
+        assert_eq!(scale_to::<i16>(-100.0, pct).unwrap(), -32767);
+        assert_eq!(scale_to::<u8>(50.0, f(0.0, 100.0)).unwrap(), 128);
+        assert_eq!(scale_to::<u16>(10.0, f(0.0, 1092.0)).unwrap(), 600);
+        assert_eq!(scale_to::<i32>(29.0, f(-90.0, 90.0)).unwrap(), 691_966_953);
+        assert_eq!(scale_to::<u32>(1.5, f(0.0, 100.0)).unwrap(), 64_424_509);
         assert!((scale_from::<i16>(16384, -100.0, 100.0) - 50.00153).abs() < 1e-5);
-        assert!(scale_to::<i16>(f64::NAN, -1.0, 1.0, "x").is_err());
     }
 
     #[test]
     fn every_in_range_wire_integer_round_trips() {
         use std::f64::consts::PI;
+        let angle = f(-PI, PI);
         for n in [-32767, -1, 0, 1, 32766, i16::MAX] {
-            assert_eq!(
-                scale_to::<i16>(scale_from(n, -PI, PI), -PI, PI, "").unwrap(),
-                n
-            );
+            assert_eq!(scale_to::<i16>(scale_from(n, -PI, PI), angle).unwrap(), n);
         }
+        let pct = f(0.0, 100.0);
         for n in [0u32, 1, 4_294_967_294] {
-            assert_eq!(
-                scale_to::<u32>(scale_from(n, 0.0, 100.0), 0.0, 100.0, "").unwrap(),
-                n
-            );
+            assert_eq!(scale_to::<u32>(scale_from(n, 0.0, 100.0), pct).unwrap(), n);
         }
-        // The two integers outside the limits decode faithfully and re-encode clamped.
+        // The two integers outside the limits decode faithfully and re-encode as the
+        // limit (they are one count beyond it).
         assert!(scale_from(i16::MIN, -PI, PI) < -PI);
         assert_eq!(
-            scale_to::<i16>(scale_from(i16::MIN, -PI, PI), -PI, PI, "").unwrap(),
+            scale_to::<i16>(scale_from(i16::MIN, -PI, PI), angle).unwrap(),
             -32767
         );
+        assert!(scale_from(u32::MAX, 0.0, 100.0) > 100.0);
         assert_eq!(
-            scale_to::<u32>(scale_from(u32::MAX, 0.0, 100.0), 0.0, 100.0, "").unwrap(),
+            scale_to::<u32>(scale_from(u32::MAX, 0.0, 100.0), pct).unwrap(),
             4_294_967_294
         );
+        // So do those of every other signed type and range.
+        for (lo, hi) in [(-90.0, 90.0), (-10_000.0, 35_000.0), (0.5, 0.75)] {
+            let s = f(lo, hi);
+            assert_eq!(
+                scale_to::<i32>(scale_from(i32::MIN, lo, hi), s).unwrap(),
+                -i32::MAX
+            );
+            assert_eq!(
+                scale_to::<i16>(scale_from(i16::MIN, lo, hi), s).unwrap(),
+                -i16::MAX
+            );
+        }
     }
 
     #[test]
-    fn out_of_range_values_clamp() {
-        assert_eq!(scale_to::<u8>(1e9, 0.0, 100.0, "").unwrap(), 255);
-        assert_eq!(scale_to::<u8>(-5.0, 0.0, 100.0, "").unwrap(), 0);
-        assert_eq!(scale_to::<i16>(-1e9, -1.0, 1.0, "").unwrap(), -32767);
+    fn out_of_range_values_are_errors_beyond_one_count() {
+        let pct = f(0.0, 100.0);
+        let step = scale_step::<u8>(0.0, 100.0);
+        let out = |r: Result<u8, EncodeError>| match r {
+            Err(EncodeError::OutOfRange { value, .. }) => value,
+            other => panic!("{other:?}"),
+        };
+        assert_eq!(out(scale_to::<u8>(1e9, pct)), 1e9);
+        assert_eq!(out(scale_to::<u8>(-5.0, pct)), -5.0);
+        assert!(out(scale_to::<u8>(f64::NAN, pct)).is_nan());
+        assert_eq!(out(scale_to::<u8>(f64::INFINITY, pct)), f64::INFINITY);
+        assert_eq!(
+            out(scale_to::<u8>(f64::NEG_INFINITY, pct)),
+            f64::NEG_INFINITY
+        );
+        // Up to (not including) 1.5 steps beyond a limit: the limit.
+        assert_eq!(scale_to::<u8>(100.0 + 1.4 * step, pct).unwrap(), 255);
+        assert_eq!(scale_to::<u8>(-1.4 * step, pct).unwrap(), 0);
+        assert_eq!(
+            out(scale_to::<u8>(100.0 + 1.6 * step, pct)),
+            100.0 + 1.6 * step
+        );
+        assert_eq!(out(scale_to::<u8>(-1.6 * step, pct)), -1.6 * step);
+        let one = f(-1.0, 1.0);
+        assert!(scale_to::<i16>(-1e9, one).is_err());
+        assert!(scale_to::<i64>(1.5, one).is_err());
+        assert_eq!(scale_to::<i64>(1.0, one).unwrap(), i64::MAX);
+        assert_eq!(scale_to::<u64>(1.0, f(0.0, 1.0)).unwrap(), u64::MAX);
+    }
+
+    #[test]
+    fn out_of_range_errors_name_the_field_the_value_and_the_limits() {
+        static LAT: ScaledField = ScaledField {
+            field: "ReportGlobalPose.latitude",
+            lo: -90.0,
+            hi: 90.0,
+            unit: "deg",
+        };
+        let e = scale_to::<i32>(129.5, &LAT).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "ReportGlobalPose.latitude: 129.5 outside [-90, 90] deg"
+        );
+        // The message is named only when the field is a record's.
+        let own = e.clone().in_message("ReportGlobalPose");
+        assert_eq!(own.to_string(), e.to_string());
+        assert_eq!(
+            e.in_message("ReportVksObjects").to_string(),
+            "ReportVksObjects: ReportGlobalPose.latitude: 129.5 outside [-90, 90] deg"
+        );
+        assert_eq!(
+            scale_to::<i32>(f64::NAN, &LAT).unwrap_err().to_string(),
+            "ReportGlobalPose.latitude: NaN is not in [-90, 90] deg"
+        );
+        assert_eq!(clamp_scaled(129.5, -90.0, 90.0), 90.0);
+        assert_eq!(clamp_scaled(-129.5, -90.0, 90.0), -90.0);
+        assert!(clamp_scaled(f64::NAN, -90.0, 90.0).is_nan());
     }
 
     #[test]

@@ -19,6 +19,23 @@
 //! assert_eq!(back.elevation, None);
 //! ```
 //!
+//! A scaled value beyond its field's range is an encode error, never silently clamped;
+//! `clamped()` (or `clamp_to_range()`) saturates every scaled field explicitly.
+//! Values received are never clamped.
+//!
+//! ```
+//! use jaus::codec::{Encode, EncodeError};
+//! use jaus::messages::ReportGlobalPose;
+//!
+//! let pose = ReportGlobalPose { latitude: Some(129.5), ..Default::default() };
+//! let e = pose.to_bytes().unwrap_err();
+//! assert_eq!(e.to_string(), "ReportGlobalPose.latitude: 129.5 outside [-90, 90] deg");
+//! assert!(matches!(e, EncodeError::OutOfRange { value, .. } if value == 129.5));
+//! let pose = pose.clamped();
+//! assert_eq!(pose.latitude, Some(90.0));
+//! assert!(pose.to_bytes().is_ok());
+//! ```
+//!
 //! A vendor's own experimental message needs no YAML: derive the codec by hand.
 //!
 //! ```

@@ -86,7 +86,7 @@ pub mod acme {
         ///
         /// Unit: %.
         /// Range `[0, 100]`, carried as a scaled `u16` (resolution 1.526e-3).
-        #[jaus(scaled(u16, 0.0, 100.0))]
+        #[jaus(scaled(u16, 0.0, 100.0), unit = "%")]
         pub level: f64,
         /// State.
         pub flags: TankFlags,
@@ -103,7 +103,7 @@ pub mod acme {
         /// Preceded on the wire by its element count as `u8`.
         /// Each element: Range `[-40, 125]`, carried as a scaled `i16` (resolution 2.518e-3).
         /// Optional: presence bit 1.
-        #[jaus(bit = 1, count = u8, scaled(i16, -40.0, 125.0))]
+        #[jaus(bit = 1, count = u8, scaled(i16, -40.0, 125.0), unit = "°C")]
         #[cfg_attr(all(), serde(default, skip_serializing_if = "Option::is_none"))]
         pub temperatures: Option<Vec<f64>>,
     }
@@ -307,6 +307,14 @@ impl Message {
             Self::Raw(r) => r,
         }
     }
+    /// The body as a mutable value implementing [`Encode`].
+    pub fn body_mut(&mut self) -> &mut dyn Encode {
+        match self {
+            Self::QueryTanks(m) => m,
+            Self::ReportTanks(m) => m,
+            Self::ReplayTanks(m) => m,
+        }
+    }
 }
 impl From<QueryTanks> for Message {
     fn from(m: QueryTanks) -> Self {
@@ -329,6 +337,9 @@ impl Encode for Message {
     }
     fn encode(&self, w: &mut Writer<'_>) -> ::core::result::Result<(), EncodeError> {
         self.body().encode(w)
+    }
+    fn clamp_to_range(&mut self) {
+        self.body_mut().clamp_to_range()
     }
 }
 /// Every message of the set: code, name, title, group and the report answering it.

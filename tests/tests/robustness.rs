@@ -52,7 +52,8 @@ fn extra_seeds() -> Vec<Message> {
 /// Decodes a body; if it decodes, checks that it re-encodes, and that encoding is then
 /// a fixed point (a second decode/encode gives the same bytes and message). The first
 /// encoding may differ from the input only where the input is outside the definition:
-/// undefined presence bits are dropped, out-of-range scaled integers are clamped.
+/// undefined presence bits are dropped (with what a newer revision appended under them),
+/// the two spare integers one count beyond a scaled field's limit re-encode as the limit.
 fn check(code: CommandCode, body: &[u8]) -> bool {
     match Message::decode(code, body) {
         Ok(m) => {

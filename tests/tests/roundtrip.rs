@@ -3,7 +3,9 @@
 //! Strategies are built from the YAML definitions (one general mechanism, no
 //! per-message code): each message gets random field values as JSON, which serde turns
 //! into the typed message. Then `encode → decode` must give the same message up to the
-//! resolution of scaled fields, and a second `encode` must give identical bytes.
+//! resolution of scaled fields, and a second `encode` must give identical bytes. And a
+//! scaled value beyond its limits, anywhere in a message, is a typed encode error that
+//! names it, until the message is clamped.
 
 use jaus::codec::{Encode, EncodeError};
 use jaus::messages::Message;
@@ -47,13 +49,9 @@ fn wire_strategy(spec: &Spec, w: &Wire, depth: u32) -> BoxedStrategy<Value> {
             .prop_filter("finite", |v| v.is_finite())
             .prop_map(|v| json!(v))
             .boxed(),
-        Wire::Scaled { lo, hi, .. } => {
-            let span = hi - lo;
-            // Mostly in range; sometimes beyond, which must clamp.
-            prop_oneof![9 => (*lo..=*hi).boxed(), 1 => ((lo - span)..=(hi + span)).boxed()]
-                .prop_map(|v| json!(v))
-                .boxed()
-        }
+        // In range: a value beyond the limits is an encode error (see
+        // `out_of_range_scaled_values_are_typed_errors`).
+        Wire::Scaled { lo, hi, .. } => (*lo..=*hi).prop_map(|v| json!(v)).boxed(),
         Wire::Str(len) => match len {
             Len::Fixed { n, .. } => text(*n),
             _ => text(40),
@@ -236,7 +234,7 @@ fn close(spec: &Spec, w: &Wire, a: &Value, b: &Value, at: &str) -> Result<(), St
         (Wire::Scaled { int, lo, hi }, Value::Number(x), Value::Number(y)) => {
             let d = int.divisor();
             let step = (hi - lo) / d;
-            let want = x.as_f64().unwrap().clamp(*lo, *hi);
+            let want = x.as_f64().unwrap();
             let got = y.as_f64().unwrap();
             if (want - got).abs() <= step * 0.5 + 1e-9 * want.abs().max(1.0) {
                 Ok(())
@@ -376,4 +374,137 @@ fn random_values_of_every_message_round_trip() {
         cases += 48;
     }
     assert!(cases >= 48 * 90);
+}
+
+/// A scaled value inside a message's JSON: where it is (a JSON pointer below `fields`),
+/// the derive's path of its field (`Type.field`) and its limits.
+struct Leaf {
+    ptr: String,
+    field: String,
+    lo: f64,
+    hi: f64,
+}
+
+/// Every scaled value of `obj`, the JSON of a record or message `owner` with `fields`.
+fn scaled_leaves(spec: &Spec, owner: &str, fields: &[Field], obj: &Value, ptr: &str) -> Vec<Leaf> {
+    let mut out = Vec::new();
+    for Field { def: f, wire } in fields {
+        if let Some(v) = obj.get(&f.name) {
+            let path = format!("{owner}.{}", f.name);
+            leaves_of(spec, &path, wire, v, &format!("{ptr}/{}", f.name), &mut out);
+        }
+    }
+    out
+}
+
+fn leaves_of(spec: &Spec, path: &str, w: &Wire, v: &Value, ptr: &str, out: &mut Vec<Leaf>) {
+    match (w, v) {
+        (Wire::Scaled { lo, hi, .. }, Value::Number(_)) => out.push(Leaf {
+            ptr: ptr.to_string(),
+            field: path.to_string(),
+            lo: *lo,
+            hi: *hi,
+        }),
+        (Wire::List { elem, .. } | Wire::ListField { elem, .. }, Value::Array(items)) => {
+            for (i, item) in items.iter().enumerate() {
+                leaves_of(spec, path, elem, item, &format!("{ptr}/{i}"), out);
+            }
+        }
+        (Wire::Named { name, .. }, _) => match spec.ty(name).map(|t| &t.form) {
+            Some(TypeForm::Record { fields, .. }) => {
+                out.extend(scaled_leaves(spec, name, fields, v, ptr));
+            }
+            Some(TypeForm::Union { variants, .. }) => {
+                if let Some((vn, value)) = v.as_object().and_then(|o| o.iter().next()) {
+                    let variant = variants.iter().find(|x| &x.def.name == vn);
+                    if let Some(w) = variant.and_then(|x| x.wire.as_ref()) {
+                        leaves_of(spec, path, w, value, &format!("{ptr}/{vn}"), out);
+                    }
+                }
+            }
+            _ => {}
+        },
+        _ => {}
+    }
+}
+
+#[test]
+fn out_of_range_scaled_values_are_typed_errors() {
+    let spec = jaus_spec::load_dirs(&[jaus_spec::defs_dir()]).expect("definitions validate");
+    let mut messages = 0;
+    for m in &spec.messages {
+        // Which scaled value goes out of range, on which side, and how far (in spans of
+        // its range: at least 1 %, far more than the 1.5 counts that are clamped).
+        let strategy = (
+            record_strategy(&spec, &m.fields, 0),
+            any::<prop::sample::Index>(),
+            any::<bool>(),
+            0.01f64..10.0,
+        );
+        let mut runner = TestRunner::new(Config {
+            cases: 16,
+            failure_persistence: None,
+            max_global_rejects: 100_000,
+            ..Config::default()
+        });
+        let tested = std::cell::Cell::new(false);
+        let result = runner.run(&strategy, |(mut fields, pick, above, by)| {
+            let leaves = scaled_leaves(&spec, &m.def.name, &m.fields, &fields, "");
+            if leaves.is_empty() {
+                return Ok(());
+            }
+            tested.set(true);
+            let leaf = pick.get(&leaves);
+            let span = leaf.hi - leaf.lo;
+            let bad = if above {
+                leaf.hi + span * by
+            } else {
+                leaf.lo - span * by
+            };
+            *fields.pointer_mut(&leaf.ptr).unwrap() = json!(bad);
+            let input = json!({ "message": m.def.name, "fields": fields });
+            let msg: Message = serde_json::from_value(input)
+                .map_err(|e| TestCaseError::fail(format!("JSON → {}: {e}", m.def.name)))?;
+            match msg.to_bytes() {
+                Err(EncodeError::OutOfRange { scaled, value, .. }) => {
+                    prop_assert_eq!(scaled.field, leaf.field.as_str());
+                    prop_assert_eq!((scaled.lo, scaled.hi), (leaf.lo, leaf.hi));
+                    prop_assert_eq!(value, bad);
+                }
+                Err(
+                    EncodeError::CountMismatch { .. }
+                    | EncodeError::PresenceMismatch { .. }
+                    | EncodeError::TagMismatch { .. },
+                ) => return Err(TestCaseError::reject("inconsistent dependent fields")),
+                other => {
+                    return Err(TestCaseError::fail(format!(
+                        "{} = {bad} (limits [{}, {}]) gave {other:?}",
+                        leaf.field, leaf.lo, leaf.hi
+                    )))
+                }
+            }
+            // Clamped, the value is at its limit and the message encodes.
+            let clamped = msg.clamped();
+            let json = serde_json::to_value(&clamped).unwrap();
+            let limit = if above { leaf.hi } else { leaf.lo };
+            prop_assert_eq!(
+                json.pointer(&format!("/fields{}", leaf.ptr)),
+                Some(&json!(limit))
+            );
+            match clamped.to_bytes() {
+                Ok(_)
+                | Err(
+                    EncodeError::CountMismatch { .. }
+                    | EncodeError::PresenceMismatch { .. }
+                    | EncodeError::TagMismatch { .. },
+                ) => Ok(()),
+                Err(e) => Err(TestCaseError::fail(format!("clamped: {e}"))),
+            }
+        });
+        if let Err(e) = result {
+            panic!("{}: {e}", m.def.name);
+        }
+        messages += usize::from(tested.get());
+    }
+    assert!(messages >= 50, "{messages} messages with scaled values");
 }

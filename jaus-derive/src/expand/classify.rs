@@ -7,7 +7,7 @@ use crate::attr::{eval_f64, span_of, Errors, FieldAttrs, Int, IntSpan, Scaled};
 use proc_macro2::Span;
 use syn::Type;
 
-fn scaled_spec(s: &Scaled, errors: &mut Errors) -> Option<ScaledSpec> {
+fn scaled_spec(s: &Scaled, unit: Option<&str>, errors: &mut Errors) -> Option<ScaledSpec> {
     let lo = eval_f64(&s.lo);
     let hi = eval_f64(&s.hi);
     if lo.is_none() {
@@ -41,6 +41,7 @@ fn scaled_spec(s: &Scaled, errors: &mut Errors) -> Option<ScaledSpec> {
         int: s.int.int,
         lo,
         hi,
+        unit: unit.unwrap_or_default().to_string(),
     })
 }
 
@@ -65,6 +66,13 @@ pub(super) fn classify(
     errors: &mut Errors,
 ) -> Option<Shape> {
     let name = type_name(ty);
+    let unit = a.unit.as_ref().map(|(u, _)| u.as_str());
+    if let (Some((_, span)), None) = (&a.unit, &a.scaled) {
+        errors.error(
+            *span,
+            "`unit` names the unit of a scaled value: it goes with `scaled(T, lo, hi)`",
+        );
+    }
     let count = a
         .count
         .as_ref()
@@ -151,7 +159,7 @@ pub(super) fn classify(
         }
         let elem = match &a.scaled {
             Some(sc) if type_name(inner).as_deref() == Some("f64") => {
-                Elem::Scaled(scaled_spec(sc, errors)?)
+                Elem::Scaled(scaled_spec(sc, unit, errors)?)
             }
             Some(sc) => {
                 errors.error(sc.span, "`scaled` applies to `Vec<f64>`");
@@ -186,7 +194,7 @@ pub(super) fn classify(
             );
             return None;
         }
-        let spec = scaled_spec(s, errors)?;
+        let spec = scaled_spec(s, unit, errors)?;
         if name.as_deref() == Some("f64") {
             if a.count.is_some() || len.is_some() {
                 errors.error(

@@ -2,7 +2,7 @@
 //! model of its fields, and the command code of a message.
 
 use super::field::{self, Parts};
-use super::model::struct_model;
+use super::model::{struct_model, Shape};
 use super::{fallback, lit};
 use crate::attr::{crate_path, parse_container_attrs, Errors, Int};
 use proc_macro2::TokenStream;
@@ -40,15 +40,75 @@ pub fn message(input: &DeriveInput, is_message: bool) -> TokenStream {
     for f in &model.fields {
         field::add(f, model.presence, &k, &mut parts);
     }
-    let (pv_encode, pv_decode) = field::presence_vector(model.presence, ident, &parts, &codec);
+    // Bits the definition defines, and whether a last field that runs to the end of
+    // the body is present (fields appended by a newer revision would be taken for it).
+    let known = model
+        .fields
+        .iter()
+        .filter_map(|f| match f.shape {
+            Shape::Flag(b) => Some(b),
+            _ => f.bit,
+        })
+        .fold(0u64, |m, b| m | 1u64 << b);
+    let rest_present = match model.fields.last() {
+        Some(f) if f.shape.runs_to_end() => match (f.bit, model.presence) {
+            (Some(b), Some(p)) => {
+                let p = p.ident();
+                quote!(pv & ((1 as #p) << #b) != 0)
+            }
+            _ => quote!(true),
+        },
+        _ => quote!(false),
+    };
+    let pv = field::presence_vector(
+        model.presence,
+        ident,
+        &parts,
+        &codec,
+        is_message,
+        known,
+        &rest_present,
+    );
+    let (pv_encode, pv_decode, pv_skip) = (pv.encode, pv.decode, pv.skip);
     let Parts {
         prelude,
         lens,
         encodes,
         decodes,
         mins,
+        clamps,
         ..
     } = parts;
+    let unused_w =
+        (model.fields.is_empty() && model.presence.is_none()).then(|| quote!(let _ = w;));
+    let encode_body = quote! {
+        #unused_w
+        #(#prelude)*
+        #pv_encode
+        #(#encodes)*
+        Ok(())
+    };
+    // A message names itself in an error of a field of a record inside it (the
+    // closure is inlined; it only gives the fields' `?` and `return` a place to end).
+    let encode_body = if is_message {
+        let name = c.name.clone().unwrap_or_else(|| lit(&ident.to_string()));
+        quote! {
+            match (|| -> ::core::result::Result<(), #codec::EncodeError> { #encode_body })() {
+                ::core::result::Result::Err(e) => ::core::result::Result::Err(e.in_message(#name)),
+                ok => ok,
+            }
+        }
+    } else {
+        encode_body
+    };
+    let clamp_fn = (!clamps.is_empty()).then(|| {
+        quote! {
+            #[inline]
+            fn clamp_to_range(&mut self) {
+                #(#clamps)*
+            }
+        }
+    });
     // Records (which may nest, even recursively) count their depth. On an error the
     // reader is abandoned, so only the success path needs to leave.
     let (enter, leave) = if is_message || model.fields.is_empty() {
@@ -61,8 +121,6 @@ pub fn message(input: &DeriveInput, is_message: bool) -> TokenStream {
     } else {
         quote!(#ident { #(#names),* })
     };
-    let unused_w =
-        (model.fields.is_empty() && model.presence.is_none()).then(|| quote!(let _ = w;));
     let unused_r =
         (model.fields.is_empty() && model.presence.is_none()).then(|| quote!(let _ = r;));
     let msg_impl = is_message.then(|| {
@@ -85,13 +143,11 @@ pub fn message(input: &DeriveInput, is_message: bool) -> TokenStream {
                 #pv_bytes #(+ #lens)*
             }
             #[inline]
+            #[allow(clippy::redundant_closure_call)]
             fn encode(&self, w: &mut #codec::Writer<'_>) -> ::core::result::Result<(), #codec::EncodeError> {
-                #unused_w
-                #(#prelude)*
-                #pv_encode
-                #(#encodes)*
-                Ok(())
+                #encode_body
             }
+            #clamp_fn
         }
         #[allow(clippy::approx_constant)]
         impl #impl_g #codec::Decode for #ident #ty_g #where_g {
@@ -102,6 +158,7 @@ pub fn message(input: &DeriveInput, is_message: bool) -> TokenStream {
                 #enter
                 #pv_decode
                 #(#decodes)*
+                #pv_skip
                 #leave
                 Ok(#construct)
             }

@@ -31,6 +31,8 @@ pub(super) struct ScaledSpec {
     pub(super) int: Int,
     pub(super) lo: f64,
     pub(super) hi: f64,
+    /// Unit of the real value (empty if none), for error messages.
+    pub(super) unit: String,
 }
 
 /// The wire form of one field.
@@ -65,6 +67,18 @@ pub(super) enum Shape {
         size: Int,
         ty: Type,
     },
+}
+
+impl Shape {
+    /// Whether the field takes every byte left in the body (`rest`).
+    pub(super) fn runs_to_end(&self) -> bool {
+        matches!(
+            self,
+            Shape::Bytes(Len::Rest)
+                | Shape::Str { len: Len::Rest, .. }
+                | Shape::List { count: None, .. }
+        )
+    }
 }
 
 /// One field: its wire shape, presence and links to the fields it depends on.

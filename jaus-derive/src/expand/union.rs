@@ -112,6 +112,11 @@ pub fn union(input: &DeriveInput) -> TokenStream {
             quote!(Self::#v => Ok(()))
         }
     });
+    // Only variants holding a value can hold scaled fields.
+    let clamps = variants
+        .iter()
+        .filter(|(_, _, p)| p.is_some())
+        .map(|(v, _, _)| quote!(Self::#v(x) => #codec::Encode::clamp_to_range(x)));
     let value_lens = variants.iter().map(|(v, _, p)| {
         if p.is_some() {
             quote!(Self::#v(x) => #codec::Encode::encoded_len(x))
@@ -151,6 +156,10 @@ pub fn union(input: &DeriveInput) -> TokenStream {
             #[inline]
             fn encode(&self, w: &mut #codec::Writer<'_>) -> ::core::result::Result<(), #codec::EncodeError> {
                 match self { #(#encs,)* }
+            }
+            #[allow(unreachable_patterns)]
+            fn clamp_to_range(&mut self) {
+                match self { #(#clamps,)* _ => {} }
             }
         }
         impl #codec::Decode for #ident {

@@ -174,6 +174,17 @@ impl Message {
             Self::Raw(r) => r,
         }
     }
+    /// The body as a mutable value implementing [`Encode`].
+    pub fn body_mut(&mut self) -> &mut dyn Encode {
+        match self {
+            Self::SetWrenchEffort(m) => m,
+            Self::SetTravelSpeed(m) => m,
+            Self::QueryWrenchEffort(m) => m,
+            Self::ReportWrenchEffort(m) => m,
+            Self::QueryGlobalPose(m) => m,
+            Self::ReportGlobalPose(m) => m,
+        }
+    }
 }
 impl From<SetWrenchEffort> for Message {
     fn from(m: SetWrenchEffort) -> Self {
@@ -211,6 +222,9 @@ impl Encode for Message {
     }
     fn encode(&self, w: &mut Writer<'_>) -> ::core::result::Result<(), EncodeError> {
         self.body().encode(w)
+    }
+    fn clamp_to_range(&mut self) {
+        self.body_mut().clamp_to_range()
     }
 }
 /// Every message of the set: code, name, title, group and the report answering it.

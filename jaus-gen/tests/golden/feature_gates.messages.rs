@@ -227,6 +227,20 @@ impl Message {
             Self::Raw(r) => r,
         }
     }
+    /// The body as a mutable value implementing [`Encode`].
+    pub fn body_mut(&mut self) -> &mut dyn Encode {
+        match self {
+            Self::QueryGlobalPose(m) => m,
+            #[cfg(feature = "planning")]
+            Self::SetGlobalWaypoint(m) => m,
+            #[cfg(feature = "planning")]
+            Self::QueryGlobalWaypoint(m) => m,
+            #[cfg(feature = "sensors")]
+            Self::ReportGlobalPose(m) => m,
+            #[cfg(feature = "sensors")]
+            Self::ReportGlobalWaypoint(m) => m,
+        }
+    }
 }
 impl From<QueryGlobalPose> for Message {
     fn from(m: QueryGlobalPose) -> Self {
@@ -263,6 +277,9 @@ impl Encode for Message {
     }
     fn encode(&self, w: &mut Writer<'_>) -> ::core::result::Result<(), EncodeError> {
         self.body().encode(w)
+    }
+    fn clamp_to_range(&mut self) {
+        self.body_mut().clamp_to_range()
     }
 }
 /// Every message of the set: code, name, title, group and the report answering it.

@@ -151,6 +151,12 @@ impl Message {
             Self::Raw(r) => r,
         }
     }
+    /// The body as a mutable value implementing [`Encode`].
+    pub fn body_mut(&mut self) -> &mut dyn Encode {
+        match self {
+            Self::ReportObstacles(m) => m,
+        }
+    }
 }
 impl From<ReportObstacles> for Message {
     fn from(m: ReportObstacles) -> Self {
@@ -163,6 +169,9 @@ impl Encode for Message {
     }
     fn encode(&self, w: &mut Writer<'_>) -> ::core::result::Result<(), EncodeError> {
         self.body().encode(w)
+    }
+    fn clamp_to_range(&mut self) {
+        self.body_mut().clamp_to_range()
     }
 }
 /// Every message of the set: code, name, title, group and the report answering it.

@@ -164,6 +164,13 @@ impl Message {
             Self::Raw(r) => r,
         }
     }
+    /// The body as a mutable value implementing [`Encode`].
+    pub fn body_mut(&mut self) -> &mut dyn Encode {
+        match self {
+            Self::SetPath(m) => m,
+            Self::SetJoints(m) => m,
+        }
+    }
 }
 impl From<SetPath> for Message {
     fn from(m: SetPath) -> Self {
@@ -181,6 +188,9 @@ impl Encode for Message {
     }
     fn encode(&self, w: &mut Writer<'_>) -> ::core::result::Result<(), EncodeError> {
         self.body().encode(w)
+    }
+    fn clamp_to_range(&mut self) {
+        self.body_mut().clamp_to_range()
     }
 }
 /// Every message of the set: code, name, title, group and the report answering it.

@@ -96,7 +96,7 @@ pub mod presence {
         /// Unit: °C.
         /// Range `[-100, 100]`, carried as a scaled `i16` (resolution 3.052e-3).
         /// Optional: presence bit 9.
-        #[jaus(bit = 9, scaled(i16, -100.0, 100.0))]
+        #[jaus(bit = 9, scaled(i16, -100.0, 100.0), unit = "°C")]
         #[cfg_attr(all(), serde(default, skip_serializing_if = "Option::is_none"))]
         pub temperature: Option<f64>,
         /// Optional: presence bit 15.
@@ -211,6 +211,14 @@ impl Message {
             Self::Raw(r) => r,
         }
     }
+    /// The body as a mutable value implementing [`Encode`].
+    pub fn body_mut(&mut self) -> &mut dyn Encode {
+        match self {
+            Self::ReportPosition(m) => m,
+            Self::ReportReadings(m) => m,
+            Self::ReportMask(m) => m,
+        }
+    }
 }
 impl From<ReportPosition> for Message {
     fn from(m: ReportPosition) -> Self {
@@ -233,6 +241,9 @@ impl Encode for Message {
     }
     fn encode(&self, w: &mut Writer<'_>) -> ::core::result::Result<(), EncodeError> {
         self.body().encode(w)
+    }
+    fn clamp_to_range(&mut self) {
+        self.body_mut().clamp_to_range()
     }
 }
 /// Every message of the set: code, name, title, group and the report answering it.

@@ -185,6 +185,16 @@ impl Message {
             Self::Raw(r) => r,
         }
     }
+    /// The body as a mutable value implementing [`Encode`].
+    pub fn body_mut(&mut self) -> &mut dyn Encode {
+        match self {
+            Self::QueryTemperature(m) => m,
+            Self::ReportTemperature(m) => m,
+            Self::QueryHistory(m) => m,
+            Self::ReportTemperatureLog(m) => m,
+            Self::QueryPing(m) => m,
+        }
+    }
 }
 impl From<QueryTemperature> for Message {
     fn from(m: QueryTemperature) -> Self {
@@ -217,6 +227,9 @@ impl Encode for Message {
     }
     fn encode(&self, w: &mut Writer<'_>) -> ::core::result::Result<(), EncodeError> {
         self.body().encode(w)
+    }
+    fn clamp_to_range(&mut self) {
+        self.body_mut().clamp_to_range()
     }
 }
 /// Every message of the set: code, name, title, group and the report answering it.

@@ -151,6 +151,16 @@ impl Message {
             Self::Raw(r) => r,
         }
     }
+    /// The body as a mutable value implementing [`Encode`].
+    pub fn body_mut(&mut self) -> &mut dyn Encode {
+        match self {
+            Self::ReportStatus(m) => m,
+            Self::QueryName(m) => m,
+            Self::RequestControl(m) => m,
+            Self::Standby(m) => m,
+            Self::SetSpeed(m) => m,
+        }
+    }
 }
 impl From<ReportStatus> for Message {
     fn from(m: ReportStatus) -> Self {
@@ -183,6 +193,9 @@ impl Encode for Message {
     }
     fn encode(&self, w: &mut Writer<'_>) -> ::core::result::Result<(), EncodeError> {
         self.body().encode(w)
+    }
+    fn clamp_to_range(&mut self) {
+        self.body_mut().clamp_to_range()
     }
 }
 /// Every message of the set: code, name, title, group and the report answering it.

@@ -20,33 +20,33 @@ pub mod scaled {
         ///
         /// Unit: rad.
         /// Range `[-3.14159265, 3.14159265]`, carried as a scaled `i16` (resolution 9.588e-5).
-        #[jaus(scaled(i16, -3.14159265, 3.14159265))]
+        #[jaus(scaled(i16, -3.14159265, 3.14159265), unit = "rad")]
         pub roll: f64,
         /// Unsigned: the bias is the lower limit.
         ///
         /// Unit: m/s.
         /// Range `[0, 10]`, carried as a scaled `u8` (resolution 3.922e-2).
-        #[jaus(scaled(u8, 0.0, 10.0))]
+        #[jaus(scaled(u8, 0.0, 10.0), unit = "m/s")]
         pub speed: f64,
         ///
         /// Unit: %.
         /// Range `[0, 100]`, carried as a scaled `u16` (resolution 1.526e-3).
-        #[jaus(scaled(u16, 0.0, 100.0))]
+        #[jaus(scaled(u16, 0.0, 100.0), unit = "%")]
         pub level: f64,
         ///
         /// Unit: m.
         /// Range `[-10000, 35000]`, carried as a scaled `u32` (resolution 1.048e-5).
-        #[jaus(scaled(u32, -10000.0, 35000.0))]
+        #[jaus(scaled(u32, -10000.0, 35000.0), unit = "m")]
         pub altitude: f64,
         ///
         /// Unit: deg.
         /// Range `[-90, 90]`, carried as a scaled `i32` (resolution 4.191e-8).
-        #[jaus(scaled(i32, -90.0, 90.0))]
+        #[jaus(scaled(i32, -90.0, 90.0), unit = "deg")]
         pub latitude: f64,
         ///
         /// Unit: m.
         /// Range `[0, 1000000000]`, carried as a scaled `u64` (resolution 5.421e-11).
-        #[jaus(scaled(u64, 0.0, 1000000000.0))]
+        #[jaus(scaled(u64, 0.0, 1000000000.0), unit = "m")]
         pub odometer: f64,
         ///
         /// Range `[-1, 1]`, carried as a scaled `i64` (resolution 1.084e-19).
@@ -57,7 +57,7 @@ pub mod scaled {
         /// Unit: °C.
         /// Preceded on the wire by its element count as `u8`.
         /// Each element: Range `[-40, 125]`, carried as a scaled `i16` (resolution 2.518e-3).
-        #[jaus(count = u8, scaled(i16, -40.0, 125.0))]
+        #[jaus(count = u8, scaled(i16, -40.0, 125.0), unit = "°C")]
         pub temperatures: Vec<f64>,
     }
 }
@@ -135,6 +135,12 @@ impl Message {
             Self::Raw(r) => r,
         }
     }
+    /// The body as a mutable value implementing [`Encode`].
+    pub fn body_mut(&mut self) -> &mut dyn Encode {
+        match self {
+            Self::ReportMotion(m) => m,
+        }
+    }
 }
 impl From<ReportMotion> for Message {
     fn from(m: ReportMotion) -> Self {
@@ -147,6 +153,9 @@ impl Encode for Message {
     }
     fn encode(&self, w: &mut Writer<'_>) -> ::core::result::Result<(), EncodeError> {
         self.body().encode(w)
+    }
+    fn clamp_to_range(&mut self) {
+        self.body_mut().clamp_to_range()
     }
 }
 /// Every message of the set: code, name, title, group and the report answering it.

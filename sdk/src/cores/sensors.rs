@@ -1,9 +1,16 @@
 //! Global Pose, Local Pose and Velocity State Sensors over the hardware traits. The
 //! runtime turns the query handlers into service connections and events as well.
+//!
+//! A reading beyond what its report can carry (a speed above 65.534 m/s, a position RMS
+//! above 100 m, a latitude a hair beyond ±90° after noise) is reported at the limit of
+//! the field: the sensors clamp their reports explicitly
+//! ([`Encode::clamped`](crate::codec::Encode::clamped)), since the encoder refuses
+//! values out of range. A reading that is not a number still fails to encode.
 
 use nalgebra::UnitQuaternion;
 
 use super::hardware::{GlobalPoseSource, LocalPoseSource, VelocitySource};
+use crate::codec::Encode;
 use crate::component::Refused;
 use crate::components::global_pose_sensor::{self, GlobalPoseSensor};
 use crate::components::local_pose_sensor::{self, LocalPoseSensor};
@@ -45,13 +52,14 @@ impl<S: GlobalPoseSource> GlobalPoseSensor for GlobalPoseSensorCore<S> {
             latitude: bit(pv, 0).then_some(f.latitude),
             longitude: bit(pv, 1).then_some(f.longitude),
             elevation: bit(pv, 2).then_some(f.elevation),
-            position_rms: bit(pv, 3).then_some(f.position_rms.min(100.0)),
+            position_rms: bit(pv, 3).then_some(f.position_rms),
             roll: bit(pv, 4).then_some(roll),
             pitch: bit(pv, 5).then_some(pitch),
             yaw: bit(pv, 6).then_some(yaw),
             attitude_rms: None,
             time_stamp: if bit(pv, 8) { time_stamp(ctx) } else { None },
-        })
+        }
+        .clamped())
     }
 }
 
@@ -81,7 +89,8 @@ impl<S: LocalPoseSource> LocalPoseSensor for LocalPoseSensorCore<S> {
             yaw: bit(pv, 6).then_some(yaw),
             attitude_rms: None,
             time_stamp: if bit(pv, 8) { time_stamp(ctx) } else { None },
-        })
+        }
+        .clamped())
     }
 }
 
@@ -110,6 +119,7 @@ impl<S: VelocitySource> VelocityStateSensor for VelocityStateSensorCore<S> {
             yaw_rate: bit(pv, 6).then_some(v.angular.z),
             rate_rms: None,
             time_stamp: if bit(pv, 8) { time_stamp(ctx) } else { None },
-        })
+        }
+        .clamped())
     }
 }

@@ -6,8 +6,11 @@ use jaus::JausMessage;
 struct M {
     #[jaus(scaled(i16, -100.0, 100.0))]
     effort: i16,
+    // A unit belongs to a scaled value.
+    #[jaus(unit = "m")]
+    length: u16,
 }
 
 fn main() {
-    let _ = M { effort: 1 }.to_bytes();
+    let _ = M { effort: 1, length: 2 }.to_bytes();
 }

@@ -10,7 +10,7 @@ mod presence;
 
 pub(super) use presence::vector as presence_vector;
 
-use super::model::{FieldModel, Shape};
+use super::model::{Elem, FieldModel, Shape};
 use crate::attr::Int;
 use proc_macro2::TokenStream;
 use quote::{quote, quote_spanned};
@@ -40,6 +40,8 @@ pub(super) struct Parts {
     pub(super) mins: Vec<TokenStream>,
     /// Statements setting the presence bits in `pv` before it is written.
     pub(super) pv_sets: Vec<TokenStream>,
+    /// Statements of `clamp_to_range`: every scaled value clamped to its limits.
+    pub(super) clamps: Vec<TokenStream>,
 }
 
 /// Adds the code of field `f` of a struct with presence vector `presence`.
@@ -54,6 +56,15 @@ pub(super) fn add(f: &FieldModel, presence: Option<Int>, k: &TokenStream, parts:
             ::core::result::Result::Err(e) => return ::core::result::Result::Err(e.in_field(#path)),
         }
     };
+    if let Some(clamp) = clamp(&f.shape, &codec) {
+        parts
+            .clamps
+            .push(if f.bit.is_some() || f.present_if.is_some() {
+                quote!(if let Some(v) = &mut self.#id { #clamp })
+            } else {
+                quote!({ let v = &mut self.#id; #clamp })
+            });
+    }
     let p = presence.unwrap_or(Int::U32).ident();
     match (&f.shape, f.bit, &f.present_if) {
         (Shape::Flag(bit), ..) => presence::flag(f, *bit, &p, parts),
@@ -72,6 +83,28 @@ pub(super) fn add(f: &FieldModel, presence: Option<Int>, k: &TokenStream, parts:
             parts.decodes.push(quote!(let #id = #dec; #set_var_dec));
             parts.mins.push(code.min_len);
         }
+    }
+}
+
+/// Clamps every scaled value of the field's value `v` (a `&mut T`) to its limits, or
+/// `None` when the shape holds no value that can have one.
+fn clamp(shape: &Shape, codec: &TokenStream) -> Option<TokenStream> {
+    let each = |elem: &Elem| match elem {
+        Elem::Scaled(s) => number::clamp_scaled(s, &quote!(e), codec),
+        Elem::Plain(_) => quote!(#codec::Encode::clamp_to_range(e);),
+    };
+    match shape {
+        Shape::Scaled(s) => Some(number::clamp_scaled(s, &quote!(v), codec)),
+        // Any codec type: a record or union clamps its own scaled fields; for the
+        // others this does nothing.
+        Shape::Plain(_) | Shape::Sized { .. } | Shape::TagVar { .. } => {
+            Some(quote!(#codec::Encode::clamp_to_range(v);))
+        }
+        Shape::List { elem, .. } | Shape::ListVar { elem, .. } => {
+            let each = each(elem);
+            Some(quote!(for e in v.iter_mut() { #each }))
+        }
+        Shape::Bytes(_) | Shape::Str { .. } | Shape::Flag(_) => None,
     }
 }
 

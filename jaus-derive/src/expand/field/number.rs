@@ -39,7 +39,8 @@ fn scaled_args(s: &ScaledSpec) -> (Ident, f64, f64) {
     (s.int.ident(), s.lo, s.hi)
 }
 
-/// Writes the real `value` (an `f64` expression) as its scaled integer.
+/// Writes the real `value` (an `f64` expression) as its scaled integer; a value beyond
+/// the limits is an error naming the field (`path`), the limits and the unit.
 pub(super) fn encode_scaled(
     s: &ScaledSpec,
     value: &TokenStream,
@@ -47,7 +48,16 @@ pub(super) fn encode_scaled(
     codec: &TokenStream,
 ) -> TokenStream {
     let (t, lo, hi) = scaled_args(s);
-    quote!(#codec::Encode::encode(&#codec::scale_to::<#t>(#value, #lo, #hi, #path)?, w)?;)
+    let unit = &s.unit;
+    // A constant: promoted to a static, so the error can refer to it.
+    let field = quote!(&#codec::ScaledField { field: #path, lo: #lo, hi: #hi, unit: #unit });
+    quote!(#codec::Encode::encode(&#codec::scale_to::<#t>(#value, #field)?, w)?;)
+}
+
+/// Clamps the real value behind `v` (a `&mut f64`) to the limits.
+pub(super) fn clamp_scaled(s: &ScaledSpec, v: &TokenStream, codec: &TokenStream) -> TokenStream {
+    let (_, lo, hi) = scaled_args(s);
+    quote!(*#v = #codec::clamp_scaled(*#v, #lo, #hi);)
 }
 
 /// Reads a scaled integer and gives its real value (an `f64` expression; `?` on errors).

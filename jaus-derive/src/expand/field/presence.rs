@@ -64,26 +64,69 @@ pub(super) fn optional(
 }
 
 /// Writing and reading the presence vector of type `presence` of struct `ident`, from
-/// the bits the fields set (`parts.pv_sets`).
+/// the bits the fields set (`parts.pv_sets`), and what ends the decoding of a message
+/// body after its known fields.
+///
+/// On decode the bits the definition does not define (`known` are those it does) are
+/// checked by `codec::check_presence`: in a message body (`is_message`) the fields a
+/// newer revision appends under them are skipped to the end of the body; in a record
+/// they are an error. `rest_present` is an expression telling whether the last field
+/// runs to the end of the body and is present.
 pub(in crate::expand) fn vector(
     presence: Option<Int>,
     ident: &Ident,
     parts: &Parts,
     codec: &TokenStream,
-) -> (TokenStream, TokenStream) {
+    is_message: bool,
+    known: u64,
+    rest_present: &TokenStream,
+) -> PresenceCode {
     let pv_sets = &parts.pv_sets;
     match presence {
         Some(p) => {
             let p = p.ident();
             let name = lit(&format!("{ident}.presence_vector"));
-            (
-                quote!(let mut pv: #p = 0; #(#pv_sets)* #codec::Encode::encode(&pv, w)?;),
-                quote!(let pv = match <#p as #codec::Decode>::decode(r) {
-                    ::core::result::Result::Ok(v) => v,
-                    ::core::result::Result::Err(e) => return ::core::result::Result::Err(e.in_field(#name)),
-                };),
-            )
+            let check = quote!(#codec::check_presence(u64::from(pv), #known, #is_message, #rest_present, at));
+            let on_err = quote!(::core::result::Result::Err(e) => return ::core::result::Result::Err(e.in_field(#name)),);
+            let (check, skip) = if is_message {
+                (
+                    quote!(let undefined = match #check { ::core::result::Result::Ok(v) => v, #on_err };),
+                    // Fields of a newer revision, appended under bits this one does
+                    // not define: skipped (and never re-emitted).
+                    quote!(if undefined {
+                        r.rest();
+                    }),
+                )
+            } else {
+                (
+                    quote!(if let ::core::result::Result::Err(e) = #check {
+                        return ::core::result::Result::Err(e.in_field(#name));
+                    }),
+                    quote!(),
+                )
+            };
+            PresenceCode {
+                encode: quote!(let mut pv: #p = 0; #(#pv_sets)* #codec::Encode::encode(&pv, w)?;),
+                decode: quote! {
+                    let at = r.offset();
+                    let pv = match <#p as #codec::Decode>::decode(r) {
+                        ::core::result::Result::Ok(v) => v,
+                        #on_err
+                    };
+                    #check
+                },
+                skip,
+            }
         }
-        None => (quote!(), quote!()),
+        None => PresenceCode::default(),
     }
+}
+
+/// The code of a presence vector: writing it, reading and checking it, and what ends
+/// the decoding of a message body after its known fields.
+#[derive(Default)]
+pub(in crate::expand) struct PresenceCode {
+    pub(in crate::expand) encode: TokenStream,
+    pub(in crate::expand) decode: TokenStream,
+    pub(in crate::expand) skip: TokenStream,
 }
