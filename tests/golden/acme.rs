@@ -313,6 +313,7 @@ impl Message {
             Self::QueryTanks(m) => m,
             Self::ReportTanks(m) => m,
             Self::ReplayTanks(m) => m,
+            Self::Raw(r) => r,
         }
     }
 }

@@ -151,6 +151,7 @@ impl Message {
     pub fn body_mut(&mut self) -> &mut dyn Encode {
         match self {
             Self::SetLights(m) => m,
+            Self::Raw(r) => r,
         }
     }
 }

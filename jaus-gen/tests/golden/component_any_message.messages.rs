@@ -76,7 +76,9 @@ impl Message {
     }
     /// The body as a mutable value implementing [`Encode`].
     pub fn body_mut(&mut self) -> &mut dyn Encode {
-        match *self {}
+        match self {
+            Self::Raw(r) => r,
+        }
     }
 }
 impl Encode for Message {

@@ -183,6 +183,7 @@ impl Message {
             Self::ReportWrenchEffort(m) => m,
             Self::QueryGlobalPose(m) => m,
             Self::ReportGlobalPose(m) => m,
+            Self::Raw(r) => r,
         }
     }
 }

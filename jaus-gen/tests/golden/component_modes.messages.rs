@@ -93,6 +93,7 @@ impl Message {
     pub fn body_mut(&mut self) -> &mut dyn Encode {
         match self {
             Self::SetGlobalWaypoint(m) => m,
+            Self::Raw(r) => r,
         }
     }
 }

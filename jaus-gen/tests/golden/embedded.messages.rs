@@ -182,6 +182,7 @@ impl Message {
             Self::QueryThing(m) => m,
             Self::ReportThing(m) => m,
             Self::Replay(m) => m,
+            Self::Raw(r) => r,
         }
     }
 }

@@ -142,6 +142,7 @@ impl Message {
     pub fn body_mut(&mut self) -> &mut dyn Encode {
         match self {
             Self::SetDriveMode(m) => m,
+            Self::Raw(r) => r,
         }
     }
 }

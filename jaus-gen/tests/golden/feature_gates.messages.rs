@@ -239,6 +239,7 @@ impl Message {
             Self::ReportGlobalPose(m) => m,
             #[cfg(feature = "sensors")]
             Self::ReportGlobalWaypoint(m) => m,
+            Self::Raw(r) => r,
         }
     }
 }

@@ -155,6 +155,7 @@ impl Message {
     pub fn body_mut(&mut self) -> &mut dyn Encode {
         match self {
             Self::ReportObstacles(m) => m,
+            Self::Raw(r) => r,
         }
     }
 }

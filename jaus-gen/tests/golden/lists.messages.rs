@@ -169,6 +169,7 @@ impl Message {
         match self {
             Self::SetPath(m) => m,
             Self::SetJoints(m) => m,
+            Self::Raw(r) => r,
         }
     }
 }

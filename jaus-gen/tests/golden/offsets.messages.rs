@@ -116,6 +116,7 @@ impl Message {
     pub fn body_mut(&mut self) -> &mut dyn Encode {
         match self {
             Self::SpoolTasks(m) => m,
+            Self::Raw(r) => r,
         }
     }
 }

@@ -217,6 +217,7 @@ impl Message {
             Self::ReportPosition(m) => m,
             Self::ReportReadings(m) => m,
             Self::ReportMask(m) => m,
+            Self::Raw(r) => r,
         }
     }
 }

@@ -193,6 +193,7 @@ impl Message {
             Self::QueryHistory(m) => m,
             Self::ReportTemperatureLog(m) => m,
             Self::QueryPing(m) => m,
+            Self::Raw(r) => r,
         }
     }
 }

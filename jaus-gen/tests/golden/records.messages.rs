@@ -146,6 +146,7 @@ impl Message {
     pub fn body_mut(&mut self) -> &mut dyn Encode {
         match self {
             Self::ReportRoute(m) => m,
+            Self::Raw(r) => r,
         }
     }
 }

@@ -159,6 +159,7 @@ impl Message {
             Self::RequestControl(m) => m,
             Self::Standby(m) => m,
             Self::SetSpeed(m) => m,
+            Self::Raw(r) => r,
         }
     }
 }

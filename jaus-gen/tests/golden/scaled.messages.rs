@@ -139,6 +139,7 @@ impl Message {
     pub fn body_mut(&mut self) -> &mut dyn Encode {
         match self {
             Self::ReportMotion(m) => m,
+            Self::Raw(r) => r,
         }
     }
 }

@@ -190,6 +190,7 @@ impl Message {
             Self::ReportIdentity(m) => m,
             Self::ReportImage(m) => m,
             Self::ReportNote(m) => m,
+            Self::Raw(r) => r,
         }
     }
 }

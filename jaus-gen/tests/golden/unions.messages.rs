@@ -155,6 +155,7 @@ impl Message {
         match self {
             Self::SetLimit(m) => m,
             Self::SetRange(m) => m,
+            Self::Raw(r) => r,
         }
     }
 }
