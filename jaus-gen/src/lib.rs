@@ -38,10 +38,54 @@
 //!
 //! rewrites them. The workspace's `tests/tests/golden_compile.rs` compiles them against
 //! the SDK.
+//!
+//! ## Spec revisions: diff and lock file
+//!
+//! [`diff::diff`] compares two revisions of a definition set, each reduced to its wire
+//! layout ([`snapshot::Snapshot`], from a loaded [`Spec`] or from a lock file), and
+//! classifies every change on a three-level scale ([`diff::Severity`]):
+//!
+//! * `compatible`: peers of either revision interoperate and vendor code still compiles
+//!   (a message, enum value or component added; a field added at the end of a message
+//!   under a new presence bit; bits added in unused bits; a unit changed, flagged);
+//! * `source-breaking`: the same bytes, but code written against the old revision may no
+//!   longer compile (a message, field, type, member, variant, component or mode renamed;
+//!   modes and transitions changed; a message no longer emitted);
+//! * `wire-breaking`: peers of the two revisions may misread, reject or not serve each
+//!   other (a message removed or recoded; a field removed, moved, retyped, rescaled,
+//!   re-bitted or added elsewhere; an enum value removed, renumbered or reused; bits
+//!   moved; a union variant added or changed; an accepted message removed).
+//!
+//! Each [`diff::Change`] carries the positions on both sides, and a change inside a
+//! shared type is reported once, at the type, with the messages using it. The whole rule
+//! set, the dependency of the compatible field addition on the forward-compatibility
+//! rule of the decoders, and the output formats are in `docs/spec-revisions.md` of the
+//! repository. `jaus-gen diff OLD NEW` (feature `cli`) prints them as text or JSON and
+//! exits 0, 1 (something wire-breaking, or as severe as `--fail-on`) or 2 (a usage or
+//! load error); a revision is a directory, files, a git `REV:PATH` ([`revision`]) or a
+//! lock file.
+//!
+//! [`Builder::lock`] pins the layout in a committed lock file ([`lock`]): written when
+//! missing, checked on every build, and any difference fails the build with the
+//! classified changes and the command that updates it after review,
+//! `JAUS_UPDATE_LOCK=1 cargo build`:
+//!
+//! ```no_run
+//! jaus_gen::Builder::new()
+//!     .overlay("vendor/acme.yaml")
+//!     .lock("vendor/acme.lock")
+//!     .out_dir(std::env::var("OUT_DIR").unwrap())
+//!     .generate()
+//!     .unwrap();
+//! ```
 
 mod components;
 mod context;
+pub mod diff;
 mod docs;
+pub mod lock;
+pub mod revision;
+pub mod snapshot;
 
 use jaus_spec::{Spec, SpecErrors};
 use minijinja::Environment;
@@ -97,6 +141,14 @@ pub enum Error {
     /// A required setting is missing.
     #[error("{0}")]
     Config(String),
+    /// A revision to compare could not be read (a missing path, a git error, a
+    /// malformed lock file); the text names the argument, file and line.
+    #[error("{0}")]
+    Revision(String),
+    /// The definitions' wire layout differs from the lock file ([`Builder::lock`]); the
+    /// text lists every change and the command that updates the lock file.
+    #[error("{0}")]
+    Lock(String),
 }
 
 /// Configures and runs generation. The whole `build.rs` API.
@@ -110,6 +162,8 @@ pub struct Builder {
     cargo: bool,
     runtime: Option<String>,
     serde_cfg: Option<String>,
+    lock: Option<PathBuf>,
+    update_lock: Option<bool>,
 }
 
 /// What one generation run produced.
@@ -187,6 +241,34 @@ impl Builder {
         self
     }
 
+    /// Checks the definitions' wire layout against the lock file at `path` (relative to
+    /// the crate's directory in a build script), as Cargo.lock pins dependencies:
+    ///
+    /// * no file: it is written (commit it);
+    /// * the same layout: nothing happens;
+    /// * any difference: [`Builder::render`] and [`Builder::generate`] fail with
+    ///   [`Error::Lock`], which lists every change classified as by `jaus-gen diff` (old:
+    ///   the lock file's lines, new: the YAML's) and the command that updates the file
+    ///   after review, `JAUS_UPDATE_LOCK=1 cargo build` ([`Builder::update_lock`]).
+    ///
+    /// Every difference fails, compatible ones included: the build never rewrites a
+    /// committed file behind the vendor's back, so the lock always holds the layout the
+    /// crate was built from and every wire change shows up as a reviewed diff of it.
+    /// Under cargo the lock file and `JAUS_UPDATE_LOCK` are watched
+    /// (`cargo:rerun-if-changed`, `cargo:rerun-if-env-changed`).
+    pub fn lock(mut self, path: impl Into<PathBuf>) -> Self {
+        self.lock = Some(path.into());
+        self
+    }
+
+    /// Rewrites the lock file when the layout differs instead of failing (the changes
+    /// are printed as `cargo:warning`s under cargo). Default: on when the environment
+    /// variable `JAUS_UPDATE_LOCK` is set to anything but `0` or nothing.
+    pub fn update_lock(mut self, on: bool) -> Self {
+        self.update_lock = Some(on);
+        self
+    }
+
     /// Turns `cargo:rerun-if-changed` output on or off.
     pub fn emit_rerun_if_changed(mut self, on: bool) -> Self {
         self.cargo = on;
@@ -209,9 +291,78 @@ impl Builder {
         Ok(spec)
     }
 
+    /// Checks (or writes, or updates) the lock file of [`Builder::lock`] against `spec`;
+    /// nothing without one. [`Builder::render`] calls it.
+    pub fn check_lock(&self, spec: &Spec) -> Result<(), Error> {
+        let Some(path) = &self.lock else {
+            return Ok(());
+        };
+        if self.cargo {
+            println!("cargo:rerun-if-changed={}", path.display());
+            println!("cargo:rerun-if-env-changed={}", lock::UPDATE_ENV);
+        }
+        let update = self.update_lock.unwrap_or_else(|| {
+            std::env::var(lock::UPDATE_ENV).is_ok_and(|v| !v.is_empty() && v != "0")
+        });
+        let snap = snapshot::Snapshot::from_spec(spec);
+        let text = lock::to_text(&snap);
+        let io = |source| Error::Io {
+            path: path.clone(),
+            source,
+        };
+        let old_text = match std::fs::read_to_string(path) {
+            Ok(t) => t,
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+                return write_if_changed(path, &text);
+            }
+            Err(e) => return Err(io(e)),
+        };
+        if old_text == text {
+            return Ok(());
+        }
+        let name = snapshot::label(path);
+        let old = match lock::parse(&old_text, &name) {
+            Ok(old) => old,
+            Err(_) if update => return write_if_changed(path, &text),
+            Err(e) => {
+                return Err(Error::Lock(format!(
+                    "{e}\nrewrite the lock file from the definitions with: {}",
+                    lock::UPDATE_COMMAND
+                )))
+            }
+        };
+        let changes = diff::diff(&old, &snap);
+        if changes.changes.is_empty() && lock::to_text(&old) == text {
+            // Only the file's formatting or comments differ: the layout is the same.
+            return Ok(());
+        }
+        if update {
+            if self.cargo {
+                for c in changes.to_text().lines().filter(|l| !l.is_empty()) {
+                    println!("cargo:warning={}: {c}", path.display());
+                }
+            }
+            return write_if_changed(path, &text);
+        }
+        let listing = if changes.changes.is_empty() {
+            "(the lock file holds a layout this version of jaus-gen does not classify)\n"
+                .to_string()
+        } else {
+            changes.to_text()
+        };
+        Err(Error::Lock(format!(
+            "{}: the wire layout of the definitions differs from the lock file \
+             (old: the lock file, new: the definitions):\n\n{listing}\n\
+             If these changes are intended, update the lock file and commit it:\n    {}",
+            path.display(),
+            lock::UPDATE_COMMAND
+        )))
+    }
+
     /// Renders the code without writing it.
     pub fn render(&self) -> Result<Generated, Error> {
         let spec = self.load()?;
+        self.check_lock(&spec)?;
         let rt = self.runtime.as_deref().unwrap_or("::jaus");
         let ctx = build_context(&spec, self.feature_gates, rt);
         let mut env = self.environment()?;

@@ -1,6 +1,7 @@
 //! `jaus-gen`: validate JAUS definitions and generate Rust (and docs) from them.
 
-use clap::{Args, Parser, Subcommand};
+use clap::{Args, Parser, Subcommand, ValueEnum};
+use jaus_gen::diff::Severity;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -55,6 +56,105 @@ enum Cmd {
         #[command(flatten)]
         defs: SpecArgs,
     },
+    /// List every change between two revisions of the definitions, each classified
+    /// compatible, source-breaking or wire-breaking. Exit status: 0 when nothing is at
+    /// least as severe as --fail-on, 1 when something is, 2 on a usage or load error.
+    Diff {
+        /// The old revision: a directory of YAML, a YAML file, a comma-separated list of
+        /// both (`jaus-spec/defs,acme.yaml`), a git revision `REV:PATH`
+        /// (`HEAD~1:jaus-spec/defs`) or a lock file.
+        old: String,
+        /// The new revision, written the same way.
+        new: String,
+        /// Output format.
+        #[arg(long, value_enum, default_value_t = Format::Text)]
+        format: Format,
+        /// The least severe change that makes the exit status 1.
+        #[arg(long, value_enum, default_value_t = FailOn::WireBreaking)]
+        fail_on: FailOn,
+    },
+    /// Write the lock file of a definition set (the wire-layout snapshot that
+    /// `Builder::lock` checks); with --check, compare instead and exit 1 on any change.
+    Lock {
+        #[command(flatten)]
+        defs: SpecArgs,
+        /// The lock file.
+        path: PathBuf,
+        /// Compare the definitions with the lock file instead of writing it.
+        #[arg(long)]
+        check: bool,
+    },
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum Format {
+    Text,
+    Json,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum FailOn {
+    Compatible,
+    SourceBreaking,
+    WireBreaking,
+}
+
+impl From<FailOn> for Severity {
+    fn from(f: FailOn) -> Severity {
+        match f {
+            FailOn::Compatible => Severity::Compatible,
+            FailOn::SourceBreaking => Severity::SourceBreaking,
+            FailOn::WireBreaking => Severity::WireBreaking,
+        }
+    }
+}
+
+/// `jaus-gen diff`: 0, 1, or 2 on an error.
+fn diff(old: &str, new: &str, format: Format, fail_on: Severity) -> ExitCode {
+    let load = |arg: &str| jaus_gen::revision::load(arg);
+    let (old, new) = match (load(old), load(new)) {
+        (Ok(o), Ok(n)) => (o, n),
+        (o, n) => {
+            for e in [o.err(), n.err()].into_iter().flatten() {
+                eprintln!("{e}");
+            }
+            return ExitCode::from(2);
+        }
+    };
+    let d = jaus_gen::diff::diff(&old, &new);
+    match format {
+        Format::Text => print!("{}", d.to_text()),
+        Format::Json => print!("{}", d.to_json()),
+    }
+    ExitCode::from(d.exit_status(fail_on))
+}
+
+/// `jaus-gen lock`.
+fn lock(defs: SpecArgs, path: PathBuf, check: bool) -> Result<(), jaus_gen::Error> {
+    let spec = builder(defs).load()?;
+    let snap = jaus_gen::snapshot::Snapshot::from_spec(&spec);
+    if !check {
+        jaus_gen::write_if_changed(&path, &jaus_gen::lock::to_text(&snap))?;
+        println!("wrote {}", path.display());
+        return Ok(());
+    }
+    let text = std::fs::read_to_string(&path).map_err(|source| jaus_gen::Error::Io {
+        path: path.clone(),
+        source,
+    })?;
+    let old = jaus_gen::lock::parse(&text, &path.display().to_string())
+        .map_err(jaus_gen::Error::Revision)?;
+    let d = jaus_gen::diff::diff(&old, &snap);
+    print!("{}", d.to_text());
+    if d.changes.is_empty() {
+        Ok(())
+    } else {
+        Err(jaus_gen::Error::Lock(format!(
+            "{}: differs from the definitions; rewrite it with the same arguments \
+             without --check",
+            path.display()
+        )))
+    }
 }
 
 fn builder(defs: SpecArgs) -> jaus_gen::Builder {
@@ -76,6 +176,13 @@ fn builder(defs: SpecArgs) -> jaus_gen::Builder {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.cmd {
+        Cmd::Diff {
+            old,
+            new,
+            format,
+            fail_on,
+        } => return diff(&old, &new, format, fail_on.into()),
+        Cmd::Lock { defs, path, check } => lock(defs, path, check),
         Cmd::Generate {
             defs,
             out,

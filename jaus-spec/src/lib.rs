@@ -562,6 +562,18 @@ impl Spec {
         report_of(query, |n| self.message(n), |c| self.message_by_code(c))
     }
 
+    /// The file and the `line:column` of a YAML path in source `source` (an index
+    /// into [`Spec::sources`]): `messages[3]` (a message: the position of its first
+    /// key), `messages[3].fields[2]` (a field), `types[1].values[0]` (an enum value),
+    /// `components[0].accepts[4]` (an entry of a component's list). Every item of the
+    /// model carries its `source` and `path`; a field's path is its owner's path plus
+    /// `.fields[i]`, `i` its index in the resolved field list. A path that is not in
+    /// the file gives the position of its nearest ancestor.
+    pub fn locate(&self, source: usize, path: &str) -> (&Path, Pos) {
+        let s = &self.sources[source];
+        (s.path.as_path(), s.index.find(path))
+    }
+
     /// Every source file path (for `cargo:rerun-if-changed`).
     pub fn source_paths(&self) -> impl Iterator<Item = &Path> {
         self.sources.iter().map(|s| s.path.as_path())

@@ -1,0 +1,169 @@
+//! One side of a diff: a revision of a definition set, named on the command line.
+//!
+//! | argument | revision |
+//! |---|---|
+//! | `DIR` | every `*.yaml` of the directory, in name order (like [`jaus_spec::load_dirs`]) |
+//! | `FILE.yaml` | that file |
+//! | `A,B,...` | the directories and files in that order (a definition set and a vendor overlay: `jaus-spec/defs,acme.yaml`) |
+//! | `REV:PATH` | the directory or file `PATH` at git revision `REV` (`HEAD~1:jaus-spec/defs`), read with `git ls-tree` and `git cat-file` in the current directory's repository; `PATH` is from the repository root, or `./…` from the current directory, as git reads it |
+//! | `FILE.lock` or `REV:FILE.lock` | the layout stored in a lock file ([`crate::lock`]) |
+//!
+//! A path that exists is read from disk even when it contains a colon. Definitions are
+//! validated and resolved by `jaus-spec`; the first problem set is returned as the
+//! error, with file and line.
+
+use crate::lock;
+use crate::snapshot::{label, Snapshot};
+use crate::Error;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn is_yaml(p: &Path) -> bool {
+    p.extension().is_some_and(|x| x == "yaml" || x == "yml")
+}
+
+fn is_lock(p: &Path) -> bool {
+    p.extension().is_some_and(|x| x == "lock")
+}
+
+fn err(arg: &str, msg: impl std::fmt::Display) -> Error {
+    Error::Revision(format!("{arg}: {msg}"))
+}
+
+/// Runs git in the current directory; its stdout, or what it said on stderr.
+fn git(arg: &str, args: &[&str]) -> Result<Vec<u8>, Error> {
+    let out = Command::new("git")
+        .args(args)
+        .output()
+        .map_err(|e| err(arg, format!("cannot run git: {e}")))?;
+    if out.status.success() {
+        return Ok(out.stdout);
+    }
+    let stderr = String::from_utf8_lossy(&out.stderr).trim().to_string();
+    if stderr.contains("not a git repository") {
+        return Err(err(
+            arg,
+            format!("`REV:PATH` reads a git revision, but the current directory is not in a git repository ({stderr})"),
+        ));
+    }
+    Err(err(arg, format!("git cannot read it: {stderr}")))
+}
+
+fn git_text(arg: &str, object: &str) -> Result<String, Error> {
+    let bytes = git(arg, &["cat-file", "blob", object])?;
+    String::from_utf8(bytes).map_err(|_| err(arg, format!("{object} is not UTF-8 text")))
+}
+
+/// The `(path, text)` of the YAML files of `REV:PATH`, or the lock file it names.
+fn from_git(arg: &str, rev: &str, path: &str) -> Result<Loaded, Error> {
+    let object = format!("{rev}:{path}");
+    let kind = git(arg, &["cat-file", "-t", &object])?;
+    match String::from_utf8_lossy(&kind).trim() {
+        "blob" => {
+            let text = git_text(arg, &object)?;
+            if is_lock(Path::new(path)) {
+                return Ok(Loaded::Lock(object, text));
+            }
+            Ok(Loaded::Yaml(vec![(PathBuf::from(&object), text)]))
+        }
+        "tree" => {
+            let list = git(arg, &["ls-tree", "--full-tree", "-z", &object])?;
+            let mut files = Vec::new();
+            for entry in list.split(|&b| b == 0).filter(|e| !e.is_empty()) {
+                let entry = String::from_utf8_lossy(entry);
+                let Some((meta, name)) = entry.split_once('\t') else {
+                    continue;
+                };
+                if meta.split_whitespace().nth(1) != Some("blob") || !is_yaml(Path::new(name)) {
+                    continue;
+                }
+                let file = if path.is_empty() || path.ends_with('/') {
+                    format!("{rev}:{path}{name}")
+                } else {
+                    format!("{rev}:{path}/{name}")
+                };
+                let text = git_text(arg, &file)?;
+                files.push((PathBuf::from(file), text));
+            }
+            files.sort_by(|a, b| a.0.cmp(&b.0));
+            if files.is_empty() {
+                return Err(err(arg, "no *.yaml file in that directory"));
+            }
+            Ok(Loaded::Yaml(files))
+        }
+        other => Err(err(
+            arg,
+            format!("{object} is a git {other}, not a file or directory"),
+        )),
+    }
+}
+
+enum Loaded {
+    Yaml(Vec<(PathBuf, String)>),
+    Lock(String, String),
+}
+
+fn read(arg: &str, p: &Path) -> Result<String, Error> {
+    std::fs::read_to_string(p).map_err(|e| err(arg, format!("{}: {e}", p.display())))
+}
+
+fn part(arg: &str, part: &str) -> Result<Loaded, Error> {
+    let p = Path::new(part);
+    if p.is_dir() {
+        let mut files: Vec<PathBuf> = std::fs::read_dir(p)
+            .map_err(|e| err(arg, format!("{part}: {e}")))?
+            .filter_map(|e| e.ok().map(|e| e.path()))
+            .filter(|f| is_yaml(f))
+            .collect();
+        files.sort();
+        if files.is_empty() {
+            return Err(err(
+                arg,
+                format!("{part}: no *.yaml file in that directory"),
+            ));
+        }
+        return files
+            .into_iter()
+            .map(|f| read(arg, &f).map(|t| (f, t)))
+            .collect::<Result<_, _>>()
+            .map(Loaded::Yaml);
+    }
+    if p.is_file() {
+        let text = read(arg, p)?;
+        if is_lock(p) {
+            return Ok(Loaded::Lock(part.to_string(), text));
+        }
+        return Ok(Loaded::Yaml(vec![(p.to_path_buf(), text)]));
+    }
+    match part.split_once(':') {
+        Some((rev, path)) if !rev.is_empty() => from_git(arg, rev, path),
+        _ => Err(err(
+            arg,
+            "no such file or directory (a git revision is written REV:PATH)",
+        )),
+    }
+}
+
+/// Loads the revision named by `arg` (see the module documentation).
+pub fn load(arg: &str) -> Result<Snapshot, Error> {
+    let mut yaml = Vec::new();
+    let mut lock = None;
+    let parts: Vec<&str> = arg.split(',').filter(|s| !s.is_empty()).collect();
+    if parts.is_empty() {
+        return Err(err(arg, "no definitions named"));
+    }
+    for p in &parts {
+        match part(arg, p)? {
+            Loaded::Yaml(v) => yaml.extend(v),
+            Loaded::Lock(name, text) => lock = Some((name, text)),
+        }
+    }
+    if let Some((name, text)) = lock {
+        if parts.len() > 1 {
+            return Err(err(arg, "a lock file is a whole revision: name it alone"));
+        }
+        return lock::parse(&text, &label(Path::new(&name))).map_err(Error::Revision);
+    }
+    let spec = jaus_spec::load_texts(yaml)?;
+    Ok(Snapshot::from_spec(&spec))
+}
