@@ -847,13 +847,23 @@ impl Differ<'_> {
             } else if !trailing {
                 Some("not at the end of the message".to_string())
             } else if let Some(b) = g.bit {
+                let highest_old = o.fields.iter().filter_map(|f| f.bit).max();
+                let old_runs_to_end = o.fields.last().is_some_and(|f| runs_to_end(&f.wire));
                 if o.presence.is_none() || o.presence != n.presence {
                     Some("the presence vector is new or changed".to_string())
+                } else if let Some(u) = o.fields.iter().find(|f| f.bit == Some(b)) {
+                    Some(format!("bit {b} was `{}`'s", u.name))
+                } else if highest_old.is_some_and(|h| b < h) {
+                    // The forward-compatibility rule: an older decoder can skip only bits
+                    // above every bit it defines (a lower one may sit between its fields).
+                    Some(format!(
+                        "bit {b} is below bit {} of the older revision: older decoders refuse it",
+                        highest_old.unwrap_or_default()
+                    ))
+                } else if old_runs_to_end {
+                    Some("the older revision's last field runs to the end of the body: older decoders would read the new bytes into it".to_string())
                 } else {
-                    o.fields
-                        .iter()
-                        .find(|f| f.bit == Some(b))
-                        .map(|u| format!("bit {b} was `{}`'s", u.name))
+                    None
                 }
             } else {
                 Some("mandatory (no presence bit)".to_string())
@@ -1646,4 +1656,14 @@ impl Differ<'_> {
             }
         }
     }
+}
+
+/// Whether a field of this form takes the rest of the body.
+fn runs_to_end(w: &Wire) -> bool {
+    matches!(
+        w,
+        Wire::Str(jaus_spec::Len::Rest { .. })
+            | Wire::Bytes(jaus_spec::Len::Rest { .. })
+            | Wire::List { count: None, .. }
+    )
 }
