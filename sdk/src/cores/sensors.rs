@@ -4,7 +4,7 @@
 //! A reading beyond what its report can carry (a speed above 65.534 m/s, a position RMS
 //! above 100 m, a latitude a hair beyond ±90° after noise) is reported at the limit of
 //! the field: the sensors clamp their reports explicitly
-//! ([`Encode::clamped`](crate::codec::Encode::clamped)), since the encoder refuses
+//! ([`Encode::clamped`]), since the encoder refuses
 //! values out of range. A reading that is not a number still fails to encode.
 
 use nalgebra::UnitQuaternion;
