@@ -1,7 +1,7 @@
 //! Classification of one field: its Rust type and attributes checked against each other
 //! and turned into a [`Shape`].
 
-use super::model::{Elem, Len, ScaledSpec, Shape};
+use super::shape::{Elem, Len, ScaledSpec, Shape};
 use super::types::{generic_inner, is_int_type, type_name};
 use crate::attr::{eval_f64, span_of, Errors, FieldAttrs, Int, IntSpan, Scaled};
 use proc_macro2::Span;

@@ -11,6 +11,7 @@ mod enumeration;
 mod field;
 mod message;
 mod model;
+mod shape;
 mod types;
 mod union;
 

@@ -288,7 +288,7 @@ fn session(
         return Err(jaus_cli::net::silence_hint(
             &o.local
                 .or(c.bind)
-                .unwrap_or_else(|| "0.0.0.0:3794".parse().expect("literal")),
+                .unwrap_or_else(|| std::net::SocketAddr::from(([0, 0, 0, 0], 3794))),
             &c.peers,
             c.wait,
         ));
@@ -364,7 +364,7 @@ fn main() -> ExitCode {
                 } else {
                     Err(jaus_cli::net::silence_hint(
                         &c.bind
-                            .unwrap_or_else(|| "0.0.0.0:3794".parse().expect("literal")),
+                            .unwrap_or_else(|| std::net::SocketAddr::from(([0, 0, 0, 0], 3794))),
                         &c.peers,
                         c.wait,
                     ))

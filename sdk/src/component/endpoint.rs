@@ -60,3 +60,103 @@ impl<B: Behaviour> Endpoint for Component<B> {
         self
     }
 }
+
+/// Components hosted together (by a node, or attached to a node from another process):
+/// found by address, woken when due, drained of what they send, handed what arrives.
+#[derive(Default)]
+pub struct Endpoints(Vec<Box<dyn Endpoint>>);
+
+impl std::fmt::Debug for Endpoints {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_list()
+            .entries(self.0.iter().map(|e| e.address()))
+            .finish()
+    }
+}
+
+impl Endpoints {
+    /// How many.
+    pub fn len(&self) -> usize {
+        self.0.len()
+    }
+
+    /// None hosted.
+    pub fn is_empty(&self) -> bool {
+        self.0.is_empty()
+    }
+
+    /// Whether a component has address `a`.
+    pub fn contains(&self, a: Address) -> bool {
+        self.0.iter().any(|e| e.address() == a)
+    }
+
+    /// Whether a component matches destination `d` (broadcast ids included).
+    pub fn any_matches(&self, d: Address) -> bool {
+        self.0.iter().any(|e| d.matches(&e.address()))
+    }
+
+    /// Adds one (the caller has checked its address).
+    pub fn push(&mut self, e: Box<dyn Endpoint>) {
+        self.0.push(e);
+    }
+
+    /// The component at `a`, as a `T`.
+    pub fn get<T: 'static>(&self, a: Address) -> Option<&T> {
+        self.0
+            .iter()
+            .find(|e| e.address() == a)
+            .and_then(|e| e.as_any().downcast_ref())
+    }
+
+    /// The component at `a`, as a mutable `T`.
+    pub fn get_mut<T: 'static>(&mut self, a: Address) -> Option<&mut T> {
+        self.0
+            .iter_mut()
+            .find(|e| e.address() == a)
+            .and_then(|e| e.as_any_mut().downcast_mut())
+    }
+
+    /// The earliest instant one of them wants to be woken.
+    pub fn next_timeout(&self) -> Option<Instant> {
+        self.0.iter().filter_map(|e| e.poll_timeout()).min()
+    }
+
+    /// Wakes those that are due at `now`.
+    pub fn run_due(&mut self, now: Instant) {
+        for e in &mut self.0 {
+            if e.poll_timeout().is_some_and(|t| t <= now) {
+                e.handle_timeout(now);
+            }
+        }
+    }
+
+    /// Moves everything they want to send into `out`.
+    pub fn drain_transmits(&mut self, out: &mut Vec<Transmit>) {
+        for e in &mut self.0 {
+            while let Some(t) = e.poll_transmit() {
+                out.push(t);
+            }
+        }
+    }
+
+    /// Hands a message to every component its destination matches, except its sender;
+    /// true if one took it.
+    pub fn deliver(&mut self, now: Instant, header: &Header, body: &[u8]) -> bool {
+        let mut any = false;
+        for e in &mut self.0 {
+            let a = e.address();
+            if header.destination.matches(&a) && header.source != a {
+                e.handle(now, header, body);
+                any = true;
+            }
+        }
+        any
+    }
+
+    /// Tells every one that `gone` disappeared.
+    pub fn forget(&mut self, gone: Address) {
+        for e in &mut self.0 {
+            e.forget(gone);
+        }
+    }
+}

@@ -48,7 +48,7 @@ use std::collections::VecDeque;
 use std::marker::PhantomData;
 use std::time::{Duration, Instant};
 
-pub use endpoint::Endpoint;
+pub use endpoint::{Endpoint, Endpoints};
 pub use state::{CoreState, CoreTransition, Modes, NoModes, NoTransition, TransitionError};
 
 use crate::codec::{Encode, EncodeError};

@@ -16,8 +16,8 @@ use std::time::Instant;
 use super::framing::{split, Framing, Reassembler, ReassemblyLimits, ReassemblyStats};
 use super::node::Datagram;
 use super::{NetError, Participant};
-use crate::component::Endpoint;
-use crate::wire::{DataFlag, Header, HEADER_LEN};
+use crate::component::{Endpoint, Endpoints};
+use crate::wire::Header;
 use crate::Address;
 
 /// Settings of [`Attached`].
@@ -60,7 +60,7 @@ pub struct AttachedStats {
 pub struct Attached {
     config: AttachedConfig,
     now: Instant,
-    components: Vec<Box<dyn Endpoint>>,
+    components: Endpoints,
     reassembler: Reassembler,
     outbox: VecDeque<Datagram>,
     local_queue: VecDeque<(Header, Vec<u8>)>,
@@ -85,7 +85,7 @@ impl Attached {
             reassembler: Reassembler::new(config.reassembly),
             config,
             now,
-            components: Vec::new(),
+            components: Endpoints::default(),
             outbox: VecDeque::new(),
             local_queue: VecDeque::new(),
             stats: AttachedStats::default(),
@@ -107,7 +107,7 @@ impl Attached {
                 node: self.config.node,
             });
         }
-        if self.components.iter().any(|e| e.address() == a) {
+        if self.components.contains(a) {
             return Err(NetError::Duplicate(a));
         }
         self.components.push(Box::new(endpoint));
@@ -116,18 +116,12 @@ impl Attached {
 
     /// The hosted component at `a`, as a `T`.
     pub fn get<T: 'static>(&self, a: Address) -> Option<&T> {
-        self.components
-            .iter()
-            .find(|e| e.address() == a)
-            .and_then(|e| e.as_any().downcast_ref())
+        self.components.get(a)
     }
 
     /// The hosted component at `a`, as a mutable `T`.
     pub fn get_mut<T: 'static>(&mut self, a: Address) -> Option<&mut T> {
-        self.components
-            .iter_mut()
-            .find(|e| e.address() == a)
-            .and_then(|e| e.as_any_mut().downcast_mut())
+        self.components.get_mut(a)
     }
 
     /// Sends a message as if a hosted component sent it.
@@ -156,7 +150,7 @@ impl Attached {
     fn hosted(&self, d: Address) -> bool {
         (d.subsystem == self.config.subsystem || d.subsystem == 255)
             && (d.node == self.config.node || d.node == 255)
-            && self.components.iter().any(|e| d.matches(&e.address()))
+            && self.components.any_matches(d)
     }
 
     /// From a hosted component: to a sibling directly, to everyone else (broadcasts
@@ -208,11 +202,7 @@ impl Attached {
     fn pump(&mut self) {
         for _ in 0..100_000 {
             let mut out = Vec::new();
-            for e in &mut self.components {
-                while let Some(t) = e.poll_transmit() {
-                    out.push(t);
-                }
-            }
+            self.components.drain_transmits(&mut out);
             for t in out {
                 match t.body() {
                     Ok(body) => self.route(t.header, body),
@@ -225,16 +215,7 @@ impl Attached {
             let Some((h, body)) = self.local_queue.pop_front() else {
                 return;
             };
-            let now = self.now;
-            let mut any = false;
-            for e in &mut self.components {
-                let a = e.address();
-                if h.destination.matches(&a) && h.source != a {
-                    e.handle(now, &h, &body);
-                    any = true;
-                }
-            }
-            if !any {
+            if !self.components.deliver(self.now, &h, &body) {
                 self.stats.no_such_component += 1;
             }
         }
@@ -251,7 +232,7 @@ impl Participant for Attached {
             tracing::debug!(%peer, "datagram not from the node joined ({}): dropped", self.config.node_socket);
             return;
         }
-        let packet = match self.config.framing.decode(datagram) {
+        let (header, body) = match self.config.framing.packet(datagram) {
             Ok(p) => p,
             Err(e) => {
                 self.stats.bad_packet += 1;
@@ -259,21 +240,8 @@ impl Participant for Attached {
                 return;
             }
         };
-        let header = match Header::parse(packet) {
-            Ok(h) if packet.len() - HEADER_LEN == usize::from(h.data_size) => h,
-            _ => {
-                self.stats.bad_packet += 1;
-                return;
-            }
-        };
-        let body = &packet[HEADER_LEN..];
-        let (header, body) = if header.data_flag == DataFlag::Single {
-            (header, body.to_vec())
-        } else {
-            match self.reassembler.push(now, &header, body) {
-                Some(m) => m,
-                None => return,
-            }
+        let Some((header, body)) = self.reassembler.message(now, &header, body) else {
+            return;
         };
         if self.hosted(header.destination) {
             self.queue_local(header, body);
@@ -286,11 +254,7 @@ impl Participant for Attached {
     fn handle_timeout(&mut self, now: Instant) {
         self.advance(now);
         self.reassembler.expire(self.now);
-        for e in &mut self.components {
-            if e.poll_timeout().is_some_and(|t| t <= self.now) {
-                e.handle_timeout(self.now);
-            }
-        }
+        self.components.run_due(self.now);
         self.pump();
     }
 
@@ -301,11 +265,13 @@ impl Participant for Attached {
     }
 
     fn poll_timeout(&self) -> Option<Instant> {
-        self.components
-            .iter()
-            .filter_map(|e| e.poll_timeout())
-            .chain(self.reassembler.next_timeout())
-            .min()
+        [
+            self.components.next_timeout(),
+            self.reassembler.next_timeout(),
+        ]
+        .into_iter()
+        .flatten()
+        .min()
     }
 
     fn as_any(&self) -> &dyn std::any::Any {

@@ -50,7 +50,41 @@ pub enum FramingError {
     Prefix,
 }
 
+/// Why a datagram carried no JAUS packet.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum DatagramError {
+    /// The transport framing is wrong.
+    #[error(transparent)]
+    Framing(#[from] FramingError),
+    /// The 16-byte JAUS header does not parse.
+    #[error(transparent)]
+    Header(#[from] crate::codec::DecodeError),
+    /// The header's data size disagrees with the bytes that follow it.
+    #[error("data size {header} but {actual} body bytes")]
+    DataSize {
+        /// What the header says.
+        header: u16,
+        /// What the datagram holds.
+        actual: usize,
+    },
+}
+
 impl Framing {
+    /// The JAUS header and body of the packet in `datagram`: transport framing, header
+    /// and data size checked.
+    pub fn packet(self, datagram: &[u8]) -> Result<(Header, &[u8]), DatagramError> {
+        let packet = self.decode(datagram)?;
+        let header = Header::parse(packet)?;
+        let body = &packet[HEADER_LEN..];
+        if body.len() != usize::from(header.data_size) {
+            return Err(DatagramError::DataSize {
+                header: header.data_size,
+                actual: body.len(),
+            });
+        }
+        Ok((header, body))
+    }
+
     /// Bytes of transport header before the JAUS message.
     pub fn overhead(self) -> usize {
         match self {
@@ -256,6 +290,21 @@ impl Reassembler {
             }
         }
         Some(s)
+    }
+
+    /// The whole message a packet brings: a single packet as it is, a packet of a
+    /// multi-packet message once it completes the message ([`push`](Self::push)).
+    pub fn message(
+        &mut self,
+        now: Instant,
+        header: &Header,
+        body: &[u8],
+    ) -> Option<(Header, Vec<u8>)> {
+        if header.data_flag == DataFlag::Single {
+            Some((*header, body.to_vec()))
+        } else {
+            self.push(now, header, body)
+        }
     }
 
     /// Takes one packet of a multi-packet message; returns the rebuilt message (header

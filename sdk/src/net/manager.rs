@@ -255,6 +255,14 @@ impl NodeManagerCore {
         }
     }
 
+    /// The node of `a`, if it is in the tree.
+    fn known_node_mut(&mut self, a: Address) -> Option<&mut NodeInfo> {
+        self.tree
+            .subsystems
+            .get_mut(&a.subsystem)
+            .and_then(|s| s.nodes.get_mut(&a.node))
+    }
+
     fn node_mut(&mut self, ss: u8, node: u8, now: Instant) -> &mut NodeInfo {
         self.tree
             .subsystems
@@ -625,12 +633,7 @@ impl NodeManager for NodeManagerCore {
         {
             return Ok(());
         }
-        if let Some(node) = self
-            .tree
-            .subsystems
-            .get_mut(&src.subsystem)
-            .and_then(|s| s.nodes.get_mut(&src.node))
-        {
+        if let Some(node) = self.known_node_mut(src) {
             node.subscription = if m.response_code == EventResponseCode::Successful {
                 Subscription::Confirmed(m.event_id)
             } else {
@@ -648,14 +651,10 @@ impl NodeManager for NodeManagerCore {
         let Some(src) = ctx.source() else {
             return Ok(());
         };
-        if let Some(node) = self
-            .tree
-            .subsystems
-            .get_mut(&src.subsystem)
-            .and_then(|s| s.nodes.get_mut(&src.node))
-        {
+        let refresh = self.config.config_refresh;
+        if let Some(node) = self.known_node_mut(src) {
             if matches!(node.subscription, Subscription::Requested(_)) {
-                tracing::info!(node = %src, reason = ?m.response_code, "configuration events refused; the configuration is re-queried every {:?}", self.config.config_refresh);
+                tracing::info!(node = %src, reason = ?m.response_code, "configuration events refused; the configuration is re-queried every {refresh:?}");
                 node.subscription = Subscription::Rejected;
             }
         }

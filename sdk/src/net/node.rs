@@ -9,13 +9,15 @@ use std::collections::{HashMap, VecDeque};
 use std::net::SocketAddr;
 use std::time::Instant;
 
-use super::framing::{split, Framing, Reassembler, ReassemblyLimits, ReassemblyStats};
+use super::framing::{
+    split, DatagramError, Framing, Reassembler, ReassemblyLimits, ReassemblyStats,
+};
 use super::manager::{ManagerConfig, NodeManagerCore, SystemTree};
 use super::{NetError, Participant};
-use crate::component::Endpoint;
 use crate::component::{Component, Config};
+use crate::component::{Endpoint, Endpoints};
 use crate::components::node_manager;
-use crate::wire::{DataFlag, Header, HEADER_LEN};
+use crate::wire::Header;
 use crate::Address;
 
 /// Settings of a node.
@@ -108,7 +110,7 @@ pub struct Node {
     config: NodeConfig,
     now: Instant,
     manager: Manager,
-    locals: Vec<Box<dyn Endpoint>>,
+    locals: Endpoints,
     /// Components of this node in other processes: address → (socket, last heard).
     external: HashMap<Address, (SocketAddr, Instant)>,
     peers: HashMap<(u8, u8), SocketAddr>,
@@ -144,7 +146,7 @@ impl Node {
             config,
             now,
             manager,
-            locals: Vec::new(),
+            locals: Endpoints::default(),
             external: HashMap::new(),
             peers: HashMap::new(),
             outbox: VecDeque::new(),
@@ -177,7 +179,7 @@ impl Node {
                 node: self.config.node,
             });
         }
-        if self.locals.iter().any(|e| e.address() == a) {
+        if self.locals.contains(a) {
             return Err(NetError::Duplicate(a));
         }
         self.manager.behaviour_mut().0.add_local(a);
@@ -213,18 +215,12 @@ impl Node {
 
     /// The local component at `a`, as a `T`.
     pub fn get<T: 'static>(&self, a: Address) -> Option<&T> {
-        self.locals
-            .iter()
-            .find(|e| e.address() == a)
-            .and_then(|e| e.as_any().downcast_ref())
+        self.locals.get(a)
     }
 
     /// The local component at `a`, as a mutable `T`.
     pub fn get_mut<T: 'static>(&mut self, a: Address) -> Option<&mut T> {
-        self.locals
-            .iter_mut()
-            .find(|e| e.address() == a)
-            .and_then(|e| e.as_any_mut().downcast_mut())
+        self.locals.get_mut(a)
     }
 
     /// Queues a message from a local address (as if that component sent it).
@@ -238,23 +234,13 @@ impl Node {
     pub fn handle_datagram(&mut self, now: Instant, peer: SocketAddr, datagram: &[u8]) {
         self.advance(now);
         self.stats.received += 1;
-        let packet = match self.config.framing.decode(datagram) {
+        let (header, body) = match self.config.framing.packet(datagram) {
             Ok(p) => p,
             Err(e) => {
-                self.stats.bad_framing += 1;
-                tracing::debug!(%peer, "datagram dropped: {e}");
-                return;
-            }
-        };
-        let header = match Header::parse(packet) {
-            Ok(h) if packet.len() - HEADER_LEN == usize::from(h.data_size) => h,
-            Ok(h) => {
-                self.stats.bad_packet += 1;
-                tracing::debug!(%peer, "datagram dropped: data size {} but {} body bytes", h.data_size, packet.len() - HEADER_LEN);
-                return;
-            }
-            Err(e) => {
-                self.stats.bad_packet += 1;
+                match e {
+                    DatagramError::Framing(_) => self.stats.bad_framing += 1,
+                    _ => self.stats.bad_packet += 1,
+                }
                 tracing::debug!(%peer, "datagram dropped: {e}");
                 return;
             }
@@ -273,14 +259,8 @@ impl Node {
         if !mine {
             self.peers.insert((src.subsystem, src.node), peer);
         }
-        let body = packet[HEADER_LEN..].to_vec();
-        let (header, body) = if header.data_flag == DataFlag::Single {
-            (header, body)
-        } else {
-            match self.reassembler.push(now, &header, &body) {
-                Some(m) => m,
-                None => return,
-            }
+        let Some((header, body)) = self.reassembler.message(now, &header, body) else {
+            return;
         };
         // A message of an external component is routed like one of a built-in component.
         self.route(header, body, mine);
@@ -295,7 +275,7 @@ impl Node {
             || src.component == 255
             || src.instance == 255
             || src == self.manager.address()
-            || self.locals.iter().any(|e| e.address() == src)
+            || self.locals.contains(src)
         {
             return false;
         }
@@ -339,11 +319,7 @@ impl Node {
         if self.manager.poll_timeout().is_some_and(|t| t <= self.now) {
             self.manager.handle_timeout(self.now);
         }
-        for e in &mut self.locals {
-            if e.poll_timeout().is_some_and(|t| t <= self.now) {
-                e.handle_timeout(self.now);
-            }
-        }
+        self.locals.run_due(self.now);
         self.pump();
     }
 
@@ -356,13 +332,10 @@ impl Node {
 
     /// When [`handle_timeout`](Self::handle_timeout) must next be called.
     pub fn poll_timeout(&self) -> Option<Instant> {
-        let mut t = self.manager.poll_timeout();
-        for e in &self.locals {
-            t = match (t, e.poll_timeout()) {
-                (Some(a), Some(b)) => Some(a.min(b)),
-                (a, b) => a.or(b),
-            };
-        }
+        let t = [self.manager.poll_timeout(), self.locals.next_timeout()]
+            .into_iter()
+            .flatten()
+            .min();
         let ext = self
             .external
             .values()
@@ -388,11 +361,7 @@ impl Node {
             while let Some(t) = self.manager.poll_transmit() {
                 out.push(t);
             }
-            for e in &mut self.locals {
-                while let Some(t) = e.poll_transmit() {
-                    out.push(t);
-                }
-            }
+            self.locals.drain_transmits(&mut out);
             for t in out {
                 match t.body() {
                     Ok(body) => self.route(t.header, body, true),
@@ -418,9 +387,7 @@ impl Node {
         let gone = self.manager.behaviour_mut().0.take_gone();
         for g in &gone {
             self.manager.forget(*g);
-            for e in &mut self.locals {
-                e.forget(*g);
-            }
+            self.locals.forget(*g);
         }
         !gone.is_empty()
     }
@@ -456,13 +423,7 @@ impl Node {
             self.manager.handle(now, header, body);
             any = true;
         }
-        for e in &mut self.locals {
-            let a = e.address();
-            if d.matches(&a) && header.source != a {
-                e.handle(now, header, body);
-                any = true;
-            }
-        }
+        any |= self.locals.deliver(now, header, body);
         let targets: Vec<SocketAddr> = self
             .external
             .iter()

@@ -1,7 +1,7 @@
 //! [`StoreError`]: why the store refused an object, a region, a filter or a metadata
 //! change, naming the limit of [`StoreConfig`](super::StoreConfig) that was reached.
 
-use super::geometry::Shape;
+use super::coords::Shape;
 
 /// Why the store refused an object, a region, a filter or a metadata change.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]

@@ -41,30 +41,14 @@
 //! north–south edges that run side by side and with latitude (the approximation
 //! degrades within a few kilometres of a pole).
 
+pub use super::coords::Shape;
+use super::coords::{Box4, Seg, DEG, E2, M_MIN};
 use super::error::StoreError;
-use super::index::Box4;
-use crate::cores::geo::{WGS84_A, WGS84_F};
+use crate::cores::geo::WGS84_A;
 use crate::messages::{VksObjectType, VksPoint};
 
 /// Most vertices of one object (Part 1 §5.5.3; the u16 count of the wire).
 pub const MAX_VERTICES: usize = 65_535;
-
-pub(super) const DEG: f64 = std::f64::consts::PI / 180.0;
-/// First eccentricity squared of WGS 84.
-const E2: f64 = WGS84_F * (2.0 - WGS84_F);
-/// The smallest meridian radius of curvature (at the equator), metres per radian.
-pub(super) const M_MIN: f64 = WGS84_A * (1.0 - E2);
-
-/// The shape of an object or region.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Shape {
-    /// One vertex.
-    Point,
-    /// A line or polyline: two or more vertices.
-    Line,
-    /// A polygon: three or more vertices, closed implicitly, filled by the even-odd rule.
-    Polygon,
-}
 
 impl Shape {
     /// The shape of a wire object type.
@@ -211,25 +195,6 @@ impl Iterator for Unwrap<'_> {
         }
         self.prev = Some(p.longitude);
         Some([p.latitude, p.longitude + self.offset])
-    }
-}
-
-/// An edge: two vertices in (latitude, unwrapped longitude) degrees (equal for a point).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(super) struct Seg {
-    pub(super) a: [f64; 2],
-    pub(super) b: [f64; 2],
-}
-
-impl Seg {
-    pub(super) fn bbox(&self) -> Box4 {
-        Box4::of(self.a, self.b)
-    }
-    pub(super) fn shifted(self, lon: f64) -> Seg {
-        Seg {
-            a: [self.a[0], self.a[1] + lon],
-            b: [self.b[0], self.b[1] + lon],
-        }
     }
 }
 
@@ -459,6 +424,7 @@ pub fn point_in_polygon(p: &VksPoint, vertices: &[VksPoint]) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::cores::geo::WGS84_F;
 
     fn p(latitude: f64, longitude: f64) -> VksPoint {
         VksPoint {

@@ -16,6 +16,7 @@
 //! Every public item is re-exported here (`jaus::cores::world_model::VectorStore`).
 
 pub mod component;
+mod coords;
 pub mod error;
 pub mod geometry;
 mod index;

@@ -4,16 +4,17 @@
 
 use rstar::RTree;
 
+use super::coords::{Box4, Seg};
 use super::error::StoreError;
-use super::geometry::{
-    analyse, inside, seg_within, segments, Seg, Shape, Unwrap, View, MAX_VERTICES,
-};
-use super::index::{Box4, SegEntry, SegIndex};
-use super::store::ObjectId;
+use super::geometry::{analyse, inside, seg_within, segments, Shape, Unwrap, View, MAX_VERTICES};
+use super::index::{SegEntry, SegIndex};
 use crate::messages::{
     DeleteVksObjects, QueryVksObjects, VksFeatureClassFilter, VksObjectType, VksPoint,
     VksStoredObject,
 };
+
+/// The id of a stored object (assigned by the store; never reused while in use).
+pub type ObjectId = u32;
 
 /// Largest region buffer of a query or deletion region, metres (half a meridian).
 pub const MAX_REGION_BUFFER: f64 = 2.0e7;

@@ -26,15 +26,13 @@ use std::collections::{BTreeMap, BTreeSet, HashMap};
 
 use rstar::RTree;
 
+use super::coords::Box4;
 use super::error::StoreError;
 use super::geometry::{analyse, Shape, View, MAX_VERTICES};
-use super::index::{Box4, Entry};
+use super::index::Entry;
+pub use super::region::ObjectId;
 use super::region::{class_matches, sorted_ids, within, Filter};
 use crate::messages::{VksMetadataOption, VksObject, VksStoredObject};
-
-/// The identifier the store gives an object (never 0, which Report VKS Objects Creation
-/// uses for "not created").
-pub type ObjectId = u32;
 
 /// Limits of a [`VectorStore`].
 #[derive(Debug, Clone, PartialEq)]

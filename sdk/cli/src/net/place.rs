@@ -1,0 +1,325 @@
+//! How the CLI takes its place in a system (joins `--me`'s node or runs a node of its
+//! own), its own component, and its socket.
+
+use std::net::{IpAddr, Ipv4Addr, SocketAddr, UdpSocket};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::{Duration, Instant};
+
+use jaus::codec::Encode;
+use jaus::component::{Component, Config, Refused};
+use jaus::components::system_commander::{self, Ctx, SystemCommander};
+use jaus::messages::Message;
+use jaus::net::framing::ReassemblyLimits;
+use jaus::net::{
+    Attached, AttachedConfig, Datagram, Framing, Node, NodeConfig, Participant, SystemTree,
+};
+use jaus::{Address, CommandCode, Header, JausMessage};
+
+/// How the CLI takes its place (see the module docs).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Mode {
+    /// Join the peer that answers as `--me`'s node; else run a node of its own.
+    #[default]
+    Auto,
+    /// Join the peer's node as one of its components.
+    Join,
+    /// Run a node of its own.
+    Node,
+}
+
+impl std::str::FromStr for Mode {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "auto" => Ok(Mode::Auto),
+            "join" => Ok(Mode::Join),
+            "node" => Ok(Mode::Node),
+            other => Err(format!("unknown mode `{other}` (auto, join or node)")),
+        }
+    }
+}
+
+/// Options of the network commands that act as a component (`discover`, `send`,
+/// `query`, `watch`).
+#[derive(Debug, Clone)]
+pub struct Client {
+    /// This tool's address (a System Commander).
+    pub me: Address,
+    /// Local socket (`None`: chosen as the module docs say).
+    pub bind: Option<SocketAddr>,
+    /// Peers.
+    pub peers: Vec<SocketAddr>,
+    /// Framing.
+    pub framing: Framing,
+    /// How long to wait for answers.
+    pub wait: Duration,
+    /// How to take a place in the system.
+    pub mode: Mode,
+}
+
+/// The CLI's own component: a System Commander whose runtime answers the discovery
+/// queries of node managers, and which opens and ends the service connections it is
+/// asked for.
+#[derive(Debug, Default)]
+pub struct Commander {
+    /// Service connections to open: (provider, report, rate, presence vector).
+    pub open: Vec<(Address, CommandCode, f64, u32)>,
+    /// Service connections to end.
+    pub close: Vec<(Address, CommandCode)>,
+}
+
+impl SystemCommander for Commander {
+    fn on_other_message(
+        &mut self,
+        _ctx: &mut Ctx<'_>,
+        _msg: &Message,
+    ) -> Result<Option<Message>, Refused> {
+        // Everything addressed to the CLI is printed by the session's tap.
+        Ok(None)
+    }
+
+    fn tick(&mut self, ctx: &mut Ctx<'_>) {
+        for (p, r, hz, pv) in self.open.drain(..) {
+            ctx.create_service_connection(p, r, hz, pv);
+        }
+        for (p, r) in self.close.drain(..) {
+            ctx.terminate_service_connection(p, r);
+        }
+    }
+}
+
+pub(super) type Tool = Component<system_commander::Dispatch<Commander>>;
+
+/// The CLI on the network: a node of its own or components attached to the peer's node.
+#[derive(Debug)]
+pub(super) enum Link {
+    Node(Box<Node>),
+    Attached(Box<Attached>),
+}
+
+impl Link {
+    pub(super) fn host(&mut self) -> &mut dyn Participant {
+        match self {
+            Link::Node(n) => n.as_mut(),
+            Link::Attached(a) => a.as_mut(),
+        }
+    }
+
+    pub(super) fn tool(&mut self, me: Address) -> Option<&mut Tool> {
+        match self {
+            Link::Node(n) => n.get_mut::<Tool>(me),
+            Link::Attached(a) => a.get_mut::<Tool>(me),
+        }
+    }
+
+    pub(super) fn send(&mut self, now: Instant, header: Header, body: Vec<u8>) {
+        match self {
+            Link::Node(n) => n.send(now, header, body),
+            Link::Attached(a) => a.send(now, header, body),
+        }
+    }
+
+    /// Whether messages to `to` can go now (its node located, or attached).
+    pub(super) fn reaches(&self, to: Address) -> bool {
+        match self {
+            Link::Node(n) => {
+                to.subsystem == 255
+                    || to.node == 255
+                    || n.peers().contains_key(&(to.subsystem, to.node))
+            }
+            Link::Attached(_) => true,
+        }
+    }
+}
+
+/// Picks the local socket: the one asked for, or port 3794 on an address of its own
+/// (see the module docs).
+pub fn bind_socket(bind: Option<SocketAddr>, peers: &[SocketAddr]) -> Result<UdpSocket, String> {
+    if let Some(b) = bind {
+        return UdpSocket::bind(b).map_err(|e| format!("cannot bind {b}: {e}"));
+    }
+    let loopback = !peers.is_empty() && peers.iter().all(|p| p.ip().is_loopback());
+    if loopback {
+        for x in 2..=254u8 {
+            let ip = IpAddr::V4(Ipv4Addr::new(127, 0, 0, x));
+            if peers.iter().any(|p| p.ip() == ip) {
+                continue;
+            }
+            if let Ok(s) = UdpSocket::bind(SocketAddr::new(ip, 3794)) {
+                return Ok(s);
+            }
+        }
+        return Err("no free port 3794 on 127.0.0.2-254: JUDP peers answer port 3794 of the sender's address; give --bind ADDRESS:3794 with an address of this host".into());
+    }
+    let any = SocketAddr::new(IpAddr::V4(Ipv4Addr::UNSPECIFIED), 3794);
+    UdpSocket::bind(any).map_err(|e| {
+        format!("cannot bind {any}: {e}. JUDP peers (OpenJAUS) answer port 3794 of the sender's address, so this tool needs port 3794 on an address of its own: give --bind ADDRESS:3794 (or --bind ADDRESS:0 when the peer is a jaus node, which answers any port)")
+    })
+}
+
+/// Says why nothing came back when nothing did.
+pub fn silence_hint(socket: &SocketAddr, peers: &[SocketAddr], wait: Duration) -> String {
+    format!(
+        "no datagram from {peers:?} within {:.1} s. Is a node running there? JUDP peers (OpenJAUS) send their answers to port 3794 of the sender's IP address: this tool listened on {socket}{}",
+        wait.as_secs_f64(),
+        if socket.port() == 3794 {
+            "".to_string()
+        } else {
+            "; bind to port 3794 of an address of your own (--bind 127.0.0.2:3794)".to_string()
+        }
+    )
+}
+
+/// The CLI's address when `--me` is not given: S.1.40.1 with S in 200–253 from the
+/// process id. Each session is a subsystem of its own because OpenJAUS keeps one IP
+/// address per subsystem: two sessions as two nodes of one subsystem, on two sockets,
+/// would split its traffic between them (seen in the OpenJAUS trial).
+pub fn default_me() -> Address {
+    Address::new(200 + (std::process::id() % 54) as u8, 1, 40, 1)
+}
+impl Client {
+    /// Asks the peers who speaks for `--me`'s node: the peer whose node manager answers
+    /// as that node is joined.
+    fn probe(&self, socket: &UdpSocket) -> Option<SocketAddr> {
+        // Asked of every node manager (a broadcast, so no node logs a message for a
+        // subsystem it is not); the one answering as `--me`'s node is joined. Done as soon
+        // as every peer has answered.
+        let nm = Address::new(self.me.subsystem, self.me.node, 1, 1);
+        let q = jaus::messages::QueryIdentification {
+            query_field: jaus::messages::QueryLevel::Node,
+        };
+        let header = Header::new(
+            jaus::messages::QueryIdentification::CODE,
+            Address::new(255, 255, 1, 1),
+            self.me,
+        );
+        let body = q.to_bytes().ok()?;
+        let packet = jaus::Packet::new(header, body).to_bytes().ok()?;
+        let bytes = self.framing.encode(&packet);
+        for p in &self.peers {
+            let _ = socket.send_to(&bytes, p);
+        }
+        let deadline = Instant::now() + Duration::from_millis(400);
+        let mut answered: Vec<SocketAddr> = Vec::new();
+        let mut buf = vec![0u8; 8192];
+        while let Some(left) = deadline.checked_duration_since(Instant::now()) {
+            if !self.peers.is_empty() && self.peers.iter().all(|p| answered.contains(p)) {
+                break;
+            }
+            let _ = socket.set_read_timeout(Some(left.max(Duration::from_millis(1))));
+            let Ok((n, from)) = socket.recv_from(&mut buf) else {
+                break;
+            };
+            if let Ok((h, _)) = self.framing.packet(&buf[..n]) {
+                if h.command_code == jaus::messages::ReportIdentification::CODE {
+                    if h.source == nm {
+                        return Some(from);
+                    }
+                    answered.push(from);
+                }
+            }
+        }
+        None
+    }
+
+    pub(super) fn link(&self, socket: &UdpSocket, t0: Instant) -> Result<Link, String> {
+        if !self.me.is_valid() || self.me.component == 1 {
+            return Err(format!(
+                "--me {}: not a component address (ids 1-254, component not 1: the node manager's)",
+                self.me
+            ));
+        }
+        let join = match self.mode {
+            Mode::Node => None,
+            Mode::Join => Some(
+                self.probe(socket)
+                    .or(self.peers.first().copied())
+                    .ok_or("--mode join needs a --peer: the socket of the node to join")?,
+            ),
+            Mode::Auto => self.probe(socket),
+        };
+        let tool = system_commander::component(
+            self.me,
+            Commander::default(),
+            Config {
+                identification: Some("jaus CLI".into()),
+                ..Config::default()
+            },
+            t0,
+        );
+        Ok(match join {
+            Some(node_socket) => {
+                tracing::info!(me = %self.me, %node_socket, "joining the node as one of its components");
+                let mut a = Attached::new(
+                    AttachedConfig {
+                        subsystem: self.me.subsystem,
+                        node: self.me.node,
+                        node_socket,
+                        framing: self.framing,
+                        reassembly: ReassemblyLimits::default(),
+                        max_outbox: 8192,
+                    },
+                    t0,
+                );
+                a.add(tool).map_err(|e| e.to_string())?;
+                Link::Attached(Box::new(a))
+            }
+            None => {
+                let mut c = NodeConfig {
+                    subsystem: self.me.subsystem,
+                    node: self.me.node,
+                    framing: self.framing,
+                    peers: self.peers.clone(),
+                    ..NodeConfig::default()
+                };
+                c.manager.node_name = "jaus CLI".into();
+                c.manager.subsystem_name = "jaus CLI".into();
+                let mut node = Node::new(c, t0);
+                node.add(tool).map_err(|e| e.to_string())?;
+                Link::Node(Box::new(node))
+            }
+        })
+    }
+
+    /// `jaus discover`: a node of its own listens for `wait`, then the system tree.
+    pub fn discover(&self, stop: &AtomicBool) -> Result<(SystemTree, bool), String> {
+        let socket = bind_socket(self.bind, &self.peers)?;
+        let t0 = Instant::now();
+        let client = Client {
+            mode: Mode::Node,
+            ..self.clone()
+        };
+        let Link::Node(mut node) = client.link(&socket, t0)? else {
+            return Err("discover runs a node of its own".into());
+        };
+        let mut heard = false;
+        let peers = self.peers.clone();
+        let end = t0 + self.wait;
+        let mut buf = vec![0u8; 8 + 4096 + 64];
+        while Instant::now() < end && !stop.load(Ordering::Relaxed) {
+            let _ = socket.set_read_timeout(Some(Duration::from_millis(20)));
+            if let Ok((n, from)) = socket.recv_from(&mut buf) {
+                heard |= peers.contains(&from);
+                node.handle_datagram(Instant::now(), from, &buf[..n]);
+            }
+            node.handle_timeout(Instant::now());
+            flush(node.as_mut(), &socket);
+        }
+        Ok((node.tree().clone(), heard))
+    }
+
+    /// The socket this client would use, for messages.
+    pub fn describe_bind(&self) -> String {
+        self.bind
+            .map_or("auto (port 3794 on an address of its own)".into(), |b| {
+                b.to_string()
+            })
+    }
+}
+pub(super) fn flush(host: &mut dyn Participant, socket: &UdpSocket) {
+    while let Some(Datagram { to, bytes }) = host.poll_transmit() {
+        if let Err(e) = socket.send_to(&bytes, to) {
+            tracing::debug!(%to, "send failed: {e}");
+        }
+    }
+}

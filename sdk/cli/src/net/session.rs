@@ -1,0 +1,404 @@
+//! The operator's session (`send`, `query`, `watch`): messages sent in order, each after
+//! the previous one was answered, control held and given back.
+
+use std::collections::VecDeque;
+use std::io::{BufRead, Write};
+use std::net::SocketAddr;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::mpsc;
+use std::time::{Duration, Instant};
+
+use jaus::codec::Encode;
+use jaus::messages::{Message, ReleaseComponentControl};
+use jaus::net::framing::{Reassembler, ReassemblyLimits};
+use jaus::wire::{AckNak, MessageClass};
+use jaus::{Address, CommandCode, Header, JausMessage};
+
+use super::{
+    output::{unix_now, AckLine, Line, RawLine, Tap, Tapped},
+    place::{bind_socket, flush, Client, Link},
+};
+
+/// What the session does with its time.
+#[derive(Debug, Clone, Default)]
+pub struct Script {
+    /// Messages to send, in order, each to its destination.
+    pub messages: Vec<(Address, Message)>,
+    /// Also take messages from standard input (JSON lines), as they come.
+    pub stdin: bool,
+    /// Service connections to open: (provider, report, rate Hz, presence vector).
+    pub service_connections: Vec<(Address, CommandCode, f64, u32)>,
+    /// Print incoming query messages and heartbeats too.
+    pub all: bool,
+    /// End as soon as every message sent is answered (query → its report, command →
+    /// ACK or NAK), or `wait` after the last one was sent when some are not.
+    pub until_answered: bool,
+    /// Stay this long after the last message (holding control, watching): `None` runs
+    /// until interrupted.
+    pub hold: Option<Duration>,
+    /// Default destination of stdin lines without one.
+    pub to: Option<Address>,
+}
+
+/// What a session saw.
+#[derive(Debug, Default, Clone, PartialEq, Eq)]
+pub struct Outcome {
+    /// Messages printed.
+    pub printed: usize,
+    /// Messages sent.
+    pub sent: usize,
+    /// Sent messages answered (report, ACK or NAK).
+    pub answered: usize,
+    /// NAKs received.
+    pub naks: usize,
+    /// Whether anything at all came from a peer.
+    pub heard: bool,
+    /// Whether the CLI joined the peer's node (else it ran a node of its own).
+    pub joined: bool,
+    /// Bad input lines.
+    pub bad_lines: usize,
+    /// Control requests rejected (Reject Component Control received).
+    pub rejected: usize,
+    /// The socket the session used.
+    pub local: Option<SocketAddr>,
+    /// Another node answers as this tool's node (`--me`'s subsystem and node): the
+    /// session stopped.
+    pub conflict: Option<String>,
+}
+
+/// A message given to the CLI, in the shape [`jaus::json::parse_message`] reads
+/// (`{"message": NAME, "fields": {...}}`, `fields` optional, or a whole line as `jaus
+/// decode` prints it); the destination of its header, if it has one, is returned.
+pub fn parse_message(json: &str) -> Result<(Option<Address>, Message), String> {
+    let (header, message) = jaus::json::parse_message(json).map_err(|e| e.to_string())?;
+    Ok((header.destination, message))
+}
+
+impl Client {
+    /// Runs one session: takes its place, sends `script`'s messages in order (each
+    /// after the previous one was answered, or after a short pause when the receiver
+    /// does not acknowledge), opens its service connections, prints every message
+    /// addressed to it as a timestamped JSON line as it arrives, and at the end ends
+    /// its service connections and gives back the control it took.
+    pub fn session(
+        &self,
+        script: &Script,
+        stop: &AtomicBool,
+        out: &mut impl Write,
+        err: &mut impl Write,
+    ) -> Result<Outcome, String> {
+        let socket = bind_socket(self.bind, &self.peers)?;
+        let local = socket.local_addr().map_err(|e| e.to_string())?;
+        let t0 = Instant::now();
+        let mut link = self.link(&socket, t0)?;
+        let mut outcome = Outcome {
+            joined: matches!(link, Link::Attached(_)),
+            local: Some(local),
+            ..Outcome::default()
+        };
+        // Commands wait until the system knows this tool (a node manager asked for its
+        // identification or services): OpenJAUS rejects a controller it cannot find in its
+        // system tree. Queries go at once.
+        let mut known = false;
+        let known_by = Duration::from_millis(2500);
+        let mut requested: Vec<Address> = Vec::new();
+        let me = self.me;
+        let lines = script.stdin.then(stdin_reader);
+        let mut queue: VecDeque<(Address, Message)> = script.messages.iter().cloned().collect();
+        let mut stdin_open = lines.is_some();
+        // The message waiting for its answer: (code answering it, destination, deadline).
+        let mut pending: Option<(Option<CommandCode>, Address, CommandCode, Instant)> = None;
+        let mut last_sent: Option<Instant> = None;
+        let mut controlled: Vec<Address> = Vec::new();
+        let mut opened = false;
+        let mut tap = Tap {
+            me,
+            framing: self.framing,
+            reassembler: Reassembler::new(ReassemblyLimits::default()),
+        };
+        let mut done = false;
+        let step = Duration::from_millis(500);
+        let mut buf = vec![0u8; 8 + 4096 + 64];
+        let _ = socket.set_nonblocking(false);
+        loop {
+            let now = Instant::now();
+            if stop.load(Ordering::Relaxed) {
+                break;
+            }
+            // Input lines.
+            if let Some(rx) = &lines {
+                loop {
+                    match rx.try_recv() {
+                        Ok(line) => {
+                            if line.trim().is_empty() {
+                                continue;
+                            }
+                            match parse_message(&line) {
+                                Ok((to, m)) => match to.or(script.to) {
+                                    Some(to) => queue.push_back((to, m)),
+                                    None => {
+                                        outcome.bad_lines += 1;
+                                        let _ = writeln!(err, "error: {}: no destination (--to, or a header with a destination)", m.name());
+                                    }
+                                },
+                                Err(e) => {
+                                    outcome.bad_lines += 1;
+                                    let _ = writeln!(err, "error: {e}");
+                                }
+                            }
+                        }
+                        Err(mpsc::TryRecvError::Empty) => break,
+                        Err(mpsc::TryRecvError::Disconnected) => {
+                            stdin_open = false;
+                            break;
+                        }
+                    }
+                }
+            }
+            // The next message, once the previous one is answered or timed out.
+            if pending.is_some_and(|p| now >= p.3) {
+                pending = None;
+            }
+            if pending.is_none() {
+                if let Some((to, next)) = queue.front() {
+                    let waited = now.saturating_duration_since(t0);
+                    let ready = (link.reaches(*to) || waited > Duration::from_millis(300))
+                        && (known
+                            || next.code().class() != MessageClass::Command
+                            || waited > known_by);
+                    if ready {
+                        let Some((to, msg)) = queue.pop_front() else {
+                            continue;
+                        };
+                        let body = msg.to_bytes().map_err(|e| format!("{}: {e}", msg.name()))?;
+                        let code = msg.code();
+                        let mut header = Header::new(code, to, me);
+                        let class = code.class();
+                        if class == MessageClass::Command {
+                            header.ack_nak = AckNak::Request;
+                        }
+                        if matches!(msg, Message::RequestComponentControl(_)) {
+                            requested.push(to);
+                        }
+                        if matches!(msg, Message::ReleaseComponentControl(_)) {
+                            controlled.retain(|a| *a != to);
+                            requested.retain(|a| *a != to);
+                        }
+                        let answer = match class {
+                            MessageClass::Query => jaus::MessageInfo::of(code)
+                                .and_then(|i| i.report)
+                                .and_then(|r| jaus::messages::MESSAGES.iter().find(|m| m.name == r))
+                                .map(|m| m.code)
+                                .or(code.complement()),
+                            _ => None,
+                        };
+                        let wait = if class == MessageClass::Query {
+                            self.wait
+                        } else {
+                            step
+                        };
+                        pending = Some((answer, to, code, now + wait));
+                        link.send(now, header, body);
+                        outcome.sent += 1;
+                        last_sent = Some(now);
+                    }
+                }
+            }
+            if !opened && !script.service_connections.is_empty() {
+                opened = true;
+                if let Some(t) = link.tool(me) {
+                    t.behaviour_mut()
+                        .0
+                        .open
+                        .extend(script.service_connections.iter().copied());
+                }
+            }
+            // Done?
+            let idle = queue.is_empty() && pending.is_none() && !stdin_open;
+            if idle && !done {
+                let since = last_sent.unwrap_or(t0);
+                let all_answered = outcome.answered >= outcome.sent;
+                let finished = match script.hold {
+                    Some(h) => now.saturating_duration_since(since) >= h,
+                    None => false,
+                } || (script.until_answered
+                    && (all_answered || now.saturating_duration_since(since) >= self.wait));
+                if finished {
+                    done = true;
+                }
+            }
+            if done {
+                break;
+            }
+            // The network.
+            let host = link.host();
+            let wake = host
+                .poll_timeout()
+                .map_or(Duration::from_millis(50), |t| {
+                    t.saturating_duration_since(Instant::now())
+                })
+                .clamp(Duration::from_micros(100), Duration::from_millis(50));
+            let _ = socket.set_read_timeout(Some(wake));
+            match socket.recv_from(&mut buf) {
+                Ok((n, from)) => {
+                    let now = Instant::now();
+                    if self.peers.contains(&from) || matches!(link, Link::Attached(_)) {
+                        outcome.heard = true;
+                    }
+                    if !outcome.joined {
+                        if let Some(other) = tap.foreign_twin(&buf[..n]) {
+                            let text = format!("another node answers as {}.{} (a message for {other} arrived from {from}); this tool's --me {me} is on that node: use --mode join to join it, or a --me on a node of its own", me.subsystem, me.node);
+                            let _ = writeln!(err, "error: {text}");
+                            outcome.conflict = Some(text);
+                            break;
+                        }
+                    }
+                    if let Some(seen) = tap.see(now, &buf[..n]) {
+                        let (t, utc) = ((now - t0).as_secs_f64(), unix_now());
+                        match seen {
+                            Tapped::Ack(h) => {
+                                let name =
+                                    jaus::MessageInfo::of(h.command_code).map_or("?", |i| i.name);
+                                if let Some(p) =
+                                    pending.filter(|p| p.1 == h.source && p.2 == h.command_code)
+                                {
+                                    let _ = p;
+                                    pending = None;
+                                }
+                                outcome.answered += 1;
+                                if h.ack_nak == AckNak::Nak {
+                                    outcome.naks += 1;
+                                    let _ = writeln!(err, "NAK from {} for {name}: refused (the receiver's log names the reason)", h.source);
+                                }
+                                let line = AckLine {
+                                    t,
+                                    utc,
+                                    header: &h,
+                                    acknowledges: name,
+                                };
+                                let _ = writeln!(
+                                    out,
+                                    "{}",
+                                    serde_json::to_string(&line).unwrap_or_default()
+                                );
+                                outcome.printed += 1;
+                            }
+                            Tapped::Packet(p) => {
+                                let code = p.header.command_code;
+                                let from_addr = p.header.source;
+                                match &p.message {
+                                    Message::QueryIdentification(_) | Message::QueryServices(_) => {
+                                        known = true;
+                                    }
+                                    Message::ConfirmComponentControl(c)
+                                        if c.response_code
+                                            == jaus::messages::ControlResponse::ControlAccepted
+                                            && requested.contains(&from_addr)
+                                            && !controlled.contains(&from_addr) =>
+                                    {
+                                        controlled.push(from_addr);
+                                    }
+                                    Message::RejectComponentControl(_) => {
+                                        if requested.contains(&from_addr)
+                                            || controlled.contains(&from_addr)
+                                        {
+                                            outcome.rejected += 1;
+                                            let _ = writeln!(err, "control of {from_addr} rejected (or taken by a component of higher authority)");
+                                        }
+                                        controlled.retain(|a| *a != from_addr);
+                                        requested.retain(|a| *a != from_addr);
+                                    }
+                                    _ => {}
+                                }
+                                let answer = pending.is_some_and(|q| {
+                                    q.0 == Some(code) && q.1.matches(&p.header.source)
+                                });
+                                if answer {
+                                    pending = None;
+                                    outcome.answered += 1;
+                                }
+                                let noise = !answer
+                                    && (code.class() == MessageClass::Query
+                                        || matches!(p.message, Message::ReportHeartbeatPulse(_)));
+                                if script.all || !noise {
+                                    let line = Line { t, utc, packet: &p };
+                                    let _ = writeln!(
+                                        out,
+                                        "{}",
+                                        serde_json::to_string(&line).unwrap_or_default()
+                                    );
+                                    outcome.printed += 1;
+                                }
+                            }
+                            Tapped::Raw(h, body, e) => {
+                                let line = RawLine {
+                                    t,
+                                    utc,
+                                    header: &h,
+                                    error: e,
+                                    body: jaus::hex::encode(&body),
+                                };
+                                let _ = writeln!(
+                                    out,
+                                    "{}",
+                                    serde_json::to_string(&line).unwrap_or_default()
+                                );
+                                outcome.printed += 1;
+                            }
+                        }
+                        let _ = out.flush();
+                    }
+                    link.host().handle_datagram(now, from, &buf[..n]);
+                }
+                Err(e)
+                    if matches!(
+                        e.kind(),
+                        std::io::ErrorKind::WouldBlock
+                            | std::io::ErrorKind::TimedOut
+                            | std::io::ErrorKind::ConnectionReset
+                    ) => {}
+                Err(e) => return Err(format!("{local}: {e}")),
+            }
+            let host = link.host();
+            host.handle_timeout(Instant::now());
+            flush(host, &socket);
+        }
+        // End cleanly: service connections ended, control given back.
+        let now = Instant::now();
+        if let Some(t) = link.tool(me) {
+            let sc: Vec<(Address, CommandCode)> = script
+                .service_connections
+                .iter()
+                .map(|s| (s.0, s.1))
+                .collect();
+            t.behaviour_mut().0.close.extend(sc);
+        }
+        for to in controlled {
+            if let Ok(body) = (ReleaseComponentControl {}).to_bytes() {
+                link.send(
+                    now,
+                    Header::new(ReleaseComponentControl::CODE, to, me),
+                    body,
+                );
+            }
+        }
+        let host = link.host();
+        host.handle_timeout(now + Duration::from_millis(60));
+        flush(host, &socket);
+        Ok(outcome)
+    }
+}
+
+/// Standard input, line by line, on a thread of its own.
+fn stdin_reader() -> mpsc::Receiver<String> {
+    let (tx, rx) = mpsc::channel();
+    std::thread::spawn(move || {
+        for line in std::io::stdin().lock().lines() {
+            let Ok(line) = line else { break };
+            if tx.send(line).is_err() {
+                break;
+            }
+        }
+    });
+    rx
+}
