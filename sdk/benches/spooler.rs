@@ -9,8 +9,8 @@ use std::time::{Duration, Instant};
 use jaus::codec::Encode;
 use jaus::component::{Config, ControlPolicy};
 use jaus::components::mission_spooler;
-use jaus::cores::spooler::{command, MissionSpoolerCore, SpoolerConfig};
 use jaus::messages::*;
+use jaus::stock::spooler::{command, SpoolerConfig, StockMissionSpooler};
 use jaus::{Address, Header, JausMessage};
 
 const MS: Address = Address::new(1, 1, 36, 1);
@@ -63,11 +63,11 @@ fn main() {
             control: ControlPolicy::Open,
             ..Config::default()
         };
-        let core = MissionSpoolerCore::new(SpoolerConfig {
+        let spooler = StockMissionSpooler::new(SpoolerConfig {
             probe_timeout: Duration::ZERO,
             ..SpoolerConfig::default()
         });
-        let mut c = mission_spooler::component(MS, core, cfg, t0);
+        let mut c = mission_spooler::component(MS, spooler, cfg, t0);
         c.handle_timeout(t0);
         c.handle_message(t0, &Header::new(Resume::CODE, MS, OCU), &Resume {}.into());
         // The destination is probed first (a zero probe timeout: raw delivery at once).

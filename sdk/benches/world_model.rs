@@ -10,8 +10,8 @@
 use std::hint::black_box;
 use std::time::{Duration, Instant};
 
-use jaus::cores::world_model::{Filter, Geometry, Shape, StoreConfig, VectorStore};
 use jaus::messages::{VksAttribute, VksFeatureClass, VksObject, VksObjectType, VksPoint};
+use jaus::stock::world_model::{Filter, Geometry, Shape, StoreConfig, VectorStore};
 
 const OBJECTS: usize = 1_000_000;
 const LAT0: f64 = 29.65;

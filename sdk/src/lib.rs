@@ -74,8 +74,6 @@ extern crate self as jaus;
 pub mod codec;
 #[cfg(feature = "component")]
 pub mod component;
-#[cfg(feature = "cores")]
-pub mod cores;
 pub mod hex;
 #[cfg(feature = "serde")]
 pub mod json;
@@ -83,6 +81,8 @@ pub mod json;
 pub mod net;
 #[cfg(feature = "payload")]
 pub mod payload;
+#[cfg(feature = "stock")]
+pub mod stock;
 pub mod wire;
 
 pub use jaus_derive::{JausBits, JausEnum, JausMessage, JausRecord, JausUnion};

@@ -1,4 +1,4 @@
-//! Platform control cores driving the simulated vehicle: the demo mission (Part 1 path
+//! Platform stock components driving the simulated vehicle: the demo mission (Part 1 path
 //! segments and a waypoint list), the Part 1 travel-speed and Standby rules, the
 //! watchdog, the emergency stop, control, rejection of bad commands, the vector and
 //! reflexive drivers.
@@ -11,13 +11,13 @@ use jaus::components::{
     local_pose_sensor, local_vector_driver, local_waypoint_driver, primitive_driver,
     reflexive_driver, velocity_state_sensor,
 };
-use jaus::cores::drivers::{
-    LocalVectorDriverCore, LocalWaypointDriverCore, ObstacleSource, PrimitiveConfig,
-    PrimitiveDriverCore, ReflexiveConfig, ReflexiveDriverCore,
-};
-use jaus::cores::motion::DriverConfig;
-use jaus::cores::sensors::{LocalPoseSensorCore, VelocityStateSensorCore};
 use jaus::messages::*;
+use jaus::stock::drivers::{
+    ObstacleSource, PrimitiveConfig, ReflexiveConfig, StockLocalVectorDriver,
+    StockLocalWaypointDriver, StockPrimitiveDriver, StockReflexiveDriver,
+};
+use jaus::stock::motion::DriverConfig;
+use jaus::stock::sensors::{StockLocalPoseSensor, StockVelocityStateSensor};
 use jaus::Address;
 use jaus_sim::demo;
 use jaus_sim::vehicle::{SimVehicle, VehicleParams};
@@ -127,17 +127,17 @@ fn subsystem(params: VehicleParams) -> (LocalBus, SimVehicle, Instant) {
     let vehicle = SimVehicle::new(params);
     let cfg = Config::default();
     let mut bus = LocalBus::new(t0).with_trace(200_000);
-    let pd = PrimitiveDriverCore::new(vehicle.clone(), PrimitiveConfig::default());
+    let pd = StockPrimitiveDriver::new(vehicle.clone(), PrimitiveConfig::default());
     bus.add(primitive_driver::component(PD, pd, cfg.clone(), t0));
     bus.add(local_pose_sensor::component(
         LPS,
-        LocalPoseSensorCore(vehicle.clone()),
+        StockLocalPoseSensor(vehicle.clone()),
         cfg.clone(),
         t0,
     ));
     bus.add(velocity_state_sensor::component(
         VSS,
-        VelocityStateSensorCore(vehicle.clone()),
+        StockVelocityStateSensor(vehicle.clone()),
         cfg.clone(),
         t0,
     ));
@@ -149,13 +149,13 @@ fn subsystem(params: VehicleParams) -> (LocalBus, SimVehicle, Instant) {
     };
     bus.add(local_waypoint_driver::component(
         LWD,
-        LocalWaypointDriverCore::new(dc.clone()),
+        StockLocalWaypointDriver::new(dc.clone()),
         cfg.clone(),
         t0,
     ));
     bus.add(local_vector_driver::component(
         LVD,
-        LocalVectorDriverCore::new(dc),
+        StockLocalVectorDriver::new(dc),
         cfg,
         t0,
     ));
@@ -164,9 +164,9 @@ fn subsystem(params: VehicleParams) -> (LocalBus, SimVehicle, Instant) {
     (bus, vehicle, t0)
 }
 
-type Lwd = Component<local_waypoint_driver::Dispatch<LocalWaypointDriverCore>>;
-type Lvd = Component<local_vector_driver::Dispatch<LocalVectorDriverCore>>;
-type Pd = Component<primitive_driver::Dispatch<PrimitiveDriverCore<SimVehicle>>>;
+type Lwd = Component<local_waypoint_driver::Dispatch<StockLocalWaypointDriver>>;
+type Lvd = Component<local_vector_driver::Dispatch<StockLocalVectorDriver>>;
+type Pd = Component<primitive_driver::Dispatch<StockPrimitiveDriver<SimVehicle>>>;
 
 fn lwd(bus: &LocalBus) -> &Lwd {
     bus.get::<Lwd>(LWD).unwrap()
@@ -228,7 +228,7 @@ fn waypoint_driver_follows_part1_rules_for_travel_speed_and_standby() {
     assert_eq!(w.behaviour().0.arrivals(), 1);
     let end = vehicle.lock().position();
     assert!(
-        (end - jaus::cores::nalgebra::Vector2::new(20.0, 0.0)).norm() < 0.2,
+        (end - jaus::stock::nalgebra::Vector2::new(20.0, 0.0)).norm() < 0.2,
         "{end}"
     );
     assert!(waiting_at.x < 19.0);
@@ -385,7 +385,7 @@ fn reflexive_driver_slows_and_stops_before_an_obstacle() {
         vehicle: vehicle.clone(),
         at: 8.0,
     };
-    let rd = ReflexiveDriverCore::new(wall, ReflexiveConfig::default());
+    let rd = StockReflexiveDriver::new(wall, ReflexiveConfig::default());
     bus.add(reflexive_driver::component(RD, rd, Config::default(), t0));
     // Drive the reflexive driver directly with full forward effort.
     bus.send(OCU, RD, RequestComponentControl { authority_code: 1 });

@@ -236,15 +236,15 @@ fn hand_derived_types_clamp_every_scaled_field() {
     assert_eq!(none, Limit::None);
 }
 
-// The sensor cores report a reading beyond what the message can carry at the limit.
+// The stock sensors report a reading beyond what the message can carry at the limit.
 
 use jaus::component::local::{LocalBus, Probe};
 use jaus::component::Config;
 use jaus::components::{global_pose_sensor, velocity_state_sensor};
-use jaus::cores::hardware::{GlobalPose, GlobalPoseSource, VelocitySource, VelocityState};
-use jaus::cores::nalgebra::{UnitQuaternion, Vector3};
-use jaus::cores::sensors::{GlobalPoseSensorCore, VelocityStateSensorCore};
 use jaus::messages::{QueryGlobalPose, QueryVelocityState};
+use jaus::stock::hardware::{GlobalPose, GlobalPoseSource, VelocitySource, VelocityState};
+use jaus::stock::nalgebra::{UnitQuaternion, Vector3};
+use jaus::stock::sensors::{StockGlobalPoseSensor, StockVelocityStateSensor};
 use jaus::Address;
 use std::time::{Duration, Instant};
 
@@ -281,13 +281,13 @@ fn sensor_cores_report_readings_beyond_the_message_at_its_limits() {
     let cfg = Config::default();
     bus.add(global_pose_sensor::component(
         GPS,
-        GlobalPoseSensorCore(FastPlane),
+        StockGlobalPoseSensor(FastPlane),
         cfg.clone(),
         t0,
     ));
     bus.add(velocity_state_sensor::component(
         VSS,
-        VelocityStateSensorCore(FastPlane),
+        StockVelocityStateSensor(FastPlane),
         cfg,
         t0,
     ));

@@ -12,11 +12,11 @@ use jaus::components::{
     local_pose_sensor, local_waypoint_driver, mission_spooler, primitive_driver,
     velocity_state_sensor,
 };
-use jaus::cores::drivers::{LocalWaypointDriverCore, PrimitiveConfig, PrimitiveDriverCore};
-use jaus::cores::motion::DriverConfig;
-use jaus::cores::sensors::{LocalPoseSensorCore, VelocityStateSensorCore};
-use jaus::cores::spooler::{command, Delivery, MissionSpoolerCore, SpoolerConfig};
 use jaus::messages::*;
+use jaus::stock::drivers::{PrimitiveConfig, StockLocalWaypointDriver, StockPrimitiveDriver};
+use jaus::stock::motion::DriverConfig;
+use jaus::stock::sensors::{StockLocalPoseSensor, StockVelocityStateSensor};
+use jaus::stock::spooler::{command, Delivery, SpoolerConfig, StockMissionSpooler};
 use jaus::Address;
 use jaus_sim::vehicle::{SimVehicle, VehicleParams};
 
@@ -31,7 +31,7 @@ const OCU: Address = Address::new(1, 2, 40, 1);
 const REMOTE_MS: Address = Address::new(2, 1, 36, 1);
 const REMOTE_PAYLOAD: Address = Address::new(2, 1, 200, 1);
 
-type Spooler = Component<mission_spooler::Dispatch<MissionSpoolerCore>>;
+type Spooler = Component<mission_spooler::Dispatch<StockMissionSpooler>>;
 
 /// A waypoint driver that takes Spool Mission but does not answer Query Spooling
 /// Preference (so the spooler falls back to one message at a time).
@@ -63,32 +63,32 @@ fn bus() -> (LocalBus, SimVehicle) {
     let cfg = Config::default();
     let vehicle = SimVehicle::new(VehicleParams::default());
     let mut bus = LocalBus::new(t0);
-    let spooler = MissionSpoolerCore::new(SpoolerConfig {
+    let spooler = StockMissionSpooler::new(SpoolerConfig {
         remote_spoolers: vec![REMOTE_MS],
         ..SpoolerConfig::default()
     });
     bus.add(mission_spooler::component(MS, spooler, cfg.clone(), t0));
     bus.add(mission_spooler::component(
         REMOTE_MS,
-        MissionSpoolerCore::new(SpoolerConfig::default()),
+        StockMissionSpooler::new(SpoolerConfig::default()),
         cfg.clone(),
         t0,
     ));
     bus.add(primitive_driver::component(
         PD,
-        PrimitiveDriverCore::new(vehicle.clone(), PrimitiveConfig::default()),
+        StockPrimitiveDriver::new(vehicle.clone(), PrimitiveConfig::default()),
         cfg.clone(),
         t0,
     ));
     bus.add(local_pose_sensor::component(
         LPS,
-        LocalPoseSensorCore(vehicle.clone()),
+        StockLocalPoseSensor(vehicle.clone()),
         cfg.clone(),
         t0,
     ));
     bus.add(velocity_state_sensor::component(
         VSS,
-        VelocityStateSensorCore(vehicle.clone()),
+        StockVelocityStateSensor(vehicle.clone()),
         cfg.clone(),
         t0,
     ));
@@ -100,7 +100,7 @@ fn bus() -> (LocalBus, SimVehicle) {
     };
     bus.add(local_waypoint_driver::component(
         LWD,
-        LocalWaypointDriverCore::new(dc),
+        StockLocalWaypointDriver::new(dc),
         cfg.clone(),
         t0,
     ));
@@ -191,7 +191,7 @@ fn finish(bus: &mut LocalBus, mission: u16, uid: u16) {
     bus.run_for(ms(20));
 }
 
-fn spooler(bus: &LocalBus) -> &MissionSpoolerCore {
+fn spooler(bus: &LocalBus) -> &StockMissionSpooler {
     &bus.get::<Spooler>(MS).unwrap().behaviour().0
 }
 
@@ -254,7 +254,7 @@ fn blocking_moves_drive_the_vehicle_before_the_next_message_is_spooled() {
     bus.run_for(Duration::from_secs(10));
     let p = vehicle.lock().position();
     assert!(
-        (p - jaus::cores::nalgebra::Vector2::new(6.0, 0.0)).norm() < 1.5 || p.y > 1.0,
+        (p - jaus::stock::nalgebra::Vector2::new(6.0, 0.0)).norm() < 1.5 || p.y > 1.0,
         "{p}"
     );
     assert_eq!(
@@ -265,7 +265,7 @@ fn blocking_moves_drive_the_vehicle_before_the_next_message_is_spooled() {
     bus.run_for(Duration::from_secs(15));
     let p = vehicle.lock().position();
     assert!(
-        (p - jaus::cores::nalgebra::Vector2::new(6.0, 4.0)).norm() < 0.25,
+        (p - jaus::stock::nalgebra::Vector2::new(6.0, 4.0)).norm() < 0.25,
         "{p}"
     );
     assert!(mission_finished(&bus, 7));

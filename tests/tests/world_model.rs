@@ -1,10 +1,10 @@
 //! The World Model Vector Knowledge Store (Part 1 §5.5.3): every operation of the
 //! `VectorStore`, buffer-zone queries checked against distances computed by hand, the
 //! largest polygon the wire allows, the index checked against a linear scan, and the
-//! `WorldModelCore` component answering encoded messages on a `LocalBus`.
+//! `StockWorldModel` component answering encoded messages on a `LocalBus`.
 //!
 //! Hand arithmetic uses the WGS 84 radii of the store's local frame (module docs of
-//! `jaus::cores::world_model`): a = 6,378,137 m, e² = f(2 − f) = 0.006694380,
+//! `jaus::stock::world_model`): a = 6,378,137 m, e² = f(2 − f) = 0.006694380,
 //! meridian radius M(φ) = a(1 − e²)/w³, prime-vertical radius N(φ) = a/w,
 //! w = √(1 − e² sin²φ).
 //!   At the equator: M = 6,335,439.327 m → 110,574.276 m per degree of latitude,
@@ -20,12 +20,12 @@ use jaus::codec::Encode;
 use jaus::component::local::{LocalBus, Probe};
 use jaus::component::{Component, Config};
 use jaus::components::world_model_vector_knowledge_store::{self as wmvks, Dispatch};
-use jaus::cores::world_model::{
+use jaus::messages::*;
+use jaus::stock::world_model::{
     point_in_polygon, point_segment_distance, segments_intersect, Bounds, Filter, Geometry, Shape,
-    StoreConfig, StoreError, VectorStore, WorldModelConfig, WorldModelCore, ALL_FEATURE_CLASSES,
+    StockWorldModel, StoreConfig, StoreError, VectorStore, WorldModelConfig, ALL_FEATURE_CLASSES,
     MAX_VERTICES,
 };
-use jaus::messages::*;
 use jaus::{Address, Header, JausMessage};
 
 fn p(latitude: f64, longitude: f64) -> VksPoint {
@@ -1052,7 +1052,7 @@ fn config() -> Config {
     }
 }
 
-fn bus_with(core: WorldModelCore) -> LocalBus {
+fn bus_with(core: StockWorldModel) -> LocalBus {
     let mut bus = LocalBus::new(t0());
     bus.add(wmvks::component(WM, core, config(), t0()));
     bus.add(Probe::new(CLIENT));
@@ -1072,7 +1072,7 @@ fn ask(bus: &mut LocalBus, msg: impl Into<Message>) -> Vec<Message> {
         .collect()
 }
 
-fn wm(bus: &LocalBus) -> &Component<Dispatch<WorldModelCore>> {
+fn wm(bus: &LocalBus) -> &Component<Dispatch<StockWorldModel>> {
     bus.get(WM).unwrap()
 }
 
@@ -1093,7 +1093,7 @@ fn query_all(request_id: u8) -> QueryVksObjects {
 
 #[test]
 fn component_answers_create_query_delete_on_the_bus() {
-    let mut bus = bus_with(WorldModelCore::default());
+    let mut bus = bus_with(StockWorldModel::default());
     let create = CreateVksObjects {
         buffered: true,
         message_properties: 1,
@@ -1284,7 +1284,7 @@ fn component_answers_create_query_delete_on_the_bus() {
 
 #[test]
 fn long_answers_are_paged_and_terminated() {
-    let core = WorldModelCore::new(WorldModelConfig {
+    let core = StockWorldModel::new(WorldModelConfig {
         max_report_objects: 3,
         ..WorldModelConfig::default()
     });
@@ -1345,7 +1345,7 @@ fn long_answers_are_paged_and_terminated() {
     assert_eq!(wm(&bus).behaviour().0.open_transfers(), 0);
     assert_eq!(page(&mut bus, query_all(6)), all[0..3]);
     // A byte budget smaller than one object still sends one object per report.
-    let core = WorldModelCore::new(WorldModelConfig {
+    let core = StockWorldModel::new(WorldModelConfig {
         max_report_bytes: 1,
         ..WorldModelConfig::default()
     });
@@ -1366,7 +1366,7 @@ fn long_answers_are_paged_and_terminated() {
 
 #[test]
 fn garbage_is_refused_and_counted() {
-    let mut bus = bus_with(WorldModelCore::default());
+    let mut bus = bus_with(StockWorldModel::default());
     let creation = |m: &[Message]| match m {
         [Message::ReportVksObjectsCreation(c)] => c.object_ids.clone(),
         other => panic!("{other:?}"),
@@ -1407,7 +1407,7 @@ fn garbage_is_refused_and_counted() {
     body[n - 8..n - 4].copy_from_slice(&i32::MIN.to_le_bytes());
     let now = bus.now();
     let header = Header::new(CreateVksObjects::CODE, WM, CLIENT);
-    bus.get_mut::<Component<Dispatch<WorldModelCore>>>(WM)
+    bus.get_mut::<Component<Dispatch<StockWorldModel>>>(WM)
         .unwrap()
         .handle(now, &header, &body);
     bus.get_mut::<Probe>(CLIENT).unwrap().clear();
@@ -1436,7 +1436,7 @@ fn garbage_is_refused_and_counted() {
     assert!(huge.to_bytes().is_err());
     let header = Header::new(CreateVksObjects::CODE, WM, CLIENT);
     let c = bus
-        .get_mut::<Component<Dispatch<WorldModelCore>>>(WM)
+        .get_mut::<Component<Dispatch<StockWorldModel>>>(WM)
         .unwrap();
     c.handle_message(now, &header, &Message::CreateVksObjects(huge));
     c.handle_message(
@@ -1492,7 +1492,7 @@ fn garbage_is_refused_and_counted() {
 
 #[test]
 fn largest_polygon_crosses_the_bus() {
-    let mut bus = bus_with(WorldModelCore::default());
+    let mut bus = bus_with(StockWorldModel::default());
     let ring: Vec<VksPoint> = (0..MAX_VERTICES)
         .map(|i| {
             let a = i as f64 / MAX_VERTICES as f64 * std::f64::consts::TAU;

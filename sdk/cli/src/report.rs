@@ -4,7 +4,7 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use jaus::cores::nalgebra::Vector2;
+use jaus::stock::nalgebra::Vector2;
 use jaus_sim::demo::{Report, OBSTACLE, SEGMENTS, WAYPOINTS};
 
 /// Writes `demo.svg` of `report` into `dir` (created if missing) and returns its path.

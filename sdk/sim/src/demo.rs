@@ -29,17 +29,17 @@ use jaus::components::{
     mission_spooler, primitive_driver, reflexive_driver, velocity_state_sensor,
     world_model_vector_knowledge_store,
 };
-use jaus::cores::drivers::{
-    GlobalWaypointDriverCore, LocalPathSegmentDriverCore, PrimitiveConfig, PrimitiveDriverCore,
-    ReflexiveConfig, ReflexiveDriverCore,
-};
-use jaus::cores::geo::LocalFrame;
-use jaus::cores::motion::DriverConfig;
-use jaus::cores::path::{Path, PathSegment};
-use jaus::cores::sensors::{GlobalPoseSensorCore, LocalPoseSensorCore, VelocityStateSensorCore};
-use jaus::cores::spooler::{command, MissionSpoolerCore, SpoolerConfig};
-use jaus::cores::world_model::{WorldModelConfig, WorldModelCore};
 use jaus::messages::*;
+use jaus::stock::drivers::{
+    PrimitiveConfig, ReflexiveConfig, StockGlobalWaypointDriver, StockLocalPathSegmentDriver,
+    StockPrimitiveDriver, StockReflexiveDriver,
+};
+use jaus::stock::geo::LocalFrame;
+use jaus::stock::motion::DriverConfig;
+use jaus::stock::path::{Path, PathSegment};
+use jaus::stock::sensors::{StockGlobalPoseSensor, StockLocalPoseSensor, StockVelocityStateSensor};
+use jaus::stock::spooler::{command, SpoolerConfig, StockMissionSpooler};
+use jaus::stock::world_model::{StockWorldModel, WorldModelConfig};
 use jaus::Address;
 
 /// Addresses of the demo subsystem.
@@ -568,16 +568,16 @@ pub fn vehicle_at(
         ..VehicleParams::default()
     });
     let cfg = config();
-    let pd = PrimitiveDriverCore::new(vehicle.clone(), PrimitiveConfig::default());
-    let rd = ReflexiveDriverCore::new(
+    let pd = StockPrimitiveDriver::new(vehicle.clone(), PrimitiveConfig::default());
+    let rd = StockReflexiveDriver::new(
         (),
         ReflexiveConfig {
             output: at(addr::PD),
             ..Default::default()
         },
     );
-    let gwd = GlobalWaypointDriverCore::new(driver_config(at(addr::GPS), ss, node));
-    let lpsd = LocalPathSegmentDriverCore::new(driver_config(at(addr::LPS), ss, node));
+    let gwd = StockGlobalWaypointDriver::new(driver_config(at(addr::GPS), ss, node));
+    let lpsd = StockLocalPathSegmentDriver::new(driver_config(at(addr::LPS), ss, node));
     let parts: Vec<Box<dyn Endpoint>> = vec![
         Box::new(primitive_driver::component(
             at(addr::PD),
@@ -593,19 +593,19 @@ pub fn vehicle_at(
         )),
         Box::new(global_pose_sensor::component(
             at(addr::GPS),
-            GlobalPoseSensorCore(vehicle.clone()),
+            StockGlobalPoseSensor(vehicle.clone()),
             cfg.clone(),
             t0,
         )),
         Box::new(local_pose_sensor::component(
             at(addr::LPS),
-            LocalPoseSensorCore(vehicle.clone()),
+            StockLocalPoseSensor(vehicle.clone()),
             cfg.clone(),
             t0,
         )),
         Box::new(velocity_state_sensor::component(
             at(addr::VSS),
-            VelocityStateSensorCore(vehicle.clone()),
+            StockVelocityStateSensor(vehicle.clone()),
             cfg.clone(),
             t0,
         )),
@@ -623,7 +623,7 @@ pub fn vehicle_at(
         )),
         Box::new(world_model_vector_knowledge_store::component(
             at(addr::WM),
-            WorldModelCore::new(WorldModelConfig::default()),
+            StockWorldModel::new(WorldModelConfig::default()),
             cfg.clone(),
             t0,
         )),
@@ -631,7 +631,7 @@ pub fn vehicle_at(
         // driver for the mission's payload action (the horn).
         Box::new(mission_spooler::component(
             at(addr::MS),
-            MissionSpoolerCore::new(SpoolerConfig::default()),
+            StockMissionSpooler::new(SpoolerConfig::default()),
             Config {
                 authority: 100,
                 ..cfg

@@ -4,7 +4,7 @@
 //! tests, with no vehicle and no network:
 //!
 //! * [`vehicle`]: a simulated skid-steer ground vehicle implementing every hardware
-//!   trait of `jaus::cores::hardware` (actuators, global/local pose, velocity), on the
+//!   trait of `jaus::stock::hardware` (actuators, global/local pose, velocity), on the
 //!   caller's (virtual or real) clock, with seeded sensor noise;
 //! * [`network`]: [`network::SimNet`], several sans-IO [`jaus::net::Node`]s on a
 //!   simulated lossy network (drops, duplicates, delays) with a virtual clock;

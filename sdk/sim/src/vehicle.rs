@@ -11,8 +11,8 @@ use rand::rngs::StdRng;
 use rand::SeedableRng;
 use rand_distr::{Distribution, Normal};
 
-use jaus::cores::geo::{wrap_angle, LocalFrame};
-use jaus::cores::hardware::{
+use jaus::stock::geo::{wrap_angle, LocalFrame};
+use jaus::stock::hardware::{
     Actuators, GlobalPose, GlobalPoseSource, LocalPose, LocalPoseSource, VelocitySource,
     VelocityState, Wrench,
 };

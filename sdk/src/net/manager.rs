@@ -171,7 +171,7 @@ impl Default for ManagerConfig {
 
 /// The node manager's behaviour: answers for its node and discovers the others.
 #[derive(Debug)]
-pub struct NodeManagerCore {
+pub struct StockNodeManager {
     config: ManagerConfig,
     me: Address,
     locals: Vec<Address>,
@@ -183,7 +183,7 @@ pub struct NodeManagerCore {
     request_id: u8,
 }
 
-impl NodeManagerCore {
+impl StockNodeManager {
     /// For the node manager at `me` (component 1).
     pub fn new(me: Address, config: ManagerConfig) -> Self {
         Self {
@@ -368,7 +368,7 @@ impl NodeManagerCore {
     }
 }
 
-impl NodeManager for NodeManagerCore {
+impl NodeManager for StockNodeManager {
     fn on_query_identification(
         &mut self,
         _ctx: &mut Ctx<'_>,

@@ -12,7 +12,7 @@ use std::time::Instant;
 use super::framing::{
     split, DatagramError, Framing, Reassembler, ReassemblyLimits, ReassemblyStats,
 };
-use super::manager::{ManagerConfig, NodeManagerCore, SystemTree};
+use super::manager::{ManagerConfig, StockNodeManager, SystemTree};
 use super::{NetError, Participant};
 use crate::component::{Component, Config};
 use crate::component::{Endpoint, Endpoints};
@@ -103,7 +103,7 @@ pub struct NetStats {
     pub external_timed_out: u64,
 }
 
-type Manager = Component<node_manager::Dispatch<NodeManagerCore>>;
+type Manager = Component<node_manager::Dispatch<StockNodeManager>>;
 
 /// A node: node manager, local components, one UDP interface.
 pub struct Node {
@@ -139,8 +139,8 @@ impl Node {
     /// A node starting at `now` with its node manager at `subsystem.node.1.1`.
     pub fn new(config: NodeConfig, now: Instant) -> Self {
         let me = Address::new(config.subsystem, config.node, 1, 1);
-        let core = NodeManagerCore::new(me, config.manager.clone());
-        let manager = node_manager::component(me, core, config.component.clone(), now);
+        let stock = StockNodeManager::new(me, config.manager.clone());
+        let manager = node_manager::component(me, stock, config.component.clone(), now);
         Self {
             reassembler: Reassembler::new(config.reassembly),
             config,
@@ -193,7 +193,7 @@ impl Node {
     }
 
     /// Moves whenever the system tree may have changed (see
-    /// [`NodeManagerCore::tree_version`](super::manager::NodeManagerCore::tree_version)).
+    /// [`StockNodeManager::tree_version`](super::manager::StockNodeManager::tree_version)).
     pub fn tree_version(&self) -> u64 {
         self.manager.behaviour().0.tree_version()
     }

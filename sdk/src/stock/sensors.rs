@@ -34,9 +34,9 @@ fn time_stamp<I: crate::component::Interface>(
 
 /// A Global Pose Sensor reading a [`GlobalPoseSource`].
 #[derive(Debug)]
-pub struct GlobalPoseSensorCore<S>(pub S);
+pub struct StockGlobalPoseSensor<S>(pub S);
 
-impl<S: GlobalPoseSource> GlobalPoseSensor for GlobalPoseSensorCore<S> {
+impl<S: GlobalPoseSource> GlobalPoseSensor for StockGlobalPoseSensor<S> {
     fn on_query_global_pose(
         &mut self,
         ctx: &mut global_pose_sensor::Ctx<'_>,
@@ -65,9 +65,9 @@ impl<S: GlobalPoseSource> GlobalPoseSensor for GlobalPoseSensorCore<S> {
 
 /// A Local Pose Sensor reading a [`LocalPoseSource`].
 #[derive(Debug)]
-pub struct LocalPoseSensorCore<S>(pub S);
+pub struct StockLocalPoseSensor<S>(pub S);
 
-impl<S: LocalPoseSource> LocalPoseSensor for LocalPoseSensorCore<S> {
+impl<S: LocalPoseSource> LocalPoseSensor for StockLocalPoseSensor<S> {
     fn on_query_local_pose(
         &mut self,
         ctx: &mut local_pose_sensor::Ctx<'_>,
@@ -96,9 +96,9 @@ impl<S: LocalPoseSource> LocalPoseSensor for LocalPoseSensorCore<S> {
 
 /// A Velocity State Sensor reading a [`VelocitySource`].
 #[derive(Debug)]
-pub struct VelocityStateSensorCore<S>(pub S);
+pub struct StockVelocityStateSensor<S>(pub S);
 
-impl<S: VelocitySource> VelocityStateSensor for VelocityStateSensorCore<S> {
+impl<S: VelocitySource> VelocityStateSensor for StockVelocityStateSensor<S> {
     fn on_query_velocity_state(
         &mut self,
         ctx: &mut velocity_state_sensor::Ctx<'_>,

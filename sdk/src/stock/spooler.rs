@@ -146,7 +146,7 @@ impl Mission {
 
 /// The Mission Spooler.
 #[derive(Debug)]
-pub struct MissionSpoolerCore {
+pub struct StockMissionSpooler {
     config: SpoolerConfig,
     missions: BTreeMap<u16, Mission>,
     running: Option<u16>,
@@ -186,7 +186,7 @@ fn walk(
     Ok(())
 }
 
-impl MissionSpoolerCore {
+impl StockMissionSpooler {
     /// With `config`.
     pub fn new(config: SpoolerConfig) -> Self {
         Self {
@@ -539,7 +539,7 @@ fn wire_status(s: MissionState) -> MissionStatus {
     }
 }
 
-impl MissionSpooler for MissionSpoolerCore {
+impl MissionSpooler for StockMissionSpooler {
     fn on_spool_mission(&mut self, ctx: &mut Ctx<'_>, m: &SpoolMission) -> Result<(), Refused> {
         let owner = ctx.source().unwrap_or(ctx.address());
         let mut items = Vec::new();

@@ -53,8 +53,8 @@ impl RTreeObject for Entry {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::cores::world_model::geometry::point_segment_distance;
     use crate::messages::VksPoint;
+    use crate::stock::world_model::geometry::point_segment_distance;
 
     #[test]
     fn widened_boxes_hold_every_point_in_reach() {

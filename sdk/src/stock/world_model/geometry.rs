@@ -29,7 +29,7 @@
 //! each is first clipped to the other's latitude band widened by the distance sought
 //! (points outside it cannot be that close); then `x = Δlat · M(φm)` and
 //! `y = Δlon · N(φm) · cos φ₀`, where `M`, `N` are the WGS 84 meridian and prime-vertical
-//! radii of curvature (as in [`LocalFrame`](crate::cores::geo::LocalFrame)) at the mean latitude
+//! radii of curvature (as in [`LocalFrame`](crate::stock::geo::LocalFrame)) at the mean latitude
 //! `φm` of the clipped pair and `φ₀` is the latitude of the clipped pair closest to the
 //! equator. The point–segment and segment–segment distances are then exact in that
 //! plane. Taking the east–west scale at `φ₀` keeps every distance at least its value
@@ -44,8 +44,8 @@
 pub use super::coords::Shape;
 use super::coords::{Box4, Seg, DEG, E2, M_MIN};
 use super::error::StoreError;
-use crate::cores::geo::WGS84_A;
 use crate::messages::{VksObjectType, VksPoint};
+use crate::stock::geo::WGS84_A;
 
 /// Most vertices of one object (Part 1 §5.5.3; the u16 count of the wire).
 pub const MAX_VERTICES: usize = 65_535;
@@ -424,7 +424,7 @@ pub fn point_in_polygon(p: &VksPoint, vertices: &[VksPoint]) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::cores::geo::WGS84_F;
+    use crate::stock::geo::WGS84_F;
 
     fn p(latitude: f64, longitude: f64) -> VksPoint {
         VksPoint {

@@ -1,5 +1,5 @@
 //! The hardware a vendor connects: four small traits, each a few lines to implement.
-//! The control cores are generic over them; the `jaus-sim` crate implements them all
+//! The stock components are generic over them; the `jaus-sim` crate implements them all
 //! with a simulated vehicle.
 
 use std::time::Instant;

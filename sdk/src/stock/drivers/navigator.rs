@@ -1,577 +1,19 @@
-//! The platform drivers of Part 1 §5.3: primitive, reflexive, global/local vector,
-//! global/local waypoint and global/local path segment. Each is the generated trait of
-//! its component implemented over the hardware traits and [`Motion`].
-//!
-//! Common safety rules: only the controlling component commands them (the runtime);
-//! NaN, infinite and out-of-range commands are refused ([`Refused::Invalid`], a NAK when
-//! one was asked for); the vehicle stops on leaving Ready (Standby, Emergency, ...), when
-//! pose feedback goes stale, and when a vector or wrench command is not refreshed.
-
-use std::time::{Duration, Instant};
+//! The Global and Local Waypoint and Path Segment Drivers (Part 1 §5.3): one
+//! [`Navigator`] over element lists, pursuing straight legs or Part 1 path segments.
 
 use nalgebra::{Vector2, Vector3};
 
-use super::geo::LocalFrame;
-use super::hardware::{Actuators, Wrench};
-use super::motion::{wrench_message, wrench_of, DriverConfig, Motion};
-use super::path::{Path, PathSegment};
+use super::finite;
 use crate::component::{Context, CoreState, EmittedBy, Interface, Modes, Refused, StopReason};
 use crate::components::{
-    global_path_segment_driver as gpsd, global_vector_driver as gvd, global_waypoint_driver as gwd,
-    local_path_segment_driver as lpsd, local_vector_driver as lvd, local_waypoint_driver as lwd,
-    primitive_driver as pd, reflexive_driver as rd,
+    global_path_segment_driver as gpsd, global_waypoint_driver as gwd,
+    local_path_segment_driver as lpsd, local_waypoint_driver as lwd,
 };
 use crate::messages::*;
+use crate::stock::geo::LocalFrame;
+use crate::stock::motion::{DriverConfig, Motion};
+use crate::stock::path::{Path, PathSegment};
 use crate::{Address, CommandCode};
-
-fn finite(v: f64, what: &str) -> Result<f64, Refused> {
-    if v.is_finite() {
-        Ok(v)
-    } else {
-        Err(Refused::Invalid(format!("{what} is not a finite number")))
-    }
-}
-
-// ---------------------------------------------------------------------------------
-// Primitive Driver
-
-/// Settings of the Primitive Driver.
-#[derive(Debug, Clone)]
-pub struct PrimitiveConfig {
-    /// A wrench not refreshed within this time is replaced by brakes (watchdog).
-    pub command_timeout: Duration,
-}
-
-impl Default for PrimitiveConfig {
-    fn default() -> Self {
-        Self {
-            command_timeout: Duration::from_millis(300),
-        }
-    }
-}
-
-/// The Primitive Driver: applies wrench efforts to [`Actuators`] while Ready; brakes on
-/// leaving Ready and when commands stop arriving.
-#[derive(Debug)]
-pub struct PrimitiveDriverCore<A> {
-    actuators: A,
-    config: PrimitiveConfig,
-    commanded: Option<(Instant, SetWrenchEffort)>,
-    applied: Wrench,
-    devices: ReportDiscreteDevices,
-    watchdog_trips: u64,
-}
-
-impl<A: Actuators> PrimitiveDriverCore<A> {
-    /// Over `actuators`.
-    pub fn new(actuators: A, config: PrimitiveConfig) -> Self {
-        Self {
-            actuators,
-            config,
-            commanded: None,
-            applied: Wrench::ZERO,
-            devices: ReportDiscreteDevices::default(),
-            watchdog_trips: 0,
-        }
-    }
-
-    /// The effort applied last.
-    pub fn applied(&self) -> Wrench {
-        self.applied
-    }
-
-    /// Times the command watchdog braked.
-    pub fn watchdog_trips(&self) -> u64 {
-        self.watchdog_trips
-    }
-
-    fn apply(&mut self, now: Instant, w: Wrench) {
-        self.applied = w;
-        self.actuators.apply(now, &w);
-    }
-}
-
-impl<A: Actuators> pd::PrimitiveDriver for PrimitiveDriverCore<A> {
-    fn on_set_wrench_effort(
-        &mut self,
-        ctx: &mut pd::Ctx<'_>,
-        msg: &SetWrenchEffort,
-    ) -> Result<(), Refused> {
-        let w = wrench_of(msg);
-        if !w.is_valid() {
-            return Err(Refused::Invalid(
-                "wrench effort outside -100..100 % (0..100 % resistive) or not finite".into(),
-            ));
-        }
-        self.commanded = Some((ctx.now(), msg.clone()));
-        if ctx.state() == CoreState::Ready {
-            self.apply(ctx.now(), w);
-        }
-        Ok(())
-    }
-
-    fn on_set_discrete_devices(
-        &mut self,
-        _ctx: &mut pd::Ctx<'_>,
-        msg: &SetDiscreteDevices,
-    ) -> Result<(), Refused> {
-        let d = &mut self.devices;
-        d.propulsion = msg.propulsion.or(d.propulsion);
-        d.parking_brake_and_horn = msg.parking_brake_and_horn.or(d.parking_brake_and_horn);
-        d.gear = msg.gear.or(d.gear);
-        d.transfer_case = msg.transfer_case.or(d.transfer_case);
-        Ok(())
-    }
-
-    fn on_query_wrench_effort(
-        &mut self,
-        _ctx: &mut pd::Ctx<'_>,
-        _q: &QueryWrenchEffort,
-    ) -> Result<ReportWrenchEffort, Refused> {
-        let m = wrench_message(&self.applied);
-        Ok(ReportWrenchEffort {
-            propulsive_linear_effort_x: m.propulsive_linear_effort_x,
-            propulsive_rotational_effort_z: m.propulsive_rotational_effort_z,
-            resistive_linear_effort_x: m.resistive_linear_effort_x,
-            ..Default::default()
-        })
-    }
-
-    fn on_query_discrete_devices(
-        &mut self,
-        _ctx: &mut pd::Ctx<'_>,
-        _q: &QueryDiscreteDevices,
-    ) -> Result<ReportDiscreteDevices, Refused> {
-        Ok(self.devices.clone())
-    }
-
-    fn stop(&mut self, ctx: &mut pd::Ctx<'_>, _reason: StopReason) {
-        self.commanded = None;
-        self.apply(ctx.now(), Wrench::brake());
-    }
-
-    fn state_changed(&mut self, ctx: &mut pd::Ctx<'_>, _from: CoreState, to: CoreState) {
-        if to != CoreState::Ready {
-            self.commanded = None;
-            self.apply(ctx.now(), Wrench::brake());
-        }
-    }
-
-    fn tick(&mut self, ctx: &mut pd::Ctx<'_>) {
-        let now = ctx.now();
-        if let Some((t, _)) = &self.commanded {
-            if now.saturating_duration_since(*t) > self.config.command_timeout {
-                self.commanded = None;
-                self.watchdog_trips += 1;
-                tracing::info!(address = %ctx.address(), "primitive driver: wrench not refreshed; braking");
-                self.apply(now, Wrench::brake());
-            }
-        }
-    }
-}
-
-// ---------------------------------------------------------------------------------
-// Reflexive Driver
-
-/// Distance to the nearest obstacle ahead of the platform.
-pub trait ObstacleSource: Send + 'static {
-    /// Free distance ahead, m (`None`: nothing seen).
-    fn obstacle_distance(&mut self, now: Instant) -> Option<f64>;
-}
-
-/// No obstacle sensor.
-impl ObstacleSource for () {
-    fn obstacle_distance(&mut self, _now: Instant) -> Option<f64> {
-        None
-    }
-}
-
-/// Settings of the Reflexive Driver.
-#[derive(Debug, Clone)]
-pub struct ReflexiveConfig {
-    /// Where the filtered wrench goes (the Primitive Driver).
-    pub output: Address,
-    /// Largest forward/backward effort passed on, %.
-    pub max_linear_effort: f64,
-    /// Largest rotational effort passed on, %.
-    pub max_rotational_effort: f64,
-    /// Below this free distance forward effort is scaled down, m.
-    pub slow_distance: f64,
-    /// At or below this free distance forward effort is cut and brakes applied, m.
-    pub stop_distance: f64,
-    /// A wrench not refreshed within this time is replaced by brakes.
-    pub command_timeout: Duration,
-}
-
-impl Default for ReflexiveConfig {
-    fn default() -> Self {
-        Self {
-            output: Address::new(1, 1, 33, 1),
-            max_linear_effort: 100.0,
-            max_rotational_effort: 100.0,
-            slow_distance: 3.0,
-            stop_distance: 0.8,
-            command_timeout: Duration::from_millis(500),
-        }
-    }
-}
-
-/// The Reflexive Driver: passes the commanded wrench on, limited in effort and cut down
-/// as an obstacle ahead gets near.
-#[derive(Debug)]
-pub struct ReflexiveDriverCore<O> {
-    obstacles: O,
-    config: ReflexiveConfig,
-    motion: Motion,
-    commanded: Option<(Instant, Wrench)>,
-    modified: Wrench,
-    interventions: u64,
-}
-
-impl<O: ObstacleSource> ReflexiveDriverCore<O> {
-    /// Over `obstacles`.
-    pub fn new(obstacles: O, config: ReflexiveConfig) -> Self {
-        let motion = Motion::new(DriverConfig {
-            output: config.output,
-            ..DriverConfig::default()
-        });
-        Self {
-            obstacles,
-            config,
-            motion,
-            commanded: None,
-            modified: Wrench::ZERO,
-            interventions: 0,
-        }
-    }
-
-    /// The wrench sent on last.
-    pub fn modified(&self) -> Wrench {
-        self.modified
-    }
-
-    /// How many commands were changed for safety.
-    pub fn interventions(&self) -> u64 {
-        self.interventions
-    }
-
-    fn filter(&mut self, now: Instant, w: Wrench) -> Wrench {
-        let c = &self.config;
-        let mut out = w;
-        out.linear.x = w.linear.x.clamp(-c.max_linear_effort, c.max_linear_effort);
-        out.rotational.z = w
-            .rotational
-            .z
-            .clamp(-c.max_rotational_effort, c.max_rotational_effort);
-        if let Some(d) = self.obstacles.obstacle_distance(now) {
-            if out.linear.x > 0.0 && d < c.slow_distance {
-                let k =
-                    ((d - c.stop_distance) / (c.slow_distance - c.stop_distance)).clamp(0.0, 1.0);
-                out.linear.x *= k;
-                if k == 0.0 {
-                    out.resistive_linear.x = 100.0;
-                }
-            }
-        }
-        if out != w {
-            self.interventions += 1;
-        }
-        out
-    }
-}
-
-impl<O: ObstacleSource> rd::ReflexiveDriver for ReflexiveDriverCore<O> {
-    fn on_set_wrench_effort(
-        &mut self,
-        ctx: &mut rd::Ctx<'_>,
-        msg: &SetWrenchEffort,
-    ) -> Result<(), Refused> {
-        let w = wrench_of(msg);
-        if !w.is_valid() {
-            return Err(Refused::Invalid(
-                "wrench effort out of range or not finite".into(),
-            ));
-        }
-        let now = ctx.now();
-        self.commanded = Some((now, w));
-        if ctx.state() == CoreState::Ready {
-            let m = self.filter(now, w);
-            self.send_output(ctx, m);
-        }
-        Ok(())
-    }
-
-    fn on_query_wrench_effort(
-        &mut self,
-        _ctx: &mut rd::Ctx<'_>,
-        _q: &QueryWrenchEffort,
-    ) -> Result<ReportWrenchEffort, Refused> {
-        let m = wrench_message(&self.modified);
-        Ok(ReportWrenchEffort {
-            propulsive_linear_effort_x: m.propulsive_linear_effort_x,
-            propulsive_rotational_effort_z: m.propulsive_rotational_effort_z,
-            resistive_linear_effort_x: m.resistive_linear_effort_x,
-            ..Default::default()
-        })
-    }
-
-    fn stop(&mut self, ctx: &mut rd::Ctx<'_>, _reason: StopReason) {
-        self.commanded = None;
-        self.modified = Wrench::brake();
-        if ctx.has_control_of(self.config.output) {
-            ctx.send(self.config.output, wrench_message(&self.modified));
-        }
-    }
-
-    fn state_changed(&mut self, ctx: &mut rd::Ctx<'_>, _from: CoreState, to: CoreState) {
-        if to != CoreState::Ready {
-            rd::ReflexiveDriver::stop(self, ctx, StopReason::Standby);
-        }
-    }
-
-    fn tick(&mut self, ctx: &mut rd::Ctx<'_>) {
-        if ctx.state() != CoreState::Ready {
-            return;
-        }
-        self.motion.hold_output(ctx);
-        let now = ctx.now();
-        match self.commanded {
-            Some((t, _)) if now.saturating_duration_since(t) > self.config.command_timeout => {
-                self.commanded = None;
-                self.send_output(ctx, Wrench::brake());
-            }
-            // Re-evaluate the obstacle between commands (and send what could not be sent
-            // before the output component granted control).
-            Some((_, w)) => {
-                let m = self.filter(now, w);
-                if m != self.modified {
-                    self.send_output(ctx, m);
-                }
-            }
-            None => {}
-        }
-    }
-}
-
-impl<O: ObstacleSource> ReflexiveDriverCore<O> {
-    /// Sends `w` to the output component if this driver controls it (a command sent
-    /// without control would only be refused there); `modified` records what was sent.
-    fn send_output(&mut self, ctx: &mut rd::Ctx<'_>, w: Wrench) {
-        if ctx.has_control_of(self.config.output) {
-            self.modified = w;
-            ctx.send(self.config.output, wrench_message(&w));
-        }
-    }
-}
-
-// ---------------------------------------------------------------------------------
-// Vector drivers
-
-/// A global or local vector command: speed (m/s) and heading (rad).
-#[derive(Debug, Clone, Copy, PartialEq)]
-struct Vector {
-    speed: f64,
-    heading: f64,
-}
-
-/// The Global or Local Vector Driver: holds a heading and a speed.
-#[derive(Debug)]
-pub struct VectorDriverCore<M> {
-    /// Feedback and output.
-    pub motion: Motion,
-    commanded: Option<(Instant, Vector, M)>,
-}
-
-impl<M: Clone> VectorDriverCore<M> {
-    /// With `config` (its `pose_sensor` must be the Global Pose Sensor for the global
-    /// driver, the Local Pose Sensor for the local one).
-    pub fn new(config: DriverConfig) -> Self {
-        Self {
-            motion: Motion::new(config),
-            commanded: None,
-        }
-    }
-
-    fn set(&mut self, now: Instant, v: Vector, m: M) -> Result<(), Refused> {
-        finite(v.speed, "speed")?;
-        finite(v.heading, "heading")?;
-        if v.speed < 0.0 || v.speed > self.motion.config.max_speed {
-            return Err(Refused::OutOfRange {
-                field: "speed",
-                value: v.speed,
-                min: 0.0,
-                max: self.motion.config.max_speed,
-                unit: "m/s",
-            });
-        }
-        self.commanded = Some((now, v, m));
-        Ok(())
-    }
-
-    fn run<I: Interface>(&mut self, ctx: &mut Context<'_, I>)
-    where
-        SetWrenchEffort: EmittedBy<I>,
-    {
-        if ctx.state() != CoreState::Ready {
-            return;
-        }
-        self.motion.hold_output(ctx);
-        let now = ctx.now();
-        let fresh = |t: Instant| {
-            self.motion
-                .config
-                .command_timeout
-                .is_none_or(|limit| now.saturating_duration_since(t) <= limit)
-        };
-        match self.commanded {
-            Some((t, v, _)) if fresh(t) => self.motion.drive(ctx, v.speed, v.heading),
-            _ => self.motion.stop(ctx),
-        }
-    }
-
-    fn leave_ready<I: Interface>(&mut self, ctx: &mut Context<'_, I>)
-    where
-        SetWrenchEffort: EmittedBy<I>,
-    {
-        self.commanded = None;
-        self.motion.stop(ctx);
-        self.motion.release_output(ctx);
-    }
-}
-
-/// The Global Vector Driver.
-pub type GlobalVectorDriverCore = VectorDriverCore<SetGlobalVector>;
-/// The Local Vector Driver.
-pub type LocalVectorDriverCore = VectorDriverCore<SetLocalVector>;
-
-impl gvd::GlobalVectorDriver for GlobalVectorDriverCore {
-    fn initialize(&mut self, ctx: &mut gvd::Ctx<'_>) -> Result<(), String> {
-        self.motion.subscribe(ctx, ReportGlobalPose::CODE);
-        Ok(())
-    }
-    fn on_set_global_vector(
-        &mut self,
-        ctx: &mut gvd::Ctx<'_>,
-        m: &SetGlobalVector,
-    ) -> Result<(), Refused> {
-        let v = Vector {
-            speed: m.speed.unwrap_or(0.0),
-            heading: m
-                .heading
-                .unwrap_or_else(|| self.motion.pose(ctx.now()).map_or(0.0, |p| p.1)),
-        };
-        self.set(ctx.now(), v, m.clone())
-    }
-    fn on_query_global_vector(
-        &mut self,
-        _ctx: &mut gvd::Ctx<'_>,
-        _q: &QueryGlobalVector,
-    ) -> Result<ReportGlobalVector, Refused> {
-        let m = self
-            .commanded
-            .as_ref()
-            .map(|c| c.2.clone())
-            .unwrap_or_default();
-        Ok(ReportGlobalVector {
-            speed: m.speed,
-            altitude: m.altitude,
-            heading: m.heading,
-            roll: m.roll,
-            pitch: m.pitch,
-        })
-    }
-    fn on_report_global_pose(
-        &mut self,
-        ctx: &mut gvd::Ctx<'_>,
-        r: &ReportGlobalPose,
-    ) -> Result<(), Refused> {
-        self.motion.on_global_pose(ctx.now(), r);
-        Ok(())
-    }
-    fn on_report_velocity_state(
-        &mut self,
-        ctx: &mut gvd::Ctx<'_>,
-        r: &ReportVelocityState,
-    ) -> Result<(), Refused> {
-        self.motion.on_velocity(ctx.now(), r);
-        Ok(())
-    }
-    fn stop(&mut self, ctx: &mut gvd::Ctx<'_>, _reason: StopReason) {
-        self.commanded = None;
-        self.motion.stop(ctx);
-    }
-    fn state_changed(&mut self, ctx: &mut gvd::Ctx<'_>, _from: CoreState, to: CoreState) {
-        if to != CoreState::Ready {
-            self.leave_ready(ctx);
-        }
-    }
-    fn tick(&mut self, ctx: &mut gvd::Ctx<'_>) {
-        self.run(ctx);
-    }
-}
-
-impl lvd::LocalVectorDriver for LocalVectorDriverCore {
-    fn initialize(&mut self, ctx: &mut lvd::Ctx<'_>) -> Result<(), String> {
-        self.motion.subscribe(ctx, ReportLocalPose::CODE);
-        Ok(())
-    }
-    fn on_set_local_vector(
-        &mut self,
-        ctx: &mut lvd::Ctx<'_>,
-        m: &SetLocalVector,
-    ) -> Result<(), Refused> {
-        self.set(
-            ctx.now(),
-            Vector {
-                speed: m.speed,
-                heading: m.heading,
-            },
-            m.clone(),
-        )
-    }
-    fn on_query_local_vector(
-        &mut self,
-        _ctx: &mut lvd::Ctx<'_>,
-        _q: &QueryLocalVector,
-    ) -> Result<ReportLocalVector, Refused> {
-        let (speed, heading) = self
-            .commanded
-            .as_ref()
-            .map_or((0.0, 0.0), |c| (c.1.speed, c.1.heading));
-        Ok(ReportLocalVector { speed, heading })
-    }
-    fn on_report_local_pose(
-        &mut self,
-        ctx: &mut lvd::Ctx<'_>,
-        r: &ReportLocalPose,
-    ) -> Result<(), Refused> {
-        self.motion.on_local_pose(ctx.now(), r);
-        Ok(())
-    }
-    fn on_report_velocity_state(
-        &mut self,
-        ctx: &mut lvd::Ctx<'_>,
-        r: &ReportVelocityState,
-    ) -> Result<(), Refused> {
-        self.motion.on_velocity(ctx.now(), r);
-        Ok(())
-    }
-    fn stop(&mut self, ctx: &mut lvd::Ctx<'_>, _reason: StopReason) {
-        self.commanded = None;
-        self.motion.stop(ctx);
-    }
-    fn state_changed(&mut self, ctx: &mut lvd::Ctx<'_>, _from: CoreState, to: CoreState) {
-        if to != CoreState::Ready {
-            self.leave_ready(ctx);
-        }
-    }
-    fn tick(&mut self, ctx: &mut lvd::Ctx<'_>) {
-        self.run(ctx);
-    }
-}
-
-// ---------------------------------------------------------------------------------
-// Waypoint and path-segment drivers
 
 /// The local geometry of one list element.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -762,13 +204,13 @@ pub struct Navigator<E> {
 }
 
 /// The Global Waypoint Driver.
-pub type GlobalWaypointDriverCore = Navigator<SetGlobalWaypoint>;
+pub type StockGlobalWaypointDriver = Navigator<SetGlobalWaypoint>;
 /// The Local Waypoint Driver.
-pub type LocalWaypointDriverCore = Navigator<SetLocalWaypoint>;
+pub type StockLocalWaypointDriver = Navigator<SetLocalWaypoint>;
 /// The Global Path Segment Driver.
-pub type GlobalPathSegmentDriverCore = Navigator<SetGlobalPathSegment>;
+pub type StockGlobalPathSegmentDriver = Navigator<SetGlobalPathSegment>;
 /// The Local Path Segment Driver.
-pub type LocalPathSegmentDriverCore = Navigator<SetLocalPathSegment>;
+pub type StockLocalPathSegmentDriver = Navigator<SetLocalPathSegment>;
 
 impl<E: Element> Navigator<E> {
     /// With `config`.
@@ -1113,7 +555,7 @@ macro_rules! navigator_common {
     };
 }
 
-impl gwd::GlobalWaypointDriver for GlobalWaypointDriverCore {
+impl gwd::GlobalWaypointDriver for StockGlobalWaypointDriver {
     navigator_common!(gwd);
     fn on_set_global_waypoint(
         &mut self,
@@ -1160,7 +602,7 @@ impl gwd::GlobalWaypointDriver for GlobalWaypointDriverCore {
     }
 }
 
-impl lwd::LocalWaypointDriver for LocalWaypointDriverCore {
+impl lwd::LocalWaypointDriver for StockLocalWaypointDriver {
     navigator_common!(lwd);
     fn on_set_local_waypoint(
         &mut self,
@@ -1207,7 +649,7 @@ impl lwd::LocalWaypointDriver for LocalWaypointDriverCore {
     }
 }
 
-impl gpsd::GlobalPathSegmentDriver for GlobalPathSegmentDriverCore {
+impl gpsd::GlobalPathSegmentDriver for StockGlobalPathSegmentDriver {
     navigator_common!(gpsd);
     fn on_set_global_path_segment(
         &mut self,
@@ -1257,7 +699,7 @@ impl gpsd::GlobalPathSegmentDriver for GlobalPathSegmentDriverCore {
     }
 }
 
-impl lpsd::LocalPathSegmentDriver for LocalPathSegmentDriverCore {
+impl lpsd::LocalPathSegmentDriver for StockLocalPathSegmentDriver {
     navigator_common!(lpsd);
     fn on_set_local_path_segment(
         &mut self,

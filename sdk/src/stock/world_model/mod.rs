@@ -1,7 +1,7 @@
 //! The World Model Vector Knowledge Store of Part 1 §5.5.3 (component 61): a
 //! [`VectorStore`] of points, lines/polylines and polygons in WGS 84 with region
 //! buffers, feature classes and feature-class metadata, indexed with an R*-tree, and
-//! [`WorldModelCore`], the generated
+//! [`StockWorldModel`], the generated
 //! [`WorldModelVectorKnowledgeStore`](crate::components::world_model_vector_knowledge_store::WorldModelVectorKnowledgeStore)
 //! trait implemented over it.
 //!
@@ -11,9 +11,9 @@
 //! | [`region`] | [`Geometry`], the buffered region of a query or deletion, and the [`Filter`] that selects objects |
 //! | [`store`] | [`VectorStore`] and its limits ([`StoreConfig`]): the objects, the spatial index, the bounds on memory |
 //! | [`error`] | [`StoreError`]: why the store refused something |
-//! | [`component`] | [`WorldModelCore`]: the component over the store, and how long answers are paged |
+//! | [`component`] | [`StockWorldModel`]: the component over the store, and how long answers are paged |
 //!
-//! Every public item is re-exported here (`jaus::cores::world_model::VectorStore`).
+//! Every public item is re-exported here (`jaus::stock::world_model::VectorStore`).
 
 pub mod component;
 mod coords;
@@ -23,7 +23,7 @@ mod index;
 pub mod region;
 pub mod store;
 
-pub use component::{WorldModelConfig, WorldModelCore, ALL_FEATURE_CLASSES};
+pub use component::{StockWorldModel, WorldModelConfig, ALL_FEATURE_CLASSES};
 pub use error::StoreError;
 pub use geometry::{
     point_in_polygon, point_segment_distance, segments_intersect, Shape, MAX_VERTICES,

@@ -1,4 +1,4 @@
-//! [`WorldModelCore`]: the World Model Vector Knowledge Store component, the generated
+//! [`StockWorldModel`]: the World Model Vector Knowledge Store component, the generated
 //! trait implemented over a [`VectorStore`], with long answers paged out to their
 //! requesters.
 //!
@@ -9,7 +9,7 @@
 //! transfer identifier or a continuation). A report holds at most
 //! [`WorldModelConfig::max_report_objects`] objects (at most 65,535: the count is a
 //! u16) and about [`WorldModelConfig::max_report_bytes`] bytes of object data, taken in
-//! ascending object ID order. When the answer is longer, [`WorldModelCore`] opens a
+//! ascending object ID order. When the answer is longer, [`StockWorldModel`] opens a
 //! **data transfer** for the requester: sending the *same* query again (same request
 //! ID, same filter) returns the next page, until the last page closes the transfer
 //! (the next identical query starts over). A different query from the same requester
@@ -36,7 +36,7 @@ use crate::Address;
 /// the message has no such value of its own).
 pub const ALL_FEATURE_CLASSES: u16 = u16::MAX;
 
-/// Settings of [`WorldModelCore`].
+/// Settings of [`StockWorldModel`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct WorldModelConfig {
     /// Limits of the store.
@@ -90,13 +90,13 @@ struct Transfer {
 /// * Terminate VKS Data Transfer ends the sender's transfer and is always answered with
 ///   Report VKS Data Transfer Termination.
 #[derive(Debug)]
-pub struct WorldModelCore {
+pub struct StockWorldModel {
     store: VectorStore,
     config: WorldModelConfig,
     transfers: Vec<Transfer>,
 }
 
-impl Default for WorldModelCore {
+impl Default for StockWorldModel {
     fn default() -> Self {
         Self::new(WorldModelConfig::default())
     }
@@ -106,7 +106,7 @@ fn invalid(e: StoreError) -> Refused {
     Refused::Invalid(e.to_string())
 }
 
-impl WorldModelCore {
+impl StockWorldModel {
     /// An empty store.
     pub fn new(mut config: WorldModelConfig) -> Self {
         config.max_report_objects = config.max_report_objects.clamp(1, 65_535);
@@ -196,7 +196,7 @@ impl WorldModelCore {
     }
 }
 
-impl WorldModelVectorKnowledgeStore for WorldModelCore {
+impl WorldModelVectorKnowledgeStore for StockWorldModel {
     fn on_create_vks_objects(
         &mut self,
         ctx: &mut Ctx<'_>,

@@ -3,7 +3,7 @@
 
 use rstar::AABB;
 
-use crate::cores::geo::{WGS84_A, WGS84_F};
+use crate::stock::geo::{WGS84_A, WGS84_F};
 
 pub(super) const DEG: f64 = std::f64::consts::PI / 180.0;
 /// First eccentricity squared of WGS 84.

@@ -1,0 +1,164 @@
+//! Unit tests of the codec runtime.
+
+use super::*;
+
+/// A scaled field with limits `[lo, hi]` (leaked: tests only).
+fn f(lo: f64, hi: f64) -> &'static ScaledField {
+    Box::leak(Box::new(ScaledField {
+        field: "T.x",
+        lo,
+        hi,
+        unit: "",
+    }))
+}
+
+#[test]
+fn scaled_examples_from_wire_md() {
+    // (value, lo, hi, expected integer) — the OpenJAUS table of WIRE.md §2.2, with
+    // round-to-nearest for negatives (−50 % → −16384, −100 % → −32767).
+    let pct = f(-100.0, 100.0);
+    assert_eq!(scale_to::<i16>(50.0, pct).unwrap(), 16384);
+    assert_eq!(scale_to::<i16>(-50.0, pct).unwrap(), -16384);
+    assert_eq!(scale_to::<i16>(100.0, pct).unwrap(), 32767);
+    assert_eq!(scale_to::<i16>(-100.0, pct).unwrap(), -32767);
+    assert_eq!(scale_to::<u8>(50.0, f(0.0, 100.0)).unwrap(), 128);
+    assert_eq!(scale_to::<u16>(10.0, f(0.0, 1092.0)).unwrap(), 600);
+    assert_eq!(scale_to::<i32>(29.0, f(-90.0, 90.0)).unwrap(), 691_966_953);
+    assert_eq!(scale_to::<u32>(1.5, f(0.0, 100.0)).unwrap(), 64_424_509);
+    assert!((scale_from::<i16>(16384, -100.0, 100.0) - 50.00153).abs() < 1e-5);
+}
+
+#[test]
+fn every_in_range_wire_integer_round_trips() {
+    use std::f64::consts::PI;
+    let angle = f(-PI, PI);
+    for n in [-32767, -1, 0, 1, 32766, i16::MAX] {
+        assert_eq!(scale_to::<i16>(scale_from(n, -PI, PI), angle).unwrap(), n);
+    }
+    let pct = f(0.0, 100.0);
+    for n in [0u32, 1, 4_294_967_294] {
+        assert_eq!(scale_to::<u32>(scale_from(n, 0.0, 100.0), pct).unwrap(), n);
+    }
+    // The two integers outside the limits decode faithfully and re-encode as the
+    // limit (they are one count beyond it).
+    assert!(scale_from(i16::MIN, -PI, PI) < -PI);
+    assert_eq!(
+        scale_to::<i16>(scale_from(i16::MIN, -PI, PI), angle).unwrap(),
+        -32767
+    );
+    assert!(scale_from(u32::MAX, 0.0, 100.0) > 100.0);
+    assert_eq!(
+        scale_to::<u32>(scale_from(u32::MAX, 0.0, 100.0), pct).unwrap(),
+        4_294_967_294
+    );
+    // So do those of every other signed type and range.
+    for (lo, hi) in [(-90.0, 90.0), (-10_000.0, 35_000.0), (0.5, 0.75)] {
+        let s = f(lo, hi);
+        assert_eq!(
+            scale_to::<i32>(scale_from(i32::MIN, lo, hi), s).unwrap(),
+            -i32::MAX
+        );
+        assert_eq!(
+            scale_to::<i16>(scale_from(i16::MIN, lo, hi), s).unwrap(),
+            -i16::MAX
+        );
+    }
+}
+
+#[test]
+fn out_of_range_values_are_errors_beyond_one_count() {
+    let pct = f(0.0, 100.0);
+    let step = scale_step::<u8>(0.0, 100.0);
+    let out = |r: Result<u8, EncodeError>| match r {
+        Err(EncodeError::OutOfRange { value, .. }) => value,
+        other => panic!("{other:?}"),
+    };
+    assert_eq!(out(scale_to::<u8>(1e9, pct)), 1e9);
+    assert_eq!(out(scale_to::<u8>(-5.0, pct)), -5.0);
+    assert!(out(scale_to::<u8>(f64::NAN, pct)).is_nan());
+    assert_eq!(out(scale_to::<u8>(f64::INFINITY, pct)), f64::INFINITY);
+    assert_eq!(
+        out(scale_to::<u8>(f64::NEG_INFINITY, pct)),
+        f64::NEG_INFINITY
+    );
+    // Up to (not including) 1.5 steps beyond a limit: the limit.
+    assert_eq!(scale_to::<u8>(100.0 + 1.4 * step, pct).unwrap(), 255);
+    assert_eq!(scale_to::<u8>(-1.4 * step, pct).unwrap(), 0);
+    assert_eq!(
+        out(scale_to::<u8>(100.0 + 1.6 * step, pct)),
+        100.0 + 1.6 * step
+    );
+    assert_eq!(out(scale_to::<u8>(-1.6 * step, pct)), -1.6 * step);
+    let one = f(-1.0, 1.0);
+    assert!(scale_to::<i16>(-1e9, one).is_err());
+    assert!(scale_to::<i64>(1.5, one).is_err());
+    assert_eq!(scale_to::<i64>(1.0, one).unwrap(), i64::MAX);
+    assert_eq!(scale_to::<u64>(1.0, f(0.0, 1.0)).unwrap(), u64::MAX);
+}
+
+#[test]
+fn out_of_range_errors_name_the_field_the_value_and_the_limits() {
+    static LAT: ScaledField = ScaledField {
+        field: "ReportGlobalPose.latitude",
+        lo: -90.0,
+        hi: 90.0,
+        unit: "deg",
+    };
+    let e = scale_to::<i32>(129.5, &LAT).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "ReportGlobalPose.latitude: 129.5 outside [-90, 90] deg"
+    );
+    // The message is named only when the field is a record's.
+    let own = e.clone().in_message("ReportGlobalPose");
+    assert_eq!(own.to_string(), e.to_string());
+    assert_eq!(
+        e.in_message("ReportVksObjects").to_string(),
+        "ReportVksObjects: ReportGlobalPose.latitude: 129.5 outside [-90, 90] deg"
+    );
+    assert_eq!(
+        scale_to::<i32>(f64::NAN, &LAT).unwrap_err().to_string(),
+        "ReportGlobalPose.latitude: NaN is not in [-90, 90] deg"
+    );
+    assert_eq!(clamp_scaled(129.5, -90.0, 90.0), 90.0);
+    assert_eq!(clamp_scaled(-129.5, -90.0, 90.0), -90.0);
+    assert!(clamp_scaled(f64::NAN, -90.0, 90.0).is_nan());
+}
+
+#[test]
+fn reader_never_panics_on_short_input() {
+    let mut r = Reader::new(&[1, 2, 3]);
+    assert!(u32::decode(&mut r).is_err());
+    assert!(r.take(usize::MAX).is_err());
+    assert_eq!(u16::decode(&mut r).unwrap(), 0x0201);
+}
+
+#[derive(Debug, PartialEq, crate::JausRecord)]
+struct Empty {}
+
+#[test]
+fn lists_of_elements_that_take_no_bytes_are_bounded() {
+    // A u32 count claiming four billion empty elements is refused at once.
+    let err = decode_list::<u32, Empty>(&mut Reader::new(&[0xFF, 0xFF, 0xFF, 0xFF])).unwrap_err();
+    assert!(matches!(
+        err.kind(),
+        DecodeErrorKind::CountBeyondBuffer { .. }
+    ));
+    assert_eq!(
+        decode_list::<u16, Empty>(&mut Reader::new(&[3, 0]))
+            .unwrap()
+            .len(),
+        3
+    );
+    // Elements to the end of the body must make progress.
+    assert!(decode_rest::<Empty>(&mut Reader::new(&[1])).is_err());
+}
+
+#[test]
+fn latin1_round_trip() {
+    let bytes: Vec<u8> = (1..=255).collect();
+    let s = latin1_to_string(&bytes);
+    let mut out = vec![0; 255];
+    put_latin1(&mut Writer::new(&mut out), &s, "").unwrap();
+    assert_eq!(out, bytes);
+}

@@ -1,0 +1,174 @@
+//! The runtime state of a component apart from the vendor behaviour: address, core state,
+//! control, emergency senders, clock, outbox, service connections and events, and the
+//! sends every part of the runtime shares.
+
+use std::collections::VecDeque;
+use std::time::Instant;
+
+use super::connections::{ProviderTable, RequesterTable};
+use super::events::EventTable;
+use super::{
+    clock, Config, ControlPolicy, CoreState, CoreTransition, Interface, Modes, Stats,
+    TransitionError, Transmit,
+};
+use crate::messages::*;
+use crate::wire::AckNak;
+use crate::{Address, CommandCode, Header};
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) struct Controller {
+    pub(super) address: Address,
+    pub(super) authority: u8,
+}
+
+/// The runtime state of a component, apart from the vendor behaviour.
+pub(super) struct Runtime<I: Interface> {
+    pub(super) address: Address,
+    pub(super) config: Config,
+    pub(super) now: Instant,
+    pub(super) started: bool,
+    pub(super) needs_init: bool,
+    pub(super) state: CoreState,
+    pub(super) mode: I::Modes,
+    pub(super) authority: u8,
+    pub(super) controller: Option<Controller>,
+    /// The controller the behaviour last knew of (to tell it when control is lost).
+    pub(super) known_controller: Option<Address>,
+    pub(super) emergencies: Vec<Address>,
+    pub(super) held_control: Vec<Address>,
+    pub(super) clock: clock::Clock,
+    pub(super) source: Option<Address>,
+    pub(super) outbox: VecDeque<Transmit>,
+    pub(super) stats: Stats,
+    pub(super) next_heartbeat: Option<Instant>,
+    pub(super) next_tick: Instant,
+    pub(super) changes: VecDeque<(CoreState, CoreState)>,
+    pub(super) provider: ProviderTable,
+    pub(super) events: EventTable,
+    pub(super) requester: RequesterTable,
+}
+
+impl<I: Interface> Runtime<I> {
+    pub(super) fn new(address: Address, config: Config, now: Instant) -> Self {
+        Self {
+            address,
+            authority: config.authority,
+            now,
+            started: false,
+            needs_init: true,
+            state: CoreState::Initialize,
+            mode: <I::Modes as Modes>::INITIAL,
+            controller: None,
+            known_controller: None,
+            emergencies: Vec::new(),
+            held_control: Vec::new(),
+            clock: clock::Clock::default(),
+            source: None,
+            outbox: VecDeque::new(),
+            stats: Stats::default(),
+            next_heartbeat: None,
+            next_tick: now,
+            changes: VecDeque::new(),
+            provider: ProviderTable::default(),
+            events: EventTable::default(),
+            requester: RequesterTable::default(),
+            config,
+        }
+    }
+
+    pub(super) fn header(&self, code: CommandCode, to: Address) -> Header {
+        Header::new(code, to, self.address)
+    }
+
+    pub(super) fn push(&mut self, t: Transmit) {
+        if self.outbox.len() >= self.config.outbox_capacity {
+            self.stats.outbox_dropped += 1;
+            tracing::warn!(
+                component = I::NAME,
+                address = %self.address,
+                message = t.message.as_ref().map_or("ack/nak", |m| m.name()),
+                "outgoing queue full ({}): message dropped",
+                self.config.outbox_capacity
+            );
+            return;
+        }
+        self.outbox.push_back(t);
+    }
+
+    pub(super) fn send(&mut self, to: Address, message: Message, sc: bool, seq: u16) {
+        let mut header = self.header(message.code(), to);
+        header.service_connection = sc;
+        header.sequence_number = seq;
+        self.push(Transmit {
+            header,
+            message: Some(message),
+        });
+    }
+
+    pub(super) fn ack(&mut self, request: &Header, ok: bool) {
+        if request.ack_nak != AckNak::Request {
+            return;
+        }
+        let mut header = self.header(request.command_code, request.source);
+        header.ack_nak = if ok { AckNak::Ack } else { AckNak::Nak };
+        self.push(Transmit {
+            header,
+            message: None,
+        });
+    }
+
+    pub(super) fn set_state(&mut self, t: CoreTransition) -> Result<CoreState, TransitionError> {
+        let from = self.state;
+        let to = from.apply(t)?;
+        if to != from {
+            self.state = to;
+            self.mode = <I::Modes as Modes>::INITIAL;
+            tracing::info!(component = I::NAME, address = %self.address, "{from} -> {to} ({})", t.name());
+            if self.changes.len() < 64 {
+                self.changes.push_back((from, to));
+            }
+        }
+        Ok(to)
+    }
+
+    pub(super) fn may_command(&self, source: Address) -> bool {
+        match (self.controller, self.config.control) {
+            (Some(c), _) => c.address == source,
+            (None, ControlPolicy::Open) => true,
+            (None, ControlPolicy::ControllerOnly) => false,
+        }
+    }
+
+    pub(super) fn subscribe(
+        &mut self,
+        provider: Address,
+        report: CommandCode,
+        rate: f64,
+        pv: u32,
+    ) -> bool {
+        if !self
+            .requester
+            .add(provider, report, rate, pv, self.config.max_subscriptions)
+        {
+            self.stats.subscriptions_refused += 1;
+            return false;
+        }
+        let msg = CreateServiceConnection {
+            service_connection_command_code: report.0,
+            requested_periodic_update_rate: rate,
+            presence_vector: pv,
+        };
+        self.send(provider, msg.into(), true, 0);
+        true
+    }
+
+    pub(super) fn unsubscribe(&mut self, provider: Address, report: CommandCode) {
+        if let Some(instance) = self.requester.remove(provider, report) {
+            let msg = TerminateServiceConnection {
+                service_connection_command_code: report.0,
+                instance_id: instance,
+            };
+            self.send(provider, msg.into(), true, 0);
+        }
+    }
+}

@@ -1,0 +1,27 @@
+//! Stock components: the SDK's own implementations of the generated component traits for
+//! the platform components of Part 1 §5.3, the Mission Spooler and the World Model, generic
+//! over small hardware traits ([`hardware`]). The `jaus-sim` crate implements those traits with a
+//! simulated vehicle, so every stock component runs end to end without hardware.
+//!
+//! | component | stock implementation | hardware |
+//! |---|---|---|
+//! | Global / Local Pose Sensor, Velocity State Sensor | [`sensors`] | [`hardware::GlobalPoseSource`], [`hardware::LocalPoseSource`], [`hardware::VelocitySource`] |
+//! | Primitive Driver | [`drivers::StockPrimitiveDriver`] | [`hardware::Actuators`] |
+//! | Reflexive Driver | [`drivers::StockReflexiveDriver`] | [`drivers::ObstacleSource`] |
+//! | Global / Local Vector Driver | [`drivers::StockVectorDriver`] | — (pose by service connection) |
+//! | Global / Local Waypoint Driver, Path Segment Driver | [`drivers::Navigator`] | — |
+//! | Mission Spooler | [`spooler::StockMissionSpooler`] | — |
+//! | World Model Vector Knowledge Store (feature `world_model`) | [`world_model::StockWorldModel`] over [`world_model::VectorStore`] | — (an in-memory store with an R*-tree) |
+
+pub mod drivers;
+pub mod geo;
+pub mod hardware;
+pub mod motion;
+pub mod path;
+pub mod sensors;
+pub mod spooler;
+#[cfg(feature = "world_model")]
+pub mod world_model;
+
+/// The `nalgebra` the stock components use at their API (poses, quaternions, vectors).
+pub use nalgebra;
