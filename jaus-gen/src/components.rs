@@ -26,7 +26,7 @@ pub struct ComponentCtx {
     /// One handler per command and accepted message.
     pub handlers: Vec<HandlerCtx>,
     /// Messages it may send on its own.
-    pub emits: Vec<String>,
+    pub emits: Vec<EmitCtx>,
     /// Command codes of `commands`.
     pub commands: Vec<String>,
     /// Command codes of `accepts`.
@@ -52,8 +52,36 @@ pub struct HandlerCtx {
     pub message: String,
     /// Report type returned, for a query.
     pub report: Option<String>,
+    /// The match pattern of the message in the component's set, binding `m`.
+    pub pattern: String,
+    /// Expression turning the report `r` into a message of the component's set.
+    pub wrap_report: Option<String>,
     /// Documentation lines.
     pub doc: Vec<String>,
+}
+
+/// A message the component may send, with its conversion into the component's set.
+#[derive(Debug, Clone, Serialize)]
+pub struct EmitCtx {
+    /// Message type.
+    pub message: String,
+    /// Expression turning `msg` into a message of the component's set.
+    pub wrap: String,
+}
+
+/// How a message of `spec` is named inside the component's message set `Message`:
+/// directly in the SDK (and a standalone set), inside `Message::Jaus` for a vendor's
+/// set when the message is the SDK's.
+fn in_set(spec: &Spec, name: &str) -> (String, String) {
+    let standard = spec.extends() && spec.message(name).is_some_and(|m| !spec.is_own(m.source));
+    if standard {
+        (
+            format!("Message::Jaus(::jaus::messages::Message::{name}(m))"),
+            "Message::Jaus(msg.into())".into(),
+        )
+    } else {
+        (format!("Message::{name}(m)"), "msg.into()".into())
+    }
 }
 
 /// The modes of a component.
@@ -168,6 +196,7 @@ fn title(d: &MessageDef) -> String {
 pub fn build_components(spec: &Spec, gates: bool) -> Vec<ComponentCtx> {
     spec.components
         .iter()
+        .filter(|c| spec.is_own(c.source))
         .map(|c| {
             let d = &c.def;
             let mut groups: BTreeSet<String> = BTreeSet::new();
@@ -191,10 +220,14 @@ pub fn build_components(spec: &Spec, gates: bool) -> Vec<ComponentCtx> {
                     });
                     doc.push(String::new());
                     doc.push("Not implemented: the message is ignored and counted as unsupported.".into());
+                    let pattern = in_set(spec, n).0;
+                    let wrap_report = report.map(|r| in_set(spec, &r.def.name).1.replace("msg", "r"));
                     handlers.push(HandlerCtx {
                         method: format!("on_{}", snake(n)),
                         message: n.clone(),
                         report: report.map(|r| r.def.name.clone()),
+                        pattern,
+                        wrap_report,
                         doc: doc.iter().flat_map(|l| if l.is_empty() { vec![String::new()] } else { wrap(l, 88) }).collect(),
                     });
                 }
@@ -312,7 +345,14 @@ pub fn build_components(spec: &Spec, gates: bool) -> Vec<ComponentCtx> {
                 doc,
                 cfg,
                 handlers,
-                emits: d.emits.clone(),
+                emits: d
+                    .emits
+                    .iter()
+                    .map(|e| EmitCtx {
+                        message: e.clone(),
+                        wrap: in_set(spec, e).1,
+                    })
+                    .collect(),
                 commands: d.commands.iter().filter_map(code_of).collect(),
                 accepts: d.accepts.iter().filter_map(code_of).collect(),
                 emit_codes: d.emits.iter().filter_map(code_of).collect(),

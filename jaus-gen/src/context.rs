@@ -19,6 +19,113 @@ pub struct Context {
     /// Command codes of the messages the component runtime sends for every component
     /// (`runtime: [emits]`), in code order.
     pub runtime_outputs: Vec<String>,
+    /// The set is a vendor's overlay on the SDK's definitions: only its own items are
+    /// generated, the SDK's are used from `::jaus::messages`, and its `Message` wraps
+    /// the SDK's.
+    pub vendor: bool,
+    /// The SDK's feature-gated groups the overlay's items use, each with the first use
+    /// (`file:line: message X, field y uses type Z`).
+    pub requires: Vec<RequireCtx>,
+}
+
+/// An SDK group (cargo feature of `jaus`) a vendor's items need.
+#[derive(Debug, Clone, Serialize)]
+pub struct RequireCtx {
+    /// Group (and feature) name.
+    pub group: String,
+    /// Where and why, for the compile error when the feature is off.
+    pub why: String,
+}
+
+/// The SDK groups (other than `core`, which is always built) whose types the
+/// overlay's own types and messages use, each with its first use.
+pub fn requirements(spec: &Spec) -> Vec<RequireCtx> {
+    fn walk<'a>(w: &'a Wire, out: &mut Vec<&'a str>) {
+        match w {
+            Wire::Named { name, .. } => out.push(name),
+            Wire::List { elem, .. } | Wire::ListField { elem, .. } => walk(elem, out),
+            _ => {}
+        }
+    }
+    let mut req: Vec<RequireCtx> = Vec::new();
+    let mut add = |group: &str, why: String| {
+        if group != "core" && !req.iter().any(|r| r.group == group) {
+            req.push(RequireCtx {
+                group: group.to_string(),
+                why,
+            });
+        }
+    };
+    let mut uses = |owner: String, source: usize, path: &str, fields: &[Field]| {
+        for (i, f) in fields.iter().enumerate() {
+            let mut names = Vec::new();
+            walk(&f.wire, &mut names);
+            for n in names {
+                let Some(t) = spec.types.iter().find(|t| t.def.name == n) else {
+                    continue;
+                };
+                if spec.is_own(t.source) {
+                    continue;
+                }
+                let (file, pos) = spec.locate(source, &format!("{path}.fields[{i}]"));
+                add(
+                    &t.group,
+                    format!(
+                        "{}:{}:{}: {owner}, field `{}` uses `{n}` of group `{}`",
+                        file.display(),
+                        pos.line,
+                        pos.column,
+                        f.def.name,
+                        t.group
+                    ),
+                );
+            }
+        }
+    };
+    for t in spec.types.iter().filter(|t| spec.is_own(t.source)) {
+        uses(
+            format!("type `{}`", t.def.name),
+            t.source,
+            &t.path,
+            t.fields(),
+        );
+    }
+    for m in spec.messages.iter().filter(|m| spec.is_own(m.source)) {
+        uses(
+            format!("message `{}`", m.def.name),
+            m.source,
+            &m.path,
+            &m.fields,
+        );
+    }
+    for c in spec.components.iter().filter(|c| spec.is_own(c.source)) {
+        let d = &c.def;
+        for (key, list) in [
+            ("commands", &d.commands),
+            ("accepts", &d.accepts),
+            ("emits", &d.emits),
+        ] {
+            for (i, n) in list.iter().enumerate() {
+                let Some(m) = spec.message(n) else { continue };
+                if spec.is_own(m.source) {
+                    continue;
+                }
+                let (file, pos) = spec.locate(c.source, &format!("{}.{key}[{i}]", c.path));
+                add(
+                    &m.group,
+                    format!(
+                        "{}:{}:{}: component `{}` uses message `{n}` of group `{}`",
+                        file.display(),
+                        pos.line,
+                        pos.column,
+                        d.name,
+                        m.group
+                    ),
+                );
+            }
+        }
+    }
+    req
 }
 
 /// One group.
@@ -95,6 +202,8 @@ pub struct MessageCtx {
     pub report: Option<String>,
     /// Experimental.
     pub experimental: bool,
+    /// Variant of `jaus::wire::MessageClass` (`Command`, `Query`, ...).
+    pub class: String,
 }
 
 /// A struct field.
@@ -171,8 +280,28 @@ pub struct QueryCtx {
     pub query: String,
     /// Report name.
     pub report: String,
+    /// Query command code (`0x2402`).
+    pub query_code: String,
+    /// Report command code.
+    pub report_code: String,
     /// Combined cfg.
     pub cfg: Option<String>,
+}
+
+/// The `jaus::wire::MessageClass` variant of a message: its explicit class, or its
+/// code's range.
+fn class_variant(d: &MessageDef) -> &'static str {
+    use jaus_spec::MessageClass as C;
+    match d.class() {
+        C::Command => "Command",
+        C::Query => "Query",
+        C::Inform => "Inform",
+        C::EventSetup => "EventSetup",
+        C::EventNotification => "EventNotification",
+        C::NodeManagement => "NodeManagement",
+        C::Experimental if d.code.0 < 0xD000 => "Reserved",
+        C::Experimental => "Experimental",
+    }
 }
 
 fn doc_lines(text: Option<&str>) -> Vec<String> {
@@ -486,7 +615,11 @@ pub fn build_context(spec: &Spec, gates: bool, rt: &str) -> Context {
             messages: Vec::new(),
         })
         .collect();
+    let vendor = spec.extends();
     for t in &spec.types {
+        if !spec.is_own(t.source) {
+            continue;
+        }
         let d = &t.def;
         let mut tc = TypeCtx {
             name: d.name.clone(),
@@ -599,6 +732,9 @@ pub fn build_context(spec: &Spec, gates: bool, rt: &str) -> Context {
     }
     let mut messages = Vec::new();
     for m in &spec.messages {
+        if !spec.is_own(m.source) {
+            continue;
+        }
         let d = &m.def;
         let title = d
             .title
@@ -653,6 +789,7 @@ pub fn build_context(spec: &Spec, gates: bool, rt: &str) -> Context {
             embedded,
             report,
             experimental: d.experimental,
+            class: class_variant(d).into(),
         };
         if let Some(g) = groups.iter_mut().find(|g| g.name == m.group) {
             g.messages.push(mc.clone());
@@ -662,6 +799,7 @@ pub fn build_context(spec: &Spec, gates: bool, rt: &str) -> Context {
     let queries = spec
         .messages
         .iter()
+        .filter(|q| spec.is_own(q.source))
         .filter_map(|q| {
             let r = spec.report_of(&q.def)?;
             let cfg = match (cfg_of(&q.group, gates), cfg_of(&r.group, gates)) {
@@ -672,15 +810,20 @@ pub fn build_context(spec: &Spec, gates: bool, rt: &str) -> Context {
             Some(QueryCtx {
                 query: q.def.name.clone(),
                 report: r.def.name.clone(),
+                query_code: q.def.code.to_string(),
+                report_code: r.def.code.to_string(),
                 cfg,
             })
         })
         .collect();
+    if vendor {
+        groups.retain(|g| !g.types.is_empty() || !g.messages.is_empty());
+    }
     let runtime_codes = |role: fn(&MessageDef) -> bool| {
         let mut codes: Vec<Code> = spec
             .messages
             .iter()
-            .filter(|m| role(&m.def))
+            .filter(|m| spec.is_own(m.source) && role(&m.def))
             .map(|m| m.def.code)
             .collect();
         codes.sort();
@@ -692,5 +835,11 @@ pub fn build_context(spec: &Spec, gates: bool, rt: &str) -> Context {
         queries,
         runtime_inputs: runtime_codes(MessageDef::runtime_input),
         runtime_outputs: runtime_codes(MessageDef::runtime_output),
+        vendor,
+        requires: if vendor {
+            requirements(spec)
+        } else {
+            Vec::new()
+        },
     }
 }

@@ -201,7 +201,10 @@ impl Builder {
     }
 
     /// Adds one definition file loaded after the directories (extra groups, messages or
-    /// types of a vendor).
+    /// types of a vendor). Without [`spec_dir`](Self::spec_dir), overlays extend the
+    /// SDK's own definitions (unless one says `extends: none`): they may use every SDK
+    /// type and message, and only their own items are generated, referring to the
+    /// SDK's through `::jaus::messages` (see `jaus_spec::load_overlays`).
     pub fn overlay(mut self, file: impl Into<PathBuf>) -> Self {
         self.overlays.push(file.into());
         self
@@ -282,10 +285,17 @@ impl Builder {
                 println!("cargo:rerun-if-changed={}", d.display());
             }
         }
-        let spec = jaus_spec::load(&self.spec_dirs, &self.overlays)?;
+        let spec = if self.spec_dirs.is_empty() {
+            jaus_spec::load_overlays(&self.overlays)?
+        } else {
+            jaus_spec::load(&self.spec_dirs, &self.overlays)?
+        };
         if self.cargo {
             for p in spec.source_paths() {
                 println!("cargo:rerun-if-changed={}", p.display());
+            }
+            for w in &spec.warnings {
+                println!("cargo:warning=warning: {w}");
             }
         }
         Ok(spec)
@@ -373,7 +383,16 @@ impl Builder {
         let comps = build_components(&spec, self.feature_gates);
         let raw = env
             .get_template("components.rs.j2")?
-            .render(minijinja::context! { components => &comps })?;
+            .render(minijinja::context! {
+                components => &comps,
+                vendor => ctx.vendor,
+                own_messages => spec
+                    .messages
+                    .iter()
+                    .filter(|m| spec.is_own(m.source))
+                    .map(|m| m.def.name.as_str())
+                    .collect::<Vec<_>>(),
+            })?;
         let components = format_code(&raw, self.out_dir.as_deref(), "components")?;
         Ok(Generated {
             code,

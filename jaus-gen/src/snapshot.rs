@@ -267,6 +267,7 @@ impl Snapshot {
         let mut messages: Vec<MessageSnap> = spec
             .messages
             .iter()
+            .filter(|m| spec.is_own(m.source))
             .map(|m| MessageSnap {
                 name: m.def.name.clone(),
                 code: m.def.code.0,
@@ -280,6 +281,7 @@ impl Snapshot {
         let mut types: Vec<TypeSnap> = spec
             .types
             .iter()
+            .filter(|t| spec.is_own(t.source))
             .map(|t| {
                 let at = |key: &str, i: usize| loc(t.source, &format!("{}.{key}[{i}]", t.path));
                 let form = match &t.form {
@@ -356,6 +358,7 @@ impl Snapshot {
         let mut components: Vec<ComponentSnap> = spec
             .components
             .iter()
+            .filter(|c| spec.is_own(c.source))
             .map(|c| {
                 let d = &c.def;
                 let list = |key: &str, names: &[String]| {

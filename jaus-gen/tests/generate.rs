@@ -57,7 +57,7 @@ fn every_component_gets_a_documented_trait_interface_and_dispatch() {
     assert!(code.contains("fn on_set_global_waypoint("));
     assert!(code.contains("-> Result<ReportGlobalPose, Refused>"));
     assert!(code.contains("Transition::Arrive => Some(CoreTransition::Standby)"));
-    assert!(code.contains("impl EmittedBy<Interface> for SetWrenchEffort {}"));
+    assert!(code.contains("impl Emits<SetWrenchEffort> for Interface {"));
     // It also takes Spool Mission, so it needs both groups.
     assert!(code.contains(
         "#[cfg(all(feature = \"planning\", feature = \"platform\"))]\npub mod global_waypoint_driver"

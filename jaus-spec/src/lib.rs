@@ -245,8 +245,16 @@ pub struct Group {
 /// resolved wire form ([`Field::wire`]).
 #[derive(Debug)]
 pub struct Spec {
-    /// Every file read, in load order.
+    /// Every file read, in load order: first the base definitions an overlay extends
+    /// (the SDK's, see [`load_overlays`]), then the overlay's own.
     pub sources: Vec<Source>,
+    /// How many of the first [`Spec::sources`] are base definitions (0 when the set
+    /// extends nothing): their items exist in the SDK already and are not generated
+    /// again.
+    pub base_sources: usize,
+    /// What is legal but probably a mistake (an overlay's message outside the
+    /// experimental code range), with file:line.
+    pub warnings: Vec<SpecError>,
     /// Groups in first-seen order.
     pub groups: Vec<Group>,
     /// Named types in file order.
@@ -425,6 +433,13 @@ pub fn load<P: AsRef<Path>, Q: AsRef<Path>>(
     dirs: &[P],
     overlays: &[Q],
 ) -> Result<Spec, SpecErrors> {
+    let mut files = yaml_files(dirs)?;
+    files.extend(overlays.iter().map(|p| p.as_ref().to_path_buf()));
+    load_texts(read_files(files)?)
+}
+
+/// The `*.yaml` files of `dirs`, sorted by name within each directory.
+fn yaml_files<P: AsRef<Path>>(dirs: &[P]) -> Result<Vec<PathBuf>, SpecErrors> {
     let mut files = Vec::new();
     let mut errors = Vec::new();
     for d in dirs {
@@ -446,7 +461,16 @@ pub fn load<P: AsRef<Path>, Q: AsRef<Path>>(
             }),
         }
     }
-    files.extend(overlays.iter().map(|p| p.as_ref().to_path_buf()));
+    if errors.is_empty() {
+        Ok(files)
+    } else {
+        Err(SpecErrors(errors))
+    }
+}
+
+/// Reads every file.
+fn read_files(files: Vec<PathBuf>) -> Result<Vec<(PathBuf, String)>, SpecErrors> {
+    let mut errors = Vec::new();
     let mut texts = Vec::new();
     for f in files {
         match std::fs::read_to_string(&f) {
@@ -459,15 +483,70 @@ pub fn load<P: AsRef<Path>, Q: AsRef<Path>>(
             }),
         }
     }
+    if errors.is_empty() {
+        Ok(texts)
+    } else {
+        Err(SpecErrors(errors))
+    }
+}
+
+/// Loads a vendor's overlay files on the definitions they extend: the SDK's own
+/// ([`defs_dir`]) unless a file says `extends: none`. The overlay's types, messages and
+/// components may use every type and message of the base; names and codes may not
+/// repeat the base's (an error naming both positions); [`Spec::is_own`] tells the
+/// overlay's items from the base's, and [`Spec::warnings`] lists overlay messages
+/// outside the experimental code range.
+pub fn load_overlays<Q: AsRef<Path>>(overlays: &[Q]) -> Result<Spec, SpecErrors> {
+    let own = read_files(overlays.iter().map(|p| p.as_ref().to_path_buf()).collect())?;
+    let mut extends = true;
+    let mut errors = Vec::new();
+    for (path, text) in &own {
+        #[derive(serde::Deserialize)]
+        struct Head {
+            #[serde(default)]
+            extends: Option<String>,
+        }
+        let Ok(head) = serde_yaml::from_str::<Head>(text) else {
+            continue; // the full load reports the syntax error
+        };
+        match head.extends.as_deref() {
+            None | Some("jaus") => {}
+            Some("none") => extends = false,
+            Some(other) => errors.push(SpecError {
+                file: path.clone(),
+                pos: LocationIndex::build(text).find("extends"),
+                context: String::new(),
+                message: format!(
+                    "`extends: {other}`: an overlay extends `jaus` (the SDK's definitions, the default) or `none`"
+                ),
+            }),
+        }
+    }
     if !errors.is_empty() {
         return Err(SpecErrors(errors));
     }
-    load_texts(texts)
+    let base = if extends {
+        read_files(yaml_files(&[defs_dir()])?)?
+    } else {
+        Vec::new()
+    };
+    load_texts_on(base, own)
 }
 
 /// Loads definitions from `(path, text)` pairs (the path is used in errors only).
 pub fn load_texts(texts: Vec<(PathBuf, String)>) -> Result<Spec, SpecErrors> {
+    load_texts_on(Vec::new(), texts)
+}
+
+/// Loads `own` definitions on `base` ones ([`load_overlays`]).
+pub fn load_texts_on(
+    base: Vec<(PathBuf, String)>,
+    own: Vec<(PathBuf, String)>,
+) -> Result<Spec, SpecErrors> {
+    let base_sources = base.len();
+    let texts = base.into_iter().chain(own);
     let mut draft = validate::Draft {
+        base_sources,
         sources: Vec::new(),
         groups: Vec::new(),
         types: Vec::new(),
@@ -574,6 +653,17 @@ impl Spec {
         (s.path.as_path(), s.index.find(path))
     }
 
+    /// True when the set is an overlay on base definitions ([`load_overlays`]).
+    pub fn extends(&self) -> bool {
+        self.base_sources > 0
+    }
+
+    /// True when the item from source `source` is the overlay's own (not a base
+    /// definition).
+    pub fn is_own(&self, source: usize) -> bool {
+        source >= self.base_sources
+    }
+
     /// Every source file path (for `cargo:rerun-if-changed`).
     pub fn source_paths(&self) -> impl Iterator<Item = &Path> {
         self.sources.iter().map(|s| s.path.as_path())
@@ -586,12 +676,14 @@ fn report_of<'a, M>(
     by_name: impl FnOnce(&str) -> Option<&'a M>,
     by_code: impl FnOnce(u16) -> Option<&'a M>,
 ) -> Option<&'a M> {
-    if !(0x2000..0x4000).contains(&query.code.0) || query.no_report {
+    if !query.is_query() || query.no_report {
         return None;
     }
     match &query.report {
         Some(name) => by_name(name),
-        None => by_code(query.code.0 + 0x2000),
+        // The complement rule holds for the standard query range only.
+        None if (0x2000..0x4000).contains(&query.code.0) => by_code(query.code.0 + 0x2000),
+        None => None,
     }
 }
 

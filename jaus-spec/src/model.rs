@@ -11,6 +11,10 @@ use std::fmt;
 pub struct SpecFile {
     /// Group identifier (snake_case); also the cargo feature that selects it.
     pub group: String,
+    /// For a vendor's overlay: the definitions it builds on, `jaus` (the SDK's own,
+    /// the default) or `none` (a set of its own that names nothing of the SDK's).
+    #[serde(default)]
+    pub extends: Option<String>,
     /// Human-readable group title.
     #[serde(default)]
     pub title: Option<String>,
@@ -99,6 +103,11 @@ pub struct MessageDef {
     /// A vendor/OpenJAUS experimental message.
     #[serde(default)]
     pub experimental: bool,
+    /// The message class, for a code whose range does not give one (experimental
+    /// codes 0xD000-0xFFFF): an experimental `command` obeys control, an experimental
+    /// `query` names its `report:` and is answered like any query.
+    #[serde(default)]
+    pub class: Option<MessageClass>,
     /// A note about interoperability (deviations of other implementations).
     #[serde(default)]
     pub interop: Option<String>,
@@ -112,6 +121,19 @@ pub struct MessageDef {
 }
 
 impl MessageDef {
+    /// The class of the message: the one its code's range gives, or its explicit
+    /// `class:` for an experimental (or reserved) code.
+    pub fn class(&self) -> MessageClass {
+        match MessageClass::of_code(self.code.0) {
+            Some(c) => c,
+            None => self.class.unwrap_or(MessageClass::Experimental),
+        }
+    }
+
+    /// True for a query (by its code's range or its explicit class).
+    pub fn is_query(&self) -> bool {
+        self.class() == MessageClass::Query
+    }
     /// The runtime takes this message for every component (`handles` or `shares`): an
     /// input of the core service in Report Services.
     pub fn runtime_input(&self) -> bool {
@@ -130,6 +152,56 @@ impl MessageDef {
     /// core service in Report Services.
     pub fn runtime_output(&self) -> bool {
         self.runtime.contains(&RuntimeRole::Emits)
+    }
+}
+
+/// The class of a message (Part 1; the command-code ranges of the standard).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum MessageClass {
+    /// Changes the state of the receiver (0x0000-0x1FFF); executed only for the
+    /// component in control when a component lists it in `commands`.
+    Command,
+    /// Asks for information (0x2000-0x3FFF), answered by a report.
+    Query,
+    /// Carries information (0x4000-0x5FFF): reports.
+    Inform,
+    /// Event setup (0x6000-0x7FFF, deprecated in RA 3.3).
+    EventSetup,
+    /// Event notification (0x8000-0x9FFF, deprecated in RA 3.3).
+    EventNotification,
+    /// Node management (0xA000-0xBFFF).
+    NodeManagement,
+    /// An experimental code without an explicit class: handled like an inform message.
+    Experimental,
+}
+
+impl MessageClass {
+    /// The class the standard gives a code, `None` for reserved and experimental codes
+    /// (0xC000-0xFFFF), whose class a definition may state.
+    pub fn of_code(code: u16) -> Option<Self> {
+        Some(match code {
+            0x0000..=0x1FFF => Self::Command,
+            0x2000..=0x3FFF => Self::Query,
+            0x4000..=0x5FFF => Self::Inform,
+            0x6000..=0x7FFF => Self::EventSetup,
+            0x8000..=0x9FFF => Self::EventNotification,
+            0xA000..=0xBFFF => Self::NodeManagement,
+            _ => return None,
+        })
+    }
+
+    /// The YAML spelling.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Self::Command => "command",
+            Self::Query => "query",
+            Self::Inform => "inform",
+            Self::EventSetup => "event_setup",
+            Self::EventNotification => "event_notification",
+            Self::NodeManagement => "node_management",
+            Self::Experimental => "experimental",
+        }
     }
 }
 

@@ -26,6 +26,8 @@ pub(crate) struct Parsed<D> {
 /// Every file parsed, nothing checked or resolved yet.
 #[derive(Debug)]
 pub(crate) struct Draft {
+    /// How many of the first sources are the base definitions an overlay extends.
+    pub base_sources: usize,
     pub sources: Vec<Source>,
     pub groups: Vec<Group>,
     pub types: Vec<Parsed<TypeDef>>,
@@ -809,14 +811,35 @@ pub(crate) fn validate(draft: Draft) -> Result<Spec, Vec<SpecError>> {
         ));
         check_runtime(&mut cx, m, &ctx);
         let code = m.def.code.0;
-        let is_query = (0x2000..0x4000).contains(&code);
+        if let Some(explicit) = m.def.class {
+            match crate::model::MessageClass::of_code(code) {
+                Some(by_code) if by_code != explicit => cx.err(
+                    m.source,
+                    &format!("{}.class", m.path),
+                    ctx.clone(),
+                    format!(
+                        "`class: {}` contradicts the code 0x{code:04X}, which is a {} code; `class:` is for experimental codes (0xD000-0xFFFF)",
+                        explicit.as_str(),
+                        by_code.as_str()
+                    ),
+                ),
+                _ if explicit == crate::model::MessageClass::Experimental => cx.err(
+                    m.source,
+                    &format!("{}.class", m.path),
+                    ctx.clone(),
+                    "`class: experimental` says nothing: name the class (command, query, inform, ...) or leave `class` out",
+                ),
+                _ => {}
+            }
+        }
+        let is_query = m.def.is_query();
         if let Some(r) = &m.def.report {
             if !is_query {
                 cx.err(
                     m.source,
                     &format!("{}.report", m.path),
                     ctx.clone(),
-                    "`report` applies to query messages (0x2000..0x3FFF)",
+                    "`report` applies to query messages (0x2000..0x3FFF, or `class: query` for an experimental code)",
                 );
             } else if spec.message(r).is_none() {
                 cx.err(
@@ -827,15 +850,19 @@ pub(crate) fn validate(draft: Draft) -> Result<Spec, Vec<SpecError>> {
                 );
             }
         } else if is_query && !m.def.no_report && spec.report_of(&m.def).is_none() {
+            let hint = if (0x2000..0x4000).contains(&code) {
+                format!(
+                    "define the message with code 0x{:04X} (the complement rule), name it with `report:`, or mark the query `no_report: true`",
+                    code + 0x2000
+                )
+            } else {
+                "an experimental query names its report with `report:` (or is marked `no_report: true`)".to_string()
+            };
             cx.err(
                 m.source,
                 &format!("{}.code", m.path),
                 ctx.clone(),
-                format!(
-                    "query {} has no report: define the message with code 0x{:04X} (the complement rule), name it with `report:`, or mark the query `no_report: true`",
-                    m.def.code,
-                    code + 0x2000
-                ),
+                format!("query {} has no report: {hint}", m.def.code),
             );
         }
     }
@@ -864,7 +891,10 @@ pub(crate) fn validate(draft: Draft) -> Result<Spec, Vec<SpecError>> {
 
 /// The validated spec: each parsed definition with its resolved form.
 fn assemble(draft: Draft, forms: Vec<TypeForm>, bodies: Vec<Body>) -> Spec {
+    let warnings = overlay_warnings(&draft);
     Spec {
+        base_sources: draft.base_sources,
+        warnings,
         sources: draft.sources,
         groups: draft.groups,
         types: draft
@@ -1007,12 +1037,12 @@ fn validate_components(cx: &mut Ctx<'_>) {
                         continue;
                     }
                 }
-                if key == "commands" && code >= 0x2000 {
+                if key == "commands" && m.def.class() != crate::model::MessageClass::Command {
                     cx.err(
                         c.source,
                         &path,
                         ctx.clone(),
-                        format!("`{name}` (0x{code:04X}) is not a command (0x0000-0x1FFF): list it in `accepts`"),
+                        format!("`{name}` (0x{code:04X}) is not a command (0x0000-0x1FFF, or `class: command` for an experimental code): list it in `accepts`"),
                     );
                 }
             }
@@ -1121,4 +1151,30 @@ fn validate_modes(cx: &mut Ctx<'_>, c: &crate::Component, m: &crate::model::Mode
             }
         }
     }
+}
+
+/// What is legal but probably wrong in a vendor's overlay: a message of its own with a
+/// code outside the experimental range, which a later revision of the standard may
+/// take.
+fn overlay_warnings(draft: &Draft) -> Vec<SpecError> {
+    if draft.base_sources == 0 {
+        return Vec::new();
+    }
+    draft
+        .messages
+        .iter()
+        .filter(|m| m.source >= draft.base_sources && m.def.code.0 < 0xD000)
+        .map(|m| {
+            let s = &draft.sources[m.source];
+            SpecError {
+                file: s.path.clone(),
+                pos: s.index.find(&format!("{}.code", m.path)),
+                context: format!("message `{}`", m.def.name),
+                message: format!(
+                    "code {} is outside the experimental range 0xD000-0xFFFF: a later revision of the standard may give it to another message",
+                    m.def.code
+                ),
+            }
+        })
+        .collect()
 }

@@ -104,3 +104,48 @@ fn a_validated_spec_carries_every_resolved_form() {
     assert!(!spec.ty("EventRecord").unwrap().fields().is_empty());
     assert!(spec.ty("TimeStamp").unwrap().fields().is_empty());
 }
+
+/// A vendor's overlay builds on the SDK's definitions: it may use their types and
+/// messages, may not repeat their names or codes (both positions are named), and gets a
+/// warning for a code of its own outside the experimental range.
+#[test]
+fn overlays_extend_the_sdk_definitions() {
+    let dir = std::env::temp_dir().join(format!("jaus-spec-overlay-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let good = dir.join("good.yaml");
+    std::fs::write(
+        &good,
+        "group: acme\nmessages:\n  - name: ReportStamp\n    code: 0xD001\n    fields:\n      - { name: at, type: TimeStamp }\n  - name: SetPump\n    code: 0x0F00\n    fields:\n      - { name: on, type: u8 }\n",
+    )
+    .unwrap();
+    let spec = jaus_spec::load_overlays(&[&good]).unwrap();
+    assert!(spec.extends());
+    let own: Vec<&str> = spec
+        .messages
+        .iter()
+        .filter(|m| spec.is_own(m.source))
+        .map(|m| m.def.name.as_str())
+        .collect();
+    assert_eq!(own, ["ReportStamp", "SetPump"]);
+    assert!(spec.message("ReportGlobalPose").is_some_and(|m| !spec.is_own(m.source)));
+    assert_eq!(spec.warnings.len(), 1, "{:?}", spec.warnings);
+    let w = spec.warnings[0].to_string();
+    assert!(w.contains("good.yaml:8:5: message `SetPump`: code 0x0F00 is outside the experimental range"), "{w}");
+
+    let dup = dir.join("dup.yaml");
+    std::fs::write(&dup, "group: acme\nmessages:\n  - name: ReportGlobalPose\n    code: 0xD002\n").unwrap();
+    let e = jaus_spec::load_overlays(&[&dup]).unwrap_err().to_string();
+    assert!(e.contains("dup.yaml:3:"), "{e}");
+    assert!(e.contains("duplicate name `ReportGlobalPose` (first defined at ") && e.contains("platform.yaml:"), "{e}");
+
+    let standalone = dir.join("alone.yaml");
+    std::fs::write(&standalone, "extends: none\ngroup: acme\nmessages:\n  - name: ReportGlobalPose\n    code: 0xD002\n").unwrap();
+    let spec = jaus_spec::load_overlays(&[&standalone]).unwrap();
+    assert!(!spec.extends() && spec.messages.len() == 1);
+
+    let bad = dir.join("bad.yaml");
+    std::fs::write(&bad, "extends: ra34\ngroup: acme\n").unwrap();
+    let e = jaus_spec::load_overlays(&[&bad]).unwrap_err().to_string();
+    assert!(e.contains("bad.yaml:1:") && e.contains("`extends: ra34`"), "{e}");
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -108,6 +108,39 @@ pub trait Query: JausMessage {
     type Report: JausMessage;
 }
 
+/// A set of messages a component speaks: the SDK's own [`messages::Message`], or a
+/// vendor's generated set, which wraps it and adds the vendor's messages. The component
+/// runtime, [`component::Component`], is generic over it: it decodes what arrives with
+/// [`MessageSet::decode`], takes the core messages through [`MessageSet::standard`]
+/// and hands everything else to the component's behaviour as the set's own type.
+pub trait MessageSet:
+    codec::Encode + Clone + std::fmt::Debug + PartialEq + Send + Sync + 'static
+{
+    /// Decodes a body of the message with command code `code`; a code the set does not
+    /// define decodes to a raw message ([`RawMessage`]), never to an error.
+    fn decode(code: CommandCode, body: &[u8]) -> Result<Self, codec::DecodeError>;
+    /// The command code of this message.
+    fn code(&self) -> CommandCode;
+    /// The name of this message.
+    fn name(&self) -> &'static str;
+    /// The message as one of the SDK's standard messages (or a raw one), if it is.
+    fn standard(&self) -> Option<&messages::Message>;
+    /// A standard message as a message of this set.
+    fn from_standard(m: messages::Message) -> Self;
+    /// The query that report `report` answers (the complement rule for the standard
+    /// ranges, the definitions' `report:` for experimental queries).
+    fn query_of(report: CommandCode) -> Option<CommandCode>;
+    /// The report answering query `query`.
+    fn report_of(query: CommandCode) -> Option<CommandCode>;
+    /// The catalogue row of `code` in this set.
+    fn info(code: CommandCode) -> Option<&'static MessageInfo>;
+}
+
+/// A message of the SDK's standard set (implemented for each by the generator): what a
+/// vendor's message set wraps. A vendor component with `any_message: true` may send
+/// every one of them.
+pub trait StandardMessage: JausMessage + Into<messages::Message> {}
+
 /// A message the message set does not define: an experimental message of another
 /// vendor, or one of a newer revision of the standard. Its command code and body are
 /// kept exactly as received, so that it is handed to a component
@@ -147,6 +180,9 @@ pub struct MessageInfo {
     pub report: Option<&'static str>,
     /// Not part of RA 3.3.
     pub experimental: bool,
+    /// Its class: given by the code's range, or by the definition (`class:`) for an
+    /// experimental code.
+    pub class: wire::MessageClass,
 }
 
 impl MessageInfo {

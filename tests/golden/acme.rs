@@ -1,5 +1,10 @@
 use ::jaus::codec::{DecodeError, DecodeErrorKind, Encode, EncodeError, Writer};
 use ::jaus::{CommandCode, JausMessage};
+#[allow(unused_imports)]
+use ::jaus::messages::*;
+::jaus::__jaus_requires_platform!(
+    "vendor/acme.yaml:100:27: component `TankMonitor` uses message `QueryGlobalPose` of group `platform`"
+);
 /// ACME experimental messages and types.
 ///
 /// Tank telemetry of the ACME tracked carrier (experimental, 0xD100-0xD1FF).
@@ -110,6 +115,8 @@ pub mod acme {
     /// Query Tanks (0xD100).
     ///
     /// Asks for the tank report.
+    ///
+    /// Answered by [`ReportTanks`].
     #[derive(Debug, Clone, PartialEq, Default, ::jaus::JausMessage)]
     #[cfg_attr(
         all(),
@@ -220,8 +227,49 @@ pub mod acme {
             Message::decode(code, &self.wrapped)
         }
     }
+    /// Set Tank Valve (0xD102).
+    ///
+    /// Opens or closes the drain valve of one tank (executed only for the component in control).
+    #[derive(Debug, Clone, PartialEq, Default, ::jaus::JausMessage)]
+    #[cfg_attr(
+        all(),
+        derive(serde::Serialize, serde::Deserialize),
+        serde(deny_unknown_fields)
+    )]
+    #[jaus(code = 0xD102)]
+    pub struct SetTankValve {
+        /// Tank index.
+        pub tank: u8,
+        /// 1 opens the valve, 0 closes it.
+        pub open: u8,
+    }
+    /// Report Tank Telemetry (0xD103).
+    ///
+    /// Level of one tank, sent on every change while draining.
+    #[derive(Debug, Clone, PartialEq, Default, ::jaus::JausMessage)]
+    #[cfg_attr(
+        all(),
+        derive(serde::Serialize, serde::Deserialize),
+        serde(deny_unknown_fields)
+    )]
+    #[jaus(code = 0xD103)]
+    pub struct ReportTankTelemetry {
+        /// When measured (the SDK's core type).
+        pub time_stamp: TimeStamp,
+        /// Tank index.
+        pub tank: u8,
+        /// Fill level.
+        ///
+        /// Unit: %.
+        /// Range `[0, 100]`, carried as a scaled `u16` (resolution 1.526e-3).
+        #[jaus(scaled(u16, 0.0, 100.0), unit = "%")]
+        pub level: f64,
+    }
 }
 pub use acme::*;
+impl ::jaus::Query for QueryTanks {
+    type Report = ReportTanks;
+}
 /// Any message of the set, by command code.
 #[allow(clippy::enum_variant_names, clippy::large_enum_variant)]
 #[derive(Debug, Clone, PartialEq)]
@@ -237,8 +285,14 @@ pub enum Message {
     ReportTanks(ReportTanks),
     /// Replay Tanks (0xD101).
     ReplayTanks(ReplayTanks),
-    /// A message this set does not define, kept as its code and body.
-    Raw(::jaus::RawMessage),
+    /// Set Tank Valve (0xD102).
+    SetTankValve(SetTankValve),
+    /// Report Tank Telemetry (0xD103).
+    ReportTankTelemetry(ReportTankTelemetry),
+    /// A message of the SDK's set: a standard message, or one neither set defines
+    /// (kept raw).
+    #[cfg_attr(all(), serde(untagged))]
+    Jaus(::jaus::messages::Message),
 }
 impl Message {
     /// Decodes a body of the message with command code `code`.
@@ -250,14 +304,11 @@ impl Message {
             0xD100 => QueryTanks::decode_body(body).map(Self::QueryTanks),
             0xF100 => ReportTanks::decode_body(body).map(Self::ReportTanks),
             0xD101 => ReplayTanks::decode_body(body).map(Self::ReplayTanks),
-            _ => {
-                Ok(
-                    Self::Raw(::jaus::RawMessage {
-                        code,
-                        body: body.to_vec(),
-                    }),
-                )
+            0xD102 => SetTankValve::decode_body(body).map(Self::SetTankValve),
+            0xD103 => {
+                ReportTankTelemetry::decode_body(body).map(Self::ReportTankTelemetry)
             }
+            _ => ::jaus::messages::Message::decode(code, body).map(Self::Jaus),
         }
     }
     /// Like [`decode`](Self::decode), but a code this set does not define is an error
@@ -267,7 +318,7 @@ impl Message {
         body: &[u8],
     ) -> ::core::result::Result<Self, DecodeError> {
         match Self::decode(code, body)? {
-            Self::Raw(_) => {
+            Self::Jaus(::jaus::messages::Message::Raw(_)) => {
                 Err(
                     DecodeError::new(
                         DecodeErrorKind::UnknownCommandCode {
@@ -286,7 +337,9 @@ impl Message {
             Self::QueryTanks(_) => QueryTanks::CODE,
             Self::ReportTanks(_) => ReportTanks::CODE,
             Self::ReplayTanks(_) => ReplayTanks::CODE,
-            Self::Raw(r) => r.code,
+            Self::SetTankValve(_) => SetTankValve::CODE,
+            Self::ReportTankTelemetry(_) => ReportTankTelemetry::CODE,
+            Self::Jaus(m) => m.code(),
         }
     }
     /// The name of this message.
@@ -295,7 +348,9 @@ impl Message {
             Self::QueryTanks(_) => QueryTanks::NAME,
             Self::ReportTanks(_) => ReportTanks::NAME,
             Self::ReplayTanks(_) => ReplayTanks::NAME,
-            Self::Raw(_) => "Raw",
+            Self::SetTankValve(_) => SetTankValve::NAME,
+            Self::ReportTankTelemetry(_) => ReportTankTelemetry::NAME,
+            Self::Jaus(m) => m.name(),
         }
     }
     /// The body as a value implementing [`Encode`].
@@ -304,7 +359,9 @@ impl Message {
             Self::QueryTanks(m) => m,
             Self::ReportTanks(m) => m,
             Self::ReplayTanks(m) => m,
-            Self::Raw(r) => r,
+            Self::SetTankValve(m) => m,
+            Self::ReportTankTelemetry(m) => m,
+            Self::Jaus(m) => m.body(),
         }
     }
     /// The body as a mutable value implementing [`Encode`].
@@ -313,8 +370,15 @@ impl Message {
             Self::QueryTanks(m) => m,
             Self::ReportTanks(m) => m,
             Self::ReplayTanks(m) => m,
-            Self::Raw(r) => r,
+            Self::SetTankValve(m) => m,
+            Self::ReportTankTelemetry(m) => m,
+            Self::Jaus(m) => m.body_mut(),
         }
+    }
+}
+impl From<::jaus::messages::Message> for Message {
+    fn from(m: ::jaus::messages::Message) -> Self {
+        Self::Jaus(m)
     }
 }
 impl From<QueryTanks> for Message {
@@ -330,6 +394,58 @@ impl From<ReportTanks> for Message {
 impl From<ReplayTanks> for Message {
     fn from(m: ReplayTanks) -> Self {
         Self::ReplayTanks(m)
+    }
+}
+impl From<SetTankValve> for Message {
+    fn from(m: SetTankValve) -> Self {
+        Self::SetTankValve(m)
+    }
+}
+impl From<ReportTankTelemetry> for Message {
+    fn from(m: ReportTankTelemetry) -> Self {
+        Self::ReportTankTelemetry(m)
+    }
+}
+impl ::jaus::MessageSet for Message {
+    fn decode(
+        code: CommandCode,
+        body: &[u8],
+    ) -> ::core::result::Result<Self, DecodeError> {
+        Message::decode(code, body)
+    }
+    fn code(&self) -> CommandCode {
+        Message::code(self)
+    }
+    fn name(&self) -> &'static str {
+        Message::name(self)
+    }
+    fn standard(&self) -> Option<&::jaus::messages::Message> {
+        match self {
+            Self::Jaus(m) => Some(m),
+            #[allow(unreachable_patterns)]
+            _ => None,
+        }
+    }
+    fn from_standard(m: ::jaus::messages::Message) -> Self {
+        Self::Jaus(m)
+    }
+    fn query_of(report: CommandCode) -> Option<CommandCode> {
+        match report.0 {
+            0xF100 => Some(CommandCode(0xD100)),
+            _ => <::jaus::messages::Message as ::jaus::MessageSet>::query_of(report),
+        }
+    }
+    fn report_of(query: CommandCode) -> Option<CommandCode> {
+        match query.0 {
+            0xD100 => Some(CommandCode(0xF100)),
+            _ => <::jaus::messages::Message as ::jaus::MessageSet>::report_of(query),
+        }
+    }
+    fn info(code: CommandCode) -> Option<&'static ::jaus::MessageInfo> {
+        MESSAGES
+            .iter()
+            .find(|m| m.code == code)
+            .or_else(|| <::jaus::messages::Message as ::jaus::MessageSet>::info(code))
     }
 }
 impl Encode for Message {
@@ -350,8 +466,9 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         name: "QueryTanks",
         title: "Query Tanks",
         group: "acme",
-        report: None,
+        report: Some("ReportTanks"),
         experimental: false,
+        class: ::jaus::wire::MessageClass::Query,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0xF100),
@@ -360,6 +477,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         group: "acme",
         report: None,
         experimental: false,
+        class: ::jaus::wire::MessageClass::Inform,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0xD101),
@@ -368,5 +486,24 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         group: "acme",
         report: None,
         experimental: false,
+        class: ::jaus::wire::MessageClass::Experimental,
+    },
+    ::jaus::MessageInfo {
+        code: CommandCode(0xD102),
+        name: "SetTankValve",
+        title: "Set Tank Valve",
+        group: "acme",
+        report: None,
+        experimental: false,
+        class: ::jaus::wire::MessageClass::Command,
+    },
+    ::jaus::MessageInfo {
+        code: CommandCode(0xD103),
+        name: "ReportTankTelemetry",
+        title: "Report Tank Telemetry",
+        group: "acme",
+        report: None,
+        experimental: false,
+        class: ::jaus::wire::MessageClass::Inform,
     },
 ];

@@ -6,6 +6,11 @@
 #[allow(dead_code)]
 mod acme {
     include!(concat!(env!("OUT_DIR"), "/messages.rs"));
+
+    /// The vendor's component skeletons (a child of the module holding the messages).
+    pub mod components {
+        include!(concat!(env!("OUT_DIR"), "/components.rs"));
+    }
 }
 
 use acme::*;
@@ -117,5 +122,12 @@ fn vendor_messages_have_json() {
     );
     let back: Message = serde_json::from_str(&json).unwrap();
     assert_eq!(back, Message::ReportTanks(sample()));
-    assert_eq!(MESSAGES.len(), 3);
+    // The vendor's own messages only; the SDK's are in `jaus::messages::MESSAGES`.
+    assert_eq!(MESSAGES.len(), 5);
+    // A standard message in the vendor's set has the SDK's JSON form and comes back
+    // as the standard one.
+    let resume = Message::Jaus(jaus::messages::Message::Resume(jaus::messages::Resume {}));
+    let json = serde_json::to_string(&resume).unwrap();
+    assert_eq!(json, r#"{"message":"Resume","fields":{}}"#);
+    assert_eq!(serde_json::from_str::<Message>(&json).unwrap(), resume);
 }

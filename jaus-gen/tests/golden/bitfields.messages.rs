@@ -180,5 +180,6 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         group: "bits",
         report: None,
         experimental: false,
+        class: ::jaus::wire::MessageClass::Experimental,
     },
 ];

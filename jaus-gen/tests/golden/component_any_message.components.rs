@@ -1,6 +1,6 @@
 #[allow(unused_imports)]
 use ::jaus::component::{
-    Behaviour, Component, Config, Context, CoreState, CoreTransition, EmittedBy, Modes,
+    Behaviour, Component, Config, Context, CoreState, CoreTransition, Emits, Modes,
     NoModes, Refused, StopReason,
 };
 #[allow(unused_imports)]
@@ -20,7 +20,7 @@ pub mod operator_unit {
     ///
     /// A command and control component: it may send any message to any component and receive any message (all arrive in `on_other_message`).
     ///
-    /// Defined in `component_any_message.yaml:5`.
+    /// Defined in `component_any_message.yaml:6`.
     ///
     /// Implement the methods of the messages your component supports; the runtime
     /// ([`Component`]) does everything common to all JAUS components. Run it with
@@ -61,8 +61,13 @@ pub mod operator_unit {
         const EMITS: &'static [CommandCode] = &[];
         const ANY_MESSAGE: bool = true;
         type Modes = NoModes;
+        type Messages = Message;
     }
-    impl<M: JausMessage> EmittedBy<Interface> for M {}
+    impl<M: ::jaus::StandardMessage> Emits<M> for Interface {
+        fn wrap(msg: M) -> Message {
+            msg.into()
+        }
+    }
     /// The context handed to the methods of [`OperatorUnit`].
     pub type Ctx<'a> = Context<'a, Interface>;
     /// Runs a [`OperatorUnit`] implementation under the component runtime.
@@ -101,6 +106,7 @@ pub mod operator_unit {
         Component::new(address, Dispatch(imp), config, now)
     }
 }
+#[allow(unused_imports)]
 pub use operator_unit::OperatorUnit;
 /// Every component interface: (id, name, function).
 pub static COMPONENTS: &[(u8, &str, &str)] = &[

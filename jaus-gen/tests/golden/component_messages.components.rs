@@ -1,6 +1,6 @@
 #[allow(unused_imports)]
 use ::jaus::component::{
-    Behaviour, Component, Config, Context, CoreState, CoreTransition, EmittedBy, Modes,
+    Behaviour, Component, Config, Context, CoreState, CoreTransition, Emits, Modes,
     NoModes, Refused, StopReason,
 };
 #[allow(unused_imports)]
@@ -29,7 +29,7 @@ pub mod track_driver {
     /// * Accepted from anyone: [`QueryWrenchEffort`], [`ReportGlobalPose`]
     /// * Sent on its own: [`QueryGlobalPose`]
     ///
-    /// Defined in `component_messages.yaml:15`.
+    /// Defined in `component_messages.yaml:16`.
     ///
     /// Implement the methods of the messages your component supports; the runtime
     /// ([`Component`]) does everything common to all JAUS components. Run it with
@@ -141,8 +141,13 @@ pub mod track_driver {
         const EMITS: &'static [CommandCode] = &[CommandCode(0x2402)];
         const ANY_MESSAGE: bool = false;
         type Modes = NoModes;
+        type Messages = Message;
     }
-    impl EmittedBy<Interface> for QueryGlobalPose {}
+    impl Emits<QueryGlobalPose> for Interface {
+        fn wrap(msg: QueryGlobalPose) -> Message {
+            msg.into()
+        }
+    }
     /// The context handed to the methods of [`TrackDriver`].
     pub type Ctx<'a> = Context<'a, Interface>;
     /// Runs a [`TrackDriver`] implementation under the component runtime.
@@ -196,6 +201,7 @@ pub mod track_driver {
         Component::new(address, Dispatch(imp), config, now)
     }
 }
+#[allow(unused_imports)]
 pub use track_driver::TrackDriver;
 /// Every component interface: (id, name, function).
 pub static COMPONENTS: &[(u8, &str, &str)] = &[

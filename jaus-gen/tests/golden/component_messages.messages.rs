@@ -237,6 +237,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         group: "drive",
         report: None,
         experimental: false,
+        class: ::jaus::wire::MessageClass::Command,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x040A),
@@ -245,6 +246,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         group: "drive",
         report: None,
         experimental: false,
+        class: ::jaus::wire::MessageClass::Command,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x2405),
@@ -253,6 +255,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         group: "drive",
         report: Some("ReportWrenchEffort"),
         experimental: false,
+        class: ::jaus::wire::MessageClass::Query,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x4405),
@@ -261,6 +264,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         group: "drive",
         report: None,
         experimental: false,
+        class: ::jaus::wire::MessageClass::Inform,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x2402),
@@ -269,6 +273,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         group: "drive",
         report: Some("ReportGlobalPose"),
         experimental: false,
+        class: ::jaus::wire::MessageClass::Query,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x4402),
@@ -277,5 +282,6 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         group: "drive",
         report: None,
         experimental: false,
+        class: ::jaus::wire::MessageClass::Inform,
     },
 ];

@@ -1,6 +1,6 @@
 #[allow(unused_imports)]
 use ::jaus::component::{
-    Behaviour, Component, Config, Context, CoreState, CoreTransition, EmittedBy, Modes,
+    Behaviour, Component, Config, Context, CoreState, CoreTransition, Emits, Modes,
     NoModes, Refused, StopReason,
 };
 #[allow(unused_imports)]
@@ -22,7 +22,7 @@ pub mod waypoint_follower {
     /// * Accepted from anyone: none
     /// * Sent on its own: none
     ///
-    /// Defined in `component_modes.yaml:8`.
+    /// Defined in `component_modes.yaml:9`.
     ///
     /// Implement the methods of the messages your component supports; the runtime
     /// ([`Component`]) does everything common to all JAUS components. Run it with
@@ -80,6 +80,7 @@ pub mod waypoint_follower {
         const EMITS: &'static [CommandCode] = &[];
         const ANY_MESSAGE: bool = false;
         type Modes = Mode;
+        type Messages = Message;
     }
     /// The context handed to the methods of [`WaypointFollower`].
     pub type Ctx<'a> = Context<'a, Interface>;
@@ -192,6 +193,7 @@ pub mod waypoint_follower {
         Component::new(address, Dispatch(imp), config, now)
     }
 }
+#[allow(unused_imports)]
 pub use waypoint_follower::WaypointFollower;
 /// The Recorder (component id 212): trait [`Recorder`], interface, modes, dispatch.
 ///
@@ -208,7 +210,7 @@ pub mod recorder {
     /// * Accepted from anyone: none
     /// * Sent on its own: none
     ///
-    /// Defined in `component_modes.yaml:24`.
+    /// Defined in `component_modes.yaml:25`.
     ///
     /// Implement the methods of the messages your component supports; the runtime
     /// ([`Component`]) does everything common to all JAUS components. Run it with
@@ -251,6 +253,7 @@ pub mod recorder {
         const EMITS: &'static [CommandCode] = &[];
         const ANY_MESSAGE: bool = false;
         type Modes = Mode;
+        type Messages = Message;
     }
     /// The context handed to the methods of [`Recorder`].
     pub type Ctx<'a> = Context<'a, Interface>;
@@ -321,6 +324,7 @@ pub mod recorder {
         Component::new(address, Dispatch(imp), config, now)
     }
 }
+#[allow(unused_imports)]
 pub use recorder::Recorder;
 /// Every component interface: (id, name, function).
 pub static COMPONENTS: &[(u8, &str, &str)] = &[

@@ -122,5 +122,6 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         group: "modes",
         report: None,
         experimental: false,
+        class: ::jaus::wire::MessageClass::Command,
     },
 ];

@@ -1,6 +1,6 @@
 #[allow(unused_imports)]
 use ::jaus::component::{
-    Behaviour, Component, Config, Context, CoreState, CoreTransition, EmittedBy, Modes,
+    Behaviour, Component, Config, Context, CoreState, CoreTransition, Emits, Modes,
     NoModes, Refused, StopReason,
 };
 #[allow(unused_imports)]
@@ -24,7 +24,7 @@ pub mod beacon {
     /// * Accepted from anyone: none
     /// * Sent on its own: none
     ///
-    /// Defined in `component_plain.yaml:5`.
+    /// Defined in `component_plain.yaml:6`.
     ///
     /// Implement the methods of the messages your component supports; the runtime
     /// ([`Component`]) does everything common to all JAUS components. Run it with
@@ -67,6 +67,7 @@ pub mod beacon {
         const EMITS: &'static [CommandCode] = &[];
         const ANY_MESSAGE: bool = false;
         type Modes = NoModes;
+        type Messages = Message;
     }
     /// The context handed to the methods of [`Beacon`].
     pub type Ctx<'a> = Context<'a, Interface>;
@@ -106,6 +107,7 @@ pub mod beacon {
         Component::new(address, Dispatch(imp), config, now)
     }
 }
+#[allow(unused_imports)]
 pub use beacon::Beacon;
 /// Every component interface: (id, name, function).
 pub static COMPONENTS: &[(u8, &str, &str)] = &[

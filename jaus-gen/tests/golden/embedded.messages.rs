@@ -221,6 +221,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         group: "embedded",
         report: Some("ReportThing"),
         experimental: false,
+        class: ::jaus::wire::MessageClass::Query,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x4D00),
@@ -229,6 +230,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         group: "embedded",
         report: None,
         experimental: false,
+        class: ::jaus::wire::MessageClass::Inform,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0xD080),
@@ -237,5 +239,6 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         group: "embedded",
         report: None,
         experimental: false,
+        class: ::jaus::wire::MessageClass::Experimental,
     },
 ];

@@ -171,5 +171,6 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         group: "enums",
         report: None,
         experimental: false,
+        class: ::jaus::wire::MessageClass::Experimental,
     },
 ];

@@ -1,6 +1,6 @@
 #[allow(unused_imports)]
 use ::jaus::component::{
-    Behaviour, Component, Config, Context, CoreState, CoreTransition, EmittedBy, Modes,
+    Behaviour, Component, Config, Context, CoreState, CoreTransition, Emits, Modes,
     NoModes, Refused, StopReason,
 };
 #[allow(unused_imports)]
@@ -23,7 +23,7 @@ pub mod navigator {
     /// * Accepted from anyone: [`QueryGlobalWaypoint`], [`ReportGlobalPose`]
     /// * Sent on its own: [`QueryGlobalPose`]
     ///
-    /// Defined in `feature_gates.yaml:10`.
+    /// Defined in `feature_gates.yaml:11`.
     ///
     /// Implement the methods of the messages your component supports; the runtime
     /// ([`Component`]) does everything common to all JAUS components. Run it with
@@ -111,8 +111,13 @@ pub mod navigator {
         const EMITS: &'static [CommandCode] = &[CommandCode(0x2402)];
         const ANY_MESSAGE: bool = false;
         type Modes = NoModes;
+        type Messages = Message;
     }
-    impl EmittedBy<Interface> for QueryGlobalPose {}
+    impl Emits<QueryGlobalPose> for Interface {
+        fn wrap(msg: QueryGlobalPose) -> Message {
+            msg.into()
+        }
+    }
     /// The context handed to the methods of [`Navigator`].
     pub type Ctx<'a> = Context<'a, Interface>;
     /// Runs a [`Navigator`] implementation under the component runtime.
@@ -161,6 +166,7 @@ pub mod navigator {
     }
 }
 #[cfg(all(feature = "planning", feature = "sensors"))]
+#[allow(unused_imports)]
 pub use navigator::Navigator;
 /// Every component interface: (id, name, function).
 pub static COMPONENTS: &[(u8, &str, &str)] = &[

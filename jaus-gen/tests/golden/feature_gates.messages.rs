@@ -292,6 +292,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         group: "core",
         report: Some("ReportGlobalPose"),
         experimental: false,
+        class: ::jaus::wire::MessageClass::Query,
     },
     #[cfg(feature = "planning")]
     ::jaus::MessageInfo {
@@ -301,6 +302,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         group: "planning",
         report: None,
         experimental: false,
+        class: ::jaus::wire::MessageClass::Command,
     },
     #[cfg(feature = "planning")]
     ::jaus::MessageInfo {
@@ -310,6 +312,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         group: "planning",
         report: Some("ReportGlobalWaypoint"),
         experimental: false,
+        class: ::jaus::wire::MessageClass::Query,
     },
     #[cfg(feature = "sensors")]
     ::jaus::MessageInfo {
@@ -319,6 +322,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         group: "sensors",
         report: None,
         experimental: false,
+        class: ::jaus::wire::MessageClass::Inform,
     },
     #[cfg(feature = "sensors")]
     ::jaus::MessageInfo {
@@ -328,5 +332,6 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         group: "sensors",
         report: None,
         experimental: false,
+        class: ::jaus::wire::MessageClass::Inform,
     },
 ];

@@ -184,5 +184,6 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         group: "flags",
         report: None,
         experimental: false,
+        class: ::jaus::wire::MessageClass::Experimental,
     },
 ];

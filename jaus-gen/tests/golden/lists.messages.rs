@@ -203,6 +203,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         group: "lists",
         report: None,
         experimental: false,
+        class: ::jaus::wire::MessageClass::Experimental,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0xD041),
@@ -211,5 +212,6 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         group: "lists",
         report: None,
         experimental: false,
+        class: ::jaus::wire::MessageClass::Experimental,
     },
 ];

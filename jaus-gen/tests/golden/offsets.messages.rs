@@ -145,5 +145,6 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         group: "offsets",
         report: None,
         experimental: false,
+        class: ::jaus::wire::MessageClass::Experimental,
     },
 ];

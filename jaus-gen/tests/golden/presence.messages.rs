@@ -256,6 +256,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         group: "presence",
         report: None,
         experimental: false,
+        class: ::jaus::wire::MessageClass::Experimental,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0xD031),
@@ -264,6 +265,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         group: "presence",
         report: None,
         experimental: false,
+        class: ::jaus::wire::MessageClass::Experimental,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0xD032),
@@ -272,5 +274,6 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         group: "presence",
         report: None,
         experimental: false,
+        class: ::jaus::wire::MessageClass::Experimental,
     },
 ];

@@ -242,6 +242,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         group: "queries",
         report: Some("ReportTemperature"),
         experimental: false,
+        class: ::jaus::wire::MessageClass::Query,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x4D10),
@@ -250,6 +251,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         group: "queries",
         report: None,
         experimental: false,
+        class: ::jaus::wire::MessageClass::Inform,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x2D11),
@@ -258,6 +260,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         group: "queries",
         report: Some("ReportTemperatureLog"),
         experimental: false,
+        class: ::jaus::wire::MessageClass::Query,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x4D20),
@@ -266,6 +269,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         group: "queries",
         report: None,
         experimental: true,
+        class: ::jaus::wire::MessageClass::Inform,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x2D12),
@@ -274,5 +278,6 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         group: "queries",
         report: None,
         experimental: false,
+        class: ::jaus::wire::MessageClass::Query,
     },
 ];

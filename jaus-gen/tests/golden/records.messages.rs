@@ -175,5 +175,6 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         group: "records",
         report: None,
         experimental: false,
+        class: ::jaus::wire::MessageClass::Experimental,
     },
 ];

@@ -208,6 +208,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         group: "runtime",
         report: None,
         experimental: false,
+        class: ::jaus::wire::MessageClass::Inform,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x2B00),
@@ -216,6 +217,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         group: "runtime",
         report: None,
         experimental: false,
+        class: ::jaus::wire::MessageClass::Query,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x000D),
@@ -224,6 +226,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         group: "runtime",
         report: None,
         experimental: false,
+        class: ::jaus::wire::MessageClass::Command,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x0003),
@@ -232,6 +235,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         group: "runtime",
         report: None,
         experimental: false,
+        class: ::jaus::wire::MessageClass::Command,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x0402),
@@ -240,6 +244,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         group: "runtime",
         report: None,
         experimental: false,
+        class: ::jaus::wire::MessageClass::Command,
     },
 ];
 /// The messages the component runtime takes for every component (`runtime: [handles]`

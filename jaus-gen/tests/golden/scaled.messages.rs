@@ -168,5 +168,6 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         group: "scaled",
         report: None,
         experimental: false,
+        class: ::jaus::wire::MessageClass::Experimental,
     },
 ];

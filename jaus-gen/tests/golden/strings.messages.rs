@@ -234,6 +234,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         group: "strings",
         report: None,
         experimental: false,
+        class: ::jaus::wire::MessageClass::Experimental,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0xD061),
@@ -242,6 +243,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         group: "strings",
         report: None,
         experimental: false,
+        class: ::jaus::wire::MessageClass::Experimental,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0xD062),
@@ -250,6 +252,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         group: "strings",
         report: None,
         experimental: false,
+        class: ::jaus::wire::MessageClass::Experimental,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0xD063),
@@ -258,5 +261,6 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         group: "strings",
         report: None,
         experimental: false,
+        class: ::jaus::wire::MessageClass::Experimental,
     },
 ];

@@ -189,6 +189,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         group: "unions",
         report: None,
         experimental: false,
+        class: ::jaus::wire::MessageClass::Experimental,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0xD071),
@@ -197,5 +198,6 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         group: "unions",
         report: None,
         experimental: false,
+        class: ::jaus::wire::MessageClass::Experimental,
     },
 ];

@@ -6,7 +6,7 @@ use std::time::{Duration, Instant};
 
 use super::{Behaviour, Component, Refusal, Refused};
 use crate::messages::*;
-use crate::{Address, CommandCode};
+use crate::{Address, CommandCode, MessageSet};
 
 /// JAUS rates are scaled u16 over [0, 1092] Hz.
 pub(super) const MAX_JAUS_RATE: f64 = 1092.0;
@@ -17,24 +17,30 @@ pub(super) fn period_of(rate_hz: f64) -> Duration {
 
 /// One service connection this component serves.
 #[derive(Debug, Clone)]
-struct ServedConnection {
+struct ServedConnection<M> {
     requester: Address,
     report: CommandCode,
     instance: u8,
     presence: u32,
-    query: Message,
+    query: M,
     period: Duration,
     next_due: Instant,
     active: bool,
     sequence: u16,
 }
 
-#[derive(Debug, Default)]
-pub(super) struct ProviderTable {
-    served: Vec<ServedConnection>,
+#[derive(Debug)]
+pub(super) struct ProviderTable<M> {
+    served: Vec<ServedConnection<M>>,
 }
 
-impl ProviderTable {
+impl<M> Default for ProviderTable<M> {
+    fn default() -> Self {
+        Self { served: Vec::new() }
+    }
+}
+
+impl<M> ProviderTable<M> {
     pub(super) fn len(&self) -> usize {
         self.served.len()
     }
@@ -56,7 +62,7 @@ impl ProviderTable {
         requester: Address,
         report: u16,
         instance: u8,
-    ) -> Option<&mut ServedConnection> {
+    ) -> Option<&mut ServedConnection<M>> {
         self.served
             .iter_mut()
             .find(|s| s.requester == requester && s.report.0 == report && s.instance == instance)
@@ -122,15 +128,12 @@ impl RequesterTable {
 /// report code and a presence vector: the query body is the presence vector in the
 /// query's own width (0, 1, 2 or 4 bytes, whichever decodes), so no per-message table
 /// is needed.
-pub(super) fn query_for(report: CommandCode, presence: u32) -> Option<Message> {
-    let code = report.complement()?;
-    if report.0 < 0x4000 {
-        return None;
-    }
+pub(super) fn query_for<M: MessageSet>(report: CommandCode, presence: u32) -> Option<M> {
+    let code = M::query_of(report)?;
     let bytes = presence.to_le_bytes();
     [0usize, 1, 2, 4]
         .into_iter()
-        .find_map(|n| Message::decode(code, &bytes[..n]).ok())
+        .find_map(|n| M::decode(code, &bytes[..n]).ok())
 }
 
 impl<B: Behaviour> Component<B> {
@@ -288,7 +291,7 @@ impl<B: Behaviour> Component<B> {
                 Ok(report) => {
                     let seq = s.sequence;
                     s.sequence = s.sequence.wrapping_add(1);
-                    self.rt.send(requester, report, true, seq);
+                    self.rt.send_set(requester, report, true, seq);
                 }
                 Err(_) => self.rt.stats.report_failures += 1,
             }

@@ -73,15 +73,15 @@ impl<I: Interface> Context<'_, I> {
     }
 
     /// Sends `msg` to `to`. Only messages the interface may emit compile here.
-    pub fn send<M: EmittedBy<I> + Into<Message>>(&mut self, to: Address, msg: M) {
-        self.rt.send(to, msg.into(), false, 0);
+    pub fn send<M: EmittedBy<I>>(&mut self, to: Address, msg: M) {
+        self.rt.send_set(to, msg.into_set(), false, 0);
     }
 
     /// Sends a message whose type is only known at run time, such as an element of a
     /// spooled mission. Unlike [`send`](Self::send) this is not checked against the
     /// interface's `emits:`; use it only to pass on messages the component was given.
-    pub fn forward(&mut self, to: Address, msg: Message) {
-        self.rt.send(to, msg, false, 0);
+    pub fn forward(&mut self, to: Address, msg: I::Messages) {
+        self.rt.send_set(to, msg, false, 0);
     }
 
     /// Moves to another mode. Allowed only in Ready and along a transition of the

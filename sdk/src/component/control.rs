@@ -9,15 +9,16 @@ use super::{
     Behaviour, Component, Controller, CoreState, CoreTransition, Interface, Refusal, Refused,
 };
 use crate::messages::*;
-use crate::{Address, Header};
+use crate::{Address, Header, MessageSet};
 
 impl<B: Behaviour> Component<B> {
     /// Handles a core message; `None` when `msg` is not one.
     pub(super) fn core_message(
         &mut self,
         header: &Header,
-        msg: &Message,
+        original: &<B::Interface as Interface>::Messages,
     ) -> Option<Result<(), Refusal>> {
+        let msg = original.standard()?;
         let source = header.source;
         let controlled = |c: &Self| {
             if c.rt.may_command(source) {
@@ -81,11 +82,11 @@ impl<B: Behaviour> Component<B> {
                 } else {
                     self.rt.held_control.retain(|a| *a != source);
                 }
-                return Some(self.pass_on(header, msg));
+                return Some(self.pass_on(header, original));
             }
             Message::RejectComponentControl(_) => {
                 self.rt.held_control.retain(|a| *a != source);
-                return Some(self.pass_on(header, msg));
+                return Some(self.pass_on(header, original));
             }
             Message::CreateServiceConnection(m) => {
                 self.create_sc(source, m);
@@ -109,7 +110,7 @@ impl<B: Behaviour> Component<B> {
             }
             Message::ConfirmServiceConnection(m) => {
                 self.confirm_sc(source, m);
-                return Some(self.pass_on(header, msg));
+                return Some(self.pass_on(header, original));
             }
             Message::CreateEvent(m) => {
                 self.create_event(source, m.request_id, EventSetup::from_create(m), None);
@@ -142,7 +143,11 @@ impl<B: Behaviour> Component<B> {
 
     /// Hands a core message the runtime has already acted on to the behaviour too
     /// (replies to requests the component made).
-    fn pass_on(&mut self, header: &Header, msg: &Message) -> Result<(), Refusal> {
+    fn pass_on(
+        &mut self,
+        header: &Header,
+        msg: &<B::Interface as Interface>::Messages,
+    ) -> Result<(), Refusal> {
         let _ = header;
         let r = self.behaviour.handle(
             &mut super::Context {

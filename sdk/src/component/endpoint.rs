@@ -6,8 +6,22 @@
 use std::any::Any;
 use std::time::Instant;
 
-use super::{Behaviour, Component, Transmit};
+use super::{Behaviour, Component};
+use crate::codec::{Encode, EncodeError};
 use crate::{Address, Header};
+
+/// A message a hosted component sends, encoded for the wire (the node does not need to
+/// know the component's message set).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Outgoing {
+    /// Header; the data size is set when the packet is built.
+    pub header: Header,
+    /// Name of the message (`"ack/nak"` for an acknowledgement), for logs.
+    pub name: &'static str,
+    /// The body, or why it could not be encoded (the message is then not sent; the
+    /// node counts it).
+    pub body: Result<Vec<u8>, EncodeError>,
+}
 
 /// Anything a node or a [`LocalBus`](super::local::LocalBus) hosts: a [`Component`] (of
 /// any behaviour) or a test [`Probe`](super::local::Probe). The node and the bus drive it
@@ -19,8 +33,8 @@ pub trait Endpoint: Send + 'static {
     fn handle(&mut self, now: Instant, header: &Header, body: &[u8]);
     /// Time passes.
     fn handle_timeout(&mut self, now: Instant);
-    /// Something to send.
-    fn poll_transmit(&mut self) -> Option<Transmit>;
+    /// Something to send, encoded.
+    fn poll_transmit(&mut self) -> Option<Outgoing>;
     /// When to be woken next.
     fn poll_timeout(&self) -> Option<Instant>;
     /// A component this endpoint may have dealt with is gone (the node layer saw it
@@ -44,8 +58,20 @@ impl<B: Behaviour> Endpoint for Component<B> {
     fn handle_timeout(&mut self, now: Instant) {
         Component::handle_timeout(self, now);
     }
-    fn poll_transmit(&mut self) -> Option<Transmit> {
-        Component::poll_transmit(self)
+    fn poll_transmit(&mut self) -> Option<Outgoing> {
+        let t = Component::poll_transmit(self)?;
+        Some(match &t.message {
+            Some(m) => Outgoing {
+                header: t.header,
+                name: crate::MessageSet::name(m),
+                body: m.to_bytes(),
+            },
+            None => Outgoing {
+                header: t.header,
+                name: "ack/nak",
+                body: Ok(Vec::new()),
+            },
+        })
     }
     fn poll_timeout(&self) -> Option<Instant> {
         Component::poll_timeout(self)
@@ -131,7 +157,7 @@ impl Endpoints {
     }
 
     /// Moves everything they want to send into `out`.
-    pub fn drain_transmits(&mut self, out: &mut Vec<Transmit>) {
+    pub fn drain_transmits(&mut self, out: &mut Vec<Outgoing>) {
         for e in &mut self.0 {
             while let Some(t) = e.poll_transmit() {
                 out.push(t);

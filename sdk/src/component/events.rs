@@ -6,7 +6,7 @@ use std::time::{Duration, Instant};
 use super::connections::{period_of, query_for, MAX_JAUS_RATE};
 use super::{Behaviour, Component, Interface, Refused};
 use crate::messages::*;
-use crate::{Address, CommandCode};
+use crate::{Address, CommandCode, MessageSet};
 
 /// What kind of event is served.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -22,24 +22,30 @@ enum Trigger {
 }
 
 #[derive(Debug, Clone)]
-struct ServedEvent {
+struct ServedEvent<M> {
     requester: Address,
     id: u8,
     report: CommandCode,
     event_type: EventType,
-    query: Message,
+    query: M,
     trigger: Trigger,
     last: Option<Vec<u8>>,
     sequence: u8,
     setup: EventRecord,
 }
 
-#[derive(Debug, Default)]
-pub(super) struct EventTable {
-    events: Vec<ServedEvent>,
+#[derive(Debug)]
+pub(super) struct EventTable<M> {
+    events: Vec<ServedEvent<M>>,
 }
 
-impl EventTable {
+impl<M> Default for EventTable<M> {
+    fn default() -> Self {
+        Self { events: Vec::new() }
+    }
+}
+
+impl<M> EventTable<M> {
     pub(super) fn len(&self) -> usize {
         self.events.len()
     }
@@ -99,7 +105,9 @@ impl<B: Behaviour> Component<B> {
         };
         let report = CommandCode(setup.report_code);
         let query = match &setup.query {
-            Some(body) => match report.complement().map(|q| Message::decode(q, body)) {
+            Some(body) => match <I<B> as Interface>::Messages::query_of(report)
+                .map(|q| <I<B> as Interface>::Messages::decode(q, body))
+            {
                 Some(Ok(q)) => q,
                 _ => {
                     return reject(
@@ -250,7 +258,8 @@ impl<B: Behaviour> Component<B> {
             e.requester == source
                 && m.event_id.is_none_or(|id| id == e.id)
                 && m.message_code.is_none_or(|c| {
-                    c == e.report.0 || Some(CommandCode(c)) == e.report.complement()
+                    c == e.report.0
+                        || Some(CommandCode(c)) == <I<B> as Interface>::Messages::query_of(e.report)
                 })
                 && (m.event_id.is_some() || m.message_code.is_some())
         });
@@ -396,9 +405,11 @@ trait ToBytesOpt {
     fn to_bytes_opt(&self) -> Option<Vec<u8>>;
 }
 
-impl ToBytesOpt for Message {
+impl<M: MessageSet> ToBytesOpt for M {
     fn to_bytes_opt(&self) -> Option<Vec<u8>> {
-        use crate::codec::Encode;
         self.to_bytes().ok()
     }
 }
+
+/// The interface of a behaviour.
+type I<B> = <B as Behaviour>::Interface;

@@ -22,10 +22,10 @@ use std::collections::{BTreeMap, VecDeque};
 use std::time::{Duration, Instant};
 
 pub use super::Endpoint;
-use super::Transmit;
-use crate::codec::Encode;
+use super::Outgoing;
+use crate::codec::{Encode, EncodeError};
 use crate::messages::Message;
-use crate::{Address, Header};
+use crate::{Address, Header, MessageSet};
 
 /// A message as it crossed the bus.
 #[derive(Debug, Clone, PartialEq)]
@@ -40,28 +40,36 @@ pub struct Delivery {
 
 /// A received message recorded by a [`Probe`].
 #[derive(Debug, Clone, PartialEq)]
-pub struct Received {
+pub struct Received<M = Message> {
     /// When it arrived.
     pub at: Instant,
     /// Its header.
     pub header: Header,
     /// The message.
-    pub message: Message,
+    pub message: M,
 }
 
 /// An endpoint that only records what it receives (at most `capacity` messages; the
-/// rest are counted in [`Probe::dropped`]).
+/// rest are counted in [`Probe::dropped`]), decoded as messages of set `M` (the
+/// standard set unless a vendor's is named: `Probe::<acme::Message>::new(a)`).
 #[derive(Debug)]
-pub struct Probe {
+pub struct Probe<M = Message> {
     address: Address,
-    received: Vec<Received>,
+    received: Vec<Received<M>>,
     capacity: usize,
     dropped: u64,
 }
 
 impl Probe {
-    /// A probe at `address` keeping up to 100,000 messages.
+    /// A probe at `address` decoding standard messages, keeping up to 100,000 of them.
     pub fn new(address: Address) -> Self {
+        Probe::for_set(address)
+    }
+}
+
+impl<M: MessageSet> Probe<M> {
+    /// A probe at `address` decoding messages of set `M`, keeping up to 100,000 of them.
+    pub fn for_set(address: Address) -> Self {
         Self {
             address,
             received: Vec::new(),
@@ -71,12 +79,12 @@ impl Probe {
     }
 
     /// Everything received, in order.
-    pub fn received(&self) -> &[Received] {
+    pub fn received(&self) -> &[Received<M>] {
         &self.received
     }
 
     /// The messages received, in order.
-    pub fn messages(&self) -> impl Iterator<Item = &Message> {
+    pub fn messages(&self) -> impl Iterator<Item = &M> {
         self.received.iter().map(|r| &r.message)
     }
 
@@ -91,12 +99,12 @@ impl Probe {
     }
 }
 
-impl Endpoint for Probe {
+impl<M: MessageSet> Endpoint for Probe<M> {
     fn address(&self) -> Address {
         self.address
     }
     fn handle(&mut self, now: Instant, header: &Header, body: &[u8]) {
-        match Message::decode(header.command_code, body) {
+        match M::decode(header.command_code, body) {
             Ok(message) if self.received.len() < self.capacity => self.received.push(Received {
                 at: now,
                 header: *header,
@@ -106,7 +114,7 @@ impl Endpoint for Probe {
         }
     }
     fn handle_timeout(&mut self, _now: Instant) {}
-    fn poll_transmit(&mut self) -> Option<Transmit> {
+    fn poll_transmit(&mut self) -> Option<Outgoing> {
         None
     }
     fn poll_timeout(&self) -> Option<Instant> {
@@ -259,12 +267,21 @@ impl LocalBus {
         self.send_with(header, Some(&msg));
     }
 
+    /// Queues a message of any set (a vendor's, say) from `from` to `to`.
+    pub fn send_set<M: MessageSet>(&mut self, from: Address, to: Address, msg: &M) {
+        let header = Header::new(msg.code(), to, from);
+        self.send_encoded(header, msg.to_bytes());
+    }
+
     /// Queues a message under a header of the caller's choosing.
     pub fn send_with(&mut self, header: Header, msg: Option<&Message>) {
-        let body = match msg.map(|m| m.to_bytes()) {
-            None => Vec::new(),
-            Some(Ok(b)) => b,
-            Some(Err(e)) => {
+        self.send_encoded(header, msg.map_or(Ok(Vec::new()), |m| m.to_bytes()));
+    }
+
+    fn send_encoded(&mut self, header: Header, body: Result<Vec<u8>, EncodeError>) {
+        let body = match body {
+            Ok(b) => b,
+            Err(e) => {
                 self.stats.encode_errors += 1;
                 tracing::warn!(code = %header.command_code, source = %header.source, "not sent: {e}");
                 return;
@@ -325,7 +342,7 @@ impl LocalBus {
             }
         }
         for t in out {
-            self.send_with(t.header, t.message.as_ref());
+            self.send_encoded(t.header, t.body);
         }
     }
 

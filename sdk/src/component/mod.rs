@@ -50,13 +50,13 @@ use std::marker::PhantomData;
 use std::time::{Duration, Instant};
 
 pub use context::{Context, CoreMessage};
-pub use endpoint::{Endpoint, Endpoints};
+pub use endpoint::{Endpoint, Endpoints, Outgoing};
 pub use state::{CoreState, CoreTransition, Modes, NoModes, NoTransition, TransitionError};
 
-use crate::codec::{Encode, EncodeError};
+use crate::codec::EncodeError;
 use crate::messages::*;
 use crate::wire::AckNak;
-use crate::{Address, CommandCode, Header, JausMessage};
+use crate::{Address, CommandCode, Header, MessageSet};
 use runtime::{Controller, Runtime};
 
 /// The static description of a component interface, generated from its definition.
@@ -77,16 +77,41 @@ pub trait Interface: Send + 'static {
     const ANY_MESSAGE: bool;
     /// Its sub-states of Ready.
     type Modes: Modes;
+    /// The messages it speaks: [`crate::messages::Message`] for the SDK's components, a
+    /// vendor's generated set (which wraps the standard one) for a vendor's.
+    type Messages: MessageSet;
 }
 
-/// Implemented by a message for every interface whose definition lets it send that
-/// message (`emits:`): [`Context::send`] does not compile for any other message.
+/// Implemented by an interface for every message its definition lets it send
+/// (`emits:`), with the conversion into the interface's message set:
+/// [`Context::send`] does not compile for any other message.
+#[diagnostic::on_unimplemented(
+    message = "`{Self}` does not emit `{M}`",
+    label = "`{M}` is not among the messages this component may send",
+    note = "add the message to `emits:` of the component definition (YAML) if the component really sends it, or use `Context::send_core` for core messages"
+)]
+pub trait Emits<M>: Interface {
+    /// `msg` as a message of the interface's set.
+    fn wrap(msg: M) -> Self::Messages;
+}
+
+/// [`Emits`] seen from the message (`M: EmittedBy<I>` whenever `I: Emits<M>`), so that a
+/// message a component may not send is reported with its own name.
 #[diagnostic::on_unimplemented(
     message = "`{I}` does not emit `{Self}`",
     label = "`{Self}` is not among the messages this component may send",
     note = "add the message to `emits:` of the component definition (YAML) if the component really sends it, or use `Context::send_core` for core messages"
 )]
-pub trait EmittedBy<I: Interface>: JausMessage {}
+pub trait EmittedBy<I: Interface> {
+    /// The message as one of the interface's set.
+    fn into_set(self) -> I::Messages;
+}
+
+impl<M, I: Emits<M>> EmittedBy<I> for M {
+    fn into_set(self) -> I::Messages {
+        I::wrap(self)
+    }
+}
 
 /// Why a component did not act on a message.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -157,11 +182,12 @@ pub trait Behaviour: Send + 'static {
 
     /// Handles a message that is not a core message. Returns the report answering a
     /// query (sent back by the runtime), `None` for anything else.
+    #[allow(clippy::type_complexity)]
     fn handle(
         &mut self,
         ctx: &mut Context<'_, Self::Interface>,
-        msg: &Message,
-    ) -> Result<Option<Message>, Refused>;
+        msg: &<Self::Interface as Interface>::Messages,
+    ) -> Result<Option<<Self::Interface as Interface>::Messages>, Refused>;
 
     /// Called in Initialize; an error puts the component in Failure.
     fn initialize(&mut self, ctx: &mut Context<'_, Self::Interface>) -> Result<(), String> {
@@ -288,14 +314,14 @@ pub struct Stats {
 /// A message to send: its header (destination, flags, sequence number) and its body.
 /// `message` is `None` for an acknowledgement (ACK/NAK carry no body).
 #[derive(Debug, Clone, PartialEq)]
-pub struct Transmit {
+pub struct Transmit<M = Message> {
     /// Header; the data size is set when encoded.
     pub header: Header,
     /// The message.
-    pub message: Option<Message>,
+    pub message: Option<M>,
 }
 
-impl Transmit {
+impl<M: MessageSet> Transmit<M> {
     /// The encoded body.
     pub fn body(&self) -> Result<Vec<u8>, EncodeError> {
         match &self.message {
@@ -408,7 +434,7 @@ impl<B: Behaviour> Component<B> {
         if header.ack_nak == AckNak::Ack || header.ack_nak == AckNak::Nak {
             return;
         }
-        let msg = match Message::decode(header.command_code, body) {
+        let msg = match Set::<B>::decode(header.command_code, body) {
             Ok(m) => m,
             Err(e) => {
                 self.rt.stats.decode_errors += 1;
@@ -429,7 +455,7 @@ impl<B: Behaviour> Component<B> {
     }
 
     /// Hands a typed message to the component (as if decoded from `header`).
-    pub fn handle_message(&mut self, now: Instant, header: &Header, msg: &Message) {
+    pub fn handle_message(&mut self, now: Instant, header: &Header, msg: &Set<B>) {
         self.advance(now);
         self.rt.stats.received += 1;
         if !header.destination.matches(&self.rt.address) {
@@ -499,7 +525,7 @@ impl<B: Behaviour> Component<B> {
     }
 
     /// The next message to send.
-    pub fn poll_transmit(&mut self) -> Option<Transmit> {
+    pub fn poll_transmit(&mut self) -> Option<Transmit<Set<B>>> {
         let t = self.rt.outbox.pop_front()?;
         self.rt.stats.sent += 1;
         Some(t)
@@ -587,7 +613,7 @@ impl<B: Behaviour> Component<B> {
         );
     }
 
-    fn refuse(&mut self, header: &Header, msg: &Message, why: Refusal) -> bool {
+    fn refuse(&mut self, header: &Header, msg: &Set<B>, why: Refusal) -> bool {
         let s = &mut self.rt.stats;
         match &why {
             Refusal::NotController => s.not_controller += 1,
@@ -610,7 +636,7 @@ impl<B: Behaviour> Component<B> {
     }
 
     /// Runs one message; returns whether it was accepted (for ACK/NAK).
-    fn dispatch(&mut self, header: &Header, msg: &Message) -> bool {
+    fn dispatch(&mut self, header: &Header, msg: &Set<B>) -> bool {
         let source = header.source;
         self.rt.source = Some(source);
         if let Some(r) = self.core_message(header, msg) {
@@ -619,10 +645,10 @@ impl<B: Behaviour> Component<B> {
                 Err(why) => self.refuse(header, msg, why),
             };
         }
-        if let Message::Event(ev) = msg {
+        if let Some(Message::Event(ev)) = msg.standard() {
             // An event notification carries a report: handle the report as if it had
             // arrived directly.
-            return match Message::decode(CommandCode(ev.report_message_code), &ev.report_message) {
+            return match Set::<B>::decode(CommandCode(ev.report_message_code), &ev.report_message) {
                 Ok(inner) => {
                     let h = Header {
                         command_code: inner.code(),
@@ -664,7 +690,7 @@ impl<B: Behaviour> Component<B> {
         );
         match r {
             Ok(Some(reply)) => {
-                self.rt.send(source, reply, false, 0);
+                self.rt.send_set(source, reply, false, 0);
                 true
             }
             Ok(None) => true,
@@ -674,9 +700,9 @@ impl<B: Behaviour> Component<B> {
 
     /// Answers a query for a service connection or an event: core queries by the
     /// runtime, the others by the behaviour.
-    fn answer(&mut self, requester: Address, query: &Message) -> Result<Message, Refused> {
-        if let Some(r) = self.core_report(query) {
-            return Ok(r);
+    fn answer(&mut self, requester: Address, query: &Set<B>) -> Result<Set<B>, Refused> {
+        if let Some(r) = query.standard().and_then(|q| self.core_report(q)) {
+            return Ok(Set::<B>::from_standard(r));
         }
         let code = query.code();
         let iface_ok = <B::Interface as Interface>::ANY_MESSAGE
@@ -775,7 +801,7 @@ impl<B: Behaviour> Component<B> {
             .chain(
                 I::<B>::ACCEPTS
                     .iter()
-                    .filter_map(|c| c.complement().filter(|_| c.0 >= 0x2000 && c.0 < 0x4000)),
+                    .filter_map(|c| <I<B> as Interface>::Messages::report_of(*c)),
             )
             .map(|c| entry(&c))
             .collect();
@@ -791,6 +817,9 @@ impl<B: Behaviour> Component<B> {
         }
     }
 }
+
+/// The message set of a behaviour's interface.
+type Set<B> = <<B as Behaviour>::Interface as Interface>::Messages;
 
 /// Why a message was not acted on.
 #[derive(Debug)]

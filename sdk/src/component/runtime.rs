@@ -13,7 +13,7 @@ use super::{
 };
 use crate::messages::*;
 use crate::wire::AckNak;
-use crate::{Address, CommandCode, Header};
+use crate::{Address, CommandCode, Header, MessageSet};
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(super) struct Controller {
@@ -38,13 +38,13 @@ pub(super) struct Runtime<I: Interface> {
     pub(super) held_control: Vec<Address>,
     pub(super) clock: clock::Clock,
     pub(super) source: Option<Address>,
-    pub(super) outbox: VecDeque<Transmit>,
+    pub(super) outbox: VecDeque<Transmit<I::Messages>>,
     pub(super) stats: Stats,
     pub(super) next_heartbeat: Option<Instant>,
     pub(super) next_tick: Instant,
     pub(super) changes: VecDeque<(CoreState, CoreState)>,
-    pub(super) provider: ProviderTable,
-    pub(super) events: EventTable,
+    pub(super) provider: ProviderTable<I::Messages>,
+    pub(super) events: EventTable<I::Messages>,
     pub(super) requester: RequesterTable,
 }
 
@@ -80,7 +80,7 @@ impl<I: Interface> Runtime<I> {
         Header::new(code, to, self.address)
     }
 
-    pub(super) fn push(&mut self, t: Transmit) {
+    pub(super) fn push(&mut self, t: Transmit<I::Messages>) {
         if self.outbox.len() >= self.config.outbox_capacity {
             self.stats.outbox_dropped += 1;
             tracing::warn!(
@@ -95,7 +95,13 @@ impl<I: Interface> Runtime<I> {
         self.outbox.push_back(t);
     }
 
+    /// Sends a standard message (the runtime's own: reports, confirmations, ...).
     pub(super) fn send(&mut self, to: Address, message: Message, sc: bool, seq: u16) {
+        self.send_set(to, I::Messages::from_standard(message), sc, seq);
+    }
+
+    /// Sends any message of the component's set.
+    pub(super) fn send_set(&mut self, to: Address, message: I::Messages, sc: bool, seq: u16) {
         let mut header = self.header(message.code(), to);
         header.service_connection = sc;
         header.sequence_number = seq;

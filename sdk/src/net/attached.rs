@@ -204,11 +204,11 @@ impl Attached {
             let mut out = Vec::new();
             self.components.drain_transmits(&mut out);
             for t in out {
-                match t.body() {
+                match t.body {
                     Ok(body) => self.route(t.header, body),
                     Err(e) => {
                         self.stats.encode_errors += 1;
-                        tracing::warn!(code = %t.header.command_code, source = %t.header.source, "not sent: {e}");
+                        tracing::warn!(message = t.name, code = %t.header.command_code, source = %t.header.source, "not sent: {e}");
                     }
                 }
             }

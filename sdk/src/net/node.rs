@@ -358,16 +358,16 @@ impl Node {
     fn pump(&mut self) {
         for _ in 0..MAX_LOCAL_ROUNDS {
             let mut out = Vec::new();
-            while let Some(t) = self.manager.poll_transmit() {
+            while let Some(t) = Endpoint::poll_transmit(&mut self.manager) {
                 out.push(t);
             }
             self.locals.drain_transmits(&mut out);
             for t in out {
-                match t.body() {
+                match t.body {
                     Ok(body) => self.route(t.header, body, true),
                     Err(e) => {
                         self.stats.encode_errors += 1;
-                        tracing::warn!(code = %t.header.command_code, source = %t.header.source, "not sent: {e}");
+                        tracing::warn!(message = t.name, code = %t.header.command_code, source = %t.header.source, "not sent: {e}");
                     }
                 }
             }
