@@ -127,25 +127,47 @@ fn overlays_extend_the_sdk_definitions() {
         .map(|m| m.def.name.as_str())
         .collect();
     assert_eq!(own, ["ReportStamp", "SetPump"]);
-    assert!(spec.message("ReportGlobalPose").is_some_and(|m| !spec.is_own(m.source)));
+    assert!(spec
+        .message("ReportGlobalPose")
+        .is_some_and(|m| !spec.is_own(m.source)));
     assert_eq!(spec.warnings.len(), 1, "{:?}", spec.warnings);
     let w = spec.warnings[0].to_string();
-    assert!(w.contains("good.yaml:8:5: message `SetPump`: code 0x0F00 is outside the experimental range"), "{w}");
+    assert!(
+        w.contains(
+            "good.yaml:8:5: message `SetPump`: code 0x0F00 is outside the experimental range"
+        ),
+        "{w}"
+    );
 
     let dup = dir.join("dup.yaml");
-    std::fs::write(&dup, "group: acme\nmessages:\n  - name: ReportGlobalPose\n    code: 0xD002\n").unwrap();
+    std::fs::write(
+        &dup,
+        "group: acme\nmessages:\n  - name: ReportGlobalPose\n    code: 0xD002\n",
+    )
+    .unwrap();
     let e = jaus_spec::load_overlays(&[&dup]).unwrap_err().to_string();
     assert!(e.contains("dup.yaml:3:"), "{e}");
-    assert!(e.contains("duplicate name `ReportGlobalPose` (first defined at ") && e.contains("platform.yaml:"), "{e}");
+    assert!(
+        e.contains("duplicate name `ReportGlobalPose` (first defined at ")
+            && e.contains("platform.yaml:"),
+        "{e}"
+    );
 
     let standalone = dir.join("alone.yaml");
-    std::fs::write(&standalone, "extends: none\ngroup: acme\nmessages:\n  - name: ReportGlobalPose\n    code: 0xD002\n").unwrap();
+    std::fs::write(
+        &standalone,
+        "extends: none\ngroup: acme\nmessages:\n  - name: ReportGlobalPose\n    code: 0xD002\n",
+    )
+    .unwrap();
     let spec = jaus_spec::load_overlays(&[&standalone]).unwrap();
     assert!(!spec.extends() && spec.messages.len() == 1);
 
     let bad = dir.join("bad.yaml");
     std::fs::write(&bad, "extends: ra34\ngroup: acme\n").unwrap();
     let e = jaus_spec::load_overlays(&[&bad]).unwrap_err().to_string();
-    assert!(e.contains("bad.yaml:1:") && e.contains("`extends: ra34`"), "{e}");
+    assert!(
+        e.contains("bad.yaml:1:") && e.contains("`extends: ra34`"),
+        "{e}"
+    );
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -480,3 +480,58 @@ fn a_rejected_control_request_is_an_error() {
     let _ = holder.0.wait();
     let _ = std::fs::remove_dir_all(dir);
 }
+
+/// Issue 11 item 5: a node hosts stock components à la carte, at any instance, on its
+/// own subsystem and node; another node discovers them. A bad entry is refused with
+/// file:line:column.
+#[test]
+fn a_node_hosts_any_stock_component_at_any_instance() {
+    let dir = std::env::temp_dir().join(format!("jaus-udp-host-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (pa, pb) = (free_port(), free_port());
+    let (_a, _rx_a) = node(
+        &dir,
+        "arm",
+        &format!(
+            "subsystem: 7\nnode: 3\nnode_name: sensors\nbind: 127.0.0.1:{pa}\npeers: [127.0.0.1:{pb}]\nhost:\n  - global_pose_sensor\n  - {{ component: world_model, instance: 2 }}\n  - {{ component: local_waypoint_driver, instance: 4, output: 7.3.33.1 }}\n  - primitive_driver\n"
+        ),
+    );
+    let (_b, rx_b) = node(
+        &dir,
+        "console",
+        &format!("subsystem: 1\nnode: 2\nnode_name: console\nbind: 127.0.0.1:{pb}\npeers: [127.0.0.1:{pa}]\n"),
+    );
+    wait_for(
+        &rx_b,
+        &[
+            "node 3 'sensors'",
+            "7.3.38.1 'GlobalPoseSensor' services [0, 38]",
+            "7.3.61.2 'WorldModelVectorKnowledgeStore'",
+            "7.3.46.4 'LocalWaypointDriver'",
+            "7.3.33.1 'PrimitiveDriver'",
+        ],
+        Duration::from_secs(10),
+    )
+    .unwrap();
+
+    let bad = dir.join("bad.yaml");
+    std::fs::write(
+        &bad,
+        "subsystem: 7\nnode: 3\nbind: 127.0.0.1:1\nhost:\n  - global_pose_sensor\n  - { component: gps_sensor, instance: 2 }\n",
+    )
+    .unwrap();
+    let out = Command::new(jaus_bin())
+        .args(["node", "--config"])
+        .arg(&bad)
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains(
+            "bad.yaml:6:7: unknown component `gps_sensor` (known: vehicle, primitive_driver,"
+        ),
+        "{err}"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}

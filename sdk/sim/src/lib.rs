@@ -8,12 +8,15 @@
 //!   caller's (virtual or real) clock, with seeded sensor noise;
 //! * [`network`]: [`network::SimNet`], several sans-IO [`jaus::net::Node`]s on a
 //!   simulated lossy network (drops, duplicates, delays) with a virtual clock;
+//! * [`host`]: any stock component at any instance of a node, over one simulated
+//!   vehicle (what `jaus node` hosts from its `host:` list);
 //! * [`demo`]: the scenario of `jaus demo`, a complete simulated subsystem (drivers,
 //!   sensors, spooler, world model) and a scripted operator, measured leg by leg.
 //!
 //! The SDK itself does not depend on this crate; tests, benchmarks and the `jaus` CLI do.
 
 pub mod demo;
+pub mod host;
 pub mod network;
 pub mod vehicle;
 

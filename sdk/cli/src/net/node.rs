@@ -18,8 +18,21 @@ use jaus::net::{udp, Framing, Node, NodeConfig, SystemTree};
 /// bind: 127.0.0.1:3794
 /// framing: judp          # or opc ("JAUS01.0")
 /// peers: [127.0.0.2:3794]
-/// host: [vehicle]        # built-in components: vehicle (the demo's simulated vehicle)
+/// host:                  # what the node hosts (see below)
+///   - vehicle                                # the demo's whole simulated vehicle
+///   - global_pose_sensor                     # a stock component at instance 1
+///   - { component: world_model, instance: 2 }
+///   - { component: global_waypoint_driver, output: 1.1.33.1, pose: 1.1.38.1 }
 /// ```
+///
+/// A `host:` entry is `vehicle` or a stock component (`jaus_sim::host::Stock::ALL`:
+/// `primitive_driver`, `reflexive_driver`, `global_pose_sensor`, `local_pose_sensor`,
+/// `velocity_state_sensor`, `global_vector_driver`, `local_vector_driver`,
+/// `global_waypoint_driver`, `local_waypoint_driver`, `global_path_segment_driver`,
+/// `local_path_segment_driver`, `mission_spooler`, `world_model`), by name or as a map
+/// with `component`, `instance` (1), `output` and `pose` (drivers: where the efforts go
+/// and which pose sensor they follow; default: this node's 43.1 or 33.1, and 38.1 or
+/// 41.1) and `authority` (0). Those that need hardware share one simulated vehicle.
 #[derive(Debug, Clone, serde::Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct NodeFile {
@@ -41,9 +54,9 @@ pub struct NodeFile {
     /// Peers sent broadcasts and messages to nodes not yet located.
     #[serde(default)]
     pub peers: Vec<SocketAddr>,
-    /// Built-in components to host.
+    /// What to host.
     #[serde(default)]
-    pub host: Vec<String>,
+    pub host: Vec<HostItem>,
     /// Heartbeat period, ms.
     #[serde(default)]
     pub heartbeat_ms: Option<u64>,
@@ -52,26 +65,140 @@ pub struct NodeFile {
     pub node_timeout_ms: Option<u64>,
 }
 
+/// One `host:` entry as written.
+#[derive(Debug, Clone, serde::Deserialize)]
+#[serde(untagged)]
+pub enum HostItem {
+    /// `vehicle` or a stock component's name.
+    Name(String),
+    /// A stock component with settings.
+    Component {
+        /// Its name.
+        component: String,
+        /// Its instance.
+        #[serde(default)]
+        instance: Option<u8>,
+        /// Where a driver's efforts go (`ss.node.component.instance`).
+        #[serde(default)]
+        output: Option<String>,
+        /// A driver's pose sensor.
+        #[serde(default)]
+        pose: Option<String>,
+        /// Its authority.
+        #[serde(default)]
+        authority: Option<u8>,
+    },
+}
+
+/// What a node hosts, checked.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Hosted {
+    /// The demo's simulated vehicle (every component of `jaus_sim::demo::vehicle_at`).
+    Vehicle,
+    /// One stock component.
+    Stock(jaus_sim::host::Entry),
+}
+
 impl NodeFile {
     /// Reads and checks a configuration file.
     pub fn load(path: &Path) -> Result<NodeFile, String> {
         let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
         let f: NodeFile =
             serde_yaml::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
+        let index = jaus_spec::location::LocationIndex::build(&text);
+        let at = |key: &str| {
+            let p = index.find(key);
+            format!("{}:{}:{}", path.display(), p.line, p.column)
+        };
         for (what, v) in [("subsystem", f.subsystem), ("node", f.node)] {
             if v == 0 || v == 255 {
-                return Err(format!("{}: {what} {v} is not in 1..=254", path.display()));
+                return Err(format!("{}: {what} {v} is not in 1..=254", at(what)));
             }
         }
-        for h in &f.host {
-            if h != "vehicle" {
+        f.hosted_at(&at)?;
+        Ok(f)
+    }
+
+    /// The `host:` entries, checked (`at` gives the file:line:column of a YAML path).
+    fn hosted_at(&self, at: &dyn Fn(&str) -> String) -> Result<Vec<Hosted>, String> {
+        let known = || {
+            let mut k = vec!["vehicle"];
+            k.extend(jaus_sim::host::Stock::ALL.iter().map(|(n, _)| *n));
+            k.join(", ")
+        };
+        let mut out = Vec::new();
+        for (i, h) in self.host.iter().enumerate() {
+            let (name, key) = match h {
+                HostItem::Name(n) => (n, format!("host[{i}]")),
+                HostItem::Component { component, .. } => {
+                    (component, format!("host[{i}].component"))
+                }
+            };
+            if name == "vehicle" {
+                out.push(Hosted::Vehicle);
+                continue;
+            }
+            let Some(stock) = jaus_sim::host::Stock::by_name(name) else {
                 return Err(format!(
-                    "{}: unknown built-in component `{h}` (known: vehicle)",
-                    path.display()
+                    "{}: unknown component `{name}` (known: {})",
+                    at(&key),
+                    known()
+                ));
+            };
+            let mut e = jaus_sim::host::Host::entry(stock);
+            if let HostItem::Component {
+                instance,
+                output,
+                pose,
+                authority,
+                ..
+            } = h
+            {
+                if let Some(n) = instance {
+                    if *n == 0 || *n == 255 {
+                        return Err(format!(
+                            "{}: instance {n} is not in 1..=254",
+                            at(&format!("host[{i}].instance"))
+                        ));
+                    }
+                    e.instance = *n;
+                }
+                let addr =
+                    |v: &Option<String>, key: &str| -> Result<Option<jaus::Address>, String> {
+                        v.as_deref()
+                            .map(|s| {
+                                s.parse().map_err(|_| {
+                                    format!(
+                                    "{}: `{s}` is not an address subsystem.node.component.instance",
+                                    at(&format!("host[{i}].{key}"))
+                                )
+                                })
+                            })
+                            .transpose()
+                    };
+                e.output = addr(output, "output")?;
+                e.pose = addr(pose, "pose")?;
+                e.authority = authority.unwrap_or(0);
+            }
+            let clash = out.iter().any(|o| match o {
+                Hosted::Stock(p) => p.stock == e.stock && p.instance == e.instance,
+                Hosted::Vehicle => false,
+            });
+            if clash {
+                return Err(format!(
+                    "{}: `{name}` instance {} is hosted twice",
+                    at(&key),
+                    e.instance
                 ));
             }
+            out.push(Hosted::Stock(e));
         }
-        Ok(f)
+        Ok(out)
+    }
+
+    /// The `host:` entries (checked by [`NodeFile::load`]).
+    pub fn hosted(&self) -> Vec<Hosted> {
+        self.hosted_at(&|k| k.to_string()).unwrap_or_default()
     }
 
     /// The node configuration.
@@ -153,15 +280,30 @@ pub fn node(
     let file = NodeFile::load(config)?;
     let t0 = Instant::now();
     let mut node = Node::new(file.node_config(), t0);
-    if file.host.iter().any(|h| h == "vehicle") {
-        let (parts, _vehicle) = jaus_sim::demo::vehicle_at(
-            t0,
-            &jaus_sim::demo::Options::default(),
-            file.subsystem,
-            file.node,
-        );
+    let hosted = file.hosted();
+    let mut host = jaus_sim::host::Host::new(file.subsystem, file.node, t0);
+    if hosted
+        .iter()
+        .any(|h| matches!(h, Hosted::Stock(e) if e.stock == jaus_sim::host::Stock::ReflexiveDriver))
+    {
+        host.expect_reflexive_driver();
+    }
+    for h in hosted {
+        let parts = match h {
+            Hosted::Vehicle => {
+                jaus_sim::demo::vehicle_at(
+                    t0,
+                    &jaus_sim::demo::Options::default(),
+                    file.subsystem,
+                    file.node,
+                )
+                .0
+            }
+            Hosted::Stock(e) => vec![host.build(&e).map_err(|e| e.to_string())?],
+        };
         for p in parts {
-            node.add_boxed(p).map_err(|e| e.to_string())?;
+            node.add_boxed(p)
+                .map_err(|e| format!("{}: {e}", config.display()))?;
         }
     }
     let _ = writeln!(

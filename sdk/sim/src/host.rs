@@ -1,0 +1,381 @@
+//! Stock components à la carte: any of the SDK's stock components at any instance of a
+//! node, those that need hardware over one simulated vehicle shared by the node. This
+//! is what `jaus node` hosts from its configuration file (`host:`), and what a vendor's
+//! own `main` can call in a few lines:
+//!
+//! ```
+//! use std::time::Instant;
+//! use jaus::net::{Node, NodeConfig};
+//! use jaus_sim::host::{Host, Stock};
+//!
+//! let t0 = Instant::now();
+//! let mut node = Node::new(NodeConfig { subsystem: 5, node: 2, ..NodeConfig::default() }, t0);
+//! let mut host = Host::new(5, 2, t0);
+//! for part in [Host::entry(Stock::GlobalPoseSensor), Host::entry(Stock::WorldModel).instance(2)] {
+//!     node.add_boxed(host.build(&part).unwrap()).unwrap();
+//! }
+//! assert!(node.get::<jaus::component::Component<
+//!     jaus::components::global_pose_sensor::Dispatch<
+//!         jaus::stock::sensors::StockGlobalPoseSensor<jaus_sim::SimVehicle>>>>(
+//!     jaus::Address::new(5, 2, 38, 1)).is_some());
+//! ```
+
+use std::time::Instant;
+
+use nalgebra::Vector2;
+
+use crate::demo::ORIGIN;
+use crate::vehicle::{SimVehicle, VehicleParams};
+use jaus::component::{Config, Endpoint};
+use jaus::components::{
+    global_path_segment_driver, global_pose_sensor, global_vector_driver, global_waypoint_driver,
+    local_path_segment_driver, local_pose_sensor, local_vector_driver, local_waypoint_driver,
+    mission_spooler, primitive_driver, reflexive_driver, velocity_state_sensor,
+    world_model_vector_knowledge_store,
+};
+use jaus::stock::drivers::{
+    Navigator, PrimitiveConfig, ReflexiveConfig, StockPrimitiveDriver, StockReflexiveDriver,
+    StockVectorDriver,
+};
+use jaus::stock::geo::LocalFrame;
+use jaus::stock::motion::DriverConfig;
+use jaus::stock::sensors::{StockGlobalPoseSensor, StockLocalPoseSensor, StockVelocityStateSensor};
+use jaus::stock::spooler::{SpoolerConfig, StockMissionSpooler};
+use jaus::stock::world_model::{StockWorldModel, WorldModelConfig};
+use jaus::Address;
+
+/// A stock component of the SDK.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Stock {
+    /// Primitive Driver (33) over the simulated vehicle's actuators.
+    PrimitiveDriver,
+    /// Reflexive Driver (43), in front of a Primitive Driver.
+    ReflexiveDriver,
+    /// Global Pose Sensor (38) of the simulated vehicle.
+    GlobalPoseSensor,
+    /// Local Pose Sensor (41) of the simulated vehicle.
+    LocalPoseSensor,
+    /// Velocity State Sensor (42) of the simulated vehicle.
+    VelocityStateSensor,
+    /// Global Vector Driver (34).
+    GlobalVectorDriver,
+    /// Local Vector Driver (44).
+    LocalVectorDriver,
+    /// Global Waypoint Driver (45).
+    GlobalWaypointDriver,
+    /// Local Waypoint Driver (46).
+    LocalWaypointDriver,
+    /// Global Path Segment Driver (47).
+    GlobalPathSegmentDriver,
+    /// Local Path Segment Driver (48).
+    LocalPathSegmentDriver,
+    /// Mission Spooler (36).
+    MissionSpooler,
+    /// World Model Vector Knowledge Store (61).
+    WorldModel,
+}
+
+impl Stock {
+    /// Every stock component, with the name used in configuration files.
+    pub const ALL: &'static [(&'static str, Stock)] = &[
+        ("primitive_driver", Stock::PrimitiveDriver),
+        ("reflexive_driver", Stock::ReflexiveDriver),
+        ("global_pose_sensor", Stock::GlobalPoseSensor),
+        ("local_pose_sensor", Stock::LocalPoseSensor),
+        ("velocity_state_sensor", Stock::VelocityStateSensor),
+        ("global_vector_driver", Stock::GlobalVectorDriver),
+        ("local_vector_driver", Stock::LocalVectorDriver),
+        ("global_waypoint_driver", Stock::GlobalWaypointDriver),
+        ("local_waypoint_driver", Stock::LocalWaypointDriver),
+        ("global_path_segment_driver", Stock::GlobalPathSegmentDriver),
+        ("local_path_segment_driver", Stock::LocalPathSegmentDriver),
+        ("mission_spooler", Stock::MissionSpooler),
+        ("world_model", Stock::WorldModel),
+    ];
+
+    /// The component by its configuration name.
+    pub fn by_name(name: &str) -> Option<Stock> {
+        Self::ALL.iter().find(|(n, _)| *n == name).map(|(_, s)| *s)
+    }
+
+    /// The configuration name.
+    pub fn name(self) -> &'static str {
+        Self::ALL
+            .iter()
+            .find(|(_, s)| *s == self)
+            .map_or("?", |(n, _)| n)
+    }
+
+    /// The Part 1 component id.
+    pub fn id(self) -> u8 {
+        match self {
+            Stock::PrimitiveDriver => 33,
+            Stock::ReflexiveDriver => 43,
+            Stock::GlobalPoseSensor => 38,
+            Stock::LocalPoseSensor => 41,
+            Stock::VelocityStateSensor => 42,
+            Stock::GlobalVectorDriver => 34,
+            Stock::LocalVectorDriver => 44,
+            Stock::GlobalWaypointDriver => 45,
+            Stock::LocalWaypointDriver => 46,
+            Stock::GlobalPathSegmentDriver => 47,
+            Stock::LocalPathSegmentDriver => 48,
+            Stock::MissionSpooler => 36,
+            Stock::WorldModel => 61,
+        }
+    }
+}
+
+/// One component to host: which, at which instance, and where its commands and
+/// feedback go when it is a driver.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Entry {
+    /// The component.
+    pub stock: Stock,
+    /// Its instance id (default 1).
+    pub instance: u8,
+    /// For a driver above the Primitive Driver: where its wrench efforts go (default:
+    /// this node's Reflexive Driver 43.1 if the node hosts one, else its Primitive
+    /// Driver 33.1). For the Reflexive Driver: its Primitive Driver (default 33.1).
+    pub output: Option<Address>,
+    /// For a vector, waypoint or path driver: its pose sensor (default: this node's
+    /// Global Pose Sensor 38.1 for global drivers, Local Pose Sensor 41.1 for local
+    /// ones).
+    pub pose: Option<Address>,
+    /// Its authority (default 0; the demo gives the spooler 100).
+    pub authority: u8,
+}
+
+impl Entry {
+    /// At instance `i`.
+    pub fn instance(mut self, i: u8) -> Self {
+        self.instance = i;
+        self
+    }
+}
+
+/// Why a component cannot be hosted.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum HostError {
+    /// Instance 0 or 255.
+    #[error("{component}: instance {instance} is not in 1..=254")]
+    Instance {
+        /// The component's name.
+        component: &'static str,
+        /// The instance asked for.
+        instance: u8,
+    },
+    /// Hosted twice at the same address.
+    #[error("{component}: {address} is already hosted")]
+    Duplicate {
+        /// The component's name.
+        component: &'static str,
+        /// The address.
+        address: Address,
+    },
+}
+
+/// Builds stock components for node `node` of subsystem `subsystem`; those that need
+/// hardware share one simulated vehicle.
+#[derive(Debug)]
+pub struct Host {
+    subsystem: u8,
+    node: u8,
+    t0: Instant,
+    vehicle: SimVehicle,
+    built: Vec<Address>,
+    reflexive: bool,
+}
+
+impl Host {
+    /// A host for `subsystem`.`node`, its components starting at `t0`.
+    pub fn new(subsystem: u8, node: u8, t0: Instant) -> Self {
+        let vehicle = SimVehicle::new(VehicleParams {
+            origin: LocalFrame::new(ORIGIN.0, ORIGIN.1, ORIGIN.2),
+            start: (Vector2::zeros(), 0.0),
+            ..VehicleParams::default()
+        });
+        Self {
+            subsystem,
+            node,
+            t0,
+            vehicle,
+            built: Vec::new(),
+            reflexive: false,
+        }
+    }
+
+    /// An entry with the defaults (instance 1, default output and pose sensor).
+    pub fn entry(stock: Stock) -> Entry {
+        Entry {
+            stock,
+            instance: 1,
+            output: None,
+            pose: None,
+            authority: 0,
+        }
+    }
+
+    /// Tells the host the node will also host a Reflexive Driver, so that drivers
+    /// entered before it default their output to it.
+    pub fn expect_reflexive_driver(&mut self) {
+        self.reflexive = true;
+    }
+
+    /// The simulated vehicle behind the hardware of every component built.
+    pub fn vehicle(&self) -> &SimVehicle {
+        &self.vehicle
+    }
+
+    fn local(&self, component: u8) -> Address {
+        Address::new(self.subsystem, self.node, component, 1)
+    }
+
+    /// Builds one component.
+    pub fn build(&mut self, e: &Entry) -> Result<Box<dyn Endpoint>, HostError> {
+        let name = e.stock.name();
+        if e.instance == 0 || e.instance == 255 {
+            return Err(HostError::Instance {
+                component: name,
+                instance: e.instance,
+            });
+        }
+        let at = Address::new(self.subsystem, self.node, e.stock.id(), e.instance);
+        if self.built.contains(&at) {
+            return Err(HostError::Duplicate {
+                component: name,
+                address: at,
+            });
+        }
+        self.built.push(at);
+        if e.stock == Stock::ReflexiveDriver {
+            self.reflexive = true;
+        }
+        let cfg = Config {
+            authority: e.authority,
+            ..Config::default()
+        };
+        let t0 = self.t0;
+        let v = self.vehicle.clone();
+        let output = e.output.unwrap_or_else(|| {
+            if self.reflexive && e.stock != Stock::ReflexiveDriver {
+                self.local(43)
+            } else {
+                self.local(33)
+            }
+        });
+        let drive = |pose: u8| DriverConfig {
+            output,
+            pose_sensor: e.pose.unwrap_or_else(|| self.local(pose)),
+            velocity_sensor: Some(self.local(42)),
+            origin: Some(LocalFrame::new(ORIGIN.0, ORIGIN.1, ORIGIN.2)),
+            ..DriverConfig::default()
+        };
+        Ok(match e.stock {
+            Stock::PrimitiveDriver => Box::new(primitive_driver::component(
+                at,
+                StockPrimitiveDriver::new(v, PrimitiveConfig::default()),
+                cfg,
+                t0,
+            )),
+            Stock::ReflexiveDriver => Box::new(reflexive_driver::component(
+                at,
+                StockReflexiveDriver::new(
+                    (),
+                    ReflexiveConfig {
+                        output,
+                        ..ReflexiveConfig::default()
+                    },
+                ),
+                cfg,
+                t0,
+            )),
+            Stock::GlobalPoseSensor => Box::new(global_pose_sensor::component(
+                at,
+                StockGlobalPoseSensor(v),
+                cfg,
+                t0,
+            )),
+            Stock::LocalPoseSensor => Box::new(local_pose_sensor::component(
+                at,
+                StockLocalPoseSensor(v),
+                cfg,
+                t0,
+            )),
+            Stock::VelocityStateSensor => Box::new(velocity_state_sensor::component(
+                at,
+                StockVelocityStateSensor(v),
+                cfg,
+                t0,
+            )),
+            Stock::GlobalVectorDriver => Box::new(global_vector_driver::component(
+                at,
+                StockVectorDriver::new(drive(38)),
+                cfg,
+                t0,
+            )),
+            Stock::LocalVectorDriver => Box::new(local_vector_driver::component(
+                at,
+                StockVectorDriver::new(drive(41)),
+                cfg,
+                t0,
+            )),
+            Stock::GlobalWaypointDriver => Box::new(global_waypoint_driver::component(
+                at,
+                Navigator::new(drive(38)),
+                cfg,
+                t0,
+            )),
+            Stock::LocalWaypointDriver => Box::new(local_waypoint_driver::component(
+                at,
+                Navigator::new(drive(41)),
+                cfg,
+                t0,
+            )),
+            Stock::GlobalPathSegmentDriver => Box::new(global_path_segment_driver::component(
+                at,
+                Navigator::new(drive(38)),
+                cfg,
+                t0,
+            )),
+            Stock::LocalPathSegmentDriver => Box::new(local_path_segment_driver::component(
+                at,
+                Navigator::new(drive(41)),
+                cfg,
+                t0,
+            )),
+            Stock::MissionSpooler => Box::new(mission_spooler::component(
+                at,
+                StockMissionSpooler::new(SpoolerConfig::default()),
+                cfg,
+                t0,
+            )),
+            Stock::WorldModel => Box::new(world_model_vector_knowledge_store::component(
+                at,
+                StockWorldModel::new(WorldModelConfig::default()),
+                cfg,
+                t0,
+            )),
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_stock_component_is_hosted_at_its_id_and_instance() {
+        let t0 = Instant::now();
+        let mut host = Host::new(7, 3, t0);
+        for (name, s) in Stock::ALL {
+            assert_eq!(Stock::by_name(name), Some(*s));
+            let e = host.build(&Host::entry(*s).instance(4)).unwrap();
+            assert_eq!(e.address(), Address::new(7, 3, s.id(), 4), "{name}");
+        }
+        let again = host.build(&Host::entry(Stock::WorldModel).instance(4));
+        assert!(matches!(again, Err(HostError::Duplicate { .. })));
+        let zero = host.build(&Host::entry(Stock::WorldModel).instance(0));
+        assert!(matches!(zero, Err(HostError::Instance { .. })));
+    }
+}
