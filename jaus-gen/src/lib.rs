@@ -85,6 +85,7 @@ pub mod diff;
 mod docs;
 pub mod lock;
 pub mod revision;
+pub mod scaffold;
 pub mod snapshot;
 
 use jaus_spec::{Spec, SpecErrors};

@@ -84,6 +84,23 @@ enum Cmd {
         #[arg(long)]
         check: bool,
     },
+    /// Write a new vendor crate: its own experimental messages and a component (YAML
+    /// extending the SDK's definitions), build.rs, a node on UDP, a test on the bus.
+    New {
+        /// Crate name, also its directory (under --dir).
+        name: String,
+        /// Directory to create the crate in (default: the current directory).
+        #[arg(long, value_name = "DIR", default_value = ".")]
+        dir: PathBuf,
+        /// Take the SDK from a checkout of its workspace (relative to the new crate, or
+        /// absolute) instead of its published version.
+        #[arg(long, value_name = "DIR")]
+        sdk_path: Option<PathBuf>,
+        /// Leave out the `[workspace]` table (the crate will be a member of an
+        /// enclosing workspace).
+        #[arg(long)]
+        member: bool,
+    },
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -183,6 +200,28 @@ fn main() -> ExitCode {
             fail_on,
         } => return diff(&old, &new, format, fail_on.into()),
         Cmd::Lock { defs, path, check } => lock(defs, path, check),
+        Cmd::New {
+            name,
+            dir,
+            sdk_path,
+            member,
+        } => {
+            let mut c = jaus_gen::scaffold::NewCrate::new(&name);
+            if let Some(p) = sdk_path {
+                c.sdk = jaus_gen::scaffold::Sdk::Path(p);
+            }
+            c.standalone = !member;
+            let root = dir.join(&name);
+            c.write(&root).map(|files| {
+                for f in files {
+                    println!("wrote {}", f.display());
+                }
+                println!(
+                    "next: cd {} && cargo test && cargo run -- --seconds 10",
+                    root.display()
+                );
+            })
+        }
         Cmd::Generate {
             defs,
             out,
