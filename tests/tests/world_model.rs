@@ -991,7 +991,7 @@ fn index_agrees_with_a_linear_scan() {
     let mut r = Rng(7);
     // Three areas: mid-latitudes, the antimeridian at the equator, and 80° N.
     let areas = [(29.65, -82.35), (0.0, 180.0), (80.0, 10.0)];
-    let mut s = VectorStore::default();
+    let mut objects = Vec::new();
     for i in 0..6_000 {
         let (lat, lon) = areas[i % 3];
         let (clat, clon) = (lat + r.f(-0.05, 0.05), lon + r.f(-0.05, 0.05));
@@ -1002,14 +1002,28 @@ fn index_agrees_with_a_linear_scan() {
         } else {
             r.f(0.0, 50.0) as f32
         };
-        s.create(&obj(
+        objects.push(obj(
             shape.to_wire(),
             buffer,
             vec![fc((i % 4) as u16, VksAttribute::Default)],
             pts,
-        ))
-        .unwrap();
+        ));
     }
+    // Every way of indexing: a batch into the empty store (bulk load), a batch smaller
+    // than the store (entry by entry), a batch larger than the store (rebuilt by bulk
+    // load with what was there), and one object at a time.
+    let mut s = VectorStore::default();
+    for batch in [
+        &objects[..1_000],
+        &objects[1_000..1_500],
+        &objects[1_500..4_000],
+    ] {
+        assert!(s.create_all(batch).iter().all(Result::is_ok));
+    }
+    for o in &objects[4_000..] {
+        s.create(o).unwrap();
+    }
+    assert_eq!(s.len(), 6_000);
     let mut hits = 0;
     for i in 0..300 {
         let (lat, lon) = areas[i % 3];

@@ -205,15 +205,21 @@ impl WorldModelVectorKnowledgeStore for StockWorldModel {
         let mut ids = Vec::with_capacity(msg.objects.len());
         let mut refused = 0usize;
         let mut first_error = None;
-        for (i, o) in msg.objects.iter().enumerate() {
-            let r = if msg.buffered {
-                self.store.create(o)
-            } else {
-                self.store.create(&VksObject {
+        // One batch, so that a large one is indexed by bulk loading.
+        let results = if msg.buffered {
+            self.store.create_all(&msg.objects)
+        } else {
+            let unbuffered: Vec<VksObject> = msg
+                .objects
+                .iter()
+                .map(|o| VksObject {
                     buffer: None,
                     ..o.clone()
                 })
-            };
+                .collect();
+            self.store.create_all(&unbuffered)
+        };
+        for (i, r) in results.into_iter().enumerate() {
             match r {
                 Ok(id) => ids.push(id),
                 Err(e) => {
