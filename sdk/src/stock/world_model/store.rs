@@ -296,7 +296,7 @@ impl VectorStore {
             list.iter()
                 .filter_map(|&slot| slots[slot as usize].as_ref().map(|s| (slot, s)))
                 .flat_map(|(slot, s)| {
-                    s.index_boxes().into_iter().map(move |b| Entry {
+                    s.index_boxes().map(move |b| Entry {
                         slot,
                         env: b.aabb(),
                     })
