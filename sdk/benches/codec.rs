@@ -1,14 +1,57 @@
 //! Encode/decode speed of the TARGETS.md reference packets.
 //!
-//! Encode = serialise the body into a preallocated buffer; decode = parse the body into
-//! the typed message. Run: `cargo bench -p jaus --bench codec`.
+//! Body only: encode = serialise the body into a preallocated buffer; decode = parse the
+//! body into the typed message. Full packet (the method of ../shared/perf, to compare
+//! with OpenJAUS): encode = the 16-byte header and the body into a reused buffer;
+//! decode = from the datagram's bytes, header parse and body decode by command code
+//! into `jaus::messages::Message` (and, for comparison, into the typed message).
+//! Run: `cargo bench -p jaus --bench codec`.
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion, Throughput};
 use jaus::codec::{Decode, Encode, Writer};
-use jaus::messages::{ReportGlobalPose, SetGlobalPathSegment, SetWrenchEffort};
+use jaus::messages::{Message, ReportGlobalPose, SetGlobalPathSegment, SetWrenchEffort};
+use jaus::wire::HEADER_LEN;
+use jaus::{Header, JausMessage, PacketRef};
 
 fn body(i: usize) -> Vec<u8> {
     jaus::hex::decode(jaus::json::REFERENCE_PACKETS[i].1).unwrap()[16..].to_vec()
+}
+
+fn packet(i: usize) -> Vec<u8> {
+    jaus::hex::decode(jaus::json::REFERENCE_PACKETS[i].1).unwrap()
+}
+
+/// The full-packet path on reference packet `i`.
+fn bench_packet<M: JausMessage>(c: &mut Criterion, name: &str, i: usize) {
+    let bytes = packet(i);
+    let header = Header::parse(&bytes).unwrap();
+    let msg = M::from_bytes(&bytes[HEADER_LEN..]).unwrap();
+    let mut buf = [0u8; 128];
+    let mut g = c.benchmark_group(format!("{name}/packet"));
+    g.throughput(Throughput::Bytes(bytes.len() as u64));
+    g.bench_function("encode", |b| {
+        b.iter(|| {
+            black_box(&header)
+                .write_packet(black_box(&msg), &mut buf)
+                .unwrap()
+        })
+    });
+    g.bench_function("header_parse", |b| {
+        b.iter(|| PacketRef::parse(black_box(&bytes)).unwrap().header)
+    });
+    g.bench_function("decode_by_code", |b| {
+        b.iter(|| {
+            let p = PacketRef::parse(black_box(&bytes)).unwrap();
+            Message::decode(p.header.command_code, p.body).unwrap()
+        })
+    });
+    g.bench_function("decode_typed", |b| {
+        b.iter(|| {
+            let p = PacketRef::parse(black_box(&bytes)).unwrap();
+            M::decode_body(p.body).unwrap()
+        })
+    });
+    g.finish();
 }
 
 fn bench_one<M: Encode + Decode>(c: &mut Criterion, name: &str, body: &[u8]) {
@@ -33,6 +76,9 @@ fn codec(c: &mut Criterion) {
     bench_one::<ReportGlobalPose>(c, "report_global_pose", &body(0));
     bench_one::<SetWrenchEffort>(c, "set_wrench_effort", &body(1));
     bench_one::<SetGlobalPathSegment>(c, "set_global_path_segment", &body(2));
+    bench_packet::<ReportGlobalPose>(c, "report_global_pose", 0);
+    bench_packet::<SetWrenchEffort>(c, "set_wrench_effort", 1);
+    bench_packet::<SetGlobalPathSegment>(c, "set_global_path_segment", 2);
 }
 
 criterion_group!(benches, codec);

@@ -86,7 +86,7 @@ pub mod stock;
 pub mod wire;
 
 pub use jaus_derive::{JausBits, JausEnum, JausMessage, JausRecord, JausUnion};
-pub use wire::{Address, CommandCode, Header, Packet};
+pub use wire::{Address, CommandCode, Header, Packet, PacketRef};
 
 /// A message body type with its command code.
 pub trait JausMessage: codec::Encode + codec::Decode {

@@ -351,6 +351,28 @@ impl Header {
         w.put(&b)
     }
 
+    /// Writes a whole packet, this header (its data size set from the body) and `body`,
+    /// into `buf`; returns the packet's length. Nothing is allocated: the hot path's
+    /// encoder, into a buffer the caller reuses.
+    #[inline]
+    pub fn write_packet<B: Encode + ?Sized>(
+        &self,
+        body: &B,
+        buf: &mut [u8],
+    ) -> Result<usize, EncodeError> {
+        let len = body.encoded_len();
+        if len > MAX_DATA_SIZE {
+            return Err(EncodeError::BodyTooLarge {
+                len,
+                max: MAX_DATA_SIZE,
+            });
+        }
+        let mut w = Writer::new(buf);
+        self.put(&mut w, len)?;
+        body.encode(&mut w)?;
+        Ok(w.position())
+    }
+
     /// Parses the first 16 bytes of `bytes`.
     pub fn parse(bytes: &[u8]) -> Result<Header, DecodeError> {
         let b: &[u8; HEADER_LEN] = bytes
@@ -431,23 +453,52 @@ impl Packet {
         Packet { header, body }
     }
 
-    /// Parses one datagram-sized packet: a header and exactly `data_size` body bytes.
+    /// Parses one datagram-sized packet: a header and exactly `data_size` body bytes
+    /// (a copy of them; [`PacketRef::parse`] borrows instead).
     pub fn parse(bytes: &[u8]) -> Result<Packet, DecodeError> {
+        let p = PacketRef::parse(bytes)?;
+        Ok(Packet {
+            header: p.header,
+            body: p.body.to_vec(),
+        })
+    }
+
+    /// A view of this packet.
+    pub fn view(&self) -> PacketRef<'_> {
+        PacketRef {
+            header: self.header,
+            body: &self.body,
+        }
+    }
+}
+
+/// A packet borrowed from the bytes it was received in: the parsed header and the body
+/// as a slice. Parsing copies nothing; decode the body from it by command code
+/// (`Message::decode(p.header.command_code, p.body)`) or as a known type.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct PacketRef<'a> {
+    /// The header.
+    pub header: Header,
+    /// The body bytes (exactly `header.data_size` of them).
+    pub body: &'a [u8],
+}
+
+impl<'a> PacketRef<'a> {
+    /// Parses one datagram-sized packet: a header and exactly `data_size` body bytes.
+    #[inline]
+    pub fn parse(bytes: &'a [u8]) -> Result<PacketRef<'a>, DecodeError> {
         let header = Header::parse(bytes)?;
-        let actual = bytes.len() - HEADER_LEN;
-        if actual != usize::from(header.data_size) {
+        let body = &bytes[HEADER_LEN..];
+        if body.len() != usize::from(header.data_size) {
             return Err(DecodeError::new(
                 DecodeErrorKind::DataSizeMismatch {
                     header: header.data_size.into(),
-                    actual,
+                    actual: body.len(),
                 },
                 12,
             ));
         }
-        Ok(Packet {
-            header,
-            body: bytes[HEADER_LEN..].to_vec(),
-        })
+        Ok(PacketRef { header, body })
     }
 }
 

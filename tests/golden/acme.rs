@@ -294,6 +294,16 @@ pub enum Message {
     #[cfg_attr(all(), serde(untagged))]
     Jaus(::jaus::messages::Message),
 }
+/// Decodes one message type into the set. Not inlined: the match of [`Message::decode`]
+/// stays a jump to a small function per code, instead of one frame holding the
+/// temporaries of every message (which costs more than the decode itself).
+#[inline(never)]
+#[allow(dead_code)]
+fn decode_as<T: JausMessage + Into<Message>>(
+    body: &[u8],
+) -> ::core::result::Result<Message, DecodeError> {
+    T::decode_body(body).map(Into::into)
+}
 impl Message {
     /// Decodes a body of the message with command code `code`.
     pub fn decode(
@@ -301,13 +311,11 @@ impl Message {
         body: &[u8],
     ) -> ::core::result::Result<Self, DecodeError> {
         match code.0 {
-            0xD100 => QueryTanks::decode_body(body).map(Self::QueryTanks),
-            0xF100 => ReportTanks::decode_body(body).map(Self::ReportTanks),
-            0xD101 => ReplayTanks::decode_body(body).map(Self::ReplayTanks),
-            0xD102 => SetTankValve::decode_body(body).map(Self::SetTankValve),
-            0xD103 => {
-                ReportTankTelemetry::decode_body(body).map(Self::ReportTankTelemetry)
-            }
+            0xD100 => decode_as::<QueryTanks>(body),
+            0xF100 => decode_as::<ReportTanks>(body),
+            0xD101 => decode_as::<ReplayTanks>(body),
+            0xD102 => decode_as::<SetTankValve>(body),
+            0xD103 => decode_as::<ReportTankTelemetry>(body),
             _ => ::jaus::messages::Message::decode(code, body).map(Self::Jaus),
         }
     }

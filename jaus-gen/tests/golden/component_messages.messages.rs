@@ -95,6 +95,16 @@ pub enum Message {
     /// A message this set does not define, kept as its code and body.
     Raw(::jaus::RawMessage),
 }
+/// Decodes one message type into the set. Not inlined: the match of [`Message::decode`]
+/// stays a jump to a small function per code, instead of one frame holding the
+/// temporaries of every message (which costs more than the decode itself).
+#[inline(never)]
+#[allow(dead_code)]
+fn decode_as<T: JausMessage + Into<Message>>(
+    body: &[u8],
+) -> ::core::result::Result<Message, DecodeError> {
+    T::decode_body(body).map(Into::into)
+}
 impl Message {
     /// Decodes a body of the message with command code `code`.
     pub fn decode(
@@ -102,12 +112,12 @@ impl Message {
         body: &[u8],
     ) -> ::core::result::Result<Self, DecodeError> {
         match code.0 {
-            0x0405 => SetWrenchEffort::decode_body(body).map(Self::SetWrenchEffort),
-            0x040A => SetTravelSpeed::decode_body(body).map(Self::SetTravelSpeed),
-            0x2405 => QueryWrenchEffort::decode_body(body).map(Self::QueryWrenchEffort),
-            0x4405 => ReportWrenchEffort::decode_body(body).map(Self::ReportWrenchEffort),
-            0x2402 => QueryGlobalPose::decode_body(body).map(Self::QueryGlobalPose),
-            0x4402 => ReportGlobalPose::decode_body(body).map(Self::ReportGlobalPose),
+            0x0405 => decode_as::<SetWrenchEffort>(body),
+            0x040A => decode_as::<SetTravelSpeed>(body),
+            0x2405 => decode_as::<QueryWrenchEffort>(body),
+            0x4405 => decode_as::<ReportWrenchEffort>(body),
+            0x2402 => decode_as::<QueryGlobalPose>(body),
+            0x4402 => decode_as::<ReportGlobalPose>(body),
             _ => {
                 Ok(
                     Self::Raw(::jaus::RawMessage {

@@ -132,6 +132,16 @@ pub enum Message {
     /// A message this set does not define, kept as its code and body.
     Raw(::jaus::RawMessage),
 }
+/// Decodes one message type into the set. Not inlined: the match of [`Message::decode`]
+/// stays a jump to a small function per code, instead of one frame holding the
+/// temporaries of every message (which costs more than the decode itself).
+#[inline(never)]
+#[allow(dead_code)]
+fn decode_as<T: JausMessage + Into<Message>>(
+    body: &[u8],
+) -> ::core::result::Result<Message, DecodeError> {
+    T::decode_body(body).map(Into::into)
+}
 impl Message {
     /// Decodes a body of the message with command code `code`.
     pub fn decode(
@@ -139,19 +149,15 @@ impl Message {
         body: &[u8],
     ) -> ::core::result::Result<Self, DecodeError> {
         match code.0 {
-            0x2402 => QueryGlobalPose::decode_body(body).map(Self::QueryGlobalPose),
+            0x2402 => decode_as::<QueryGlobalPose>(body),
             #[cfg(feature = "planning")]
-            0x040C => SetGlobalWaypoint::decode_body(body).map(Self::SetGlobalWaypoint),
+            0x040C => decode_as::<SetGlobalWaypoint>(body),
             #[cfg(feature = "planning")]
-            0x240C => {
-                QueryGlobalWaypoint::decode_body(body).map(Self::QueryGlobalWaypoint)
-            }
+            0x240C => decode_as::<QueryGlobalWaypoint>(body),
             #[cfg(feature = "sensors")]
-            0x4402 => ReportGlobalPose::decode_body(body).map(Self::ReportGlobalPose),
+            0x4402 => decode_as::<ReportGlobalPose>(body),
             #[cfg(feature = "sensors")]
-            0x440C => {
-                ReportGlobalWaypoint::decode_body(body).map(Self::ReportGlobalWaypoint)
-            }
+            0x440C => decode_as::<ReportGlobalWaypoint>(body),
             _ => {
                 Ok(
                     Self::Raw(::jaus::RawMessage {

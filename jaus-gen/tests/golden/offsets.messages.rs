@@ -53,6 +53,16 @@ pub enum Message {
     /// A message this set does not define, kept as its code and body.
     Raw(::jaus::RawMessage),
 }
+/// Decodes one message type into the set. Not inlined: the match of [`Message::decode`]
+/// stays a jump to a small function per code, instead of one frame holding the
+/// temporaries of every message (which costs more than the decode itself).
+#[inline(never)]
+#[allow(dead_code)]
+fn decode_as<T: JausMessage + Into<Message>>(
+    body: &[u8],
+) -> ::core::result::Result<Message, DecodeError> {
+    T::decode_body(body).map(Into::into)
+}
 impl Message {
     /// Decodes a body of the message with command code `code`.
     pub fn decode(
@@ -60,7 +70,7 @@ impl Message {
         body: &[u8],
     ) -> ::core::result::Result<Self, DecodeError> {
         match code.0 {
-            0xD0A0 => SpoolTasks::decode_body(body).map(Self::SpoolTasks),
+            0xD0A0 => decode_as::<SpoolTasks>(body),
             _ => {
                 Ok(
                     Self::Raw(::jaus::RawMessage {

@@ -144,6 +144,16 @@ pub enum Message {
     /// A message this set does not define, kept as its code and body.
     Raw(::jaus::RawMessage),
 }
+/// Decodes one message type into the set. Not inlined: the match of [`Message::decode`]
+/// stays a jump to a small function per code, instead of one frame holding the
+/// temporaries of every message (which costs more than the decode itself).
+#[inline(never)]
+#[allow(dead_code)]
+fn decode_as<T: JausMessage + Into<Message>>(
+    body: &[u8],
+) -> ::core::result::Result<Message, DecodeError> {
+    T::decode_body(body).map(Into::into)
+}
 impl Message {
     /// Decodes a body of the message with command code `code`.
     pub fn decode(
@@ -151,9 +161,9 @@ impl Message {
         body: &[u8],
     ) -> ::core::result::Result<Self, DecodeError> {
         match code.0 {
-            0xD030 => ReportPosition::decode_body(body).map(Self::ReportPosition),
-            0xD031 => ReportReadings::decode_body(body).map(Self::ReportReadings),
-            0xD032 => ReportMask::decode_body(body).map(Self::ReportMask),
+            0xD030 => decode_as::<ReportPosition>(body),
+            0xD031 => decode_as::<ReportReadings>(body),
+            0xD032 => decode_as::<ReportMask>(body),
             _ => {
                 Ok(
                     Self::Raw(::jaus::RawMessage {

@@ -108,6 +108,16 @@ pub enum Message {
     /// A message this set does not define, kept as its code and body.
     Raw(::jaus::RawMessage),
 }
+/// Decodes one message type into the set. Not inlined: the match of [`Message::decode`]
+/// stays a jump to a small function per code, instead of one frame holding the
+/// temporaries of every message (which costs more than the decode itself).
+#[inline(never)]
+#[allow(dead_code)]
+fn decode_as<T: JausMessage + Into<Message>>(
+    body: &[u8],
+) -> ::core::result::Result<Message, DecodeError> {
+    T::decode_body(body).map(Into::into)
+}
 impl Message {
     /// Decodes a body of the message with command code `code`.
     pub fn decode(
@@ -115,13 +125,11 @@ impl Message {
         body: &[u8],
     ) -> ::core::result::Result<Self, DecodeError> {
         match code.0 {
-            0x2D10 => QueryTemperature::decode_body(body).map(Self::QueryTemperature),
-            0x4D10 => ReportTemperature::decode_body(body).map(Self::ReportTemperature),
-            0x2D11 => QueryHistory::decode_body(body).map(Self::QueryHistory),
-            0x4D20 => {
-                ReportTemperatureLog::decode_body(body).map(Self::ReportTemperatureLog)
-            }
-            0x2D12 => QueryPing::decode_body(body).map(Self::QueryPing),
+            0x2D10 => decode_as::<QueryTemperature>(body),
+            0x4D10 => decode_as::<ReportTemperature>(body),
+            0x2D11 => decode_as::<QueryHistory>(body),
+            0x4D20 => decode_as::<ReportTemperatureLog>(body),
+            0x2D12 => decode_as::<QueryPing>(body),
             _ => {
                 Ok(
                     Self::Raw(::jaus::RawMessage {

@@ -76,6 +76,16 @@ pub enum Message {
     /// A message this set does not define, kept as its code and body.
     Raw(::jaus::RawMessage),
 }
+/// Decodes one message type into the set. Not inlined: the match of [`Message::decode`]
+/// stays a jump to a small function per code, instead of one frame holding the
+/// temporaries of every message (which costs more than the decode itself).
+#[inline(never)]
+#[allow(dead_code)]
+fn decode_as<T: JausMessage + Into<Message>>(
+    body: &[u8],
+) -> ::core::result::Result<Message, DecodeError> {
+    T::decode_body(body).map(Into::into)
+}
 impl Message {
     /// Decodes a body of the message with command code `code`.
     pub fn decode(
@@ -83,11 +93,11 @@ impl Message {
         body: &[u8],
     ) -> ::core::result::Result<Self, DecodeError> {
         match code.0 {
-            0x4002 => ReportStatus::decode_body(body).map(Self::ReportStatus),
-            0x2B00 => QueryName::decode_body(body).map(Self::QueryName),
-            0x000D => RequestControl::decode_body(body).map(Self::RequestControl),
-            0x0003 => Standby::decode_body(body).map(Self::Standby),
-            0x0402 => SetSpeed::decode_body(body).map(Self::SetSpeed),
+            0x4002 => decode_as::<ReportStatus>(body),
+            0x2B00 => decode_as::<QueryName>(body),
+            0x000D => decode_as::<RequestControl>(body),
+            0x0003 => decode_as::<Standby>(body),
+            0x0402 => decode_as::<SetSpeed>(body),
             _ => {
                 Ok(
                     Self::Raw(::jaus::RawMessage {

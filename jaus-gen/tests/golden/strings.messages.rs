@@ -112,6 +112,16 @@ pub enum Message {
     /// A message this set does not define, kept as its code and body.
     Raw(::jaus::RawMessage),
 }
+/// Decodes one message type into the set. Not inlined: the match of [`Message::decode`]
+/// stays a jump to a small function per code, instead of one frame holding the
+/// temporaries of every message (which costs more than the decode itself).
+#[inline(never)]
+#[allow(dead_code)]
+fn decode_as<T: JausMessage + Into<Message>>(
+    body: &[u8],
+) -> ::core::result::Result<Message, DecodeError> {
+    T::decode_body(body).map(Into::into)
+}
 impl Message {
     /// Decodes a body of the message with command code `code`.
     pub fn decode(
@@ -119,10 +129,10 @@ impl Message {
         body: &[u8],
     ) -> ::core::result::Result<Self, DecodeError> {
         match code.0 {
-            0xD060 => ReportLabels::decode_body(body).map(Self::ReportLabels),
-            0xD061 => ReportIdentity::decode_body(body).map(Self::ReportIdentity),
-            0xD062 => ReportImage::decode_body(body).map(Self::ReportImage),
-            0xD063 => ReportNote::decode_body(body).map(Self::ReportNote),
+            0xD060 => decode_as::<ReportLabels>(body),
+            0xD061 => decode_as::<ReportIdentity>(body),
+            0xD062 => decode_as::<ReportImage>(body),
+            0xD063 => decode_as::<ReportNote>(body),
             _ => {
                 Ok(
                     Self::Raw(::jaus::RawMessage {
