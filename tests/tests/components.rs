@@ -495,8 +495,17 @@ struct Follower {
 
 impl GlobalWaypointDriver for Follower {
     fn initialize(&mut self, ctx: &mut global_waypoint_driver::Ctx<'_>) -> Result<(), String> {
-        ctx.create_service_connection(GPS, CommandCode(0x4402), 20.0, 0xFFFF);
-        Ok(())
+        // A rate the message cannot carry is refused up front, nothing sent.
+        let too_fast = ctx.create_service_connection(GPS, CommandCode(0x4402), 5000.0, 0xFFFF);
+        assert_eq!(
+            too_fast,
+            Err(jaus::component::ServiceConnectionError::Rate {
+                rate: 5000.0,
+                max: 1092.0
+            })
+        );
+        ctx.create_service_connection(GPS, CommandCode(0x4402), 20.0, 0xFFFF)
+            .map_err(|e| e.to_string())
     }
 
     fn on_report_global_pose(

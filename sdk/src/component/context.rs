@@ -5,7 +5,9 @@ use std::marker::PhantomData;
 use std::time::{Duration, Instant};
 
 use super::runtime::Runtime;
-use super::{CoreState, CoreTransition, EmittedBy, Interface, Modes, TransitionError};
+use super::{
+    CoreState, CoreTransition, EmittedBy, Interface, Modes, ServiceConnectionError, TransitionError,
+};
 use crate::messages::*;
 use crate::{Address, CommandCode, JausMessage};
 
@@ -140,16 +142,30 @@ impl<I: Interface> Context<'_, I> {
     }
 
     /// Asks `provider` for a service connection streaming report `report` at `rate_hz`
-    /// with presence vector `presence`. The reports arrive as ordinary messages. Returns
-    /// false when [`Config::max_subscriptions`](super::Config::max_subscriptions) are already open.
+    /// with presence vector `presence`. The reports arrive as ordinary messages. Refused,
+    /// with nothing sent, when the rate is not in (0, 1092] Hz (what the message's
+    /// scaled field carries) or when
+    /// [`Config::max_subscriptions`](super::Config::max_subscriptions) are already open
+    /// (counted in `Stats::subscriptions_refused`).
     pub fn create_service_connection(
         &mut self,
         provider: Address,
         report: CommandCode,
         rate_hz: f64,
         presence: u32,
-    ) -> bool {
-        self.rt.subscribe(provider, report, rate_hz, presence)
+    ) -> Result<(), ServiceConnectionError> {
+        let max = super::connections::MAX_JAUS_RATE;
+        if !(rate_hz > 0.0 && rate_hz <= max) {
+            self.rt.stats.subscriptions_refused += 1;
+            return Err(ServiceConnectionError::Rate { rate: rate_hz, max });
+        }
+        if self.rt.subscribe(provider, report, rate_hz, presence) {
+            Ok(())
+        } else {
+            Err(ServiceConnectionError::TooMany {
+                max: self.rt.config.max_subscriptions,
+            })
+        }
     }
 
     /// Ends the service connection on `report` from `provider`.

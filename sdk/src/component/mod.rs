@@ -142,6 +142,26 @@ pub enum Refused {
     },
 }
 
+/// Why [`Context::create_service_connection`] sent no request.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ServiceConnectionError {
+    /// [`Config::max_subscriptions`] connections are already open or asked for.
+    #[error("{max} service connections are already open or asked for")]
+    TooMany {
+        /// The configured limit.
+        max: usize,
+    },
+    /// The rate cannot be carried by Create Service Connection: the field is a scaled
+    /// u16 over 0 to 1092 Hz, and a rate must be above 0 (and a number).
+    #[error("rate {rate} Hz is outside (0, {max}] Hz, what Create Service Connection carries")]
+    Rate {
+        /// The rate asked for.
+        rate: f64,
+        /// The largest rate the message carries.
+        max: f64,
+    },
+}
+
 /// Why the runtime asks a component that commands motion to stop ([`Behaviour::stop`],
 /// the `stop` method of every driver's generated trait).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

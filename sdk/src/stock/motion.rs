@@ -108,10 +108,18 @@ impl Motion {
     pub fn subscribe<I: Interface>(&mut self, ctx: &mut Context<'_, I>, report: CommandCode) {
         let rate = self.config.feedback_rate_hz;
         // Position and attitude bits (0-6) of the pose report.
-        ctx.create_service_connection(self.config.pose_sensor, report, rate, 0x7F);
-        if let Some(v) = self.config.velocity_sensor {
+        let pose = ctx.create_service_connection(self.config.pose_sensor, report, rate, 0x7F);
+        let velocity = self.config.velocity_sensor.map(|v| {
             // Velocities and rates (bits 0-2, 4-6).
-            ctx.create_service_connection(v, CommandCode(0x4404), rate, 0x77);
+            ctx.create_service_connection(v, CommandCode(0x4404), rate, 0x77)
+        });
+        for e in [Some(pose), velocity]
+            .into_iter()
+            .flatten()
+            .filter_map(Result::err)
+        {
+            // The watchdog stops the vehicle while no feedback arrives.
+            tracing::warn!(address = %ctx.address(), "feedback not requested: {e}");
         }
     }
 

@@ -80,7 +80,9 @@ impl SystemCommander for Commander {
 
     fn tick(&mut self, ctx: &mut Ctx<'_>) {
         for (p, r, hz, pv) in self.open.drain(..) {
-            ctx.create_service_connection(p, r, hz, pv);
+            if let Err(e) = ctx.create_service_connection(p, r, hz, pv) {
+                tracing::warn!(provider = %p, report = %r, "service connection not requested: {e}");
+            }
         }
         for (p, r) in self.close.drain(..) {
             ctx.terminate_service_connection(p, r);
