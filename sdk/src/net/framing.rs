@@ -178,16 +178,23 @@ pub fn split(header: &Header, body: &[u8]) -> Result<Vec<Vec<u8>>, EncodeError> 
 /// Limits of the [`Reassembler`].
 #[derive(Debug, Clone, Copy)]
 pub struct ReassemblyLimits {
-    /// Largest rebuilt message body, bytes.
+    /// Largest rebuilt message body, bytes. Default 1 MiB.
     pub max_message: usize,
-    /// Most bytes buffered for one source address.
+    /// Most bytes buffered for one source address. Default 2 MiB.
     pub per_source: usize,
-    /// Most bytes buffered in total.
+    /// Most bytes buffered in total. Default 16 MiB.
     pub total: usize,
-    /// An incomplete message is dropped this long after its last packet.
+    /// An incomplete message is dropped this long after its last packet. Default 2 s.
     pub timeout: Duration,
 }
 
+/// The defaults the field documentation states:
+///
+/// ```
+/// let l = jaus::net::ReassemblyLimits::default();
+/// assert_eq!((l.max_message, l.per_source, l.total), (1 << 20, 2 << 20, 16 << 20));
+/// assert_eq!(l.timeout, std::time::Duration::from_secs(2));
+/// ```
 impl Default for ReassemblyLimits {
     fn default() -> Self {
         Self {

@@ -133,27 +133,40 @@ impl SystemTree {
 /// Settings of the node manager.
 #[derive(Debug, Clone)]
 pub struct ManagerConfig {
-    /// Subsystem name (answer to Query Identification, subsystem).
+    /// Subsystem name (answer to Query Identification, subsystem). Default
+    /// `"jaus-rs subsystem"`.
     pub subsystem_name: String,
-    /// Node name (answer to Query Identification, node).
+    /// Node name (answer to Query Identification, node). Default `"jaus-rs node"`.
     pub node_name: String,
-    /// Heartbeat period.
+    /// Heartbeat period. Default 1 s.
     pub heartbeat: Duration,
-    /// A node not heard from for this long is removed.
+    /// A node not heard from for this long is removed. Default 5 s.
     pub node_timeout: Duration,
-    /// Where heartbeats go (every node manager of the system by default).
+    /// Where heartbeats go. Default 255.255.1.1 (every node manager of the system).
     pub heartbeat_to: Address,
     /// Every other node's configuration is asked for again at this period, whatever
     /// its events say (an Event lost on the network is repaired within this time).
+    /// Default 10 s.
     pub config_refresh: Duration,
     /// A heartbeat arriving after a silence longer than this (the node may have
     /// restarted and forgotten our subscription) makes the manager ask for the node's
-    /// configuration and subscribe to it again.
+    /// configuration and subscribe to it again. Default 2.5 s.
     pub heartbeat_gap: Duration,
-    /// An unanswered Create Event is sent again after this long.
+    /// An unanswered Create Event is sent again after this long. Default 3 s.
     pub subscribe_retry: Duration,
 }
 
+/// The defaults the field documentation states:
+///
+/// ```
+/// use std::time::Duration;
+/// let m = jaus::net::ManagerConfig::default();
+/// assert_eq!((m.subsystem_name.as_str(), m.node_name.as_str()), ("jaus-rs subsystem", "jaus-rs node"));
+/// assert_eq!((m.heartbeat, m.node_timeout), (Duration::from_secs(1), Duration::from_secs(5)));
+/// assert_eq!(m.heartbeat_to, jaus::Address::new(255, 255, 1, 1));
+/// assert_eq!((m.config_refresh, m.heartbeat_gap, m.subscribe_retry),
+///     (Duration::from_secs(10), Duration::from_millis(2500), Duration::from_secs(3)));
+/// ```
 impl Default for ManagerConfig {
     fn default() -> Self {
         Self {

@@ -23,29 +23,41 @@ use crate::Address;
 /// Settings of a node.
 #[derive(Debug, Clone)]
 pub struct NodeConfig {
-    /// Subsystem id (1-254).
+    /// Subsystem id (1-254). Default 1.
     pub subsystem: u8,
-    /// Node id (1-254).
+    /// Node id (1-254). Default 1.
     pub node: u8,
-    /// Node manager settings (names, heartbeat, node timeout).
+    /// Node manager settings (names, heartbeat, node timeout; defaults there).
     pub manager: ManagerConfig,
-    /// Framing of the UDP interface.
+    /// Framing of the UDP interface. Default JUDP.
     pub framing: Framing,
-    /// Peers always sent broadcasts and messages to nodes not yet located.
+    /// Peers always sent broadcasts and messages to nodes not yet located. Default
+    /// none.
     pub peers: Vec<SocketAddr>,
-    /// Reassembly limits.
+    /// Reassembly limits (defaults there: 1 MiB per message, 2 MiB per source, 16 MiB
+    /// in all, 2 s).
     pub reassembly: ReassemblyLimits,
-    /// Most datagrams waiting to be sent.
+    /// Most datagrams waiting to be sent (more are dropped and counted). Default 8192.
     pub max_outbox: usize,
-    /// Settings of the node manager component.
+    /// Settings of the node manager component (the component defaults).
     pub component: Config,
-    /// Most external components (other processes using this node's socket).
+    /// Most external components (other processes using this node's socket). Default
+    /// 64.
     pub max_external: usize,
     /// An external component not heard from for this long is removed (they heartbeat
-    /// every second).
+    /// every second). Default 3 s.
     pub external_timeout: std::time::Duration,
 }
 
+/// The defaults the field documentation states:
+///
+/// ```
+/// let n = jaus::net::NodeConfig::default();
+/// assert_eq!((n.subsystem, n.node, n.framing), (1, 1, jaus::net::Framing::Judp));
+/// assert!(n.peers.is_empty());
+/// assert_eq!((n.max_outbox, n.max_external), (8192, 64));
+/// assert_eq!(n.external_timeout, std::time::Duration::from_secs(3));
+/// ```
 impl Default for NodeConfig {
     fn default() -> Self {
         Self {

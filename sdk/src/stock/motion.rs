@@ -51,6 +51,21 @@ pub struct DriverConfig {
     pub origin: Option<LocalFrame>,
 }
 
+/// The defaults: output 1.1.33.1 (the Primitive Driver), pose sensor 1.1.41.1,
+/// velocity sensor 1.1.42.1, feedback at 20 Hz with a 300 ms watchdog, vector commands
+/// stale after 2 s, 2 m/s and 1.5 rad/s at full effort, heading gain 2.5 /s, speed gain
+/// 0.5, look-ahead 0.5 m, arrival within 0.15 m, deceleration 0.8 m/s², origin at the
+/// first fix.
+///
+/// ```
+/// use std::time::Duration;
+/// let d = jaus::stock::motion::DriverConfig::default();
+/// assert_eq!((d.feedback_rate_hz, d.feedback_timeout), (20.0, Duration::from_millis(300)));
+/// assert_eq!(d.command_timeout, Some(Duration::from_secs(2)));
+/// assert_eq!((d.max_speed, d.max_yaw_rate, d.heading_gain, d.speed_gain), (2.0, 1.5, 2.5, 0.5));
+/// assert_eq!((d.lookahead, d.arrival_tolerance, d.deceleration), (0.5, 0.15, 0.8));
+/// assert_eq!(d.output, jaus::Address::new(1, 1, 33, 1));
+/// ```
 impl Default for DriverConfig {
     fn default() -> Self {
         Self {
