@@ -34,13 +34,23 @@ impl Drop for Running {
 /// Starts `jaus node` with `yaml`; its stdout lines arrive on the receiver, its log
 /// goes to `<dir>/<name>.log`.
 fn node(dir: &std::path::Path, name: &str, yaml: &str) -> (Running, mpsc::Receiver<String>) {
+    node_for(dir, name, yaml, 30)
+}
+
+/// [`node`] running for `seconds`.
+fn node_for(
+    dir: &std::path::Path,
+    name: &str,
+    yaml: &str,
+    seconds: u32,
+) -> (Running, mpsc::Receiver<String>) {
     let cfg = dir.join(format!("{name}.yaml"));
     std::fs::write(&cfg, yaml).unwrap();
     let log = std::fs::File::create(dir.join(format!("{name}.log"))).unwrap();
     let mut child = Command::new(jaus_bin())
         .args(["node", "--config"])
         .arg(&cfg)
-        .args(["--seconds", "30"])
+        .args(["--seconds", &seconds.to_string()])
         .stdout(Stdio::piped())
         .stderr(log)
         .spawn()
@@ -534,4 +544,43 @@ fn a_node_hosts_any_stock_component_at_any_instance() {
         "{err}"
     );
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// `jaus demo --ocu-only` drives the vehicle hosted by a `jaus node` over UDP to the end
+/// of the mission and writes its plot from the positions it received (issue 20 item 7).
+#[test]
+fn the_networked_demo_operator_finishes_and_writes_its_plot() {
+    let dir = std::env::temp_dir().join(format!("jaus-udp-ocu-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (pa, pb) = (free_port(), free_port());
+    let (_vehicle, _rx) = node_for(
+        &dir,
+        "vehicle",
+        &format!("subsystem: 1\nnode: 1\nbind: 127.0.0.1:{pa}\npeers: [127.0.0.1:{pb}]\nhost: [vehicle]\n"),
+        150,
+    );
+    let out_dir = dir.join("plot");
+    let out = Command::new(jaus_bin())
+        .args(["demo", "--ocu-only", "--bind"])
+        .arg(format!("127.0.0.1:{pb}"))
+        .arg("--peer")
+        .arg(format!("127.0.0.1:{pa}"))
+        .arg("--out")
+        .arg(&out_dir)
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{}\n{text}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(text.contains("spooled mission finished at"), "{text}");
+    let svg = std::fs::read_to_string(out_dir.join("demo.svg")).unwrap();
+    assert!(
+        svg.starts_with("<svg") && svg.contains("polyline"),
+        "{}",
+        &svg[..svg.len().min(200)]
+    );
+    let _ = std::fs::remove_dir_all(dir);
 }

@@ -435,17 +435,28 @@ fn main() -> ExitCode {
             ocu_only: true,
             bind,
             peer,
+            out: dir,
             ..
-        } => report(
-            &mut err,
-            jaus_cli::net::demo_operator(
+        } => {
+            let run = jaus_cli::net::demo_operator(
                 bind,
                 peer,
                 jaus::net::Framing::Judp,
                 std::time::Duration::from_secs(180),
                 &mut out,
-            ),
-        ),
+            );
+            // Measured on the positions the operator received over the network.
+            report(
+                &mut err,
+                run.and_then(|run| {
+                    let _ = writeln!(out, "{}", report::summary(&run));
+                    let path = report::write_svg(&run, &dir)
+                        .map_err(|e| format!("{}: {e}", dir.display()))?;
+                    let _ = writeln!(out, "plot: {}", path.display());
+                    Ok(())
+                }),
+            )
+        }
         Cmd::Demo {
             seed,
             noise,

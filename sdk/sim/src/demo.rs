@@ -200,6 +200,8 @@ pub struct Operator {
     horn_at: Option<Instant>,
     /// The mission's move targets as planned (a detour first if an obstacle is in the way).
     planned: Vec<(f64, f64)>,
+    /// Positions received from the Local Pose Sensor (at most `TRAIL_MAX`).
+    trail: Vec<(Instant, Vector2<f64>)>,
     /// Obstacles the world model returned for the first leg.
     obstacles_found: usize,
     path_started: Option<Instant>,
@@ -231,9 +233,23 @@ impl Operator {
     }
 }
 
+/// Most positions the operator keeps (an hour at 10 Hz).
+const TRAIL_MAX: usize = 36_000;
+
 impl SystemCommander for Operator {
     fn tick(&mut self, ctx: &mut Ctx<'_>) {
         let now = ctx.now();
+        if self.started.is_none() {
+            // The vehicle's position as the operator sees it (x, y).
+            if let Err(e) = ctx.create_service_connection(
+                addr::LPS,
+                <ReportLocalPose as jaus::JausMessage>::CODE,
+                10.0,
+                0x03,
+            ) {
+                tracing::warn!("no position feedback: {e}");
+            }
+        }
         self.started.get_or_insert(now);
         let frame = LocalFrame::new(ORIGIN.0, ORIGIN.1, ORIGIN.2);
         match self.step {
@@ -387,6 +403,13 @@ impl SystemCommander for Operator {
         msg: &Message,
     ) -> Result<Option<Message>, Refused> {
         match msg {
+            Message::ReportLocalPose(p) => {
+                if let (Some(x), Some(y)) = (p.x, p.y) {
+                    if self.trail.len() < TRAIL_MAX {
+                        self.trail.push((ctx.now(), Vector2::new(x, y)));
+                    }
+                }
+            }
             Message::ReportVksObjects(r) if self.step == Step::PlanMission && r.request_id == 2 => {
                 let frame = LocalFrame::new(ORIGIN.0, ORIGIN.1, ORIGIN.2);
                 let from = Vector2::new(SEGMENTS[1].1 .0, SEGMENTS[1].1 .1);
@@ -754,7 +777,14 @@ pub fn run(opts: &Options, mut print: impl FnMut(&str)) -> Result<Report, String
                 .get::<Ocu>(addr::OCU)
                 .map(|o| o.behaviour().0.planned.clone())
                 .unwrap_or_default();
-            return Ok(measure(t0, &bus, &vehicle, done_at, horn_at, &planned));
+            let trail: Vec<(f64, Vector2<f64>)> = vehicle
+                .lock()
+                .trail()
+                .iter()
+                .map(|(d, p)| (d.as_secs_f64(), *p))
+                .collect();
+            let run = ((bus.now() - t0).as_secs_f64(), bus.stats().delivered);
+            return Ok(measure(t0, &trail, done_at, horn_at, &planned, run));
         }
         if elapsed > opts.timeout {
             return Err(format!(
@@ -806,22 +836,19 @@ fn commanded_legs(mission: &[(f64, f64)]) -> (Legs, Legs, Legs) {
     (wp, ps, ms)
 }
 
+/// What the run measured, from a trajectory `trail` (seconds since `t0`, local
+/// metres): the simulated vehicle's true one in the in-process demo, the positions the
+/// operator received in `--ocu-only`.
 fn measure(
     t0: Instant,
-    bus: &LocalBus,
-    vehicle: &SimVehicle,
+    trail: &[(f64, Vector2<f64>)],
     done_at: [Option<Instant>; 3],
     horn_at: Option<Instant>,
     planned: &[(f64, f64)],
+    (duration, messages): (f64, u64),
 ) -> Report {
     let [wp_done, path_done, mission_done] = done_at;
     let secs = |t: Option<Instant>| t.map(|t| (t - t0).as_secs_f64());
-    let v = vehicle.lock();
-    let trail: Vec<(f64, Vector2<f64>)> = v
-        .trail()
-        .iter()
-        .map(|(d, p)| (d.as_secs_f64(), *p))
-        .collect();
     let (wp_legs, path_legs, mission_legs) = commanded_legs(planned);
     let wp_end = secs(wp_done).unwrap_or(f64::INFINITY);
     let path_end = secs(path_done).unwrap_or(f64::INFINITY);
@@ -912,11 +939,35 @@ fn measure(
         obstacle_clearance,
         planned: planned.to_vec(),
         final_errors,
-        duration: (bus.now() - t0).as_secs_f64(),
-        messages: bus.stats().delivered,
+        duration,
+        messages,
         commanded,
         trail: trail_points,
     };
-    drop(v);
     report
+}
+
+/// The report of an operator that drove the vehicle over a network (`jaus demo
+/// --ocu-only`): measured on the positions it received from the Local Pose Sensor (a
+/// 10 Hz service connection), so the errors include the sensor's noise and the link's
+/// delay. `None` until the operator is done.
+pub fn operator_report(t0: Instant, ocu: &Ocu) -> Option<Report> {
+    let o = &ocu.behaviour().0;
+    if o.step != Step::Done {
+        return None;
+    }
+    let trail: Vec<(f64, Vector2<f64>)> = o
+        .trail
+        .iter()
+        .map(|(t, p)| ((*t - t0).as_secs_f64(), *p))
+        .collect();
+    let end = o.trail.last().map_or(0.0, |(t, _)| (*t - t0).as_secs_f64());
+    Some(measure(
+        t0,
+        &trail,
+        [o.waypoints_done, o.path_done, o.mission_done],
+        o.horn_at,
+        &o.planned,
+        (end, ocu.stats().received),
+    ))
 }

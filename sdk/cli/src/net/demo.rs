@@ -16,7 +16,7 @@ pub fn demo_operator(
     framing: Framing,
     timeout: Duration,
     out: &mut impl Write,
-) -> Result<(), String> {
+) -> Result<jaus_sim::demo::Report, String> {
     let t0 = Instant::now();
     let mut c = NodeConfig {
         subsystem: 1,
@@ -33,6 +33,7 @@ pub fn demo_operator(
     let stop = AtomicBool::new(false);
     let mut last = "";
     let mut done = None;
+    let mut report = None;
     udp::run(&mut node, bind, &stop, Some(t0 + timeout), |n| {
         if done.is_some() {
             return;
@@ -46,6 +47,7 @@ pub fn demo_operator(
             }
             if phase == "done" {
                 done = Some((wp, path, mission));
+                report = jaus_sim::demo::operator_report(t0, o);
                 stop.store(true, Ordering::Relaxed);
             }
         }
@@ -61,7 +63,7 @@ pub fn demo_operator(
                 s(path),
                 s(mission)
             );
-            Ok(())
+            report.ok_or_else(|| "the operator finished without a report".to_string())
         }
         None => Err(format!("the mission did not finish within {timeout:?} (is `jaus node` with host: [vehicle] running and reachable?)")),
     }
