@@ -930,7 +930,7 @@ fn measure(
         .map(|(_, p)| p.points().to_vec())
         .collect();
     let trail_points: Vec<Vector2<f64>> = trail.iter().map(|(_, p)| *p).collect();
-    let report = Report {
+    Report {
         legs,
         waypoints_done: secs(wp_done),
         path_done: secs(path_done),
@@ -943,8 +943,7 @@ fn measure(
         messages,
         commanded,
         trail: trail_points,
-    };
-    report
+    }
 }
 
 /// The report of an operator that drove the vehicle over a network (`jaus demo
