@@ -285,6 +285,36 @@ fn decode_takes_packets_as_arguments() {
     assert!(ok.stderr.is_empty());
 }
 
+/// `messages --json`: one JSON line per message, with its class; an unknown group is an
+/// error (exit 1) listing the groups.
+#[test]
+fn messages_as_json_and_unknown_groups() {
+    let out = run(&["messages", "--json"], "");
+    assert!(out.status.success());
+    let rows: Vec<serde_json::Value> = lines(&out.stdout)
+        .iter()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert_eq!(rows.len(), jaus::messages::MESSAGES.len());
+    let pose = rows
+        .iter()
+        .find(|r| r["name"] == "QueryGlobalPose")
+        .unwrap();
+    assert_eq!(pose["code"], 0x2402);
+    assert_eq!(pose["class"], "Query");
+    assert_eq!(pose["report"], "ReportGlobalPose");
+    assert_eq!(pose["group"], "platform");
+    let core = run(&["messages", "--json", "--group", "core"], "");
+    assert!(lines(&core.stdout).len() < rows.len());
+    let bad = run(&["messages", "--group", "platfrom"], "");
+    assert_eq!(bad.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&bad.stderr);
+    assert!(
+        err.contains("no message group `platfrom`") && err.contains("platform"),
+        "{err}"
+    );
+}
+
 #[test]
 fn messages_lists_the_catalogue() {
     let out = run(&["messages"], "");

@@ -147,7 +147,77 @@ fn two_node_processes_discover_each_other_and_answer_a_query() {
     assert_eq!(report["header"]["source"], serde_json::json!([1, 1, 38, 1]));
     let lat = report["fields"]["latitude"].as_f64().unwrap();
     assert!((lat - 29.6436).abs() < 1e-4, "{lat}");
+
+    // `jaus query ... | jaus encode` round-trips: the printed reply encodes to a packet
+    // that decodes back to the same header and fields (one JSON shape everywhere).
+    let line = serde_json::to_string(&report).unwrap();
+    let encoded = pipe(&["encode"], &format!("{line}\n"));
+    let hex = encoded.trim();
+    assert_eq!(hex.len(), 2 * (16 + 10), "{hex}");
+    let back: serde_json::Value = serde_json::from_str(pipe(&["decode", hex], "").trim()).unwrap();
+    assert_eq!(back["message"], report["message"]);
+    assert_eq!(back["fields"], report["fields"]);
+    assert_eq!(back["header"], report["header"]);
+
+    // `discover --json`: the tree as one JSON document.
+    let out = Command::new(jaus_bin())
+        .args(["discover", "--json", "--wait", "1.5", "--me", "1.3.40.1"])
+        .arg("--bind")
+        .arg(format!("127.0.0.1:{pc}"))
+        .arg("--peer")
+        .arg(format!("127.0.0.1:{pa}"))
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let tree: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let ss1 = tree["subsystems"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|s| s["id"] == 1)
+        .unwrap();
+    let vehicle = ss1["nodes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|n| n["id"] == 1)
+        .unwrap();
+    assert_eq!(vehicle["name"], "vehicle");
+    assert!(vehicle["components"].as_array().unwrap().iter().any(|c| {
+        c["address"] == "1.1.38.1"
+            && c["name"] == "GlobalPoseSensor"
+            && c["services"] == serde_json::json!([0, 38])
+    }));
     let _ = std::fs::remove_dir_all(dir);
+}
+
+/// Runs the `jaus` binary with `stdin`; its stdout (exit status 0 required).
+fn pipe(args: &[&str], stdin: &str) -> String {
+    use std::io::Write as _;
+    let mut child = Command::new(jaus_bin())
+        .args(args)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(stdin.as_bytes())
+        .unwrap();
+    let out = child.wait_with_output().unwrap();
+    assert!(
+        out.status.success(),
+        "jaus {args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8(out.stdout).unwrap()
 }
 
 /// The JSON lines of a CLI run.

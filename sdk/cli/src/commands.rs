@@ -32,6 +32,19 @@ pub fn run_lines(
     ok
 }
 
+/// Checks that `group` names a message group (with the closest names when it does not).
+pub fn check_group(group: Option<&str>) -> Result<(), String> {
+    let Some(g) = group else { return Ok(()) };
+    let all = groups();
+    if all.contains(&g) {
+        return Ok(());
+    }
+    Err(format!(
+        "no message group `{g}` (groups: {})",
+        all.join(", ")
+    ))
+}
+
 /// Prints the message catalogue as a table.
 pub fn print_messages(out: &mut impl Write, group: Option<&str>) {
     let _ = writeln!(out, "{:<8} {:<40} {:<22} report", "code", "name", "group");
@@ -57,6 +70,27 @@ pub fn print_messages(out: &mut impl Write, group: Option<&str>) {
         );
     }
     let _ = writeln!(out, "{n} messages");
+}
+
+/// Prints the message catalogue as JSON lines (`jaus messages --json`).
+pub fn print_messages_json(out: &mut impl Write, group: Option<&str>) {
+    let mut rows: Vec<_> = MESSAGES
+        .iter()
+        .filter(|m| group.is_none_or(|g| g == m.group))
+        .collect();
+    rows.sort_by_key(|m| m.code);
+    for m in rows {
+        let line = serde_json::json!({
+            "code": m.code.0,
+            "name": m.name,
+            "title": m.title,
+            "group": m.group,
+            "class": format!("{:?}", m.class),
+            "report": m.report,
+            "experimental": m.experimental,
+        });
+        let _ = writeln!(out, "{line}");
+    }
 }
 
 /// `jaus tour`: decodes the reference packets, shows their JSON, re-encodes them and

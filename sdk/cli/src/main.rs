@@ -13,7 +13,9 @@ use std::sync::atomic::{AtomicBool, Ordering};
     about = "JAUS RA 3.3 toolkit: message catalogue, packet decoder and encoder, nodes, the simulated-vehicle demo"
 )]
 struct Cli {
-    /// More log output on stderr (-v info, -vv debug, -vvv trace); default: warnings.
+    /// More log output on stderr (-v info, -vv debug, -vvv trace: one line per message
+    /// sent and received); default: warnings. `RUST_LOG` (e.g. `jaus::net=trace`)
+    /// overrides it when set.
     #[arg(short, long, action = clap::ArgAction::Count, global = true)]
     verbose: u8,
     #[command(subcommand)]
@@ -30,6 +32,10 @@ enum Cmd {
         /// One message: its fields with types, units, ranges, presence bits, and an
         /// example JSON line.
         name: Option<String>,
+        /// The catalogue as JSON lines, one per message: code (number), name, title,
+        /// group, class, report (name or null), experimental.
+        #[arg(long)]
+        json: bool,
     },
     /// Decode packets given as hex (arguments, or stdin one per line) to JSON lines.
     Decode {
@@ -54,6 +60,10 @@ enum Cmd {
     Discover {
         #[command(flatten)]
         net: NetArgs,
+        /// The tree as one JSON document: {"subsystems": [{"id", "name", "nodes": [{"id",
+        /// "name", "components": [{"address", "name", "services"}]}]}]}.
+        #[arg(long)]
+        json: bool,
     },
     /// Send messages in one session (arguments, or JSON lines on stdin as they come),
     /// each after the previous one was answered; prints every message addressed to this
@@ -308,14 +318,22 @@ fn session(
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let _ = ctrlc::set_handler(|| STOP.store(true, Ordering::Relaxed));
-    let level = match cli.verbose {
-        0 => tracing::Level::WARN,
-        1 => tracing::Level::INFO,
-        2 => tracing::Level::DEBUG,
-        _ => tracing::Level::TRACE,
+    // RUST_LOG (e.g. `jaus=debug,jaus::net=trace`) when set; else -v/-vv/-vvv.
+    let filter = match std::env::var("RUST_LOG") {
+        Ok(spec) if !spec.trim().is_empty() => tracing_subscriber::EnvFilter::try_new(&spec)
+            .unwrap_or_else(|e| {
+                eprintln!("warning: RUST_LOG `{spec}`: {e}; using warnings only");
+                tracing_subscriber::EnvFilter::new("warn")
+            }),
+        _ => tracing_subscriber::EnvFilter::new(match cli.verbose {
+            0 => "warn",
+            1 => "info",
+            2 => "debug",
+            _ => "trace",
+        }),
     };
     tracing_subscriber::fmt()
-        .with_max_level(level)
+        .with_env_filter(filter)
         .with_writer(std::io::stderr)
         .with_ansi(std::io::IsTerminal::is_terminal(&std::io::stderr()))
         .init();
@@ -324,10 +342,20 @@ fn main() -> ExitCode {
     let stderr = std::io::stderr();
     let mut err = stderr.lock();
     let ok = match cli.cmd {
-        Cmd::Messages { group, name: None } => {
-            commands::print_messages(&mut out, group.as_deref());
-            true
-        }
+        Cmd::Messages {
+            group,
+            name: None,
+            json,
+        } => report(
+            &mut err,
+            commands::check_group(group.as_deref()).map(|()| {
+                if json {
+                    commands::print_messages_json(&mut out, group.as_deref());
+                } else {
+                    commands::print_messages(&mut out, group.as_deref());
+                }
+            }),
+        ),
         Cmd::Messages {
             name: Some(name), ..
         } => report(
@@ -354,11 +382,15 @@ fn main() -> ExitCode {
             let d = seconds.map(|s| std::time::Duration::from_secs_f64(s.max(0.0)));
             report(&mut err, jaus_cli::net::node(&config, d, &STOP, &mut out))
         }
-        Cmd::Discover { net } => report(
+        Cmd::Discover { net, json } => report(
             &mut err,
             net.client().and_then(|c| {
                 let (tree, heard) = c.discover(&STOP)?;
-                let _ = write!(out, "{}", tree.render());
+                if json {
+                    let _ = writeln!(out, "{}", jaus_cli::net::tree_json(&tree));
+                } else {
+                    let _ = write!(out, "{}", tree.render());
+                }
                 if heard {
                     Ok(())
                 } else {

@@ -411,6 +411,17 @@ impl Node {
 
     fn route(&mut self, header: Header, body: Vec<u8>, from_local: bool) {
         let d = header.destination;
+        // One line per message at trace level; the fields are evaluated only when it is
+        // enabled (`jaus -vvv`, `RUST_LOG=jaus::net=trace`).
+        tracing::trace!(
+            name = crate::MessageInfo::of(header.command_code).map_or("(not in this set)", |i| i.name),
+            code = %header.command_code,
+            source = %header.source,
+            destination = %d,
+            size = body.len(),
+            from = if from_local { "here" } else { "network" },
+            "route"
+        );
         let here = self.is_here(d);
         let only_here = d.subsystem == self.config.subsystem && d.node == self.config.node;
         if from_local && !only_here {

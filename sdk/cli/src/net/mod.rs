@@ -29,6 +29,6 @@ mod place;
 mod session;
 
 pub use demo::demo_operator;
-pub use node::{node, NodeFile, TreePrinter};
+pub use node::{node, tree_json, NodeFile, TreePrinter};
 pub use place::{bind_socket, default_me, silence_hint, Client, Commander, Mode};
 pub use session::{parse_message, Outcome, Script};

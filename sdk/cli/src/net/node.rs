@@ -329,3 +329,35 @@ pub fn node(
     })
     .map_err(|e| format!("{}: {e}", file.bind))
 }
+
+/// The system tree as JSON (`jaus discover --json`): subsystems, their nodes, and the
+/// components of each with their identification and service types (null until
+/// answered).
+pub fn tree_json(tree: &SystemTree) -> serde_json::Value {
+    let subsystems: Vec<serde_json::Value> = tree
+        .subsystems
+        .iter()
+        .map(|(ss, s)| {
+            let nodes: Vec<serde_json::Value> = s
+                .nodes
+                .iter()
+                .map(|(n, node)| {
+                    let components: Vec<serde_json::Value> = node
+                        .components
+                        .iter()
+                        .map(|((c, i), info)| {
+                            serde_json::json!({
+                                "address": jaus::Address::new(*ss, *n, *c, *i).to_string(),
+                                "name": info.name,
+                                "services": info.services,
+                            })
+                        })
+                        .collect();
+                    serde_json::json!({ "id": n, "name": node.name, "components": components })
+                })
+                .collect();
+            serde_json::json!({ "id": ss, "name": s.name, "nodes": nodes })
+        })
+        .collect();
+    serde_json::json!({ "subsystems": subsystems })
+}
