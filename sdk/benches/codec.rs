@@ -1,4 +1,4 @@
-//! Encode/decode speed of the TARGETS.md reference packets.
+//! Encode/decode speed of the reference packets (`jaus::json::REFERENCE_PACKETS`).
 //!
 //! Body only: encode = serialise the body into a preallocated buffer; decode = parse the
 //! body into the typed message. Full packet (the method of ../shared/perf, to compare

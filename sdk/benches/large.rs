@@ -11,7 +11,7 @@ use jaus::messages::{
 use jaus::{Address, CommandCode, Header, Packet};
 
 /// `polygons` polygons of `points` vertices with `classes` feature classes each — the
-/// TARGETS.md reference message is `vks(10, 40, 3)`.
+/// reference message (docs/performance.md) is `vks(10, 40, 3)`.
 fn vks(polygons: usize, points: usize, classes: usize) -> ReportVksObjects {
     ReportVksObjects {
         request_id: 9,
@@ -105,7 +105,7 @@ fn large(c: &mut Criterion) {
     assert_eq!(
         reference.to_bytes().unwrap().len() + 16,
         3550,
-        "the TARGETS.md reference packet size"
+        "the reference packet size"
     );
     bench_msg(c, "report_vks_objects_10x40", &reference);
     bench_msg(c, "report_vks_objects_1000x100", &vks(1000, 100, 3));

@@ -1,5 +1,5 @@
 //! The 16-byte JAUS message header, addresses, command codes and whole packets
-//! (WIRE.md §1). Hand-written: everything about a message body comes from the derive.
+//! (docs/wire.md §1). Hand-written: everything about a message body comes from the derive.
 
 use crate::codec::{Decode, DecodeError, DecodeErrorKind, Encode, EncodeError, Reader, Writer};
 use std::fmt;
@@ -9,7 +9,7 @@ use std::str::FromStr;
 pub const HEADER_LEN: usize = 16;
 /// Largest body the 12-bit data-size field can describe.
 pub const MAX_DATA_SIZE: usize = 0x0FFF;
-/// Largest body OpenJAUS puts in one packet; longer messages are split (WIRE.md §1.6).
+/// Largest body OpenJAUS puts in one packet; longer messages are split (docs/wire.md §1.6).
 pub const MAX_PACKET_BODY: usize = 4080;
 
 /// A 16-bit JAUS command code.
@@ -21,7 +21,7 @@ pub const MAX_PACKET_BODY: usize = 4080;
 )]
 pub struct CommandCode(pub u16);
 
-/// The message class a command code falls in (WIRE.md §3.1).
+/// The message class a command code falls in (docs/wire.md §3.1).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum MessageClass {
     /// 0x0000–0x1FFF.
@@ -59,7 +59,7 @@ impl CommandCode {
 }
 
 impl CommandCode {
-    /// The complementary code of the query/report pairing (WIRE.md §3.3): a query's
+    /// The complementary code of the query/report pairing (docs/wire.md §3.3): a query's
     /// report is `query + 0x2000`, a report's query `report - 0x2000`. `None` outside
     /// the query and inform classes.
     pub fn complement(self) -> Option<CommandCode> {
@@ -200,7 +200,7 @@ pub enum AckNak {
     Ack,
 }
 
-/// Data flag of a packet in a multi-packet sequence (WIRE.md §1.3).
+/// Data flag of a packet in a multi-packet sequence (docs/wire.md §1.3).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
@@ -243,7 +243,7 @@ impl DataFlag {
     }
 }
 
-/// The 16-byte JAUS message header, every field of WIRE.md §1.
+/// The 16-byte JAUS message header, every field of docs/wire.md §1.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Header {
@@ -533,7 +533,7 @@ mod tests {
 
     #[test]
     fn header_example_of_wire_md() {
-        // Query Component Status from 1.1.40.1 to 1.1.33.1 (WIRE.md §1.5).
+        // Query Component Status from 1.1.40.1 to 1.1.33.1 (docs/wire.md §1.5).
         let bytes = [6, 2, 2, 0x20, 1, 0x21, 1, 1, 1, 0x28, 1, 1, 0, 0, 0, 0];
         let h = Header::parse(&bytes).unwrap();
         assert_eq!(h.command_code, CommandCode(0x2002));

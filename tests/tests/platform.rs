@@ -252,7 +252,7 @@ fn watchdog_stops_the_vehicle_when_pose_goes_stale() {
     start_mission(&mut bus, 1.0);
     bus.run_for(Duration::from_secs(4));
     assert!(vehicle.lock().speed() > 0.8);
-    // The pose sensor falls silent: brakes within 0.5 s (TARGETS.md).
+    // The pose sensor falls silent: brakes within 0.5 s (docs/performance.md).
     bus.set_filter(|h| h.source != LPS);
     let mut braked_after = None;
     for i in 1..=40 {

@@ -6,7 +6,7 @@
 //! [`DecodeError`] that names the offending field and byte offset: no input makes a
 //! decoder panic.
 //!
-//! All multi-byte values are little-endian (WIRE.md §2.1).
+//! All multi-byte values are little-endian (docs/wire.md §2.1).
 
 mod cursor;
 mod error;

@@ -1,4 +1,4 @@
-//! Scaled integers (WIRE.md §2.2): real values carried as integers over a range.
+//! Scaled integers (docs/wire.md §2.2): real values carried as integers over a range.
 
 use super::{Decode, Encode, EncodeError};
 
@@ -32,7 +32,7 @@ macro_rules! scaled_repr {
         }
     )*};
 }
-// Divisors as used by OpenJAUS 3.3 (WIRE.md §2.2), which the reference vectors follow.
+// Divisors as used by OpenJAUS 3.3 (docs/wire.md §2.2), which the reference vectors follow.
 scaled_repr! {
     u8 => 255.0, false;
     u16 => 65_535.0, false;

@@ -14,7 +14,7 @@ fn f(lo: f64, hi: f64) -> &'static ScaledField {
 
 #[test]
 fn scaled_examples_from_wire_md() {
-    // (value, lo, hi, expected integer) — the OpenJAUS table of WIRE.md §2.2, with
+    // (value, lo, hi, expected integer) — the OpenJAUS table of docs/wire.md §2.2, with
     // round-to-nearest for negatives (−50 % → −16384, −100 % → −32767).
     let pct = f(-100.0, 100.0);
     assert_eq!(scale_to::<i16>(50.0, pct).unwrap(), 16384);

@@ -196,7 +196,7 @@ impl<B: Behaviour> Component<B> {
         }
     }
 
-    /// Request Component Control (WIRE.md §5.3, plus the own-authority check).
+    /// Request Component Control (docs/wire.md §5.3, plus the own-authority check).
     fn request_control(&mut self, source: Address, authority: u8) {
         let c = &mut self.rt;
         let confirm =

@@ -20,7 +20,7 @@
 //!   the component in control ([`ControlPolicy::ControllerOnly`], the default, as the
 //!   successor standard requires). [`ControlPolicy::Open`] instead accepts them from
 //!   anyone while no component holds control, as OpenJAUS 3.3 does. Request Component
-//!   Control follows OpenJAUS (WIRE.md §5.3) with one addition: a requester whose
+//!   Control follows OpenJAUS (docs/wire.md §5.3) with one addition: a requester whose
 //!   authority is below the component's own authority gets Confirm Component Control
 //!   "insufficient authority".
 //! * **Emergency.** Set Emergency is honoured from **any** sender, controller or not:

@@ -4,7 +4,7 @@ use std::fmt;
 
 use crate::messages::ComponentState;
 
-/// The core state of every JAUS component (RA 3.3; WIRE.md §5.1).
+/// The core state of every JAUS component (RA 3.3; docs/wire.md §5.1).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum CoreState {
     /// Starting up; no commands are executed.

@@ -1,4 +1,4 @@
-//! UDP framing (WIRE.md §9) and multi-packet messages (§1.6), sans-IO.
+//! UDP framing (docs/wire.md §9) and multi-packet messages (§1.6), sans-IO.
 //!
 //! * **JUDP** (AS5669): `[version 1][HC number 0][HC length/flags 0][u16 BE length]`
 //!   before each JAUS message; received HC flags 0 and 1 are accepted, 2 and 3

@@ -1,5 +1,5 @@
 //! The node manager component (id 1): identification, configuration and subsystem list
-//! of its node, heartbeats, and the system tree built by discovery (WIRE.md §8).
+//! of its node, heartbeats, and the system tree built by discovery (docs/wire.md §8).
 
 use std::collections::BTreeMap;
 use std::time::{Duration, Instant};
@@ -295,7 +295,7 @@ impl StockNodeManager {
 
     /// Asks node `ss.node` for its configuration (node level) and, unless already
     /// subscribed or refused, subscribes to its configuration events (every change),
-    /// as OpenJAUS node managers do for each other (WIRE.md §7.3, §8.3).
+    /// as OpenJAUS node managers do for each other (docs/wire.md §7.3, §8.3).
     fn track_configuration(&mut self, ctx: &mut Ctx<'_>, ss: u8, node: u8, resubscribe: bool) {
         let now = ctx.now();
         let request_id = self.request_id;
