@@ -93,3 +93,86 @@ pub fn spec_yaml(data: &[u8]) {
     };
     let _ = jaus_spec::load_texts(vec![("fuzz.yaml".into(), text.to_string())]);
 }
+
+/// (d) The component runtime with stock components (a Primitive Driver over recording
+/// actuators, the Mission Spooler, the World Model) on the in-process bus, fed
+/// arbitrary messages from four sources: records `[source, destination, code LE16,
+/// length, bytes, run ms]`. After every step the driver's actuators carry no
+/// propulsive effort unless some component holds control of it and it is Ready, and
+/// nothing panics.
+pub fn runtime(data: &[u8]) {
+    use jaus::component::local::LocalBus;
+    use jaus::component::{Component, Config, CoreState};
+    use jaus::components::{mission_spooler, primitive_driver, world_model_vector_knowledge_store};
+    use jaus::stock::drivers::{PrimitiveConfig, StockPrimitiveDriver};
+    use jaus::stock::hardware::{Actuators, Wrench};
+    use jaus::stock::spooler::{SpoolerConfig, StockMissionSpooler};
+    use jaus::stock::world_model::{StockWorldModel, WorldModelConfig};
+    use jaus::{Address, CommandCode, RawMessage};
+    use std::sync::{Arc, Mutex};
+
+    #[derive(Clone, Default)]
+    struct Recorder(Arc<Mutex<Option<Wrench>>>);
+    impl Actuators for Recorder {
+        fn apply(&mut self, _now: Instant, effort: &Wrench) {
+            if let Ok(mut last) = self.0.lock() {
+                *last = Some(*effort);
+            }
+        }
+    }
+    type Pd = Component<primitive_driver::Dispatch<StockPrimitiveDriver<Recorder>>>;
+
+    const PD: Address = Address::new(1, 1, 33, 1);
+    let targets = [PD, Address::new(1, 1, 36, 1), Address::new(1, 1, 61, 1)];
+    let sources = [
+        Address::new(1, 2, 40, 1),
+        Address::new(1, 2, 40, 2),
+        Address::new(2, 1, 40, 1),
+        Address::new(1, 1, 36, 1),
+    ];
+    let t0 = Instant::now();
+    let recorder = Recorder::default();
+    let mut bus = LocalBus::new(t0);
+    bus.add(primitive_driver::component(
+        PD,
+        StockPrimitiveDriver::new(recorder.clone(), PrimitiveConfig::default()),
+        Config::default(),
+        t0,
+    ));
+    bus.add(mission_spooler::component(
+        targets[1],
+        StockMissionSpooler::new(SpoolerConfig::default()),
+        Config::default(),
+        t0,
+    ));
+    bus.add(world_model_vector_knowledge_store::component(
+        targets[2],
+        StockWorldModel::new(WorldModelConfig::default()),
+        Config::default(),
+        t0,
+    ));
+    let mut rest = data;
+    while rest.len() >= 6 {
+        let from = sources[usize::from(rest[0]) % sources.len()];
+        let to = targets[usize::from(rest[1]) % targets.len()];
+        let code = CommandCode(u16::from_le_bytes([rest[2], rest[3]]));
+        let len = usize::from(rest[4]).min(rest.len() - 6);
+        let run = Duration::from_millis(u64::from(rest[5 + len]));
+        let body = rest[5..5 + len].to_vec();
+        rest = &rest[6 + len..];
+        bus.send_set(from, to, &Message::Raw(RawMessage { code, body }));
+        bus.run_for(run);
+        let pd: &Pd = bus.get(PD).expect("the driver is on the bus");
+        let moving = recorder.0.lock().ok().and_then(|w| *w).is_some_and(|w| {
+            w.linear != Wrench::ZERO.linear || w.rotational != Wrench::ZERO.rotational
+        });
+        if moving {
+            assert!(
+                pd.controller().is_some() && pd.state() == CoreState::Ready,
+                "the actuators move without a controller in Ready: {:?} {:?}",
+                pd.controller(),
+                pd.state()
+            );
+        }
+    }
+}

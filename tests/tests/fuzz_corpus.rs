@@ -42,3 +42,8 @@ fn node_corpus() {
 fn spec_yaml_corpus() {
     assert!(replay("spec_yaml", jaus_tests::fuzz::spec_yaml) > 10);
 }
+
+#[test]
+fn runtime_corpus() {
+    assert!(replay("runtime", jaus_tests::fuzz::runtime) >= 5);
+}
