@@ -16,6 +16,8 @@
 pub mod drivers;
 pub mod geo;
 pub mod hardware;
+#[cfg(feature = "manipulator")]
+pub mod manipulator;
 pub mod motion;
 pub mod path;
 pub mod sensors;
