@@ -19,6 +19,7 @@ pub mod hardware;
 #[cfg(feature = "manipulator")]
 pub mod manipulator;
 pub mod motion;
+pub mod output;
 pub mod path;
 pub mod sensors;
 pub mod spooler;

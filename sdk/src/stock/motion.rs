@@ -9,10 +9,9 @@ use nalgebra::{Vector2, Vector3};
 
 use super::geo::{wrap_angle, LocalFrame};
 use super::hardware::Wrench;
+use super::output::OutputControl;
 use crate::component::{Context, EmittedBy, Interface};
-use crate::messages::{
-    ReportGlobalPose, ReportLocalPose, ReportVelocityState, Resume, SetWrenchEffort,
-};
+use crate::messages::{ReportGlobalPose, ReportLocalPose, ReportVelocityState, SetWrenchEffort};
 use crate::{Address, CommandCode};
 
 /// Settings shared by the vector, waypoint and path-segment drivers.
@@ -95,8 +94,7 @@ pub struct Motion {
     pose: Option<(Instant, Vector2<f64>, f64)>,
     speed: Option<(Instant, f64)>,
     frame: Option<LocalFrame>,
-    resumed_output: bool,
-    last_request: Option<Instant>,
+    output: OutputControl,
     stopped: bool,
     last: Wrench,
     watchdog_trips: u64,
@@ -107,11 +105,10 @@ impl Motion {
     pub fn new(config: DriverConfig) -> Self {
         Self {
             frame: config.origin,
+            output: OutputControl::new(config.output),
             config,
             pose: None,
             speed: None,
-            resumed_output: false,
-            last_request: None,
             stopped: true,
             last: Wrench::ZERO,
             watchdog_trips: 0,
@@ -206,33 +203,17 @@ impl Motion {
     /// Keeps control of the output component and resumes it once controlled. Call every
     /// tick while the driver is Ready.
     pub fn hold_output<I: Interface>(&mut self, ctx: &mut Context<'_, I>) {
-        let out = self.config.output;
-        if ctx.has_control_of(out) {
-            if !self.resumed_output {
-                ctx.send_core(out, Resume {});
-                self.resumed_output = true;
-            }
-            return;
+        // `config` is public: follow a changed output address.
+        if self.output.target() != self.config.output {
+            self.output = OutputControl::new(self.config.output);
         }
-        self.resumed_output = false;
-        let now = ctx.now();
-        if self
-            .last_request
-            .is_none_or(|t| now.saturating_duration_since(t) >= Duration::from_secs(1))
-        {
-            self.last_request = Some(now);
-            ctx.request_control(out);
-        }
+        self.output.hold(ctx);
     }
 
     /// Gives control of the output component back (call on leaving Ready, after
     /// [`stop`](Self::stop)), so another driver can take it.
     pub fn release_output<I: Interface>(&mut self, ctx: &mut Context<'_, I>) {
-        if ctx.has_control_of(self.config.output) {
-            ctx.release_control(self.config.output);
-        }
-        self.resumed_output = false;
-        self.last_request = None;
+        self.output.release(ctx);
     }
 
     /// Drives at `speed` (m/s) toward `heading` (rad). Nothing is sent before the
