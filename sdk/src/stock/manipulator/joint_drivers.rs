@@ -1,0 +1,316 @@
+//! The joint-space drivers: Joint Positions Driver (54, Part 1 §5.4.6), Joint
+//! Velocities Driver (56, §5.4.8) and Joint Move Driver (58, §5.4.10).
+
+use std::time::Instant;
+
+use super::driver::{
+    arm_driver_plumbing, arm_driver_positions, arm_driver_velocities, check_joints, Goal, Ramp,
+    StockArmDriver,
+};
+use super::link::ArmLink;
+use super::profile::{JointMove, JointSet};
+use crate::component::{CoreState, Refused, StopReason};
+use crate::components::{
+    manipulator_joint_move_driver as jmd, manipulator_joint_positions_driver as jpd,
+    manipulator_joint_velocities_driver as jvd,
+};
+use crate::messages::*;
+
+/// Joint positions toward which the reference ramps at a fraction of each joint's rate.
+#[derive(Debug, Default)]
+pub struct JointTarget {
+    target: Option<Vec<f64>>,
+    ramp: Ramp,
+}
+
+impl JointTarget {
+    /// Sets a new target (the reference starts from where the arm is).
+    pub fn set(&mut self, target: Vec<f64>) {
+        self.target = Some(target);
+        self.ramp.reset();
+    }
+
+    /// The target, if any.
+    pub fn target(&self) -> Option<&[f64]> {
+        self.target.as_deref()
+    }
+}
+
+impl Goal for JointTarget {
+    fn reference(
+        &mut self,
+        link: &ArmLink,
+        now: Instant,
+        q: &[f64],
+        q_ref: &mut [f64],
+        qd_ref: &mut [f64],
+    ) -> bool {
+        let (Some(target), Some(chain)) = (&self.target, link.chain()) else {
+            return false;
+        };
+        if target.len() != q.len() {
+            return false;
+        }
+        let fraction = link.config.speed_fraction;
+        self.ramp.step(
+            now,
+            q,
+            target,
+            |j| chain.joints[j].max_rate * fraction,
+            q_ref,
+            qd_ref,
+        );
+        true
+    }
+
+    fn clear(&mut self) {
+        self.target = None;
+        self.ramp.reset();
+    }
+}
+
+/// The Joint Positions Driver.
+pub type StockJointPositionsDriver = StockArmDriver<JointTarget>;
+
+impl jpd::ManipulatorJointPositionsDriver for StockJointPositionsDriver {
+    arm_driver_plumbing!(positions: true, velocities: false, jpd);
+    arm_driver_positions!(jpd);
+
+    fn on_set_joint_positions(
+        &mut self,
+        _ctx: &mut jpd::Ctx<'_>,
+        m: &SetJointPositions,
+    ) -> Result<(), Refused> {
+        let dof = self.dof()?;
+        let chain = self.link.chain().expect("dof() checked the chain");
+        check_joints(
+            &m.joint_position,
+            dof,
+            "joint_position",
+            |j| (chain.joints[j].min, chain.joints[j].max),
+            "rad|m",
+        )?;
+        self.goal.set(m.joint_position.clone());
+        Ok(())
+    }
+
+    fn tick(&mut self, ctx: &mut jpd::Ctx<'_>) {
+        self.run(ctx);
+    }
+}
+
+/// Joint velocities held while the command is fresh; the position reference integrates
+/// them.
+#[derive(Debug, Default)]
+pub struct JointRates {
+    command: Option<(Instant, Vec<f64>)>,
+    reference: Option<Vec<f64>>,
+    last: Option<Instant>,
+}
+
+impl JointRates {
+    /// Sets the commanded velocities at `now`.
+    pub fn set(&mut self, now: Instant, rates: Vec<f64>) {
+        self.command = Some((now, rates));
+    }
+
+    /// The commanded velocities, if any.
+    pub fn command(&self) -> Option<&[f64]> {
+        self.command.as_ref().map(|c| c.1.as_slice())
+    }
+}
+
+impl Goal for JointRates {
+    fn reference(
+        &mut self,
+        link: &ArmLink,
+        now: Instant,
+        q: &[f64],
+        q_ref: &mut [f64],
+        qd_ref: &mut [f64],
+    ) -> bool {
+        let fresh = matches!(&self.command, Some((t, v))
+            if v.len() == q.len()
+                && now.saturating_duration_since(*t) <= link.config.command_timeout);
+        if !fresh {
+            if self.command.take().is_some() {
+                tracing::info!("joint velocity command not refreshed; holding");
+            }
+            self.reference = None;
+            self.last = None;
+            return false;
+        }
+        let rates = &self.command.as_ref().expect("checked fresh").1;
+        let dt = self.last.map_or(0.0, |t| {
+            now.saturating_duration_since(t).as_secs_f64().min(0.1)
+        });
+        self.last = Some(now);
+        let r = self.reference.get_or_insert_with(|| q.to_vec());
+        for (r, v) in r.iter_mut().zip(rates) {
+            *r += v * dt;
+        }
+        q_ref.copy_from_slice(r);
+        qd_ref.copy_from_slice(rates);
+        true
+    }
+
+    fn clear(&mut self) {
+        *self = JointRates::default();
+    }
+}
+
+/// The Joint Velocities Driver. Its interface has no joint positions, so it integrates
+/// the measured velocities: joint limits are the Primitive Manipulator's and the arm's.
+pub type StockJointVelocitiesDriver = StockArmDriver<JointRates>;
+
+impl jvd::ManipulatorJointVelocitiesDriver for StockJointVelocitiesDriver {
+    arm_driver_plumbing!(positions: false, velocities: true, jvd);
+    arm_driver_velocities!(jvd);
+
+    fn on_set_joint_velocities(
+        &mut self,
+        ctx: &mut jvd::Ctx<'_>,
+        m: &SetJointVelocities,
+    ) -> Result<(), Refused> {
+        let dof = self.dof()?;
+        let chain = self.link.chain().expect("dof() checked the chain");
+        check_joints(
+            &m.joint_velocity,
+            dof,
+            "joint_velocity",
+            |j| (-chain.joints[j].max_rate, chain.joints[j].max_rate),
+            "rad/s|m/s",
+        )?;
+        self.goal.set(ctx.now(), m.joint_velocity.clone());
+        Ok(())
+    }
+
+    fn tick(&mut self, ctx: &mut jvd::Ctx<'_>) {
+        self.run(ctx);
+    }
+}
+
+/// A planned joint move and when it started.
+#[derive(Debug, Default)]
+pub struct JointMotion {
+    plan: Option<(Instant, JointMove)>,
+    finished: bool,
+    last_target: Option<Vec<f64>>,
+}
+
+impl JointMotion {
+    /// Whether a move is being executed.
+    pub fn moving(&self) -> bool {
+        self.plan.is_some()
+    }
+
+    /// The joint positions the last move ends at (held afterwards).
+    pub fn final_positions(&self) -> Option<&[f64]> {
+        self.last_target.as_deref()
+    }
+}
+
+impl Goal for JointMotion {
+    fn reference(
+        &mut self,
+        _link: &ArmLink,
+        now: Instant,
+        q: &[f64],
+        q_ref: &mut [f64],
+        qd_ref: &mut [f64],
+    ) -> bool {
+        if let Some((start, plan)) = &self.plan {
+            let t = now.saturating_duration_since(*start).as_secs_f64();
+            plan.sample(t, q_ref, qd_ref);
+            if t >= plan.duration() {
+                self.plan = None;
+                self.finished = true;
+            }
+            return true;
+        }
+        match &self.last_target {
+            Some(target) if target.len() == q.len() => {
+                q_ref.copy_from_slice(target);
+                qd_ref.iter_mut().for_each(|v| *v = 0.0);
+                true
+            }
+            _ => false,
+        }
+    }
+
+    fn clear(&mut self) {
+        *self = JointMotion::default();
+    }
+
+    fn take_finished(&mut self) -> bool {
+        std::mem::take(&mut self.finished)
+    }
+}
+
+/// The Joint Move Driver: each joint set of Set Joint Motion reached at its time, on
+/// trapezoidal profiles within the given velocity, acceleration and deceleration.
+pub type StockJointMoveDriver = StockArmDriver<JointMotion>;
+
+impl jmd::ManipulatorJointMoveDriver for StockJointMoveDriver {
+    arm_driver_plumbing!(positions: true, velocities: true, jmd);
+    arm_driver_positions!(jmd);
+    arm_driver_velocities!(jmd);
+
+    fn on_set_joint_motion(
+        &mut self,
+        ctx: &mut jmd::Ctx<'_>,
+        m: &SetJointMotion,
+    ) -> Result<(), Refused> {
+        let dof = self.dof()?;
+        let chain = self.link.chain().expect("dof() checked the chain");
+        if m.poses.is_empty() {
+            return Err(Refused::Invalid("Set Joint Motion has no poses".into()));
+        }
+        let mut sets = Vec::with_capacity(m.poses.len());
+        for (i, pose) in m.poses.iter().enumerate() {
+            let positions: Vec<f64> = pose.joints.iter().map(|j| j.position).collect();
+            check_joints(
+                &positions,
+                dof,
+                "poses[].joints[].position",
+                |j| (chain.joints[j].min, chain.joints[j].max),
+                "rad|m",
+            )
+            .map_err(|e| Refused::Invalid(format!("pose {i}: {e}")))?;
+            sets.push(JointSet {
+                time: pose.pose_time,
+                joints: pose
+                    .joints
+                    .iter()
+                    .enumerate()
+                    .map(|(j, l)| {
+                        // The joint's own rate limit caps the move's.
+                        let v = l.max_velocity.abs().min(chain.joints[j].max_rate);
+                        (l.position, v, l.max_acceleration, l.max_deceleration)
+                    })
+                    .collect(),
+            });
+        }
+        let Some(start) = self.link.feedback(ctx.now()).map(|(q, _)| q.to_vec()) else {
+            return Err(Refused::Invalid(format!(
+                "no current joint positions from {} to start the move from",
+                self.link.config.position_sensor
+            )));
+        };
+        let plan = JointMove::plan(&start, &sets).map_err(|e| Refused::Invalid(e.to_string()))?;
+        if ctx.mode() == jmd::Mode::Idle {
+            ctx.transition(jmd::Transition::Start)
+                .map_err(|e| Refused::Invalid(e.to_string()))?;
+        }
+        self.goal.last_target = sets.last().map(|s| s.joints.iter().map(|j| j.0).collect());
+        self.goal.plan = Some((ctx.now(), plan));
+        Ok(())
+    }
+
+    fn tick(&mut self, ctx: &mut jmd::Ctx<'_>) {
+        self.run(ctx);
+        if self.goal.take_finished() && ctx.mode() == jmd::Mode::Moving {
+            let _ = ctx.transition(jmd::Transition::Finish);
+        }
+    }
+}
