@@ -6,6 +6,11 @@
 //! * [`vehicle`]: a simulated skid-steer ground vehicle implementing every hardware
 //!   trait of `jaus::stock::hardware` (actuators, global/local pose, velocity), on the
 //!   caller's (virtual or real) clock, with seeded sensor noise;
+//! * [`arm`]: a simulated serial arm (6-axis by default, or any chain) implementing the
+//!   manipulator hardware traits of `jaus::stock::manipulator::hardware`, with joint
+//!   dynamics, gravity, limits and seeded sensor noise;
+//! * [`arm_demo`]: the arm phase of `jaus demo` (`--arm`), the ten stock manipulator
+//!   components and a scripted pick-and-place operator;
 //! * [`network`]: [`network::SimNet`], several sans-IO [`jaus::net::Node`]s on a
 //!   simulated lossy network (drops, duplicates, delays) with a virtual clock;
 //! * [`host`]: any stock component at any instance of a node, over one simulated
@@ -15,10 +20,13 @@
 //!
 //! The SDK itself does not depend on this crate; tests, benchmarks and the `jaus` CLI do.
 
+pub mod arm;
+pub mod arm_demo;
 pub mod demo;
 pub mod host;
 pub mod network;
 pub mod vehicle;
 
+pub use arm::{ArmParams, SimArm};
 pub use network::{LinkModel, SimNet};
 pub use vehicle::{SimVehicle, VehicleParams};

@@ -77,6 +77,9 @@ impl<G: Goal> StockArmDriver<G> {
         SetJointEfforts: EmittedBy<I>,
         QueryManipulatorSpecifications: EmittedBy<I>,
     {
+        // The arm is learnt in every state, so commands are accepted as soon as the
+        // driver is Ready.
+        self.link.request_specifications(ctx);
         if ctx.state() != CoreState::Ready {
             return;
         }

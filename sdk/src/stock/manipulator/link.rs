@@ -224,27 +224,33 @@ impl ArmLink {
         }
         if !self.measured_velocities {
             // Differentiate: the drivers without a velocity sensor in their interface.
-            let estimate = match &self.positions {
-                Some((t, q)) if q.len() == r.joint_position.len() && now > *t => {
-                    let dt = now.duration_since(*t).as_secs_f64();
-                    let previous = self.velocities.as_ref().map(|v| &v.1);
-                    r.joint_position
-                        .iter()
-                        .zip(q)
-                        .enumerate()
-                        .map(|(j, (a, b))| {
-                            let raw = (a - b) / dt;
-                            // A light low-pass against quantisation and noise.
-                            match previous {
-                                Some(p) if p.len() == q.len() => 0.5 * raw + 0.5 * p[j],
-                                _ => raw,
-                            }
-                        })
-                        .collect()
+            match &self.positions {
+                Some((t, q)) if q.len() == r.joint_position.len() => {
+                    if now > *t {
+                        let dt = now.duration_since(*t).as_secs_f64();
+                        let previous = self.velocities.as_ref().map(|v| &v.1);
+                        let estimate = r
+                            .joint_position
+                            .iter()
+                            .zip(q)
+                            .enumerate()
+                            .map(|(j, (a, b))| {
+                                let raw = (a - b) / dt;
+                                // A light low-pass against quantisation and noise.
+                                match previous {
+                                    Some(p) if p.len() == q.len() => 0.5 * raw + 0.5 * p[j],
+                                    _ => raw,
+                                }
+                            })
+                            .collect();
+                        self.velocities = Some((now, estimate));
+                    } else if let Some(v) = &mut self.velocities {
+                        // Two reports at one instant: keep the estimate, refresh its age.
+                        v.0 = now;
+                    }
                 }
-                _ => vec![0.0; r.joint_position.len()],
-            };
-            self.velocities = Some((now, estimate));
+                _ => self.velocities = Some((now, vec![0.0; r.joint_position.len()])),
+            }
         }
         self.positions = Some((now, r.joint_position.clone()));
     }

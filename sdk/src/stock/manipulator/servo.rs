@@ -18,19 +18,19 @@ pub struct ServoGains {
     pub integral_limit: f64,
 }
 
-/// The defaults, tuned on the simulated 6-axis arm (`jaus_sim::arm`): kp 900 %/rad,
-/// ki 1500 %/(rad·s), kd 60 %/(rad/s), kv 20 %/(rad/s), integral up to 70 %.
+/// The defaults, tuned on the simulated 6-axis arm (`jaus_sim::arm`): kp 400 %/rad,
+/// ki 400 %/(rad·s), kd 30 %/(rad/s), kv 20 %/(rad/s), integral up to 70 %.
 ///
 /// ```
 /// let g = jaus::stock::manipulator::servo::ServoGains::default();
-/// assert_eq!((g.kp, g.ki, g.kd, g.kv, g.integral_limit), (900.0, 1500.0, 60.0, 20.0, 70.0));
+/// assert_eq!((g.kp, g.ki, g.kd, g.kv, g.integral_limit), (400.0, 400.0, 30.0, 20.0, 70.0));
 /// ```
 impl Default for ServoGains {
     fn default() -> Self {
         Self {
-            kp: 900.0,
-            ki: 1500.0,
-            kd: 60.0,
+            kp: 400.0,
+            ki: 400.0,
+            kd: 30.0,
             kv: 20.0,
             integral_limit: 70.0,
         }
