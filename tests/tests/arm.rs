@@ -7,13 +7,18 @@ use jaus_sim::arm_demo::{self, ArmOptions};
 
 #[test]
 fn the_arm_demo_runs_its_pick_and_place_sequence_within_tolerance() {
+    // Refusals and watchdogs are logged as warnings: `RUST_LOG=warn` shows them.
+    let _ = tracing_subscriber::fmt()
+        .with_env_filter(tracing_subscriber::EnvFilter::from_default_env())
+        .with_test_writer()
+        .try_init();
     let report = arm_demo::run(
         &ArmOptions {
             timeout: Duration::from_secs(60),
-            progress: None,
+            progress: Some(Duration::from_secs(1)),
             ..ArmOptions::default()
         },
-        |_| {},
+        |l| println!("{l}"),
     )
     .unwrap_or_else(|e| panic!("{e}"));
     for m in &report.moves {
@@ -22,7 +27,7 @@ fn the_arm_demo_runs_its_pick_and_place_sequence_within_tolerance() {
             m.name, m.seconds, m.position_error_mm, m.angle_error_deg
         );
     }
-    assert_eq!(report.moves.len(), 5);
+    assert_eq!(report.moves.len(), 6);
     for m in &report.moves {
         // Issue 13's settling target for the pose driver: 1 mm / 0.1°. The joint move
         // settles on joints (0.2° at the tool); the jog's end point is only as exact as

@@ -1,7 +1,6 @@
 //! The arm phase of `jaus demo` (`jaus demo --arm`): the ten stock manipulator
 //! components over one simulated 6-axis arm on the in-process bus, and a scripted
-//! operator running a pick-and-place sequence through three of the drivers (the discrete-pose phase is
-//! not part of the sequence yet).
+//! operator running a pick-and-place sequence through four of the drivers.
 //!
 //! Node 1.3 hosts the Primitive Manipulator (49), the joint position, velocity and
 //! force/torque sensors (51–53) and the six drivers (54–59). The operator (a System
@@ -14,6 +13,7 @@
 //! 1. End-Effector Pose Driver: above the pick point, down to it, back up;
 //! 2. Joint Move Driver: two timed joint sets to the place configuration;
 //! 3. End-Effector Velocity State Driver: a 2 s sideways jog in the vehicle frame;
+//! 4. End-Effector Discrete Pose Driver: back above the pick point, then a timed square.
 //!
 //! The run reports, per move, the time taken and the final error of the true tool pose
 //! against the commanded one, and traces joint angles and the tool path for the plot.
@@ -135,6 +135,18 @@ pub const PLACE_TIMES: [f64; 2] = [2.5, 4.5];
 /// The sideways jog: vehicle-frame velocity (m/s) and duration.
 pub const JOG: ([f64; 3], Duration) = ([0.0, 0.06, 0.0], Duration::from_secs(2));
 
+/// Corners of the square path, offsets from [`pick_above`] (m, vehicle frame), one
+/// every [`SQUARE_STEP`] after the first 3 s.
+pub const SQUARE: [[f64; 3]; 4] = [
+    [0.08, 0.0, 0.0],
+    [0.08, 0.08, 0.0],
+    [0.0, 0.08, 0.0],
+    [0.0, 0.0, 0.0],
+];
+
+/// Seconds between the corners of the square.
+pub const SQUARE_STEP: f64 = 1.5;
+
 /// One move of the sequence, measured on the simulated arm's true tool pose.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Move {
@@ -185,6 +197,7 @@ enum Phase {
     Lift,
     JointMove,
     Jog,
+    Square,
 }
 
 impl Phase {
@@ -193,6 +206,7 @@ impl Phase {
             Phase::Above | Phase::Pick | Phase::Lift => addr::EPD,
             Phase::JointMove => addr::JMD,
             Phase::Jog => addr::EVD,
+            Phase::Square => addr::DPD,
         }
     }
 
@@ -203,6 +217,7 @@ impl Phase {
             Phase::Lift => "pose: lift",
             Phase::JointMove => "joint move: to the place configuration",
             Phase::Jog => "velocity state: sideways jog",
+            Phase::Square => "discrete poses: a timed square",
         }
     }
 
@@ -212,7 +227,8 @@ impl Phase {
             Phase::Pick => Some(Phase::Lift),
             Phase::Lift => Some(Phase::JointMove),
             Phase::JointMove => Some(Phase::Jog),
-            Phase::Jog => None,
+            Phase::Jog => Some(Phase::Square),
+            Phase::Square => None,
         }
     }
 }
@@ -332,6 +348,36 @@ impl ArmOperator {
                     Translation3::from(start.translation.vector + d),
                     start.rotation,
                 )
+            }
+            Phase::Square => {
+                // Back above the pick point in 3 s, then round the square. The Discrete
+                // Pose Driver has no tool point (Set Tool Point is the Pose Driver's):
+                // its poses are of the end-effector frame, so the tool offset comes off.
+                let centre = pick_above();
+                let q = centre.rotation.quaternion();
+                let flange = centre.rotation * -Vector3::from(TOOL);
+                let at = |time: f64, tool: Vector3<f64>| {
+                    let p = tool + flange;
+                    EndEffectorPathPose {
+                        pose_time: time,
+                        x: p.x,
+                        y: p.y,
+                        z: p.z,
+                        d: q.w,
+                        a: q.i,
+                        b: q.j,
+                        c: q.k,
+                    }
+                };
+                let mut poses = vec![at(3.0, centre.translation.vector)];
+                poses.extend(SQUARE.iter().enumerate().map(|(i, o)| {
+                    at(
+                        3.0 + SQUARE_STEP * (i + 1) as f64,
+                        centre.translation.vector + Vector3::from(*o),
+                    )
+                }));
+                ctx.send(addr::DPD, SetEndEffectorPathMotion { poses });
+                centre
             }
         };
         self.targets.push(target.translation.vector);

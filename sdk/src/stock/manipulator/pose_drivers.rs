@@ -1,7 +1,9 @@
 //! The end-effector drivers: End-Effector Pose Driver (55, Part 1 §5.4.7), End-Effector
 //! Velocity State Driver (57, §5.4.9) and End-Effector Discrete Pose Driver (59,
-//! §5.4.11). Poses are of the tool point in the vehicle frame; each is turned into joint
-//! positions by inverse kinematics and then driven like a joint target.
+//! §5.4.11). Poses are in the vehicle frame; each is turned into joint positions by
+//! inverse kinematics and then driven like a joint target. The pose driver's poses are
+//! of its tool point (Set Tool Point); the other two have no tool point in their
+//! interface, so theirs are of the end-effector frame.
 
 use std::time::Instant;
 
