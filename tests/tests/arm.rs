@@ -1,6 +1,9 @@
 //! The stock manipulator components over the simulated arm on the in-process bus: the
 //! demo's pick-and-place sequence, control, emergency, watchdogs and refusals.
 
+mod common;
+
+use std::process::Command;
 use std::time::Duration;
 
 use jaus_sim::arm_demo::{self, ArmOptions};
@@ -43,4 +46,30 @@ fn the_arm_demo_runs_its_pick_and_place_sequence_within_tolerance() {
         );
     }
     assert!(report.duration < 60.0);
+}
+
+#[test]
+fn jaus_demo_arm_prints_the_table_and_writes_the_plot() {
+    let dir = std::env::temp_dir().join(format!("jaus-arm-demo-{}", std::process::id()));
+    let out = Command::new(common::jaus_bin())
+        .args(["demo", "--arm", "--progress", "0", "--out"])
+        .arg(&dir)
+        .output()
+        .expect("run jaus");
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{stdout}\n{}", String::from_utf8_lossy(&out.stderr));
+    for row in [
+        "pose: above the pick point",
+        "joint move: to the place configuration",
+        "velocity state: sideways jog",
+        "discrete poses: a timed square",
+        "6 moves in",
+        "plot:",
+    ] {
+        assert!(stdout.contains(row), "missing {row:?} in\n{stdout}");
+    }
+    let svg = std::fs::read_to_string(dir.join("arm.svg")).expect("arm.svg");
+    assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"));
+    assert_eq!(svg.matches("<polyline").count(), 8, "six joints and two views of the tool");
+    let _ = std::fs::remove_dir_all(&dir);
 }

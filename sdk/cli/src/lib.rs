@@ -5,11 +5,13 @@
 //! * [`commands`]: the offline commands (`messages`, `decode`, `encode`, `tour`);
 //! * [`net`]: the network commands (`node`, `discover`, `send`, `query`, the demo's
 //!   operator over UDP);
-//! * [`report`]: the demo's table and SVG plot.
+//! * [`report`]: the demo's table and SVG plot;
+//! * [`arm_report`]: the arm demo's table and SVG plot.
 //!
 //! The SDK (`jaus`) carries none of this: a vendor's build pulls no clap, serde_yaml or
 //! tracing-subscriber.
 
+pub mod arm_report;
 pub mod commands;
 pub mod describe;
 pub mod net;

@@ -144,6 +144,11 @@ enum Cmd {
         /// With --ocu-only: the vehicle node's socket.
         #[arg(long, default_value = "127.0.0.1:3794")]
         peer: Vec<std::net::SocketAddr>,
+        /// Run the arm instead: the ten manipulator components over a simulated 6-axis
+        /// arm and an operator's pick-and-place sequence (pose, joint move, velocity
+        /// jog, timed poses); prints each move's time and error and plots arm.svg.
+        #[arg(long, conflicts_with = "ocu_only")]
+        arm: bool,
     },
 }
 
@@ -488,6 +493,45 @@ fn main() -> ExitCode {
                     Ok(())
                 }),
             )
+        }
+        Cmd::Demo {
+            arm: true,
+            seed,
+            out: dir,
+            progress,
+            ..
+        } => {
+            let opts = jaus_sim::arm_demo::ArmOptions {
+                seed,
+                progress: (progress > 0.0)
+                    .then(|| std::time::Duration::from_secs_f64(progress.min(2.0))),
+                ..Default::default()
+            };
+            let _ = writeln!(
+                out,
+                "JAUS arm demo: subsystem 1 node 3 (primitive manipulator, joint position/velocity/force-torque sensors, joint positions, end-effector pose, joint velocities, end-effector velocity state, joint move and end-effector discrete pose drivers, over a simulated 6-axis arm), operator 1.2.40.1"
+            );
+            match jaus_sim::arm_demo::run(&opts, |line| {
+                let _ = writeln!(std::io::stdout(), "{line}");
+            }) {
+                Ok(run) => {
+                    let _ = writeln!(out, "{}", jaus_cli::arm_report::summary(&run));
+                    match jaus_cli::arm_report::write_svg(&run, &dir) {
+                        Ok(path) => {
+                            let _ = writeln!(out, "plot: {}", path.display());
+                            true
+                        }
+                        Err(e) => {
+                            let _ = writeln!(err, "error: {}: {e}", dir.display());
+                            false
+                        }
+                    }
+                }
+                Err(e) => {
+                    let _ = writeln!(err, "arm demo failed: {e}");
+                    false
+                }
+            }
         }
         Cmd::Demo {
             seed,

@@ -185,6 +185,8 @@ enum Step {
     Start,
     /// Taking control of `Phase`'s driver.
     Acquire(Phase),
+    /// Resumed, waiting for the driver to hold the arm still.
+    Hold(Phase),
     /// Commanded, waiting to settle.
     Settle(Phase),
     Done,
@@ -248,6 +250,7 @@ pub struct ArmOperator {
     commanded_at: Option<Instant>,
     last_request: Option<Instant>,
     next_jog: Option<Instant>,
+    resumed_at: Option<Instant>,
     jog_until: Option<Instant>,
     /// Moves done: (phase, commanded at, settled at, target).
     done: Vec<(Phase, Instant, Instant, Isometry3<f64>)>,
@@ -389,15 +392,19 @@ impl ArmOperator {
         let (Some(until), Some(next)) = (self.jog_until, self.next_jog) else {
             return;
         };
-        if now < until && now >= next {
-            self.next_jog = Some(now + Duration::from_millis(100));
+        if now >= next {
+            // The jog velocity every 100 ms while it lasts, then one zero velocity: a
+            // velocity command holds until it is replaced or goes stale.
+            let moving = now < until;
+            let v = if moving { JOG.0 } else { [0.0; 3] };
+            self.next_jog = moving.then(|| now + Duration::from_millis(100));
             ctx.send(
                 addr::EVD,
                 SetEndEffectorVelocityState {
                     coordinate_system: 1,
-                    x_linear: JOG.0[0],
-                    y_linear: JOG.0[1],
-                    z_linear: JOG.0[2],
+                    x_linear: v[0],
+                    y_linear: v[1],
+                    z_linear: v[2],
                     ..Default::default()
                 },
             );
@@ -435,8 +442,8 @@ impl SystemCommander for ArmOperator {
                 let driver = phase.driver();
                 if ctx.has_control_of(driver) {
                     ctx.send_core(driver, Resume {});
-                    self.command(ctx, phase);
-                    self.step = Step::Settle(phase);
+                    self.resumed_at = Some(now);
+                    self.step = Step::Hold(phase);
                 } else if self
                     .last_request
                     .is_none_or(|t| now >= t + Duration::from_millis(500))
@@ -445,11 +452,24 @@ impl SystemCommander for ArmOperator {
                     ctx.request_control(driver);
                 }
             }
+            Step::Hold(phase) => {
+                // Between drivers the arm has no effort (the previous driver zeroes it
+                // on leaving Ready): command once the new one holds the arm still.
+                let resumed = self.resumed_at.unwrap_or(now);
+                let still = self
+                    .rates
+                    .as_ref()
+                    .is_some_and(|r| r.iter().all(|v| v.abs() < STILL_RAD_S));
+                if now >= resumed + Duration::from_millis(300) && still {
+                    self.command(ctx, phase);
+                    self.step = Step::Settle(phase);
+                }
+            }
             Step::Settle(phase) => {
                 if phase == Phase::Jog {
                     self.jog(ctx);
                 }
-                let jogging = self.jog_until.is_some_and(|t| now < t);
+                let jogging = self.next_jog.is_some();
                 let started = self.commanded_at.unwrap_or(now);
                 if !jogging && now > started + Duration::from_millis(200) && self.settled(phase) {
                     let target = self.target.expect("commanded");
@@ -645,7 +665,7 @@ pub fn run(opts: &ArmOptions, mut print: impl FnMut(&str)) -> Result<ArmReport, 
                     .vector;
                 let phase = match step {
                     Step::Start => "starting",
-                    Step::Acquire(p) | Step::Settle(p) => p.name(),
+                    Step::Acquire(p) | Step::Hold(p) | Step::Settle(p) => p.name(),
                     Step::Done => "done",
                 };
                 print(&format!(
