@@ -57,7 +57,11 @@ fn jaus_demo_arm_prints_the_table_and_writes_the_plot() {
         .output()
         .expect("run jaus");
     let stdout = String::from_utf8_lossy(&out.stdout);
-    assert!(out.status.success(), "{stdout}\n{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{stdout}\n{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     for row in [
         "pose: above the pick point",
         "joint move: to the place configuration",
@@ -70,6 +74,10 @@ fn jaus_demo_arm_prints_the_table_and_writes_the_plot() {
     }
     let svg = std::fs::read_to_string(dir.join("arm.svg")).expect("arm.svg");
     assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"));
-    assert_eq!(svg.matches("<polyline").count(), 8, "six joints and two views of the tool");
+    assert_eq!(
+        svg.matches("<polyline").count(),
+        8,
+        "six joints and two views of the tool"
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -10,6 +10,9 @@ use crate::component::{CoreState, Refused, StopReason};
 use crate::components::primitive_manipulator as pm;
 use crate::messages::*;
 
+/// One step of Set Joint Efforts' scaled integer (200 % over 65,535 steps).
+const ZERO_STEP: f64 = 200.0 / 65_535.0;
+
 /// Settings of the Primitive Manipulator.
 #[derive(Debug, Clone)]
 pub struct PrimitiveManipulatorConfig {
@@ -106,7 +109,11 @@ impl<A: JointActuators> pm::PrimitiveManipulator for StockPrimitiveManipulator<A
         }
         self.commanded = Some(ctx.now());
         if ctx.state() == CoreState::Ready {
-            self.applied.copy_from_slice(&msg.joint_effort);
+            for (a, e) in self.applied.iter_mut().zip(&msg.joint_effort) {
+                // The wire's scaled u16 over ±100 % has no exact zero (its nearest values
+                // are ±0.0015 %): within one step of zero is zero.
+                *a = if e.abs() < ZERO_STEP { 0.0 } else { *e };
+            }
             self.actuators.apply_efforts(ctx.now(), &self.applied);
         }
         Ok(())

@@ -19,17 +19,17 @@ pub struct ServoGains {
 }
 
 /// The defaults, tuned on the simulated 6-axis arm (`jaus_sim::arm`): kp 400 %/rad,
-/// ki 400 %/(rad·s), kd 30 %/(rad/s), kv 20 %/(rad/s), integral up to 70 %.
+/// ki 1000 %/(rad·s), kd 30 %/(rad/s), kv 20 %/(rad/s), integral up to 70 %.
 ///
 /// ```
 /// let g = jaus::stock::manipulator::servo::ServoGains::default();
-/// assert_eq!((g.kp, g.ki, g.kd, g.kv, g.integral_limit), (400.0, 400.0, 30.0, 20.0, 70.0));
+/// assert_eq!((g.kp, g.ki, g.kd, g.kv, g.integral_limit), (400.0, 1000.0, 30.0, 20.0, 70.0));
 /// ```
 impl Default for ServoGains {
     fn default() -> Self {
         Self {
             kp: 400.0,
-            ki: 400.0,
+            ki: 1000.0,
             kd: 30.0,
             kv: 20.0,
             integral_limit: 70.0,
