@@ -609,10 +609,58 @@ fn a_node_hosts_any_stock_component_at_any_instance() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(
         err.contains(
-            "bad.yaml:6:7: unknown component `gps_sensor` (known: vehicle, primitive_driver,"
+            "bad.yaml:6:7: unknown component `gps_sensor` (known: vehicle, arm, primitive_driver,"
         ),
         "{err}"
     );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// `host: [arm]`: the ten manipulator components on a node, answering over UDP with the
+/// specifications of the simulated arm (issue 13 item 4).
+#[test]
+fn a_node_hosts_the_arm_and_reports_its_specifications() {
+    let dir = std::env::temp_dir().join(format!("jaus-udp-arm-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let pa = free_port();
+    let (_n, rx) = node(
+        &dir,
+        "arm",
+        &format!("subsystem: 21\nnode: 3\nnode_name: arm\nbind: 127.0.0.1:{pa}\nhost:\n  - arm\n"),
+    );
+    wait_for(
+        &rx,
+        &["21.3.49.1 'PrimitiveManipulator'", "21.3.59.1"],
+        Duration::from_secs(10),
+    )
+    .unwrap();
+    let out = cli(
+        pa,
+        &[
+            "query",
+            "--me",
+            "21.3.40.2",
+            "--to",
+            "21.3.49.1",
+            "--wait",
+            "20",
+        ],
+    )
+    .arg(r#"{"message":"QueryManipulatorSpecifications"}"#)
+    .output()
+    .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let lines = json_lines(&out.stdout);
+    let spec = lines
+        .iter()
+        .find(|l| l["message"] == "ReportManipulatorSpecifications")
+        .unwrap_or_else(|| panic!("{lines:?}"));
+    assert_eq!(spec["fields"]["num_joints"], 6, "{spec}");
+    assert_eq!(spec["fields"]["linked_joints"][1]["Revolute"]["link_length"], 400, "upper arm 0.40 m in mm");
     std::fs::remove_dir_all(&dir).ok();
 }
 

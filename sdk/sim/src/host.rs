@@ -24,6 +24,8 @@ use std::time::Instant;
 
 use nalgebra::Vector2;
 
+use crate::arm::{ArmParams, SimArm};
+use crate::arm_demo::CONTROL_PERIOD;
 use crate::demo::ORIGIN;
 use crate::vehicle::{SimVehicle, VehicleParams};
 use jaus::component::{Config, Endpoint};
@@ -33,11 +35,24 @@ use jaus::components::{
     mission_spooler, primitive_driver, reflexive_driver, velocity_state_sensor,
     world_model_vector_knowledge_store,
 };
+use jaus::components::{
+    manipulator_end_effector_discrete_pose_driver, manipulator_end_effector_pose_driver,
+    manipulator_end_effector_velocity_state_driver, manipulator_joint_force_torque_sensor,
+    manipulator_joint_move_driver, manipulator_joint_position_sensor,
+    manipulator_joint_positions_driver, manipulator_joint_velocities_driver,
+    manipulator_joint_velocity_sensor, primitive_manipulator,
+};
 use jaus::stock::drivers::{
     Navigator, PrimitiveConfig, ReflexiveConfig, StockPrimitiveDriver, StockReflexiveDriver,
     StockVectorDriver,
 };
 use jaus::stock::geo::LocalFrame;
+use jaus::stock::manipulator::link::ArmDriverConfig;
+use jaus::stock::manipulator::{
+    PrimitiveManipulatorConfig, StockEndEffectorDiscretePoseDriver, StockEndEffectorPoseDriver,
+    StockEndEffectorVelocityStateDriver, StockJointMoveDriver, StockJointPositionsDriver,
+    StockJointSensor, StockJointVelocitiesDriver, StockPrimitiveManipulator,
+};
 use jaus::stock::motion::DriverConfig;
 use jaus::stock::sensors::{StockGlobalPoseSensor, StockLocalPoseSensor, StockVelocityStateSensor};
 use jaus::stock::spooler::{SpoolerConfig, StockMissionSpooler};
@@ -73,6 +88,26 @@ pub enum Stock {
     MissionSpooler,
     /// World Model Vector Knowledge Store (61).
     WorldModel,
+    /// Primitive Manipulator (49) over the simulated arm.
+    PrimitiveManipulator,
+    /// Manipulator Joint Position Sensor (51) of the simulated arm.
+    JointPositionSensor,
+    /// Manipulator Joint Velocity Sensor (52) of the simulated arm.
+    JointVelocitySensor,
+    /// Manipulator Joint Force/Torque Sensor (53) of the simulated arm.
+    JointForceTorqueSensor,
+    /// Manipulator Joint Positions Driver (54).
+    JointPositionsDriver,
+    /// Manipulator End-Effector Pose Driver (55).
+    EndEffectorPoseDriver,
+    /// Manipulator Joint Velocities Driver (56).
+    JointVelocitiesDriver,
+    /// Manipulator End-Effector Velocity State Driver (57).
+    EndEffectorVelocityStateDriver,
+    /// Manipulator Joint Move Driver (58).
+    JointMoveDriver,
+    /// Manipulator End-Effector Discrete Pose Driver (59).
+    EndEffectorDiscretePoseDriver,
 }
 
 impl Stock {
@@ -91,6 +126,22 @@ impl Stock {
         ("local_path_segment_driver", Stock::LocalPathSegmentDriver),
         ("mission_spooler", Stock::MissionSpooler),
         ("world_model", Stock::WorldModel),
+        ("primitive_manipulator", Stock::PrimitiveManipulator),
+        ("joint_position_sensor", Stock::JointPositionSensor),
+        ("joint_velocity_sensor", Stock::JointVelocitySensor),
+        ("joint_force_torque_sensor", Stock::JointForceTorqueSensor),
+        ("joint_positions_driver", Stock::JointPositionsDriver),
+        ("end_effector_pose_driver", Stock::EndEffectorPoseDriver),
+        ("joint_velocities_driver", Stock::JointVelocitiesDriver),
+        (
+            "end_effector_velocity_state_driver",
+            Stock::EndEffectorVelocityStateDriver,
+        ),
+        ("joint_move_driver", Stock::JointMoveDriver),
+        (
+            "end_effector_discrete_pose_driver",
+            Stock::EndEffectorDiscretePoseDriver,
+        ),
     ];
 
     /// The component by its configuration name.
@@ -122,6 +173,16 @@ impl Stock {
             Stock::LocalPathSegmentDriver => 48,
             Stock::MissionSpooler => 36,
             Stock::WorldModel => 61,
+            Stock::PrimitiveManipulator => 49,
+            Stock::JointPositionSensor => 51,
+            Stock::JointVelocitySensor => 52,
+            Stock::JointForceTorqueSensor => 53,
+            Stock::JointPositionsDriver => 54,
+            Stock::EndEffectorPoseDriver => 55,
+            Stock::JointVelocitiesDriver => 56,
+            Stock::EndEffectorVelocityStateDriver => 57,
+            Stock::JointMoveDriver => 58,
+            Stock::EndEffectorDiscretePoseDriver => 59,
         }
     }
 }
@@ -136,7 +197,9 @@ pub struct Entry {
     pub instance: u8,
     /// For a driver above the Primitive Driver: where its wrench efforts go (default:
     /// this node's Reflexive Driver 43.1 if the node hosts one, else its Primitive
-    /// Driver 33.1). For the Reflexive Driver: its Primitive Driver (default 33.1).
+    /// Driver 33.1). For the Reflexive Driver: its Primitive Driver (default 33.1). For
+    /// a manipulator driver: its Primitive Manipulator (default 49.1; its joint sensors
+    /// are this node's 51.1 and 52.1).
     pub output: Option<Address>,
     /// For a vector, waypoint or path driver: its pose sensor (default: this node's
     /// Global Pose Sensor 38.1 for global drivers, Local Pose Sensor 41.1 for local
@@ -176,13 +239,15 @@ pub enum HostError {
 }
 
 /// Builds stock components for node `node` of subsystem `subsystem`; those that need
-/// hardware share one simulated vehicle.
+/// hardware share one simulated vehicle, and the manipulator components one simulated
+/// 6-axis arm ([`ArmParams::six_axis`]).
 #[derive(Debug)]
 pub struct Host {
     subsystem: u8,
     node: u8,
     t0: Instant,
     vehicle: SimVehicle,
+    arm: SimArm,
     built: Vec<Address>,
     reflexive: bool,
 }
@@ -200,6 +265,7 @@ impl Host {
             node,
             t0,
             vehicle,
+            arm: SimArm::new(ArmParams::six_axis()),
             built: Vec::new(),
             reflexive: false,
         }
@@ -225,6 +291,11 @@ impl Host {
     /// The simulated vehicle behind the hardware of every component built.
     pub fn vehicle(&self) -> &SimVehicle {
         &self.vehicle
+    }
+
+    /// The simulated arm behind the manipulator components built.
+    pub fn arm(&self) -> &SimArm {
+        &self.arm
     }
 
     fn local(&self, component: u8) -> Address {
@@ -271,7 +342,92 @@ impl Host {
             origin: Some(LocalFrame::new(ORIGIN.0, ORIGIN.1, ORIGIN.2)),
             ..DriverConfig::default()
         };
+        // The manipulator components run at the arm's control period.
+        let arm_cfg = || Config {
+            tick: CONTROL_PERIOD,
+            ..cfg.clone()
+        };
+        let arm_driver = ArmDriverConfig {
+            output: e.output.unwrap_or_else(|| self.local(49)),
+            position_sensor: self.local(51),
+            velocity_sensor: Some(self.local(52)),
+            ..ArmDriverConfig::default()
+        };
+        let a = self.arm.clone();
         Ok(match e.stock {
+            Stock::PrimitiveManipulator => {
+                let chain = a.lock().chain().clone();
+                Box::new(primitive_manipulator::component(
+                    at,
+                    StockPrimitiveManipulator::new(a, chain, PrimitiveManipulatorConfig::default()),
+                    arm_cfg(),
+                    t0,
+                ))
+            }
+            Stock::JointPositionSensor => Box::new(manipulator_joint_position_sensor::component(
+                at,
+                StockJointSensor::new(a),
+                arm_cfg(),
+                t0,
+            )),
+            Stock::JointVelocitySensor => Box::new(manipulator_joint_velocity_sensor::component(
+                at,
+                StockJointSensor::new(a),
+                arm_cfg(),
+                t0,
+            )),
+            Stock::JointForceTorqueSensor => {
+                Box::new(manipulator_joint_force_torque_sensor::component(
+                    at,
+                    StockJointSensor::new(a),
+                    arm_cfg(),
+                    t0,
+                ))
+            }
+            Stock::JointPositionsDriver => Box::new(manipulator_joint_positions_driver::component(
+                at,
+                StockJointPositionsDriver::new(arm_driver),
+                arm_cfg(),
+                t0,
+            )),
+            Stock::EndEffectorPoseDriver => {
+                Box::new(manipulator_end_effector_pose_driver::component(
+                    at,
+                    StockEndEffectorPoseDriver::new(arm_driver),
+                    arm_cfg(),
+                    t0,
+                ))
+            }
+            Stock::JointVelocitiesDriver => {
+                Box::new(manipulator_joint_velocities_driver::component(
+                    at,
+                    StockJointVelocitiesDriver::new(arm_driver),
+                    arm_cfg(),
+                    t0,
+                ))
+            }
+            Stock::EndEffectorVelocityStateDriver => {
+                Box::new(manipulator_end_effector_velocity_state_driver::component(
+                    at,
+                    StockEndEffectorVelocityStateDriver::new(arm_driver),
+                    arm_cfg(),
+                    t0,
+                ))
+            }
+            Stock::JointMoveDriver => Box::new(manipulator_joint_move_driver::component(
+                at,
+                StockJointMoveDriver::new(arm_driver),
+                arm_cfg(),
+                t0,
+            )),
+            Stock::EndEffectorDiscretePoseDriver => {
+                Box::new(manipulator_end_effector_discrete_pose_driver::component(
+                    at,
+                    StockEndEffectorDiscretePoseDriver::new(arm_driver),
+                    arm_cfg(),
+                    t0,
+                ))
+            }
             Stock::PrimitiveDriver => Box::new(primitive_driver::component(
                 at,
                 StockPrimitiveDriver::new(v, PrimitiveConfig::default()),

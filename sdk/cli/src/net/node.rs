@@ -20,19 +20,27 @@ use jaus::net::{udp, Framing, Node, NodeConfig, SystemTree};
 /// peers: [127.0.0.2:3794]
 /// host:                  # what the node hosts (see below)
 ///   - vehicle                                # the demo's whole simulated vehicle
+///   - arm                                    # the ten manipulator components, one arm
 ///   - global_pose_sensor                     # a stock component at instance 1
 ///   - { component: world_model, instance: 2 }
 ///   - { component: global_waypoint_driver, output: 1.1.33.1, pose: 1.1.38.1 }
 /// ```
 ///
-/// A `host:` entry is `vehicle` or a stock component (`jaus_sim::host::Stock::ALL`:
+/// A `host:` entry is `vehicle`, `arm` (the Primitive Manipulator, the three joint sensors
+/// and the six manipulator drivers of `jaus_sim::arm_demo::arm_components` over one
+/// simulated 6-axis arm) or a stock component (`jaus_sim::host::Stock::ALL`:
 /// `primitive_driver`, `reflexive_driver`, `global_pose_sensor`, `local_pose_sensor`,
 /// `velocity_state_sensor`, `global_vector_driver`, `local_vector_driver`,
 /// `global_waypoint_driver`, `local_waypoint_driver`, `global_path_segment_driver`,
-/// `local_path_segment_driver`, `mission_spooler`, `world_model`), by name or as a map
-/// with `component`, `instance` (1), `output` and `pose` (drivers: where the efforts go
-/// and which pose sensor they follow; default: this node's 43.1 or 33.1, and 38.1 or
-/// 41.1) and `authority` (0). Those that need hardware share one simulated vehicle.
+/// `local_path_segment_driver`, `mission_spooler`, `world_model`, and the manipulator
+/// components `primitive_manipulator`, `joint_position_sensor`, `joint_velocity_sensor`,
+/// `joint_force_torque_sensor`, `joint_positions_driver`, `end_effector_pose_driver`,
+/// `joint_velocities_driver`, `end_effector_velocity_state_driver`, `joint_move_driver`,
+/// `end_effector_discrete_pose_driver`), by name or as a map with `component`,
+/// `instance` (1), `output` and `pose` (drivers: where the efforts go and which pose
+/// sensor they follow; default: this node's 43.1 or 33.1, and 38.1 or 41.1; manipulator
+/// drivers: 49.1) and `authority` (0). Those that need hardware share one simulated
+/// vehicle, the manipulator components one simulated arm.
 #[derive(Debug, Clone, serde::Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct NodeFile {
@@ -95,6 +103,9 @@ pub enum HostItem {
 pub enum Hosted {
     /// The demo's simulated vehicle (every component of `jaus_sim::demo::vehicle_at`).
     Vehicle,
+    /// The arm demo's ten manipulator components over one simulated arm
+    /// (`jaus_sim::arm_demo::arm_components`).
+    Arm,
     /// One stock component.
     Stock(jaus_sim::host::Entry),
 }
@@ -122,7 +133,7 @@ impl NodeFile {
     /// The `host:` entries, checked (`at` gives the file:line:column of a YAML path).
     fn hosted_at(&self, at: &dyn Fn(&str) -> String) -> Result<Vec<Hosted>, String> {
         let known = || {
-            let mut k = vec!["vehicle"];
+            let mut k = vec!["vehicle", "arm"];
             k.extend(jaus_sim::host::Stock::ALL.iter().map(|(n, _)| *n));
             k.join(", ")
         };
@@ -136,6 +147,10 @@ impl NodeFile {
             };
             if name == "vehicle" {
                 out.push(Hosted::Vehicle);
+                continue;
+            }
+            if name == "arm" {
+                out.push(Hosted::Arm);
                 continue;
             }
             let Some(stock) = jaus_sim::host::Stock::by_name(name) else {
@@ -182,7 +197,7 @@ impl NodeFile {
             }
             let clash = out.iter().any(|o| match o {
                 Hosted::Stock(p) => p.stock == e.stock && p.instance == e.instance,
-                Hosted::Vehicle => false,
+                Hosted::Vehicle | Hosted::Arm => false,
             });
             if clash {
                 return Err(format!(
@@ -299,6 +314,12 @@ pub fn node(
                 )
                 .0
             }
+            Hosted::Arm => jaus_sim::arm_demo::arm_components(
+                &jaus_sim::SimArm::new(jaus_sim::ArmParams::six_axis()),
+                file.subsystem,
+                file.node,
+                t0,
+            ),
             Hosted::Stock(e) => vec![host.build(&e).map_err(|e| e.to_string())?],
         };
         for p in parts {
