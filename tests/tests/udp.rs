@@ -660,7 +660,10 @@ fn a_node_hosts_the_arm_and_reports_its_specifications() {
         .find(|l| l["message"] == "ReportManipulatorSpecifications")
         .unwrap_or_else(|| panic!("{lines:?}"));
     assert_eq!(spec["fields"]["num_joints"], 6, "{spec}");
-    assert_eq!(spec["fields"]["linked_joints"][1]["Revolute"]["link_length"], 400, "upper arm 0.40 m in mm");
+    assert_eq!(
+        spec["fields"]["linked_joints"][1]["Revolute"]["link_length"], 400,
+        "upper arm 0.40 m in mm"
+    );
     std::fs::remove_dir_all(&dir).ok();
 }
 

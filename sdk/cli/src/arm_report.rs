@@ -26,6 +26,15 @@ pub fn summary(r: &ArmReport) -> String {
             m.angle_error_deg
         );
     }
+    if let Some((rms, max)) = r.jog_tracking {
+        let _ = writeln!(
+            s,
+            "jog velocity tracking (tool point, steady part): RMS error {:.1} mm/s, largest {:.1} mm/s of {:.0} mm/s commanded",
+            rms * 1000.0,
+            max * 1000.0,
+            jaus_sim::arm_demo::JOG.0.iter().map(|v| v * v).sum::<f64>().sqrt() * 1000.0
+        );
+    }
     let _ = write!(
         s,
         "{} moves in {:.1} s of simulated time, {} messages on the bus (the jog is open loop on its end point: its error is against the commanded displacement)",

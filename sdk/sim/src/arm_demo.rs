@@ -177,6 +177,10 @@ pub struct ArmReport {
     pub duration: f64,
     /// Messages delivered on the bus.
     pub messages: u64,
+    /// Velocity tracking of the jog in its steady part (from 0.5 s after the command to
+    /// its end), on the true tool point: (RMS, largest) error of the tool velocity
+    /// against the commanded one, m/s, from positions 50 ms apart.
+    pub jog_tracking: Option<(f64, f64)>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -251,6 +255,7 @@ pub struct ArmOperator {
     last_request: Option<Instant>,
     next_jog: Option<Instant>,
     resumed_at: Option<Instant>,
+    jog_started: Option<Instant>,
     jog_until: Option<Instant>,
     /// Moves done: (phase, commanded at, settled at, target).
     done: Vec<(Phase, Instant, Instant, Isometry3<f64>)>,
@@ -345,6 +350,7 @@ impl ArmOperator {
             }
             Phase::Jog => {
                 self.jog_until = Some(now + JOG.1);
+                self.jog_started = Some(now);
                 self.next_jog = Some(now);
                 let d = Vector3::from(JOG.0) * JOG.1.as_secs_f64();
                 Isometry3::from_parts(
@@ -720,5 +726,22 @@ pub fn run(opts: &ArmOptions, mut print: impl FnMut(&str)) -> Result<ArmReport, 
     report.targets = op.targets.clone();
     report.duration = (bus.now() - t0).as_secs_f64();
     report.messages = bus.stats().delivered;
+    if let Some(start) = op.jog_started {
+        let (from, to) = (
+            (start - t0).as_secs_f64() + 0.5,
+            (start - t0 + JOG.1).as_secs_f64(),
+        );
+        let commanded = Vector3::from(JOG.0);
+        let errors: Vec<f64> = report
+            .tool
+            .windows(2)
+            .filter(|w| w[0].0 >= from && w[1].0 <= to)
+            .map(|w| ((w[1].1 - w[0].1) / (w[1].0 - w[0].0) - commanded).norm())
+            .collect();
+        if !errors.is_empty() {
+            let rms = (errors.iter().map(|e| e * e).sum::<f64>() / errors.len() as f64).sqrt();
+            report.jog_tracking = Some((rms, errors.iter().copied().fold(0.0, f64::max)));
+        }
+    }
     Ok(report)
 }
