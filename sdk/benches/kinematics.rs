@@ -78,10 +78,18 @@ fn bench(c: &mut Criterion) {
         Translation3::new(0.001, 0.0, 0.0),
         UnitQuaternion::from_euler_angles(0.0, 0.0, 0.1f64.to_radians()),
     );
+    // Nudges that leave the reachable set within the limits (near a limit or a
+    // singularity) are left out, and counted.
     let tracking: Vec<(Vec<f64>, Isometry3<f64>)> = qs
         .iter()
         .map(|q| (q.clone(), nudge * arm.tool_pose(q)))
+        .filter(|(q, t)| solver.solve(&arm, t, q, &mut out).is_ok())
         .collect();
+    eprintln!(
+        "ik/tracking: {} of {} nudged poses reachable",
+        tracking.len(),
+        qs.len()
+    );
     g.bench_function("ik/tracking", |b| {
         b.iter_batched(
             || {
