@@ -439,3 +439,50 @@ fn the_arm_demo_is_deterministic_per_seed() {
     };
     assert_eq!(run(3), run(3));
 }
+
+/// Every driver, while merely holding the arm against gravity: emergency zeroes the
+/// efforts within one control period, and silencing its joint feedback zeroes them
+/// within the feedback timeout and one period.
+#[test]
+fn every_driver_obeys_emergency_and_its_feedback_watchdog() {
+    for driver in [
+        addr::JPD,
+        addr::EPD,
+        addr::JVD,
+        addr::EVD,
+        addr::JMD,
+        addr::DPD,
+    ] {
+        let (mut bus, arm) = arm_node();
+        take(&mut bus, driver);
+        let holding = arm.lock().efforts().iter().any(|e| e.abs() > 1.0);
+        assert!(holding, "{driver}: holds the arm against gravity");
+        bus.send(
+            INTRUDER,
+            driver,
+            SetEmergency {
+                emergency_code: EmergencyCode {
+                    transition_to_emergency: true,
+                    reserved: 0,
+                },
+            },
+        );
+        bus.run_for(arm_demo::CONTROL_PERIOD);
+        assert!(
+            arm.lock().efforts().iter().all(|e| *e == 0.0),
+            "{driver}: efforts after emergency {:?}",
+            arm.lock().efforts()
+        );
+
+        let (mut bus, arm) = arm_node();
+        take(&mut bus, driver);
+        // The sensors this driver follows fall silent.
+        bus.set_filter(|h| h.source != addr::JPS && h.source != addr::JVS);
+        bus.run_for(ms(130));
+        assert!(
+            arm.lock().efforts().iter().all(|e| *e == 0.0),
+            "{driver}: efforts without feedback {:?}",
+            arm.lock().efforts()
+        );
+    }
+}
