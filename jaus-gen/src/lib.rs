@@ -87,6 +87,7 @@ pub mod lock;
 pub mod revision;
 pub mod scaffold;
 pub mod snapshot;
+pub mod wireshark;
 
 use jaus_spec::{Spec, SpecErrors};
 use minijinja::Environment;

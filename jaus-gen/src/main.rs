@@ -51,6 +51,16 @@ enum Cmd {
         #[arg(long, value_name = "DIR")]
         out: PathBuf,
     },
+    /// Write a Wireshark/tshark dissector (Lua) for every message of the definitions,
+    /// a vendor's overlays included: JUDP and "JAUS01.0" framing, the header, every
+    /// body field, multi-packet messages reassembled.
+    Wireshark {
+        #[command(flatten)]
+        defs: SpecArgs,
+        /// Output file.
+        #[arg(long, value_name = "FILE", default_value = "jaus.lua")]
+        out: PathBuf,
+    },
     /// Validate definitions only; print every problem as file:line:column and exit 1.
     Check {
         #[command(flatten)]
@@ -246,6 +256,20 @@ fn main() -> ExitCode {
         Cmd::Docs { defs, out } => builder(defs).load().and_then(|s| {
             let files = jaus_gen::render_docs(&s, &out)?;
             println!("wrote {} page(s) to {}", files.len(), out.display());
+            Ok(())
+        }),
+        Cmd::Wireshark { defs, out } => builder(defs).load().and_then(|s| {
+            let lua = jaus_gen::wireshark::dissector(&s);
+            std::fs::write(&out, lua).map_err(|source| jaus_gen::Error::Io {
+                path: out.clone(),
+                source,
+            })?;
+            println!(
+                "wrote {} ({} messages, {} types)",
+                out.display(),
+                s.messages.len(),
+                s.types.len()
+            );
             Ok(())
         }),
         Cmd::Check { defs } => builder(defs).load().map(|s| {

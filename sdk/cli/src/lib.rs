@@ -6,12 +6,14 @@
 //! * [`net`]: the network commands (`node`, `discover`, `send`, `query`, the demo's
 //!   operator over UDP);
 //! * [`report`]: the demo's table and SVG plot;
-//! * [`arm_report`]: the arm demo's table and SVG plot.
+//! * [`arm_report`]: the arm demo's table and SVG plot;
+//! * [`capture`]: pcap/pcapng captures of JAUS traffic, written and read.
 //!
 //! The SDK (`jaus`) carries none of this: a vendor's build pulls no clap, serde_yaml or
 //! tracing-subscriber.
 
 pub mod arm_report;
+pub mod capture;
 pub mod commands;
 pub mod describe;
 pub mod net;

@@ -1,0 +1,562 @@
+-- The dissection engine: one interpreter of the layout tables above (MESSAGES, TYPES),
+-- written once; the tables are generated from the YAML definitions. Nothing here knows
+-- a particular message.
+
+local jaus = Proto("jaus", "JAUS (RA 3.3)")
+local judp = Proto("judp", "JAUS UDP transport (AS5669)")
+
+local DATA_FLAGS = { [0] = "single", [1] = "first", [2] = "middle", [4] = "retransmission request", [8] = "last" }
+local ACK_NAK = { [0] = "none", [1] = "request", [2] = "NAK", [3] = "ACK" }
+
+local hf = {
+  properties = ProtoField.uint16("jaus.properties", "Message properties", base.HEX),
+  priority = ProtoField.uint16("jaus.priority", "Priority", base.DEC, nil, 0x000F),
+  ack_nak = ProtoField.uint16("jaus.ack_nak", "ACK/NAK", base.DEC, ACK_NAK, 0x0030),
+  service_connection = ProtoField.bool("jaus.service_connection", "Service connection", 16, nil, 0x0040),
+  experimental = ProtoField.bool("jaus.experimental", "Experimental", 16, nil, 0x0080),
+  version = ProtoField.uint16("jaus.version", "Version", base.DEC, nil, 0x3F00),
+  reserved = ProtoField.uint16("jaus.reserved", "Reserved", base.DEC, nil, 0xC000),
+  code = ProtoField.uint16("jaus.command_code", "Command code", base.HEX),
+  message = ProtoField.string("jaus.message", "Message"),
+  destination = ProtoField.string("jaus.destination", "Destination"),
+  source = ProtoField.string("jaus.source", "Source"),
+  subsystem = ProtoField.uint8("jaus.address.subsystem", "Subsystem"),
+  node = ProtoField.uint8("jaus.address.node", "Node"),
+  component = ProtoField.uint8("jaus.address.component", "Component"),
+  instance = ProtoField.uint8("jaus.address.instance", "Instance"),
+  data_control = ProtoField.uint16("jaus.data_control", "Data control", base.HEX),
+  data_size = ProtoField.uint16("jaus.data_size", "Data size", base.DEC, nil, 0x0FFF),
+  data_flag = ProtoField.uint16("jaus.data_flag", "Data flag", base.DEC, DATA_FLAGS, 0xF000),
+  sequence = ProtoField.uint16("jaus.sequence_number", "Sequence number"),
+  presence = ProtoField.uint32("jaus.presence_vector", "Presence vector", base.HEX),
+  fragment = ProtoField.uint16("jaus.fragment", "Fragment of a multi-packet message"),
+  reassembled = ProtoField.uint32("jaus.reassembled_size", "Reassembled body size"),
+  trailing = ProtoField.bytes("jaus.trailing", "Trailing bytes"),
+}
+
+local hf_judp = {
+  judp_version = ProtoField.uint8("judp.version", "Version"),
+  judp_hc_number = ProtoField.uint8("judp.hc_number", "Header compression number"),
+  judp_hc_length = ProtoField.uint8("judp.hc_length", "Header compression length", base.DEC, nil, 0xFC),
+  judp_hc_flags = ProtoField.uint8("judp.hc_flags", "Header compression flags", base.DEC, nil, 0x03),
+  judp_length = ProtoField.uint16("judp.message_length", "Message length"),
+  opc_prefix = ProtoField.string("judp.opc_prefix", "JAUS01.0 prefix"),
+}
+for k, v in pairs(hf_judp) do hf[k] = v end
+
+local ef_malformed = ProtoExpert.new("jaus.malformed", "Malformed JAUS message", expert.group.MALFORMED, expert.severity.ERROR)
+local ef_unknown = ProtoExpert.new("jaus.unknown_code", "Command code not in the definitions", expert.group.UNDECODED, expert.severity.NOTE)
+local ef_compressed = ProtoExpert.new("judp.compressed", "JUDP header compression is not decoded", expert.group.UNDECODED, expert.severity.WARN)
+
+-- Per-field ProtoFields, created from the tables.
+local INT = {
+  u8 = { size = 1, signed = false, pf = ProtoField.uint8 },
+  u16 = { size = 2, signed = false, pf = ProtoField.uint16 },
+  u32 = { size = 4, signed = false, pf = ProtoField.uint32 },
+  u64 = { size = 8, signed = false, pf = ProtoField.uint64 },
+  i16 = { size = 2, signed = true, pf = ProtoField.int16 },
+  i32 = { size = 4, signed = true, pf = ProtoField.int32 },
+  i64 = { size = 8, signed = true, pf = ProtoField.int64 },
+}
+local DIVISOR = {
+  u8 = 255.0, u16 = 65535.0, u32 = 4294967294.0, i32 = 4294967294.0, i16 = 65534.0,
+  u64 = 18446744073709551615.0, i64 = 18446744073709551614.0,
+}
+local MASKS = { u8 = 0xFF, u16 = 0xFFFF, u32 = 0xFFFFFFFF }
+
+local fields_list = {}
+for k, f in pairs(hf) do
+  if hf_judp[k] == nil then fields_list[#fields_list + 1] = f end
+end
+
+local function register(pf)
+  fields_list[#fields_list + 1] = pf
+  return pf
+end
+
+local function enum_strings(tyname)
+  local t = TYPES[tyname]
+  local out = {}
+  for _, v in ipairs(t.values or {}) do out[v[2]] = v[1] end
+  return out
+end
+
+-- Creates the ProtoField(s) a field (or list element) is shown with.
+local function make_fields(f, abbrev, label)
+  local w = f.w
+  if w.k == "int" then
+    f.pf = register(INT[w.int].pf(abbrev, label, base.DEC))
+  elseif w.k == "scaled" or w.k == "f64" then
+    f.pf = register(ProtoField.double(abbrev, label))
+  elseif w.k == "f32" then
+    f.pf = register(ProtoField.float(abbrev, label))
+  elseif w.k == "str" then
+    f.pf = register(ProtoField.string(abbrev, label))
+  elseif w.k == "bytes" then
+    f.pf = register(ProtoField.bytes(abbrev, label))
+  elseif w.k == "flag" then
+    f.pf = register(ProtoField.bool(abbrev, label))
+  elseif w.k == "named" then
+    local t = TYPES[w.name]
+    if t.kind == "enum" then
+      f.pf = register(INT[t.repr].pf(abbrev, label, base.DEC, enum_strings(w.name)))
+    elseif t.kind == "bitfield" then
+      f.pf = register(INT[t.repr].pf(abbrev, label, base.HEX))
+    elseif t.kind == "union" and w.tag_field == nil then
+      local tags = {}
+      for _, v in ipairs(t.variants) do tags[v.tag] = v.name end
+      f.tag_pf = register(INT[t.repr].pf(abbrev .. ".tag", label .. " (variant)", base.DEC, tags))
+    end
+  elseif w.k == "list" or w.k == "listf" then
+    f.elem = { w = w.elem, name = f.name, unit = f.unit }
+    make_fields(f.elem, abbrev, label)
+  end
+end
+
+-- Bit-field members: one ProtoField per member, shown under the value.
+for tname, t in pairs(TYPES) do
+  if t.kind == "bitfield" then
+    for _, m in ipairs(t.bits) do
+      local abbrev = "jaus." .. tname .. "." .. m.name
+      if m.hi == nil then
+        m.pf = register(ProtoField.bool(abbrev, m.name))
+      else
+        m.pf = register(ProtoField.uint32(abbrev, m.name))
+      end
+    end
+  elseif t.kind == "record" then
+    for _, f in ipairs(t.fields) do make_fields(f, "jaus." .. tname .. "." .. f.name, f.name) end
+  elseif t.kind == "union" then
+    for _, v in ipairs(t.variants) do
+      if v.w ~= nil then
+        v.f = { w = v.w, name = v.name }
+        make_fields(v.f, "jaus." .. tname .. "." .. v.name, v.name)
+      end
+    end
+  end
+end
+for _, m in pairs(MESSAGES) do
+  for _, f in ipairs(m.fields) do make_fields(f, "jaus." .. m.name .. "." .. f.name, f.name) end
+end
+
+jaus.fields = fields_list
+jaus.experts = { ef_malformed, ef_unknown }
+local judp_list = {}
+for _, f in pairs(hf_judp) do judp_list[#judp_list + 1] = f end
+judp.fields = judp_list
+judp.experts = { ef_compressed }
+
+-- Decoding ---------------------------------------------------------------------------
+
+local Malformed = {}
+
+local function need(off, n, limit, what)
+  if off + n > limit then
+    error({ Malformed, string.format("%s needs %d bytes at offset %d; the body ends at %d", what, n, off, limit) })
+  end
+end
+
+local function read_int(tvb, off, int, limit, what)
+  local d = INT[int]
+  need(off, d.size, limit, what)
+  local r = tvb(off, d.size)
+  local v
+  if int == "u64" then v = r:le_uint64()
+  elseif int == "i64" then v = r:le_int64()
+  elseif d.signed then v = r:le_int()
+  else v = r:le_uint() end
+  return v, r
+end
+
+local function number_of(v)
+  if type(v) == "number" then return v end
+  return v:tonumber()
+end
+
+local function lookup(scope, name)
+  while scope ~= nil do
+    local v = scope.vars[name]
+    if v ~= nil then return v end
+    scope = scope.parent
+  end
+  return nil
+end
+
+local function truthy(v)
+  if v == nil or v == false then return false end
+  if v == true then return true end
+  return number_of(v) ~= 0
+end
+
+-- A sub-tvb of `n` bytes at `off` (an empty one of its own when `n` is 0, which a range
+-- at the end of a buffer cannot give).
+local function sub_tvb(tvb, off, n)
+  if n == 0 then return ByteArray.new():tvb("empty") end
+  return tvb:range(off, n):tvb()
+end
+
+local dissect_value, dissect_fields, dissect_body, dissect_packet
+
+-- A string or blob length: returns (start, length on the wire, content length).
+local function length_of(tvb, off, len, limit, what)
+  if len.k == "fixed" then
+    if len.short and off + len.n > limit then return off, limit - off, limit - off end
+    need(off, len.n, limit, what)
+    return off, len.n, len.n
+  elseif len.k == "prefix" then
+    local n = number_of((read_int(tvb, off, len.int, limit, what .. " length")))
+    local s = INT[len.int].size
+    need(off + s, n, limit, what)
+    return off + s, s + n, n
+  elseif len.k == "rest" then
+    return off, limit - off, limit - off
+  else -- nul
+    for i = off, limit - 1 do
+      if tvb(i, 1):uint() == 0 then return off, i - off + 1, i - off end
+    end
+    error({ Malformed, what .. " has no terminating NUL" })
+  end
+end
+
+-- One value of wire form `w` at `off`; returns (value for variables, new offset).
+dissect_value = function(tvb, off, limit, tree, f, scope, pinfo)
+  local w = f.w
+  local what = f.name or "value"
+  if w.k == "int" then
+    local v, r = read_int(tvb, off, w.int, limit, what)
+    tree:add_le(f.pf, r)
+    return v, off + INT[w.int].size
+  elseif w.k == "scaled" then
+    local raw, r = read_int(tvb, off, w.int, limit, what)
+    local d = INT[w.int]
+    local s = (w.hi - w.lo) / DIVISOR[w.int]
+    local bias = w.lo
+    if d.signed then bias = (w.hi + w.lo) / 2 end
+    local value = number_of(raw) * s + bias
+    local item = tree:add(f.pf, r, value)
+    item:append_text(string.format("%s (raw %s)", f.unit and (" " .. f.unit) or "", tostring(raw)))
+    return value, off + d.size
+  elseif w.k == "f32" then
+    need(off, 4, limit, what)
+    local r = tvb(off, 4)
+    tree:add_le(f.pf, r)
+    return r:le_float(), off + 4
+  elseif w.k == "f64" then
+    need(off, 8, limit, what)
+    local r = tvb(off, 8)
+    tree:add_le(f.pf, r)
+    return r:le_float(), off + 8
+  elseif w.k == "str" then
+    local start, wire, n = length_of(tvb, off, w.len, limit, what)
+    local text = ""
+    if n > 0 then
+      text = tvb(start, n):string(ENC_ISO_8859_1)
+      local nul = text:find("\0", 1, true)
+      if nul ~= nil then text = text:sub(1, nul - 1) end
+    end
+    if wire > 0 then
+      tree:add(f.pf, tvb(off, wire), text)
+    else
+      tree:add(f.pf, tvb(off, 0), text)
+    end
+    return text, off + wire
+  elseif w.k == "bytes" then
+    local start, wire, n = length_of(tvb, off, w.len, limit, what)
+    local item
+    if n > 0 then item = tree:add(f.pf, tvb(start, n)) else item = tree:add(f.pf, tvb(off, 0)) end
+    if f.code_field ~= nil and n > 0 then
+      local code = lookup(scope, f.code_field)
+      if code ~= nil then
+        code = number_of(code)
+        if f.complement then
+          if code >= 0x4000 then code = code - 0x2000 else code = code + 0x2000 end
+        end
+        dissect_body(sub_tvb(tvb, start, n), code, item, pinfo)
+      end
+    end
+    return n, off + wire
+  elseif w.k == "flag" then
+    return false, off
+  elseif w.k == "packet" then
+    local start, n = off, 0
+    if w.size ~= nil then
+      n = number_of((read_int(tvb, off, w.size, limit, what .. " size")))
+      start = off + INT[w.size].size
+    else
+      -- Without a size prefix the embedded header's data size gives the length.
+      need(off, 16, limit, what .. " header")
+      n = 16 + tvb(off + 12, 2):le_uint() % 0x1000
+    end
+    need(start, n, limit, what)
+    local sub = tree:add(jaus, tvb(start, n), "Embedded message")
+    dissect_packet(sub_tvb(tvb, start, n), sub, pinfo, true)
+    return nil, start + n
+  elseif w.k == "named" then
+    local t = TYPES[w.name]
+    local vlimit = limit
+    if w.size ~= nil then
+      local n = number_of((read_int(tvb, off, w.size, limit, what .. " size")))
+      off = off + INT[w.size].size
+      need(off, n, limit, what)
+      vlimit = off + n
+    end
+    if t.kind == "enum" then
+      local v, r = read_int(tvb, off, t.repr, vlimit, what)
+      tree:add_le(f.pf, r)
+      return v, (w.size and vlimit) or (off + INT[t.repr].size)
+    elseif t.kind == "bitfield" then
+      local v, r = read_int(tvb, off, t.repr, vlimit, what)
+      local item = tree:add_le(f.pf, r)
+      local n = number_of(v)
+      for _, m in ipairs(t.bits) do
+        if m.hi == nil then
+          item:add(m.pf, r, math.floor(n / 2 ^ m.lo) % 2 == 1)
+        else
+          local width = m.hi - m.lo + 1
+          item:add(m.pf, r, math.floor(n / 2 ^ m.lo) % (2 ^ width))
+        end
+      end
+      return v, (w.size and vlimit) or (off + INT[t.repr].size)
+    elseif t.kind == "record" then
+      local sub = tree:add(jaus, tvb(off, 0), f.name or w.name)
+      sub:append_text(" (" .. w.name .. ")")
+      local start = off
+      local inner = { vars = {}, parent = scope }
+      off = dissect_fields(tvb, off, vlimit, sub, t.fields, t.presence, inner, pinfo)
+      sub:set_len(off - start)
+      return nil, (w.size and vlimit) or off
+    else -- union
+      local tag
+      local sub = tree:add(jaus, tvb(off, 0), f.name or w.name)
+      local start = off
+      if w.tag_field ~= nil then
+        tag = lookup(scope, w.tag_field)
+      else
+        local r
+        tag, r = read_int(tvb, off, t.repr, vlimit, what .. " tag")
+        sub:add_le(f.tag_pf, r)
+        off = off + INT[t.repr].size
+      end
+      tag = number_of(tag or 0)
+      local variant = nil
+      for _, v in ipairs(t.variants) do if v.tag == tag then variant = v end end
+      if variant == nil then
+        error({ Malformed, string.format("%s: tag %d names no variant of %s", what, tag, w.name) })
+      end
+      sub:append_text(": " .. variant.name)
+      if variant.f ~= nil then
+        local _, o = dissect_value(tvb, off, vlimit, sub, variant.f, { vars = {}, parent = scope }, pinfo)
+        off = o
+      end
+      sub:set_len(off - start)
+      return tag, (w.size and vlimit) or off
+    end
+  elseif w.k == "list" or w.k == "listf" then
+    local count
+    local start = off
+    if w.k == "list" and w.count ~= nil then
+      local c = read_int(tvb, off, w.count, limit, what .. " count")
+      count = number_of(c)
+      off = off + INT[w.count].size
+    elseif w.k == "listf" then
+      local c = lookup(scope, w.field)
+      count = number_of(c or 0) - (w.minus or 0)
+      if count < 0 then count = 0 end
+    end
+    local sub = tree:add(jaus, tvb(start, 0), f.name or "list")
+    local i = 0
+    while (count ~= nil and i < count) or (count == nil and off < limit) do
+      local _, o = dissect_value(tvb, off, limit, sub, f.elem, scope, pinfo)
+      off = o
+      i = i + 1
+    end
+    sub:append_text(string.format(" (%d elements)", i))
+    sub:set_len(off - start)
+    return i, off
+  end
+  error({ Malformed, "unknown wire form " .. tostring(w.k) })
+end
+
+-- The fields of a message or record: presence vector first when there is one.
+dissect_fields = function(tvb, off, limit, tree, fields, presence, scope, pinfo)
+  local pv = nil
+  local pv_range = nil
+  if presence ~= nil then
+    local v
+    v, pv_range = read_int(tvb, off, presence, limit, "presence vector")
+    pv = number_of(v)
+    tree:add_le(hf.presence, pv_range, pv)
+    off = off + INT[presence].size
+  end
+  for _, f in ipairs(fields) do
+    local present = true
+    if f.w.k == "flag" then
+      local set = pv ~= nil and math.floor(pv / 2 ^ f.bit) % 2 == 1
+      scope.vars[f.name] = set
+      if pv_range ~= nil then tree:add(f.pf, pv_range, set) end
+      present = false
+    elseif f.bit ~= nil then
+      present = pv ~= nil and math.floor(pv / 2 ^ f.bit) % 2 == 1
+    elseif f.present_if ~= nil then
+      present = truthy(lookup(scope, f.present_if))
+    end
+    if present then
+      local v, o = dissect_value(tvb, off, limit, tree, f, scope, pinfo)
+      scope.vars[f.name] = v
+      off = o
+    end
+  end
+  return off
+end
+
+-- A message body of command code `code` into `tree`.
+dissect_body = function(body, code, tree, pinfo)
+  local m = MESSAGES[code]
+  if m == nil then
+    tree:add_proto_expert_info(ef_unknown)
+    return
+  end
+  tree:append_text(": " .. m.name)
+  local ok, err = pcall(function()
+    local off = dissect_fields(body, 0, body:len(), tree, m.fields, m.presence, { vars = {} }, pinfo)
+    if off < body:len() then
+      tree:add(hf.trailing, body(off, body:len() - off))
+    end
+  end)
+  if not ok then
+    local text = err
+    if type(err) == "table" and err[1] == Malformed then text = err[2] end
+    tree:add_proto_expert_info(ef_malformed, m.name .. ": " .. tostring(text))
+  end
+end
+
+local function address(tvb, off)
+  local r = tvb(off, 4)
+  return string.format("%d.%d.%d.%d", tvb(off + 3, 1):uint(), tvb(off + 2, 1):uint(), tvb(off + 1, 1):uint(), tvb(off, 1):uint()), r
+end
+
+-- Multi-packet messages: the parts seen on the first pass, keyed by source, destination
+-- and command code; the whole body kept for the frame of the last part.
+local parts = {}
+local whole = {}
+
+-- One JAUS packet (16-byte header + body) into `tree`.
+dissect_packet = function(tvb, tree, pinfo, embedded)
+  if tvb:len() < 16 then
+    tree:add_proto_expert_info(ef_malformed, string.format("%d bytes: shorter than the 16-byte header", tvb:len()))
+    return
+  end
+  local props = tvb(0, 2)
+  local p = tree:add_le(hf.properties, props)
+  for _, k in ipairs({ "priority", "ack_nak", "service_connection", "experimental", "version", "reserved" }) do
+    p:add_le(hf[k], props)
+  end
+  local code = tvb(2, 2):le_uint()
+  local m = MESSAGES[code]
+  local ci = tree:add_le(hf.code, tvb(2, 2))
+  if m ~= nil then
+    ci:append_text(" (" .. m.title .. ")")
+    tree:add(hf.message, tvb(2, 2), m.name)
+  end
+  local dst, dr = address(tvb, 4)
+  local src, sr = address(tvb, 8)
+  for _, a in ipairs({ { hf.destination, dst, dr, 4 }, { hf.source, src, sr, 8 } }) do
+    local item = tree:add(a[1], a[3], a[2])
+    item:add(hf.subsystem, tvb(a[4] + 3, 1))
+    item:add(hf.node, tvb(a[4] + 2, 1))
+    item:add(hf.component, tvb(a[4] + 1, 1))
+    item:add(hf.instance, tvb(a[4], 1))
+  end
+  local dc = tvb(12, 2)
+  local d = tree:add_le(hf.data_control, dc)
+  d:add_le(hf.data_size, dc)
+  d:add_le(hf.data_flag, dc)
+  local size = dc:le_uint() % 0x1000
+  local flag = math.floor(dc:le_uint() / 0x1000)
+  local seq = tvb(14, 2):le_uint()
+  tree:add_le(hf.sequence, tvb(14, 2))
+  if 16 + size > tvb:len() then
+    tree:add_proto_expert_info(ef_malformed, string.format("data size %d but %d body bytes", size, tvb:len() - 16))
+    return
+  end
+  local name = (m and m.name) or string.format("0x%04X", code)
+  if not embedded then
+    pinfo.cols.info:append(string.format("%s %s → %s  ", name, src, dst))
+  end
+  local body = tree:add(jaus, tvb(16, size), "Body")
+  if flag == 0 then
+    dissect_body(sub_tvb(tvb, 16, size), code, body, pinfo)
+    return
+  end
+  -- A part of a multi-packet message.
+  body:add(hf.fragment, tvb(14, 2), seq)
+  local key = src .. ">" .. dst .. "#" .. code
+  if not pinfo.visited then
+    if flag == 1 then parts[key] = {} end
+    local list = parts[key]
+    if list ~= nil and (flag == 1 or flag == 2 or flag == 8) then
+      list[seq] = tvb:range(16, size):bytes()
+      if flag == 8 then
+        local all = ByteArray.new()
+        local ok = true
+        for i = 0, seq do
+          if list[i] == nil then ok = false break end
+          all:append(list[i])
+        end
+        if ok then whole[pinfo.number] = all end
+        parts[key] = nil
+      end
+    end
+  end
+  local all = whole[pinfo.number]
+  if all ~= nil then
+    local t = all:tvb("Reassembled JAUS body")
+    local r = tree:add(jaus, t(), "Reassembled body")
+    r:add(hf.reassembled, t(), all:len())
+    dissect_body(t, code, r, pinfo)
+  else
+    body:append_text(string.format(" (part %d of a multi-packet %s)", seq, name))
+  end
+end
+
+function jaus.dissector(tvb, pinfo, tree)
+  pinfo.cols.protocol = "JAUS"
+  local t = tree:add(jaus, tvb())
+  dissect_packet(tvb, t, pinfo, false)
+  return tvb:len()
+end
+
+function judp.dissector(tvb, pinfo, tree)
+  if tvb:len() < 1 then return 0 end
+  pinfo.cols.protocol = "JAUS"
+  pinfo.cols.info:clear()
+  local t = tree:add(judp, tvb())
+  if tvb:len() >= 8 and tvb(0, 8):string() == "JAUS01.0" then
+    t:add(hf.opc_prefix, tvb(0, 8))
+    local sub = tree:add(jaus, tvb(8))
+    dissect_packet(tvb:range(8):tvb(), sub, pinfo, false)
+    return tvb:len()
+  end
+  t:add(hf.judp_version, tvb(0, 1))
+  local off = 1
+  while off + 4 <= tvb:len() do
+    t:add(hf.judp_hc_number, tvb(off, 1))
+    t:add(hf.judp_hc_length, tvb(off + 1, 1))
+    t:add(hf.judp_hc_flags, tvb(off + 1, 1))
+    local flags = tvb(off + 1, 1):uint() % 4
+    local n = tvb(off + 2, 2):uint()
+    t:add(hf.judp_length, tvb(off + 2, 2))
+    off = off + 4
+    if flags >= 2 then
+      t:add_proto_expert_info(ef_compressed)
+      return tvb:len()
+    end
+    if off + n > tvb:len() then n = tvb:len() - off end
+    local sub = tree:add(jaus, tvb(off, n))
+    dissect_packet(tvb:range(off, n):tvb(), sub, pinfo, false)
+    off = off + n
+  end
+  return tvb:len()
+end
+
+DissectorTable.get("udp.port"):add(JAUS_UDP_PORT, judp)

@@ -1,0 +1,314 @@
+//! Captures of JAUS traffic: a node writes what it sends and receives as pcapng
+//! (`jaus node --capture FILE`), and captures from any tool (pcap or pcapng; Ethernet,
+//! raw IPv4, Linux cooked or loopback frames) are read back as UDP datagrams for
+//! `jaus decode --pcap` and `jaus replay`.
+//!
+//! A written capture holds each datagram as a raw IPv4/UDP packet (link type IPv4), so
+//! Wireshark and tshark show it like one taken on the wire.
+
+use std::fs::File;
+use std::io::{BufReader, BufWriter, Read, Write};
+use std::net::{Ipv4Addr, SocketAddr, SocketAddrV4};
+use std::path::Path;
+use std::time::Duration;
+
+use pcap_file::pcap::PcapReader;
+use pcap_file::pcapng::blocks::enhanced_packet::EnhancedPacketBlock;
+use pcap_file::pcapng::blocks::interface_description::InterfaceDescriptionBlock;
+use pcap_file::pcapng::{Block, PcapNgReader, PcapNgWriter};
+use pcap_file::DataLink;
+
+/// One UDP datagram of a capture.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Datagram {
+    /// When it was seen, since 1970-01-01 UTC.
+    pub time: Duration,
+    /// Sender.
+    pub src: SocketAddrV4,
+    /// Receiver.
+    pub dst: SocketAddrV4,
+    /// UDP payload.
+    pub payload: Vec<u8>,
+}
+
+/// Why a capture cannot be written or read.
+#[derive(Debug, thiserror::Error)]
+pub enum CaptureError {
+    /// The file cannot be opened or written.
+    #[error("{0}")]
+    Io(#[from] std::io::Error),
+    /// The pcap library refused the data.
+    #[error("{0}")]
+    Pcap(#[from] pcap_file::PcapError),
+    /// Neither pcap nor pcapng.
+    #[error("not a pcap or pcapng file (magic {0:02x?})")]
+    Format([u8; 4]),
+}
+
+/// Writes datagrams to a pcapng file.
+pub struct CaptureWriter<W: Write> {
+    out: PcapNgWriter<W>,
+    ip_id: u16,
+    /// Datagrams not written because an address is not IPv4.
+    pub skipped: u64,
+}
+
+impl<W: Write> std::fmt::Debug for CaptureWriter<W> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("CaptureWriter")
+            .field("ip_id", &self.ip_id)
+            .field("skipped", &self.skipped)
+            .finish()
+    }
+}
+
+impl CaptureWriter<BufWriter<File>> {
+    /// Creates (or truncates) `path`.
+    pub fn create(path: &Path) -> Result<Self, CaptureError> {
+        Self::new(BufWriter::new(File::create(path)?))
+    }
+}
+
+impl<W: Write> CaptureWriter<W> {
+    /// A capture on `w`: the section header and one raw-IPv4 interface.
+    pub fn new(w: W) -> Result<Self, CaptureError> {
+        let mut out = PcapNgWriter::new(w)?;
+        out.write_pcapng_block(InterfaceDescriptionBlock {
+            linktype: DataLink::IPV4,
+            snaplen: 0,
+            options: Vec::new(),
+        })?;
+        Ok(Self {
+            out,
+            ip_id: 0,
+            skipped: 0,
+        })
+    }
+
+    /// Writes one datagram from `src` to `dst` seen at `time` (since the Unix epoch).
+    pub fn write(
+        &mut self,
+        time: Duration,
+        src: SocketAddr,
+        dst: SocketAddr,
+        payload: &[u8],
+    ) -> Result<(), CaptureError> {
+        let (SocketAddr::V4(src), SocketAddr::V4(dst)) = (src, dst) else {
+            self.skipped += 1;
+            return Ok(());
+        };
+        self.ip_id = self.ip_id.wrapping_add(1);
+        let packet = ipv4_udp(src, dst, payload, self.ip_id);
+        self.out.write_pcapng_block(EnhancedPacketBlock {
+            interface_id: 0,
+            timestamp: time,
+            original_len: packet.len() as u32,
+            data: packet.into(),
+            options: Vec::new(),
+        })?;
+        Ok(())
+    }
+
+    /// Flushes what was written.
+    pub fn flush(&mut self) -> Result<(), CaptureError> {
+        self.out.get_mut().flush()?;
+        Ok(())
+    }
+}
+
+/// An IPv4 packet (20-byte header with its checksum, no options) carrying a UDP
+/// datagram (checksum 0: not computed, which UDP over IPv4 allows).
+fn ipv4_udp(src: SocketAddrV4, dst: SocketAddrV4, payload: &[u8], id: u16) -> Vec<u8> {
+    let udp_len = 8 + payload.len();
+    let total = 20 + udp_len;
+    let mut p = Vec::with_capacity(total);
+    p.extend_from_slice(&[0x45, 0]);
+    p.extend_from_slice(&(total.min(usize::from(u16::MAX)) as u16).to_be_bytes());
+    p.extend_from_slice(&id.to_be_bytes());
+    p.extend_from_slice(&[0x40, 0, 64, 17, 0, 0]);
+    p.extend_from_slice(&src.ip().octets());
+    p.extend_from_slice(&dst.ip().octets());
+    let sum = checksum(&p);
+    p[10..12].copy_from_slice(&sum.to_be_bytes());
+    p.extend_from_slice(&src.port().to_be_bytes());
+    p.extend_from_slice(&dst.port().to_be_bytes());
+    p.extend_from_slice(&(udp_len.min(usize::from(u16::MAX)) as u16).to_be_bytes());
+    p.extend_from_slice(&[0, 0]);
+    p.extend_from_slice(payload);
+    p
+}
+
+fn checksum(header: &[u8]) -> u16 {
+    let mut sum: u32 = header
+        .chunks(2)
+        .map(|c| u32::from(u16::from_be_bytes([c[0], *c.get(1).unwrap_or(&0)])))
+        .sum();
+    while sum > 0xFFFF {
+        sum = (sum & 0xFFFF) + (sum >> 16);
+    }
+    !(sum as u16)
+}
+
+/// What [`read`] found besides the datagrams.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct ReadStats {
+    /// Frames that are not IPv4/UDP (or of a link type not read), skipped.
+    pub skipped: u64,
+}
+
+/// Every IPv4 UDP datagram of a pcap or pcapng file, in file order.
+pub fn read(path: &Path) -> Result<(Vec<Datagram>, ReadStats), CaptureError> {
+    let mut f = BufReader::new(File::open(path)?);
+    let mut magic = [0u8; 4];
+    f.read_exact(&mut magic)?;
+    let f = BufReader::new(File::open(path)?);
+    let mut out = Vec::new();
+    let mut stats = ReadStats::default();
+    let mut push = |time: Duration, link: DataLink, data: &[u8]| match frame(link, data) {
+        Some((src, dst, payload)) => out.push(Datagram {
+            time,
+            src,
+            dst,
+            payload: payload.to_vec(),
+        }),
+        None => stats.skipped += 1,
+    };
+    match magic {
+        [0x0a, 0x0d, 0x0d, 0x0a] => {
+            let mut r = PcapNgReader::new(f)?;
+            // Link types of the interfaces, in the order they were described.
+            let mut links: Vec<DataLink> = Vec::new();
+            while let Some(block) = r.next_block() {
+                match block? {
+                    Block::InterfaceDescription(i) => links.push(i.linktype),
+                    Block::EnhancedPacket(p) => {
+                        let link = links.get(p.interface_id as usize).copied();
+                        push(p.timestamp, link.unwrap_or(DataLink::IPV4), &p.data);
+                    }
+                    Block::SimplePacket(p) => {
+                        let link = links.first().copied().unwrap_or(DataLink::IPV4);
+                        push(Duration::ZERO, link, &p.data);
+                    }
+                    _ => {}
+                }
+            }
+        }
+        [0xd4, 0xc3, 0xb2, 0xa1]
+        | [0xa1, 0xb2, 0xc3, 0xd4]
+        | [0x4d, 0x3c, 0xb2, 0xa1]
+        | [0xa1, 0xb2, 0x3c, 0x4d] => {
+            let mut r = PcapReader::new(f)?;
+            let link = r.header().datalink;
+            while let Some(p) = r.next_packet() {
+                let p = p?;
+                push(p.timestamp, link, &p.data);
+            }
+        }
+        other => return Err(CaptureError::Format(other)),
+    }
+    Ok((out, stats))
+}
+
+/// The IPv4 UDP datagram of a frame: (source, destination, payload).
+fn frame(link: DataLink, data: &[u8]) -> Option<(SocketAddrV4, SocketAddrV4, &[u8])> {
+    let ip = match link {
+        DataLink::IPV4 | DataLink::RAW => data,
+        DataLink::ETHERNET => {
+            let ether_type = u16::from_be_bytes([*data.get(12)?, *data.get(13)?]);
+            match ether_type {
+                0x0800 => data.get(14..)?,
+                // One 802.1Q tag.
+                0x8100 if data.get(16..18)? == [0x08, 0x00] => data.get(18..)?,
+                _ => return None,
+            }
+        }
+        DataLink::LINUX_SLL => {
+            if data.get(14..16)? != [0x08, 0x00] {
+                return None;
+            }
+            data.get(16..)?
+        }
+        DataLink::NULL | DataLink::LOOP => {
+            // A 4-byte address family in the capturing host's order (2 = IPv4).
+            let family = data.get(..4)?;
+            if family != [2, 0, 0, 0] && family != [0, 0, 0, 2] {
+                return None;
+            }
+            data.get(4..)?
+        }
+        _ => return None,
+    };
+    if ip.first()? >> 4 != 4 || *ip.get(9)? != 17 {
+        return None;
+    }
+    let ihl = usize::from(ip[0] & 0x0F) * 4;
+    let total = usize::from(u16::from_be_bytes([*ip.get(2)?, *ip.get(3)?])).min(ip.len());
+    let udp = ip.get(ihl..total)?;
+    let len = usize::from(u16::from_be_bytes([*udp.get(4)?, *udp.get(5)?]));
+    let payload = udp.get(8..len.max(8).min(udp.len()))?;
+    let addr = |o: usize, p: usize| -> Option<SocketAddrV4> {
+        Some(SocketAddrV4::new(
+            Ipv4Addr::new(*ip.get(o)?, ip[o + 1], ip[o + 2], ip[o + 3]),
+            u16::from_be_bytes([*udp.get(p)?, udp[p + 1]]),
+        ))
+    };
+    Some((addr(12, 0)?, addr(16, 2)?, payload))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn written_datagrams_read_back() {
+        let dir = std::env::temp_dir().join(format!("jaus-capture-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("t.pcapng");
+        let a: SocketAddr = "127.0.0.1:3794".parse().unwrap();
+        let b: SocketAddr = "127.0.0.2:3794".parse().unwrap();
+        let v6: SocketAddr = "[::1]:3794".parse().unwrap();
+        let mut w = CaptureWriter::create(&path).unwrap();
+        w.write(Duration::from_millis(1_500), a, b, b"\x01hello")
+            .unwrap();
+        w.write(Duration::from_millis(1_600), b, a, &[7; 5000])
+            .unwrap();
+        w.write(Duration::from_millis(1_700), v6, a, b"x").unwrap();
+        assert_eq!(w.skipped, 1);
+        w.flush().unwrap();
+        drop(w);
+        let (got, stats) = read(&path).unwrap();
+        assert_eq!(stats.skipped, 0);
+        assert_eq!(got.len(), 2);
+        assert_eq!(got[0].payload, b"\x01hello");
+        assert_eq!((got[0].src, got[0].dst), (sock(a), sock(b)));
+        assert_eq!(got[0].time, Duration::from_millis(1_500));
+        assert_eq!(got[1].payload.len(), 5000);
+        std::fs::remove_dir_all(&dir).ok();
+    }
+
+    fn sock(a: SocketAddr) -> SocketAddrV4 {
+        match a {
+            SocketAddr::V4(v) => v,
+            SocketAddr::V6(_) => unreachable!(),
+        }
+    }
+
+    #[test]
+    fn the_ip_header_checksum_verifies() {
+        let p = ipv4_udp(
+            "10.0.0.1:1".parse().unwrap(),
+            "10.0.0.2:2".parse().unwrap(),
+            b"abc",
+            5,
+        );
+        assert_eq!(checksum(&p[..20]), 0);
+        assert_eq!(frame(DataLink::IPV4, &p).unwrap().2, b"abc");
+        // Garbage frames are skipped, never a panic.
+        for n in 0..p.len() {
+            let _ = frame(DataLink::IPV4, &p[..n]);
+            let _ = frame(DataLink::ETHERNET, &p[..n]);
+            let _ = frame(DataLink::LINUX_SLL, &p[..n]);
+            let _ = frame(DataLink::NULL, &p[..n]);
+        }
+    }
+}
