@@ -276,4 +276,29 @@ mod tests {
         // Deterministic.
         assert_eq!(lua, dissector(&spec));
     }
+
+    #[test]
+    fn a_vendor_overlay_adds_its_messages_to_the_sdk_ones() {
+        let overlay = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../examples/vendor-rover/defs/vendor_rover.yaml");
+        let spec = jaus_spec::load_overlays(&[overlay]).expect("the overlay loads");
+        let lua = dissector(&spec);
+        let own: Vec<_> = spec
+            .messages
+            .iter()
+            .filter(|m| spec.is_own(m.source))
+            .collect();
+        assert!(!own.is_empty());
+        for m in own {
+            assert!(
+                lua.contains(&format!("name = \"{}\"", m.def.name)),
+                "{}",
+                m.def.name
+            );
+        }
+        assert!(
+            lua.contains("name = \"ReportGlobalPose\""),
+            "the SDK's messages stay"
+        );
+    }
 }

@@ -560,3 +560,25 @@ function judp.dissector(tvb, pinfo, tree)
 end
 
 DissectorTable.get("udp.port"):add(JAUS_UDP_PORT, judp)
+
+-- On other ports: a datagram that is one whole JUDP message (version 1, uncompressed,
+-- a length that covers a header of version 2 whose data size fills the rest) or starts
+-- with "JAUS01.0".
+local function looks_like_jaus(tvb)
+  local n = tvb:len()
+  if n >= 24 and tvb(0, 8):string() == "JAUS01.0" then
+    return tvb(8 + 12, 2):le_uint() % 0x1000 + 24 == n
+  end
+  if n < 21 or tvb(0, 1):uint() ~= 1 or tvb(2, 1):uint() % 4 >= 2 then return false end
+  local len = tvb(3, 2):uint()
+  if len < 16 or 5 + len ~= n then return false end
+  local version = math.floor(tvb(5, 2):le_uint() / 256) % 64
+  local size = tvb(5 + 12, 2):le_uint() % 0x1000
+  return version == 2 and 16 + size == len
+end
+
+judp:register_heuristic("udp", function(tvb, pinfo, tree)
+  if not looks_like_jaus(tvb) then return false end
+  judp.dissector(tvb, pinfo, tree)
+  return true
+end)

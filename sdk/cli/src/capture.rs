@@ -154,6 +154,9 @@ fn checksum(header: &[u8]) -> u16 {
 pub struct ReadStats {
     /// Frames that are not IPv4/UDP (or of a link type not read), skipped.
     pub skipped: u64,
+    /// The file ends inside a block or packet (a capture still being written, or whose
+    /// writer was killed): everything before it was read.
+    pub truncated: bool,
 }
 
 /// Every IPv4 UDP datagram of a pcap or pcapng file, in file order.
@@ -179,7 +182,15 @@ pub fn read(path: &Path) -> Result<(Vec<Datagram>, ReadStats), CaptureError> {
             // Link types of the interfaces, in the order they were described.
             let mut links: Vec<DataLink> = Vec::new();
             while let Some(block) = r.next_block() {
-                match block? {
+                let block = match block {
+                    Ok(b) => b,
+                    Err(e) if is_truncation(&e) => {
+                        stats.truncated = true;
+                        break;
+                    }
+                    Err(e) => return Err(e.into()),
+                };
+                match block {
                     Block::InterfaceDescription(i) => links.push(i.linktype),
                     Block::EnhancedPacket(p) => {
                         let link = links.get(p.interface_id as usize).copied();
@@ -200,13 +211,25 @@ pub fn read(path: &Path) -> Result<(Vec<Datagram>, ReadStats), CaptureError> {
             let mut r = PcapReader::new(f)?;
             let link = r.header().datalink;
             while let Some(p) = r.next_packet() {
-                let p = p?;
-                push(p.timestamp, link, &p.data);
+                match p {
+                    Ok(p) => push(p.timestamp, link, &p.data),
+                    Err(e) if is_truncation(&e) => {
+                        stats.truncated = true;
+                        break;
+                    }
+                    Err(e) => return Err(e.into()),
+                }
             }
         }
         other => return Err(CaptureError::Format(other)),
     }
     Ok((out, stats))
+}
+
+/// An error that means the file ends early (rather than a corrupt block).
+fn is_truncation(e: &pcap_file::PcapError) -> bool {
+    matches!(e, pcap_file::PcapError::IncompleteBuffer)
+        || matches!(e, pcap_file::PcapError::IoError(io) if io.kind() == std::io::ErrorKind::UnexpectedEof)
 }
 
 /// The IPv4 UDP datagram of a frame: (source, destination, payload).
@@ -277,12 +300,18 @@ mod tests {
         w.flush().unwrap();
         drop(w);
         let (got, stats) = read(&path).unwrap();
-        assert_eq!(stats.skipped, 0);
+        assert_eq!(stats, ReadStats::default());
         assert_eq!(got.len(), 2);
         assert_eq!(got[0].payload, b"\x01hello");
         assert_eq!((got[0].src, got[0].dst), (sock(a), sock(b)));
         assert_eq!(got[0].time, Duration::from_millis(1_500));
         assert_eq!(got[1].payload.len(), 5000);
+        // A capture cut short (its writer killed mid-block) reads up to the cut.
+        let bytes = std::fs::read(&path).unwrap();
+        std::fs::write(&path, &bytes[..bytes.len() - 100]).unwrap();
+        let (cut, stats) = read(&path).unwrap();
+        assert!(stats.truncated);
+        assert_eq!(cut.len(), 1);
         std::fs::remove_dir_all(&dir).ok();
     }
 

@@ -7,7 +7,8 @@
 //!   operator over UDP);
 //! * [`report`]: the demo's table and SVG plot;
 //! * [`arm_report`]: the arm demo's table and SVG plot;
-//! * [`capture`]: pcap/pcapng captures of JAUS traffic, written and read.
+//! * [`capture`]: pcap/pcapng captures of JAUS traffic, written and read;
+//! * [`traffic`]: captures decoded to JSON lines and replayed to a node.
 //!
 //! The SDK (`jaus`) carries none of this: a vendor's build pulls no clap, serde_yaml or
 //! tracing-subscriber.
@@ -18,3 +19,4 @@ pub mod commands;
 pub mod describe;
 pub mod net;
 pub mod report;
+pub mod traffic;

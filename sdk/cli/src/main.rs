@@ -41,6 +41,28 @@ enum Cmd {
     Decode {
         /// Packets as hex: 16-byte header followed by the body.
         hex: Vec<String>,
+        /// Decode the JAUS messages of a capture (pcap or pcapng) instead, multi-packet
+        /// messages reassembled; each line also has `t` (s), `src` and `dst`.
+        #[arg(long, value_name = "FILE", conflicts_with = "hex")]
+        pcap: Option<std::path::PathBuf>,
+    },
+    /// Send the datagrams of a capture (pcap or pcapng) to a node again, with their
+    /// captured timing.
+    Replay {
+        /// The capture.
+        file: std::path::PathBuf,
+        /// Where to send them (a node's socket).
+        #[arg(long)]
+        to: std::net::SocketAddr,
+        /// Only the datagrams originally sent to this socket (e.g. what one node received).
+        #[arg(long, value_name = "ADDR")]
+        only_to: Option<std::net::SocketAddrV4>,
+        /// Time scale (2: twice as fast; 0: as fast as possible).
+        #[arg(long, default_value_t = 1.0)]
+        speed: f64,
+        /// Local socket.
+        #[arg(long, default_value = "127.0.0.1:0")]
+        bind: std::net::SocketAddr,
     },
     /// Encode JSON lines from stdin (the form `decode` prints) to hex packets.
     Encode,
@@ -55,6 +77,10 @@ enum Cmd {
         /// Stop after this many seconds (default: run until interrupted).
         #[arg(long)]
         seconds: Option<f64>,
+        /// Write every datagram the node receives and sends to this pcapng file
+        /// (Wireshark: load the dissector of `jaus-gen wireshark`).
+        #[arg(long, value_name = "FILE")]
+        capture: Option<std::path::PathBuf>,
     },
     /// Listen for a while and print the system tree seen on the network.
     Discover {
@@ -371,7 +397,39 @@ fn main() -> ExitCode {
                     let _ = write!(out, "{text}");
                 }),
         ),
-        Cmd::Decode { hex } => {
+        Cmd::Decode {
+            pcap: Some(file), ..
+        } => match jaus_cli::traffic::decode_capture(&file, &mut out, &mut err) {
+            Ok((_, 0)) => true,
+            Ok((_, _)) => false,
+            Err(e) => {
+                let _ = writeln!(err, "error: {e}");
+                false
+            }
+        },
+        Cmd::Replay {
+            file,
+            to,
+            only_to,
+            speed,
+            bind,
+        } => report(
+            &mut err,
+            jaus_cli::traffic::replay(
+                &file,
+                &jaus_cli::traffic::Replay {
+                    to,
+                    only_to,
+                    speed: speed.max(0.0),
+                    bind,
+                },
+                &STOP,
+            )
+            .map(|n| {
+                let _ = writeln!(out, "sent {n} datagrams to {to}");
+            }),
+        ),
+        Cmd::Decode { hex, .. } => {
             let lines: Box<dyn Iterator<Item = String>> = if hex.is_empty() {
                 Box::new(stdin_lines())
             } else {
@@ -383,9 +441,16 @@ fn main() -> ExitCode {
             commands::run_lines(stdin_lines(), &mut out, &mut err, jaus::json::encode_line)
         }
         Cmd::Tour => commands::tour(&mut out),
-        Cmd::Node { config, seconds } => {
+        Cmd::Node {
+            config,
+            seconds,
+            capture,
+        } => {
             let d = seconds.map(|s| std::time::Duration::from_secs_f64(s.max(0.0)));
-            report(&mut err, jaus_cli::net::node(&config, d, &STOP, &mut out))
+            report(
+                &mut err,
+                jaus_cli::net::node(&config, d, capture.as_deref(), &STOP, &mut out),
+            )
         }
         Cmd::Discover { net, json } => report(
             &mut err,

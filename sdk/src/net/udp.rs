@@ -32,7 +32,29 @@ pub fn run_on<P: Participant>(
     socket: &UdpSocket,
     stop: &AtomicBool,
     until: Option<Instant>,
+    on_tick: impl FnMut(&mut P),
+) -> std::io::Result<()> {
+    run_tapped(node, socket, stop, until, on_tick, |_, _, _| {})
+}
+
+/// Which way a datagram went, for a [`run_tapped`] observer.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Direction {
+    /// Received from the peer.
+    Received,
+    /// Sent to the peer (after the socket accepted it).
+    Sent,
+}
+
+/// [`run_on`], showing `tap` every datagram received and sent (direction, peer,
+/// datagram), e.g. to write a capture.
+pub fn run_tapped<P: Participant>(
+    node: &mut P,
+    socket: &UdpSocket,
+    stop: &AtomicBool,
+    until: Option<Instant>,
     mut on_tick: impl FnMut(&mut P),
+    mut tap: impl FnMut(Direction, SocketAddr, &[u8]),
 ) -> std::io::Result<()> {
     tracing::info!(bind = ?socket.local_addr().ok(), "up");
     let mut buf = vec![0u8; MAX_DATAGRAM];
@@ -49,7 +71,10 @@ pub fn run_on<P: Participant>(
             .clamp(Duration::from_micros(100), Duration::from_millis(100));
         socket.set_read_timeout(Some(wait))?;
         match socket.recv_from(&mut buf) {
-            Ok((n, peer)) => node.handle_datagram(Instant::now(), peer, &buf[..n]),
+            Ok((n, peer)) => {
+                tap(Direction::Received, peer, &buf[..n]);
+                node.handle_datagram(Instant::now(), peer, &buf[..n]);
+            }
             Err(e) if matches!(e.kind(), ErrorKind::WouldBlock | ErrorKind::TimedOut) => {}
             // A previous send to a closed port (ICMP unreachable on some systems).
             Err(e) if e.kind() == ErrorKind::ConnectionReset => {}
@@ -58,8 +83,9 @@ pub fn run_on<P: Participant>(
         node.handle_timeout(Instant::now());
         on_tick(node);
         while let Some(d) = node.poll_transmit() {
-            if let Err(e) = socket.send_to(&d.bytes, d.to) {
-                tracing::debug!(to = %d.to, "send failed: {e}");
+            match socket.send_to(&d.bytes, d.to) {
+                Ok(_) => tap(Direction::Sent, d.to, &d.bytes),
+                Err(e) => tracing::debug!(to = %d.to, "send failed: {e}"),
             }
         }
     }

@@ -284,11 +284,13 @@ impl TreePrinter {
     }
 }
 
-/// `jaus node --config FILE`: runs a node until interrupted (or for `duration`),
-/// printing the system tree when it changed, at most once a second.
+/// `jaus node --config FILE [--capture PCAPNG]`: runs a node until interrupted (or for
+/// `duration`), printing the system tree when it changed, at most once a second; with
+/// `capture`, every datagram it receives and sends is written to that pcapng file.
 pub fn node(
     config: &Path,
     duration: Option<Duration>,
+    capture: Option<&Path>,
     stop: &AtomicBool,
     out: &mut impl Write,
 ) -> Result<(), String> {
@@ -337,18 +339,66 @@ pub fn node(
     );
     let _ = out.flush();
     let mut printer = TreePrinter::new(Duration::from_secs(1));
-    udp::run(&mut node, file.bind, stop, duration.map(|d| t0 + d), |n| {
-        let now = Instant::now();
-        if let Some(text) = printer.poll(now, n.tree_version(), n.tree()) {
-            let _ = writeln!(
-                out,
-                "--- system tree at {:.1} s\n{text}",
-                t0.elapsed().as_secs_f64()
-            );
-            let _ = out.flush();
-        }
-    })
-    .map_err(|e| format!("{}: {e}", file.bind))
+    let socket = std::net::UdpSocket::bind(file.bind).map_err(|e| format!("{}: {e}", file.bind))?;
+    let local = socket
+        .local_addr()
+        .map_err(|e| format!("{}: {e}", file.bind))?;
+    let mut writer = match capture {
+        Some(p) => Some(
+            crate::capture::CaptureWriter::create(p)
+                .map_err(|e| format!("{}: {e}", p.display()))?,
+        ),
+        None => None,
+    };
+    let mut capture_error = None;
+    let mut last_flush = Instant::now();
+    let result = udp::run_tapped(
+        &mut node,
+        &socket,
+        stop,
+        duration.map(|d| t0 + d),
+        |n| {
+            let now = Instant::now();
+            if let Some(text) = printer.poll(now, n.tree_version(), n.tree()) {
+                let _ = writeln!(
+                    out,
+                    "--- system tree at {:.1} s\n{text}",
+                    t0.elapsed().as_secs_f64()
+                );
+                let _ = out.flush();
+            }
+        },
+        |direction, peer, datagram| {
+            let Some(w) = writer.as_mut() else {
+                return;
+            };
+            let time = std::time::SystemTime::now()
+                .duration_since(std::time::UNIX_EPOCH)
+                .unwrap_or_default();
+            let (src, dst) = match direction {
+                udp::Direction::Received => (peer, local),
+                udp::Direction::Sent => (local, peer),
+            };
+            let mut written = w.write(time, src, dst, datagram);
+            if written.is_ok() && last_flush.elapsed() >= Duration::from_secs(1) {
+                last_flush = Instant::now();
+                written = w.flush();
+            }
+            if let Err(e) = written {
+                // Stop capturing; the node keeps running.
+                capture_error.get_or_insert(e.to_string());
+                writer = None;
+            }
+        },
+    )
+    .map_err(|e| format!("{}: {e}", file.bind));
+    if let (Some(w), Some(p)) = (writer.as_mut(), capture) {
+        w.flush().map_err(|e| format!("{}: {e}", p.display()))?;
+    }
+    if let (Some(e), Some(p)) = (capture_error, capture) {
+        return Err(format!("{}: capture stopped: {e}", p.display()));
+    }
+    result
 }
 
 /// The system tree as JSON (`jaus discover --json`): subsystems, their nodes, and the
