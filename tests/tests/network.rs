@@ -601,3 +601,50 @@ fn a_message_unknown_to_every_node_passes_through_raw() {
         .collect();
     assert_eq!(got, [&Message::Raw(raw)]);
 }
+
+/// Multicast discovery (issue 15 item 4): with a group configured, what goes to every
+/// node (the heartbeat to 255.255.1.1) is sent to the group and the configured peers,
+/// not to each node learned; without one, to the peers and every node learned.
+#[test]
+fn broadcasts_go_to_the_multicast_group_when_one_is_configured() {
+    let t0 = Instant::now();
+    let group: std::net::SocketAddr = "224.1.0.1:3794".parse().unwrap();
+    let peer: std::net::SocketAddr = "10.0.0.9:3794".parse().unwrap();
+    let learned: std::net::SocketAddr = "10.0.0.7:3794".parse().unwrap();
+    for multicast in [Some(group), None] {
+        let mut n = Node::new(
+            NodeConfig {
+                peers: vec![peer],
+                multicast,
+                ..NodeConfig::default()
+            },
+            t0,
+        );
+        // A heartbeat from node 1.7 teaches the node where 1.7 is.
+        let hb = Header::new(
+            ReportHeartbeatPulse::CODE,
+            Address::new(255, 255, 1, 1),
+            Address::new(1, 7, 1, 1),
+        );
+        let datagram = Framing::Judp.encode(&hb.encode_with_size(0).unwrap());
+        n.handle_datagram(t0, learned, &datagram);
+        while n.poll_transmit().is_some() {}
+        // The node's own heartbeat, due within the heartbeat period.
+        n.handle_timeout(t0 + Duration::from_millis(1500));
+        let mut to = Vec::new();
+        while let Some(d) = n.poll_transmit() {
+            let h = jaus::wire::PacketRef::parse(Framing::Judp.decode(&d.bytes).unwrap())
+                .unwrap()
+                .header;
+            if h.command_code == ReportHeartbeatPulse::CODE && h.destination.subsystem == 255 {
+                to.push(d.to);
+            }
+        }
+        to.sort();
+        to.dedup();
+        match multicast {
+            Some(g) => assert_eq!(to, vec![peer, g], "group and configured peers"),
+            None => assert_eq!(to, vec![learned, peer], "peers and every node learned"),
+        }
+    }
+}

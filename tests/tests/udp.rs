@@ -831,3 +831,107 @@ fn the_networked_demo_operator_finishes_and_writes_its_plot() {
     );
     let _ = std::fs::remove_dir_all(dir);
 }
+
+/// Two network namespaces joined by a veth pair, each a "host" (made with iproute2;
+/// removed on drop).
+struct Hosts {
+    names: [String; 2],
+}
+
+impl Hosts {
+    /// `None` when namespaces cannot be made here (not root, no iproute2).
+    fn pair(tag: &str) -> Option<Hosts> {
+        let names = [format!("{tag}a"), format!("{tag}b")];
+        let ip = |args: &[&str]| {
+            Command::new("ip")
+                .args(args)
+                .stdout(Stdio::null())
+                .stderr(Stdio::null())
+                .status()
+                .is_ok_and(|s| s.success())
+        };
+        let hosts = Hosts {
+            names: names.clone(),
+        };
+        let (a, b) = (names[0].as_str(), names[1].as_str());
+        let (va, vb) = (format!("{tag}x"), format!("{tag}y"));
+        let ok = ip(&["netns", "add", a])
+            && ip(&["netns", "add", b])
+            && ip(&["link", "add", &va, "type", "veth", "peer", "name", &vb])
+            && ip(&["link", "set", &va, "netns", a])
+            && ip(&["link", "set", &vb, "netns", b])
+            && ip(&["-n", a, "addr", "add", "10.79.0.1/24", "dev", &va])
+            && ip(&["-n", b, "addr", "add", "10.79.0.2/24", "dev", &vb])
+            && ip(&["-n", a, "link", "set", &va, "up"])
+            && ip(&["-n", b, "link", "set", &vb, "up"])
+            && ip(&["-n", a, "route", "add", "224.0.0.0/4", "dev", &va])
+            && ip(&["-n", b, "route", "add", "224.0.0.0/4", "dev", &vb]);
+        ok.then_some(hosts)
+    }
+}
+
+impl Drop for Hosts {
+    fn drop(&mut self) {
+        for n in &self.names {
+            let _ = Command::new("ip").args(["netns", "del", n]).status();
+        }
+    }
+}
+
+/// Multicast discovery (issue 15 item 4): two nodes on two hosts, neither given a peer,
+/// find each other through the group 224.1.0.1 and answer each other's queries.
+#[test]
+fn nodes_on_two_hosts_discover_each_other_by_multicast() {
+    let tag = format!("jm{}", std::process::id() % 100_000);
+    let Some(hosts) = Hosts::pair(&tag) else {
+        eprintln!("skipping: network namespaces need root and iproute2 (`ip netns add`)");
+        return;
+    };
+    let dir = std::env::temp_dir().join(format!("jaus-udp-mcast-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let start = |ns: &str, node: u8, name: &str| {
+        let cfg = dir.join(format!("{name}.yaml"));
+        std::fs::write(
+            &cfg,
+            format!(
+                "subsystem: 6\nnode: {node}\nnode_name: {name}\nbind: 0.0.0.0:3794\nmulticast: {{ group: 224.1.0.1, ttl: 1 }}\nhost: [global_pose_sensor]\n"
+            ),
+        )
+        .unwrap();
+        let mut child = Command::new("ip")
+            .args(["netns", "exec", ns])
+            .arg(jaus_bin())
+            .args(["node", "--config"])
+            .arg(&cfg)
+            .args(["--seconds", "20"])
+            .stdout(Stdio::piped())
+            .stderr(Stdio::null())
+            .spawn()
+            .expect("start jaus node in a namespace");
+        let out = child.stdout.take().unwrap();
+        let (tx, rx) = mpsc::channel();
+        std::thread::spawn(move || {
+            for line in BufReader::new(out).lines().map_while(Result::ok) {
+                if tx.send(line).is_err() {
+                    break;
+                }
+            }
+        });
+        (Running(child), rx)
+    };
+    let (_a, rx_a) = start(&hosts.names[0], 1, "east");
+    let (_b, rx_b) = start(&hosts.names[1], 2, "west");
+    wait_for(
+        &rx_a,
+        &["node 2 'west'", "6.2.38.1 'GlobalPoseSensor'"],
+        Duration::from_secs(10),
+    )
+    .unwrap();
+    wait_for(
+        &rx_b,
+        &["node 1 'east'", "6.1.38.1 'GlobalPoseSensor'"],
+        Duration::from_secs(10),
+    )
+    .unwrap();
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -47,6 +47,11 @@ pub struct NodeConfig {
     /// An external component not heard from for this long is removed (they heartbeat
     /// every second). Default 3 s.
     pub external_timeout: std::time::Duration,
+    /// Multicast discovery (docs/wire.md §9.5): messages to every subsystem or every
+    /// node (heartbeats, broadcast queries) go to this group (e.g. 224.1.0.1:3794)
+    /// and the configured peers, instead of to every node learned. Default `None`
+    /// (off, as in OpenJAUS's default configuration). The I/O shell joins the group.
+    pub multicast: Option<SocketAddr>,
 }
 
 /// The defaults the field documentation states:
@@ -57,6 +62,7 @@ pub struct NodeConfig {
 /// assert!(n.peers.is_empty());
 /// assert_eq!((n.max_outbox, n.max_external), (8192, 64));
 /// assert_eq!(n.external_timeout, std::time::Duration::from_secs(3));
+/// assert!(n.multicast.is_none());
 /// ```
 impl Default for NodeConfig {
     fn default() -> Self {
@@ -71,6 +77,7 @@ impl Default for NodeConfig {
             component: Config::default(),
             max_external: 64,
             external_timeout: std::time::Duration::from_secs(3),
+            multicast: None,
         }
     }
 }
@@ -492,6 +499,12 @@ impl Node {
         let d = header.destination;
         let targets: Vec<SocketAddr> = if d.subsystem == 255 || d.node == 255 {
             let mut t: Vec<SocketAddr> = self.config.peers.clone();
+            if let Some(group) = self.config.multicast {
+                // The group reaches every node that listens; the configured peers may
+                // be beyond it.
+                t.insert(0, group);
+                return self.queue(&t, &packets);
+            }
             for p in self.peers.values() {
                 if !t.contains(p) {
                     t.push(*p);
@@ -505,8 +518,13 @@ impl Node {
             self.stats.flooded += 1;
             self.config.peers.clone()
         };
-        for to in targets {
-            for p in &packets {
+        self.queue(&targets, &packets);
+    }
+
+    /// Queues every packet for every target (bounded by `max_outbox`, drops counted).
+    fn queue(&mut self, targets: &[SocketAddr], packets: &[Vec<u8>]) {
+        for &to in targets {
+            for p in packets {
                 if self.outbox.len() >= self.config.max_outbox {
                     self.stats.outbox_full += 1;
                     return;

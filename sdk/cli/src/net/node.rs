@@ -71,6 +71,31 @@ pub struct NodeFile {
     /// Node timeout, ms.
     #[serde(default)]
     pub node_timeout_ms: Option<u64>,
+    /// Multicast discovery (off without it).
+    #[serde(default)]
+    pub multicast: Option<MulticastFile>,
+}
+
+/// `multicast:` of a node file: broadcasts go to `group` on the node's port, and the
+/// node listens to it (docs/wire.md §9.5).
+#[derive(Debug, Clone, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MulticastFile {
+    /// The group: 224.1.0.1 is OpenJAUS's subsystem-level group, 225.1.0.1 its node-level
+    /// one.
+    pub group: std::net::Ipv4Addr,
+    /// Time to live of what the node sends to the group. Default 32 (OpenJAUS's
+    /// subsystem level).
+    #[serde(default)]
+    pub ttl: Option<u32>,
+    /// Whether the node's own multicasts come back to this host (other nodes on the
+    /// same host then hear them). Default false, as OpenJAUS.
+    #[serde(default)]
+    pub loopback: Option<bool>,
+    /// The local interface address to join on. Default 0.0.0.0 (the system's choice).
+    /// What the node sends to the group leaves by the route to 224.0.0.0/4.
+    #[serde(default)]
+    pub interface: Option<std::net::Ipv4Addr>,
 }
 
 /// One `host:` entry as written.
@@ -238,6 +263,9 @@ impl NodeFile {
         if let Some(ms) = self.node_timeout_ms {
             c.manager.node_timeout = Duration::from_millis(ms.max(100));
         }
+        if let Some(m) = &self.multicast {
+            c.multicast = Some(SocketAddr::from((m.group, self.bind.port())));
+        }
         c
     }
 }
@@ -343,6 +371,28 @@ pub fn node(
     let local = socket
         .local_addr()
         .map_err(|e| format!("{}: {e}", file.bind))?;
+    if let Some(m) = &file.multicast {
+        let at =
+            |e: std::io::Error| format!("{}: multicast group {}: {e}", config.display(), m.group);
+        if !m.group.is_multicast() {
+            return Err(at(std::io::Error::other("not a multicast address")));
+        }
+        let interface = m.interface.unwrap_or(std::net::Ipv4Addr::UNSPECIFIED);
+        socket.join_multicast_v4(&m.group, &interface).map_err(at)?;
+        socket
+            .set_multicast_ttl_v4(m.ttl.unwrap_or(32))
+            .map_err(at)?;
+        socket
+            .set_multicast_loop_v4(m.loopback.unwrap_or(false))
+            .map_err(at)?;
+        let _ = writeln!(
+            out,
+            "multicast discovery: group {}:{} (ttl {}, interface {interface})",
+            m.group,
+            local.port(),
+            m.ttl.unwrap_or(32)
+        );
+    }
     let mut writer = match capture {
         Some(p) => Some(
             crate::capture::CaptureWriter::create(p)
