@@ -82,6 +82,23 @@ enum Cmd {
         #[arg(long, value_name = "FILE")]
         capture: Option<std::path::PathBuf>,
     },
+    /// Run stock components as OpenJAUS component processes under an OpenJAUS node
+    /// manager (or a `jaus node` with `openjaus_components`): each checks in for its
+    /// address on the control socket, then talks raw JAUS on the data socket.
+    Attach {
+        /// Stock components to run (names as in a node file's `host:`).
+        #[arg(long = "host", value_name = "NAME", required = true)]
+        host: Vec<String>,
+        /// The node manager's control socket.
+        #[arg(long, default_value = "127.0.0.1:24627")]
+        control: std::net::SocketAddr,
+        /// The node manager's data socket.
+        #[arg(long, default_value = "127.0.0.1:24629")]
+        data: std::net::SocketAddr,
+        /// Stop after this many seconds (default: run until interrupted).
+        #[arg(long)]
+        seconds: Option<f64>,
+    },
     /// Listen for a while and print the system tree seen on the network.
     Discover {
         #[command(flatten)]
@@ -452,6 +469,21 @@ fn main() -> ExitCode {
                 jaus_cli::net::node(&config, d, capture.as_deref(), &STOP, &mut out),
             )
         }
+        Cmd::Attach {
+            host,
+            control,
+            data,
+            seconds,
+        } => report(
+            &mut err,
+            jaus_cli::net::attach_openjaus(
+                jaus_cli::net::OjNodeManager { control, data },
+                &host,
+                seconds.map(|s| std::time::Duration::from_secs_f64(s.max(0.0))),
+                &STOP,
+                &mut out,
+            ),
+        ),
         Cmd::Discover { net, json } => report(
             &mut err,
             net.client().and_then(|c| {

@@ -95,6 +95,12 @@ impl Attached {
     /// Adds a component; its address must be on the node joined (and not the node
     /// manager's).
     pub fn add(&mut self, endpoint: impl Endpoint) -> Result<Address, NetError> {
+        self.add_boxed(Box::new(endpoint))
+    }
+
+    /// [`add`](Self::add) for a component already boxed (e.g. one of
+    /// `jaus_sim::host`).
+    pub fn add_boxed(&mut self, endpoint: Box<dyn Endpoint>) -> Result<Address, NetError> {
         let a = endpoint.address();
         if a.subsystem != self.config.subsystem
             || a.node != self.config.node
@@ -110,7 +116,7 @@ impl Attached {
         if self.components.contains(a) {
             return Err(NetError::Duplicate(a));
         }
-        self.components.push(Box::new(endpoint));
+        self.components.push(endpoint);
         Ok(a)
     }
 
@@ -189,6 +195,7 @@ impl Attached {
                     self.outbox.push_back(Datagram {
                         to: self.config.node_socket,
                         bytes: self.config.framing.encode(p),
+                        via: super::node::Via::Network,
                     });
                 }
             }

@@ -29,6 +29,10 @@ pub enum Framing {
     Judp,
     /// The OPC / ETG "JAUS01.0" prefix.
     Opc,
+    /// No transport header: one JAUS packet per datagram, as OpenJAUS's local
+    /// component interface carries them ([`oj`](super::oj)); a "JAUS01.0" prefix is
+    /// accepted on receive, as OpenJAUS's component library does.
+    Raw,
 }
 
 const OPC_PREFIX: &[u8; 8] = b"JAUS01.0";
@@ -90,6 +94,7 @@ impl Framing {
         match self {
             Framing::Judp => 5,
             Framing::Opc => 8,
+            Framing::Raw => 0,
         }
     }
 
@@ -104,6 +109,7 @@ impl Framing {
                 );
             }
             Framing::Opc => d.extend_from_slice(OPC_PREFIX),
+            Framing::Raw => {}
         }
         d.extend_from_slice(packet);
         d
@@ -128,6 +134,11 @@ impl Framing {
             Framing::Opc => {
                 if &datagram[..8] != OPC_PREFIX {
                     return Err(FramingError::Prefix);
+                }
+            }
+            Framing::Raw => {
+                if datagram.len() >= 8 + HEADER_LEN && &datagram[..8] == OPC_PREFIX {
+                    return Ok(&datagram[8..]);
                 }
             }
         }

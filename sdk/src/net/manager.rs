@@ -17,6 +17,10 @@ pub struct ComponentInfo {
     pub name: Option<String>,
     /// Service types it reported (component ids; 0 = core), once answered.
     pub services: Option<Vec<u16>>,
+    /// Command codes of the messages its services take, from the same report.
+    pub inputs: Vec<u16>,
+    /// Command codes of the messages its services send, from the same report.
+    pub outputs: Vec<u16>,
 }
 
 /// What is known about one node.
@@ -79,6 +83,16 @@ impl SystemTree {
             }
         }
         v
+    }
+
+    /// What is known about the component at `a`.
+    pub fn component(&self, a: Address) -> Option<&ComponentInfo> {
+        self.subsystems
+            .get(&a.subsystem)?
+            .nodes
+            .get(&a.node)?
+            .components
+            .get(&(a.component, a.instance))
     }
 
     /// Whether node `node` of subsystem `ss` is known.
@@ -628,6 +642,16 @@ impl NodeManager for StockNodeManager {
             .get_mut(&(src.component, src.instance))
         {
             c.services = Some(r.services.iter().map(|s| s.service_type).collect());
+            c.inputs = r
+                .services
+                .iter()
+                .flat_map(|s| s.input_commands.iter().map(|m| m.command_code))
+                .collect();
+            c.outputs = r
+                .services
+                .iter()
+                .flat_map(|s| s.output_commands.iter().map(|m| m.command_code))
+                .collect();
             self.changes += 1;
         }
         Ok(())

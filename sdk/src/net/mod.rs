@@ -12,6 +12,7 @@ pub mod attached;
 pub mod framing;
 pub mod manager;
 pub mod node;
+pub mod oj;
 pub mod udp;
 
 use std::net::SocketAddr;
@@ -20,7 +21,7 @@ use std::time::Instant;
 pub use attached::{Attached, AttachedConfig, AttachedStats};
 pub use framing::{Framing, Reassembler, ReassemblyLimits};
 pub use manager::{ManagerConfig, SystemTree};
-pub use node::{Datagram, NetStats, Node, NodeConfig};
+pub use node::{Datagram, NetStats, Node, NodeConfig, Via};
 
 use crate::Address;
 

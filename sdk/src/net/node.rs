@@ -89,6 +89,22 @@ pub struct Datagram {
     pub to: SocketAddr,
     /// Framed bytes.
     pub bytes: Vec<u8>,
+    /// The socket it leaves from.
+    pub via: Via,
+}
+
+/// Which socket of a node a datagram leaves from: the network interface, or one of the
+/// two sockets of OpenJAUS's local component interface ([`oj`](super::oj)), which a
+/// node serves when its shell binds them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum Via {
+    /// The node's JAUS socket (JUDP or "JAUS01.0").
+    #[default]
+    Network,
+    /// The component data socket (raw packets, port 24629).
+    ComponentData,
+    /// The component control socket (8-byte control datagrams, port 24627).
+    ComponentControl,
 }
 
 /// Counters of the interface and the routing.
@@ -130,8 +146,12 @@ pub struct Node {
     now: Instant,
     manager: Manager,
     locals: Endpoints,
-    /// Components of this node in other processes: address → (socket, last heard).
-    external: HashMap<Address, (SocketAddr, Instant)>,
+    /// Components of this node in other processes: address → (socket, last heard,
+    /// the socket of ours that reaches them).
+    external: HashMap<Address, (SocketAddr, Instant, Via)>,
+    /// Addresses given out by OpenJAUS check-ins, until the component is heard or
+    /// checks out (→ when given).
+    checked_in: HashMap<Address, Instant>,
     peers: HashMap<(u8, u8), SocketAddr>,
     reassembler: Reassembler,
     outbox: VecDeque<Datagram>,
@@ -167,6 +187,7 @@ impl Node {
             manager,
             locals: Endpoints::default(),
             external: HashMap::new(),
+            checked_in: HashMap::new(),
             peers: HashMap::new(),
             outbox: VecDeque::new(),
             local_queue: VecDeque::new(),
@@ -266,7 +287,7 @@ impl Node {
         };
         let src = header.source;
         let mine = src.subsystem == self.config.subsystem && src.node == self.config.node;
-        if mine && !self.accept_external(now, src, peer) {
+        if mine && !self.accept_external(now, src, peer, Via::Network) {
             self.stats.from_self += 1;
             return;
         }
@@ -289,7 +310,7 @@ impl Node {
     /// A datagram with this node's subsystem and node as its source: an external
     /// component (another process using this node's socket) unless the id belongs to
     /// the node manager or a built-in component, or the table is full.
-    fn accept_external(&mut self, now: Instant, src: Address, peer: SocketAddr) -> bool {
+    fn accept_external(&mut self, now: Instant, src: Address, peer: SocketAddr, via: Via) -> bool {
         if !src.is_valid()
             || src.component == 255
             || src.instance == 255
@@ -299,7 +320,7 @@ impl Node {
             return false;
         }
         if let Some(e) = self.external.get_mut(&src) {
-            *e = (peer, now);
+            *e = (peer, now, via);
             return true;
         }
         if self.external.len() >= self.config.max_external {
@@ -307,14 +328,15 @@ impl Node {
             return false;
         }
         tracing::info!(component = %src, %peer, "external component joined");
-        self.external.insert(src, (peer, now));
+        self.checked_in.remove(&src);
+        self.external.insert(src, (peer, now, via));
         self.manager.behaviour_mut().0.add_local(src);
         true
     }
 
     /// External components of this node and where they are.
     pub fn external(&self) -> impl Iterator<Item = (Address, SocketAddr)> + '_ {
-        self.external.iter().map(|(a, (p, _))| (*a, *p))
+        self.external.iter().map(|(a, (p, ..))| (*a, *p))
     }
 
     /// Time passed.
@@ -326,9 +348,12 @@ impl Node {
         let gone: Vec<Address> = self
             .external
             .iter()
-            .filter(|(_, (_, t))| now.saturating_duration_since(*t) >= limit)
+            .filter(|(_, (_, t, _))| now.saturating_duration_since(*t) >= limit)
             .map(|(a, _)| *a)
             .collect();
+        // A check-in never followed by a packet gives its address back.
+        self.checked_in
+            .retain(|_, t| now.saturating_duration_since(*t) < limit * 2);
         for a in gone {
             self.external.remove(&a);
             self.stats.external_timed_out += 1;
@@ -339,6 +364,136 @@ impl Node {
             self.manager.handle_timeout(self.now);
         }
         self.locals.run_due(self.now);
+        self.pump();
+    }
+
+    /// A control datagram on OpenJAUS's component control socket (port 24627) from
+    /// `peer` (docs/wire.md §8.5): check-in (an address for a component id: this node's
+    /// subsystem and node, the lowest free instance), check-out, and lookups in the
+    /// system tree; the answer goes back to `peer` through [`Via::ComponentControl`].
+    /// Anything else is counted as a bad packet and dropped.
+    pub fn handle_component_control(&mut self, now: Instant, peer: SocketAddr, datagram: &[u8]) {
+        use super::oj::{matches_wildcard, Control};
+        self.advance(now);
+        self.stats.received += 1;
+        let request = match Control::decode(datagram) {
+            Ok(c) => c,
+            Err(e) => {
+                self.stats.bad_packet += 1;
+                tracing::debug!(%peer, "OpenJAUS control datagram dropped: {e}");
+                return;
+            }
+        };
+        let tree = self.manager.behaviour().0.tree();
+        let known = |a: Address| tree.components().contains(&a);
+        let reply = match request {
+            Control::CheckIn { component, .. } => {
+                // Like OpenJAUS: no answer when the id is not a component's or no
+                // instance is free.
+                if component < 2 || component == 255 {
+                    None
+                } else {
+                    let (ss, node) = (self.config.subsystem, self.config.node);
+                    let free = (1..=254u8)
+                        .map(|i| Address::new(ss, node, component, i))
+                        .find(|a| {
+                            !self.locals.contains(*a)
+                                && !self.external.contains_key(a)
+                                && !self.checked_in.contains_key(a)
+                        });
+                    free.map(|a| {
+                        self.checked_in.insert(a, self.now);
+                        tracing::info!(component = %a, %peer, "OpenJAUS component checked in");
+                        Control::ReportAddress(a)
+                    })
+                }
+            }
+            Control::CheckOut(a) => {
+                self.checked_in.remove(&a);
+                if self.external.remove(&a).is_some() {
+                    self.manager.behaviour_mut().0.remove_local(a);
+                    tracing::info!(component = %a, "OpenJAUS component checked out");
+                }
+                None
+            }
+            Control::VerifyAddress(a) => Some(Control::AddressVerified(known(a))),
+            Control::GetComponentAddressList { component } => Some(Control::ComponentAddressList(
+                tree.components()
+                    .into_iter()
+                    .find(|a| a.component == component),
+            )),
+            Control::LookupAddress(pattern) => {
+                let found = tree
+                    .components()
+                    .into_iter()
+                    .find(|a| matches_wildcard(pattern, *a));
+                Some(Control::LookupAddressResponse {
+                    address: found.unwrap_or(pattern),
+                    valid: found.is_some(),
+                })
+            }
+            Control::LookupServiceAddress { code, output } => {
+                let found = tree.components().into_iter().find(|a| {
+                    tree.component(*a).is_some_and(|c| {
+                        let list = if output { &c.outputs } else { &c.inputs };
+                        list.contains(&code.0)
+                    })
+                });
+                Some(Control::LookupServiceAddressResponse {
+                    address: found.unwrap_or(Address::new(0, 0, 0, 0)),
+                    found: found.is_some(),
+                })
+            }
+            Control::ReadyCheck => Some(Control::ReportReady),
+            // Answers are what a node manager sends, not what it takes.
+            Control::ReportAddress(_)
+            | Control::AddressVerified(_)
+            | Control::ComponentAddressList(_)
+            | Control::LookupAddressResponse { .. }
+            | Control::LookupServiceAddressResponse { .. }
+            | Control::ReportReady => {
+                self.stats.bad_packet += 1;
+                None
+            }
+        };
+        if let Some(r) = reply {
+            if self.outbox.len() < self.config.max_outbox {
+                self.outbox.push_back(Datagram {
+                    to: peer,
+                    bytes: r.encode().to_vec(),
+                    via: Via::ComponentControl,
+                });
+            } else {
+                self.stats.outbox_full += 1;
+            }
+        }
+    }
+
+    /// A raw JAUS packet on OpenJAUS's component data socket (port 24629) from `peer`:
+    /// a component of this node in another process (checked in, or any id this node
+    /// does not host), which is registered at `peer` and routed like a built-in
+    /// component; messages for it go back raw through [`Via::ComponentData`].
+    pub fn handle_component_data(&mut self, now: Instant, peer: SocketAddr, datagram: &[u8]) {
+        self.advance(now);
+        self.stats.received += 1;
+        let (header, body) = match Framing::Raw.packet(datagram) {
+            Ok(p) => p,
+            Err(e) => {
+                self.stats.bad_packet += 1;
+                tracing::debug!(%peer, "component datagram dropped: {e}");
+                return;
+            }
+        };
+        let src = header.source;
+        let mine = src.subsystem == self.config.subsystem && src.node == self.config.node;
+        if !mine || !self.accept_external(now, src, peer, Via::ComponentData) {
+            self.stats.bad_packet += 1;
+            return;
+        }
+        let Some((header, body)) = self.reassembler.message(now, &header, body) else {
+            return;
+        };
+        self.route(header, body, true);
         self.pump();
     }
 
@@ -358,7 +513,7 @@ impl Node {
         let ext = self
             .external
             .values()
-            .map(|(_, last)| *last + self.config.external_timeout)
+            .map(|(_, last, _)| *last + self.config.external_timeout)
             .min();
         [self.reassembler.next_timeout(), ext]
             .into_iter()
@@ -454,17 +609,22 @@ impl Node {
             any = true;
         }
         any |= self.locals.deliver(now, header, body);
-        let targets: Vec<SocketAddr> = self
+        let targets: Vec<(SocketAddr, Via)> = self
             .external
             .iter()
             .filter(|(a, _)| d.matches(a) && header.source != **a)
-            .map(|(_, (p, _))| *p)
+            .map(|(_, (p, _, via))| (*p, *via))
             .collect();
         if !targets.is_empty() {
             any = true;
             match split(header, body) {
                 Ok(packets) => {
-                    for to in targets {
+                    for (to, via) in targets {
+                        // OpenJAUS components take raw packets on their data socket.
+                        let framing = match via {
+                            Via::Network => self.config.framing,
+                            _ => Framing::Raw,
+                        };
                         for p in &packets {
                             if self.outbox.len() >= self.config.max_outbox {
                                 self.stats.outbox_full += 1;
@@ -472,7 +632,8 @@ impl Node {
                             }
                             self.outbox.push_back(Datagram {
                                 to,
-                                bytes: self.config.framing.encode(p),
+                                bytes: framing.encode(p),
+                                via,
                             });
                         }
                     }
@@ -532,6 +693,7 @@ impl Node {
                 self.outbox.push_back(Datagram {
                     to,
                     bytes: self.config.framing.encode(p),
+                    via: Via::Network,
                 });
             }
         }

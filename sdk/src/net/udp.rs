@@ -90,3 +90,173 @@ pub fn run_tapped<P: Participant>(
         }
     }
 }
+
+/// The sockets of a [`Node`](super::Node): its JAUS socket, and when it serves
+/// OpenJAUS component processes, the two sockets of their local interface
+/// ([`oj`](super::oj): control on port 24627, data on 24629 of the loopback address).
+#[derive(Debug, Clone, Copy)]
+pub struct NodeSockets<'a> {
+    /// The node's JAUS socket.
+    pub network: &'a UdpSocket,
+    /// OpenJAUS's component control socket.
+    pub component_control: Option<&'a UdpSocket>,
+    /// OpenJAUS's component data socket.
+    pub component_data: Option<&'a UdpSocket>,
+}
+
+/// Runs `node` on its sockets until `stop` is set or `until` passes, like
+/// [`run_tapped`] (`tap` sees what crosses the JAUS socket). One thread per extra socket
+/// receives; everything else happens on the caller's thread.
+pub fn run_node(
+    node: &mut super::Node,
+    sockets: NodeSockets<'_>,
+    stop: &AtomicBool,
+    until: Option<Instant>,
+    mut on_tick: impl FnMut(&mut super::Node),
+    mut tap: impl FnMut(Direction, SocketAddr, &[u8]),
+) -> std::io::Result<()> {
+    use super::Via;
+    use std::sync::mpsc;
+    if sockets.component_control.is_none() && sockets.component_data.is_none() {
+        return run_tapped(node, sockets.network, stop, until, on_tick, tap);
+    }
+    tracing::info!(bind = ?sockets.network.local_addr().ok(), "up, with OpenJAUS component sockets");
+    let (tx, rx) = mpsc::sync_channel::<(Via, SocketAddr, Vec<u8>)>(1024);
+    let receivers = [
+        (Via::Network, Some(sockets.network)),
+        (Via::ComponentControl, sockets.component_control),
+        (Via::ComponentData, sockets.component_data),
+    ];
+    let dropped = std::sync::atomic::AtomicU64::new(0);
+    let done = AtomicBool::new(false);
+    std::thread::scope(|scope| {
+        for (via, socket) in receivers {
+            let Some(socket) = socket else { continue };
+            let tx = tx.clone();
+            let (dropped, done) = (&dropped, &done);
+            scope.spawn(move || -> std::io::Result<()> {
+                socket.set_read_timeout(Some(Duration::from_millis(100)))?;
+                let mut buf = vec![0u8; MAX_DATAGRAM];
+                while !stop.load(Ordering::Relaxed) && !done.load(Ordering::Relaxed) {
+                    match socket.recv_from(&mut buf) {
+                        Ok((n, peer)) => {
+                            // Bounded: a full queue drops (and counts) rather than blocks.
+                            if tx.try_send((via, peer, buf[..n].to_vec())).is_err() {
+                                dropped.fetch_add(1, Ordering::Relaxed);
+                            }
+                        }
+                        Err(e)
+                            if matches!(
+                                e.kind(),
+                                ErrorKind::WouldBlock
+                                    | ErrorKind::TimedOut
+                                    | ErrorKind::ConnectionReset
+                            ) => {}
+                        Err(e) => return Err(e),
+                    }
+                }
+                Ok(())
+            });
+        }
+        drop(tx);
+        let result = (|| -> std::io::Result<()> {
+            loop {
+                if stop.load(Ordering::Relaxed) || until.is_some_and(|u| Instant::now() >= u) {
+                    return Ok(());
+                }
+                let now = Instant::now();
+                let wait = node
+                    .poll_timeout()
+                    .map_or(Duration::from_millis(100), |t| {
+                        t.saturating_duration_since(now)
+                    })
+                    .clamp(Duration::from_micros(100), Duration::from_millis(100));
+                match rx.recv_timeout(wait) {
+                    Ok((via, peer, bytes)) => match via {
+                        Via::Network => {
+                            tap(Direction::Received, peer, &bytes);
+                            node.handle_datagram(Instant::now(), peer, &bytes);
+                        }
+                        Via::ComponentControl => {
+                            node.handle_component_control(Instant::now(), peer, &bytes)
+                        }
+                        Via::ComponentData => {
+                            node.handle_component_data(Instant::now(), peer, &bytes)
+                        }
+                    },
+                    Err(mpsc::RecvTimeoutError::Timeout) => {}
+                    Err(mpsc::RecvTimeoutError::Disconnected) => {
+                        return Err(std::io::Error::other("a socket's receiver stopped"))
+                    }
+                }
+                node.handle_timeout(Instant::now());
+                on_tick(node);
+                while let Some(d) = node.poll_transmit() {
+                    let socket = match d.via {
+                        Via::Network => Some(sockets.network),
+                        Via::ComponentControl => sockets.component_control,
+                        Via::ComponentData => sockets.component_data,
+                    };
+                    let Some(socket) = socket else { continue };
+                    match socket.send_to(&d.bytes, d.to) {
+                        Ok(_) if d.via == Via::Network => tap(Direction::Sent, d.to, &d.bytes),
+                        Ok(_) => {}
+                        Err(e) => tracing::debug!(to = %d.to, "send failed: {e}"),
+                    }
+                }
+            }
+        })();
+        // Let the receivers end.
+        done.store(true, Ordering::Relaxed);
+        result
+    })?;
+    let lost = dropped.load(Ordering::Relaxed);
+    if lost > 0 {
+        tracing::warn!("{lost} datagrams dropped: the receive queue was full");
+    }
+    Ok(())
+}
+
+/// The component side of OpenJAUS's check-in: asks the node manager at `control`
+/// (its port 24627) for an address for component id `component` from `socket`, and
+/// waits up to `timeout` for the answer. OpenJAUS does not answer an id it refuses or
+/// when no instance is free: that is a timeout.
+pub fn oj_check_in(
+    socket: &UdpSocket,
+    control: SocketAddr,
+    component: u8,
+    data_port: u16,
+    timeout: Duration,
+) -> std::io::Result<crate::Address> {
+    use super::oj::Control;
+    socket.send_to(
+        &Control::CheckIn {
+            component,
+            data_port,
+        }
+        .encode(),
+        control,
+    )?;
+    let deadline = Instant::now() + timeout;
+    let mut buf = [0u8; 64];
+    loop {
+        let left = deadline.saturating_duration_since(Instant::now());
+        if left.is_zero() {
+            return Err(std::io::Error::new(
+                ErrorKind::TimedOut,
+                format!("no OpenJAUS check-in answer from {control} for component id {component}"),
+            ));
+        }
+        socket.set_read_timeout(Some(left))?;
+        match socket.recv_from(&mut buf) {
+            Ok((n, from)) if from == control => {
+                if let Ok(Control::ReportAddress(a)) = Control::decode(&buf[..n]) {
+                    return Ok(a);
+                }
+            }
+            Ok(_) => {}
+            Err(e) if matches!(e.kind(), ErrorKind::WouldBlock | ErrorKind::TimedOut) => {}
+            Err(e) => return Err(e),
+        }
+    }
+}

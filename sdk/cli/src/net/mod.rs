@@ -1,5 +1,6 @@
 //! The network commands of the `jaus` CLI: `node`, `discover`, the operator's session
-//! (`send`, `query`, `watch`) and the demo's operator over UDP.
+//! (`send`, `query`, `watch`), the demo's operator over UDP, and `attach` (stock
+//! components as OpenJAUS component processes).
 //!
 //! # The CLI's place in a system
 //!
@@ -22,12 +23,14 @@
 //! address**. The default bind is therefore `auto`: port 3794 on a loopback address of
 //! its own (127.0.0.2, .3, ...) when the peers are on loopback, else `0.0.0.0:3794`.
 
+mod attach;
 mod demo;
 mod node;
 mod output;
 mod place;
 mod session;
 
+pub use attach::{attach_openjaus, OjNodeManager};
 pub use demo::demo_operator;
 pub use node::{node, tree_json, NodeFile, TreePrinter};
 pub use place::{bind_socket, default_me, silence_hint, Client, Commander, Mode};

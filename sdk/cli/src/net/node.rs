@@ -74,6 +74,35 @@ pub struct NodeFile {
     /// Multicast discovery (off without it).
     #[serde(default)]
     pub multicast: Option<MulticastFile>,
+    /// Serve OpenJAUS component processes over their local interface
+    /// (`openjaus_components: {}` for OpenJAUS's ports 24627 and 24629 on 127.0.0.1).
+    #[serde(default)]
+    pub openjaus_components: Option<OjComponentsFile>,
+}
+
+/// `openjaus_components:` of a node file: the two sockets of OpenJAUS's local component
+/// interface (docs/wire.md §8.5).
+#[derive(Debug, Clone, Default, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OjComponentsFile {
+    /// The control socket (check-in, lookups). Default 127.0.0.1:24627.
+    #[serde(default)]
+    pub control: Option<SocketAddr>,
+    /// The data socket (raw JAUS packets). Default 127.0.0.1:24629.
+    #[serde(default)]
+    pub data: Option<SocketAddr>,
+}
+
+impl OjComponentsFile {
+    /// The control and data sockets, defaults filled in.
+    pub fn sockets(&self) -> (SocketAddr, SocketAddr) {
+        let local = |port| SocketAddr::from(([127, 0, 0, 1], port));
+        (
+            self.control
+                .unwrap_or_else(|| local(jaus::net::oj::CONTROL_PORT)),
+            self.data.unwrap_or_else(|| local(jaus::net::oj::DATA_PORT)),
+        )
+    }
 }
 
 /// `multicast:` of a node file: broadcasts go to `group` on the node's port, and the
@@ -402,9 +431,31 @@ pub fn node(
     };
     let mut capture_error = None;
     let mut last_flush = Instant::now();
-    let result = udp::run_tapped(
+    let oj = match &file.openjaus_components {
+        Some(o) => {
+            let (control, data) = o.sockets();
+            let bind = |a: SocketAddr| {
+                std::net::UdpSocket::bind(a).map_err(|e| {
+                    format!("{}: OpenJAUS component socket {a}: {e}", config.display())
+                })
+            };
+            let pair = (bind(control)?, bind(data)?);
+            let _ = writeln!(
+                out,
+                "OpenJAUS component interface: control {control}, data {data}"
+            );
+            Some(pair)
+        }
+        None => None,
+    };
+    let sockets = udp::NodeSockets {
+        network: &socket,
+        component_control: oj.as_ref().map(|p| &p.0),
+        component_data: oj.as_ref().map(|p| &p.1),
+    };
+    let result = udp::run_node(
         &mut node,
-        &socket,
+        sockets,
         stop,
         duration.map(|d| t0 + d),
         |n| {

@@ -319,7 +319,7 @@ impl Client {
     }
 }
 pub(super) fn flush(host: &mut dyn Participant, socket: &UdpSocket) {
-    while let Some(Datagram { to, bytes }) = host.poll_transmit() {
+    while let Some(Datagram { to, bytes, .. }) = host.poll_transmit() {
         if let Err(e) = socket.send_to(&bytes, to) {
             tracing::debug!(%to, "send failed: {e}");
         }
