@@ -46,10 +46,77 @@ pub fn json(data: &[u8]) {
     }
 }
 
-/// (c) A node fed datagrams from several peers at virtual times: the input is a
-/// sequence of records `[peer (1), delay ms (1), length (2, LE), bytes]`. The
-/// reassembly buffer stays within its bound and the node keeps answering.
+/// One step of the node target, drawn from the fuzzer's bytes with `arbitrary`: raw
+/// bytes, a well-formed packet with arbitrary header fields and body, a multi-packet
+/// message cut into parts sent in an arbitrary order (some lost), or time passing.
+#[derive(Debug, arbitrary::Arbitrary)]
+pub enum NodeStep {
+    /// Any bytes from a peer.
+    Garbage {
+        /// Which of 8 peers.
+        peer: u8,
+        /// The datagram.
+        bytes: Vec<u8>,
+    },
+    /// A packet with a consistent data size.
+    Packet {
+        /// Which of 8 peers.
+        peer: u8,
+        /// "JAUS01.0" rather than JUDP framing (which the node refuses: counted).
+        opc: bool,
+        /// Message properties (priority, ACK/NAK, flags, version).
+        properties: u16,
+        /// Command code.
+        code: u16,
+        /// Destination (subsystem, node, component, instance).
+        dst: (u8, u8, u8, u8),
+        /// Source.
+        src: (u8, u8, u8, u8),
+        /// Data flag (low 4 bits used).
+        flag: u8,
+        /// Sequence number.
+        sequence: u16,
+        /// Body.
+        body: Vec<u8>,
+    },
+    /// A message of `parts` packets from one source, sent in `order` (indices modulo
+    /// the part count; parts never named are lost).
+    Fragments {
+        /// Which of 8 peers.
+        peer: u8,
+        /// Source (subsystem, node, component, instance).
+        src: (u8, u8, u8, u8),
+        /// Command code.
+        code: u16,
+        /// Number of packets, 2 to 9.
+        parts: u8,
+        /// Bytes per packet.
+        size: u16,
+        /// Send order.
+        order: Vec<u8>,
+    },
+    /// Time passes.
+    Wait {
+        /// Milliseconds.
+        ms: u16,
+    },
+}
+
+fn peer_of(p: u8) -> SocketAddr {
+    SocketAddr::V4(SocketAddrV4::new(Ipv4Addr::new(10, 0, 0, p % 8), 3794))
+}
+
+fn address((ss, n, c, i): (u8, u8, u8, u8)) -> jaus::Address {
+    jaus::Address::new(ss, n, c, i)
+}
+
+/// (c) A node (the reassembler behind it) fed a sequence of [`NodeStep`]s at virtual
+/// times: the reassembly buffer stays within its bound, the outbox is always drained,
+/// and nothing panics.
 pub fn node(data: &[u8]) {
+    use arbitrary::{Arbitrary, Unstructured};
+    use jaus::net::Framing;
+    use jaus::wire::{DataFlag, Header};
     let t0 = Instant::now();
     let limits = ReassemblyLimits {
         max_message: 64 * 1024,
@@ -65,17 +132,70 @@ pub fn node(data: &[u8]) {
         t0,
     );
     let mut now = t0;
-    let mut rest = data;
-    while rest.len() >= 4 {
-        let peer = SocketAddr::V4(SocketAddrV4::new(
-            Ipv4Addr::new(10, 0, 0, rest[0] % 8),
-            3794,
-        ));
-        now += Duration::from_millis(u64::from(rest[1]));
-        let len = usize::from(u16::from_le_bytes([rest[2], rest[3]])).min(rest.len() - 4);
-        let datagram = &rest[4..4 + len];
-        rest = &rest[4 + len..];
-        node.handle_datagram(now, peer, datagram);
+    let mut u = Unstructured::new(data);
+    let mut steps = 0;
+    while !u.is_empty() && steps < 256 {
+        steps += 1;
+        let Ok(step) = NodeStep::arbitrary(&mut u) else {
+            break;
+        };
+        match step {
+            NodeStep::Garbage { peer, bytes } => node.handle_datagram(now, peer_of(peer), &bytes),
+            NodeStep::Packet {
+                peer,
+                opc,
+                properties,
+                code,
+                dst,
+                src,
+                flag,
+                sequence,
+                body,
+            } => {
+                let mut packet = Vec::with_capacity(16 + body.len());
+                let size = body.len().min(0x0FFF);
+                packet.extend_from_slice(&properties.to_le_bytes());
+                packet.extend_from_slice(&code.to_le_bytes());
+                packet.extend_from_slice(&[dst.3, dst.2, dst.1, dst.0, src.3, src.2, src.1, src.0]);
+                packet.extend_from_slice(
+                    &((size as u16) | (u16::from(flag & 0x0F) << 12)).to_le_bytes(),
+                );
+                packet.extend_from_slice(&sequence.to_le_bytes());
+                packet.extend_from_slice(&body[..size]);
+                let framing = if opc { Framing::Opc } else { Framing::Judp };
+                node.handle_datagram(now, peer_of(peer), &framing.encode(&packet));
+            }
+            NodeStep::Fragments {
+                peer,
+                src,
+                code,
+                parts,
+                size,
+                order,
+            } => {
+                let parts = 2 + usize::from(parts % 8);
+                let size = usize::from(size % 4081);
+                let mut header = Header::new(
+                    jaus::CommandCode(code),
+                    jaus::Address::new(1, 1, 255, 255),
+                    address(src),
+                );
+                for i in order.iter().map(|o| usize::from(*o) % parts) {
+                    header.data_flag = match i {
+                        0 => DataFlag::First,
+                        i if i + 1 == parts => DataFlag::Last,
+                        _ => DataFlag::Normal,
+                    };
+                    header.sequence_number = i as u16;
+                    let body = vec![i as u8; size];
+                    if let Ok(h) = header.encode_with_size(size) {
+                        let packet = [h.as_slice(), &body].concat();
+                        node.handle_datagram(now, peer_of(peer), &Framing::Judp.encode(&packet));
+                    }
+                }
+            }
+            NodeStep::Wait { ms } => now += Duration::from_millis(u64::from(ms)),
+        }
         node.handle_timeout(now);
         while node.poll_transmit().is_some() {}
         let (_, buffered) = node.reassembly();

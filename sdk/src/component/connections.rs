@@ -286,6 +286,12 @@ impl<B: Behaviour> Component<B> {
             let (requester, query) = (s.requester, s.query.clone());
             let result = self.answer(requester, &query);
             let s = &mut self.rt.provider.served[i];
+            // Periods that passed without a report (the component was not run in
+            // time): the rate is kept, the missed reports are counted, not sent late.
+            let late = now.saturating_duration_since(s.next_due);
+            if !s.period.is_zero() && late >= s.period {
+                self.rt.stats.reports_missed += (late.as_nanos() / s.period.as_nanos()) as u64;
+            }
             s.next_due = super::next_after(s.next_due, s.period, now);
             match result {
                 Ok(report) => {

@@ -42,6 +42,10 @@ pub trait Endpoint: Send + 'static {
     fn forget(&mut self, gone: Address) {
         let _ = gone;
     }
+    /// The runtime's counters, for a component (`None` for anything else).
+    fn stats(&self) -> Option<super::Stats> {
+        None
+    }
     /// For [`LocalBus::get`](super::local::LocalBus::get).
     fn as_any(&self) -> &dyn Any;
     /// For [`LocalBus::get_mut`](super::local::LocalBus::get_mut).
@@ -51,6 +55,9 @@ pub trait Endpoint: Send + 'static {
 impl<B: Behaviour> Endpoint for Component<B> {
     fn address(&self) -> Address {
         Component::address(self)
+    }
+    fn stats(&self) -> Option<super::Stats> {
+        Some(Component::stats(self))
     }
     fn handle(&mut self, now: Instant, header: &Header, body: &[u8]) {
         Component::handle(self, now, header, body);
@@ -101,6 +108,13 @@ impl std::fmt::Debug for Endpoints {
 }
 
 impl Endpoints {
+    /// The counters of every component, with its address.
+    pub fn stats(&self) -> impl Iterator<Item = (Address, super::Stats)> + '_ {
+        self.0
+            .iter()
+            .filter_map(|e| Some((e.address(), e.stats()?)))
+    }
+
     /// How many.
     pub fn len(&self) -> usize {
         self.0.len()

@@ -349,6 +349,9 @@ pub struct Stats {
     pub report_failures: u64,
     /// Service connections or events refused.
     pub subscriptions_refused: u64,
+    /// Service-connection reports not sent because the component was run too late
+    /// for their period (a busy or starved process): counted, never sent late.
+    pub reports_missed: u64,
 }
 
 /// A message to send: its header (destination, flags, sequence number) and its body.

@@ -238,7 +238,12 @@ impl Node {
         self.manager.behaviour().0.tree_version()
     }
 
-    /// Interface counters.
+    /// The runtime counters of the node manager and of every local component.
+    pub fn component_stats(&self) -> impl Iterator<Item = (Address, crate::component::Stats)> + '_ {
+        std::iter::once((self.manager.address(), self.manager.stats())).chain(self.locals.stats())
+    }
+
+    /// Counters of the interface and the routing.
     pub fn stats(&self) -> NetStats {
         self.stats
     }

@@ -493,6 +493,31 @@ pub fn node(
         },
     )
     .map_err(|e| format!("{}: {e}", file.bind));
+    // What the node counted, for whoever watched it run (one line, `key value` pairs).
+    let st = node.stats();
+    let (reassembly, buffered) = node.reassembly();
+    let (mut missed, mut refused) = (0, 0);
+    for (_, c) in node.component_stats() {
+        missed += c.reports_missed;
+        refused += c.not_controller + c.wrong_state + c.invalid;
+    }
+    let _ = writeln!(
+        out,
+        "stats: received {} sent {} delivered_local {} bad_framing {} bad_packet {} from_self {} not_for_us {} no_such_component {} outbox_full {} flooded {} reassembly_timed_out {} reassembly_over_limit {} reassembly_buffered {buffered} reports_missed {missed} commands_refused {refused}",
+        st.received,
+        st.sent,
+        st.delivered_local,
+        st.bad_framing,
+        st.bad_packet,
+        st.from_self,
+        st.not_for_us,
+        st.no_such_component,
+        st.outbox_full,
+        st.flooded,
+        reassembly.timed_out,
+        reassembly.over_limit,
+    );
+    let _ = out.flush();
     if let (Some(w), Some(p)) = (writer.as_mut(), capture) {
         w.flush().map_err(|e| format!("{}: {e}", p.display()))?;
     }
