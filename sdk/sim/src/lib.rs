@@ -11,6 +11,8 @@
 //!   dynamics, gravity, limits and seeded sensor noise;
 //! * [`arm_demo`]: the arm phase of `jaus demo` (`--arm`), the ten stock manipulator
 //!   components and a scripted pick-and-place operator;
+//! * [`scanner`]: a scanning range finder on the simulated vehicle, ray-cast against a
+//!   scene of obstacles (the Range Sensor's and the Reflexive Driver's hardware);
 //! * [`network`]: [`network::SimNet`], several sans-IO [`jaus::net::Node`]s on a
 //!   simulated lossy network (drops, duplicates, delays) with a virtual clock;
 //! * [`host`]: any stock component at any instance of a node, over one simulated
@@ -25,6 +27,7 @@ pub mod arm_demo;
 pub mod demo;
 pub mod host;
 pub mod network;
+pub mod scanner;
 pub mod vehicle;
 
 pub use arm::{ArmParams, SimArm};

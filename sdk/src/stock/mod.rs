@@ -14,6 +14,8 @@
 //! | World Model Vector Knowledge Store (feature `world_model`) | [`world_model::StockWorldModel`] over [`world_model::VectorStore`] | — (an in-memory store with an R*-tree) |
 
 pub mod drivers;
+#[cfg(feature = "environment")]
+pub mod environment;
 pub mod geo;
 pub mod hardware;
 #[cfg(feature = "manipulator")]

@@ -1,0 +1,5 @@
+//! Stock environment-sensor components (Part 1 §5.5), each over a small hardware trait
+//! that `jaus-sim` implements with a simulated device. So far: the Range Sensor
+//! ([`range`]).
+
+pub mod range;

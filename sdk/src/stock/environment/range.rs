@@ -1,0 +1,233 @@
+//! The Range Sensor (Part 1 §5.5, id 50) over a scanning range finder
+//! ([`RangeScanner`]): each sweep's returns are grouped into objects (neighbouring beams
+//! whose ranges agree), and Query Relative Object Position is answered with the nearest
+//! object, in the platform frame at the time of the sweep. [`ScanObstacles`] gives the
+//! same sweeps to the Reflexive Driver as its obstacle source.
+
+use std::time::Instant;
+
+use crate::component::Refused;
+use crate::components::range_sensor as rs;
+use crate::messages::*;
+use crate::stock::drivers::ObstacleSource;
+
+/// One beam of a sweep, in the platform frame (x forward, y right).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Beam {
+    /// Direction, rad, 0 = forward, growing toward the right.
+    pub bearing: f64,
+    /// Distance to the first return, m (`None`: nothing within range).
+    pub range: Option<f64>,
+}
+
+/// A scanning range finder (a 2-D lidar, a sonar ring, ...).
+pub trait RangeScanner: Send + 'static {
+    /// The latest sweep into `out` (cleared first), or `false` without one.
+    fn scan(&mut self, now: Instant, out: &mut Vec<Beam>) -> bool;
+}
+
+/// An object found in a sweep: its nearest return.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Detection {
+    /// Range of the nearest return, m.
+    pub range: f64,
+    /// Its bearing, rad (0 forward, positive to the right).
+    pub bearing: f64,
+    /// Beams that saw the object.
+    pub beams: usize,
+}
+
+/// Groups a sweep's returns into objects: neighbouring beams (in the order given)
+/// whose ranges differ by at most `gap` metres belong to one object.
+pub fn detections(beams: &[Beam], gap: f64) -> Vec<Detection> {
+    let mut out: Vec<Detection> = Vec::new();
+    let mut last: Option<f64> = None;
+    for b in beams {
+        let Some(r) = b.range.filter(|r| r.is_finite() && *r >= 0.0) else {
+            last = None;
+            continue;
+        };
+        match (last, out.last_mut()) {
+            (Some(prev), Some(d)) if (r - prev).abs() <= gap => {
+                d.beams += 1;
+                if r < d.range {
+                    d.range = r;
+                    d.bearing = b.bearing;
+                }
+            }
+            _ => out.push(Detection {
+                range: r,
+                bearing: b.bearing,
+                beams: 1,
+            }),
+        }
+        last = Some(r);
+    }
+    out
+}
+
+/// Settings of the Range Sensor.
+#[derive(Debug, Clone)]
+pub struct RangeConfig {
+    /// Neighbouring returns farther apart than this are different objects, m.
+    pub gap: f64,
+    /// Range error reported, m.
+    pub range_error: f64,
+    /// Bearing error reported, rad.
+    pub bearing_error: f64,
+}
+
+/// The defaults: objects split at 0.3 m, errors 0.05 m and 0.5°.
+///
+/// ```
+/// let c = jaus::stock::environment::range::RangeConfig::default();
+/// assert_eq!((c.gap, c.range_error), (0.3, 0.05));
+/// ```
+impl Default for RangeConfig {
+    fn default() -> Self {
+        Self {
+            gap: 0.3,
+            range_error: 0.05,
+            bearing_error: 0.5f64.to_radians(),
+        }
+    }
+}
+
+/// The Range Sensor over a [`RangeScanner`].
+#[derive(Debug)]
+pub struct StockRangeSensor<S> {
+    scanner: S,
+    config: RangeConfig,
+    beams: Vec<Beam>,
+    sweeps: u64,
+}
+
+impl<S: RangeScanner> StockRangeSensor<S> {
+    /// Over `scanner`.
+    pub fn new(scanner: S, config: RangeConfig) -> Self {
+        Self {
+            scanner,
+            config,
+            beams: Vec::new(),
+            sweeps: 0,
+        }
+    }
+
+    /// Sweeps read so far.
+    pub fn sweeps(&self) -> u64 {
+        self.sweeps
+    }
+
+    /// The objects of the latest sweep, nearest first.
+    pub fn detect(&mut self, now: Instant) -> Option<Vec<Detection>> {
+        if !self.scanner.scan(now, &mut self.beams) {
+            return None;
+        }
+        self.sweeps += 1;
+        let mut d = detections(&self.beams, self.config.gap);
+        d.sort_by(|a, b| a.range.total_cmp(&b.range));
+        Some(d)
+    }
+}
+
+impl<S: RangeScanner> rs::RangeSensor for StockRangeSensor<S> {
+    fn on_query_relative_object_position(
+        &mut self,
+        ctx: &mut rs::Ctx<'_>,
+        q: &QueryRelativeObjectPosition,
+    ) -> Result<ReportRelativeObjectPosition, Refused> {
+        let objects = self
+            .detect(ctx.now())
+            .ok_or_else(|| Refused::Invalid("no sweep from the range scanner".into()))?;
+        let time_stamp = ctx.time_stamps().map(|t| t.0).unwrap_or_default();
+        let want = |bit: u8| q.presence_vector & (1 << bit) != 0;
+        // Nothing in range: a report with the time stamp only.
+        let Some(near) = objects.first() else {
+            return Ok(ReportRelativeObjectPosition {
+                time_stamp,
+                ..Default::default()
+            });
+        };
+        let c = &self.config;
+        Ok(ReportRelativeObjectPosition {
+            time_stamp,
+            range: want(0).then_some(near.range.min(10_000.0)),
+            range_error: want(1).then_some(c.range_error),
+            bearing: want(2).then_some(near.bearing),
+            bearing_error: want(3).then_some(c.bearing_error),
+            inclination: want(4).then_some(0.0),
+            inclination_error: want(5).then_some(0.0),
+            confidence_and_object_id: want(6),
+            confidence: want(6).then_some((near.beams.min(255)) as u8),
+            object_id: want(6).then_some(0),
+        })
+    }
+}
+
+/// The Reflexive Driver's obstacle source from a [`RangeScanner`]: the free distance
+/// ahead is the nearest return inside a corridor as wide as the platform.
+#[derive(Debug)]
+pub struct ScanObstacles<S> {
+    scanner: S,
+    /// Half the corridor's width, m.
+    pub half_width: f64,
+    beams: Vec<Beam>,
+}
+
+impl<S: RangeScanner> ScanObstacles<S> {
+    /// Over `scanner`, for a corridor `width` metres wide.
+    pub fn new(scanner: S, width: f64) -> Self {
+        Self {
+            scanner,
+            half_width: width / 2.0,
+            beams: Vec::new(),
+        }
+    }
+}
+
+impl<S: RangeScanner> ObstacleSource for ScanObstacles<S> {
+    fn obstacle_distance(&mut self, now: Instant) -> Option<f64> {
+        if !self.scanner.scan(now, &mut self.beams) {
+            return None;
+        }
+        self.beams
+            .iter()
+            .filter_map(|b| {
+                let r = b.range?;
+                let (ahead, side) = (r * b.bearing.cos(), r * b.bearing.sin());
+                (ahead > 0.0 && side.abs() <= self.half_width).then_some(ahead)
+            })
+            .min_by(f64::total_cmp)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn beam(bearing_deg: f64, range: Option<f64>) -> Beam {
+        Beam {
+            bearing: bearing_deg.to_radians(),
+            range,
+        }
+    }
+
+    #[test]
+    fn neighbouring_returns_make_one_object_and_gaps_split_them() {
+        let beams = [
+            beam(-10.0, None),
+            beam(-5.0, Some(4.2)),
+            beam(0.0, Some(4.0)),
+            beam(5.0, Some(4.1)),
+            beam(10.0, Some(9.0)),
+            beam(15.0, None),
+            beam(20.0, Some(2.0)),
+        ];
+        let d = detections(&beams, 0.3);
+        assert_eq!(d.len(), 3);
+        assert_eq!((d[0].range, d[0].beams), (4.0, 3));
+        assert!(d[0].bearing.abs() < 1e-12);
+        assert_eq!((d[1].range, d[2].range), (9.0, 2.0));
+        assert!(detections(&[beam(0.0, Some(f64::NAN))], 0.3).is_empty());
+    }
+}
