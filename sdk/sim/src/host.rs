@@ -26,9 +26,11 @@ use nalgebra::Vector2;
 
 use crate::arm::{ArmParams, SimArm};
 use crate::arm_demo::CONTROL_PERIOD;
-use crate::demo::ORIGIN;
+use crate::demo::{OBSTACLE, ORIGIN};
+use crate::scanner::{ScannerParams, Scene, SimScanner};
 use crate::vehicle::{SimVehicle, VehicleParams};
 use jaus::component::{Config, Endpoint};
+use jaus::components::range_sensor;
 use jaus::components::{
     global_path_segment_driver, global_pose_sensor, global_vector_driver, global_waypoint_driver,
     local_path_segment_driver, local_pose_sensor, local_vector_driver, local_waypoint_driver,
@@ -46,6 +48,7 @@ use jaus::stock::drivers::{
     Navigator, PrimitiveConfig, ReflexiveConfig, StockPrimitiveDriver, StockReflexiveDriver,
     StockVectorDriver,
 };
+use jaus::stock::environment::range::{RangeConfig, ScanObstacles, StockRangeSensor};
 use jaus::stock::geo::LocalFrame;
 use jaus::stock::manipulator::link::ArmDriverConfig;
 use jaus::stock::manipulator::{
@@ -88,6 +91,9 @@ pub enum Stock {
     MissionSpooler,
     /// World Model Vector Knowledge Store (61).
     WorldModel,
+    /// Range Sensor (50): a scanner on the simulated vehicle, looking at the demo's
+    /// obstacle (the Reflexive Driver's obstacle source uses the same scanner).
+    RangeSensor,
     /// Primitive Manipulator (49) over the simulated arm.
     PrimitiveManipulator,
     /// Manipulator Joint Position Sensor (51) of the simulated arm.
@@ -126,6 +132,7 @@ impl Stock {
         ("local_path_segment_driver", Stock::LocalPathSegmentDriver),
         ("mission_spooler", Stock::MissionSpooler),
         ("world_model", Stock::WorldModel),
+        ("range_sensor", Stock::RangeSensor),
         ("primitive_manipulator", Stock::PrimitiveManipulator),
         ("joint_position_sensor", Stock::JointPositionSensor),
         ("joint_velocity_sensor", Stock::JointVelocitySensor),
@@ -173,6 +180,7 @@ impl Stock {
             Stock::LocalPathSegmentDriver => 48,
             Stock::MissionSpooler => 36,
             Stock::WorldModel => 61,
+            Stock::RangeSensor => 50,
             Stock::PrimitiveManipulator => 49,
             Stock::JointPositionSensor => 51,
             Stock::JointVelocitySensor => 52,
@@ -247,6 +255,7 @@ pub struct Host {
     node: u8,
     t0: Instant,
     vehicle: SimVehicle,
+    scanner: SimScanner,
     arm: SimArm,
     built: Vec<Address>,
     reflexive: bool,
@@ -264,6 +273,13 @@ impl Host {
             subsystem,
             node,
             t0,
+            scanner: SimScanner::new(
+                vehicle.clone(),
+                Scene {
+                    circles: vec![(Vector2::new(OBSTACLE.0 .0, OBSTACLE.0 .1), OBSTACLE.1)],
+                },
+                ScannerParams::default(),
+            ),
             vehicle,
             arm: SimArm::new(ArmParams::six_axis()),
             built: Vec::new(),
@@ -355,6 +371,12 @@ impl Host {
         };
         let a = self.arm.clone();
         Ok(match e.stock {
+            Stock::RangeSensor => Box::new(range_sensor::component(
+                at,
+                StockRangeSensor::new(self.scanner.clone(), RangeConfig::default()),
+                cfg,
+                t0,
+            )),
             Stock::PrimitiveManipulator => {
                 let chain = a.lock().chain().clone();
                 Box::new(primitive_manipulator::component(
@@ -437,7 +459,7 @@ impl Host {
             Stock::ReflexiveDriver => Box::new(reflexive_driver::component(
                 at,
                 StockReflexiveDriver::new(
-                    (),
+                    ScanObstacles::new(self.scanner.clone(), 1.0),
                     ReflexiveConfig {
                         output,
                         ..ReflexiveConfig::default()
