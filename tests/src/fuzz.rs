@@ -218,7 +218,8 @@ pub fn spec_yaml(data: &[u8]) {
 /// actuators, the Mission Spooler, the World Model) on the in-process bus, fed
 /// arbitrary messages from four sources: records `[source, destination, code LE16,
 /// length, bytes, run ms]`. After every step the driver's actuators carry no
-/// propulsive effort unless some component holds control of it and it is Ready, and
+/// propulsive effort unless some component holds control of it and it is Ready, every
+/// component serves no more service connections and events than its bounds, and
 /// nothing panics.
 pub fn runtime(data: &[u8]) {
     use jaus::component::local::LocalBus;
@@ -241,6 +242,8 @@ pub fn runtime(data: &[u8]) {
         }
     }
     type Pd = Component<primitive_driver::Dispatch<StockPrimitiveDriver<Recorder>>>;
+    type Ms = Component<mission_spooler::Dispatch<StockMissionSpooler>>;
+    type Wm = Component<world_model_vector_knowledge_store::Dispatch<StockWorldModel>>;
 
     const PD: Address = Address::new(1, 1, 33, 1);
     let targets = [PD, Address::new(1, 1, 36, 1), Address::new(1, 1, 61, 1)];
@@ -282,6 +285,23 @@ pub fn runtime(data: &[u8]) {
         rest = &rest[6 + len..];
         bus.send_set(from, to, &Message::Raw(RawMessage { code, body }));
         bus.run_for(run);
+        // Queues within their bounds: service connections and events served by each
+        // component (Config's defaults: 32 of each).
+        let bounds = Config::default();
+        let counts = [
+            bus.get::<Pd>(PD)
+                .map(|c| (c.service_connections(), c.events())),
+            bus.get::<Ms>(targets[1])
+                .map(|c| (c.service_connections(), c.events())),
+            bus.get::<Wm>(targets[2])
+                .map(|c| (c.service_connections(), c.events())),
+        ];
+        for (sc, ev) in counts.into_iter().flatten() {
+            assert!(
+                sc <= bounds.max_service_connections && ev <= bounds.max_events,
+                "{sc} service connections and {ev} events served"
+            );
+        }
         let pd: &Pd = bus.get(PD).expect("the driver is on the bus");
         let moving = recorder.0.lock().ok().and_then(|w| *w).is_some_and(|w| {
             w.linear != Wrench::ZERO.linear || w.rotational != Wrench::ZERO.rotational
