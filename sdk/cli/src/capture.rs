@@ -269,10 +269,13 @@ fn frame(link: DataLink, data: &[u8]) -> Option<(SocketAddrV4, SocketAddrV4, &[u
     let udp = ip.get(ihl..total)?;
     let len = usize::from(u16::from_be_bytes([*udp.get(4)?, *udp.get(5)?]));
     let payload = udp.get(8..len.max(8).min(udp.len()))?;
+    // Every byte through `get`: a capture file is untrusted input.
     let addr = |o: usize, p: usize| -> Option<SocketAddrV4> {
+        let a: [u8; 4] = ip.get(o..o + 4)?.try_into().ok()?;
+        let port: [u8; 2] = udp.get(p..p + 2)?.try_into().ok()?;
         Some(SocketAddrV4::new(
-            Ipv4Addr::new(*ip.get(o)?, ip[o + 1], ip[o + 2], ip[o + 3]),
-            u16::from_be_bytes([*udp.get(p)?, udp[p + 1]]),
+            Ipv4Addr::from(a),
+            u16::from_be_bytes(port),
         ))
     };
     Some((addr(12, 0)?, addr(16, 2)?, payload))
@@ -332,7 +335,11 @@ mod tests {
         );
         assert_eq!(checksum(&p[..20]), 0);
         assert_eq!(frame(DataLink::IPV4, &p).unwrap().2, b"abc");
-        // Garbage frames are skipped, never a panic.
+        // Garbage frames are skipped, never a panic: a header length of 4 bytes puts the
+        // UDP header inside the IP addresses.
+        let mut short = p[..18].to_vec();
+        short[0] = 0x41;
+        assert!(frame(DataLink::IPV4, &short).is_none());
         for n in 0..p.len() {
             let _ = frame(DataLink::IPV4, &p[..n]);
             let _ = frame(DataLink::ETHERNET, &p[..n]);

@@ -478,7 +478,9 @@ impl SystemCommander for ArmOperator {
                 let jogging = self.next_jog.is_some();
                 let started = self.commanded_at.unwrap_or(now);
                 if !jogging && now > started + Duration::from_millis(200) && self.settled(phase) {
-                    let target = self.target.expect("commanded");
+                    let Some(target) = self.target else {
+                        return;
+                    };
                     self.done.push((phase, started, now, target));
                     let driver = phase.driver();
                     let next = phase.next();

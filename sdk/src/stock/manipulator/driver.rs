@@ -60,17 +60,6 @@ impl<G: Goal + Default> StockArmDriver<G> {
 }
 
 impl<G: Goal> StockArmDriver<G> {
-    /// The joint count of the arm, or a refusal naming the Primitive Manipulator when
-    /// its specifications have not arrived yet.
-    pub fn dof(&self) -> Result<usize, Refused> {
-        self.link.chain().map(|c| c.dof()).ok_or_else(|| {
-            Refused::Invalid(format!(
-                "the arm's specifications have not arrived from {} yet",
-                self.link.config.output
-            ))
-        })
-    }
-
     /// One control period: keep the output, then servo toward the goal (or hold).
     pub fn run<I: Interface>(&mut self, ctx: &mut Context<'_, I>)
     where

@@ -81,8 +81,8 @@ impl jpd::ManipulatorJointPositionsDriver for StockJointPositionsDriver {
         _ctx: &mut jpd::Ctx<'_>,
         m: &SetJointPositions,
     ) -> Result<(), Refused> {
-        let dof = self.dof()?;
-        let chain = self.link.chain().expect("dof() checked the chain");
+        let chain = self.link.arm()?;
+        let dof = chain.dof();
         check_joints(
             &m.joint_position,
             dof,
@@ -140,7 +140,9 @@ impl Goal for JointRates {
             self.last = None;
             return false;
         }
-        let rates = &self.command.as_ref().expect("checked fresh").1;
+        let Some((_, rates)) = &self.command else {
+            return false;
+        };
         let dt = self.last.map_or(0.0, |t| {
             now.saturating_duration_since(t).as_secs_f64().min(0.1)
         });
@@ -172,8 +174,8 @@ impl jvd::ManipulatorJointVelocitiesDriver for StockJointVelocitiesDriver {
         ctx: &mut jvd::Ctx<'_>,
         m: &SetJointVelocities,
     ) -> Result<(), Refused> {
-        let dof = self.dof()?;
-        let chain = self.link.chain().expect("dof() checked the chain");
+        let chain = self.link.arm()?;
+        let dof = chain.dof();
         check_joints(
             &m.joint_velocity,
             dof,
@@ -261,8 +263,8 @@ impl jmd::ManipulatorJointMoveDriver for StockJointMoveDriver {
         ctx: &mut jmd::Ctx<'_>,
         m: &SetJointMotion,
     ) -> Result<(), Refused> {
-        let dof = self.dof()?;
-        let chain = self.link.chain().expect("dof() checked the chain");
+        let chain = self.link.arm()?;
+        let dof = chain.dof();
         if m.poses.is_empty() {
             return Err(Refused::Invalid("Set Joint Motion has no poses".into()));
         }
@@ -291,12 +293,7 @@ impl jmd::ManipulatorJointMoveDriver for StockJointMoveDriver {
                     .collect(),
             });
         }
-        let Some(start) = self.link.feedback(ctx.now()).map(|(q, _)| q.to_vec()) else {
-            return Err(Refused::Invalid(format!(
-                "no current joint positions from {} to start the move from",
-                self.link.config.position_sensor
-            )));
-        };
+        let start = self.link.start_positions(ctx.now())?;
         let plan = JointMove::plan(&start, &sets).map_err(|e| Refused::Invalid(e.to_string()))?;
         if ctx.mode() == jmd::Mode::Idle {
             ctx.transition(jmd::Transition::Start)

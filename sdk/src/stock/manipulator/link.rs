@@ -8,7 +8,7 @@ use std::time::{Duration, Instant};
 
 use super::kinematics::Chain;
 use super::servo::{JointServo, ServoGains};
-use crate::component::{Context, EmittedBy, Interface};
+use crate::component::{Context, EmittedBy, Interface, Refused};
 use crate::messages::{
     QueryManipulatorSpecifications, ReportJointPositions, ReportJointVelocities,
     ReportManipulatorSpecifications, SetJointEfforts,
@@ -152,6 +152,28 @@ impl ArmLink {
     /// The arm, once its specifications arrived (with the tool point set last).
     pub fn chain(&self) -> Option<&Chain> {
         self.chain.as_ref()
+    }
+
+    /// The arm for a command: a refusal naming the Primitive Manipulator when its
+    /// specifications have not arrived yet.
+    pub fn arm(&self) -> Result<&Chain, Refused> {
+        self.chain.as_ref().ok_or_else(|| {
+            Refused::Invalid(format!(
+                "the arm's specifications have not arrived from {} yet",
+                self.config.output
+            ))
+        })
+    }
+
+    /// The joint positions a move or path starts from: a refusal naming the position
+    /// sensor when there are none fresh.
+    pub fn start_positions(&self, now: Instant) -> Result<Vec<f64>, Refused> {
+        self.feedback(now).map(|(q, _)| q.to_vec()).ok_or_else(|| {
+            Refused::Invalid(format!(
+                "no current joint positions from {} to start from",
+                self.config.position_sensor
+            ))
+        })
     }
 
     /// Counters.

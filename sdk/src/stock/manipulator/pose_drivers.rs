@@ -148,9 +148,8 @@ impl epd::ManipulatorEndEffectorPoseDriver for StockEndEffectorPoseDriver {
         ctx: &mut epd::Ctx<'_>,
         m: &SetEndEffectorPose,
     ) -> Result<(), Refused> {
-        self.dof()?;
+        let chain = self.link.arm()?.clone();
         let target = pose_of(m.x, m.y, m.z, m.d, m.a, m.b, m.c)?;
-        let chain = self.link.chain().expect("dof() checked the chain").clone();
         let seed = self
             .link
             .feedback(ctx.now())
@@ -287,7 +286,7 @@ impl evd::ManipulatorEndEffectorVelocityStateDriver for StockEndEffectorVelocity
         ctx: &mut evd::Ctx<'_>,
         m: &SetEndEffectorVelocityState,
     ) -> Result<(), Refused> {
-        self.dof()?;
+        self.link.arm()?;
         let frame = match m.coordinate_system {
             1 => VelocityFrame::Vehicle,
             2 => VelocityFrame::EndEffector,
@@ -423,19 +422,13 @@ impl dpd::ManipulatorEndEffectorDiscretePoseDriver for StockEndEffectorDiscreteP
         ctx: &mut dpd::Ctx<'_>,
         m: &SetEndEffectorPathMotion,
     ) -> Result<(), Refused> {
-        self.dof()?;
+        let chain = self.link.arm()?.clone();
         if m.poses.is_empty() {
             return Err(Refused::Invalid(
                 "Set End Effector Path Motion has no poses".into(),
             ));
         }
-        let chain = self.link.chain().expect("dof() checked the chain").clone();
-        let Some(q0) = self.link.feedback(ctx.now()).map(|(q, _)| q.to_vec()) else {
-            return Err(Refused::Invalid(format!(
-                "no current joint positions from {} to start the path from",
-                self.link.config.position_sensor
-            )));
-        };
+        let q0 = self.link.start_positions(ctx.now())?;
         let mut targets = Vec::with_capacity(m.poses.len());
         for (i, p) in m.poses.iter().enumerate() {
             let pose = pose_of(p.x, p.y, p.z, p.d, p.a, p.b, p.c)
