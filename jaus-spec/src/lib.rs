@@ -41,6 +41,41 @@ pub fn defs_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("defs")
 }
 
+/// The RA 3.3 definitions of [`defs_dir`], built into this crate (file name, text;
+/// sorted by name, the order [`load_dirs`] reads them in): a program that loads a
+/// vendor's overlay at run time needs no copy of the directory beside it.
+pub const SDK_DEFS: &[(&str, &str)] = &[
+    (
+        "communications.yaml",
+        include_str!("../defs/communications.yaml"),
+    ),
+    ("core.yaml", include_str!("../defs/core.yaml")),
+    (
+        "dynamic_configuration.yaml",
+        include_str!("../defs/dynamic_configuration.yaml"),
+    ),
+    ("environment.yaml", include_str!("../defs/environment.yaml")),
+    ("events.yaml", include_str!("../defs/events.yaml")),
+    ("manipulator.yaml", include_str!("../defs/manipulator.yaml")),
+    ("payload.yaml", include_str!("../defs/payload.yaml")),
+    ("planning.yaml", include_str!("../defs/planning.yaml")),
+    ("platform.yaml", include_str!("../defs/platform.yaml")),
+    ("world_model.yaml", include_str!("../defs/world_model.yaml")),
+];
+
+/// The built-in definitions as `(path, text)` pairs, each path inside [`defs_dir`].
+pub fn sdk_texts() -> Vec<(PathBuf, String)> {
+    SDK_DEFS
+        .iter()
+        .map(|(name, text)| (defs_dir().join(name), (*text).to_string()))
+        .collect()
+}
+
+/// Loads and validates the built-in definitions ([`SDK_DEFS`]).
+pub fn load_sdk() -> Result<Spec, SpecErrors> {
+    load_texts(sdk_texts())
+}
+
 /// One problem found in the definitions.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct SpecError {
@@ -525,11 +560,7 @@ pub fn load_overlays<Q: AsRef<Path>>(overlays: &[Q]) -> Result<Spec, SpecErrors>
     if !errors.is_empty() {
         return Err(SpecErrors(errors));
     }
-    let base = if extends {
-        read_files(yaml_files(&[defs_dir()])?)?
-    } else {
-        Vec::new()
-    };
+    let base = if extends { sdk_texts() } else { Vec::new() };
     load_texts_on(base, own)
 }
 

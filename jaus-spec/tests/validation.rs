@@ -45,6 +45,36 @@ fn every_bad_fixture_is_rejected_with_file_line_column() {
 }
 
 #[test]
+fn the_built_in_definitions_are_the_files_of_the_directory() {
+    let mut files: Vec<(String, String)> = std::fs::read_dir(jaus_spec::defs_dir())
+        .expect("defs")
+        .filter_map(|e| {
+            let p = e.ok()?.path();
+            (p.extension()? == "yaml").then(|| {
+                let name = p.file_name()?.to_string_lossy().into_owned();
+                Some((name, std::fs::read_to_string(&p).ok()?))
+            })?
+        })
+        .collect();
+    files.sort();
+    let built_in: Vec<(String, String)> = jaus_spec::SDK_DEFS
+        .iter()
+        .map(|(n, t)| (n.to_string(), t.to_string()))
+        .collect();
+    assert_eq!(
+        built_in, files,
+        "SDK_DEFS must list every file of defs/, by name"
+    );
+    let a = jaus_spec::load_sdk().unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(
+        a.messages.len(),
+        jaus_spec::load_dirs(&[jaus_spec::defs_dir()])
+            .map(|s| s.messages.len())
+            .unwrap_or(0)
+    );
+}
+
+#[test]
 fn the_shipped_definitions_validate() {
     let spec = jaus_spec::load_dirs(&[jaus_spec::defs_dir()]).unwrap_or_else(|e| panic!("{e}"));
     assert!(spec.messages.len() > 80);

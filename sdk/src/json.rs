@@ -126,11 +126,22 @@ impl HeaderInput {
         destination: Option<crate::Address>,
         source: Option<crate::Address>,
     ) -> Result<Header, JsonError> {
-        let code = message.code();
+        self.complete_for(message.code(), message.name(), destination, source)
+    }
+
+    /// The header of the message `name` with command code `code` (of any message set,
+    /// such as one loaded at run time), with `destination`/`source` used where the JSON
+    /// gave none.
+    pub fn complete_for(
+        &self,
+        code: crate::CommandCode,
+        name: &str,
+        destination: Option<crate::Address>,
+        source: Option<crate::Address>,
+    ) -> Result<Header, JsonError> {
         if let Some(c) = self.command_code.filter(|c| *c != code) {
             return Err(JsonError::Header(format!(
-                "command code {c} does not match message {} ({code})",
-                message.name()
+                "command code {c} does not match message {name} ({code})"
             )));
         }
         let need = |v: Option<crate::Address>, what: &str| {
@@ -160,17 +171,22 @@ impl HeaderInput {
 /// Names of the message set closest to `name` (case-insensitive edit distance), best
 /// first, at most three.
 pub fn closest_names(name: &str) -> Vec<&'static str> {
+    closest_of(name, crate::messages::MESSAGES.iter().map(|m| m.name))
+}
+
+/// The names of `names` closest to `name` (case-insensitive edit distance), best
+/// first, at most three.
+pub fn closest_of(name: &str, names: impl Iterator<Item = &'static str>) -> Vec<&'static str> {
     let lower = name.to_ascii_lowercase();
-    let mut scored: Vec<(usize, &'static str)> = crate::messages::MESSAGES
-        .iter()
-        .map(|m| {
-            let l = m.name.to_ascii_lowercase();
+    let mut scored: Vec<(usize, &'static str)> = names
+        .map(|n| {
+            let l = n.to_ascii_lowercase();
             let d = if l.contains(&lower) || lower.contains(&l) {
                 0
             } else {
                 distance(&lower, &l)
             };
-            (d, m.name)
+            (d, n)
         })
         .collect();
     scored.sort();

@@ -405,6 +405,13 @@ pub enum EncodeError {
         /// The character.
         ch: char,
     },
+    /// A value built at run time (`jaus-dynamic`) is not of its field's type, or a
+    /// field that is not optional is missing from it.
+    #[error("field `{field}`: missing, or not a value of the field's type")]
+    ValueKind {
+        /// Field path.
+        field: &'static str,
+    },
     /// A whole message is larger than a body can be.
     #[error("message body of {len} byte(s) exceeds the maximum of {max}")]
     BodyTooLarge {
