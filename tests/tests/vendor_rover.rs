@@ -1,8 +1,9 @@
 //! The example vendor crate (`examples/vendor-rover`, written by `jaus-gen new`) on
 //! loopback UDP, driven by the stock `jaus` CLI: the CLI discovers its Tank Monitor,
-//! takes control, sends the experimental command and query as raw messages (the CLI
-//! does not know the vendor's definitions), and prints the replies raw; the vendor's
-//! message set decodes them.
+//! takes control, and sends the experimental command and query by name with the
+//! vendor's overlay loaded at run time (`--spec defs/vendor_rover.yaml`); the replies
+//! print by name in the JSON form of the vendor's generated crate. Without `--spec` the
+//! same messages go and come back raw.
 
 mod common;
 
@@ -65,6 +66,10 @@ fn the_stock_cli_drives_the_vendor_node_over_udp() {
             .map(|l| serde_json::from_str::<serde_json::Value>(l).unwrap())
             .collect::<Vec<_>>()
     };
+    let spec = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../examples/vendor-rover/defs/vendor_rover.yaml"
+    );
 
     // Discovery: the vendor component is in the tree with its name and service.
     let out = Command::new(jaus_bin())
@@ -80,34 +85,75 @@ fn the_stock_cli_drives_the_vendor_node_over_udp() {
         "{tree}"
     );
 
-    // Control, Resume, the experimental command and query, as raw messages.
+    // Control, Resume, the experimental command and query by name (`--spec`).
     let lines = cli(
-        &["send", "--to", "9.1.210.1", "--hold", "2"],
+        &["send", "--spec", spec, "--to", "9.1.210.1", "--hold", "2"],
         &[
             r#"{"message":"RequestComponentControl","fields":{"authority_code":10}}"#,
             r#"{"message":"Resume","fields":{}}"#,
-            r#"{"message":"Raw","fields":{"code":"0xD102","body":"0001"}}"#,
-            r#"{"message":"Raw","fields":{"code":"0xD100","body":""}}"#,
+            r#"{"message":"SetDrainValve","fields":{"tank":0,"open":1}}"#,
+            r#"{"message":"QueryTankLevels"}"#,
         ],
     );
-    let reports: Vec<Message> = lines
+    // The reports print by name with their fields.
+    let levels: Vec<Vec<f64>> = lines
         .iter()
-        .filter(|l| l["message"] == "Raw")
+        .filter(|l| l["message"] == "ReportTankLevels")
         .map(|l| {
-            let code = CommandCode(l["fields"]["code"].as_u64().unwrap() as u16);
-            let body = hex(l["fields"]["body"].as_str().unwrap());
-            Message::decode(code, &body).unwrap()
+            assert!(l["fields"]["time_stamp"].is_object(), "{l}");
+            l["fields"]["levels"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|v| v.as_f64().unwrap())
+                .collect()
         })
         .collect();
+    // The query alone returns as soon as its report (named by the overlay) is there.
+    let answered = cli(
+        &["query", "--spec", spec, "--to", "9.1.210.1"],
+        &[r#"{"message":"QueryTankLevels"}"#],
+    );
+    assert!(
+        answered.iter().any(|l| l["message"] == "ReportTankLevels"),
+        "{answered:?}"
+    );
+    // A service connection on the vendor's report, named through the overlay.
+    let watched = cli(
+        &[
+            "watch",
+            "--spec",
+            spec,
+            "--to",
+            "9.1.210.1",
+            "--sc",
+            "ReportTankLevels@5",
+            "--seconds",
+            "1.5",
+        ],
+        &[],
+    );
+    let streamed = watched
+        .iter()
+        .filter(|l| l["message"] == "ReportTankLevels" && l["header"]["service_connection"] == true)
+        .count();
+    assert!(streamed >= 3, "{watched:?}");
+    // Without the overlay: the same query as a raw message, its report raw (the CLI
+    // cannot know which report answers it, so `send` holds a second for it).
+    let raw = cli(
+        &["send", "--to", "9.1.210.1", "--hold", "1"],
+        &[r#"{"message":"Raw","fields":{"code":"0xD100","body":""}}"#],
+    );
+    let raw_report = raw.iter().find(|l| l["message"] == "Raw").map(|l| {
+        let code = CommandCode(l["fields"]["code"].as_u64().unwrap() as u16);
+        Message::decode(code, &hex(l["fields"]["body"].as_str().unwrap())).unwrap()
+    });
+    assert!(
+        matches!(raw_report, Some(Message::ReportTankLevels(_))),
+        "{raw:?}"
+    );
     stop.store(true, Ordering::Relaxed);
     runner.join().unwrap();
-    let levels: Vec<&Vec<f64>> = reports
-        .iter()
-        .filter_map(|m| match m {
-            Message::ReportTankLevels(r) => Some(&r.levels),
-            _ => None,
-        })
-        .collect();
     assert!(levels.len() >= 3, "{lines:?}");
     // Tank 0 drains while its valve is open; tank 1 stays.
     let last = levels.last().unwrap();

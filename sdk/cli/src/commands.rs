@@ -6,6 +6,8 @@ use std::io::Write;
 use jaus::json::{decode_line, encode_line, REFERENCE_PACKETS};
 use jaus::messages::MESSAGES;
 
+use crate::catalogue::Catalogue;
+
 /// Runs `f` over every non-empty line, printing results to `out` and one error line
 /// per failure to `err`. Returns false if any line failed.
 pub fn run_lines(
@@ -46,7 +48,7 @@ pub fn check_group(group: Option<&str>) -> Result<(), String> {
 }
 
 /// Prints the message catalogue as a table.
-pub fn print_messages(out: &mut impl Write, group: Option<&str>) {
+pub fn print_messages(out: &mut impl Write, group: Option<&str>, catalogue: &Catalogue) {
     let _ = writeln!(out, "{:<8} {:<40} {:<22} report", "code", "name", "group");
     let mut n = 0;
     let mut rows: Vec<_> = MESSAGES
@@ -69,11 +71,24 @@ pub fn print_messages(out: &mut impl Write, group: Option<&str>) {
             m.report.unwrap_or("")
         );
     }
+    if group.is_none() {
+        for (code, name, report) in catalogue.own_messages() {
+            n += 1;
+            let _ = writeln!(
+                out,
+                "{:<8} {:<40} {:<22} {}",
+                code.to_string(),
+                format!("{name} (--spec)"),
+                "",
+                report.unwrap_or("")
+            );
+        }
+    }
     let _ = writeln!(out, "{n} messages");
 }
 
 /// Prints the message catalogue as JSON lines (`jaus messages --json`).
-pub fn print_messages_json(out: &mut impl Write, group: Option<&str>) {
+pub fn print_messages_json(out: &mut impl Write, group: Option<&str>, catalogue: &Catalogue) {
     let mut rows: Vec<_> = MESSAGES
         .iter()
         .filter(|m| group.is_none_or(|g| g == m.group))
@@ -90,6 +105,20 @@ pub fn print_messages_json(out: &mut impl Write, group: Option<&str>) {
             "experimental": m.experimental,
         });
         let _ = writeln!(out, "{line}");
+    }
+    if group.is_none() {
+        for (code, name, report) in catalogue.own_messages() {
+            let line = serde_json::json!({
+                "code": code.0,
+                "name": name,
+                "title": jaus_spec::title_of(name),
+                "group": "--spec",
+                "class": format!("{:?}", catalogue.class_of(code)),
+                "report": report,
+                "experimental": true,
+            });
+            let _ = writeln!(out, "{line}");
+        }
     }
 }
 

@@ -10,7 +10,15 @@ use serde_json::{json, Map, Value};
 
 /// The message set's definitions (the SDK's own YAML).
 pub fn builtin_spec() -> Result<Spec, String> {
-    jaus_spec::load_dirs(&[jaus_spec::defs_dir()]).map_err(|e| e.to_string())
+    jaus_spec::load_sdk().map_err(|e| e.to_string())
+}
+
+/// The SDK's definitions with a vendor's overlays on them (none: the SDK's alone).
+pub fn spec_with(overlays: &[std::path::PathBuf]) -> Result<Spec, String> {
+    if overlays.is_empty() {
+        return builtin_spec();
+    }
+    jaus_spec::load_overlays(overlays).map_err(|e| format!("--spec: {e}"))
 }
 
 fn wire_text(w: &Wire) -> String {

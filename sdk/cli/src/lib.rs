@@ -2,6 +2,7 @@
 //!
 //! The binary's commands live in this library so that they are testable:
 //!
+//! * [`catalogue`]: the messages spoken, the SDK's and a vendor's overlays (`--spec`);
 //! * [`commands`]: the offline commands (`messages`, `decode`, `encode`, `tour`);
 //! * [`net`]: the network commands (`node`, `discover`, `send`, `query`, the demo's
 //!   operator over UDP);
@@ -15,6 +16,7 @@
 
 pub mod arm_report;
 pub mod capture;
+pub mod catalogue;
 pub mod commands;
 pub mod describe;
 pub mod net;

@@ -18,6 +18,11 @@ struct Cli {
     /// overrides it when set.
     #[arg(short, long, action = clap::ArgAction::Count, global = true)]
     verbose: u8,
+    /// A vendor's YAML overlay (on the SDK's definitions, as its build loads it), for
+    /// `messages`, `decode`, `encode`, `send`, `query` and `watch`: its messages are
+    /// encoded from and printed as JSON by name. Repeatable.
+    #[arg(long, value_name = "FILE", global = true)]
+    spec: Vec<std::path::PathBuf>,
     #[command(subcommand)]
     cmd: Cmd,
 }
@@ -270,6 +275,7 @@ static STOP: AtomicBool = AtomicBool::new(false);
 
 /// `REPORT@HZ[:PRESENCE]` of `watch --sc`.
 fn parse_sc(
+    catalogue: &jaus_cli::catalogue::Catalogue,
     s: &str,
     to: Option<jaus::Address>,
 ) -> Result<(jaus::Address, jaus::CommandCode, f64, u32), String> {
@@ -281,9 +287,8 @@ fn parse_sc(
         Some((hz, pv)) => (hz, Some(pv)),
         None => (rest, None),
     };
-    let info = jaus::messages::MESSAGES
-        .iter()
-        .find(|m| m.name == name)
+    let code = catalogue
+        .code_of(name)
         .ok_or_else(|| format!("--sc {s}: no message named `{name}` (see `jaus messages`)"))?;
     let hz: f64 = hz
         .parse()
@@ -301,13 +306,14 @@ fn parse_sc(
             r.map_err(|_| format!("--sc {s}: `{p}` is not a presence vector (decimal or 0x hex)"))?
         }
     };
-    Ok((to, info.code, hz, pv))
+    Ok((to, code, hz, pv))
 }
 
 /// Runs one operator session; an error when a command was refused, input was bad, or
 /// nothing came back at all.
 #[allow(clippy::too_many_arguments)]
 fn session(
+    catalogue: &std::sync::Arc<jaus_cli::catalogue::Catalogue>,
     net: &NetArgs,
     to: Option<jaus::Address>,
     messages: &[String],
@@ -320,7 +326,7 @@ fn session(
     let c = net.client()?;
     let mut parsed = Vec::new();
     for m in messages {
-        let (dest, msg) = jaus_cli::net::parse_message(m)?;
+        let (dest, msg) = catalogue.parse_message(m)?;
         let dest = dest
             .or(to)
             .ok_or_else(|| format!("{}: no destination: give --to ADDRESS", msg.name()))?;
@@ -336,6 +342,7 @@ fn session(
             .filter(|h| h.is_finite())
             .map(std::time::Duration::from_secs_f64),
         to,
+        catalogue: catalogue.clone(),
     };
     let stderr = std::io::stderr();
     let o = c.session(&script, &STOP, out, &mut stderr.lock())?;
@@ -389,6 +396,13 @@ fn main() -> ExitCode {
     let mut out = stdout.lock();
     let stderr = std::io::stderr();
     let mut err = stderr.lock();
+    let catalogue = match jaus_cli::catalogue::Catalogue::load(&cli.spec) {
+        Ok(c) => std::sync::Arc::new(c),
+        Err(e) => {
+            let _ = writeln!(err, "error: {e}");
+            return ExitCode::FAILURE;
+        }
+    };
     let ok = match cli.cmd {
         Cmd::Messages {
             group,
@@ -398,9 +412,9 @@ fn main() -> ExitCode {
             &mut err,
             commands::check_group(group.as_deref()).map(|()| {
                 if json {
-                    commands::print_messages_json(&mut out, group.as_deref());
+                    commands::print_messages_json(&mut out, group.as_deref(), &catalogue);
                 } else {
-                    commands::print_messages(&mut out, group.as_deref());
+                    commands::print_messages(&mut out, group.as_deref(), &catalogue);
                 }
             }),
         ),
@@ -408,7 +422,7 @@ fn main() -> ExitCode {
             name: Some(name), ..
         } => report(
             &mut err,
-            jaus_cli::describe::builtin_spec()
+            jaus_cli::describe::spec_with(&cli.spec)
                 .and_then(|spec| jaus_cli::describe::describe(&spec, &name))
                 .map(|text| {
                     let _ = write!(out, "{text}");
@@ -416,7 +430,7 @@ fn main() -> ExitCode {
         ),
         Cmd::Decode {
             pcap: Some(file), ..
-        } => match jaus_cli::traffic::decode_capture(&file, &mut out, &mut err) {
+        } => match jaus_cli::traffic::decode_capture(&file, &catalogue, &mut out, &mut err) {
             Ok((_, 0)) => true,
             Ok((_, _)) => false,
             Err(e) => {
@@ -452,11 +466,11 @@ fn main() -> ExitCode {
             } else {
                 Box::new(hex.into_iter())
             };
-            commands::run_lines(lines, &mut out, &mut err, jaus::json::decode_line)
+            commands::run_lines(lines, &mut out, &mut err, |l| catalogue.decode_line(l))
         }
-        Cmd::Encode => {
-            commands::run_lines(stdin_lines(), &mut out, &mut err, jaus::json::encode_line)
-        }
+        Cmd::Encode => commands::run_lines(stdin_lines(), &mut out, &mut err, |l| {
+            catalogue.encode_line(l)
+        }),
         Cmd::Tour => commands::tour(&mut out),
         Cmd::Node {
             config,
@@ -513,6 +527,7 @@ fn main() -> ExitCode {
         } => report(
             &mut err,
             session(
+                &catalogue,
                 &net,
                 to,
                 &messages,
@@ -526,7 +541,18 @@ fn main() -> ExitCode {
         ),
         Cmd::Query { net, to, messages } => report(
             &mut err,
-            session(&net, to, &messages, None, true, &[], false, &mut out).and_then(|o| {
+            session(
+                &catalogue,
+                &net,
+                to,
+                &messages,
+                None,
+                true,
+                &[],
+                false,
+                &mut out,
+            )
+            .and_then(|o| {
                 if o.answered < o.sent {
                     Err(format!(
                         "{} of {} queries unanswered within {} s",
@@ -549,10 +575,11 @@ fn main() -> ExitCode {
         } => report(
             &mut err,
             sc.iter()
-                .map(|s| parse_sc(s, to))
+                .map(|s| parse_sc(&catalogue, s, to))
                 .collect::<Result<Vec<_>, String>>()
                 .and_then(|scs| {
                     session(
+                        &catalogue,
                         &net,
                         to,
                         &messages,

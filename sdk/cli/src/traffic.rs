@@ -9,7 +9,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
 use jaus::net::framing::{Framing, Reassembler, ReassemblyLimits};
-use jaus::wire::{Packet, PacketRef};
+use jaus::wire::PacketRef;
 
 use crate::capture::{self, Datagram};
 
@@ -28,6 +28,7 @@ fn unframe(payload: &[u8]) -> Result<&[u8], String> {
 /// that are not JAUS get one error line each on `err`. Returns (messages, errors).
 pub fn decode_capture(
     path: &Path,
+    catalogue: &crate::catalogue::Catalogue,
     out: &mut impl Write,
     err: &mut impl Write,
 ) -> Result<(usize, usize), String> {
@@ -45,7 +46,10 @@ pub fn decode_capture(
             let Some((header, body)) = reassembler.message(now, &packet.header, packet.body) else {
                 return Ok(None);
             };
-            let json = jaus::json::decode_packet(&Packet { header, body })?;
+            let json = catalogue.decode_packet(PacketRef {
+                header,
+                body: &body,
+            })?;
             let mut v: serde_json::Value =
                 serde_json::from_str(&json).map_err(|e| e.to_string())?;
             v["t"] = serde_json::json!(d.time.saturating_sub(t0).as_secs_f64());

@@ -10,17 +10,6 @@ use jaus::net::Framing;
 use jaus::wire::AckNak;
 use jaus::{Address, Header};
 
-/// One line of output: a packet received (or sent, for the record) with its time.
-#[derive(Debug, serde::Serialize)]
-pub(super) struct Line<'a> {
-    /// Seconds since the session started.
-    pub(super) t: f64,
-    /// UTC, seconds since 1970-01-01.
-    pub(super) utc: f64,
-    #[serde(flatten)]
-    pub(super) packet: &'a JsonPacket,
-}
-
 /// An acknowledgement line (ACK/NAK carry no body).
 #[derive(Debug, serde::Serialize)]
 pub(super) struct AckLine<'a> {

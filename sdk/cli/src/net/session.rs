@@ -15,7 +15,7 @@ use jaus::wire::{AckNak, MessageClass};
 use jaus::{Address, CommandCode, Header, JausMessage};
 
 use super::{
-    output::{unix_now, AckLine, Line, RawLine, Tap, Tapped},
+    output::{unix_now, AckLine, RawLine, Tap, Tapped},
     place::{bind_socket, flush, Client, Link},
 };
 
@@ -38,6 +38,8 @@ pub struct Script {
     pub hold: Option<Duration>,
     /// Default destination of stdin lines without one.
     pub to: Option<Address>,
+    /// The messages spoken: the SDK's, and a vendor's overlays (`--spec`).
+    pub catalogue: std::sync::Arc<crate::catalogue::Catalogue>,
 }
 
 /// What a session saw.
@@ -103,6 +105,7 @@ impl Client {
         let known_by = Duration::from_millis(2500);
         let mut requested: Vec<Address> = Vec::new();
         let me = self.me;
+        let cat = &script.catalogue;
         let lines = script.stdin.then(stdin_reader);
         let mut queue: VecDeque<(Address, Message)> = script.messages.iter().cloned().collect();
         let mut stdin_open = lines.is_some();
@@ -133,7 +136,7 @@ impl Client {
                             if line.trim().is_empty() {
                                 continue;
                             }
-                            match parse_message(&line) {
+                            match cat.parse_message(&line) {
                                 Ok((to, m)) => match to.or(script.to) {
                                     Some(to) => queue.push_back((to, m)),
                                     None => {
@@ -164,7 +167,7 @@ impl Client {
                     let waited = now.saturating_duration_since(t0);
                     let ready = (link.reaches(*to) || waited > Duration::from_millis(300))
                         && (known
-                            || next.code().class() != MessageClass::Command
+                            || cat.class_of(next.code()) != MessageClass::Command
                             || waited > known_by);
                     if ready {
                         let Some((to, msg)) = queue.pop_front() else {
@@ -173,7 +176,7 @@ impl Client {
                         let body = msg.to_bytes().map_err(|e| format!("{}: {e}", msg.name()))?;
                         let code = msg.code();
                         let mut header = Header::new(code, to, me);
-                        let class = code.class();
+                        let class = cat.class_of(code);
                         if class == MessageClass::Command {
                             header.ack_nak = AckNak::Request;
                         }
@@ -184,14 +187,7 @@ impl Client {
                             controlled.retain(|a| *a != to);
                             requested.retain(|a| *a != to);
                         }
-                        let answer = match class {
-                            MessageClass::Query => jaus::MessageInfo::of(code)
-                                .and_then(|i| i.report)
-                                .and_then(|r| jaus::messages::MESSAGES.iter().find(|m| m.name == r))
-                                .map(|m| m.code)
-                                .or(code.complement()),
-                            _ => None,
-                        };
+                        let answer = cat.answer_of(code);
                         let wait = if class == MessageClass::Query {
                             self.wait
                         } else {
@@ -257,8 +253,7 @@ impl Client {
                         let (t, utc) = ((now - t0).as_secs_f64(), unix_now());
                         match seen {
                             Tapped::Ack(h) => {
-                                let name =
-                                    jaus::MessageInfo::of(h.command_code).map_or("?", |i| i.name);
+                                let name = cat.name_of(h.command_code).unwrap_or("?");
                                 if let Some(p) =
                                     pending.filter(|p| p.1 == h.source && p.2 == h.command_code)
                                 {
@@ -318,15 +313,10 @@ impl Client {
                                     outcome.answered += 1;
                                 }
                                 let noise = !answer
-                                    && (code.class() == MessageClass::Query
+                                    && (cat.class_of(code) == MessageClass::Query
                                         || matches!(p.message, Message::ReportHeartbeatPulse(_)));
                                 if script.all || !noise {
-                                    let line = Line { t, utc, packet: &p };
-                                    let _ = writeln!(
-                                        out,
-                                        "{}",
-                                        serde_json::to_string(&line).unwrap_or_default()
-                                    );
+                                    let _ = writeln!(out, "{}", cat.print_line(t, utc, &p));
                                     outcome.printed += 1;
                                 }
                             }
