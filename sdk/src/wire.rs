@@ -128,10 +128,12 @@ impl Address {
             && m(self.instance, other.instance)
     }
 
+    #[inline]
     fn to_wire(self) -> [u8; 4] {
         [self.instance, self.component, self.node, self.subsystem]
     }
 
+    #[inline]
     fn from_wire(b: [u8; 4]) -> Self {
         Self {
             instance: b[0],
@@ -221,6 +223,7 @@ pub enum DataFlag {
 }
 
 impl DataFlag {
+    #[inline]
     fn to_bits(self) -> u8 {
         match self {
             DataFlag::Single => 0,
@@ -231,6 +234,7 @@ impl DataFlag {
             DataFlag::Other(v) => v & 0x0F,
         }
     }
+    #[inline]
     fn from_bits(v: u8) -> Self {
         match v {
             0 => DataFlag::Single,
@@ -306,49 +310,67 @@ impl Header {
 
     /// The 16 header bytes with `data_size` as given (the body length of this packet).
     pub fn encode_with_size(&self, data_size: usize) -> Result<[u8; HEADER_LEN], EncodeError> {
-        let mut b = [0u8; HEADER_LEN];
-        self.put(&mut Writer::new(&mut b), data_size)?;
-        Ok(b)
+        self.to_bytes_with_size(data_size)
     }
 
     /// Writes the header with `data_size` as given.
+    #[inline]
     fn put(&self, w: &mut Writer<'_>, data_size: usize) -> Result<(), EncodeError> {
-        let check = |field: &'static str, v: u64, width: u32| {
-            if v >> width != 0 {
-                Err(EncodeError::BitsOverflow {
-                    field,
-                    value: v,
-                    width,
-                })
-            } else {
-                Ok(())
-            }
-        };
-        check("Header.priority", self.priority.into(), 4)?;
-        check("Header.version", self.version.into(), 6)?;
-        check("Header.reserved", self.reserved.into(), 2)?;
-        check("Header.data_size", data_size as u64, 12)?;
-        let ack = match self.ack_nak {
-            AckNak::None => 0u16,
+        w.put(&self.to_bytes_with_size(data_size)?)
+    }
+
+    /// The 16 bytes, assembled as two little-endian words (one range check for the
+    /// four narrow fields, its error built off the hot path).
+    #[inline]
+    fn to_bytes_with_size(&self, data_size: usize) -> Result<[u8; HEADER_LEN], EncodeError> {
+        if (self.priority >> 4) | (self.version >> 6) | (self.reserved >> 2) != 0
+            || data_size >> 12 != 0
+        {
+            return Err(self.narrow_field_error(data_size));
+        }
+        let ack: u64 = match self.ack_nak {
+            AckNak::None => 0,
             AckNak::Request => 1,
             AckNak::Nak => 2,
             AckNak::Ack => 3,
         };
-        let props: u16 = u16::from(self.priority)
+        let props: u64 = u64::from(self.priority)
             | ack << 4
-            | u16::from(self.service_connection) << 6
-            | u16::from(self.experimental) << 7
-            | u16::from(self.version) << 8
-            | u16::from(self.reserved) << 14;
-        let control = data_size as u16 | u16::from(self.data_flag.to_bits()) << 12;
+            | u64::from(self.service_connection) << 6
+            | u64::from(self.experimental) << 7
+            | u64::from(self.version) << 8
+            | u64::from(self.reserved) << 14;
+        let address = |a: Address| u32::from_le_bytes(a.to_wire());
+        let lo = props
+            | u64::from(self.command_code.0) << 16
+            | u64::from(address(self.destination)) << 32;
+        let control = data_size as u64 | u64::from(self.data_flag.to_bits()) << 12;
+        let hi =
+            u64::from(address(self.source)) | control << 32 | u64::from(self.sequence_number) << 48;
         let mut b = [0u8; HEADER_LEN];
-        b[0..2].copy_from_slice(&props.to_le_bytes());
-        b[2..4].copy_from_slice(&self.command_code.0.to_le_bytes());
-        b[4..8].copy_from_slice(&self.destination.to_wire());
-        b[8..12].copy_from_slice(&self.source.to_wire());
-        b[12..14].copy_from_slice(&control.to_le_bytes());
-        b[14..16].copy_from_slice(&self.sequence_number.to_le_bytes());
-        w.put(&b)
+        b[..8].copy_from_slice(&lo.to_le_bytes());
+        b[8..].copy_from_slice(&hi.to_le_bytes());
+        Ok(b)
+    }
+
+    #[cold]
+    #[inline(never)]
+    fn narrow_field_error(&self, data_size: usize) -> EncodeError {
+        let fields: [(&'static str, u64, u32); 4] = [
+            ("Header.priority", self.priority.into(), 4),
+            ("Header.version", self.version.into(), 6),
+            ("Header.reserved", self.reserved.into(), 2),
+            ("Header.data_size", data_size as u64, 12),
+        ];
+        let (field, value, width) = fields
+            .into_iter()
+            .find(|(_, v, w)| v >> w != 0)
+            .unwrap_or(fields[3]);
+        EncodeError::BitsOverflow {
+            field,
+            value,
+            width,
+        }
     }
 
     /// Writes a whole packet, this header (its data size set from the body) and `body`,
@@ -374,15 +396,17 @@ impl Header {
     }
 
     /// Parses the first 16 bytes of `bytes`.
+    #[inline]
     pub fn parse(bytes: &[u8]) -> Result<Header, DecodeError> {
-        let b: &[u8; HEADER_LEN] = bytes
-            .get(..HEADER_LEN)
-            .and_then(|s| s.try_into().ok())
-            .ok_or_else(|| {
-                DecodeError::new(DecodeErrorKind::TruncatedHeader { len: bytes.len() }, 0)
-            })?;
-        let props = u16::from_le_bytes([b[0], b[1]]);
-        let control = u16::from_le_bytes([b[12], b[13]]);
+        let Some(b) = bytes.first_chunk::<HEADER_LEN>() else {
+            return Err(truncated_header(bytes.len()));
+        };
+        let (lo, hi) = b.split_at(8);
+        let lo = u64::from_le_bytes(lo.try_into().unwrap_or_default());
+        let hi = u64::from_le_bytes(hi.try_into().unwrap_or_default());
+        let props = lo as u16;
+        let control = (hi >> 32) as u16;
+        let address = |w: u64| Address::from_wire((w as u32).to_le_bytes());
         Ok(Header {
             priority: (props & 0x0F) as u8,
             ack_nak: match (props >> 4) & 3 {
@@ -395,14 +419,20 @@ impl Header {
             experimental: props & (1 << 7) != 0,
             version: ((props >> 8) & 0x3F) as u8,
             reserved: (props >> 14) as u8,
-            command_code: CommandCode(u16::from_le_bytes([b[2], b[3]])),
-            destination: Address::from_wire([b[4], b[5], b[6], b[7]]),
-            source: Address::from_wire([b[8], b[9], b[10], b[11]]),
+            command_code: CommandCode((lo >> 16) as u16),
+            destination: address(lo >> 32),
+            source: address(hi),
             data_size: control & 0x0FFF,
             data_flag: DataFlag::from_bits((control >> 12) as u8),
-            sequence_number: u16::from_le_bytes([b[14], b[15]]),
+            sequence_number: (hi >> 48) as u16,
         })
     }
+}
+
+#[cold]
+#[inline(never)]
+fn truncated_header(len: usize) -> DecodeError {
+    DecodeError::new(DecodeErrorKind::TruncatedHeader { len }, 0)
 }
 
 impl Encode for Header {
