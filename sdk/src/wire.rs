@@ -310,19 +310,19 @@ impl Header {
 
     /// The 16 header bytes with `data_size` as given (the body length of this packet).
     pub fn encode_with_size(&self, data_size: usize) -> Result<[u8; HEADER_LEN], EncodeError> {
-        self.to_bytes_with_size(data_size)
+        self.bytes_with_size(data_size)
     }
 
     /// Writes the header with `data_size` as given.
     #[inline]
     fn put(&self, w: &mut Writer<'_>, data_size: usize) -> Result<(), EncodeError> {
-        w.put(&self.to_bytes_with_size(data_size)?)
+        w.put(&self.bytes_with_size(data_size)?)
     }
 
     /// The 16 bytes, assembled as two little-endian words (one range check for the
     /// four narrow fields, its error built off the hot path).
     #[inline]
-    fn to_bytes_with_size(&self, data_size: usize) -> Result<[u8; HEADER_LEN], EncodeError> {
+    fn bytes_with_size(&self, data_size: usize) -> Result<[u8; HEADER_LEN], EncodeError> {
         if (self.priority >> 4) | (self.version >> 6) | (self.reserved >> 2) != 0
             || data_size >> 12 != 0
         {
