@@ -74,3 +74,107 @@ fn fixed_size_messages_decode_and_encode_without_allocating() {
     // The counter does count: a Vec allocates.
     assert!(allocations(|| drop(std::hint::black_box(vec![1u8; 10]))) > 0);
 }
+
+mod route {
+    //! receive → route → deliver → reply through a sans-IO `Node`, for a fixed-size
+    //! query and its report.
+
+    use super::allocations;
+    use jaus::codec::Encode;
+    use jaus::component::{Config, Refused};
+    use jaus::components::global_pose_sensor::{self, Ctx, GlobalPoseSensor};
+    use jaus::messages::{QueryGlobalPose, ReportGlobalPose};
+    use jaus::net::{Framing, Node, NodeConfig};
+    use jaus::{Address, Header, JausMessage, PacketRef};
+    use std::net::SocketAddr;
+    use std::time::{Duration, Instant};
+
+    const GPS: Address = Address::new(1, 1, 38, 1);
+    const OCU: Address = Address::new(2, 1, 40, 1);
+
+    struct Gps;
+    impl GlobalPoseSensor for Gps {
+        fn on_query_global_pose(
+            &mut self,
+            _c: &mut Ctx<'_>,
+            _q: &QueryGlobalPose,
+        ) -> Result<ReportGlobalPose, Refused> {
+            Ok(ReportGlobalPose {
+                latitude: Some(29.6),
+                longitude: Some(-82.3),
+                yaw: Some(0.5),
+                ..Default::default()
+            })
+        }
+    }
+
+    #[test]
+    fn a_routed_query_and_its_report_allocate_nothing() {
+        let t0 = Instant::now();
+        let peer: SocketAddr = "127.0.0.1:4000".parse().unwrap();
+        let mut node = Node::new(
+            NodeConfig {
+                subsystem: 1,
+                node: 1,
+                peers: vec![peer],
+                ..NodeConfig::default()
+            },
+            t0,
+        );
+        node.add(global_pose_sensor::component(
+            GPS,
+            Gps,
+            Config::default(),
+            t0,
+        ))
+        .unwrap();
+        let body = QueryGlobalPose {
+            presence_vector: 0x1FF,
+        }
+        .to_bytes()
+        .unwrap();
+        let mut packet = vec![0u8; 64];
+        let n = Header::new(QueryGlobalPose::CODE, GPS, OCU)
+            .write_packet(
+                &QueryGlobalPose {
+                    presence_vector: 0x1FF,
+                },
+                &mut packet,
+            )
+            .unwrap();
+        packet.truncate(n);
+        let datagram = Framing::Judp.encode(&packet);
+        drop(body);
+        let mut now = t0;
+        let mut replies = 0usize;
+        let mut round = |node: &mut Node, now: Instant, replies: &mut usize| {
+            node.handle_datagram(now, peer, &datagram);
+            while let Some(d) = node.poll_transmit() {
+                if let Ok(p) = Framing::Judp.packet(&d.bytes) {
+                    if p.0.command_code == ReportGlobalPose::CODE {
+                        *replies += 1;
+                    }
+                }
+                node.recycle(d.bytes);
+            }
+        };
+        // Warm up: the node learns the peer, queues and pools reach their sizes.
+        for _ in 0..200 {
+            now += Duration::from_micros(100);
+            round(&mut node, now, &mut replies);
+        }
+        let before = replies;
+        let n = allocations(|| {
+            for _ in 0..1_000 {
+                now += Duration::from_micros(100);
+                round(&mut node, now, &mut replies);
+            }
+        });
+        assert_eq!(replies - before, 1_000, "every query answered");
+        assert_eq!(
+            n, 0,
+            "1,000 routed query/report pairs allocated {n} time(s)"
+        );
+        let _ = PacketRef::parse(&packet);
+    }
+}

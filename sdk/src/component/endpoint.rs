@@ -35,6 +35,13 @@ pub trait Endpoint: Send + 'static {
     fn handle_timeout(&mut self, now: Instant);
     /// Something to send, encoded.
     fn poll_transmit(&mut self) -> Option<Outgoing>;
+    /// Something to send, its body encoded into `buf` (a reused buffer, whatever it
+    /// held); `Err(buf)` gives the buffer back when there is nothing to send. Hosts use
+    /// this to route without allocating; the default goes through
+    /// [`poll_transmit`](Self::poll_transmit).
+    fn poll_transmit_with(&mut self, buf: Vec<u8>) -> Result<Outgoing, Vec<u8>> {
+        self.poll_transmit().ok_or(buf)
+    }
     /// When to be woken next.
     fn poll_timeout(&self) -> Option<Instant>;
     /// A component this endpoint may have dealt with is gone (the node layer saw it
@@ -64,6 +71,25 @@ impl<B: Behaviour> Endpoint for Component<B> {
     }
     fn handle_timeout(&mut self, now: Instant) {
         Component::handle_timeout(self, now);
+    }
+    fn poll_transmit_with(&mut self, mut buf: Vec<u8>) -> Result<Outgoing, Vec<u8>> {
+        let Some(t) = Component::poll_transmit(self) else {
+            return Err(buf);
+        };
+        buf.clear();
+        let (name, body) = match &t.message {
+            Some(m) => {
+                buf.resize(m.encoded_len(), 0);
+                let mut w = crate::codec::Writer::new(&mut buf);
+                (crate::MessageSet::name(m), m.encode(&mut w).map(|()| buf))
+            }
+            None => ("ack/nak", Ok(buf)),
+        };
+        Ok(Outgoing {
+            header: t.header,
+            name,
+            body,
+        })
     }
     fn poll_transmit(&mut self) -> Option<Outgoing> {
         let t = Component::poll_transmit(self)?;
@@ -166,6 +192,23 @@ impl Endpoints {
         for e in &mut self.0 {
             if e.poll_timeout().is_some_and(|t| t <= now) {
                 e.handle_timeout(now);
+            }
+        }
+    }
+
+    /// Like [`drain_transmits`](Self::drain_transmits), each body encoded into a buffer
+    /// taken from `pool` (unused buffers go back to it).
+    pub fn drain_transmits_with(&mut self, out: &mut Vec<Outgoing>, pool: &mut Vec<Vec<u8>>) {
+        for e in &mut self.0 {
+            loop {
+                let buf = pool.pop().unwrap_or_default();
+                match e.poll_transmit_with(buf) {
+                    Ok(t) => out.push(t),
+                    Err(buf) => {
+                        pool.push(buf);
+                        break;
+                    }
+                }
             }
         }
     }

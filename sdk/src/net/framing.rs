@@ -115,6 +115,31 @@ impl Framing {
         d
     }
 
+    /// Frames the packet `header` + `body` (one packet: the body fits
+    /// [`MAX_PACKET_BODY`]) into `out`, replacing what it held: nothing is allocated
+    /// when `out` has the capacity.
+    pub fn write_packet(
+        self,
+        out: &mut Vec<u8>,
+        header: &Header,
+        body: &[u8],
+    ) -> Result<(), EncodeError> {
+        let head = header.encode_with_size(body.len())?;
+        out.clear();
+        match self {
+            Framing::Judp => {
+                let n = (HEADER_LEN + body.len()).min(usize::from(u16::MAX)) as u16;
+                out.extend_from_slice(&[1, 0, 0]);
+                out.extend_from_slice(&n.to_be_bytes());
+            }
+            Framing::Opc => out.extend_from_slice(OPC_PREFIX),
+            Framing::Raw => {}
+        }
+        out.extend_from_slice(&head);
+        out.extend_from_slice(body);
+        Ok(())
+    }
+
     /// The JAUS packet inside a datagram.
     pub fn decode(self, datagram: &[u8]) -> Result<&[u8], FramingError> {
         let n = self.overhead();

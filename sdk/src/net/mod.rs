@@ -35,6 +35,11 @@ pub trait Participant: std::fmt::Debug + Send + 'static {
     fn handle_timeout(&mut self, now: Instant);
     /// The next datagram to send.
     fn poll_transmit(&mut self) -> Option<Datagram>;
+    /// The bytes of a datagram from [`poll_transmit`](Self::poll_transmit), handed
+    /// back once sent so that the host can reuse the buffer (the default drops it).
+    fn recycle(&mut self, bytes: Vec<u8>) {
+        drop(bytes);
+    }
     /// When [`handle_timeout`](Self::handle_timeout) must next be called.
     fn poll_timeout(&self) -> Option<Instant>;
     /// For downcasting to the concrete host.

@@ -10,14 +10,14 @@ use std::net::SocketAddr;
 use std::time::Instant;
 
 use super::framing::{
-    split, DatagramError, Framing, Reassembler, ReassemblyLimits, ReassemblyStats,
+    split, DatagramError, Framing, Reassembler, ReassemblyLimits, ReassemblyStats, MAX_PACKET_BODY,
 };
 use super::manager::{ManagerConfig, StockNodeManager, SystemTree};
 use super::{NetError, Participant};
 use crate::component::{Component, Config};
-use crate::component::{Endpoint, Endpoints};
+use crate::component::{Endpoint, Endpoints, Outgoing};
 use crate::components::node_manager;
-use crate::wire::Header;
+use crate::wire::{DataFlag, Header, HEADER_LEN};
 use crate::Address;
 
 /// Settings of a node.
@@ -156,8 +156,20 @@ pub struct Node {
     reassembler: Reassembler,
     outbox: VecDeque<Datagram>,
     local_queue: VecDeque<(Header, Vec<u8>)>,
+    /// Byte buffers for bodies and datagrams, reused: the shell hands sent datagrams
+    /// back ([`Node::recycle`]), so that routing a message allocates nothing once the
+    /// pool is warm. Bounded by [`POOL_BUFFERS`].
+    pool: Vec<Vec<u8>>,
+    /// What the components want to send, collected before routing (kept for its
+    /// capacity).
+    transmits: Vec<Outgoing>,
     stats: NetStats,
 }
+
+/// Most byte buffers a node keeps for reuse.
+const POOL_BUFFERS: usize = 256;
+/// Largest buffer kept for reuse (bigger ones, of multi-packet messages, are freed).
+const POOL_BUFFER_BYTES: usize = 8 + HEADER_LEN + MAX_PACKET_BODY + 64;
 
 impl std::fmt::Debug for Node {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
@@ -191,6 +203,8 @@ impl Node {
             peers: HashMap::new(),
             outbox: VecDeque::new(),
             local_queue: VecDeque::new(),
+            pool: Vec::new(),
+            transmits: Vec::new(),
             stats: NetStats::default(),
         }
     }
@@ -304,12 +318,28 @@ impl Node {
         if !mine {
             self.peers.insert((src.subsystem, src.node), peer);
         }
-        let Some((header, body)) = self.reassembler.message(now, &header, body) else {
-            return;
-        };
         // A message of an external component is routed like one of a built-in component.
-        self.route(header, body, mine);
+        if header.data_flag == DataFlag::Single {
+            // Straight from the datagram: copied only if it must wait in the queue.
+            self.route_borrowed(header, body, mine);
+        } else if let Some((header, body)) = self.reassembler.push(now, &header, body) {
+            self.route(header, body, mine);
+        }
         self.pump();
+    }
+
+    /// Hands back the bytes of a datagram taken with [`poll_transmit`](Self::poll_transmit)
+    /// once it is sent, for reuse: a shell that does so routes without allocating.
+    pub fn recycle(&mut self, mut bytes: Vec<u8>) {
+        if self.pool.len() < POOL_BUFFERS && bytes.capacity() <= POOL_BUFFER_BYTES {
+            bytes.clear();
+            self.pool.push(bytes);
+        }
+    }
+
+    /// An empty buffer from the pool (a new one when the pool is empty).
+    fn buffer(&mut self) -> Vec<u8> {
+        self.pool.pop().unwrap_or_default()
     }
 
     /// A datagram with this node's subsystem and node as its source: an external
@@ -536,12 +566,19 @@ impl Node {
     /// until nothing is left.
     fn pump(&mut self) {
         for _ in 0..MAX_LOCAL_ROUNDS {
-            let mut out = Vec::new();
-            while let Some(t) = Endpoint::poll_transmit(&mut self.manager) {
-                out.push(t);
+            let mut out = std::mem::take(&mut self.transmits);
+            loop {
+                let buf = self.buffer();
+                match Endpoint::poll_transmit_with(&mut self.manager, buf) {
+                    Ok(t) => out.push(t),
+                    Err(buf) => {
+                        self.recycle(buf);
+                        break;
+                    }
+                }
             }
-            self.locals.drain_transmits(&mut out);
-            for t in out {
+            self.locals.drain_transmits_with(&mut out, &mut self.pool);
+            for t in out.drain(..) {
                 match t.body {
                     Ok(body) => self.route(t.header, body, true),
                     Err(e) => {
@@ -550,6 +587,7 @@ impl Node {
                     }
                 }
             }
+            self.transmits = out;
             let Some((h, body)) = self.local_queue.pop_front() else {
                 if self.manager_gone() {
                     continue;
@@ -557,6 +595,7 @@ impl Node {
                 return;
             };
             self.deliver(&h, &body);
+            self.recycle(body);
         }
         tracing::warn!("routing loop limit reached; the rest waits for the next event");
     }
@@ -576,7 +615,32 @@ impl Node {
             && (d.node == self.config.node || d.node == 255)
     }
 
+    /// Routes a message whose body the node owns (a component's, a reassembled one).
     fn route(&mut self, header: Header, body: Vec<u8>, from_local: bool) {
+        if self.route_common(&header, &body, from_local) {
+            self.enqueue(header, body);
+        } else {
+            self.recycle(body);
+        }
+    }
+
+    /// Routes a message read from a datagram: delivered from the datagram's bytes when
+    /// nothing waits before it, copied into a pooled buffer only when it must wait.
+    fn route_borrowed(&mut self, header: Header, body: &[u8], from_local: bool) {
+        if self.route_common(&header, body, from_local) {
+            if self.local_queue.is_empty() {
+                self.deliver(&header, body);
+            } else {
+                let mut b = self.buffer();
+                b.extend_from_slice(body);
+                self.enqueue(header, b);
+            }
+        }
+    }
+
+    /// Sends a message on to the network when it leaves this node; true when it is for
+    /// a component here.
+    fn route_common(&mut self, header: &Header, body: &[u8], from_local: bool) -> bool {
         let d = header.destination;
         // One line per message at trace level; the fields are evaluated only when it is
         // enabled (`jaus -vvv`, `RUST_LOG=jaus::net=trace`).
@@ -592,16 +656,21 @@ impl Node {
         let here = self.is_here(d);
         let only_here = d.subsystem == self.config.subsystem && d.node == self.config.node;
         if from_local && !only_here {
-            self.send_network(&header, &body);
+            self.send_network(header, body);
         }
-        if here {
-            if self.local_queue.len() >= self.config.max_outbox {
-                self.stats.outbox_full += 1;
-            } else {
-                self.local_queue.push_back((header, body));
-            }
-        } else if !from_local {
+        if !here && !from_local {
             self.stats.not_for_us += 1;
+        }
+        here
+    }
+
+    /// Queues a message for the components here (bounded; a drop is counted).
+    fn enqueue(&mut self, header: Header, body: Vec<u8>) {
+        if self.local_queue.len() >= self.config.max_outbox {
+            self.stats.outbox_full += 1;
+            self.recycle(body);
+        } else {
+            self.local_queue.push_back((header, body));
         }
     }
 
@@ -614,6 +683,14 @@ impl Node {
             any = true;
         }
         any |= self.locals.deliver(now, header, body);
+        if self.external.is_empty() {
+            if any {
+                self.stats.delivered_local += 1;
+            } else if d.component != 255 && d.instance != 255 {
+                self.stats.no_such_component += 1;
+            }
+            return;
+        }
         let targets: Vec<(SocketAddr, Via)> = self
             .external
             .iter()
@@ -654,6 +731,31 @@ impl Node {
     }
 
     fn send_network(&mut self, header: &Header, body: &[u8]) {
+        let d = header.destination;
+        // The hot path: one packet to a node whose socket is known, framed into a pooled
+        // buffer.
+        if body.len() <= MAX_PACKET_BODY && d.subsystem != 255 && d.node != 255 {
+            if let Some(&to) = self.peers.get(&(d.subsystem, d.node)) {
+                if self.outbox.len() >= self.config.max_outbox {
+                    self.stats.outbox_full += 1;
+                    return;
+                }
+                let mut bytes = self.buffer();
+                match self.config.framing.write_packet(&mut bytes, header, body) {
+                    Ok(()) => self.outbox.push_back(Datagram {
+                        to,
+                        bytes,
+                        via: Via::Network,
+                    }),
+                    Err(e) => {
+                        self.stats.encode_errors += 1;
+                        tracing::warn!(code = %header.command_code, "not sent: {e}");
+                        self.recycle(bytes);
+                    }
+                }
+                return;
+            }
+        }
         let packets = match split(header, body) {
             Ok(p) => p,
             Err(e) => {
@@ -662,7 +764,6 @@ impl Node {
                 return;
             }
         };
-        let d = header.destination;
         let targets: Vec<SocketAddr> = if d.subsystem == 255 || d.node == 255 {
             let mut t: Vec<SocketAddr> = self.config.peers.clone();
             if let Some(group) = self.config.multicast {
@@ -721,6 +822,10 @@ impl Participant for Node {
 
     fn poll_transmit(&mut self) -> Option<Datagram> {
         Node::poll_transmit(self)
+    }
+
+    fn recycle(&mut self, bytes: Vec<u8>) {
+        Node::recycle(self, bytes);
     }
 
     fn poll_timeout(&self) -> Option<Instant> {

@@ -87,6 +87,7 @@ pub fn run_tapped<P: Participant>(
                 Ok(_) => tap(Direction::Sent, d.to, &d.bytes),
                 Err(e) => tracing::debug!(to = %d.to, "send failed: {e}"),
             }
+            node.recycle(d.bytes);
         }
     }
 }
@@ -203,6 +204,7 @@ pub fn run_node(
                         Ok(_) => {}
                         Err(e) => tracing::debug!(to = %d.to, "send failed: {e}"),
                     }
+                    node.recycle(d.bytes);
                 }
             }
         })();
