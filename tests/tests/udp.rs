@@ -115,7 +115,8 @@ fn two_node_processes_discover_each_other_and_answer_a_query() {
     let (_b, rx_b) = node(
         &dir,
         "console",
-        &format!("subsystem: 1\nnode: 2\nnode_name: console\nbind: 127.0.0.1:{pb}\npeers: [127.0.0.1:{pa}]\n"),
+        // One datagram per read, never spinning: the other shape of the I/O loop.
+        &format!("subsystem: 1\nnode: 2\nnode_name: console\nbind: 127.0.0.1:{pb}\npeers: [127.0.0.1:{pa}]\nio: {{ spin_us: 0, batch: 1 }}\n"),
     );
     wait_for(
         &rx_b,
@@ -591,7 +592,8 @@ fn a_node_hosts_any_stock_component_at_any_instance() {
     let (_b, rx_b) = node(
         &dir,
         "console",
-        &format!("subsystem: 1\nnode: 2\nnode_name: console\nbind: 127.0.0.1:{pb}\npeers: [127.0.0.1:{pa}]\n"),
+        // One datagram per read, never spinning: the other shape of the I/O loop.
+        &format!("subsystem: 1\nnode: 2\nnode_name: console\nbind: 127.0.0.1:{pb}\npeers: [127.0.0.1:{pa}]\nio: {{ spin_us: 0, batch: 1 }}\n"),
     );
     wait_for(
         &rx_b,
@@ -625,6 +627,28 @@ fn a_node_hosts_any_stock_component_at_any_instance() {
         ),
         "{err}"
     );
+    for (io, expected) in [
+        ("{ batch: 0 }", "bad-io.yaml:4:7: batch 0 is not in 1..=64"),
+        (
+            "{ spin_us: 50000 }",
+            "bad-io.yaml:4:7: spin_us 50000 is over 10000",
+        ),
+    ] {
+        let bad = dir.join("bad-io.yaml");
+        std::fs::write(
+            &bad,
+            format!("subsystem: 7\nnode: 3\nbind: 127.0.0.1:1\nio: {io}\n"),
+        )
+        .unwrap();
+        let out = Command::new(jaus_bin())
+            .args(["node", "--config"])
+            .arg(&bad)
+            .output()
+            .unwrap();
+        assert!(!out.status.success());
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains(expected), "{err}");
+    }
     std::fs::remove_dir_all(&dir).ok();
 }
 

@@ -24,6 +24,7 @@ use jaus::net::{udp, Framing, Node, NodeConfig, SystemTree};
 ///   - global_pose_sensor                     # a stock component at instance 1
 ///   - { component: world_model, instance: 2 }
 ///   - { component: global_waypoint_driver, output: 1.1.33.1, pose: 1.1.38.1 }
+/// io: { spin_us: 50, batch: 32 }  # optional: how the socket is read (udp::IoOptions)
 /// ```
 ///
 /// A `host:` entry is `vehicle`, `arm` (the Primitive Manipulator, the three joint sensors
@@ -78,6 +79,33 @@ pub struct NodeFile {
     /// (`openjaus_components: {}` for OpenJAUS's ports 24627 and 24629 on 127.0.0.1).
     #[serde(default)]
     pub openjaus_components: Option<OjComponentsFile>,
+    /// How the node reads its socket (`udp::IoOptions`; defaults when absent).
+    #[serde(default)]
+    pub io: Option<IoFile>,
+}
+
+/// `io:` of a node file: how the node waits for and reads datagrams.
+#[derive(Debug, Clone, Default, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct IoFile {
+    /// After a datagram, keep reading without blocking for this many microseconds
+    /// (0: always block). Default 50.
+    #[serde(default)]
+    pub spin_us: Option<u64>,
+    /// Datagrams read per system call where the OS offers it, 1 to 64. Default 32.
+    #[serde(default)]
+    pub batch: Option<usize>,
+}
+
+impl IoFile {
+    /// The options, defaults filled in.
+    pub fn options(&self) -> udp::IoOptions {
+        let d = udp::IoOptions::default();
+        udp::IoOptions {
+            spin: self.spin_us.map_or(d.spin, Duration::from_micros),
+            batch: self.batch.unwrap_or(d.batch),
+        }
+    }
 }
 
 /// `openjaus_components:` of a node file: the two sockets of OpenJAUS's local component
@@ -178,6 +206,22 @@ impl NodeFile {
         for (what, v) in [("subsystem", f.subsystem), ("node", f.node)] {
             if v == 0 || v == 255 {
                 return Err(format!("{}: {what} {v} is not in 1..=254", at(what)));
+            }
+        }
+        if let Some(io) = &f.io {
+            if io.spin_us.is_some_and(|s| s > 10_000) {
+                return Err(format!(
+                    "{}: spin_us {} is over 10000 (10 ms of busy waiting per datagram)",
+                    at("io.spin_us"),
+                    io.spin_us.unwrap_or_default()
+                ));
+            }
+            if let Some(b) = io.batch.filter(|b| !(1..=udp::MAX_BATCH).contains(b)) {
+                return Err(format!(
+                    "{}: batch {b} is not in 1..={}",
+                    at("io.batch"),
+                    udp::MAX_BATCH
+                ));
             }
         }
         f.hosted_at(&at)?;
@@ -453,9 +497,11 @@ pub fn node(
         component_control: oj.as_ref().map(|p| &p.0),
         component_data: oj.as_ref().map(|p| &p.1),
     };
+    let io = file.io.clone().unwrap_or_default().options();
     let result = udp::run_node(
         &mut node,
         sockets,
+        &io,
         stop,
         duration.map(|d| t0 + d),
         |n| {
