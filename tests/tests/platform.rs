@@ -36,8 +36,8 @@ fn demo_drives_the_waypoint_mission_and_the_part1_path_segments() {
     let report = demo::run(&demo::Options::default(), |_| {}).expect("demo finishes");
     assert_eq!(
         report.legs.len(),
-        10,
-        "5 waypoint legs, 2 path segments, 3 spooled moves (a detour first)"
+        11,
+        "5 waypoint legs, 2 path segments, 4 spooled moves (a detour on each leg)"
     );
     for leg in &report.legs {
         assert!(leg.arrival.is_some(), "{} never reached", leg.name);
@@ -77,15 +77,20 @@ fn demo_drives_the_waypoint_mission_and_the_part1_path_segments() {
         "home missed by {:.3} m",
         report.final_errors[2]
     );
-    // The operator asked the world model what lies on the first mission leg, found the
-    // obstacle it stored, and planned round it: the vehicle never touched its buffer.
-    assert_eq!(report.planned.len(), 3, "{:?}", report.planned);
-    let radius = jaus_sim::demo::OBSTACLE.1;
-    assert!(
-        report.obstacle_clearance > radius + 0.3,
-        "closest approach {:.2} m to an obstacle of radius {radius} m",
-        report.obstacle_clearance
-    );
+    // The operator asked the world model what lies along the mission and found the
+    // obstacle it stored and the one only the Range Sensor had detected (and stored); it
+    // planned a detour round each: the vehicle never touched either buffer.
+    assert_eq!(report.objects_found, (1, 1), "{:?}", report.planned);
+    assert_eq!(report.planned.len(), 4, "{:?}", report.planned);
+    for (clearance, radius) in [
+        (report.obstacle_clearance, jaus_sim::demo::OBSTACLE.1),
+        (report.unknown_clearance, jaus_sim::demo::UNKNOWN_OBSTACLE.1),
+    ] {
+        assert!(
+            clearance > radius + 0.3,
+            "closest approach {clearance:.2} m to an obstacle of radius {radius} m"
+        );
+    }
     for e in &report.final_errors {
         assert!(*e < 0.2, "final point missed by {e:.3} m");
     }
@@ -114,9 +119,10 @@ fn demo_writes_a_plot_of_path_and_trajectory() {
     assert!(svg.starts_with("<svg"));
     assert_eq!(
         svg.matches("<polyline").count(),
-        11,
-        "10 commanded legs + the trajectory"
+        12,
+        "11 commanded legs + the trajectory"
     );
+    assert!(svg.contains("obstacle (found by the range sensor)"));
     let _ = std::fs::remove_dir_all(dir);
 }
 

@@ -5,7 +5,7 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use jaus::stock::nalgebra::Vector2;
-use jaus_sim::demo::{Report, OBSTACLE, SEGMENTS, WAYPOINTS};
+use jaus_sim::demo::{Report, OBSTACLE, SEGMENTS, UNKNOWN_OBSTACLE, WAYPOINTS};
 
 /// Writes `demo.svg` of `report` into `dir` (created if missing) and returns its path.
 pub fn write_svg(report: &Report, dir: &Path) -> std::io::Result<PathBuf> {
@@ -91,12 +91,14 @@ pub fn svg(r: &Report) -> String {
         r##"<polyline points="{}" fill="none" stroke="#d62728" stroke-width="1.5"/>"##,
         poly(&r.trail)
     );
-    {
-        let ((ox, oy), r) = OBSTACLE;
+    for (((ox, oy), r), label) in [
+        (OBSTACLE, "obstacle (stored in the world model)"),
+        (UNKNOWN_OBSTACLE, "obstacle (found by the range sensor)"),
+    ] {
         let (a, b) = px(&Vector2::new(ox, oy));
         let _ = writeln!(
             s,
-            r##"<circle cx="{a:.1}" cy="{b:.1}" r="{:.1}" fill="#999" fill-opacity="0.35" stroke="#555"/><text x="{:.1}" y="{:.1}" fill="#555">obstacle (world model)</text>"##,
+            r##"<circle cx="{a:.1}" cy="{b:.1}" r="{:.1}" fill="#999" fill-opacity="0.35" stroke="#555"/><text x="{:.1}" y="{:.1}" fill="#555">{label}</text>"##,
             r * scale,
             a + r * scale + 4.0,
             b + 4.0
@@ -180,13 +182,27 @@ pub fn summary(r: &Report) -> String {
     );
     let _ = writeln!(
         s,
-        "world model: obstacle r = {:.1} m at ({:.1}, {:.1}) planned around via ({:.2}, {:.2}); closest approach {:.2} m from its centre",
-        OBSTACLE.1,
-        OBSTACLE.0 .0,
-        OBSTACLE.0 .1,
-        r.planned.first().map_or(f64::NAN, |p| p.0),
-        r.planned.first().map_or(f64::NAN, |p| p.1),
-        r.obstacle_clearance
+        "world model: {} object(s) along the mission stored by the operator, {} detected by the range sensor (1.1.50.1) and stored by it; planned moves {}",
+        r.objects_found.0,
+        r.objects_found.1,
+        r.planned
+            .iter()
+            .map(|(x, y)| format!("({x:.2}, {y:.2})"))
+            .collect::<Vec<_>>()
+            .join(" ")
+    );
+    let _ = writeln!(
+        s,
+        "  stored obstacle r = {:.1} m at ({:.1}, {:.1}): closest approach {:.2} m from its centre",
+        OBSTACLE.1, OBSTACLE.0 .0, OBSTACLE.0 .1, r.obstacle_clearance
+    );
+    let _ = writeln!(
+        s,
+        "  obstacle not in the world model beforehand, r = {:.1} m at ({:.1}, {:.1}): closest approach {:.2} m from its centre",
+        UNKNOWN_OBSTACLE.1,
+        UNKNOWN_OBSTACLE.0 .0,
+        UNKNOWN_OBSTACLE.0 .1,
+        r.unknown_clearance
     );
     let _ = write!(
         s,

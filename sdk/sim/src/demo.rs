@@ -11,22 +11,26 @@
 //! vehicle's true trajectory against the commanded path, and draws both in an SVG.
 //!
 //! Third phase: the operator stores an obstacle in the World Model Vector Knowledge
-//! Store, queries it for objects along the first leg of its mission (a line region with a
-//! clearance buffer), plans a detour waypoint round what it finds, and spools the
-//! mission — blocking moves, a payload action (the horn), a blocking move home — to the
-//! Mission Spooler, which drives the waypoint driver.
+//! Store, queries it for objects along its mission (a line region with a clearance
+//! buffer), plans a detour waypoint round each object it finds, and spools the mission —
+//! blocking moves, a payload action (the horn), a blocking move home — to the Mission
+//! Spooler, which drives the waypoint driver. The world also holds an obstacle nobody
+//! stored ([`UNKNOWN_OBSTACLE`], on the way home): the vehicle's Range Sensor detects
+//! it and keeps it in the world model (`jaus::stock::environment::map_feed`), so the
+//! same query finds it and the vehicle goes round it too.
 
 use std::time::{Duration, Instant};
 
 use nalgebra::{Vector2, Vector3};
 
+use crate::scanner::{ScannerParams, Scene, SimScanner};
 use crate::vehicle::{SimVehicle, VehicleParams};
 use jaus::component::local::{Endpoint, LocalBus};
 use jaus::component::{Config, CoreState, Refused};
 use jaus::components::system_commander::{self, Ctx, SystemCommander};
 use jaus::components::{
     global_pose_sensor, global_waypoint_driver, local_path_segment_driver, local_pose_sensor,
-    mission_spooler, primitive_driver, reflexive_driver, velocity_state_sensor,
+    mission_spooler, primitive_driver, range_sensor, reflexive_driver, velocity_state_sensor,
     world_model_vector_knowledge_store,
 };
 use jaus::messages::*;
@@ -34,6 +38,8 @@ use jaus::stock::drivers::{
     PrimitiveConfig, ReflexiveConfig, StockGlobalWaypointDriver, StockLocalPathSegmentDriver,
     StockPrimitiveDriver, StockReflexiveDriver,
 };
+use jaus::stock::environment::map_feed::MapFeedConfig;
+use jaus::stock::environment::range::{RangeConfig, StockRangeSensor};
 use jaus::stock::geo::LocalFrame;
 use jaus::stock::motion::DriverConfig;
 use jaus::stock::path::{Path, PathSegment};
@@ -63,6 +69,8 @@ pub mod addr {
     pub const MS: Address = Address::new(1, 1, 36, 1);
     /// World Model Vector Knowledge Store.
     pub const WM: Address = Address::new(1, 1, 61, 1);
+    /// Range Sensor.
+    pub const RS: Address = Address::new(1, 1, 50, 1);
     /// The operator (System Commander).
     pub const OCU: Address = Address::new(1, 2, 40, 1);
 
@@ -140,6 +148,13 @@ pub const MISSION: [(f64, f64); 2] = [(3.0, -4.0), (0.0, 0.0)];
 /// to the first mission point, so the operator's planner must go round it.
 pub const OBSTACLE: ((f64, f64), f64) = ((5.5, -2.5), 0.6);
 
+/// An obstacle on the way home that nobody stores: only the Range Sensor's detections
+/// put it in the world model. Centre (local metres) and radius.
+pub const UNKNOWN_OBSTACLE: ((f64, f64), f64) = ((1.5, -2.0), 0.4);
+
+/// Feature class of the objects the operator stores (the Range Sensor's are class 2).
+pub const OPERATOR_CLASS: u16 = 1;
+
 /// Clearance the operator's planner keeps from a stored obstacle's buffer, m.
 pub const CLEARANCE: f64 = 0.6;
 
@@ -172,6 +187,11 @@ pub struct Report {
     /// Closest approach of the vehicle to the obstacle's centre during the mission, m
     /// (the obstacle's radius is `OBSTACLE.1`).
     pub obstacle_clearance: f64,
+    /// Closest approach to [`UNKNOWN_OBSTACLE`]'s centre during the mission, m.
+    pub unknown_clearance: f64,
+    /// Objects along the mission the world model returned: (stored by the operator,
+    /// detected by the Range Sensor), after merging those that overlap.
+    pub objects_found: (usize, usize),
     /// The mission's moves as the operator planned them from the world model.
     pub planned: Vec<(f64, f64)>,
     /// Distance from the final point of each phase when it ended, m.
@@ -202,8 +222,9 @@ pub struct Operator {
     planned: Vec<(f64, f64)>,
     /// Positions received from the Local Pose Sensor (at most `TRAIL_MAX`).
     trail: Vec<(Instant, Vector2<f64>)>,
-    /// Obstacles the world model returned for the first leg.
-    obstacles_found: usize,
+    /// Objects along the mission the world model returned: (stored by the operator,
+    /// detected by the range sensor).
+    objects_found: (usize, usize),
     path_started: Option<Instant>,
     next_query: Option<Instant>,
 }
@@ -347,7 +368,7 @@ impl SystemCommander for Operator {
                             object_type: VksObjectType::Point,
                             buffer: Some(r as f32),
                             feature_classes: vec![VksFeatureClass {
-                                id: 1,
+                                id: OPERATOR_CLASS,
                                 attribute: VksAttribute::Default,
                             }],
                             points: vec![VksPoint {
@@ -357,9 +378,7 @@ impl SystemCommander for Operator {
                         }],
                     },
                 );
-                let from = Vector2::new(SEGMENTS[1].1 .0, SEGMENTS[1].1 .1);
-                let to = Vector2::new(MISSION[0].0, MISSION[0].1);
-                let region_points = [from, to]
+                let region_points = mission_route()
                     .iter()
                     .map(|p| {
                         let (latitude, longitude) = frame.to_global(*p);
@@ -412,16 +431,25 @@ impl SystemCommander for Operator {
             }
             Message::ReportVksObjects(r) if self.step == Step::PlanMission && r.request_id == 2 => {
                 let frame = LocalFrame::new(ORIGIN.0, ORIGIN.1, ORIGIN.2);
-                let from = Vector2::new(SEGMENTS[1].1 .0, SEGMENTS[1].1 .1);
-                let to = Vector2::new(MISSION[0].0, MISSION[0].1);
-                let mut plan = Vec::new();
-                for o in r.objects.iter().flatten() {
-                    let Some(p) = o.points.first() else { continue };
-                    let c = frame.to_local(p.latitude, p.longitude);
-                    plan.push(detour(from, to, c, f64::from(o.buffer)));
-                    self.obstacles_found += 1;
-                }
-                plan.extend(MISSION);
+                let objects: Vec<Found> = r
+                    .objects
+                    .iter()
+                    .flatten()
+                    .filter_map(|o| {
+                        let p = o.points.first()?;
+                        Some(Found {
+                            centre: frame.to_local(p.latitude, p.longitude),
+                            buffer: f64::from(o.buffer),
+                            operator: o.feature_classes.iter().any(|c| c.id == OPERATOR_CLASS),
+                        })
+                    })
+                    .collect();
+                let objects = merge_overlapping(objects);
+                self.objects_found = (
+                    objects.iter().filter(|o| o.operator).count(),
+                    objects.iter().filter(|o| !o.operator).count(),
+                );
+                let plan = plan_round(&mission_route(), &objects);
                 self.planned = plan.clone();
                 ctx.send(
                     addr::MS,
@@ -538,6 +566,71 @@ fn mission_message(frame: &LocalFrame, speed: f64, moves: &[(f64, f64)]) -> Spoo
     }
 }
 
+/// The mission as driven: from P4 (where the path segments end) through the moves.
+fn mission_route() -> Vec<Vector2<f64>> {
+    let mut route = vec![Vector2::new(SEGMENTS[1].1 .0, SEGMENTS[1].1 .1)];
+    route.extend(MISSION.iter().map(|(x, y)| Vector2::new(*x, *y)));
+    route
+}
+
+/// An object the world model returned.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Found {
+    centre: Vector2<f64>,
+    buffer: f64,
+    /// Stored by the operator (else detected by the range sensor).
+    operator: bool,
+}
+
+/// One object for each group of overlapping ones (the range sensor also detects the
+/// obstacle the operator stored): the one with the largest buffer, the operator's
+/// flag if either was the operator's.
+fn merge_overlapping(objects: Vec<Found>) -> Vec<Found> {
+    let mut out: Vec<Found> = Vec::new();
+    for o in objects {
+        match out
+            .iter_mut()
+            .find(|k| (k.centre - o.centre).norm() < k.buffer.max(o.buffer))
+        {
+            Some(k) => {
+                let operator = k.operator || o.operator;
+                if o.buffer > k.buffer {
+                    *k = o;
+                }
+                k.operator = operator;
+            }
+            None => out.push(o),
+        }
+    }
+    out
+}
+
+/// The moves of `route` (its first point is where the vehicle is) with a detour
+/// waypoint before each leg's end for every object within its buffer plus
+/// [`CLEARANCE`] of that leg, in the order the leg meets them.
+fn plan_round(route: &[Vector2<f64>], objects: &[Found]) -> Vec<(f64, f64)> {
+    let mut plan = Vec::new();
+    for leg in route.windows(2) {
+        let (from, to) = (leg[0], leg[1]);
+        let Some(dir) = (to - from).try_normalize(1e-9) else {
+            plan.push((to.x, to.y));
+            continue;
+        };
+        let mut on_leg: Vec<(f64, (f64, f64))> = objects
+            .iter()
+            .filter_map(|o| {
+                let along = (o.centre - from).dot(&dir).clamp(0.0, (to - from).norm());
+                let off = (o.centre - (from + dir * along)).norm();
+                (off < o.buffer + CLEARANCE).then(|| (along, detour(from, to, o.centre, o.buffer)))
+            })
+            .collect();
+        on_leg.sort_by(|a, b| a.0.total_cmp(&b.0));
+        plan.extend(on_leg.into_iter().map(|(_, p)| p));
+        plan.push((to.x, to.y));
+    }
+    plan
+}
+
 /// A waypoint that takes the leg `from` → `to` round an obstacle at `c` with buffer `r`:
 /// beside the obstacle's projection on the leg, `r` + [`CLEARANCE`] + a margin for the
 /// corner the vehicle cuts, on the side the obstacle leaves free.
@@ -599,6 +692,23 @@ pub fn vehicle_at(
             ..Default::default()
         },
     );
+    // The world as it is: the obstacle the operator stores and one nobody stores.
+    let circle = |((x, y), r): ((f64, f64), f64)| (Vector2::new(x, y), r);
+    let scanner = SimScanner::new(
+        vehicle.clone(),
+        Scene {
+            circles: vec![circle(OBSTACLE), circle(UNKNOWN_OBSTACLE)],
+        },
+        ScannerParams {
+            noise: 0.01,
+            seed: opts.seed,
+            ..ScannerParams::default()
+        },
+    );
+    let rs = StockRangeSensor::new(scanner, RangeConfig::default()).with_map_feed(MapFeedConfig {
+        origin: Some(LocalFrame::new(ORIGIN.0, ORIGIN.1, ORIGIN.2)),
+        ..MapFeedConfig::new(at(addr::WM), at(addr::GPS))
+    });
     let gwd = StockGlobalWaypointDriver::new(driver_config(at(addr::GPS), ss, node));
     let lpsd = StockLocalPathSegmentDriver::new(driver_config(at(addr::LPS), ss, node));
     let parts: Vec<Box<dyn Endpoint>> = vec![
@@ -644,6 +754,7 @@ pub fn vehicle_at(
             cfg.clone(),
             t0,
         )),
+        Box::new(range_sensor::component(at(addr::RS), rs, cfg.clone(), t0)),
         Box::new(world_model_vector_knowledge_store::component(
             at(addr::WM),
             StockWorldModel::new(WorldModelConfig::default()),
@@ -773,9 +884,14 @@ pub fn run(opts: &Options, mut print: impl FnMut(&str)) -> Result<Report, String
             }
         }
         if step == Step::Done {
-            let planned = bus
+            let (planned, found) = bus
                 .get::<Ocu>(addr::OCU)
-                .map(|o| o.behaviour().0.planned.clone())
+                .map(|o| {
+                    (
+                        o.behaviour().0.planned.clone(),
+                        o.behaviour().0.objects_found,
+                    )
+                })
                 .unwrap_or_default();
             let trail: Vec<(f64, Vector2<f64>)> = vehicle
                 .lock()
@@ -784,7 +900,14 @@ pub fn run(opts: &Options, mut print: impl FnMut(&str)) -> Result<Report, String
                 .map(|(d, p)| (d.as_secs_f64(), *p))
                 .collect();
             let run = ((bus.now() - t0).as_secs_f64(), bus.stats().delivered);
-            return Ok(measure(t0, &trail, done_at, horn_at, &planned, run));
+            return Ok(measure(
+                t0,
+                &trail,
+                done_at,
+                horn_at,
+                (&planned, found),
+                run,
+            ));
         }
         if elapsed > opts.timeout {
             return Err(format!(
@@ -844,7 +967,7 @@ fn measure(
     trail: &[(f64, Vector2<f64>)],
     done_at: [Option<Instant>; 3],
     horn_at: Option<Instant>,
-    planned: &[(f64, f64)],
+    (planned, objects_found): (&[(f64, f64)], (usize, usize)),
     (duration, messages): (f64, u64),
 ) -> Report {
     let [wp_done, path_done, mission_done] = done_at;
@@ -912,12 +1035,15 @@ fn measure(
             .map(|(_, p)| *p)
             .unwrap_or_default()
     };
-    let ((ox, oy), _) = OBSTACLE;
-    let obstacle_clearance = trail
-        .iter()
-        .filter(|(t, _)| *t >= path_end && *t <= mission_end)
-        .map(|(_, p)| (p - Vector2::new(ox, oy)).norm())
-        .fold(f64::INFINITY, f64::min);
+    let clearance = |((ox, oy), _): ((f64, f64), f64)| {
+        trail
+            .iter()
+            .filter(|(t, _)| *t >= path_end && *t <= mission_end)
+            .map(|(_, p)| (p - Vector2::new(ox, oy)).norm())
+            .fold(f64::INFINITY, f64::min)
+    };
+    let obstacle_clearance = clearance(OBSTACLE);
+    let unknown_clearance = clearance(UNKNOWN_OBSTACLE);
     let final_errors = vec![
         (at(wp_end) - Vector2::new(WAYPOINTS[4].0, WAYPOINTS[4].1)).norm(),
         (at(path_end) - Vector2::new(SEGMENTS[1].1 .0, SEGMENTS[1].1 .1)).norm(),
@@ -937,6 +1063,8 @@ fn measure(
         mission_done: secs(mission_done),
         horn_at: secs(horn_at),
         obstacle_clearance,
+        unknown_clearance,
+        objects_found,
         planned: planned.to_vec(),
         final_errors,
         duration,
@@ -966,7 +1094,7 @@ pub fn operator_report(t0: Instant, ocu: &Ocu) -> Option<Report> {
         &trail,
         [o.waypoints_done, o.path_done, o.mission_done],
         o.horn_at,
-        &o.planned,
+        (&o.planned, o.objects_found),
         (end, ocu.stats().received),
     ))
 }

@@ -1,5 +1,6 @@
 //! Stock environment-sensor components (Part 1 §5.5), each over a small hardware trait
 //! that `jaus-sim` implements with a simulated device. So far: the Range Sensor
-//! ([`range`]).
+//! ([`range`]), whose detections can be kept in a world model ([`map_feed`]).
 
+pub mod map_feed;
 pub mod range;

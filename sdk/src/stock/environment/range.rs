@@ -6,10 +6,12 @@
 
 use std::time::Instant;
 
+use super::map_feed::{MapFeed, MapFeedConfig, MapFeedStats, MapUpdate};
 use crate::component::Refused;
 use crate::components::range_sensor as rs;
 use crate::messages::*;
 use crate::stock::drivers::ObstacleSource;
+use crate::JausMessage;
 
 /// One beam of a sweep, in the platform frame (x forward, y right).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -35,6 +37,8 @@ pub struct Detection {
     pub bearing: f64,
     /// Beams that saw the object.
     pub beams: usize,
+    /// Angle between the object's first and last beam, rad (0 for one beam).
+    pub span: f64,
 }
 
 /// Groups a sweep's returns into objects: neighbouring beams (in the order given)
@@ -42,6 +46,7 @@ pub struct Detection {
 pub fn detections(beams: &[Beam], gap: f64) -> Vec<Detection> {
     let mut out: Vec<Detection> = Vec::new();
     let mut last: Option<f64> = None;
+    let mut first_bearing = 0.0;
     for b in beams {
         let Some(r) = b.range.filter(|r| r.is_finite() && *r >= 0.0) else {
             last = None;
@@ -50,16 +55,21 @@ pub fn detections(beams: &[Beam], gap: f64) -> Vec<Detection> {
         match (last, out.last_mut()) {
             (Some(prev), Some(d)) if (r - prev).abs() <= gap => {
                 d.beams += 1;
+                d.span = (b.bearing - first_bearing).abs();
                 if r < d.range {
                     d.range = r;
                     d.bearing = b.bearing;
                 }
             }
-            _ => out.push(Detection {
-                range: r,
-                bearing: b.bearing,
-                beams: 1,
-            }),
+            _ => {
+                first_bearing = b.bearing;
+                out.push(Detection {
+                    range: r,
+                    bearing: b.bearing,
+                    beams: 1,
+                    span: 0.0,
+                });
+            }
         }
         last = Some(r);
     }
@@ -93,13 +103,16 @@ impl Default for RangeConfig {
     }
 }
 
-/// The Range Sensor over a [`RangeScanner`].
+/// The Range Sensor over a [`RangeScanner`]; with [`with_map_feed`](Self::with_map_feed)
+/// it also keeps what it detects in a world model ([`map_feed`](super::map_feed)).
 #[derive(Debug)]
 pub struct StockRangeSensor<S> {
     scanner: S,
     config: RangeConfig,
     beams: Vec<Beam>,
     sweeps: u64,
+    feed: Option<MapFeed>,
+    subscribed: bool,
 }
 
 impl<S: RangeScanner> StockRangeSensor<S> {
@@ -110,7 +123,20 @@ impl<S: RangeScanner> StockRangeSensor<S> {
             config,
             beams: Vec::new(),
             sweeps: 0,
+            feed: None,
+            subscribed: false,
         }
+    }
+
+    /// Also keeps its detections in the world model of `feed`.
+    pub fn with_map_feed(mut self, feed: MapFeedConfig) -> Self {
+        self.feed = Some(MapFeed::new(feed));
+        self
+    }
+
+    /// The world-model feed's counters, when it has one.
+    pub fn map_feed_stats(&self) -> Option<MapFeedStats> {
+        self.feed.as_ref().map(MapFeed::stats)
     }
 
     /// Sweeps read so far.
@@ -131,6 +157,58 @@ impl<S: RangeScanner> StockRangeSensor<S> {
 }
 
 impl<S: RangeScanner> rs::RangeSensor for StockRangeSensor<S> {
+    fn tick(&mut self, ctx: &mut rs::Ctx<'_>) {
+        let Some(feed) = self.feed.as_mut() else {
+            return;
+        };
+        let now = ctx.now();
+        if !self.subscribed {
+            self.subscribed = true;
+            // Latitude, longitude, elevation and yaw (bits 0-2 and 6), at 10 Hz.
+            let pose = feed.config().pose_sensor;
+            if let Err(e) = ctx.create_service_connection(pose, ReportGlobalPose::CODE, 10.0, 0x47)
+            {
+                tracing::warn!(address = %ctx.address(), %pose, "no pose for the world-model feed: {e}");
+            }
+        }
+        if !feed.due(now) || !self.scanner.scan(now, &mut self.beams) {
+            return;
+        }
+        self.sweeps += 1;
+        let found = detections(&self.beams, self.config.gap);
+        let to = feed.config().world_model;
+        for update in feed.observe(now, &self.beams, &found) {
+            match update {
+                MapUpdate::Create(m) => ctx.send(to, m),
+                MapUpdate::Delete(m) => ctx.send(to, m),
+            }
+        }
+    }
+
+    fn on_report_global_pose(
+        &mut self,
+        ctx: &mut rs::Ctx<'_>,
+        msg: &ReportGlobalPose,
+    ) -> Result<(), Refused> {
+        if let Some(feed) = self.feed.as_mut() {
+            feed.on_global_pose(ctx.now(), msg);
+        }
+        Ok(())
+    }
+
+    fn on_report_vks_objects_creation(
+        &mut self,
+        ctx: &mut rs::Ctx<'_>,
+        msg: &ReportVksObjectsCreation,
+    ) -> Result<(), Refused> {
+        if let Some(feed) = self.feed.as_mut() {
+            if let Some(delete) = feed.on_created(msg) {
+                ctx.send(feed.config().world_model, delete);
+            }
+        }
+        Ok(())
+    }
+
     fn on_query_relative_object_position(
         &mut self,
         ctx: &mut rs::Ctx<'_>,
@@ -226,6 +304,8 @@ mod tests {
         let d = detections(&beams, 0.3);
         assert_eq!(d.len(), 3);
         assert_eq!((d[0].range, d[0].beams), (4.0, 3));
+        assert!((d[0].span - 10f64.to_radians()).abs() < 1e-12);
+        assert_eq!(d[2].span, 0.0);
         assert!(d[0].bearing.abs() < 1e-12);
         assert_eq!((d[1].range, d[2].range), (9.0, 2.0));
         assert!(detections(&[beam(0.0, Some(f64::NAN))], 0.3).is_empty());
