@@ -741,6 +741,13 @@ fn the_networked_demo_operator_finishes_and_writes_its_plot() {
         "{}",
         &svg[..svg.len().min(200)]
     );
+    // The Visual Sensor's 640×480 PNG (tens of kilobytes: a multi-packet message over
+    // UDP, reassembled by the operator's node).
+    let png = std::fs::read(out_dir.join("camera.png")).expect("camera image written");
+    assert!(png.len() > 4096, "{} bytes: one packet", png.len());
+    assert_eq!(&png[..8], b"\x89PNG\r\n\x1a\n");
+    assert_eq!(&png[16..24], &[0, 0, 2, 128, 0, 0, 1, 224]);
+    assert!(text.contains("camera image:"), "{text}");
 
     // Issue 15 item 2: the node's capture decodes to the demo's messages ...
     std::thread::sleep(Duration::from_millis(1500)); // the node flushes every second
@@ -763,6 +770,8 @@ fn the_networked_demo_operator_finishes_and_writes_its_plot() {
         "CreateVksObjects",
         "SpoolMission",
         "RunMission",
+        "QueryImage",
+        "ReportImage",
         "ReportLocalPose",
         "ReportHeartbeatPulse",
     ] {

@@ -614,6 +614,11 @@ fn main() -> ExitCode {
                     let path = report::write_svg(&run, &dir)
                         .map_err(|e| format!("{}: {e}", dir.display()))?;
                     let _ = writeln!(out, "plot: {}", path.display());
+                    if let Some((path, what)) = report::write_image(&run, &dir)
+                        .map_err(|e| format!("{}: {e}", dir.display()))?
+                    {
+                        let _ = writeln!(out, "camera image: {} ({what})", path.display());
+                    }
                     Ok(())
                 }),
             )
@@ -674,16 +679,21 @@ fn main() -> ExitCode {
             };
             let _ = writeln!(
                 out,
-                "JAUS demo: subsystem 1 node 1 (primitive and reflexive drivers, pose and velocity sensors, global waypoint and local path-segment drivers, mission spooler, world model, over a simulated skid-steer vehicle), operator 1.2.40.1"
+                "JAUS demo: subsystem 1 node 1 (primitive and reflexive drivers, pose and velocity sensors, range and visual sensors, global waypoint and local path-segment drivers, mission spooler, world model, over a simulated skid-steer vehicle), operator 1.2.40.1"
             );
             match jaus_sim::demo::run(&opts, |line| {
                 let _ = writeln!(std::io::stdout(), "{line}");
             }) {
                 Ok(run) => {
                     let _ = writeln!(out, "{}", report::summary(&run));
-                    match report::write_svg(&run, &dir) {
-                        Ok(path) => {
-                            let _ = writeln!(out, "plot: {}", path.display());
+                    match report::write_svg(&run, &dir).and_then(|path| {
+                        let _ = writeln!(out, "plot: {}", path.display());
+                        report::write_image(&run, &dir)
+                    }) {
+                        Ok(image) => {
+                            if let Some((path, what)) = image {
+                                let _ = writeln!(out, "camera image: {} ({what})", path.display());
+                            }
                             true
                         }
                         Err(e) => {

@@ -15,6 +15,30 @@ pub fn write_svg(report: &Report, dir: &Path) -> std::io::Result<PathBuf> {
     Ok(path)
 }
 
+/// Writes the image the operator received from the Visual Sensor into `dir` as
+/// `camera.png` (or `.ppm`, by its format), with a line saying what it is; `None`
+/// when there is none.
+pub fn write_image(report: &Report, dir: &Path) -> std::io::Result<Option<(PathBuf, String)>> {
+    let Some(img) = &report.image else {
+        return Ok(None);
+    };
+    let ext = match img.video_format {
+        jaus::messages::ImageFormat::Png => "png",
+        jaus::messages::ImageFormat::Ppm => "ppm",
+        _ => "bin",
+    };
+    std::fs::create_dir_all(dir)?;
+    let path = dir.join(format!("camera.{ext}"));
+    std::fs::write(&path, &img.data)?;
+    let what = format!(
+        "{:?}, {} bytes, camera {} of the Visual Sensor 1.1.37.1",
+        img.video_format,
+        img.data.len(),
+        img.camera_id
+    );
+    Ok(Some((path, what)))
+}
+
 /// An SVG of the commanded paths (blue, waypoints and control points marked) and the
 /// driven trajectory (red). x (north) is drawn up, y (east) to the right.
 pub fn svg(r: &Report) -> String {

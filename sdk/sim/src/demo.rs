@@ -17,12 +17,15 @@
 //! Spooler, which drives the waypoint driver. The world also holds an obstacle nobody
 //! stored ([`UNKNOWN_OBSTACLE`], on the way home): the vehicle's Range Sensor detects
 //! it and keeps it in the world model (`jaus::stock::environment::map_feed`), so the
-//! same query finds it and the vehicle goes round it too.
+//! same query finds it and the vehicle goes round it too. At the start the operator asks
+//! the Visual Sensor for an image (the simulated camera's view ahead, both obstacles in
+//! it).
 
 use std::time::{Duration, Instant};
 
 use nalgebra::{Vector2, Vector3};
 
+use crate::camera::SimCamera;
 use crate::scanner::{ScannerParams, Scene, SimScanner};
 use crate::vehicle::{SimVehicle, VehicleParams};
 use jaus::component::local::{Endpoint, LocalBus};
@@ -31,13 +34,14 @@ use jaus::components::system_commander::{self, Ctx, SystemCommander};
 use jaus::components::{
     global_pose_sensor, global_waypoint_driver, local_path_segment_driver, local_pose_sensor,
     mission_spooler, primitive_driver, range_sensor, reflexive_driver, velocity_state_sensor,
-    world_model_vector_knowledge_store,
+    visual_sensor, world_model_vector_knowledge_store,
 };
 use jaus::messages::*;
 use jaus::stock::drivers::{
     PrimitiveConfig, ReflexiveConfig, StockGlobalWaypointDriver, StockLocalPathSegmentDriver,
     StockPrimitiveDriver, StockReflexiveDriver,
 };
+use jaus::stock::environment::camera::{StockVisualSensor, VisualConfig};
 use jaus::stock::environment::map_feed::MapFeedConfig;
 use jaus::stock::environment::range::{RangeConfig, StockRangeSensor};
 use jaus::stock::geo::LocalFrame;
@@ -71,6 +75,8 @@ pub mod addr {
     pub const WM: Address = Address::new(1, 1, 61, 1);
     /// Range Sensor.
     pub const RS: Address = Address::new(1, 1, 50, 1);
+    /// Visual Sensor.
+    pub const VS: Address = Address::new(1, 1, 37, 1);
     /// The operator (System Commander).
     pub const OCU: Address = Address::new(1, 2, 40, 1);
 
@@ -194,6 +200,8 @@ pub struct Report {
     pub objects_found: (usize, usize),
     /// The mission's moves as the operator planned them from the world model.
     pub planned: Vec<(f64, f64)>,
+    /// The image the operator received from the Visual Sensor at the start.
+    pub image: Option<ReportImage>,
     /// Distance from the final point of each phase when it ended, m.
     pub final_errors: Vec<f64>,
     /// Simulated duration, s.
@@ -227,6 +235,10 @@ pub struct Operator {
     objects_found: (usize, usize),
     path_started: Option<Instant>,
     next_query: Option<Instant>,
+    /// The Visual Sensor's image, and how often it was asked for.
+    image: Option<ReportImage>,
+    image_queries: u32,
+    next_image: Option<Instant>,
 }
 
 #[derive(Debug, Default, Clone, Copy, PartialEq, Eq)]
@@ -272,6 +284,16 @@ impl SystemCommander for Operator {
             }
         }
         self.started.get_or_insert(now);
+        // A picture of the scene before the run (a query a second, five at most: a
+        // lost image does not hold anything up).
+        if self.image.is_none()
+            && self.image_queries < 5
+            && self.next_image.is_none_or(|t| now >= t)
+        {
+            self.image_queries += 1;
+            self.next_image = Some(now + Duration::from_secs(1));
+            ctx.send(addr::VS, QueryImage {});
+        }
         let frame = LocalFrame::new(ORIGIN.0, ORIGIN.1, ORIGIN.2);
         match self.step {
             Step::TakeControl => {
@@ -465,6 +487,9 @@ impl SystemCommander for Operator {
             {
                 self.mission_done = Some(ctx.now());
                 self.step = Step::Done;
+            }
+            Message::ReportImage(r) if self.image.is_none() => {
+                self.image = Some(r.clone());
             }
             Message::ReportDiscreteDevices(d)
                 if self.horn_at.is_none() && d.parking_brake_and_horn.is_some_and(|p| p.horn) =>
@@ -694,11 +719,16 @@ pub fn vehicle_at(
     );
     // The world as it is: the obstacle the operator stores and one nobody stores.
     let circle = |((x, y), r): ((f64, f64), f64)| (Vector2::new(x, y), r);
+    let scene = Scene {
+        circles: vec![circle(OBSTACLE), circle(UNKNOWN_OBSTACLE)],
+    };
+    let vs = StockVisualSensor::new(
+        SimCamera::new(vehicle.clone(), scene.clone()),
+        VisualConfig::default(),
+    );
     let scanner = SimScanner::new(
         vehicle.clone(),
-        Scene {
-            circles: vec![circle(OBSTACLE), circle(UNKNOWN_OBSTACLE)],
-        },
+        scene,
         ScannerParams {
             noise: 0.01,
             seed: opts.seed,
@@ -755,6 +785,7 @@ pub fn vehicle_at(
             t0,
         )),
         Box::new(range_sensor::component(at(addr::RS), rs, cfg.clone(), t0)),
+        Box::new(visual_sensor::component(at(addr::VS), vs, cfg.clone(), t0)),
         Box::new(world_model_vector_knowledge_store::component(
             at(addr::WM),
             StockWorldModel::new(WorldModelConfig::default()),
@@ -884,13 +915,11 @@ pub fn run(opts: &Options, mut print: impl FnMut(&str)) -> Result<Report, String
             }
         }
         if step == Step::Done {
-            let (planned, found) = bus
+            let (planned, found, image) = bus
                 .get::<Ocu>(addr::OCU)
                 .map(|o| {
-                    (
-                        o.behaviour().0.planned.clone(),
-                        o.behaviour().0.objects_found,
-                    )
+                    let o = &o.behaviour().0;
+                    (o.planned.clone(), o.objects_found, o.image.clone())
                 })
                 .unwrap_or_default();
             let trail: Vec<(f64, Vector2<f64>)> = vehicle
@@ -900,14 +929,10 @@ pub fn run(opts: &Options, mut print: impl FnMut(&str)) -> Result<Report, String
                 .map(|(d, p)| (d.as_secs_f64(), *p))
                 .collect();
             let run = ((bus.now() - t0).as_secs_f64(), bus.stats().delivered);
-            return Ok(measure(
-                t0,
-                &trail,
-                done_at,
-                horn_at,
-                (&planned, found),
-                run,
-            ));
+            return Ok(Report {
+                image,
+                ..measure(t0, &trail, done_at, horn_at, (&planned, found), run)
+            });
         }
         if elapsed > opts.timeout {
             return Err(format!(
@@ -1066,6 +1091,7 @@ fn measure(
         unknown_clearance,
         objects_found,
         planned: planned.to_vec(),
+        image: None,
         final_errors,
         duration,
         messages,
@@ -1089,12 +1115,15 @@ pub fn operator_report(t0: Instant, ocu: &Ocu) -> Option<Report> {
         .map(|(t, p)| ((*t - t0).as_secs_f64(), *p))
         .collect();
     let end = o.trail.last().map_or(0.0, |(t, _)| (*t - t0).as_secs_f64());
-    Some(measure(
-        t0,
-        &trail,
-        [o.waypoints_done, o.path_done, o.mission_done],
-        o.horn_at,
-        (&o.planned, o.objects_found),
-        (end, ocu.stats().received),
-    ))
+    Some(Report {
+        image: o.image.clone(),
+        ..measure(
+            t0,
+            &trail,
+            [o.waypoints_done, o.path_done, o.mission_done],
+            o.horn_at,
+            (&o.planned, o.objects_found),
+            (end, ocu.stats().received),
+        )
+    })
 }

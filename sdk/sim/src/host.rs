@@ -30,7 +30,6 @@ use crate::demo::{OBSTACLE, ORIGIN};
 use crate::scanner::{ScannerParams, Scene, SimScanner};
 use crate::vehicle::{SimVehicle, VehicleParams};
 use jaus::component::{Config, Endpoint};
-use jaus::components::range_sensor;
 use jaus::components::{
     global_path_segment_driver, global_pose_sensor, global_vector_driver, global_waypoint_driver,
     local_path_segment_driver, local_pose_sensor, local_vector_driver, local_waypoint_driver,
@@ -44,10 +43,12 @@ use jaus::components::{
     manipulator_joint_positions_driver, manipulator_joint_velocities_driver,
     manipulator_joint_velocity_sensor, primitive_manipulator,
 };
+use jaus::components::{range_sensor, visual_sensor};
 use jaus::stock::drivers::{
     Navigator, PrimitiveConfig, ReflexiveConfig, StockPrimitiveDriver, StockReflexiveDriver,
     StockVectorDriver,
 };
+use jaus::stock::environment::camera::{StockVisualSensor, VisualConfig};
 use jaus::stock::environment::range::{RangeConfig, ScanObstacles, StockRangeSensor};
 use jaus::stock::geo::LocalFrame;
 use jaus::stock::manipulator::link::ArmDriverConfig;
@@ -94,6 +95,9 @@ pub enum Stock {
     /// Range Sensor (50): a scanner on the simulated vehicle, looking at the demo's
     /// obstacle (the Reflexive Driver's obstacle source uses the same scanner).
     RangeSensor,
+    /// Visual Sensor (37): a pan/tilt camera on the simulated vehicle drawing the demo's
+    /// obstacle from above.
+    VisualSensor,
     /// Primitive Manipulator (49) over the simulated arm.
     PrimitiveManipulator,
     /// Manipulator Joint Position Sensor (51) of the simulated arm.
@@ -133,6 +137,7 @@ impl Stock {
         ("mission_spooler", Stock::MissionSpooler),
         ("world_model", Stock::WorldModel),
         ("range_sensor", Stock::RangeSensor),
+        ("visual_sensor", Stock::VisualSensor),
         ("primitive_manipulator", Stock::PrimitiveManipulator),
         ("joint_position_sensor", Stock::JointPositionSensor),
         ("joint_velocity_sensor", Stock::JointVelocitySensor),
@@ -181,6 +186,7 @@ impl Stock {
             Stock::MissionSpooler => 36,
             Stock::WorldModel => 61,
             Stock::RangeSensor => 50,
+            Stock::VisualSensor => 37,
             Stock::PrimitiveManipulator => 49,
             Stock::JointPositionSensor => 51,
             Stock::JointVelocitySensor => 52,
@@ -374,6 +380,15 @@ impl Host {
             Stock::RangeSensor => Box::new(range_sensor::component(
                 at,
                 StockRangeSensor::new(self.scanner.clone(), RangeConfig::default()),
+                cfg,
+                t0,
+            )),
+            Stock::VisualSensor => Box::new(visual_sensor::component(
+                at,
+                StockVisualSensor::new(
+                    crate::camera::SimCamera::new(self.vehicle.clone(), self.scanner.scene()),
+                    VisualConfig::default(),
+                ),
                 cfg,
                 t0,
             )),

@@ -13,6 +13,8 @@
 //!   components and a scripted pick-and-place operator;
 //! * [`scanner`]: a scanning range finder on the simulated vehicle, ray-cast against a
 //!   scene of obstacles (the Range Sensor's and the Reflexive Driver's hardware);
+//! * [`camera`]: a pan/tilt camera on the simulated vehicle drawing the scene from
+//!   above (the Visual Sensor's hardware);
 //! * [`network`]: [`network::SimNet`], several sans-IO [`jaus::net::Node`]s on a
 //!   simulated lossy network (drops, duplicates, delays) with a virtual clock;
 //! * [`host`]: any stock component at any instance of a node, over one simulated
@@ -24,6 +26,7 @@
 
 pub mod arm;
 pub mod arm_demo;
+pub mod camera;
 pub mod demo;
 pub mod host;
 pub mod network;

@@ -83,6 +83,15 @@ impl SimScanner {
         }
     }
 
+    /// The scene as it is now.
+    pub fn scene(&self) -> Scene {
+        self.state
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .scene
+            .clone()
+    }
+
     /// Adds an obstacle to the scene (one the world model may not know about).
     pub fn add_obstacle(&self, centre: Vector2<f64>, radius: f64) {
         let mut s = self.state.lock().unwrap_or_else(|e| e.into_inner());

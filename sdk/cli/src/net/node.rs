@@ -33,7 +33,7 @@ use jaus::net::{udp, Framing, Node, NodeConfig, SystemTree};
 /// `primitive_driver`, `reflexive_driver`, `global_pose_sensor`, `local_pose_sensor`,
 /// `velocity_state_sensor`, `global_vector_driver`, `local_vector_driver`,
 /// `global_waypoint_driver`, `local_waypoint_driver`, `global_path_segment_driver`,
-/// `local_path_segment_driver`, `mission_spooler`, `world_model`, `range_sensor`, and the manipulator
+/// `local_path_segment_driver`, `mission_spooler`, `world_model`, `range_sensor`, `visual_sensor`, and the manipulator
 /// components `primitive_manipulator`, `joint_position_sensor`, `joint_velocity_sensor`,
 /// `joint_force_torque_sensor`, `joint_positions_driver`, `end_effector_pose_driver`,
 /// `joint_velocities_driver`, `end_effector_velocity_state_driver`, `joint_move_driver`,
