@@ -14,7 +14,7 @@ use std::time::{Duration, Instant};
 
 use nalgebra::{Rotation2, Vector2};
 
-use super::range::{Beam, Detection};
+use super::scan::{Beam, Detection};
 use crate::messages::*;
 use crate::stock::geo::LocalFrame;
 use crate::Address;
@@ -451,7 +451,7 @@ mod tests {
         let obstacle = (Vector2::new(6.0, 1.0), 0.5);
         f.on_global_pose(t0, &pose(lat, lon, 0.0));
         let beams = sweep(Vector2::zeros(), 0.0, &[obstacle]);
-        let found = super::super::range::detections(&beams, 0.3);
+        let found = super::super::scan::detections(&beams, 0.3);
         let out = f.observe(t0, &beams, &found);
         assert_eq!(out.len(), 1);
         let MapUpdate::Create(c) = &out[0] else {
@@ -499,7 +499,7 @@ mod tests {
         let (mut f, frame) = feed();
         let t0 = Instant::now();
         let beams = sweep(Vector2::zeros(), 0.0, &[(Vector2::new(4.0, 0.0), 0.5)]);
-        let found = super::super::range::detections(&beams, 0.3);
+        let found = super::super::scan::detections(&beams, 0.3);
         assert!(f.observe(t0, &beams, &found).is_empty());
         let (lat, lon) = frame.to_global(Vector2::zeros());
         f.on_global_pose(t0, &pose(lat, lon, 0.0));
@@ -520,7 +520,7 @@ mod tests {
             .map(|i| (Vector2::new(5.0, -6.0 + 4.0 * i as f64), 0.4))
             .collect();
         let beams = sweep(Vector2::zeros(), 0.0, &circles);
-        let found = super::super::range::detections(&beams, 0.3);
+        let found = super::super::scan::detections(&beams, 0.3);
         assert_eq!(found.len(), 4);
         let out = f.observe(t0, &beams, &found);
         assert_eq!((out.len(), f.tracks().len(), f.stats().dropped), (2, 2, 2));

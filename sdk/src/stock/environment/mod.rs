@@ -7,3 +7,4 @@ pub mod camera;
 pub mod image;
 pub mod map_feed;
 pub mod range;
+pub mod scan;
