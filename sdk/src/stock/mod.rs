@@ -12,7 +12,9 @@
 //! | Global / Local Waypoint Driver, Path Segment Driver | [`drivers::Navigator`] | — |
 //! | Mission Spooler | [`spooler::StockMissionSpooler`] | — |
 //! | World Model Vector Knowledge Store (feature `world_model`) | [`world_model::StockWorldModel`] over [`world_model::VectorStore`] | — (an in-memory store with an R*-tree) |
+//! | Subsystem / System Commander (operator logic) | [`commander::ControlKeeper`] | — |
 
+pub mod commander;
 pub mod drivers;
 #[cfg(feature = "environment")]
 pub mod environment;
