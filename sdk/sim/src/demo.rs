@@ -4,7 +4,8 @@
 //! and Local Pose Sensors, the Velocity State Sensor, the Global Waypoint Driver and the
 //! Local Path Segment Driver, all over one simulated skid-steer vehicle; the drivers
 //! drive through the Reflexive Driver (Part 1 Figures 5-9 and 5-16). An operator (a System
-//! Commander on node 2) takes control of both drivers, sends a waypoint mission in
+//! Commander on node 2, taking and keeping control through `jaus::stock::commander`)
+//! takes control of both drivers, sends a waypoint mission in
 //! WGS 84, then the two path segments of Part 1 Figures 5-12 and 5-14, waiting each time
 //! for the driver to report Standby (Part 1: back to Standby at the final point). The
 //! run reports arrival times and the cross-track error of every leg, measured on the
@@ -37,6 +38,7 @@ use jaus::components::{
     visual_sensor, world_model_vector_knowledge_store,
 };
 use jaus::messages::*;
+use jaus::stock::commander::{ControlEvent, ControlKeeper, KeeperConfig};
 use jaus::stock::drivers::{
     PrimitiveConfig, ReflexiveConfig, StockGlobalWaypointDriver, StockLocalPathSegmentDriver,
     StockPrimitiveDriver, StockReflexiveDriver,
@@ -239,6 +241,8 @@ pub struct Operator {
     image: Option<ReportImage>,
     image_queries: u32,
     next_image: Option<Instant>,
+    /// Control of the drivers, then of the spooler (`jaus::stock::commander`).
+    keeper: ControlKeeper,
 }
 
 #[derive(Debug, Default, Clone, Copy, PartialEq, Eq)]
@@ -284,6 +288,12 @@ impl SystemCommander for Operator {
             }
         }
         self.started.get_or_insert(now);
+        // Control of what the operator commands, taken and kept by the commander logic.
+        for e in self.keeper.tick(ctx) {
+            if let ControlEvent::Lost(a) = e {
+                tracing::warn!(component = %a, "control lost; asking again");
+            }
+        }
         // A picture of the scene before the run (a query a second, five at most: a
         // lost image does not hold anything up).
         if self.image.is_none()
@@ -297,12 +307,8 @@ impl SystemCommander for Operator {
         let frame = LocalFrame::new(ORIGIN.0, ORIGIN.1, ORIGIN.2);
         match self.step {
             Step::TakeControl => {
-                if ctx.has_control_of(addr::GWD) && ctx.has_control_of(addr::LPSD) {
+                if self.keeper.holds(addr::GWD) && self.keeper.holds(addr::LPSD) {
                     self.step = Step::StartWaypoints;
-                } else if self.next_query.is_none_or(|t| now >= t) {
-                    self.next_query = Some(now + Duration::from_millis(500));
-                    ctx.request_control(addr::GWD);
-                    ctx.request_control(addr::LPSD);
                 }
             }
             Step::StartWaypoints => {
@@ -361,15 +367,10 @@ impl SystemCommander for Operator {
             Step::StartMission => {
                 // Hand the drivers to the spooler and give it the mission.
                 for d in [addr::GWD, addr::LPSD] {
-                    if ctx.has_control_of(d) {
-                        ctx.release_control(d);
-                    }
+                    self.keeper.release(ctx, d);
                 }
-                if !ctx.has_control_of(addr::MS) {
-                    if self.next_query.is_none_or(|t| now >= t) {
-                        self.next_query = Some(now + Duration::from_millis(500));
-                        ctx.request_control(addr::MS);
-                    }
+                self.keeper.keep(addr::MS);
+                if !self.keeper.holds(addr::MS) {
                     return;
                 }
                 ctx.send_core(addr::MS, Resume {});
@@ -497,6 +498,9 @@ impl SystemCommander for Operator {
                 self.horn_at = Some(ctx.now());
             }
             _ => {}
+        }
+        if let (Message::ReportComponentStatus(s), Some(from)) = (msg, ctx.source()) {
+            self.keeper.on_status(from, s);
         }
         if let Message::ReportComponentStatus(s) = msg {
             let state = CoreState::from_wire(s.primary_status_code);
@@ -809,9 +813,17 @@ pub fn vehicle_at(
 
 /// The operator side of the demo (1.2.40.1).
 pub fn operator(t0: Instant, opts: &Options) -> Ocu {
+    // The drivers are resumed by the operator once their orders are loaded.
+    let mut keeper = ControlKeeper::new(KeeperConfig {
+        resume: false,
+        ..KeeperConfig::default()
+    });
+    keeper.keep(addr::GWD);
+    keeper.keep(addr::LPSD);
     let ocu = Operator {
         waypoint_speed: opts.waypoint_speed,
         path_speed: opts.path_speed,
+        keeper,
         ..Operator::default()
     };
     // The operator outranks everything it commands.

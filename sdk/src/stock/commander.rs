@@ -66,6 +66,13 @@ pub struct ControlKeeper {
     kept: Vec<Kept>,
 }
 
+/// [`KeeperConfig::default`], keeping nothing.
+impl Default for ControlKeeper {
+    fn default() -> Self {
+        Self::new(KeeperConfig::default())
+    }
+}
+
 impl ControlKeeper {
     /// With `config`, keeping nothing yet.
     pub fn new(config: KeeperConfig) -> Self {
