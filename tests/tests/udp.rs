@@ -608,19 +608,10 @@ fn a_node_hosts_any_stock_component_at_any_instance() {
     )
     .unwrap();
 
-    let bad = dir.join("bad.yaml");
-    std::fs::write(
-        &bad,
+    let err = refused_config(
+        &dir.join("bad.yaml"),
         "subsystem: 7\nnode: 3\nbind: 127.0.0.1:1\nhost:\n  - global_pose_sensor\n  - { component: gps_sensor, instance: 2 }\n",
-    )
-    .unwrap();
-    let out = Command::new(jaus_bin())
-        .args(["node", "--config"])
-        .arg(&bad)
-        .output()
-        .unwrap();
-    assert!(!out.status.success());
-    let err = String::from_utf8_lossy(&out.stderr);
+    );
     assert!(
         err.contains(
             "bad.yaml:6:7: unknown component `gps_sensor` (known: vehicle, arm, primitive_driver,"
@@ -634,22 +625,26 @@ fn a_node_hosts_any_stock_component_at_any_instance() {
             "bad-io.yaml:4:7: spin_us 50000 is over 10000",
         ),
     ] {
-        let bad = dir.join("bad-io.yaml");
-        std::fs::write(
-            &bad,
-            format!("subsystem: 7\nnode: 3\nbind: 127.0.0.1:1\nio: {io}\n"),
-        )
-        .unwrap();
-        let out = Command::new(jaus_bin())
-            .args(["node", "--config"])
-            .arg(&bad)
-            .output()
-            .unwrap();
-        assert!(!out.status.success());
-        let err = String::from_utf8_lossy(&out.stderr);
+        let err = refused_config(
+            &dir.join("bad-io.yaml"),
+            &format!("subsystem: 7\nnode: 3\nbind: 127.0.0.1:1\nio: {io}\n"),
+        );
         assert!(err.contains(expected), "{err}");
     }
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Writes `yaml` to `path`, runs `jaus node --config` on it, checks that it is refused
+/// and returns what it printed on stderr.
+fn refused_config(path: &std::path::Path, yaml: &str) -> String {
+    std::fs::write(path, yaml).unwrap();
+    let out = Command::new(jaus_bin())
+        .args(["node", "--config"])
+        .arg(path)
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    String::from_utf8_lossy(&out.stderr).into_owned()
 }
 
 /// `host: [arm]`: the ten manipulator components on a node, answering over UDP with the

@@ -162,3 +162,13 @@ fn latin1_round_trip() {
     put_latin1(&mut Writer::new(&mut out), &s, "").unwrap();
     assert_eq!(out, bytes);
 }
+
+#[test]
+fn text_is_fitted_to_a_fixed_string_field() {
+    assert_eq!(fit_latin1("front camera", 15), "front camera");
+    assert_eq!(fit_latin1("a very long camera name", 15), "a very long cam");
+    // ISO-8859-1 characters are one byte each and kept; others become '?'.
+    assert_eq!(fit_latin1("caméra → 1", 15), "caméra ? 1");
+    let fitted = fit_latin1("ééééééééééééééééééé", 15);
+    assert_eq!(latin1_len(&fitted), 15);
+}

@@ -22,6 +22,17 @@ pub fn latin1_len(s: &str) -> usize {
     }
 }
 
+/// `s` made to fit a fixed-length string field of `len` bytes: at most `len`
+/// characters, those above U+00FF (which ISO-8859-1 cannot carry) replaced by `?`.
+/// For text a component chooses itself (names, descriptions), which should be cut
+/// rather than make its report fail to encode.
+pub fn fit_latin1(s: &str, len: usize) -> String {
+    s.chars()
+        .take(len)
+        .map(|c| if u32::from(c) <= 0xFF { c } else { '?' })
+        .collect()
+}
+
 /// Writes `s` as ISO-8859-1, failing on characters above U+00FF.
 pub fn put_latin1(w: &mut Writer<'_>, s: &str, field: &'static str) -> Result<(), EncodeError> {
     if s.is_ascii() {

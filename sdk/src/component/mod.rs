@@ -142,6 +142,30 @@ pub enum Refused {
     },
 }
 
+impl Refused {
+    /// `value` if it lies in `[min, max]`, else the [`Refused::OutOfRange`] naming
+    /// `field` (NaN is out of every range).
+    pub fn check_range(
+        field: &'static str,
+        value: f64,
+        min: f64,
+        max: f64,
+        unit: &'static str,
+    ) -> Result<f64, Refused> {
+        if value >= min && value <= max {
+            Ok(value)
+        } else {
+            Err(Refused::OutOfRange {
+                field,
+                value,
+                min,
+                max,
+                unit,
+            })
+        }
+    }
+}
+
 /// Why [`Context::create_service_connection`] sent no request.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum ServiceConnectionError {

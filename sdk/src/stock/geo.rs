@@ -5,6 +5,8 @@
 
 use nalgebra::Vector2;
 
+use crate::messages::ReportGlobalPose;
+
 /// WGS 84 semi-major axis, m.
 pub const WGS84_A: f64 = 6_378_137.0;
 /// WGS 84 flattening.
@@ -75,6 +77,25 @@ pub fn wrap_angle(a: f64) -> f64 {
         a += std::f64::consts::TAU;
     }
     a
+}
+
+/// A global pose report as a local position and heading in `frame`, which is anchored
+/// at this report's position when still `None`. `last_yaw` stands in when the report
+/// carries no yaw (0 without one). `None` without a finite latitude and longitude.
+pub fn local_pose(
+    frame: &mut Option<LocalFrame>,
+    r: &ReportGlobalPose,
+    last_yaw: Option<f64>,
+) -> Option<(Vector2<f64>, f64)> {
+    let (Some(lat), Some(lon)) = (r.latitude, r.longitude) else {
+        return None;
+    };
+    if !(lat.is_finite() && lon.is_finite()) {
+        return None;
+    }
+    let frame = *frame.get_or_insert_with(|| LocalFrame::new(lat, lon, r.elevation.unwrap_or(0.0)));
+    let yaw = r.yaw.or(last_yaw).unwrap_or(0.0);
+    Some((frame.to_local(lat, lon), yaw))
 }
 
 #[cfg(test)]

@@ -7,7 +7,7 @@ use std::time::{Duration, Instant};
 
 use nalgebra::{Vector2, Vector3};
 
-use super::geo::{wrap_angle, LocalFrame};
+use super::geo::{local_pose, wrap_angle, LocalFrame};
 use super::hardware::Wrench;
 use super::output::OutputControl;
 use crate::component::{Context, EmittedBy, Interface};
@@ -142,17 +142,10 @@ impl Motion {
 
     /// Takes a global pose report.
     pub fn on_global_pose(&mut self, now: Instant, r: &ReportGlobalPose) {
-        let (Some(lat), Some(lon)) = (r.latitude, r.longitude) else {
-            return;
-        };
-        if !(lat.is_finite() && lon.is_finite()) {
-            return;
+        let last_yaw = self.pose.map(|p| p.2);
+        if let Some((p, yaw)) = local_pose(&mut self.frame, r, last_yaw) {
+            self.pose = Some((now, p, yaw));
         }
-        let frame = *self
-            .frame
-            .get_or_insert_with(|| LocalFrame::new(lat, lon, r.elevation.unwrap_or(0.0)));
-        let yaw = r.yaw.unwrap_or_else(|| self.pose.map_or(0.0, |p| p.2));
-        self.pose = Some((now, frame.to_local(lat, lon), yaw));
     }
 
     /// Takes a local pose report.

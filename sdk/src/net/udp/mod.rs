@@ -96,16 +96,11 @@ pub fn run_tapped<P: Participant>(
     tracing::info!(bind = ?socket.local_addr().ok(), "up");
     let mut receiver = Receiver::new(io);
     loop {
-        if stop.load(Ordering::Relaxed) || until.is_some_and(|u| Instant::now() >= u) {
+        if stopping(stop, until) {
             return Ok(());
         }
         let now = Instant::now();
-        let wait = node
-            .poll_timeout()
-            .map_or(Duration::from_millis(100), |t| {
-                t.saturating_duration_since(now)
-            })
-            .clamp(Duration::from_micros(100), Duration::from_millis(100));
+        let wait = next_wait(node, now);
         match receiver.recv(socket, now, wait) {
             Ok(n) => {
                 for i in 0..n {
@@ -128,6 +123,21 @@ pub fn run_tapped<P: Participant>(
             node.recycle(d.bytes);
         }
     }
+}
+
+/// Whether the I/O loop must end: `stop` set or `until` passed.
+fn stopping(stop: &AtomicBool, until: Option<Instant>) -> bool {
+    stop.load(Ordering::Relaxed) || until.is_some_and(|u| Instant::now() >= u)
+}
+
+/// How long the I/O loop may wait for a datagram: until the node's next timeout, within
+/// 100 µs to 100 ms (so that `stop` is seen at least every 100 ms).
+fn next_wait<P: Participant + ?Sized>(node: &P, now: Instant) -> Duration {
+    node.poll_timeout()
+        .map_or(Duration::from_millis(100), |t| {
+            t.saturating_duration_since(now)
+        })
+        .clamp(Duration::from_micros(100), Duration::from_millis(100))
 }
 
 /// The sockets of a [`Node`](super::Node): its JAUS socket, and when it serves
@@ -203,16 +213,11 @@ pub fn run_node(
         drop(tx);
         let result = (|| -> std::io::Result<()> {
             loop {
-                if stop.load(Ordering::Relaxed) || until.is_some_and(|u| Instant::now() >= u) {
+                if stopping(stop, until) {
                     return Ok(());
                 }
                 let now = Instant::now();
-                let wait = node
-                    .poll_timeout()
-                    .map_or(Duration::from_millis(100), |t| {
-                        t.saturating_duration_since(now)
-                    })
-                    .clamp(Duration::from_micros(100), Duration::from_millis(100));
+                let wait = next_wait(&*node, now);
                 match rx.recv_timeout(wait) {
                     Ok((via, peer, bytes)) => match via {
                         Via::Network => {

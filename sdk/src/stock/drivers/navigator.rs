@@ -332,16 +332,7 @@ impl<E: Element> Navigator<E> {
 
     fn set_speed(&mut self, speed: f64) -> Result<(), Refused> {
         finite(speed, "travel speed")?;
-        let max = self.motion.config.max_speed;
-        if !(0.0..=max).contains(&speed) {
-            return Err(Refused::OutOfRange {
-                field: "speed",
-                value: speed,
-                min: 0.0,
-                max,
-                unit: "m/s",
-            });
-        }
+        Refused::check_range("speed", speed, 0.0, self.motion.config.max_speed, "m/s")?;
         self.travel_speed = speed;
         Ok(())
     }

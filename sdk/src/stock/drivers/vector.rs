@@ -38,15 +38,7 @@ impl<M: Clone> StockVectorDriver<M> {
     fn set(&mut self, now: Instant, v: Vector, m: M) -> Result<(), Refused> {
         finite(v.speed, "speed")?;
         finite(v.heading, "heading")?;
-        if v.speed < 0.0 || v.speed > self.motion.config.max_speed {
-            return Err(Refused::OutOfRange {
-                field: "speed",
-                value: v.speed,
-                min: 0.0,
-                max: self.motion.config.max_speed,
-                unit: "m/s",
-            });
-        }
+        Refused::check_range("speed", v.speed, 0.0, self.motion.config.max_speed, "m/s")?;
         self.commanded = Some((now, v, m));
         Ok(())
     }

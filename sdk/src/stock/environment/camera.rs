@@ -14,6 +14,7 @@ use std::time::{Duration, Instant};
 use nalgebra::Vector3;
 
 use super::image::{encode, RgbImage, FORMATS};
+use crate::codec::fit_latin1;
 use crate::component::Refused;
 use crate::components::visual_sensor as vs;
 use crate::messages::*;
@@ -21,9 +22,9 @@ use crate::messages::*;
 /// What a camera is and can do.
 #[derive(Debug, Clone, PartialEq)]
 pub struct CameraSpec {
-    /// Name (Report Camera Pose carries 15 bytes).
+    /// Name (Report Camera Pose carries 15 ISO-8859-1 characters; longer is cut).
     pub name: String,
-    /// Description (Report Camera Capabilities carries 50 bytes).
+    /// Description (Report Camera Capabilities carries 50 characters; longer is cut).
     pub description: String,
     /// Position of the camera's origin on the platform, m.
     pub origin: Vector3<f64>,
@@ -223,36 +224,6 @@ fn report(index: usize, format: ImageFormat, data: Vec<u8>) -> ReportImage {
     }
 }
 
-/// `value` within [`lo`, `hi`], or the refusal naming `field`.
-fn within(
-    field: &'static str,
-    value: f64,
-    lo: f64,
-    hi: f64,
-    unit: &'static str,
-) -> Result<f64, Refused> {
-    if value >= lo && value <= hi {
-        Ok(value)
-    } else {
-        Err(Refused::OutOfRange {
-            field,
-            value,
-            min: lo,
-            max: hi,
-            unit,
-        })
-    }
-}
-
-/// Text cut to `n` bytes on a character boundary.
-fn cut(s: &str, n: usize) -> String {
-    let mut end = s.len().min(n);
-    while !s.is_char_boundary(end) {
-        end -= 1;
-    }
-    s[..end].to_string()
-}
-
 impl<C: Cameras> vs::VisualSensor for StockVisualSensor<C> {
     fn on_select_camera(
         &mut self,
@@ -296,14 +267,8 @@ impl<C: Cameras> vs::VisualSensor for StockVisualSensor<C> {
             ),
         ];
         for (field, v) in fixed {
-            if let Some(v) = v.filter(|v| *v != 0.0) {
-                return Err(Refused::OutOfRange {
-                    field,
-                    value: v,
-                    min: 0.0,
-                    max: 0.0,
-                    unit: "%",
-                });
+            if let Some(v) = v {
+                Refused::check_range(field, v, 0.0, 0.0, "%")?;
             }
         }
         // X angular: tilt (about the image's horizontal axis); Y angular: pan. Each a
@@ -333,7 +298,7 @@ impl<C: Cameras> vs::VisualSensor for StockVisualSensor<C> {
         let spec = self.cameras.specs()[i].clone();
         let mut s = self.settings[i];
         if let Some(f) = msg.horizontal_fov {
-            s.horizontal_fov = within(
+            s.horizontal_fov = Refused::check_range(
                 "SetCameraCapabilities.horizontal_fov",
                 f,
                 spec.horizontal_fov.0,
@@ -343,7 +308,7 @@ impl<C: Cameras> vs::VisualSensor for StockVisualSensor<C> {
         }
         let ((w0, h0), (w1, h1)) = spec.resolution;
         if let Some(w) = msg.horizontal_resolution {
-            within(
+            Refused::check_range(
                 "SetCameraCapabilities.horizontal_resolution",
                 w.into(),
                 w0.into(),
@@ -353,7 +318,7 @@ impl<C: Cameras> vs::VisualSensor for StockVisualSensor<C> {
             s.width = w;
         }
         if let Some(h) = msg.vertical_resolution {
-            within(
+            Refused::check_range(
                 "SetCameraCapabilities.vertical_resolution",
                 h.into(),
                 h0.into(),
@@ -363,7 +328,7 @@ impl<C: Cameras> vs::VisualSensor for StockVisualSensor<C> {
             s.height = h;
         }
         if let Some(r) = msg.frame_rate {
-            within(
+            Refused::check_range(
                 "SetCameraCapabilities.frame_rate",
                 r.into(),
                 1.0,
@@ -439,7 +404,7 @@ impl<C: Cameras> vs::VisualSensor for StockVisualSensor<C> {
         let o = spec.origin;
         Ok(ReportCameraPose {
             camera_id: msg.camera_id,
-            camera_name: want(0).then(|| cut(&spec.name, 15)),
+            camera_name: want(0).then(|| fit_latin1(&spec.name, 15)),
             x_camera_origin: want(1).then_some(o.x),
             y_camera_origin: want(2).then_some(o.y),
             z_camera_origin: want(3).then_some(o.z),
@@ -485,7 +450,7 @@ impl<C: Cameras> vs::VisualSensor for StockVisualSensor<C> {
         let vfov = |h: f64, w: f64, hfov: f64| 2.0 * ((hfov / 2.0).tan() * h / w).atan();
         Ok(ReportCameraCapabilities {
             camera_id: msg.camera_id,
-            camera_description: want(0).then(|| cut(&spec.description, 50)),
+            camera_description: want(0).then(|| fit_latin1(&spec.description, 50)),
             max_horizontal_fov: want(1).then_some(spec.horizontal_fov.1),
             min_horizontal_fov: want(2).then_some(spec.horizontal_fov.0),
             max_vertical_fov: want(3).then(|| vfov(h1.into(), w1.into(), spec.horizontal_fov.1)),

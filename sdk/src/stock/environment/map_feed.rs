@@ -16,7 +16,7 @@ use nalgebra::{Rotation2, Vector2};
 
 use super::scan::{Beam, Detection};
 use crate::messages::*;
-use crate::stock::geo::LocalFrame;
+use crate::stock::geo::{local_pose, LocalFrame};
 use crate::Address;
 
 /// Settings of the feed.
@@ -172,17 +172,10 @@ impl MapFeed {
 
     /// Takes a global pose report.
     pub fn on_global_pose(&mut self, now: Instant, r: &ReportGlobalPose) {
-        let (Some(lat), Some(lon)) = (r.latitude, r.longitude) else {
-            return;
-        };
-        if !(lat.is_finite() && lon.is_finite()) {
-            return;
+        let last_yaw = self.pose.map(|p| p.2);
+        if let Some((p, yaw)) = local_pose(&mut self.frame, r, last_yaw) {
+            self.pose = Some((now, p, yaw));
         }
-        let frame = *self
-            .frame
-            .get_or_insert_with(|| LocalFrame::new(lat, lon, r.elevation.unwrap_or(0.0)));
-        let yaw = r.yaw.unwrap_or_else(|| self.pose.map_or(0.0, |p| p.2));
-        self.pose = Some((now, frame.to_local(lat, lon), yaw));
     }
 
     /// Takes a sweep (`beams` and the objects found in them) at `now`; returns what the
@@ -232,16 +225,7 @@ impl MapFeed {
         }
         if !gone.is_empty() {
             self.stats.deleted += gone.len() as u64;
-            out.push(MapUpdate::Delete(DeleteVksObjects {
-                filter_by_class_ids: false,
-                filter_by_attributes: false,
-                request_id: 0,
-                object_ids: Some(gone),
-                region_type: None,
-                region_buffer: None,
-                feature_classes: None,
-                region_points: None,
-            }));
+            out.push(MapUpdate::Delete(delete(gone)));
         }
         if let Some(frame) = self.frame {
             for i in 0..self.tracks.len() {
@@ -333,6 +317,7 @@ impl MapFeed {
     }
 }
 
+/// Delete VKS Objects for these ids.
 fn delete(ids: Vec<u32>) -> DeleteVksObjects {
     DeleteVksObjects {
         filter_by_class_ids: false,
