@@ -6,6 +6,7 @@
 //! * [`commands`]: the offline commands (`messages`, `decode`, `encode`, `tour`);
 //! * [`net`]: the network commands (`node`, `discover`, `send`, `query`, the demo's
 //!   operator over UDP);
+//! * [`ocu`]: the operator console in the browser (`jaus ocu`, crate `jaus-ocu`);
 //! * [`report`]: the demo's table and SVG plot;
 //! * [`arm_report`]: the arm demo's table and SVG plot;
 //! * [`capture`]: pcap/pcapng captures of JAUS traffic, written and read;
@@ -20,5 +21,6 @@ pub mod catalogue;
 pub mod commands;
 pub mod describe;
 pub mod net;
+pub mod ocu;
 pub mod report;
 pub mod traffic;

@@ -73,6 +73,37 @@ enum Cmd {
     Encode,
     /// Walk through the SDK: build messages, encode packets, decode them back.
     Tour,
+    /// The operator console in the browser: a System Commander on a node of its own
+    /// serving a local page (system tree, map with trails, control, emergency stop,
+    /// waypoints, missions, message log). `--vehicle` also runs the demo's simulated
+    /// vehicle on loopback: `jaus ocu --vehicle`, then open the address it prints.
+    Ocu {
+        /// A node file (as `jaus node` reads, without `host:`) for the console's node.
+        #[arg(long)]
+        config: Option<std::path::PathBuf>,
+        /// The web server's address (keep it on 127.0.0.1 unless the network is trusted:
+        /// the page commands vehicles).
+        #[arg(long, default_value = "127.0.0.1:8700")]
+        http: std::net::SocketAddr,
+        /// The console's JAUS socket (without --config).
+        #[arg(long, default_value = "127.0.0.1:0")]
+        bind: std::net::SocketAddr,
+        /// Nodes to talk to (without --config); repeatable.
+        #[arg(long = "peer", value_name = "ADDR")]
+        peers: Vec<std::net::SocketAddr>,
+        /// The console's subsystem id (without --config).
+        #[arg(long, default_value_t = 200)]
+        subsystem: u8,
+        /// The console's node id (without --config).
+        #[arg(long, default_value_t = 1)]
+        node: u8,
+        /// Also run the demo's simulated vehicle (subsystem 1) on loopback.
+        #[arg(long)]
+        vehicle: bool,
+        /// Stop after this many seconds (default: run until interrupted).
+        #[arg(long)]
+        seconds: Option<f64>,
+    },
     /// Run a node from a configuration file (YAML: subsystem, node, bind, framing,
     /// peers, host); prints the system tree whenever it changes.
     Node {
@@ -472,6 +503,32 @@ fn main() -> ExitCode {
             catalogue.encode_line(l)
         }),
         Cmd::Tour => commands::tour(&mut out),
+        Cmd::Ocu {
+            config,
+            http,
+            bind,
+            peers,
+            subsystem,
+            node,
+            vehicle,
+            seconds,
+        } => report(
+            &mut err,
+            jaus_cli::ocu::ocu(
+                &jaus_cli::ocu::OcuArgs {
+                    config,
+                    http,
+                    bind,
+                    peers,
+                    subsystem,
+                    node,
+                    vehicle,
+                    duration: seconds.map(|s| std::time::Duration::from_secs_f64(s.max(0.0))),
+                },
+                &STOP,
+                &mut out,
+            ),
+        ),
         Cmd::Node {
             config,
             seconds,

@@ -117,6 +117,12 @@ impl<I: Interface> Context<'_, I> {
     /// Asks `target` for control with this component's authority.
     pub fn request_control(&mut self, target: Address) {
         let authority = self.rt.authority;
+        self.request_control_with(target, authority);
+    }
+
+    /// Asks `target` for control with `authority` (an operator station choosing the
+    /// authority it commands with, per target).
+    pub fn request_control_with(&mut self, target: Address, authority: u8) {
         self.rt.send(
             target,
             RequestComponentControl {

@@ -1,0 +1,132 @@
+//! `jaus ocu`: the operator console in the browser (crate `jaus-ocu`), on a node of its
+//! own, optionally beside a simulated vehicle on loopback (`--vehicle`).
+
+use std::io::Write;
+use std::net::SocketAddr;
+use std::path::PathBuf;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::{Duration, Instant};
+
+use jaus::net::{udp, Node, NodeConfig};
+use jaus_ocu::ConsoleOptions;
+
+/// What `jaus ocu` was asked for.
+#[derive(Debug, Clone)]
+pub struct OcuArgs {
+    /// A node file (`jaus node`'s format) for the console's node: subsystem, node,
+    /// bind, framing, peers, multicast (it hosts no components).
+    pub config: Option<PathBuf>,
+    /// The web server's socket.
+    pub http: SocketAddr,
+    /// The console's JAUS socket (without a config).
+    pub bind: SocketAddr,
+    /// Peers (without a config).
+    pub peers: Vec<SocketAddr>,
+    /// The console's subsystem and node (without a config).
+    pub subsystem: u8,
+    /// The console's node id.
+    pub node: u8,
+    /// Also run the demo's simulated vehicle (subsystem 1) on loopback.
+    pub vehicle: bool,
+    /// Stop after this long.
+    pub duration: Option<Duration>,
+}
+
+/// Runs the console until `stop` is set or `duration` passes.
+pub fn ocu(args: &OcuArgs, stop: &AtomicBool, out: &mut impl Write) -> Result<(), String> {
+    let mut options = ConsoleOptions {
+        http: args.http,
+        bind: args.bind,
+        ..ConsoleOptions::default()
+    };
+    match &args.config {
+        Some(path) => {
+            let file = crate::net::NodeFile::load(path)?;
+            if !file.host.is_empty() {
+                return Err(format!(
+                    "{}: `host:` — the console's node hosts only the console (run the components with `jaus node`)",
+                    path.display()
+                ));
+            }
+            options.node = file.node_config();
+            options.bind = file.bind;
+        }
+        None => {
+            options.node = NodeConfig {
+                subsystem: args.subsystem,
+                node: args.node,
+                peers: args.peers.clone(),
+                ..NodeConfig::default()
+            };
+        }
+    }
+    let local_stop = AtomicBool::new(false);
+    let deadline = args.duration.map(|d| Instant::now() + d);
+    std::thread::scope(|scope| {
+        let vehicle = if args.vehicle {
+            let socket = std::net::UdpSocket::bind("127.0.0.1:0")
+                .map_err(|e| format!("simulated vehicle: 127.0.0.1:0: {e}"))?;
+            let at = socket.local_addr().map_err(|e| e.to_string())?;
+            options.node.peers.push(at);
+            let local_stop = &local_stop;
+            Some(scope.spawn(move || run_vehicle(&socket, local_stop)))
+        } else {
+            None
+        };
+        let watcher = scope.spawn(|| {
+            while !local_stop.load(Ordering::Relaxed) {
+                if stop.load(Ordering::Relaxed) || deadline.is_some_and(|d| Instant::now() >= d) {
+                    local_stop.store(true, Ordering::Relaxed);
+                }
+                std::thread::sleep(Duration::from_millis(50));
+            }
+        });
+        let result = jaus_ocu::run(&options, &local_stop, |b| {
+            let _ = writeln!(
+                out,
+                "operator console: open http://{}/  (System Commander {} on {}, peers {:?}{})",
+                b.http,
+                b.me,
+                b.udp,
+                options.node.peers,
+                if args.vehicle {
+                    "; simulated vehicle: subsystem 1"
+                } else {
+                    ""
+                }
+            );
+            let _ = out.flush();
+        })
+        .map_err(|e| e.to_string());
+        local_stop.store(true, Ordering::Relaxed);
+        let _ = watcher.join();
+        if let Some(v) = vehicle {
+            match v.join() {
+                Ok(r) => r?,
+                Err(_) => return Err("the simulated vehicle's thread failed".to_string()),
+            }
+        }
+        result
+    })
+}
+
+/// The demo's simulated vehicle (subsystem 1, node 1), as `jaus node` with `host:
+/// [vehicle]` runs it, on `socket`.
+fn run_vehicle(socket: &std::net::UdpSocket, stop: &AtomicBool) -> Result<(), String> {
+    let t0 = Instant::now();
+    let mut node = Node::new(
+        NodeConfig {
+            subsystem: 1,
+            node: 1,
+            ..NodeConfig::default()
+        },
+        t0,
+    );
+    let (parts, _) = jaus_sim::demo::vehicle_at(t0, &jaus_sim::demo::Options::default(), 1, 1);
+    for p in parts {
+        node.add_boxed(p)
+            .map_err(|e| format!("simulated vehicle: {e}"))?;
+    }
+    udp::run_on(&mut node, socket, stop, None, |_| {})
+        .map_err(|e| format!("simulated vehicle: {e}"))
+}

@@ -1,0 +1,394 @@
+// The operator console's page: draws what the console's System Commander knows (pushed
+// over a WebSocket) and sends the operator's commands back as JSON. All JAUS logic is in
+// the console (jaus::stock::commander::Station); this page only draws and asks.
+"use strict";
+
+const SVG = "http://www.w3.org/2000/svg";
+const $ = (id) => document.getElementById(id);
+
+const ocu = {
+  view: null,            // the last view
+  trails: new Map(),     // subsystem id -> [[x, y], ...]
+  poseCounts: new Map(), // subsystem id -> pose_count seen
+  selected: null,        // selected subsystem id
+  draft: [],             // [{x, y}] waypoints clicked, not sent yet
+  extent: null,          // [minx, miny, maxx, maxy] of the map, grows only
+  lastMessage: 0,        // Date.now() of the last WebSocket message
+  noticesSeen: 0,
+  log: [],
+  stats: { latencies: [], frames: 0 }, // pose received by the console -> drawn, ms
+  socket: null,
+};
+window.ocu = ocu;
+
+const TRAIL_MAX = 3000;
+const LOG_ROWS = 300;
+const STALE_LINK_MS = 2000;
+
+// ---- WebSocket -------------------------------------------------------------------------
+
+function connect() {
+  const ws = new WebSocket(`ws://${location.host}/ws`);
+  ocu.socket = ws;
+  ws.onmessage = (ev) => {
+    ocu.lastMessage = Date.now();
+    let msg;
+    try { msg = JSON.parse(ev.data); } catch (e) { return; }
+    if (msg.type === "hello") {
+      ocu.trails.clear();
+      ocu.poseCounts.clear();
+      for (const s of msg.view.subsystems || []) {
+        ocu.trails.set(s.id, (s.trail || []).slice(-TRAIL_MAX));
+        ocu.poseCounts.set(s.id, s.pose_count);
+      }
+      update(msg.view, []);
+    } else if (msg.type === "view") {
+      update(msg.view, msg.log || []);
+    } else if (msg.type === "error") {
+      localNotice(msg.text);
+    }
+  };
+  ws.onclose = () => { ocu.socket = null; setTimeout(connect, 1000); };
+  ws.onerror = () => ws.close();
+}
+
+function send(cmd) {
+  if (!ocu.socket || ocu.socket.readyState !== WebSocket.OPEN) {
+    localNotice("not connected to the console: command not sent");
+    return;
+  }
+  ocu.socket.send(JSON.stringify(cmd));
+}
+
+// A notice of the page's own (shown until the next view replaces the list).
+const localNotices = [];
+function localNotice(text) {
+  localNotices.push({ seq: 0, error: true, text: "page: " + text, unix_ms: Date.now() });
+  if (localNotices.length > 20) localNotices.shift();
+  drawNotices();
+}
+
+// ---- View ----------------------------------------------------------------------------
+
+function update(view, log) {
+  ocu.view = view;
+  const changed = [];
+  for (const s of view.subsystems) {
+    const seen = ocu.poseCounts.get(s.id) || 0;
+    if (s.pose && s.pose_count > seen) {
+      const t = ocu.trails.get(s.id) || [];
+      t.push([s.pose.x, s.pose.y]);
+      if (t.length > TRAIL_MAX) t.splice(0, t.length - TRAIL_MAX);
+      ocu.trails.set(s.id, t);
+      ocu.poseCounts.set(s.id, s.pose_count);
+      changed.push(s.pose.received_unix_ms);
+    }
+  }
+  if (ocu.selected === null || !view.subsystems.some((s) => s.id === ocu.selected)) {
+    const v = view.subsystems.find((s) => s.pose) || null;
+    ocu.selected = v ? v.id : null;
+  }
+  drawTree();
+  drawMap();
+  drawSide();
+  drawNotices();
+  appendLog(log);
+  const drawn = Date.now();
+  for (const at of changed) {
+    ocu.stats.latencies.push(drawn - at);
+    if (ocu.stats.latencies.length > 10000) ocu.stats.latencies.shift();
+  }
+  ocu.stats.frames++;
+}
+
+function selectedView() {
+  return ocu.view && ocu.view.subsystems.find((s) => s.id === ocu.selected);
+}
+
+function el(tag, attrs, text) {
+  const e = document.createElement(tag);
+  for (const [k, v] of Object.entries(attrs || {})) e.setAttribute(k, v);
+  if (text !== undefined) e.textContent = text;
+  return e;
+}
+
+function drawTree() {
+  const tree = $("tree");
+  tree.replaceChildren();
+  for (const s of ocu.view.subsystems) {
+    const div = el("div", { class: "tree-ss" + (s.id === ocu.selected ? " selected" : ""), id: `ss-${s.id}` });
+    const title = el("div", { class: "title" }, `Subsystem ${s.id}${s.name ? " — " + s.name : ""}`);
+    if (s.stale) title.append(el("span", { class: "badge stale" }, "stale"));
+    if (s.emergency) title.append(el("span", { class: "badge emergency" }, "EMERGENCY"));
+    title.onclick = () => { ocu.selected = s.id; update(ocu.view, []); };
+    div.append(title);
+    for (const n of s.nodes) {
+      div.append(el("div", { class: "tree-node" }, `node ${n.id}${n.name ? " — " + n.name : ""}`));
+      for (const c of n.components) {
+        const row = el("div", { class: "tree-comp", "data-address": c.address });
+        row.append(el("span", {}, `${c.address} ${c.name}`));
+        if (c.state) row.append(el("span", { class: "state " + c.state }, c.state));
+        if (c.held) row.append(el("span", { class: "held" }, "held"));
+        else if (c.keeping !== null && c.keeping !== undefined) row.append(el("span", { class: "ctl" }, "asking…"));
+        if (c.controller) row.append(el("span", { class: "ctl" }, `ctl ${c.controller} (auth ${c.controller_authority})`));
+        div.append(row);
+      }
+    }
+    tree.append(div);
+  }
+}
+
+// ---- Map -----------------------------------------------------------------------------
+
+function grow(ext, x, y) {
+  if (!ext) return [x, y, x, y];
+  return [Math.min(ext[0], x), Math.min(ext[1], y), Math.max(ext[2], x), Math.max(ext[3], y)];
+}
+
+function mapExtent() {
+  let ext = ocu.extent;
+  for (const s of ocu.view.subsystems) {
+    if (s.pose) ext = grow(ext, s.pose.x, s.pose.y);
+    for (const p of s.route) ext = grow(ext, p[0], p[1]);
+    for (const o of s.objects) for (const p of o.points) ext = grow(ext, p[0], p[1]);
+  }
+  for (const p of ocu.draft) ext = grow(ext, p.x, p.y);
+  if (!ext) ext = [-10, -10, 10, 10];
+  ocu.extent = ext;
+  // At least 40 m across, 5 m of margin.
+  const cx = (ext[0] + ext[2]) / 2, cy = (ext[1] + ext[3]) / 2;
+  const w = Math.max(40, ext[2] - ext[0] + 10), h = Math.max(40, ext[3] - ext[1] + 10);
+  return [cx - w / 2, cy - h / 2, w, h];
+}
+
+function svg(tag, attrs) {
+  const e = document.createElementNS(SVG, tag);
+  for (const [k, v] of Object.entries(attrs || {})) e.setAttribute(k, v);
+  return e;
+}
+
+// The map draws north up: SVG y is minus the local y.
+function drawMap() {
+  const map = $("map");
+  const [x0, y0, w, h] = mapExtent();
+  map.setAttribute("viewBox", `${x0} ${-(y0 + h)} ${w} ${h}`);
+  map.classList.toggle("stale", !linkUp());
+  const grid = $("grid");
+  grid.replaceChildren();
+  const step = w > 200 ? 50 : w > 80 ? 10 : 5;
+  for (let x = Math.ceil(x0 / step) * step; x <= x0 + w; x += step)
+    grid.append(svg("line", { x1: x, x2: x, y1: -(y0 + h), y2: -y0, class: x === 0 ? "grid-axis" : "grid-line" }));
+  for (let y = Math.ceil(y0 / step) * step; y <= y0 + h; y += step)
+    grid.append(svg("line", { x1: x0, x2: x0 + w, y1: -y, y2: -y, class: y === 0 ? "grid-axis" : "grid-line" }));
+  const objects = $("objects"), routes = $("routes"), trails = $("trails"), vehicles = $("vehicles");
+  objects.replaceChildren(); routes.replaceChildren(); trails.replaceChildren(); vehicles.replaceChildren();
+  for (const s of ocu.view.subsystems) {
+    for (const o of s.objects) {
+      if (o.points.length === 1) {
+        objects.append(svg("circle", { cx: o.points[0][0], cy: -o.points[0][1], r: Math.max(o.buffer, 0.3), class: "object", "data-id": o.id }));
+      } else {
+        objects.append(svg("polygon", { points: o.points.map((p) => `${p[0]},${-p[1]}`).join(" "), class: "object", "data-id": o.id }));
+      }
+    }
+    if (s.route.length) {
+      const pts = s.route.map((p) => `${p[0]},${-p[1]}`).join(" ");
+      routes.append(svg("polyline", { points: pts, class: "route" }));
+    }
+    const t = ocu.trails.get(s.id) || [];
+    if (t.length > 1) trails.append(svg("polyline", { points: t.map((p) => `${p[0]},${-p[1]}`).join(" "), class: "trail" }));
+    if (s.pose) {
+      const cls = ["vehicle"];
+      if (s.id === ocu.selected) cls.push("selected");
+      if (s.stale) cls.push("stale");
+      if (s.emergency) cls.push("emergency");
+      const g = svg("g", { id: `vehicle-${s.id}`, class: cls.join(" "), "data-x": s.pose.x.toFixed(3), "data-y": s.pose.y.toFixed(3) });
+      g.append(svg("circle", { cx: s.pose.x, cy: -s.pose.y, r: 0.6 }));
+      if (s.pose.yaw !== null && s.pose.yaw !== undefined) {
+        // Yaw 0 is north, clockwise positive.
+        g.append(svg("line", { x1: s.pose.x, y1: -s.pose.y, x2: s.pose.x + 1.2 * Math.sin(s.pose.yaw), y2: -(s.pose.y + 1.2 * Math.cos(s.pose.yaw)) }));
+      }
+      const label = svg("text", { x: s.pose.x + 0.8, y: -s.pose.y - 0.8 });
+      label.textContent = s.name || `subsystem ${s.id}`;
+      g.append(label);
+      vehicles.append(g);
+    }
+  }
+  const draft = $("draft");
+  draft.replaceChildren();
+  const sel = selectedView();
+  if (ocu.draft.length) {
+    const start = sel && sel.pose ? [[sel.pose.x, sel.pose.y]] : [];
+    const pts = start.concat(ocu.draft.map((p) => [p.x, p.y]));
+    draft.append(svg("polyline", { points: pts.map((p) => `${p[0]},${-p[1]}`).join(" "), class: "draft" }));
+    ocu.draft.forEach((p, i) => {
+      draft.append(svg("circle", { cx: p.x, cy: -p.y, r: 0.35, class: "draft-point" }));
+      const t = svg("text", { x: p.x + 0.4, y: -p.y - 0.4, class: "label" });
+      t.textContent = String(i + 1);
+      draft.append(t);
+    });
+  }
+}
+
+// Map metres -> client pixels (tests click through it) and back.
+ocu.worldToClient = (x, y) => {
+  const map = $("map");
+  const p = map.createSVGPoint();
+  p.x = x; p.y = -y;
+  const q = p.matrixTransform(map.getScreenCTM());
+  return { x: q.x, y: q.y };
+};
+function clientToWorld(cx, cy) {
+  const map = $("map");
+  const p = map.createSVGPoint();
+  p.x = cx; p.y = cy;
+  const q = p.matrixTransform(map.getScreenCTM().inverse());
+  return { x: q.x, y: -q.y };
+}
+
+// ---- Side panel ------------------------------------------------------------------------
+
+function roleOptions(s) {
+  const r = s.roles, out = [];
+  if (r.waypoint_driver) out.push(["Global Waypoint Driver", r.waypoint_driver]);
+  if (r.path_segment_driver) out.push(["Global Path Segment Driver", r.path_segment_driver]);
+  if (r.spooler) out.push(["Mission Spooler", r.spooler]);
+  if (r.primitive_driver) out.push(["Primitive Driver", r.primitive_driver]);
+  return out;
+}
+
+function component(s, address) {
+  for (const n of s.nodes) for (const c of n.components) if (c.address === address) return c;
+  return null;
+}
+
+function drawSide() {
+  const s = selectedView();
+  if (!s) { $("veh-name").textContent = "—"; return; }
+  $("veh-name").textContent = `${s.id}${s.name ? " — " + s.name : ""}`;
+  const states = [];
+  for (const n of s.nodes) for (const c of n.components) if (c.state) states.push(c.state);
+  const state = s.emergency ? "Emergency" : (component(s, s.roles.waypoint_driver || "") || {}).state || states[0] || "—";
+  $("veh-state").textContent = state + (s.stale ? " (stale)" : "");
+  $("veh-pos").textContent = s.pose
+    ? `${s.pose.latitude.toFixed(6)}, ${s.pose.longitude.toFixed(6)} (${s.pose.x.toFixed(1)} m E, ${s.pose.y.toFixed(1)} m N)`
+    : "—";
+  $("veh-speed").textContent = s.velocity ? `${s.velocity.speed.toFixed(2)} m/s` : "—";
+  $("veh-speed").dataset.speed = s.velocity ? s.velocity.speed : "";
+  $("veh-heard").textContent = s.heard_s === null ? "never" : `${s.heard_s.toFixed(1)} s ago`;
+  const sel = $("driver");
+  const opts = roleOptions(s);
+  const key = opts.map((o) => o[1]).join(",");
+  if (sel.dataset.key !== key) {
+    const keep = sel.value;
+    sel.replaceChildren(...opts.map(([name, a]) => el("option", { value: a }, `${name} ${a}`)));
+    if (opts.some((o) => o[1] === keep)) sel.value = keep;
+    sel.dataset.key = key;
+  }
+  const c = component(s, sel.value);
+  $("driver-control").textContent = !c ? "—" : c.held ? "held" : (c.keeping !== null && c.keeping !== undefined) ? "asking…" : c.controller ? `held by ${c.controller}` : "not held";
+  $("mission-status").textContent = s.mission ? `mission ${s.mission.id}: ${s.mission.status || "sent"} (${s.mission.tasks} moves)` : "—";
+  const list = $("draft-list");
+  list.replaceChildren(...ocu.draft.map((p) => el("li", {}, `${p.x.toFixed(1)} m E, ${p.y.toFixed(1)} m N`)));
+}
+
+function drawNotices() {
+  const ul = $("notices");
+  const all = ((ocu.view && ocu.view.notices) || []).concat(localNotices).sort((a, b) => a.unix_ms - b.unix_ms);
+  ul.replaceChildren(...all.slice(-40).reverse().map((n) => el("li", { class: "notice" + (n.error ? " error" : "") }, `${new Date(n.unix_ms).toLocaleTimeString()} ${n.text}`)));
+}
+
+function appendLog(entries) {
+  if (!entries.length || $("log-pause").checked) return;
+  const body = $("log").tBodies[0];
+  for (const e of entries) {
+    const tr = el("tr", { class: e.dir + (e.error ? " bad" : "") });
+    tr.append(el("td", {}, e.seq), el("td", {}, new Date(e.unix_ms).toLocaleTimeString()), el("td", {}, e.dir),
+      el("td", {}, e.src), el("td", {}, e.dst), el("td", {}, e.name),
+      el("td", { class: "fields" }, e.error ? e.error : JSON.stringify(e.fields)));
+    body.prepend(tr);
+  }
+  while (body.rows.length > LOG_ROWS) body.deleteRow(body.rows.length - 1);
+}
+
+// ---- Link ------------------------------------------------------------------------------
+
+function linkUp() {
+  return ocu.socket && Date.now() - ocu.lastMessage < STALE_LINK_MS;
+}
+
+setInterval(() => {
+  const link = $("link");
+  if (!ocu.socket) { link.className = "link down"; link.textContent = "console disconnected — data is stale"; }
+  else if (!linkUp()) { link.className = "link stale"; link.textContent = "no update for " + ((Date.now() - ocu.lastMessage) / 1000).toFixed(0) + " s — stale"; }
+  else {
+    const stale = ocu.view && ocu.view.subsystems.filter((s) => s.stale && s.pose).length;
+    link.className = stale ? "link stale" : "link up";
+    link.textContent = stale ? `live (${stale} vehicle(s) stale)` : "live";
+  }
+  $("map").classList.toggle("stale", !linkUp());
+}, 250);
+
+// ---- Operator actions ------------------------------------------------------------------
+
+function speed() {
+  const v = $("speed").value.trim();
+  // Sent as typed when it is not a number: the console says what is wrong.
+  return /^[-+]?[0-9]*\.?[0-9]+([eE][-+]?[0-9]+)?$/.test(v) ? Number(v) : v;
+}
+
+function needVehicle() {
+  const s = selectedView();
+  if (!s) localNotice("no vehicle selected");
+  return s;
+}
+
+$("map").addEventListener("click", (ev) => {
+  if (!needVehicle()) return;
+  const p = clientToWorld(ev.clientX, ev.clientY);
+  ocu.draft.push(p);
+  drawMap(); drawSide();
+});
+
+$("fit").onclick = () => { ocu.extent = null; drawMap(); };
+$("clear-draft").onclick = () => { ocu.draft = []; drawMap(); drawSide(); };
+$("take").onclick = () => {
+  const a = $("driver").value;
+  if (!a) return localNotice("no component to control");
+  send({ op: "take", target: a, authority: Number($("authority").value) });
+};
+$("release").onclick = () => {
+  const a = $("driver").value;
+  if (a) send({ op: "release", target: a });
+};
+$("estop-all").onclick = () => {
+  for (const s of (ocu.view && ocu.view.subsystems) || []) if (s.pose || s.roles.primitive_driver) send({ op: "emergency", subsystem: s.id });
+};
+$("clear-all").onclick = () => {
+  for (const s of (ocu.view && ocu.view.subsystems) || []) if (s.pose || s.roles.primitive_driver) send({ op: "clear_emergency", subsystem: s.id });
+};
+$("veh-estop").onclick = () => { const s = needVehicle(); if (s) send({ op: "emergency", subsystem: s.id }); };
+$("veh-clear").onclick = () => { const s = needVehicle(); if (s) send({ op: "clear_emergency", subsystem: s.id }); };
+
+function drive(op, driver) {
+  if (!needVehicle()) return;
+  if (!ocu.draft.length) return localNotice("click the map to add waypoints first");
+  if (!driver) return localNotice("this vehicle has no such driver");
+  send({ op, driver, speed: speed(), points: ocu.draft.map((p) => ({ x: p.x, y: p.y })) });
+  ocu.draft = [];
+  drawMap(); drawSide();
+}
+$("drive").onclick = () => { const s = needVehicle(); if (s) drive("waypoints", s.roles.waypoint_driver); };
+$("drive-path").onclick = () => { const s = needVehicle(); if (s) drive("path", s.roles.path_segment_driver); };
+$("spool").onclick = () => {
+  const s = needVehicle();
+  if (!s) return;
+  if (!s.roles.spooler || !s.roles.waypoint_driver) return localNotice("this vehicle has no mission spooler or waypoint driver");
+  if (!ocu.draft.length) return localNotice("click the map to add the mission's moves first");
+  send({ op: "spool", spooler: s.roles.spooler, driver: s.roles.waypoint_driver, speed: speed(), points: ocu.draft.map((p) => ({ x: p.x, y: p.y })) });
+  ocu.draft = [];
+};
+for (const [id, action] of [["m-run", "run"], ["m-pause", "pause"], ["m-resume", "resume"], ["m-abort", "abort"]]) {
+  $(id).onclick = () => { const s = needVehicle(); if (s && s.roles.spooler) send({ op: "mission", spooler: s.roles.spooler, action }); };
+}
+
+connect();

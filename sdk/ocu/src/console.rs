@@ -1,0 +1,364 @@
+//! The console's node: a System Commander whose logic is [`Station`], on a node of its
+//! own (its node manager keeps the console in every subsystem's tree: heartbeats,
+//! discovery answers), run on one thread by `jaus::net::udp`. Between node events it
+//! takes the page's commands, gives the station the system tree when it changed, and
+//! publishes what the station knows for the web server ([`Shared`]).
+
+use std::collections::VecDeque;
+use std::net::{SocketAddr, UdpSocket};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Arc, Mutex, MutexGuard};
+use std::time::{Duration, Instant};
+
+use jaus::component::{Component, Config, Refused};
+use jaus::components::system_commander::{self, Ctx, SystemCommander};
+use jaus::messages::Message;
+use jaus::net::{udp, Node, NodeConfig, SystemTree};
+use jaus::stock::commander::{Station, StationConfig, TreeInput};
+use jaus::Address;
+use tokio::sync::watch;
+
+use crate::log::MessageLog;
+
+/// Page messages waiting for the node thread (more are refused with an error notice).
+pub const INBOX_MAX: usize = 256;
+
+/// The System Commander of the console.
+#[derive(Debug)]
+pub struct Console {
+    /// The operator logic.
+    pub station: Station,
+}
+
+impl SystemCommander for Console {
+    fn tick(&mut self, ctx: &mut Ctx<'_>) {
+        self.station.tick(ctx);
+    }
+
+    fn on_other_message(
+        &mut self,
+        ctx: &mut Ctx<'_>,
+        msg: &Message,
+    ) -> Result<Option<Message>, Refused> {
+        if let Some(source) = ctx.source() {
+            self.station.on_message(ctx.now(), source, msg);
+        }
+        Ok(None)
+    }
+}
+
+type Hosted = Component<system_commander::Dispatch<Console>>;
+
+/// What the node thread publishes for the web server.
+#[derive(Debug, Default)]
+pub struct Published {
+    /// The station's view without trails, as JSON.
+    pub view: String,
+    /// Number of the last logged message.
+    pub log_seq: u64,
+}
+
+/// State shared by the node thread and the web server.
+#[derive(Debug)]
+pub struct Shared {
+    inbox: Mutex<VecDeque<String>>,
+    dropped: std::sync::atomic::AtomicU64,
+    /// The latest view, new at most every [`ConsoleOptions::publish_period`].
+    pub view: watch::Sender<Arc<Published>>,
+    /// The latest view with trails, refreshed at most once a second and when asked.
+    trails: Mutex<Arc<String>>,
+    trails_wanted: AtomicBool,
+    /// The message log.
+    pub log: Mutex<MessageLog>,
+}
+
+fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
+    // A panic while holding the lock leaves data that is still consistent here
+    // (every writer replaces whole values), so the lock is taken over.
+    m.lock().unwrap_or_else(std::sync::PoisonError::into_inner)
+}
+
+impl Shared {
+    fn new(log: MessageLog) -> Arc<Self> {
+        Arc::new(Self {
+            inbox: Mutex::new(VecDeque::new()),
+            dropped: 0.into(),
+            view: watch::Sender::new(Arc::new(Published::default())),
+            trails: Mutex::new(Arc::new(String::from("{}"))),
+            trails_wanted: AtomicBool::new(true),
+            log: Mutex::new(log),
+        })
+    }
+
+    /// Queues a page message for the node thread; false (and counted) when the queue is
+    /// full.
+    pub fn submit(&self, text: String) -> bool {
+        let mut q = lock(&self.inbox);
+        if q.len() >= INBOX_MAX {
+            self.dropped.fetch_add(1, Ordering::Relaxed);
+            return false;
+        }
+        q.push_back(text);
+        true
+    }
+
+    /// The latest view with trails (JSON); asks the node thread for a fresh one.
+    pub fn trails(&self) -> Arc<String> {
+        self.trails_wanted.store(true, Ordering::Relaxed);
+        lock(&self.trails).clone()
+    }
+
+    /// Log entries after `after`, at most `max`, as a JSON array.
+    pub fn log_since(&self, after: u64, max: usize) -> (String, u64) {
+        let log = lock(&self.log);
+        let entries = log.since(after, max);
+        let last = entries.last().map_or(after, |e| e.seq);
+        (
+            serde_json::to_string(&entries).unwrap_or_else(|_| "[]".into()),
+            last,
+        )
+    }
+}
+
+/// How the console runs.
+#[derive(Debug, Clone)]
+pub struct ConsoleOptions {
+    /// The console's node (subsystem, node id, peers, framing).
+    pub node: NodeConfig,
+    /// The JAUS socket.
+    pub bind: SocketAddr,
+    /// The web server's socket (127.0.0.1 unless asked otherwise).
+    pub http: SocketAddr,
+    /// The System Commander's instance (its address is `subsystem.node.40.instance`).
+    pub instance: u8,
+    /// The component's default authority.
+    pub authority: u8,
+    /// The map's origin (default: the first position received).
+    pub origin: Option<(f64, f64)>,
+    /// The station's settings.
+    pub station: StationConfig,
+    /// How often the view is published to the page at most.
+    pub publish_period: Duration,
+}
+
+impl Default for ConsoleOptions {
+    fn default() -> Self {
+        Self {
+            node: NodeConfig {
+                subsystem: 200,
+                node: 1,
+                ..NodeConfig::default()
+            },
+            bind: SocketAddr::from(([127, 0, 0, 1], 0)),
+            http: SocketAddr::from(([127, 0, 0, 1], 8700)),
+            instance: 1,
+            authority: 0,
+            origin: None,
+            station: StationConfig::default(),
+            publish_period: Duration::from_millis(50),
+        }
+    }
+}
+
+/// Why the console could not run.
+#[derive(Debug, thiserror::Error)]
+pub enum ConsoleError {
+    /// The JAUS socket.
+    #[error("JAUS socket {addr}: {source}")]
+    Udp {
+        /// The address.
+        addr: SocketAddr,
+        /// What went wrong.
+        source: std::io::Error,
+    },
+    /// The web server's socket.
+    #[error("web server {addr}: {source}")]
+    Http {
+        /// The address.
+        addr: SocketAddr,
+        /// What went wrong.
+        source: std::io::Error,
+    },
+    /// The node refused the console's component.
+    #[error("the console's component: {0}")]
+    Node(String),
+}
+
+/// Where a running console is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Bound {
+    /// The JAUS socket.
+    pub udp: SocketAddr,
+    /// The web server (open `http://{http}/`).
+    pub http: SocketAddr,
+    /// The System Commander's address.
+    pub me: Address,
+}
+
+/// Runs the console until `stop` is set: binds both sockets, calls `ready` with where
+/// they are, serves the page on a thread of its own and runs the node on this one.
+pub fn run(
+    options: &ConsoleOptions,
+    stop: &AtomicBool,
+    ready: impl FnOnce(Bound),
+) -> Result<(), ConsoleError> {
+    let socket = UdpSocket::bind(options.bind).map_err(|source| ConsoleError::Udp {
+        addr: options.bind,
+        source,
+    })?;
+    let udp_local = socket.local_addr().map_err(|source| ConsoleError::Udp {
+        addr: options.bind,
+        source,
+    })?;
+    let listener =
+        std::net::TcpListener::bind(options.http).map_err(|source| ConsoleError::Http {
+            addr: options.http,
+            source,
+        })?;
+    let http_local = listener.local_addr().map_err(|source| ConsoleError::Http {
+        addr: options.http,
+        source,
+    })?;
+    let t0 = Instant::now();
+    let mut node = Node::new(options.node.clone(), t0);
+    let me = Address::new(
+        options.node.subsystem,
+        options.node.node,
+        40,
+        options.instance,
+    );
+    let mut station = Station::new(options.station);
+    if let Some((lat, lon)) = options.origin {
+        station.set_origin(lat, lon);
+    }
+    node.add(system_commander::component(
+        me,
+        Console { station },
+        Config {
+            authority: options.authority,
+            ..Config::default()
+        },
+        t0,
+    ))
+    .map_err(|e| ConsoleError::Node(e.to_string()))?;
+    let shared = Shared::new(MessageLog::new(me, options.node.framing));
+    let server_shared = shared.clone();
+    let server_stop = Arc::new(AtomicBool::new(false));
+    let server_stop2 = server_stop.clone();
+    let server = std::thread::Builder::new()
+        .name("ocu-http".into())
+        .spawn(move || crate::server::serve(listener, server_shared, &server_stop2))
+        .map_err(|source| ConsoleError::Http {
+            addr: http_local,
+            source,
+        })?;
+    ready(Bound {
+        udp: udp_local,
+        http: http_local,
+        me,
+    });
+    let mut publisher = Publisher {
+        me,
+        shared: shared.clone(),
+        tree_version: u64::MAX,
+        next_publish: t0,
+        next_trails: t0,
+        period: options.publish_period,
+    };
+    let io = udp::IoOptions {
+        spin: Duration::ZERO,
+        ..udp::IoOptions::default()
+    };
+    let log_shared = shared.clone();
+    let result = udp::run_tapped(
+        &mut node,
+        &socket,
+        &io,
+        stop,
+        None,
+        |n| publisher.step(n),
+        |dir, _peer, datagram| {
+            lock(&log_shared.log).see(Instant::now(), dir == udp::Direction::Received, datagram);
+        },
+    );
+    server_stop.store(true, Ordering::Relaxed);
+    let _ = server.join();
+    result.map_err(|source| ConsoleError::Udp {
+        addr: udp_local,
+        source,
+    })
+}
+
+/// The node thread's work between events.
+struct Publisher {
+    me: Address,
+    shared: Arc<Shared>,
+    tree_version: u64,
+    next_publish: Instant,
+    next_trails: Instant,
+    period: Duration,
+}
+
+impl Publisher {
+    fn step(&mut self, node: &mut Node) {
+        let now = Instant::now();
+        let version = node.tree_version();
+        let tree = (version != self.tree_version).then(|| tree_input(node.tree()));
+        self.tree_version = version;
+        let inbox: Vec<String> = lock(&self.shared.inbox).drain(..).collect();
+        let Some(console) = node.get_mut::<Hosted>(self.me) else {
+            return;
+        };
+        let station = &mut console.behaviour_mut().0.station;
+        if let Some(t) = tree {
+            station.set_tree(t);
+        }
+        for text in inbox {
+            match crate::protocol::parse(&text, station.frame()) {
+                Ok(cmd) => {
+                    // A refused command is a notice already.
+                    let _ = station.submit(cmd);
+                }
+                Err(e) => station.report_error(format!("page: {e}")),
+            }
+        }
+        let dropped = self.shared.dropped.swap(0, Ordering::Relaxed);
+        if dropped > 0 {
+            station.report_error(format!(
+                "{dropped} page message(s) dropped: the console is busy"
+            ));
+        }
+        if now >= self.next_publish {
+            self.next_publish = now + self.period;
+            let view = station.view(now, false);
+            let json = serde_json::to_string(&view).unwrap_or_else(|_| "{}".into());
+            let log_seq = lock(&self.shared.log).seq();
+            self.shared.view.send_replace(Arc::new(Published {
+                view: json,
+                log_seq,
+            }));
+        }
+        if now >= self.next_trails || self.shared.trails_wanted.swap(false, Ordering::Relaxed) {
+            self.next_trails = now + Duration::from_secs(1);
+            let view = station.view(now, true);
+            let json = serde_json::to_string(&view).unwrap_or_else(|_| "{}".into());
+            *lock(&self.shared.trails) = Arc::new(json);
+        }
+    }
+}
+
+/// The station's input from the node's system tree.
+pub fn tree_input(tree: &SystemTree) -> TreeInput {
+    let mut t = TreeInput::default();
+    for (ss, s) in &tree.subsystems {
+        t.subsystems.insert(*ss, s.name.clone());
+        for (n, node) in &s.nodes {
+            t.nodes.insert((*ss, *n), node.name.clone());
+            for ((c, i), info) in &node.components {
+                t.components
+                    .insert(Address::new(*ss, *n, *c, *i), info.name.clone());
+            }
+        }
+    }
+    t
+}
