@@ -193,6 +193,7 @@ function drawMap() {
     if (s.route.length) {
       const pts = s.route.map((p) => `${p[0]},${-p[1]}`).join(" ");
       routes.append(svg("polyline", { points: pts, class: "route" }));
+      for (const p of s.route) routes.append(svg("circle", { cx: p[0], cy: -p[1], r: 0.25, class: "route-point" }));
     }
     const t = ocu.trails.get(s.id) || [];
     if (t.length > 1) trails.append(svg("polyline", { points: t.map((p) => `${p[0]},${-p[1]}`).join(" "), class: "trail" }));

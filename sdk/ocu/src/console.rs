@@ -155,7 +155,7 @@ impl Default for ConsoleOptions {
             authority: 0,
             origin: None,
             station: StationConfig::default(),
-            publish_period: Duration::from_millis(50),
+            publish_period: Duration::from_millis(25),
         }
     }
 }

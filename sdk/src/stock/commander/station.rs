@@ -324,6 +324,8 @@ pub struct Station {
     next_mission: Option<Instant>,
     next_poll: Option<Instant>,
     next_mission_id: u16,
+    /// The station's own address (known from the first tick).
+    me: Option<Address>,
 }
 
 impl Default for Station {
@@ -365,6 +367,7 @@ impl Station {
             next_mission: None,
             next_poll: None,
             next_mission_id: 1,
+            me: None,
         }
     }
 
@@ -586,6 +589,7 @@ impl Station {
     pub fn tick<I: Interface>(&mut self, ctx: &mut Context<'_, I>) {
         let now = ctx.now();
         let me = ctx.address();
+        self.me = Some(me);
         while let Some(cmd) = self.pending.pop_front() {
             self.execute(ctx, cmd);
         }
@@ -1178,7 +1182,10 @@ impl Station {
                 .max();
             s.heard_s = heard.map(age);
             let followed = v.pose.map(|p| p.1).or(heard);
-            s.stale = followed.is_none_or(|t| age(t) > self.config.stale_after.as_secs_f64());
+            // The station's own subsystem is not watched, so never stale.
+            let own = self.me.is_some_and(|m| m.subsystem == *id);
+            s.stale =
+                !own && followed.is_none_or(|t| age(t) > self.config.stale_after.as_secs_f64());
             s.pose = v.pose.map(|(p, t)| PoseView { age_s: age(t), ..p });
             s.velocity = v.velocity.map(|v| v.0);
             s.emergency = v.emergency;

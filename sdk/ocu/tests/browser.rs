@@ -1,0 +1,388 @@
+//! The console end to end in a real headless browser (Debian's `chromium` and
+//! `chromium-driver`, driven over WebDriver): against a node hosting the demo's simulated
+//! vehicle on loopback, the page refuses a route without control and a malformed speed
+//! (visible errors), takes control of the waypoint driver, gets two waypoints clicked on
+//! the map, shows the vehicle's marker arriving, and after the emergency stop shows the
+//! vehicle stopped and its state Emergency. A screenshot is saved as
+//! `target/ocu/console.png`.
+//!
+//! Without `chromedriver` the test is skipped with a message, unless
+//! `JAUS_REQUIRE_BROWSER` is set (CI installs the packages and sets it).
+
+use std::net::{SocketAddr, UdpSocket};
+use std::path::PathBuf;
+use std::process::{Child, Command, Stdio};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{mpsc, Arc};
+use std::time::{Duration, Instant};
+
+use fantoccini::actions::{InputSource, MouseActions, PointerAction, MOUSE_BUTTON_LEFT};
+use fantoccini::{Client, ClientBuilder, Locator};
+use jaus::net::{udp, Node, NodeConfig};
+use jaus_ocu::{Bound, ConsoleOptions};
+use serde_json::{json, Value};
+
+struct Driver(Child);
+impl Drop for Driver {
+    fn drop(&mut self) {
+        let _ = self.0.kill();
+        let _ = self.0.wait();
+    }
+}
+
+fn chromedriver() -> Option<PathBuf> {
+    let p = PathBuf::from("/usr/bin/chromedriver");
+    if p.exists() {
+        return Some(p);
+    }
+    std::env::var_os("PATH").and_then(|paths| {
+        std::env::split_paths(&paths)
+            .map(|d| d.join("chromedriver"))
+            .find(|p| p.exists())
+    })
+}
+
+fn free_port() -> u16 {
+    std::net::TcpListener::bind("127.0.0.1:0")
+        .and_then(|l| l.local_addr())
+        .map(|a| a.port())
+        .expect("a free port")
+}
+
+/// The demo's vehicle on a node of its own (subsystem 1), as `jaus node` hosts it.
+fn vehicle(socket: UdpSocket, stop: Arc<AtomicBool>) -> std::thread::JoinHandle<()> {
+    std::thread::spawn(move || {
+        let t0 = Instant::now();
+        let mut node = Node::new(
+            NodeConfig {
+                subsystem: 1,
+                node: 1,
+                ..NodeConfig::default()
+            },
+            t0,
+        );
+        let (parts, _) = jaus_sim::demo::vehicle_at(t0, &jaus_sim::demo::Options::default(), 1, 1);
+        for p in parts {
+            node.add_boxed(p).expect("the vehicle's components");
+        }
+        udp::run_on(&mut node, &socket, &stop, None, |_| {}).expect("the vehicle's node");
+    })
+}
+
+async fn wait_for<T>(
+    what: &str,
+    timeout: Duration,
+    mut probe: impl AsyncFnMut() -> Option<T>,
+) -> T {
+    let until = Instant::now() + timeout;
+    loop {
+        if let Some(v) = probe().await {
+            return v;
+        }
+        assert!(Instant::now() < until, "timed out waiting for {what}");
+        tokio::time::sleep(Duration::from_millis(100)).await;
+    }
+}
+
+async fn js(c: &Client, script: &str) -> Value {
+    c.execute(script, vec![]).await.expect(script)
+}
+
+async fn click(c: &Client, id: &str) {
+    c.find(Locator::Id(id))
+        .await
+        .unwrap_or_else(|e| panic!("#{id}: {e}"))
+        .click()
+        .await
+        .unwrap_or_else(|e| panic!("click #{id}: {e}"));
+}
+
+/// Clicks the map at (x m east, y m north) with a real pointer.
+async fn click_map(c: &Client, x: f64, y: f64) {
+    let p = js(c, &format!("return ocu.worldToClient({x}, {y});")).await;
+    let (px, py) = (p["x"].as_f64().unwrap(), p["y"].as_f64().unwrap());
+    let actions = MouseActions::new("mouse".into())
+        .then(PointerAction::MoveTo {
+            duration: None,
+            x: px.round() as _,
+            y: py.round() as _,
+        })
+        .then(PointerAction::Down {
+            button: MOUSE_BUTTON_LEFT,
+        })
+        .then(PointerAction::Up {
+            button: MOUSE_BUTTON_LEFT,
+        });
+    c.perform_actions(actions).await.expect("pointer actions");
+}
+
+async fn notices(c: &Client) -> Vec<String> {
+    let v = js(
+        c,
+        "return [...document.querySelectorAll('#notices li.error')].map(e => e.textContent);",
+    )
+    .await;
+    v.as_array()
+        .map(|a| {
+            a.iter()
+                .filter_map(|s| s.as_str().map(String::from))
+                .collect()
+        })
+        .unwrap_or_default()
+}
+
+async fn vehicle_xy(c: &Client) -> Option<(f64, f64)> {
+    let v = js(
+        c,
+        "const g = document.getElementById('vehicle-1'); return g ? [Number(g.dataset.x), Number(g.dataset.y)] : null;",
+    )
+    .await;
+    Some((v[0].as_f64()?, v[1].as_f64()?))
+}
+
+async fn speed(c: &Client) -> Option<f64> {
+    js(
+        c,
+        "return Number(document.getElementById('veh-speed').dataset.speed);",
+    )
+    .await
+    .as_f64()
+}
+
+async fn set_speed(c: &Client, text: &str) {
+    let e = c.find(Locator::Id("speed")).await.expect("#speed");
+    e.clear().await.expect("clear #speed");
+    e.send_keys(text).await.expect("type #speed");
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn the_page_drives_the_simulated_vehicle_and_stops_it() {
+    let Some(driver_path) = chromedriver() else {
+        assert!(
+            std::env::var_os("JAUS_REQUIRE_BROWSER").is_none(),
+            "JAUS_REQUIRE_BROWSER is set but chromedriver is not installed"
+        );
+        eprintln!("skipped: chromedriver not found (apt-get install chromium chromium-driver)");
+        return;
+    };
+    let stop = Arc::new(AtomicBool::new(false));
+    let vsock = UdpSocket::bind("127.0.0.1:0").unwrap();
+    let vaddr = vsock.local_addr().unwrap();
+    let vthread = vehicle(vsock, stop.clone());
+    let options = ConsoleOptions {
+        node: NodeConfig {
+            subsystem: 200,
+            node: 1,
+            peers: vec![vaddr],
+            ..NodeConfig::default()
+        },
+        http: SocketAddr::from(([127, 0, 0, 1], 0)),
+        ..ConsoleOptions::default()
+    };
+    let (tx, rx) = mpsc::channel::<Bound>();
+    let cstop = stop.clone();
+    let cthread = std::thread::spawn(move || {
+        jaus_ocu::run(&options, &cstop, |b| {
+            let _ = tx.send(b);
+        })
+        .expect("the console")
+    });
+    let bound = rx
+        .recv_timeout(Duration::from_secs(10))
+        .expect("the console is up");
+
+    let port = free_port();
+    let _driver = Driver(
+        Command::new(&driver_path)
+            .arg(format!("--port={port}"))
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .spawn()
+            .expect("chromedriver starts"),
+    );
+    let mut caps = serde_json::Map::new();
+    caps.insert(
+        "goog:chromeOptions".into(),
+        json!({
+            "binary": "/usr/bin/chromium",
+            "args": ["--headless=new", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage", "--window-size=1500,1000"]
+        }),
+    );
+    let connector = hyper_util::client::legacy::connect::HttpConnector::new();
+    let c = wait_for("chromedriver", Duration::from_secs(20), async || {
+        ClientBuilder::new(connector.clone())
+            .capabilities(caps.clone())
+            .connect(&format!("http://127.0.0.1:{port}"))
+            .await
+            .ok()
+    })
+    .await;
+    c.goto(&format!("http://{}/", bound.http))
+        .await
+        .expect("the page");
+
+    // The vehicle appears with its waypoint driver.
+    let start = wait_for(
+        "the vehicle on the map",
+        Duration::from_secs(20),
+        async || vehicle_xy(&c).await,
+    )
+    .await;
+    wait_for("the waypoint driver", Duration::from_secs(20), async || {
+        (js(&c, "return document.getElementById('driver').value;").await == json!("1.1.45.1"))
+            .then_some(())
+    })
+    .await;
+
+    // A route without control: refused, visibly.
+    click_map(&c, start.0 + 3.0, start.1 + 3.0).await;
+    click(&c, "drive").await;
+    wait_for("the no-control error", Duration::from_secs(5), async || {
+        notices(&c)
+            .await
+            .into_iter()
+            .find(|n| n.contains("needs control"))
+    })
+    .await;
+
+    // Take control.
+    click(&c, "take").await;
+    wait_for(
+        "control of the waypoint driver",
+        Duration::from_secs(10),
+        async || {
+            (c.find(Locator::Id("driver-control"))
+                .await
+                .ok()?
+                .text()
+                .await
+                .ok()?
+                == "held")
+                .then_some(())
+        },
+    )
+    .await;
+
+    // A malformed speed: refused, visibly, naming the field.
+    set_speed(&c, "fast").await;
+    click_map(&c, start.0 + 3.0, start.1 + 3.0).await;
+    click(&c, "drive").await;
+    wait_for("the bad-speed error", Duration::from_secs(5), async || {
+        notices(&c).await.into_iter().find(|n| n.contains("speed"))
+    })
+    .await;
+    set_speed(&c, "2.0").await;
+
+    // Two waypoints clicked on the map, then driven.
+    let targets = [
+        (start.0 + 6.0, start.1 + 4.0),
+        (start.0 + 12.0, start.1 - 2.0),
+    ];
+    for (x, y) in targets {
+        click_map(&c, x, y).await;
+    }
+    let draft = js(&c, "return ocu.draft.map(p => [p.x, p.y]);").await;
+    let draft: Vec<(f64, f64)> = draft
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| (p[0].as_f64().unwrap(), p[1].as_f64().unwrap()))
+        .collect();
+    assert_eq!(draft.len(), 2, "two waypoints clicked: {draft:?}");
+    for (d, t) in draft.iter().zip(targets) {
+        assert!(
+            (d.0 - t.0).hypot(d.1 - t.1) < 0.5,
+            "clicked {d:?}, meant {t:?}"
+        );
+    }
+    click(&c, "drive").await;
+    let t_drive = Instant::now();
+    let last = targets[1];
+    let arrived = wait_for(
+        "the vehicle's arrival",
+        Duration::from_secs(60),
+        async || {
+            // Within a metre of the last waypoint and stopped there.
+            let (x, y) = vehicle_xy(&c).await?;
+            let still = speed(&c).await.is_some_and(|s| s < 0.1);
+            ((x - last.0).hypot(y - last.1) < 1.0 && still).then_some((x, y))
+        },
+    )
+    .await;
+    let drive_s = t_drive.elapsed().as_secs_f64();
+    // It went through the first waypoint on the way.
+    let trail = js(&c, "return ocu.trails.get(1);").await;
+    let closest = trail
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter_map(|p| Some((p[0].as_f64()?, p[1].as_f64()?)))
+        .map(|p| (p.0 - targets[0].0).hypot(p.1 - targets[0].1))
+        .fold(f64::INFINITY, f64::min);
+    assert!(
+        closest < 1.0,
+        "the trail passes {closest:.2} m from waypoint 1"
+    );
+
+    // Moving again (back to the start), then the emergency stop.
+    click_map(&c, start.0, start.1).await;
+    click(&c, "drive").await;
+    wait_for("the vehicle moving", Duration::from_secs(20), async || {
+        speed(&c).await.filter(|s| *s > 0.3)
+    })
+    .await;
+    click(&c, "estop-all").await;
+    let t_stop = Instant::now();
+    wait_for("state Emergency", Duration::from_secs(5), async || {
+        let s = c
+            .find(Locator::Id("veh-state"))
+            .await
+            .ok()?
+            .text()
+            .await
+            .ok()?;
+        s.contains("Emergency").then_some(())
+    })
+    .await;
+    wait_for("the vehicle stopped", Duration::from_secs(10), async || {
+        speed(&c).await.filter(|s| *s < 0.05)
+    })
+    .await;
+    let stopped_s = t_stop.elapsed().as_secs_f64();
+    let at_stop = vehicle_xy(&c).await.unwrap();
+    tokio::time::sleep(Duration::from_secs(2)).await;
+    let later = vehicle_xy(&c).await.unwrap();
+    assert!(
+        (later.0 - at_stop.0).hypot(later.1 - at_stop.1) < 0.2,
+        "still moving after the emergency stop: {at_stop:?} -> {later:?}"
+    );
+    // The marker shows the emergency; the page is live, not stale.
+    let class = js(
+        &c,
+        "return document.getElementById('vehicle-1').getAttribute('class');",
+    )
+    .await;
+    assert!(class.as_str().unwrap().contains("emergency"), "{class}");
+    let link = c
+        .find(Locator::Id("link"))
+        .await
+        .unwrap()
+        .text()
+        .await
+        .unwrap();
+    assert!(link.starts_with("live"), "{link}");
+
+    let png = c.screenshot().await.expect("a screenshot");
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../target/ocu");
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("console.png"), &png).unwrap();
+    let lat = js(&c, "const l = ocu.stats.latencies.slice().sort((a, b) => a - b); return [l.length, l[Math.floor(l.length / 2)], l[Math.floor(l.length * 0.95)], l[l.length - 1]];").await;
+    eprintln!(
+        "browser test: arrived at {arrived:?} {drive_s:.1} s after Drive; stopped {stopped_s:.1} s after the emergency stop; pose received -> drawn (n, median, p95, max ms): {lat}; screenshot {}",
+        dir.join("console.png").display()
+    );
+    let _ = c.close().await;
+    stop.store(true, Ordering::Relaxed);
+    cthread.join().unwrap();
+    vthread.join().unwrap();
+}
