@@ -17,6 +17,8 @@
 //!   above (the Visual Sensor's hardware);
 //! * [`network`]: [`network::SimNet`], several sans-IO [`jaus::net::Node`]s on a
 //!   simulated lossy network (drops, duplicates, delays) with a virtual clock;
+//! * [`radio`]: a simulated radio link (loss, latency, bandwidth, up/down), the data
+//!   link of two `jaus::stock::communicator` Communicators;
 //! * [`host`]: any stock component at any instance of a node, over one simulated
 //!   vehicle (what `jaus node` hosts from its `host:` list);
 //! * [`demo`]: the scenario of `jaus demo`, a complete simulated subsystem (drivers,
@@ -30,6 +32,7 @@ pub mod camera;
 pub mod demo;
 pub mod host;
 pub mod network;
+pub mod radio;
 pub mod scanner;
 pub mod vehicle;
 

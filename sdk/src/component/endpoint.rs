@@ -53,6 +53,21 @@ pub trait Endpoint: Send + 'static {
     fn stats(&self) -> Option<super::Stats> {
         None
     }
+    /// For a gateway to other subsystems (the Communicator a node names in its
+    /// `NodeConfig::communicator`, Part 1 Figure 5-1): takes one packet (a 16-byte JAUS
+    /// header and its body) leaving the subsystem at `now`. Returns false when this
+    /// endpoint is no gateway (the default); the node then counts the packet as dropped.
+    fn gateway_send(&mut self, now: Instant, packet: &[u8]) -> bool {
+        let _ = (now, packet);
+        false
+    }
+    /// For a gateway: the next packet received from another subsystem by `now`,
+    /// written into `buf` (a reused buffer, whatever it held); `Err(buf)` gives the
+    /// buffer back when there is none (always, by default).
+    fn gateway_recv(&mut self, now: Instant, buf: Vec<u8>) -> Result<Vec<u8>, Vec<u8>> {
+        let _ = now;
+        Err(buf)
+    }
     /// For [`LocalBus::get`](super::local::LocalBus::get).
     fn as_any(&self) -> &dyn Any;
     /// For [`LocalBus::get_mut`](super::local::LocalBus::get_mut).
@@ -180,6 +195,14 @@ impl Endpoints {
             .iter_mut()
             .find(|e| e.address() == a)
             .and_then(|e| e.as_any_mut().downcast_mut())
+    }
+
+    /// The component at `a`, as the endpoint the node drives.
+    pub fn endpoint_mut(&mut self, a: Address) -> Option<&mut dyn Endpoint> {
+        self.0
+            .iter_mut()
+            .find(|e| e.address() == a)
+            .map(|e| &mut **e as &mut dyn Endpoint)
     }
 
     /// The earliest instant one of them wants to be woken.

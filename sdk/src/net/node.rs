@@ -52,6 +52,18 @@ pub struct NodeConfig {
     /// and the configured peers, instead of to every node learned. Default `None`
     /// (off, as in OpenJAUS's default configuration). The I/O shell joins the group.
     pub multicast: Option<SocketAddr>,
+    /// The subsystem's Communicator (Part 1 §5.2.1 and Figure 5-1: the single point of
+    /// entry into the subsystem), on this node or another node of the subsystem.
+    /// When set, every message for another subsystem goes through it: on this node it
+    /// is handed, packet by packet, to the communicator's endpoint
+    /// ([`Endpoint::gateway_send`], e.g. `jaus::stock::communicator::CommunicatorEndpoint`)
+    /// instead of to a UDP peer, and the packets it receives from its data links are
+    /// routed as if received (to the components here and the other nodes of the
+    /// subsystem); on another node, such messages are sent to that node. Datagrams on
+    /// the UDP interface from other subsystems are then dropped (counted in
+    /// [`NetStats::not_via_communicator`]) unless a node relays them from its
+    /// communicator. Default `None`: other subsystems are reached over UDP like nodes.
+    pub communicator: Option<Address>,
 }
 
 /// The defaults the field documentation states:
@@ -63,6 +75,7 @@ pub struct NodeConfig {
 /// assert_eq!((n.max_outbox, n.max_external), (8192, 64));
 /// assert_eq!(n.external_timeout, std::time::Duration::from_secs(3));
 /// assert!(n.multicast.is_none());
+/// assert!(n.communicator.is_none());
 /// ```
 impl Default for NodeConfig {
     fn default() -> Self {
@@ -78,6 +91,7 @@ impl Default for NodeConfig {
             max_external: 64,
             external_timeout: std::time::Duration::from_secs(3),
             multicast: None,
+            communicator: None,
         }
     }
 }
@@ -136,6 +150,35 @@ pub struct NetStats {
     pub external_refused: u64,
     /// External components removed after their timeout.
     pub external_timed_out: u64,
+    /// Packets handed to this node's communicator, leaving the subsystem
+    /// ([`NodeConfig::communicator`]).
+    pub to_communicator: u64,
+    /// Packets this node's communicator received from its data links.
+    pub from_communicator: u64,
+    /// Dropped: a datagram from another subsystem that did not come through the
+    /// subsystem's communicator.
+    pub not_via_communicator: u64,
+}
+
+/// Where a message being routed comes from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Origin {
+    /// A component of this node (built-in or external).
+    Local,
+    /// Another node, through the UDP interface.
+    Network,
+    /// Another subsystem, through this node's communicator.
+    Link,
+}
+
+impl Origin {
+    fn name(self) -> &'static str {
+        match self {
+            Origin::Local => "here",
+            Origin::Network => "network",
+            Origin::Link => "communicator",
+        }
+    }
 }
 
 type Manager = Component<node_manager::Dispatch<StockNodeManager>>;
@@ -181,6 +224,10 @@ impl std::fmt::Debug for Node {
             .finish()
     }
 }
+
+/// Most packets taken from the communicator's data links in one wake-up (the rest wait
+/// for the next, which is due at once).
+const MAX_LINK_PACKETS: usize = 1024;
 
 /// Most local deliveries in one run of the routing loop (two local components that
 /// answer each other forever cannot starve the node).
@@ -285,7 +332,7 @@ impl Node {
     /// Queues a message from a local address (as if that component sent it).
     pub fn send(&mut self, now: Instant, header: Header, body: Vec<u8>) {
         self.advance(now);
-        self.route(header, body, true);
+        self.route(header, body, Origin::Local);
         self.pump();
     }
 
@@ -314,16 +361,31 @@ impl Node {
             self.stats.bad_packet += 1;
             return;
         }
-        // Learn where that node is.
-        if !mine {
+        let foreign = src.subsystem != self.config.subsystem;
+        if let Some(comm) = self.config.communicator.filter(|_| foreign) {
+            // Figure 5-1: other subsystems come in through the communicator only (a
+            // node other than the communicator's takes what that node relays).
+            let relayed = comm.node != self.config.node
+                && self.peers.get(&(self.config.subsystem, comm.node)) == Some(&peer);
+            if !relayed {
+                self.stats.not_via_communicator += 1;
+                tracing::debug!(%peer, source = %src, code = %header.command_code, communicator = %comm,
+                    "datagram from another subsystem dropped: not through the communicator");
+                return;
+            }
+        }
+        // Learn where that node is (another subsystem's node is reached through the
+        // communicator when there is one).
+        if !(mine || foreign && self.config.communicator.is_some()) {
             self.peers.insert((src.subsystem, src.node), peer);
         }
         // A message of an external component is routed like one of a built-in component.
+        let origin = if mine { Origin::Local } else { Origin::Network };
         if header.data_flag == DataFlag::Single {
             // Straight from the datagram: copied only if it must wait in the queue.
-            self.route_borrowed(header, body, mine);
+            self.route_borrowed(header, body, origin);
         } else if let Some((header, body)) = self.reassembler.push(now, &header, body) {
-            self.route(header, body, mine);
+            self.route(header, body, origin);
         }
         self.pump();
     }
@@ -399,7 +461,110 @@ impl Node {
             self.manager.handle_timeout(self.now);
         }
         self.locals.run_due(self.now);
+        self.drain_communicator();
         self.pump();
+    }
+
+    /// Routes what this node's communicator received from its data links (bounded per
+    /// wake-up).
+    fn drain_communicator(&mut self) {
+        let Some(comm) = self.config.communicator else {
+            return;
+        };
+        if comm.node != self.config.node || comm.subsystem != self.config.subsystem {
+            return;
+        }
+        let now = self.now;
+        for _ in 0..MAX_LINK_PACKETS {
+            let buf = self.buffer();
+            let Some(e) = self.locals.endpoint_mut(comm) else {
+                self.recycle(buf);
+                return;
+            };
+            let packet = match e.gateway_recv(now, buf) {
+                Ok(p) => p,
+                Err(buf) => {
+                    self.recycle(buf);
+                    return;
+                }
+            };
+            self.stats.from_communicator += 1;
+            self.route_link_packet(comm, &packet);
+            self.recycle(packet);
+            self.pump();
+        }
+    }
+
+    /// One packet from another subsystem, through the communicator `comm`.
+    fn route_link_packet(&mut self, comm: Address, packet: &[u8]) {
+        let (header, body) = match Framing::Raw.packet(packet) {
+            Ok(p) => p,
+            Err(e) => {
+                self.stats.bad_packet += 1;
+                tracing::debug!(communicator = %comm, "packet from a data link dropped: {e}");
+                return;
+            }
+        };
+        let src = header.source;
+        if src.subsystem == self.config.subsystem {
+            // Our own traffic looped back by a link.
+            self.stats.from_self += 1;
+            return;
+        }
+        if !src.is_valid() || src.subsystem == 255 || src.node == 255 {
+            self.stats.bad_packet += 1;
+            tracing::debug!(communicator = %comm, source = %src, code = %header.command_code,
+                "packet from a data link dropped: bad source address");
+            return;
+        }
+        if header.data_flag == DataFlag::Single {
+            self.route_borrowed(header, body, Origin::Link);
+        } else if let Some((header, body)) = self.reassembler.push(self.now, &header, body) {
+            self.route(header, body, Origin::Link);
+        }
+    }
+
+    /// Hands a message leaving the subsystem to the communicator `comm` on this node,
+    /// packet by packet.
+    fn send_gateway(&mut self, comm: Address, header: &Header, body: &[u8]) {
+        if body.len() <= MAX_PACKET_BODY {
+            let mut bytes = self.buffer();
+            match Framing::Raw.write_packet(&mut bytes, header, body) {
+                Ok(()) => self.gateway_packet(comm, header, &bytes),
+                Err(e) => {
+                    self.stats.encode_errors += 1;
+                    tracing::warn!(code = %header.command_code, destination = %header.destination, "not sent: {e}");
+                }
+            }
+            self.recycle(bytes);
+            return;
+        }
+        match split(header, body) {
+            Ok(packets) => {
+                for p in &packets {
+                    self.gateway_packet(comm, header, p);
+                }
+            }
+            Err(e) => {
+                self.stats.encode_errors += 1;
+                tracing::warn!(code = %header.command_code, destination = %header.destination, "not sent: {e}");
+            }
+        }
+    }
+
+    fn gateway_packet(&mut self, comm: Address, header: &Header, packet: &[u8]) {
+        let now = self.now;
+        let taken = self
+            .locals
+            .endpoint_mut(comm)
+            .is_some_and(|e| e.gateway_send(now, packet));
+        if taken {
+            self.stats.to_communicator += 1;
+        } else {
+            self.stats.no_such_component += 1;
+            tracing::debug!(communicator = %comm, code = %header.command_code, destination = %header.destination,
+                "not sent to another subsystem: the communicator is not a gateway on this node");
+        }
     }
 
     /// A control datagram on OpenJAUS's component control socket (port 24627) from
@@ -528,7 +693,7 @@ impl Node {
         let Some((header, body)) = self.reassembler.message(now, &header, body) else {
             return;
         };
-        self.route(header, body, true);
+        self.route(header, body, Origin::Local);
         self.pump();
     }
 
@@ -580,7 +745,7 @@ impl Node {
             self.locals.drain_transmits_with(&mut out, &mut self.pool);
             for t in out.drain(..) {
                 match t.body {
-                    Ok(body) => self.route(t.header, body, true),
+                    Ok(body) => self.route(t.header, body, Origin::Local),
                     Err(e) => {
                         self.stats.encode_errors += 1;
                         tracing::warn!(message = t.name, code = %t.header.command_code, source = %t.header.source, "not sent: {e}");
@@ -616,8 +781,8 @@ impl Node {
     }
 
     /// Routes a message whose body the node owns (a component's, a reassembled one).
-    fn route(&mut self, header: Header, body: Vec<u8>, from_local: bool) {
-        if self.route_common(&header, &body, from_local) {
+    fn route(&mut self, header: Header, body: Vec<u8>, origin: Origin) {
+        if self.route_common(&header, &body, origin) {
             self.enqueue(header, body);
         } else {
             self.recycle(body);
@@ -626,8 +791,8 @@ impl Node {
 
     /// Routes a message read from a datagram: delivered from the datagram's bytes when
     /// nothing waits before it, copied into a pooled buffer only when it must wait.
-    fn route_borrowed(&mut self, header: Header, body: &[u8], from_local: bool) {
-        if self.route_common(&header, body, from_local) {
+    fn route_borrowed(&mut self, header: Header, body: &[u8], origin: Origin) {
+        if self.route_common(&header, body, origin) {
             if self.local_queue.is_empty() {
                 self.deliver(&header, body);
             } else {
@@ -640,7 +805,7 @@ impl Node {
 
     /// Sends a message on to the network when it leaves this node; true when it is for
     /// a component here.
-    fn route_common(&mut self, header: &Header, body: &[u8], from_local: bool) -> bool {
+    fn route_common(&mut self, header: &Header, body: &[u8], origin: Origin) -> bool {
         let d = header.destination;
         // One line per message at trace level; the fields are evaluated only when it is
         // enabled (`jaus -vvv`, `RUST_LOG=jaus::net=trace`).
@@ -650,16 +815,58 @@ impl Node {
             source = %header.source,
             destination = %d,
             size = body.len(),
-            from = if from_local { "here" } else { "network" },
+            from = origin.name(),
             "route"
         );
         let here = self.is_here(d);
-        let only_here = d.subsystem == self.config.subsystem && d.node == self.config.node;
-        if from_local && !only_here {
-            self.send_network(header, body);
-        }
-        if !here && !from_local {
-            self.stats.not_for_us += 1;
+        let (ss, node) = (self.config.subsystem, self.config.node);
+        let Some(comm) = self.config.communicator else {
+            let only_here = d.subsystem == ss && d.node == node;
+            let from_local = origin == Origin::Local;
+            if from_local && !only_here {
+                self.send_network(header, body, (d.subsystem, d.node));
+            }
+            if !here && !from_local {
+                self.stats.not_for_us += 1;
+            }
+            return here;
+        };
+        // Through the communicator (Figure 5-1).
+        let own_subsystem = d.subsystem == ss || d.subsystem == 255;
+        let other_subsystem = d.subsystem != ss;
+        let other_nodes = own_subsystem && d.node != node;
+        let comm_here = comm.subsystem == ss && comm.node == node;
+        match origin {
+            Origin::Local => {
+                if other_nodes {
+                    self.send_network(header, body, (d.subsystem, d.node));
+                }
+                if other_subsystem {
+                    if comm_here {
+                        self.send_gateway(comm, header, body);
+                    } else if !(other_nodes && d.subsystem == 255) {
+                        // (A broadcast to every subsystem reached the communicator's
+                        // node with the other nodes.)
+                        self.send_network(header, body, (ss, comm.node));
+                    }
+                }
+            }
+            Origin::Network => {
+                if other_subsystem && comm_here && header.source.subsystem == ss {
+                    self.send_gateway(comm, header, body);
+                } else if !here {
+                    self.stats.not_for_us += 1;
+                }
+            }
+            Origin::Link => {
+                if other_nodes {
+                    self.send_network(header, body, (d.subsystem, d.node));
+                }
+                if !own_subsystem {
+                    // Nothing passes between two other subsystems through this one.
+                    self.stats.not_for_us += 1;
+                }
+            }
         }
         here
     }
@@ -730,12 +937,14 @@ impl Node {
         }
     }
 
-    fn send_network(&mut self, header: &Header, body: &[u8]) {
-        let d = header.destination;
+    /// Sends a message on the UDP interface toward node `hop` (subsystem, node): the
+    /// destination's, or the communicator's node; 255 in either is a broadcast.
+    fn send_network(&mut self, header: &Header, body: &[u8], hop: (u8, u8)) {
+        let broadcast = hop.0 == 255 || hop.1 == 255;
         // The hot path: one packet to a node whose socket is known, framed into a pooled
         // buffer.
-        if body.len() <= MAX_PACKET_BODY && d.subsystem != 255 && d.node != 255 {
-            if let Some(&to) = self.peers.get(&(d.subsystem, d.node)) {
+        if body.len() <= MAX_PACKET_BODY && !broadcast {
+            if let Some(&to) = self.peers.get(&hop) {
                 if self.outbox.len() >= self.config.max_outbox {
                     self.stats.outbox_full += 1;
                     return;
@@ -764,7 +973,7 @@ impl Node {
                 return;
             }
         };
-        let targets: Vec<SocketAddr> = if d.subsystem == 255 || d.node == 255 {
+        let targets: Vec<SocketAddr> = if broadcast {
             let mut t: Vec<SocketAddr> = self.config.peers.clone();
             if let Some(group) = self.config.multicast {
                 // The group reaches every node that listens; the configured peers may
@@ -779,7 +988,7 @@ impl Node {
             }
             t.sort();
             t
-        } else if let Some(p) = self.peers.get(&(d.subsystem, d.node)) {
+        } else if let Some(p) = self.peers.get(&hop) {
             vec![*p]
         } else {
             self.stats.flooded += 1;

@@ -13,8 +13,11 @@
 //! | Mission Spooler | [`spooler::StockMissionSpooler`] | — |
 //! | World Model Vector Knowledge Store (feature `world_model`) | [`world_model::StockWorldModel`] over [`world_model::VectorStore`] | — (an in-memory store with an R*-tree) |
 //! | Subsystem / System Commander (operator logic) | [`commander::ControlKeeper`] | — |
+//! | Communicator (feature `communications`) | [`communicator::StockCommunicator`], hosted as the node's gateway by [`communicator::CommunicatorEndpoint`] | [`communicator::DataLink`] |
 
 pub mod commander;
+#[cfg(feature = "communications")]
+pub mod communicator;
 pub mod drivers;
 #[cfg(feature = "environment")]
 pub mod environment;

@@ -1,0 +1,53 @@
+//! The hardware of the Communicator: a data link ([`DataLink`]), a radio or any other
+//! channel that carries JAUS packets between subsystems. Sans-IO like the rest of the
+//! SDK: every call takes the time, nothing blocks, no thread or socket is implied.
+
+use std::time::Instant;
+
+/// Why a data link did not take a frame.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
+pub enum LinkError {
+    /// The link is down (no carrier, no peer): the frame is lost.
+    #[error("data link down")]
+    Down,
+    /// The link cannot take the frame now (its transmit buffer is full); the frame may
+    /// be offered again later (see [`DataLink::poll_timeout`]).
+    #[error("data link busy: its transmit buffer is full")]
+    Busy,
+    /// The frame is larger than the link carries.
+    #[error("frame of {len} bytes is larger than the data link's {max}-byte limit")]
+    TooLarge {
+        /// The frame's length, bytes.
+        len: usize,
+        /// The largest frame the link carries, bytes.
+        max: usize,
+    },
+}
+
+/// A data link to other subsystems: it carries frames, each one JAUS packet (a 16-byte
+/// header and its body, as `jaus::net::Framing::Raw` writes it), in both
+/// directions.
+///
+/// A vendor implements it over a radio modem, a serial line, a tether; `jaus-sim`
+/// implements it with a simulated radio (loss, latency, bandwidth, up/down).
+pub trait DataLink: Send + 'static {
+    /// The link's id, as Data Link ID in the communications messages.
+    fn id(&self) -> u8;
+    /// Offers `frame` for transmission at `now`.
+    fn send(&mut self, now: Instant, frame: &[u8]) -> Result<(), LinkError>;
+    /// The next frame received by `now`, written into `buf` (cleared first); false when
+    /// there is none.
+    fn recv(&mut self, now: Instant, buf: &mut Vec<u8>) -> bool;
+    /// Whether the hardware reports the link up (carrier, association) at `now`.
+    fn is_up(&self, now: Instant) -> bool;
+    /// When something may next change: a frame arrives, or room frees in the transmit
+    /// buffer. `None`: nothing expected (the default).
+    fn poll_timeout(&self) -> Option<Instant> {
+        None
+    }
+    /// The commanded power state changed at `now` (true: On; false: Off or Standby);
+    /// the hardware may power the transmitter up or down. Ignored by default.
+    fn set_powered(&mut self, now: Instant, on: bool) {
+        let _ = (now, on);
+    }
+}
