@@ -16,7 +16,7 @@ const ocu = {
   lastMessage: 0,        // Date.now() of the last WebSocket message
   noticesSeen: 0,
   log: [],
-  stats: { latencies: [], frames: 0 }, // pose received by the console -> drawn, ms
+  stats: { latencies: [], draw: [], push: [], frames: 0 }, // pose received by the console -> drawn; time to draw a view (ms)
   socket: null,
 };
 window.ocu = ocu;
@@ -43,6 +43,10 @@ function connect() {
       }
       update(msg.view, []);
     } else if (msg.type === "view") {
+      // Console published -> page received, ms (the rest of a pose's latency is the
+      // console's own time and the drawing).
+      ocu.stats.push.push(Date.now() - msg.published_unix_ms);
+      if (ocu.stats.push.length > 10000) ocu.stats.push.shift();
       update(msg.view, msg.log || []);
     } else if (msg.type === "error") {
       localNotice(msg.text);
@@ -71,6 +75,7 @@ function localNotice(text) {
 // ---- View ----------------------------------------------------------------------------
 
 function update(view, log) {
+  const t0 = performance.now();
   ocu.view = view;
   const changed = [];
   for (const s of view.subsystems) {
@@ -98,6 +103,8 @@ function update(view, log) {
     ocu.stats.latencies.push(drawn - at);
     if (ocu.stats.latencies.length > 10000) ocu.stats.latencies.shift();
   }
+  ocu.stats.draw.push(performance.now() - t0);
+  if (ocu.stats.draw.length > 10000) ocu.stats.draw.shift();
   ocu.stats.frames++;
 }
 

@@ -56,6 +56,8 @@ pub struct Published {
     pub view: String,
     /// Number of the last logged message.
     pub log_seq: u64,
+    /// When it was published, ms since the Unix epoch.
+    pub unix_ms: f64,
 }
 
 /// State shared by the node thread and the web server.
@@ -137,7 +139,8 @@ pub struct ConsoleOptions {
     pub origin: Option<(f64, f64)>,
     /// The station's settings.
     pub station: StationConfig,
-    /// How often the view is published to the page at most.
+    /// How often the view is published to the page when no new pose arrived (a new
+    /// pose is published at once, at most every 10 ms).
     pub publish_period: Duration,
 }
 
@@ -155,7 +158,7 @@ impl Default for ConsoleOptions {
             authority: 0,
             origin: None,
             station: StationConfig::default(),
-            publish_period: Duration::from_millis(25),
+            publish_period: Duration::from_millis(50),
         }
     }
 }
@@ -263,6 +266,8 @@ pub fn run(
         tree_version: u64::MAX,
         next_publish: t0,
         next_trails: t0,
+        last_publish: t0,
+        poses: 0,
         period: options.publish_period,
     };
     let io = udp::IoOptions {
@@ -296,6 +301,8 @@ struct Publisher {
     tree_version: u64,
     next_publish: Instant,
     next_trails: Instant,
+    last_publish: Instant,
+    poses: u64,
     period: Duration,
 }
 
@@ -328,14 +335,23 @@ impl Publisher {
                 "{dropped} page message(s) dropped: the console is busy"
             ));
         }
-        if now >= self.next_publish {
+        // Every period, and as soon as a new pose arrived (at most every 10 ms).
+        let new_pose =
+            station.poses() != self.poses && now >= self.last_publish + Duration::from_millis(10);
+        if now >= self.next_publish || new_pose {
+            self.poses = station.poses();
+            self.last_publish = now;
             self.next_publish = now + self.period;
             let view = station.view(now, false);
             let json = serde_json::to_string(&view).unwrap_or_else(|_| "{}".into());
             let log_seq = lock(&self.shared.log).seq();
+            let unix_ms = std::time::SystemTime::now()
+                .duration_since(std::time::UNIX_EPOCH)
+                .map_or(0.0, |d| d.as_secs_f64() * 1e3);
             self.shared.view.send_replace(Arc::new(Published {
                 view: json,
                 log_seq,
+                unix_ms,
             }));
         }
         if now >= self.next_trails || self.shared.trails_wanted.swap(false, Ordering::Relaxed) {

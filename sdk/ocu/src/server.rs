@@ -12,6 +12,7 @@ use axum::extract::State;
 use axum::http::{header, StatusCode};
 use axum::response::{IntoResponse, Response};
 use axum::routing::{get, post};
+use axum::serve::ListenerExt;
 use axum::Router;
 
 use crate::console::Shared;
@@ -99,8 +100,8 @@ async fn session(mut socket: WebSocket, shared: Arc<Shared>) {
                 };
                 log_seen = last;
                 let msg = format!(
-                    "{{\"type\":\"view\",\"view\":{},\"log\":{log}}}",
-                    published.view
+                    "{{\"type\":\"view\",\"published_unix_ms\":{},\"view\":{},\"log\":{log}}}",
+                    published.unix_ms, published.view
                 );
                 if socket.send(WsMessage::Text(msg.into())).await.is_err() {
                     return;
@@ -156,7 +157,14 @@ pub fn serve(listener: std::net::TcpListener, shared: Arc<Shared>, stop: &Atomic
             }
         };
         tokio::select! {
-            r = axum::serve(listener, router(shared)) => {
+            // No Nagle: a view is one small frame, and waiting for the browser's delayed
+            // ACK would hold it back by up to 40 ms.
+            r = axum::serve(
+                listener.tap_io(|tcp| {
+                    let _ = tcp.set_nodelay(true);
+                }),
+                router(shared),
+            ) => {
                 if let Err(e) = r {
                     tracing::error!("web server: {e}");
                 }

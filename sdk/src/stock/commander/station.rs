@@ -326,6 +326,8 @@ pub struct Station {
     next_mission_id: u16,
     /// The station's own address (known from the first tick).
     me: Option<Address>,
+    /// Poses received in all.
+    poses: u64,
 }
 
 impl Default for Station {
@@ -368,6 +370,7 @@ impl Station {
             next_poll: None,
             next_mission_id: 1,
             me: None,
+            poses: 0,
         }
     }
 
@@ -1106,6 +1109,12 @@ impl Station {
         }
         v.trail.push_back((l.x, l.y));
         v.pose_count += 1;
+        self.poses += 1;
+    }
+
+    /// Poses received in all (a user interface redraws when it grew).
+    pub fn poses(&self) -> u64 {
+        self.poses
     }
 
     /// What the station knows, at `now`; `trails` includes every subsystem's trail.
