@@ -1,0 +1,290 @@
+//! The System Commander's operator logic (`jaus::stock::commander::Station`, issue 14
+//! item 4; the console of issue 16 is its user interface) against the demo's simulated
+//! vehicle on a virtual clock: it follows the vehicle's pose and every component's state,
+//! refuses commands it cannot carry out (no control, bad coordinates, bad speed), takes
+//! control with an authority, drives waypoints to arrival, loses control to a higher
+//! authority and takes it back, sets and clears an emergency, and spools and runs a
+//! mission on the spooler until the spooler reports it finished.
+
+use std::time::Duration;
+
+use jaus::component::local::{LocalBus, Probe};
+use jaus::component::{Config, Refused};
+use jaus::components::system_commander::{self, Ctx, SystemCommander};
+use jaus::messages::*;
+use jaus::stock::commander::{
+    Command, GeoPoint, MissionAction, Station, StationConfig, StationError, SystemView, TreeInput,
+};
+use jaus::stock::nalgebra::Vector2;
+use jaus::Address;
+
+const ME: Address = Address::new(200, 1, 40, 1);
+const GWD: Address = Address::new(1, 1, 45, 1);
+const MS: Address = Address::new(1, 1, 36, 1);
+const INTRUDER: Address = Address::new(1, 3, 40, 1);
+
+#[derive(Debug)]
+struct Operator {
+    station: Station,
+}
+
+impl SystemCommander for Operator {
+    fn tick(&mut self, ctx: &mut Ctx<'_>) {
+        self.station.tick(ctx);
+    }
+    fn on_other_message(
+        &mut self,
+        ctx: &mut Ctx<'_>,
+        msg: &Message,
+    ) -> Result<Option<Message>, Refused> {
+        if let Some(s) = ctx.source() {
+            self.station.on_message(ctx.now(), s, msg);
+        }
+        Ok(None)
+    }
+}
+
+type Ocu = jaus::component::Component<system_commander::Dispatch<Operator>>;
+
+fn station(bus: &mut LocalBus) -> &mut Station {
+    &mut bus.get_mut::<Ocu>(ME).unwrap().behaviour_mut().0.station
+}
+
+fn view(bus: &mut LocalBus) -> SystemView {
+    let now = bus.now();
+    station(bus).view(now, true)
+}
+
+fn vehicle_xy(v: &SystemView) -> (f64, f64) {
+    let p = v
+        .subsystems
+        .iter()
+        .find(|s| s.id == 1)
+        .unwrap()
+        .pose
+        .unwrap();
+    (p.x, p.y)
+}
+
+fn state(v: &SystemView, a: Address) -> Option<String> {
+    v.subsystems
+        .iter()
+        .flat_map(|s| &s.nodes)
+        .flat_map(|n| &n.components)
+        .find(|c| c.address == a.to_string())
+        .and_then(|c| c.state.clone())
+}
+
+fn errors(v: &SystemView) -> Vec<String> {
+    v.notices
+        .iter()
+        .filter(|n| n.error)
+        .map(|n| n.text.clone())
+        .collect()
+}
+
+#[test]
+fn a_station_follows_commands_and_recovers_the_vehicle() {
+    let t0 = std::time::Instant::now();
+    let mut bus = LocalBus::new(t0);
+    let (parts, _) = jaus_sim::demo::vehicle_at(t0, &jaus_sim::demo::Options::default(), 1, 1);
+    let mut tree = TreeInput::default();
+    for p in parts {
+        let a = bus.add_boxed(p);
+        tree.components.insert(a, None);
+    }
+    bus.add(system_commander::component(
+        ME,
+        Operator {
+            station: Station::new(StationConfig::default()),
+        },
+        Config::default(),
+        t0,
+    ));
+    bus.add(Probe::new(INTRUDER));
+    station(&mut bus).set_tree(tree);
+
+    // It follows the pose (service connection) and every component's state.
+    bus.run_for(Duration::from_secs(2));
+    let v = view(&mut bus);
+    let s1 = v.subsystems.iter().find(|s| s.id == 1).unwrap();
+    assert!(s1.pose.is_some() && !s1.stale, "{s1:?}");
+    assert!(s1.trail.len() >= 10, "{} positions in 2 s", s1.trail.len());
+    assert_eq!(s1.roles.waypoint_driver.as_deref(), Some("1.1.45.1"));
+    assert_eq!(state(&v, GWD).as_deref(), Some("Standby"));
+    let frame = *station(&mut bus).frame().unwrap();
+    let at = |x: f64, y: f64| {
+        let (latitude, longitude) = frame.to_global(Vector2::new(x, y));
+        GeoPoint {
+            latitude,
+            longitude,
+        }
+    };
+
+    // Refused before anything is sent: no control, bad coordinates, bad speed, unknown.
+    let drive = |points: Vec<GeoPoint>, speed: f64| Command::Waypoints {
+        driver: GWD,
+        points,
+        speed,
+    };
+    let st = station(&mut bus);
+    assert!(matches!(
+        st.submit(drive(vec![at(8.0, 0.0)], 2.0)),
+        Err(StationError::NotInControl { target: GWD, .. })
+    ));
+    let bad = GeoPoint {
+        latitude: 95.0,
+        longitude: 0.0,
+    };
+    assert!(matches!(
+        st.submit(drive(vec![bad], 2.0)),
+        Err(StationError::Coordinate {
+            field: "latitude",
+            ..
+        })
+    ));
+    assert!(matches!(
+        st.submit(drive(vec![at(8.0, 0.0)], f64::NAN)),
+        Err(StationError::Speed { .. })
+    ));
+    assert!(matches!(
+        st.submit(Command::TakeControl {
+            target: Address::new(1, 1, 47, 1),
+            authority: 5
+        }),
+        Err(StationError::Unknown(_))
+    ));
+    assert_eq!(errors(&view(&mut bus)).len(), 4);
+
+    // Control with authority 5, then two waypoints driven to arrival.
+    station(&mut bus)
+        .submit(Command::TakeControl {
+            target: GWD,
+            authority: 5,
+        })
+        .unwrap();
+    // Granted, then seen in the next status round (every second).
+    bus.run_for(Duration::from_millis(2500));
+    let v = view(&mut bus);
+    let gwd = v.subsystems[0].nodes[0]
+        .components
+        .iter()
+        .find(|c| c.address == "1.1.45.1")
+        .unwrap()
+        .clone();
+    assert!(gwd.held, "{gwd:?}");
+    assert_eq!(gwd.controller.as_deref(), Some("200.1.40.1"));
+    assert_eq!(gwd.controller_authority, Some(5));
+    station(&mut bus)
+        .submit(drive(vec![at(6.0, 4.0), at(10.0, 0.0)], 2.0))
+        .unwrap();
+    bus.run_for(Duration::from_secs(20));
+    let v = view(&mut bus);
+    let (x, y) = vehicle_xy(&v);
+    assert!((x - 10.0).hypot(y) < 1.0, "arrived at ({x:.2}, {y:.2})");
+    assert_eq!(v.subsystems[0].route.len(), 2);
+
+    // A higher authority takes the driver: the station says so, asks again, and takes it
+    // back once released.
+    bus.send(
+        INTRUDER,
+        GWD,
+        RequestComponentControl {
+            authority_code: 100,
+        },
+    );
+    bus.run_for(Duration::from_secs(1));
+    let v = view(&mut bus);
+    assert!(
+        errors(&v)
+            .iter()
+            .any(|e| e.contains("1.1.45.1: control lost")),
+        "{:?}",
+        errors(&v)
+    );
+    assert!(matches!(
+        station(&mut bus).submit(drive(vec![at(0.0, 0.0)], 2.0)),
+        Err(StationError::NotInControl { .. })
+    ));
+    bus.send(INTRUDER, GWD, ReleaseComponentControl {});
+    bus.run_for(Duration::from_secs(2));
+    let v = view(&mut bus);
+    assert!(
+        v.notices
+            .iter()
+            .filter(|n| n.text == "1.1.45.1: control gained")
+            .count()
+            >= 2
+    );
+
+    // A mission on the spooler (authority 100): refused at authority 5, visibly; taken
+    // at 200; two blocking moves back, run to the end.
+    station(&mut bus)
+        .submit(Command::TakeControl {
+            target: MS,
+            authority: 5,
+        })
+        .unwrap();
+    bus.run_for(Duration::from_secs(1));
+    let v = view(&mut bus);
+    assert!(
+        errors(&v)
+            .iter()
+            .any(|e| e == "1.1.36.1: control refused (InsufficientAuthority)"),
+        "{:?}",
+        errors(&v)
+    );
+    station(&mut bus)
+        .submit(Command::TakeControl {
+            target: MS,
+            authority: 200,
+        })
+        .unwrap();
+    bus.run_for(Duration::from_secs(1));
+    let r = station(&mut bus).submit(Command::Mission {
+        spooler: MS,
+        action: MissionAction::Run,
+    });
+    assert!(
+        matches!(r, Err(StationError::NoMission(MS))),
+        "{r:?} {:?}",
+        errors(&view(&mut bus))
+    );
+    station(&mut bus)
+        .submit(Command::SpoolMission {
+            spooler: MS,
+            driver: GWD,
+            points: vec![at(5.0, -3.0), at(0.0, 0.0)],
+            speed: 2.0,
+        })
+        .unwrap();
+    bus.run_for(Duration::from_secs(1));
+    station(&mut bus)
+        .submit(Command::Mission {
+            spooler: MS,
+            action: MissionAction::Run,
+        })
+        .unwrap();
+    bus.run_for(Duration::from_secs(30));
+    let v = view(&mut bus);
+    let m = v.subsystems[0].mission.clone().unwrap();
+    assert_eq!(m.tasks, 2);
+    assert_eq!(m.status.as_deref(), Some("Finished"), "{:?}", v.notices);
+    let (x, y) = vehicle_xy(&v);
+    assert!(x.hypot(y) < 1.0, "home at ({x:.2}, {y:.2})");
+
+    // Emergency on the whole subsystem, then cleared.
+    station(&mut bus)
+        .submit(Command::Emergency { subsystem: 1 })
+        .unwrap();
+    bus.run_for(Duration::from_secs(2));
+    let v = view(&mut bus);
+    assert!(v.subsystems[0].emergency);
+    assert_eq!(state(&v, GWD).as_deref(), Some("Emergency"));
+    station(&mut bus)
+        .submit(Command::ClearEmergency { subsystem: 1 })
+        .unwrap();
+    bus.run_for(Duration::from_secs(2));
+    let v = view(&mut bus);
+    assert!(!v.subsystems[0].emergency, "{:?}", state(&v, GWD));
+}
