@@ -14,7 +14,7 @@ use jaus::components::subsystem_commander::{self, SubsystemCommander};
 use jaus::messages::*;
 use jaus::net::{Node, NodeConfig};
 use jaus::stock::communicator::{
-    CommunicatorConfig, CommunicatorEndpoint, LinkStats, StockCommunicator,
+    CommunicatorConfig, CommunicatorEndpoint, DataLink, LinkStats, StockCommunicator,
 };
 use jaus::wire::{AckNak, Header};
 use jaus::{Address, JausMessage};
@@ -497,4 +497,127 @@ fn without_a_communicator_nothing_changes_and_with_one_udp_from_other_subsystems
     let s1 = net.node(0).unwrap().stats();
     assert!(s1.not_via_communicator >= 2, "{s1:?}");
     assert!(!net.node(0).unwrap().tree().has_node(2, 1));
+}
+
+#[test]
+fn a_slow_link_queues_then_drops_and_counts() {
+    let t0 = Instant::now();
+    // 9.6 kbit/s, room for 4 frames in the radio; 8 more wait in the communicator.
+    let params = RadioParams {
+        bandwidth_bps: 9_600,
+        queue_frames: 4,
+        latency: Duration::from_millis(10),
+        ..RadioParams::default()
+    };
+    let (a, mut b, radio) = radio_pair(1, params);
+    let config = CommunicatorConfig {
+        max_queue: 8,
+        ..CommunicatorConfig::default()
+    };
+    let mut c = StockCommunicator::new(vec![a], config, t0).unwrap();
+    let frame = [0u8; 116]; // a 16-byte header and 100 bytes: 96.7 ms at 9.6 kbit/s
+    for _ in 0..100 {
+        c.forward(t0, &frame);
+    }
+    let s = c.link_stats(1).unwrap();
+    assert_eq!((s.frames_sent, s.queued, s.dropped_queue_full), (4, 8, 88));
+    assert_eq!(
+        radio.stats(0).refused_busy,
+        8,
+        "the radio refused each frame offered to it while full"
+    );
+    // The radio wakes the communicator when room frees; after 2 s everything queued
+    // is on the air and delivered.
+    let mut now = t0;
+    let mut got = 0;
+    let mut buf = Vec::new();
+    while let Some(t) = [c.poll_timeout(), b.poll_timeout()]
+        .into_iter()
+        .flatten()
+        .min()
+    {
+        if t > t0 + Duration::from_secs(2) {
+            break;
+        }
+        now = t;
+        c.service(now);
+        while b.recv(now, &mut buf) {
+            assert_eq!(buf.len(), 116);
+            got += 1;
+        }
+    }
+    let s = c.link_stats(1).unwrap();
+    assert_eq!((s.frames_sent, s.queued, s.bytes_sent), (12, 0, 12 * 116));
+    assert_eq!(got, 12);
+    // The twelfth frame left after 12 air times and arrived 10 ms later.
+    let expect = Duration::from_secs_f64(12.0 * 116.0 * 8.0 / 9_600.0) + Duration::from_millis(10);
+    assert!(
+        now.duration_since(t0).abs_diff(expect) < Duration::from_millis(1),
+        "{:?}",
+        now.duration_since(t0)
+    );
+    // Down: frames are dropped as link-down, not queued.
+    radio.set_up(false);
+    c.forward(now, &frame);
+    let s = c.link_stats(1).unwrap();
+    assert_eq!((s.dropped_link_down, s.queued), (1, 0));
+    assert_eq!(c.link_state(1, now), Some(DataLinkState::LossOfCommand));
+}
+
+#[test]
+fn a_node_without_the_communicator_reaches_other_subsystems_through_the_node_that_has_it() {
+    let t0 = Instant::now();
+    let (a, b, radio) = radio_pair(1, RadioParams::default());
+    // Subsystem 1: node 1 (slot 0) has the communicator, node 2 (slot 1) the operator.
+    let n11 = subsystem(1, a, t0);
+    let ocu = Address::new(1, 2, 32, 1);
+    let mut n12 = Node::new(
+        NodeConfig {
+            subsystem: 1,
+            node: 2,
+            peers: vec![SimNet::addr(0)],
+            communicator: Some(C1),
+            ..NodeConfig::default()
+        },
+        t0,
+    );
+    n12.add(subsystem_commander::component(
+        ocu,
+        Operator::default(),
+        Config::default(),
+        t0,
+    ))
+    .unwrap();
+    let mut n21 = subsystem(2, b, t0);
+    n21.add(global_pose_sensor::component(
+        GPS,
+        Gps,
+        Config::default(),
+        t0,
+    ))
+    .unwrap();
+    let mut net = SimNet::new(t0, LinkModel::default(), 3);
+    net.add(n11);
+    net.add(n12);
+    net.add(n21);
+    net.run_for(Duration::from_secs(6));
+    let op = &net.node(1).unwrap().get::<Ocu>(ocu).unwrap().behaviour().0;
+    assert!(
+        op.reports.len() >= 15,
+        "reports relayed by node 1: {}",
+        op.reports.len()
+    );
+    let g = net.node(2).unwrap().get::<Gateway>(C2).unwrap();
+    assert_eq!(g.component().controller().map(|c| c.0), Some(ocu));
+    // Node 1 handed node 2's traffic to its communicator and relayed the answers; the
+    // far subsystem is in both trees of subsystem 1.
+    let s11 = net.node(0).unwrap().stats();
+    assert!(
+        s11.to_communicator > 20 && s11.from_communicator > 20,
+        "{s11:?}"
+    );
+    assert!(net.node(1).unwrap().tree().has_node(2, 1));
+    assert!(net.node(2).unwrap().tree().has_node(1, 2));
+    assert_eq!(net.node(1).unwrap().stats().not_via_communicator, 0);
+    assert!(radio.stats(1).delivered > 20);
 }

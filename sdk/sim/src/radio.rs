@@ -286,16 +286,18 @@ impl DataLink for Radio {
     }
 
     fn poll_timeout(&self) -> Option<Instant> {
+        lock(&self.air).dirs[1 - self.end]
+            .flight
+            .front()
+            .map(|(t, _)| *t)
+    }
+
+    fn ready_at(&self) -> Option<Instant> {
         let air = lock(&self.air);
-        let arrival = air.dirs[1 - self.end].flight.front().map(|(t, _)| *t);
-        let tx = &air.dirs[self.end];
-        // Room frees in a full queue when its first frame is on the air.
-        let room = (tx.tx_ends.len() >= air.params.queue_frames)
-            .then(|| tx.tx_ends.front().copied())
-            .flatten();
-        match (arrival, room) {
-            (Some(a), Some(b)) => Some(a.min(b)),
-            (a, b) => a.or(b),
-        }
+        let ends = &air.dirs[self.end].tx_ends;
+        // With n frames waiting, fewer than `queue_frames` are left once the one at
+        // index n - queue_frames is on the air. (None: room now.)
+        let i = ends.len().checked_sub(air.params.queue_frames.max(1))?;
+        ends.get(i).copied()
     }
 }

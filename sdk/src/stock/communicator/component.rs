@@ -370,11 +370,16 @@ impl<L: DataLink> StockCommunicator<L> {
         Err(buf)
     }
 
-    /// When a link next wants attention (a frame arriving, room to send).
+    /// When a link next wants attention: a frame arriving, or room for the frames that
+    /// wait for it.
     pub fn poll_timeout(&self) -> Option<Instant> {
         self.links
             .iter()
-            .filter_map(|s| s.link.poll_timeout())
+            .flat_map(|s| {
+                let ready = (!s.queue.is_empty()).then(|| s.link.ready_at()).flatten();
+                [s.link.poll_timeout(), ready]
+            })
+            .flatten()
             .min()
     }
 }

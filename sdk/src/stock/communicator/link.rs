@@ -40,9 +40,15 @@ pub trait DataLink: Send + 'static {
     fn recv(&mut self, now: Instant, buf: &mut Vec<u8>) -> bool;
     /// Whether the hardware reports the link up (carrier, association) at `now`.
     fn is_up(&self, now: Instant) -> bool;
-    /// When something may next change: a frame arrives, or room frees in the transmit
-    /// buffer. `None`: nothing expected (the default).
+    /// When the next frame arrives (to be woken then). `None`: none expected (the
+    /// default).
     fn poll_timeout(&self) -> Option<Instant> {
+        None
+    }
+    /// When a link that answered [`LinkError::Busy`] takes a frame again; asked only
+    /// while frames wait for it. `None` (the default): unknown, frames are offered again
+    /// at the next wake-up.
+    fn ready_at(&self) -> Option<Instant> {
         None
     }
     /// The commanded power state changed at `now` (true: On; false: Off or Standby);
