@@ -115,6 +115,11 @@ pub struct StockCommunicator<L> {
     next_heartbeat: Option<Instant>,
     /// The link `receive` asks first (the links take turns).
     next_rx: usize,
+    /// When the queues were last offered to the links, and when the links were last
+    /// read to the end: a link's wake-up time not after these is not asked for again
+    /// (a link that keeps giving a past time cannot make its host spin).
+    serviced_at: Option<Instant>,
+    drained_at: Option<Instant>,
 }
 
 impl<L: DataLink> StockCommunicator<L> {
@@ -149,6 +154,8 @@ impl<L: DataLink> StockCommunicator<L> {
             pool: Vec::new(),
             next_heartbeat: None,
             next_rx: 0,
+            serviced_at: None,
+            drained_at: None,
         })
     }
 
@@ -318,6 +325,7 @@ impl<L: DataLink> StockCommunicator<L> {
         for i in 0..self.links.len() {
             self.service_link(i, now);
         }
+        self.serviced_at = Some(now);
     }
 
     fn service_link(&mut self, i: usize, now: Instant) {
@@ -367,6 +375,7 @@ impl<L: DataLink> StockCommunicator<L> {
                 return Ok(buf);
             }
         }
+        self.drained_at = Some(now);
         Err(buf)
     }
 
@@ -376,8 +385,15 @@ impl<L: DataLink> StockCommunicator<L> {
         self.links
             .iter()
             .flat_map(|s| {
-                let ready = (!s.queue.is_empty()).then(|| s.link.ready_at()).flatten();
-                [s.link.poll_timeout(), ready]
+                let ready = (!s.queue.is_empty())
+                    .then(|| s.link.ready_at())
+                    .flatten()
+                    .filter(|t| self.serviced_at.is_none_or(|a| *t > a));
+                let arrival = s
+                    .link
+                    .poll_timeout()
+                    .filter(|t| self.drained_at.is_none_or(|a| *t > a));
+                [arrival, ready]
             })
             .flatten()
             .min()

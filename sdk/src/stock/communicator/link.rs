@@ -41,7 +41,9 @@ pub trait DataLink: Send + 'static {
     /// Whether the hardware reports the link up (carrier, association) at `now`.
     fn is_up(&self, now: Instant) -> bool;
     /// When the next frame arrives (to be woken then). `None`: none expected (the
-    /// default).
+    /// default). A time not after the last time the link was read to the end is not
+    /// woken for (a frame arriving at that very instant is read at the next wake-up),
+    /// so that a link repeating a past time cannot make its host spin.
     fn poll_timeout(&self) -> Option<Instant> {
         None
     }
