@@ -16,10 +16,12 @@
 //! | [`protocol`] | the page's JSON commands → station commands, with field-naming errors |
 //! | [`log`] | the message log (decoded JSON of what was sent and received) |
 //! | [`server`] | HTTP and WebSocket (axum) |
+//! | [`shared`] | what the node thread and the server share (commands, views, log) |
 
 pub mod console;
 pub mod log;
 pub mod protocol;
 pub mod server;
+pub mod shared;
 
 pub use console::{run, Bound, ConsoleError, ConsoleOptions};

@@ -15,7 +15,7 @@ use axum::routing::{get, post};
 use axum::serve::ListenerExt;
 use axum::Router;
 
-use crate::console::Shared;
+use crate::shared::Shared;
 
 /// Log entries sent in one push at most.
 const LOG_PUSH_MAX: usize = 200;
