@@ -291,6 +291,11 @@ fn stdin_lines() -> impl Iterator<Item = String> {
 }
 
 /// Prints an error line; true on success.
+/// `--seconds` as a duration (negative: none at all).
+fn duration(seconds: Option<f64>) -> Option<std::time::Duration> {
+    seconds.map(|s| std::time::Duration::from_secs_f64(s.max(0.0)))
+}
+
 fn report(err: &mut impl Write, r: Result<(), String>) -> bool {
     match r {
         Ok(()) => true,
@@ -523,7 +528,7 @@ fn main() -> ExitCode {
                     subsystem,
                     node,
                     vehicle,
-                    duration: seconds.map(|s| std::time::Duration::from_secs_f64(s.max(0.0))),
+                    duration: duration(seconds),
                 },
                 &STOP,
                 &mut out,
@@ -534,7 +539,7 @@ fn main() -> ExitCode {
             seconds,
             capture,
         } => {
-            let d = seconds.map(|s| std::time::Duration::from_secs_f64(s.max(0.0)));
+            let d = duration(seconds);
             report(
                 &mut err,
                 jaus_cli::net::node(&config, d, capture.as_deref(), &STOP, &mut out),
@@ -550,7 +555,7 @@ fn main() -> ExitCode {
             jaus_cli::net::attach_openjaus(
                 jaus_cli::net::OjNodeManager { control, data },
                 &host,
-                seconds.map(|s| std::time::Duration::from_secs_f64(s.max(0.0))),
+                duration(seconds),
                 &STOP,
                 &mut out,
             ),

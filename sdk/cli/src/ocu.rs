@@ -7,7 +7,7 @@ use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
-use jaus::net::{udp, Node, NodeConfig};
+use jaus::net::{udp, NodeConfig};
 use jaus_ocu::ConsoleOptions;
 
 /// What `jaus ocu` was asked for.
@@ -113,20 +113,8 @@ pub fn ocu(args: &OcuArgs, stop: &AtomicBool, out: &mut impl Write) -> Result<()
 /// The demo's simulated vehicle (subsystem 1, node 1), as `jaus node` with `host:
 /// [vehicle]` runs it, on `socket`.
 fn run_vehicle(socket: &std::net::UdpSocket, stop: &AtomicBool) -> Result<(), String> {
-    let t0 = Instant::now();
-    let mut node = Node::new(
-        NodeConfig {
-            subsystem: 1,
-            node: 1,
-            ..NodeConfig::default()
-        },
-        t0,
-    );
-    let (parts, _) = jaus_sim::demo::vehicle_at(t0, &jaus_sim::demo::Options::default(), 1, 1);
-    for p in parts {
-        node.add_boxed(p)
-            .map_err(|e| format!("simulated vehicle: {e}"))?;
-    }
+    let mut node = jaus_sim::demo::vehicle_node(Instant::now(), NodeConfig::default(), 1, 1)
+        .map_err(|e| format!("simulated vehicle: {e}"))?;
     udp::run_on(&mut node, socket, stop, None, |_| {})
         .map_err(|e| format!("simulated vehicle: {e}"))
 }

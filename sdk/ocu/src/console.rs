@@ -9,9 +9,8 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-use jaus::component::{Component, Config, Refused};
-use jaus::components::system_commander::{self, Ctx, SystemCommander};
-use jaus::messages::Message;
+use jaus::component::{Component, Config};
+use jaus::components::system_commander;
 use jaus::net::{udp, Node, NodeConfig, SystemTree};
 use jaus::stock::commander::{Station, StationConfig, TreeInput};
 use jaus::Address;
@@ -19,31 +18,8 @@ use jaus::Address;
 use crate::log::MessageLog;
 use crate::shared::{lock, Published, Shared};
 
-/// The System Commander of the console.
-#[derive(Debug)]
-pub struct Console {
-    /// The operator logic.
-    pub station: Station,
-}
-
-impl SystemCommander for Console {
-    fn tick(&mut self, ctx: &mut Ctx<'_>) {
-        self.station.tick(ctx);
-    }
-
-    fn on_other_message(
-        &mut self,
-        ctx: &mut Ctx<'_>,
-        msg: &Message,
-    ) -> Result<Option<Message>, Refused> {
-        if let Some(source) = ctx.source() {
-            self.station.on_message(ctx.now(), source, msg);
-        }
-        Ok(None)
-    }
-}
-
-type Hosted = Component<system_commander::Dispatch<Console>>;
+/// The console's System Commander: the station as a component.
+type Hosted = Component<system_commander::Dispatch<Station>>;
 
 /// How the console runs.
 #[derive(Debug, Clone)]
@@ -159,7 +135,7 @@ pub fn run(
     }
     node.add(system_commander::component(
         me,
-        Console { station },
+        station,
         Config {
             authority: options.authority,
             ..Config::default()
@@ -239,7 +215,7 @@ impl Publisher {
         let Some(console) = node.get_mut::<Hosted>(self.me) else {
             return;
         };
-        let station = &mut console.behaviour_mut().0.station;
+        let station = &mut console.behaviour_mut().0;
         if let Some(t) = tree {
             station.set_tree(t);
         }
@@ -265,12 +241,11 @@ impl Publisher {
             self.poses = station.poses();
             self.last_publish = now;
             self.next_publish = now + self.period;
-            let view = station.view(now, false);
+            let wall = unix_now();
+            let view = station.view(now, wall, false);
             let json = serde_json::to_string(&view).unwrap_or_else(|_| "{}".into());
             let log_seq = lock(&self.shared.log).seq();
-            let unix_ms = std::time::SystemTime::now()
-                .duration_since(std::time::UNIX_EPOCH)
-                .map_or(0.0, |d| d.as_secs_f64() * 1e3);
+            let unix_ms = wall.as_secs_f64() * 1e3;
             self.shared.view.send_replace(Arc::new(Published {
                 view: json,
                 log_seq,
@@ -279,11 +254,18 @@ impl Publisher {
         }
         if now >= self.next_trails || self.shared.trails_wanted.swap(false, Ordering::Relaxed) {
             self.next_trails = now + Duration::from_secs(1);
-            let view = station.view(now, true);
+            let view = station.view(now, unix_now(), true);
             let json = serde_json::to_string(&view).unwrap_or_else(|_| "{}".into());
             *lock(&self.shared.trails) = Arc::new(json);
         }
     }
+}
+
+/// The wall clock, since the Unix epoch (the shell's; the station reads none).
+fn unix_now() -> Duration {
+    std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .unwrap_or_default()
 }
 
 /// The station's input from the node's system tree.

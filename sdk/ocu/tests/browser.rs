@@ -18,7 +18,7 @@ use std::time::{Duration, Instant};
 
 use fantoccini::actions::{InputSource, MouseActions, PointerAction, MOUSE_BUTTON_LEFT};
 use fantoccini::{Client, ClientBuilder, Locator};
-use jaus::net::{udp, Node, NodeConfig};
+use jaus::net::{udp, NodeConfig};
 use jaus_ocu::{Bound, ConsoleOptions};
 use serde_json::{json, Value};
 
@@ -52,19 +52,8 @@ fn free_port() -> u16 {
 /// The demo's vehicle on a node of its own (subsystem 1), as `jaus node` hosts it.
 fn vehicle(socket: UdpSocket, stop: Arc<AtomicBool>) -> std::thread::JoinHandle<()> {
     std::thread::spawn(move || {
-        let t0 = Instant::now();
-        let mut node = Node::new(
-            NodeConfig {
-                subsystem: 1,
-                node: 1,
-                ..NodeConfig::default()
-            },
-            t0,
-        );
-        let (parts, _) = jaus_sim::demo::vehicle_at(t0, &jaus_sim::demo::Options::default(), 1, 1);
-        for p in parts {
-            node.add_boxed(p).expect("the vehicle's components");
-        }
+        let mut node = jaus_sim::demo::vehicle_node(Instant::now(), NodeConfig::default(), 1, 1)
+            .expect("the vehicle's components");
         udp::run_on(&mut node, &socket, &stop, None, |_| {}).expect("the vehicle's node");
     })
 }

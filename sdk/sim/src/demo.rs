@@ -50,7 +50,7 @@ use jaus::stock::geo::LocalFrame;
 use jaus::stock::motion::DriverConfig;
 use jaus::stock::path::{Path, PathSegment};
 use jaus::stock::sensors::{StockGlobalPoseSensor, StockLocalPoseSensor, StockVelocityStateSensor};
-use jaus::stock::spooler::{command, SpoolerConfig, StockMissionSpooler};
+use jaus::stock::spooler::{command, leaf_task, mission_of, SpoolerConfig, StockMissionSpooler};
 use jaus::stock::world_model::{StockWorldModel, WorldModelConfig};
 use jaus::Address;
 
@@ -554,13 +554,7 @@ fn mission_message(frame: &LocalFrame, speed: f64, moves: &[(f64, f64)]) -> Spoo
             cmd(uid + 2, addr::GWD, w.into(), true),
         ]
     };
-    let leaf = |id: u16, messages: Vec<MissionCommand>| MissionTask {
-        task_id: id,
-        child_count: 0,
-        child_offsets: Vec::new(),
-        messages,
-        children: Vec::new(),
-    };
+    let leaf = leaf_task;
     let horn = SetDiscreteDevices {
         parking_brake_and_horn: Some(ParkingBrakeHorn {
             parking_brake: false,
@@ -581,18 +575,7 @@ fn mission_message(frame: &LocalFrame, speed: f64, moves: &[(f64, f64)]) -> Spoo
     let n = children.len() as u16;
     children.push(leaf(n + 1, vec![cmd(500, addr::PD, horn.into(), false)]));
     children.push(leaf(n + 2, goto(600, home)));
-    let count = children.len();
-    SpoolMission {
-        mission_id: 1,
-        append_flag: 0,
-        root: MissionTask {
-            task_id: 0,
-            child_count: count as u16,
-            child_offsets: vec![0; count],
-            messages: Vec::new(),
-            children,
-        },
-    }
+    mission_of(1, children)
 }
 
 /// The mission as driven: from P4 (where the path segments end) through the moves.
@@ -809,6 +792,23 @@ pub fn vehicle_at(
         )),
     ];
     (parts, vehicle)
+}
+
+/// The demo's vehicle on a node of its own (`subsystem.node`, the node's other settings
+/// from `config`), as `jaus node` with `host: [vehicle]` runs it.
+pub fn vehicle_node(
+    t0: Instant,
+    mut config: jaus::net::NodeConfig,
+    subsystem: u8,
+    node: u8,
+) -> Result<jaus::net::Node, jaus::net::NetError> {
+    config.subsystem = subsystem;
+    config.node = node;
+    let mut n = jaus::net::Node::new(config, t0);
+    for p in vehicle_at(t0, &Options::default(), subsystem, node).0 {
+        n.add_boxed(p)?;
+    }
+    Ok(n)
 }
 
 /// The operator side of the demo (1.2.40.1).

@@ -998,3 +998,31 @@ pub fn command(
         blocking: u8::from(blocking),
     })
 }
+
+/// A task without child tasks: `messages` in spooling order.
+pub fn leaf_task(task_id: u16, messages: Vec<MissionCommand>) -> MissionTask {
+    MissionTask {
+        task_id,
+        child_count: 0,
+        child_offsets: Vec::new(),
+        messages,
+        children: Vec::new(),
+    }
+}
+
+/// A Spool Mission replacing the current mission: a root task 0 without messages whose
+/// children are `tasks`, run in order (child counts and offsets are computed on encode).
+pub fn mission_of(mission_id: u16, tasks: Vec<MissionTask>) -> SpoolMission {
+    let count = tasks.len();
+    SpoolMission {
+        mission_id,
+        append_flag: 0,
+        root: MissionTask {
+            task_id: 0,
+            child_count: count as u16,
+            child_offsets: vec![0; count],
+            messages: Vec::new(),
+            children: tasks,
+        },
+    }
+}

@@ -13,8 +13,10 @@
 //!   operator's [`Command`]s (take or release control, emergency stop and clear,
 //!   waypoints, path segments, missions) into JAUS messages after checking them
 //!   ([`StationError`]). What it knows is a [`SystemView`] (module [`view`]) that a user
-//!   interface draws; the `jaus-ocu` console is one.
+//!   interface draws; the `jaus-ocu` console is one. A `Station` is itself a System
+//!   Commander: `system_commander::component(address, station, config, now)`.
 
+mod component;
 mod keeper;
 mod station;
 pub mod view;

@@ -2,7 +2,7 @@
 //! [`commander`](super)).
 
 use std::collections::{BTreeMap, VecDeque};
-use std::time::{Duration, Instant, SystemTime, UNIX_EPOCH};
+use std::time::{Duration, Instant};
 
 use nalgebra::Vector2;
 
@@ -14,13 +14,13 @@ use super::view::{
 use crate::component::{Context, CoreState, Interface};
 use crate::messages::{
     AbortMission, ClearEmergency, ClearEmergencyCode, ControlResponse, EmergencyCode, Message,
-    MissionCommand, MissionStatusType, MissionTask, PauseMission, QueryComponentControl,
-    QueryComponentStatus, QueryGlobalPose, QueryMissionStatus, QueryVelocityState, QueryVksObjects,
-    ReportGlobalPose, ReportVelocityState, Resume, ResumeMission, RunMission, SetEmergency,
-    SetGlobalPathSegment, SetGlobalWaypoint, SetTravelSpeed, SpoolMission, Standby,
+    MissionCommand, MissionStatusType, PauseMission, QueryComponentControl, QueryComponentStatus,
+    QueryGlobalPose, QueryMissionStatus, QueryVelocityState, QueryVksObjects, ReportGlobalPose,
+    ReportVelocityState, Resume, ResumeMission, RunMission, SetEmergency, SetGlobalPathSegment,
+    SetGlobalWaypoint, SetTravelSpeed, SpoolMission, Standby,
 };
 use crate::stock::geo::LocalFrame;
-use crate::stock::spooler::command;
+use crate::stock::spooler::{command, leaf_task, mission_of};
 use crate::{Address, JausMessage};
 
 /// Component ids the station gives a role (Part 1 §5).
@@ -316,7 +316,8 @@ pub struct Station {
     vehicles: BTreeMap<u8, Vehicle>,
     frame: Option<LocalFrame>,
     pending: VecDeque<Command>,
-    notices: VecDeque<Notice>,
+    /// Notices with when they were made (the station's clock at the time).
+    notices: VecDeque<(Option<Instant>, Notice)>,
     notice_count: u64,
     subscribed: BTreeMap<(Address, u16), Instant>,
     next_status: Option<Instant>,
@@ -328,6 +329,8 @@ pub struct Station {
     me: Option<Address>,
     /// Poses received in all.
     poses: u64,
+    /// The latest time the station was given (tick, message): it reads no clock itself.
+    clock: Option<Instant>,
 }
 
 impl Default for Station {
@@ -339,15 +342,6 @@ impl Default for Station {
 /// Sends a standard message from a component of any interface.
 fn send_std<I: Interface>(ctx: &mut Context<'_, I>, to: Address, m: Message) {
     ctx.forward(to, <I::Messages as crate::MessageSet>::from_standard(m));
-}
-
-fn unix_ms(at: Instant, now: Instant) -> f64 {
-    let wall = SystemTime::now()
-        .duration_since(UNIX_EPOCH)
-        .unwrap_or_default()
-        .as_secs_f64()
-        * 1e3;
-    wall - now.saturating_duration_since(at).as_secs_f64() * 1e3
 }
 
 impl Station {
@@ -371,6 +365,7 @@ impl Station {
             next_mission_id: 1,
             me: None,
             poses: 0,
+            clock: None,
         }
     }
 
@@ -412,18 +407,18 @@ impl Station {
             tracing::info!("{text}");
         }
         self.notice_count += 1;
-        let unix_ms = SystemTime::now()
-            .duration_since(UNIX_EPOCH)
-            .map_or(0, |d| d.as_millis() as u64);
         if self.notices.len() >= self.config.max_notices {
             self.notices.pop_front();
         }
-        self.notices.push_back(Notice {
-            seq: self.notice_count,
-            unix_ms,
-            error,
-            text,
-        });
+        self.notices.push_back((
+            self.clock,
+            Notice {
+                seq: self.notice_count,
+                unix_ms: 0,
+                error,
+                text,
+            },
+        ));
     }
 
     /// Records an error of the user interface's own (bad input it could not turn into a
@@ -593,6 +588,7 @@ impl Station {
         let now = ctx.now();
         let me = ctx.address();
         self.me = Some(me);
+        self.clock = Some(now);
         while let Some(cmd) = self.pending.pop_front() {
             self.execute(ctx, cmd);
         }
@@ -815,13 +811,7 @@ impl Station {
                         .into(),
                     );
                 }
-                // After Resume: Part 1 resets the travel speed on Standby → Ready.
-                send(ctx, driver, SetTravelSpeed { speed }.into());
-                self.set_route(driver.subsystem, &points);
-                self.notice(
-                    false,
-                    format!("{driver}: {} waypoint(s) at {speed} m/s", points.len()),
-                );
+                self.route_sent(ctx, driver, &points, speed, "waypoint(s)");
             }
             Command::PathSegments {
                 driver,
@@ -860,12 +850,7 @@ impl Station {
                     );
                     from = *p;
                 }
-                send(ctx, driver, SetTravelSpeed { speed }.into());
-                self.set_route(driver.subsystem, &points);
-                self.notice(
-                    false,
-                    format!("{driver}: {} path segment(s) at {speed} m/s", points.len()),
-                );
+                self.route_sent(ctx, driver, &points, speed, "path segment(s)");
             }
             Command::SpoolMission {
                 spooler,
@@ -940,6 +925,24 @@ impl Station {
         }
     }
 
+    /// After a route's elements: the travel speed (after Resume: Part 1 resets it on
+    /// Standby → Ready), the route drawn, a notice.
+    fn route_sent<I: Interface>(
+        &mut self,
+        ctx: &mut Context<'_, I>,
+        driver: Address,
+        points: &[GeoPoint],
+        speed: f64,
+        what: &str,
+    ) {
+        send_std(ctx, driver, SetTravelSpeed { speed }.into());
+        self.set_route(driver.subsystem, points);
+        self.notice(
+            false,
+            format!("{driver}: {} {what} at {speed} m/s", points.len()),
+        );
+    }
+
     fn set_route(&mut self, subsystem: u8, points: &[GeoPoint]) {
         let Some(frame) = self.frame else { return };
         if let Some(v) = self.vehicles.get_mut(&subsystem) {
@@ -956,6 +959,7 @@ impl Station {
     /// Takes a message addressed to the station; returns whether it was one the
     /// station follows.
     pub fn on_message(&mut self, now: Instant, source: Address, msg: &Message) -> bool {
+        self.clock = Some(now);
         let Some(k) = self.known.get_mut(&source) else {
             return false;
         };
@@ -1100,7 +1104,7 @@ impl Station {
                 y: l.y,
                 yaw,
                 age_s: 0.0,
-                received_unix_ms: unix_ms(now, now),
+                received_unix_ms: 0.0,
             },
             now,
         ));
@@ -1118,8 +1122,11 @@ impl Station {
     }
 
     /// What the station knows, at `now`; `trails` includes every subsystem's trail.
-    pub fn view(&self, now: Instant, trails: bool) -> SystemView {
+    /// `unix_now` (the wall clock at `now`, since the Unix epoch) dates the notices and
+    /// poses for the user interface: the station itself reads no clock.
+    pub fn view(&self, now: Instant, unix_now: Duration, trails: bool) -> SystemView {
         let age = |t: Instant| now.saturating_duration_since(t).as_secs_f64();
+        let unix_ms_of = |t: Instant| unix_now.as_secs_f64() * 1e3 - age(t) * 1e3;
         let role = |ss: u8, id: u8| self.find(ss, id).map(|a| a.to_string());
         let part1_name = |id: u8| {
             crate::components::COMPONENTS
@@ -1195,7 +1202,11 @@ impl Station {
             let own = self.me.is_some_and(|m| m.subsystem == *id);
             s.stale =
                 !own && followed.is_none_or(|t| age(t) > self.config.stale_after.as_secs_f64());
-            s.pose = v.pose.map(|(p, t)| PoseView { age_s: age(t), ..p });
+            s.pose = v.pose.map(|(p, t)| PoseView {
+                age_s: age(t),
+                received_unix_ms: unix_ms_of(t),
+                ..p
+            });
             s.velocity = v.velocity.map(|v| v.0);
             s.emergency = v.emergency;
             s.trail = if trails {
@@ -1211,7 +1222,14 @@ impl Station {
         SystemView {
             origin: self.frame.map(|f| (f.latitude, f.longitude)),
             subsystems: subsystems.into_values().collect(),
-            notices: self.notices.iter().cloned().collect(),
+            notices: self
+                .notices
+                .iter()
+                .map(|(at, n)| Notice {
+                    unix_ms: at.map_or(unix_now.as_millis() as u64, |t| unix_ms_of(t) as u64),
+                    ..n.clone()
+                })
+                .collect(),
             notice_count: self.notice_count,
         }
     }
@@ -1247,24 +1265,7 @@ fn mission(
             .enumerate()
             .map(|(j, (m, blocking))| command(uid + j as u16, spooler, driver, m, *blocking))
             .collect::<Result<Vec<MissionCommand>, _>>()?;
-        children.push(MissionTask {
-            task_id: i as u16 + 1,
-            child_count: 0,
-            child_offsets: Vec::new(),
-            messages,
-            children: Vec::new(),
-        });
+        children.push(leaf_task(i as u16 + 1, messages));
     }
-    let count = children.len();
-    Ok(SpoolMission {
-        mission_id,
-        append_flag: 0,
-        root: MissionTask {
-            task_id: 0,
-            child_count: count as u16,
-            child_offsets: vec![0; count],
-            messages: Vec::new(),
-            children,
-        },
-    })
+    Ok(mission_of(mission_id, children))
 }
