@@ -314,6 +314,53 @@ fn emergency_stops_the_vehicle_and_holds_it() {
     assert_eq!(lwd(&bus).state(), CoreState::Emergency);
 }
 
+/// An emergency on the output alone, cleared by whoever set it, leaves the Primitive
+/// Driver in Standby (Clear Emergency → Standby); the waypoint driver, still Ready and
+/// still in control of it, sees it report Standby and resumes it, and the vehicle goes on
+/// (the emergency of a whole vehicle ends the same way once its drivers are resumed).
+#[test]
+fn a_driver_resumes_its_output_after_an_emergency_on_the_output_is_cleared() {
+    let (mut bus, vehicle, _) = subsystem(VehicleParams::default());
+    start_mission(&mut bus, 1.5);
+    bus.run_for(Duration::from_secs(3));
+    assert!(vehicle.lock().speed() > 1.0);
+    bus.send(
+        INTRUDER,
+        PD,
+        SetEmergency {
+            emergency_code: EmergencyCode {
+                transition_to_emergency: true,
+                reserved: 0,
+            },
+        },
+    );
+    bus.run_for(Duration::from_secs(2));
+    assert_eq!(bus.get::<Pd>(PD).unwrap().state(), CoreState::Emergency);
+    assert!(vehicle.lock().speed().abs() < 0.01);
+    // Still Emergency after more than one status period: nothing resumes an emergency.
+    bus.run_for(Duration::from_secs(2));
+    assert_eq!(bus.get::<Pd>(PD).unwrap().state(), CoreState::Emergency);
+    assert_eq!(lwd(&bus).state(), CoreState::Ready);
+    let x0 = vehicle.lock().position().x;
+    bus.send(
+        INTRUDER,
+        PD,
+        ClearEmergency {
+            emergency_code: ClearEmergencyCode {
+                clear_emergency: true,
+                reserved: 0,
+            },
+        },
+    );
+    bus.run_for(ms(20));
+    assert_eq!(bus.get::<Pd>(PD).unwrap().state(), CoreState::Standby);
+    // Resumed within one status period (1 s) and a round trip.
+    bus.run_for(ms(1_100));
+    assert_eq!(bus.get::<Pd>(PD).unwrap().state(), CoreState::Ready);
+    bus.run_for(Duration::from_secs(3));
+    assert!(vehicle.lock().position().x > x0 + 1.0, "on its way again");
+}
+
 #[test]
 fn commands_without_control_and_bad_values_are_refused() {
     let (mut bus, _vehicle, _) = subsystem(VehicleParams::default());

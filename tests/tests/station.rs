@@ -265,4 +265,70 @@ fn a_station_follows_commands_and_recovers_the_vehicle() {
     bus.run_for(Duration::from_secs(2));
     let v = view(&mut bus);
     assert!(!v.subsystems[0].emergency, "{:?}", state(&v, GWD));
+
+    // An emergency in the middle of a mission stops the vehicle; once it is cleared,
+    // running the mission again carries on from the move it was in, to the end.
+    station(&mut bus)
+        .submit(Command::SpoolMission {
+            spooler: MS,
+            driver: GWD,
+            points: vec![at(8.0, 0.0), at(0.0, 0.0)],
+            speed: 2.0,
+        })
+        .unwrap();
+    bus.run_for(Duration::from_secs(1));
+    station(&mut bus)
+        .submit(Command::Mission {
+            spooler: MS,
+            action: MissionAction::Run,
+        })
+        .unwrap();
+    bus.run_for(Duration::from_secs(3));
+    let v = view(&mut bus);
+    let (x, _) = vehicle_xy(&v);
+    assert!(x > 1.0, "under way: x = {x:.2}");
+    station(&mut bus)
+        .submit(Command::Emergency { subsystem: 1 })
+        .unwrap();
+    bus.run_for(Duration::from_secs(2));
+    let (x1, y1) = vehicle_xy(&view(&mut bus));
+    bus.run_for(Duration::from_secs(2));
+    let (x2, y2) = vehicle_xy(&view(&mut bus));
+    assert!(
+        (x2 - x1).hypot(y2 - y1) < 0.2,
+        "stopped: ({x1:.2}, {y1:.2}) -> ({x2:.2}, {y2:.2})"
+    );
+    assert!(x2 < 7.0, "stopped short of the first point: x = {x2:.2}");
+    station(&mut bus)
+        .submit(Command::ClearEmergency { subsystem: 1 })
+        .unwrap();
+    bus.run_for(Duration::from_secs(2));
+    let v = view(&mut bus);
+    assert_eq!(state(&v, GWD).as_deref(), Some("Standby"));
+    let (x3, y3) = vehicle_xy(&v);
+    assert!(
+        (x3 - x2).hypot(y3 - y2) < 0.2,
+        "clearing does not move it: ({x2:.2}, {y2:.2}) -> ({x3:.2}, {y3:.2})"
+    );
+    station(&mut bus)
+        .submit(Command::Mission {
+            spooler: MS,
+            action: MissionAction::Run,
+        })
+        .unwrap();
+    // The far point first (the vehicle must pass x = 7.5), then home.
+    let mut far = x3;
+    for _ in 0..40 {
+        bus.run_for(Duration::from_secs(1));
+        far = far.max(vehicle_xy(&view(&mut bus)).0);
+    }
+    let v = view(&mut bus);
+    let m = v.subsystems[0].mission.clone().unwrap();
+    assert_eq!(m.status.as_deref(), Some("Finished"), "{:?}", v.notices);
+    assert!(
+        far > 7.5,
+        "reached the first point after the emergency: {far:.2}"
+    );
+    let (x, y) = vehicle_xy(&v);
+    assert!(x.hypot(y) < 1.0, "home at ({x:.2}, {y:.2})");
 }

@@ -13,9 +13,12 @@
 //!
 //! Third phase: the operator stores an obstacle in the World Model Vector Knowledge
 //! Store, queries it for objects along its mission (a line region with a clearance
-//! buffer), plans a detour waypoint round each object it finds, and spools the mission —
-//! blocking moves, a payload action (the horn), a blocking move home — to the Mission
-//! Spooler, which drives the waypoint driver. The world also holds an obstacle nobody
+//! buffer), plans a detour waypoint round each object it finds, and hands the mission —
+//! blocking moves, a payload action (the horn), a blocking move home — to the
+//! subsystem's Subsystem Commander (1.1.32.1, `jaus::stock::commander::subsystem`). The
+//! Subsystem Commander takes control of the Mission Spooler, spools the mission to it,
+//! runs it, watches it and reports its status back to the operator; the spooler drives
+//! the waypoint driver. The world also holds an obstacle nobody
 //! stored ([`UNKNOWN_OBSTACLE`], on the way home): the vehicle's Range Sensor detects
 //! it and keeps it in the world model (`jaus::stock::environment::map_feed`), so the
 //! same query finds it and the vehicle goes round it too. At the start the operator asks
@@ -34,11 +37,13 @@ use jaus::component::{Config, CoreState, Refused};
 use jaus::components::system_commander::{self, Ctx, SystemCommander};
 use jaus::components::{
     global_pose_sensor, global_waypoint_driver, local_path_segment_driver, local_pose_sensor,
-    mission_spooler, primitive_driver, range_sensor, reflexive_driver, velocity_state_sensor,
-    visual_sensor, world_model_vector_knowledge_store,
+    mission_spooler, primitive_driver, range_sensor, reflexive_driver, subsystem_commander,
+    velocity_state_sensor, visual_sensor, world_model_vector_knowledge_store,
 };
 use jaus::messages::*;
-use jaus::stock::commander::{ControlEvent, ControlKeeper, KeeperConfig};
+use jaus::stock::commander::{
+    ControlEvent, ControlKeeper, KeeperConfig, StockSubsystemCommander, SubsystemConfig,
+};
 use jaus::stock::drivers::{
     PrimitiveConfig, ReflexiveConfig, StockGlobalWaypointDriver, StockLocalPathSegmentDriver,
     StockPrimitiveDriver, StockReflexiveDriver,
@@ -79,6 +84,8 @@ pub mod addr {
     pub const RS: Address = Address::new(1, 1, 50, 1);
     /// Visual Sensor.
     pub const VS: Address = Address::new(1, 1, 37, 1);
+    /// Subsystem Commander (it hands the operator's missions to the spooler).
+    pub const SC: Address = Address::new(1, 1, 32, 1);
     /// The operator (System Commander).
     pub const OCU: Address = Address::new(1, 2, 40, 1);
 
@@ -365,15 +372,11 @@ impl SystemCommander for Operator {
             }
             Step::Path => self.watch(ctx, addr::LPSD),
             Step::StartMission => {
-                // Hand the drivers to the spooler and give it the mission.
+                // Let go of the drivers: the spooler drives them in the mission, handed
+                // to it by the Subsystem Commander.
                 for d in [addr::GWD, addr::LPSD] {
                     self.keeper.release(ctx, d);
                 }
-                self.keeper.keep(addr::MS);
-                if !self.keeper.holds(addr::MS) {
-                    return;
-                }
-                ctx.send_core(addr::MS, Resume {});
                 self.step = Step::StoreObstacle;
             }
             Step::StoreObstacle => {
@@ -474,11 +477,13 @@ impl SystemCommander for Operator {
                 );
                 let plan = plan_round(&mission_route(), &objects);
                 self.planned = plan.clone();
+                // The subsystem's missions go through its Subsystem Commander, which
+                // holds the spooler, hands the mission over and reports back.
                 ctx.send(
-                    addr::MS,
+                    addr::SC,
                     mission_message(&frame, self.waypoint_speed, &plan),
                 );
-                ctx.send(addr::MS, RunMission { mission_id: 1 });
+                ctx.send(addr::SC, RunMission { mission_id: 1 });
                 self.step = Step::Mission;
             }
             Message::ReportMissionStatus(r)
@@ -777,6 +782,17 @@ pub fn vehicle_at(
             at(addr::WM),
             StockWorldModel::new(WorldModelConfig::default()),
             cfg.clone(),
+            t0,
+        )),
+        // The Subsystem Commander takes the spooler's control with authority 150 (the
+        // spooler accepts 100 and above; an operator station at 200 can still take it).
+        Box::new(subsystem_commander::component(
+            at(addr::SC),
+            StockSubsystemCommander::new(SubsystemConfig::new(at(addr::MS))),
+            Config {
+                authority: 150,
+                ..cfg.clone()
+            },
             t0,
         )),
         // The spooler outranks the reflexive driver so that it can borrow the primitive

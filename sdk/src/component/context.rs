@@ -61,7 +61,18 @@ impl<I: Interface> Context<'_, I> {
 
     /// Whether `target` has confirmed this component's control request.
     pub fn has_control_of(&self, target: Address) -> bool {
-        self.rt.held_control.contains(&target)
+        self.rt.held_control.iter().any(|(a, _)| *a == target)
+    }
+
+    /// The state `target`, a component this one controls, reported last (Report
+    /// Component Status) since it granted control; `None` when it has not reported one
+    /// or is not controlled.
+    pub fn controlled_state(&self, target: Address) -> Option<CoreState> {
+        self.rt
+            .held_control
+            .iter()
+            .find(|(a, _)| *a == target)
+            .and_then(|(_, s)| *s)
     }
 
     /// Current UTC (since 1970-01-01), when the clock is set.
@@ -136,7 +147,7 @@ impl<I: Interface> Context<'_, I> {
 
     /// Gives control of `target` back.
     pub fn release_control(&mut self, target: Address) {
-        self.rt.held_control.retain(|a| *a != target);
+        self.rt.held_control.retain(|(a, _)| *a != target);
         self.rt
             .send(target, ReleaseComponentControl {}.into(), false, 0);
     }

@@ -75,17 +75,28 @@ impl<B: Behaviour> Component<B> {
                 _ => Err(Refusal::NotController),
             },
             Message::ConfirmComponentControl(m) => {
+                let held = &mut self.rt.held_control;
                 if m.response_code == ControlResponse::ControlAccepted {
-                    if !self.rt.held_control.contains(&source) && self.rt.held_control.len() < 64 {
-                        self.rt.held_control.push(source);
+                    if !held.iter().any(|(a, _)| *a == source) && held.len() < 64 {
+                        held.push((source, None));
                     }
                 } else {
-                    self.rt.held_control.retain(|a| *a != source);
+                    held.retain(|(a, _)| *a != source);
                 }
                 return Some(self.pass_on(header, original));
             }
             Message::RejectComponentControl(_) => {
-                self.rt.held_control.retain(|a| *a != source);
+                self.rt.held_control.retain(|(a, _)| *a != source);
+                return Some(self.pass_on(header, original));
+            }
+            Message::ReportComponentStatus(m) => {
+                // Kept for the components this one controls (a driver resumes its output
+                // when it reports Standby); the behaviour sees every report as before.
+                let state = CoreState::from_wire(m.primary_status_code);
+                match self.rt.held_control.iter_mut().find(|(a, _)| *a == source) {
+                    Some((_, s)) => *s = state,
+                    None => return None,
+                }
                 return Some(self.pass_on(header, original));
             }
             Message::CreateServiceConnection(m) => {

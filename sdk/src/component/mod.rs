@@ -486,7 +486,7 @@ impl<B: Behaviour> Component<B> {
         }
         self.rt.provider.remove_requester(gone);
         self.rt.events.remove_requester(gone);
-        self.rt.held_control.retain(|a| *a != gone);
+        self.rt.held_control.retain(|(a, _)| *a != gone);
         self.notify_changes();
     }
 

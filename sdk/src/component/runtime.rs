@@ -35,7 +35,9 @@ pub(super) struct Runtime<I: Interface> {
     /// The controller the behaviour last knew of (to tell it when control is lost).
     pub(super) known_controller: Option<Address>,
     pub(super) emergencies: Vec<Address>,
-    pub(super) held_control: Vec<Address>,
+    /// Components that confirmed this one's control, each with the state it last
+    /// reported (Report Component Status), if any since control was granted.
+    pub(super) held_control: Vec<(Address, Option<CoreState>)>,
     pub(super) clock: clock::Clock,
     pub(super) source: Option<Address>,
     pub(super) outbox: VecDeque<Transmit<I::Messages>>,

@@ -127,6 +127,42 @@ struct Mission {
 }
 
 impl Mission {
+    /// Puts the task being executed back to its first message, so that running the
+    /// mission again sends the whole task again. A destination leaving Ready (Standby,
+    /// Emergency, Clear Emergency) forgets what it was told: a driver's travel speed is
+    /// zero after an emergency, and the blocking message it was executing will never
+    /// finish, so carrying on from the message after it would wait forever. Messages
+    /// for another subsystem's spooler are left alone: that spooler runs its own copy of
+    /// the mission. `remote(dest)` says whether `dest` is reached through one.
+    fn rewind_task(&mut self, remote: impl Fn(Address) -> bool) {
+        let Some(last) = self.cursor.checked_sub(1) else {
+            return;
+        };
+        let task = self.items[last].task;
+        let in_progress =
+            self.waiting.is_some() || self.items.get(self.cursor).is_some_and(|i| i.task == task);
+        if !in_progress {
+            return;
+        }
+        let mut first = last;
+        while first > 0 && self.items[first - 1].task == task {
+            first -= 1;
+        }
+        if self.items[first..=last]
+            .iter()
+            .any(|i| remote(i.cmd.message.header.destination))
+        {
+            return;
+        }
+        for it in &mut self.items[first..=last] {
+            if it.state != ItemState::Removed {
+                it.state = ItemState::Pending;
+            }
+        }
+        self.cursor = first;
+        self.waiting = None;
+    }
+
     fn task_blocked(&self, task: u16, list: &[u16]) -> bool {
         let mut t = Some(task);
         let mut guard = 0;
@@ -963,12 +999,16 @@ impl MissionSpooler for StockMissionSpooler {
         Err(Refused::Unsupported)
     }
 
-    fn state_changed(&mut self, _ctx: &mut Ctx<'_>, _from: CoreState, to: CoreState) {
-        // Leaving Ready pauses the running mission (the modes return to Idle).
+    fn state_changed(&mut self, ctx: &mut Ctx<'_>, _from: CoreState, to: CoreState) {
+        // Leaving Ready stops the running mission (the modes return to Idle); Run Mission
+        // starts it again from the beginning of the task it was in.
         if to != CoreState::Ready {
             if let Some(id) = self.running.take() {
+                let me = ctx.address();
+                let config = &self.config;
                 if let Some(m) = self.missions.get_mut(&id) {
                     m.state = MissionState::Pending;
+                    m.rewind_task(|dest| self_route(config, me, dest) != dest);
                 }
             }
         }

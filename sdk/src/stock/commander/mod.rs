@@ -15,14 +15,20 @@
 //!   ([`StationError`]). What it knows is a [`SystemView`] (module [`view`]) that a user
 //!   interface draws; the `jaus-ocu` console is one. A `Station` is itself a System
 //!   Commander: `system_commander::component(address, station, config, now)`.
+//! * [`StockSubsystemCommander`] is a Subsystem Commander core: the subsystem's missions
+//!   go through it; it keeps control of the Mission Spooler, hands missions over, passes
+//!   the requester's mission commands on, watches the mission and reports its status
+//!   back, and deals with lost control and emergencies (module [`subsystem`]).
 
 mod component;
 mod keeper;
 mod station;
+pub mod subsystem;
 pub mod view;
 
 pub use keeper::{ControlEvent, ControlKeeper, KeeperConfig};
 pub use station::{
     Command, GeoPoint, MissionAction, Station, StationConfig, StationError, TreeInput, MAX_POINTS,
 };
+pub use subsystem::{StockSubsystemCommander, SubsystemConfig};
 pub use view::SystemView;

@@ -919,6 +919,11 @@ impl Station {
                     .into(),
                 };
                 self.notice(false, format!("{spooler}: {} (mission {id})", m.name()));
+                if matches!(action, MissionAction::Run | MissionAction::Resume) {
+                    // The spooler runs missions only in Ready; after an emergency is
+                    // cleared it is in Standby.
+                    ctx.send_core(spooler, Resume {});
+                }
                 send(ctx, spooler, m);
                 self.next_mission = None;
             }
