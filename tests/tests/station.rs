@@ -21,6 +21,9 @@ use jaus::Address;
 const ME: Address = Address::new(200, 1, 40, 1);
 const GWD: Address = Address::new(1, 1, 45, 1);
 const MS: Address = Address::new(1, 1, 36, 1);
+const GPS: Address = Address::new(1, 1, 38, 1);
+const LPS: Address = Address::new(1, 1, 41, 1);
+const VSS: Address = Address::new(1, 1, 42, 1);
 const INTRUDER: Address = Address::new(1, 3, 40, 1);
 
 type Ocu = jaus::component::Component<system_commander::Dispatch<Station>>;
@@ -265,6 +268,26 @@ fn a_station_follows_commands_and_recovers_the_vehicle() {
     bus.run_for(Duration::from_secs(2));
     let v = view(&mut bus);
     assert!(!v.subsystems[0].emergency, "{:?}", state(&v, GWD));
+    // The pose and velocity sensors it follows (nobody controls them) are resumed:
+    // Clear Emergency leaves them in Standby, where OpenJAUS's stop reporting.
+    for sensor in [GPS, LPS, VSS] {
+        assert_eq!(state(&v, sensor).as_deref(), Some("Ready"), "{sensor}");
+        let resumed = format!("{sensor}: sensor resumed after the emergency");
+        assert!(v.notices.iter().any(|n| n.text == resumed), "{resumed}");
+    }
+    // ... and control of them given back.
+    bus.run_for(Duration::from_secs(2));
+    let v = view(&mut bus);
+    for sensor in [GPS, LPS, VSS] {
+        let c = v.subsystems[0]
+            .nodes
+            .iter()
+            .flat_map(|n| &n.components)
+            .find(|c| c.address == sensor.to_string())
+            .unwrap();
+        assert!(c.controller.is_none() && !c.held, "{c:?}");
+    }
+    assert_eq!(state(&v, GWD).as_deref(), Some("Standby"));
 
     // An emergency in the middle of a mission stops the vehicle; once it is cleared,
     // running the mission again carries on from the move it was in, to the end.

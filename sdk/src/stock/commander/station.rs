@@ -316,6 +316,11 @@ pub struct Station {
     vehicles: BTreeMap<u8, Vehicle>,
     frame: Option<LocalFrame>,
     pending: VecDeque<Command>,
+    /// Sensors the station follows that came out of Emergency into Standby, to resume.
+    wake: Vec<Address>,
+    /// Sensors being resumed: control asked for (since then), Resume sent on the grant,
+    /// control given back once they report Ready.
+    waking: Vec<(Address, Instant)>,
     /// Notices with when they were made (the station's clock at the time).
     notices: VecDeque<(Option<Instant>, Notice)>,
     notice_count: u64,
@@ -355,6 +360,8 @@ impl Station {
             vehicles: BTreeMap::new(),
             frame: None,
             pending: VecDeque::new(),
+            wake: Vec::new(),
+            waking: Vec::new(),
             notices: VecDeque::new(),
             notice_count: 0,
             subscribed: BTreeMap::new(),
@@ -592,8 +599,12 @@ impl Station {
         while let Some(cmd) = self.pending.pop_front() {
             self.execute(ctx, cmd);
         }
+        self.wake_sensors(ctx);
         for e in self.keeper.tick(ctx) {
             match e {
+                ControlEvent::Gained(a) if self.waking.iter().any(|w| w.0 == a) => {
+                    ctx.send_core(a, Resume {});
+                }
                 ControlEvent::Gained(a) => self.notice(false, format!("{a}: control gained")),
                 ControlEvent::Lost(a) => {
                     self.notice(true, format!("{a}: control lost; asking again"));
@@ -930,6 +941,49 @@ impl Station {
         }
     }
 
+    /// Resumes the sensors that came out of an emergency into Standby: a component runs
+    /// core commands only from its controller, so control is taken for the Resume and
+    /// given back once the sensor reports Ready (or after 5 s without it).
+    fn wake_sensors<I: Interface>(&mut self, ctx: &mut Context<'_, I>) {
+        let now = ctx.now();
+        for a in std::mem::take(&mut self.wake) {
+            let kept = self.keeper.kept().any(|(k, ..)| k == a);
+            if kept || self.waking.iter().any(|w| w.0 == a) {
+                // The operator keeps it (and resumes it) or it is being resumed already.
+                continue;
+            }
+            self.keeper.keep(a);
+            self.waking.push((a, now));
+        }
+        let ready: Vec<Address> = self
+            .waking
+            .iter()
+            .filter(|w| {
+                self.known
+                    .get(&w.0)
+                    .and_then(|k| k.state)
+                    .is_some_and(|(s, at)| s == CoreState::Ready && at >= w.1)
+            })
+            .map(|w| w.0)
+            .collect();
+        for a in ready {
+            self.waking.retain(|w| w.0 != a);
+            self.keeper.release(ctx, a);
+            self.notice(false, format!("{a}: sensor resumed after the emergency"));
+        }
+        let expired: Vec<Address> = self
+            .waking
+            .iter()
+            .filter(|w| now.saturating_duration_since(w.1) >= Duration::from_secs(5))
+            .map(|w| w.0)
+            .collect();
+        for a in expired {
+            self.waking.retain(|w| w.0 != a);
+            self.keeper.release(ctx, a);
+            self.notice(true, format!("{a}: not resumed after the emergency (no control or still not Ready after 5 s)"));
+        }
+    }
+
     /// After a route's elements: the travel speed (after Resume: Part 1 resets it on
     /// Standby → Ready), the route drawn, a notice.
     fn route_sent<I: Interface>(
@@ -989,6 +1043,25 @@ impl Station {
                 } else if before == Some(CoreState::Emergency) && state != before {
                     if let Some(s) = state {
                         self.notice(false, format!("{source}: left Emergency ({s:?})"));
+                    }
+                    // A pose or velocity sensor nobody controls is resumed: Clear
+                    // Emergency leaves it in Standby, where some stop reporting
+                    // (OpenJAUS 3.3's do), and the station and the drivers need it.
+                    let sensor = matches!(
+                        source.component,
+                        id::GLOBAL_POSE | id::LOCAL_POSE | id::VELOCITY
+                    );
+                    let free = self
+                        .known
+                        .get(&source)
+                        .is_some_and(|k| k.controller.is_none());
+                    if sensor
+                        && free
+                        && state == Some(CoreState::Standby)
+                        && !self.wake.contains(&source)
+                        && self.wake.len() < 64
+                    {
+                        self.wake.push(source);
                     }
                 }
             }
