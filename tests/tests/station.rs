@@ -22,6 +22,7 @@ const ME: Address = Address::new(200, 1, 40, 1);
 const GWD: Address = Address::new(1, 1, 45, 1);
 const MS: Address = Address::new(1, 1, 36, 1);
 const GPS: Address = Address::new(1, 1, 38, 1);
+const GPSD: Address = Address::new(1, 1, 47, 1);
 const LPS: Address = Address::new(1, 1, 41, 1);
 const VSS: Address = Address::new(1, 1, 42, 1);
 const INTRUDER: Address = Address::new(1, 3, 40, 1);
@@ -130,12 +131,21 @@ fn a_station_follows_commands_and_recovers_the_vehicle() {
     ));
     assert!(matches!(
         st.submit(Command::TakeControl {
-            target: Address::new(1, 1, 47, 1),
+            target: Address::new(1, 1, 49, 1),
             authority: 5
         }),
         Err(StationError::Unknown(_))
     ));
-    assert_eq!(errors(&view(&mut bus)).len(), 4);
+    // Path segments need a Global Path Segment Driver (47), not a waypoint driver.
+    assert!(matches!(
+        st.submit(Command::PathSegments {
+            driver: GWD,
+            points: vec![at(1.0, 1.0)],
+            speed: 1.0
+        }),
+        Err(StationError::WrongComponent { id: 47, .. })
+    ));
+    assert_eq!(errors(&view(&mut bus)).len(), 5);
 
     // Control with authority 5, then two waypoints driven to arrival.
     station(&mut bus)
@@ -197,6 +207,47 @@ fn a_station_follows_commands_and_recovers_the_vehicle() {
             .count()
             >= 2
     );
+
+    // Path segments (straight, weighting 0) through the Global Path Segment Driver,
+    // driven to the end of the last one.
+    station(&mut bus)
+        .submit(Command::TakeControl {
+            target: GPSD,
+            authority: 5,
+        })
+        .unwrap();
+    bus.run_for(Duration::from_secs(1));
+    station(&mut bus)
+        .submit(Command::PathSegments {
+            driver: GPSD,
+            points: vec![at(10.0, 6.0), at(4.0, 6.0)],
+            speed: 2.0,
+        })
+        .unwrap();
+    let mut near_corner = f64::INFINITY;
+    for _ in 0..20 {
+        bus.run_for(Duration::from_secs(1));
+        let (x, y) = vehicle_xy(&view(&mut bus));
+        near_corner = near_corner.min((x - 10.0).hypot(y - 6.0));
+    }
+    let v = view(&mut bus);
+    let (x, y) = vehicle_xy(&v);
+    assert!(
+        (x - 4.0).hypot(y - 6.0) < 1.0,
+        "arrived at ({x:.2}, {y:.2})"
+    );
+    assert!(
+        near_corner < 1.0,
+        "passed the first end: {near_corner:.2} m"
+    );
+    assert_eq!(
+        state(&v, GPSD).as_deref(),
+        Some("Standby"),
+        "back to Standby"
+    );
+    station(&mut bus)
+        .submit(Command::ReleaseControl { target: GPSD })
+        .unwrap();
 
     // A mission on the spooler (authority 100): refused at authority 5, visibly; taken
     // at 200; two blocking moves back, run to the end.

@@ -2,8 +2,10 @@
 //! `chromium-driver`, driven over WebDriver): against a node hosting the demo's simulated
 //! vehicle on loopback, the page refuses a route without control and a malformed speed
 //! (visible errors), takes control of the waypoint driver, gets two waypoints clicked on
-//! the map, shows the vehicle's marker arriving, and after the emergency stop shows the
-//! vehicle stopped and its state Emergency. A screenshot is saved as
+//! the map, shows the vehicle's marker arriving, drives a path segment through the Global
+//! Path Segment Driver, spools a two-move mission to the Mission Spooler and runs it to
+//! Finished, and after the emergency stop shows the vehicle stopped and its state
+//! Emergency. A screenshot is saved as
 //! `target/ocu/console.png`.
 //!
 //! Without `chromedriver` the test is skipped with a message, unless
@@ -139,9 +141,50 @@ async fn speed(c: &Client) -> Option<f64> {
 }
 
 async fn set_speed(c: &Client, text: &str) {
-    let e = c.find(Locator::Id("speed")).await.expect("#speed");
-    e.clear().await.expect("clear #speed");
-    e.send_keys(text).await.expect("type #speed");
+    set_input(c, "speed", text).await;
+}
+
+async fn set_input(c: &Client, id: &str, text: &str) {
+    let e = c.find(Locator::Id(id)).await.expect(id);
+    e.clear().await.expect("clear");
+    e.send_keys(text).await.expect("type");
+}
+
+/// Selects `address` in the driver list and takes control of it with `authority`.
+async fn take(c: &Client, address: &str, authority: &str) {
+    c.find(Locator::Id("driver"))
+        .await
+        .expect("#driver")
+        .select_by_value(address)
+        .await
+        .unwrap_or_else(|e| panic!("select {address}: {e}"));
+    set_input(c, "authority", authority).await;
+    click(c, "take").await;
+    wait_for(
+        "control of the selected component",
+        Duration::from_secs(10),
+        async || {
+            (c.find(Locator::Id("driver-control"))
+                .await
+                .ok()?
+                .text()
+                .await
+                .ok()?
+                == "held")
+                .then_some(())
+        },
+    )
+    .await;
+}
+
+/// Waits until the vehicle stands within a metre of `to`.
+async fn arrive(c: &Client, what: &str, to: (f64, f64)) -> (f64, f64) {
+    wait_for(what, Duration::from_secs(60), async || {
+        let (x, y) = vehicle_xy(c).await?;
+        let still = speed(c).await.is_some_and(|s| s < 0.1);
+        ((x - to.0).hypot(y - to.1) < 1.0 && still).then_some((x, y))
+    })
+    .await
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
@@ -287,17 +330,7 @@ async fn the_page_drives_the_simulated_vehicle_and_stops_it() {
     click(&c, "drive").await;
     let t_drive = Instant::now();
     let last = targets[1];
-    let arrived = wait_for(
-        "the vehicle's arrival",
-        Duration::from_secs(60),
-        async || {
-            // Within a metre of the last waypoint and stopped there.
-            let (x, y) = vehicle_xy(&c).await?;
-            let still = speed(&c).await.is_some_and(|s| s < 0.1);
-            ((x - last.0).hypot(y - last.1) < 1.0 && still).then_some((x, y))
-        },
-    )
-    .await;
+    let arrived = arrive(&c, "the vehicle's arrival", last).await;
     let drive_s = t_drive.elapsed().as_secs_f64();
     // It went through the first waypoint on the way.
     let trail = js(&c, "return ocu.trails.get(1);").await;
@@ -312,6 +345,54 @@ async fn the_page_drives_the_simulated_vehicle_and_stops_it() {
         closest < 1.0,
         "the trail passes {closest:.2} m from waypoint 1"
     );
+
+    // A path segment through the Global Path Segment Driver.
+    take(&c, "1.1.47.1", "5").await;
+    let end = (start.0 + 6.0, start.1 - 8.0);
+    click_map(&c, end.0, end.1).await;
+    click(&c, "drive-path").await;
+    arrive(&c, "the end of the path segment", end).await;
+
+    // A mission of two moves spooled to the Mission Spooler (authority 200) and run.
+    take(&c, "1.1.36.1", "200").await;
+    let moves = [
+        (start.0 + 2.0, start.1 - 8.0),
+        (start.0 + 2.0, start.1 - 3.0),
+    ];
+    for (x, y) in moves {
+        click_map(&c, x, y).await;
+    }
+    click(&c, "spool").await;
+    wait_for("the mission spooled", Duration::from_secs(10), async || {
+        let t = c
+            .find(Locator::Id("mission-status"))
+            .await
+            .ok()?
+            .text()
+            .await
+            .ok()?;
+        t.starts_with("mission").then_some(())
+    })
+    .await;
+    click(&c, "m-run").await;
+    wait_for(
+        "the mission finished",
+        Duration::from_secs(60),
+        async || {
+            let t = c
+                .find(Locator::Id("mission-status"))
+                .await
+                .ok()?
+                .text()
+                .await
+                .ok()?;
+            t.contains("Finished").then_some(())
+        },
+    )
+    .await;
+    arrive(&c, "the mission's last move", moves[1]).await;
+    // Back to the waypoint driver for the rest.
+    take(&c, "1.1.45.1", "5").await;
 
     // Moving again (back to the start), then the emergency stop.
     click_map(&c, start.0, start.1).await;

@@ -1,8 +1,10 @@
 //! The `jaus demo` main job: a complete simulated subsystem on the in-process bus.
 //!
 //! Node 1 of subsystem 1 hosts the Primitive Driver, the Reflexive Driver, the Global
-//! and Local Pose Sensors, the Velocity State Sensor, the Global Waypoint Driver and the
-//! Local Path Segment Driver, all over one simulated skid-steer vehicle; the drivers
+//! and Local Pose Sensors, the Velocity State Sensor, the Global Waypoint Driver, the
+//! Local and Global Path Segment Drivers, the Range and Visual Sensors, the World Model
+//! Vector Knowledge Store, the Mission Spooler and the Subsystem Commander, all over one
+//! simulated skid-steer vehicle; the drivers
 //! drive through the Reflexive Driver (Part 1 Figures 5-9 and 5-16). An operator (a System
 //! Commander on node 2, taking and keeping control through `jaus::stock::commander`)
 //! takes control of both drivers, sends a waypoint mission in
@@ -36,17 +38,18 @@ use jaus::component::local::{Endpoint, LocalBus};
 use jaus::component::{Config, CoreState, Refused};
 use jaus::components::system_commander::{self, Ctx, SystemCommander};
 use jaus::components::{
-    global_pose_sensor, global_waypoint_driver, local_path_segment_driver, local_pose_sensor,
-    mission_spooler, primitive_driver, range_sensor, reflexive_driver, subsystem_commander,
-    velocity_state_sensor, visual_sensor, world_model_vector_knowledge_store,
+    global_path_segment_driver, global_pose_sensor, global_waypoint_driver,
+    local_path_segment_driver, local_pose_sensor, mission_spooler, primitive_driver, range_sensor,
+    reflexive_driver, subsystem_commander, velocity_state_sensor, visual_sensor,
+    world_model_vector_knowledge_store,
 };
 use jaus::messages::*;
 use jaus::stock::commander::{
     ControlEvent, ControlKeeper, KeeperConfig, StockSubsystemCommander, SubsystemConfig,
 };
 use jaus::stock::drivers::{
-    PrimitiveConfig, ReflexiveConfig, StockGlobalWaypointDriver, StockLocalPathSegmentDriver,
-    StockPrimitiveDriver, StockReflexiveDriver,
+    PrimitiveConfig, ReflexiveConfig, StockGlobalPathSegmentDriver, StockGlobalWaypointDriver,
+    StockLocalPathSegmentDriver, StockPrimitiveDriver, StockReflexiveDriver,
 };
 use jaus::stock::environment::camera::{StockVisualSensor, VisualConfig};
 use jaus::stock::environment::map_feed::MapFeedConfig;
@@ -76,6 +79,9 @@ pub mod addr {
     pub const GWD: Address = Address::new(1, 1, 45, 1);
     /// Local Path Segment Driver.
     pub const LPSD: Address = Address::new(1, 1, 48, 1);
+    /// Global Path Segment Driver (not used by the scripted run; operator stations
+    /// such as `jaus ocu` drive path segments in WGS 84 with it).
+    pub const GPSD: Address = Address::new(1, 1, 47, 1);
     /// Mission Spooler.
     pub const MS: Address = Address::new(1, 1, 36, 1);
     /// World Model Vector Knowledge Store.
@@ -733,6 +739,7 @@ pub fn vehicle_at(
     });
     let gwd = StockGlobalWaypointDriver::new(driver_config(at(addr::GPS), ss, node));
     let lpsd = StockLocalPathSegmentDriver::new(driver_config(at(addr::LPS), ss, node));
+    let gpsd = StockGlobalPathSegmentDriver::new(driver_config(at(addr::GPS), ss, node));
     let parts: Vec<Box<dyn Endpoint>> = vec![
         Box::new(primitive_driver::component(
             at(addr::PD),
@@ -773,6 +780,12 @@ pub fn vehicle_at(
         Box::new(local_path_segment_driver::component(
             at(addr::LPSD),
             lpsd,
+            cfg.clone(),
+            t0,
+        )),
+        Box::new(global_path_segment_driver::component(
+            at(addr::GPSD),
+            gpsd,
             cfg.clone(),
             t0,
         )),
