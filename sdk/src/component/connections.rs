@@ -75,7 +75,15 @@ struct Subscription {
     provider: Address,
     report: CommandCode,
     instance: Option<u8>,
+    rate: f64,
+    presence: u32,
+    /// When it was asked for or a report last arrived.
+    heard: Option<Instant>,
 }
+
+/// How long a subscription may stay silent before it is asked for again: five periods
+/// of the rate asked for, and never less than this.
+pub(super) const MIN_SILENCE: Duration = Duration::from_secs(3);
 
 #[derive(Debug, Default)]
 pub(super) struct RequesterTable {
@@ -87,8 +95,8 @@ impl RequesterTable {
         &mut self,
         provider: Address,
         report: CommandCode,
-        _rate: f64,
-        _pv: u32,
+        rate: f64,
+        pv: u32,
         max: usize,
     ) -> bool {
         if self
@@ -105,8 +113,49 @@ impl RequesterTable {
             provider,
             report,
             instance: None,
+            rate,
+            presence: pv,
+            heard: None,
         });
         true
+    }
+
+    /// A message `code` arrived from `provider` at `now`: a report of one of its
+    /// connections keeps that connection alive.
+    pub(super) fn heard(&mut self, provider: Address, code: CommandCode, now: Instant) {
+        for s in &mut self.subs {
+            if s.provider == provider && s.report == code {
+                s.heard = Some(now);
+            }
+        }
+    }
+
+    /// `gone` left the system: its connections are to be asked for again.
+    pub(super) fn provider_gone(&mut self, gone: Address) {
+        for s in &mut self.subs {
+            if s.provider == gone {
+                s.instance = None;
+            }
+        }
+    }
+
+    /// The next connection silent for too long at `now`, marked as asked for again:
+    /// (provider, report, rate, presence vector). Subscriptions never heard of start
+    /// their clock here.
+    pub(super) fn due_again(&mut self, now: Instant) -> Option<(Address, CommandCode, f64, u32)> {
+        for s in &mut self.subs {
+            let Some(heard) = s.heard else {
+                s.heard = Some(now);
+                continue;
+            };
+            let period = Duration::from_secs_f64(5.0 / s.rate.max(1e-3));
+            if now.saturating_duration_since(heard) > period.max(MIN_SILENCE) {
+                s.instance = None;
+                s.heard = Some(now);
+                return Some((s.provider, s.report, s.rate, s.presence));
+            }
+        }
+        None
     }
 
     pub(super) fn remove(&mut self, provider: Address, report: CommandCode) -> Option<u8> {

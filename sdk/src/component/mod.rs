@@ -29,6 +29,14 @@
 //!   Clear Emergency. A Clear Emergency from a component that did not set one is ignored
 //!   and counted. While in Emergency, Reset, Standby and Resume are refused and no
 //!   interface command is executed.
+//! * **Service connections asked for are kept.** A connection whose reports stop for
+//!   five periods (at least 3 s), or whose provider leaves the system tree, is asked
+//!   for again with Create Service Connection until the reports come back (counted in
+//!   `Stats::subscriptions_renewed`): a provider that restarted, or a link that was down
+//!   longer than the subsystem timeout, needs nothing from the component's own code.
+//! * **Controlled components' states are kept.** Each Report Component Status from a
+//!   component this one controls is remembered ([`Context::controlled_state`]); the stock
+//!   drivers use it to resume their output after an emergency is cleared.
 //! * **Refusals.** A refused message is counted in [`Stats`] and logged with its name,
 //!   sender and reason; if the sender asked for an acknowledgement it gets a NAK. Nothing
 //!   a vendor has not implemented crashes the component: it is counted as unsupported.
@@ -373,6 +381,9 @@ pub struct Stats {
     pub report_failures: u64,
     /// Service connections or events refused.
     pub subscriptions_refused: u64,
+    /// Service connections this component asked for again because their reports
+    /// stopped (the provider restarted, its node was forgotten, the link was down).
+    pub subscriptions_renewed: u64,
     /// Service-connection reports not sent because the component was run too late
     /// for their period (a busy or starved process): counted, never sent late.
     pub reports_missed: u64,
@@ -487,6 +498,8 @@ impl<B: Behaviour> Component<B> {
         self.rt.provider.remove_requester(gone);
         self.rt.events.remove_requester(gone);
         self.rt.held_control.retain(|(a, _)| *a != gone);
+        // Connections it provided are gone with it: asked for again once it is back.
+        self.rt.requester.provider_gone(gone);
         self.notify_changes();
     }
 
@@ -516,6 +529,9 @@ impl<B: Behaviour> Component<B> {
                 return;
             }
         };
+        self.rt
+            .requester
+            .heard(header.source, header.command_code, self.rt.now);
         let ok = self.dispatch(header, &msg);
         self.rt.ack(header, ok);
         self.notify_changes();
@@ -529,6 +545,9 @@ impl<B: Behaviour> Component<B> {
             self.rt.stats.misaddressed += 1;
             return;
         }
+        self.rt
+            .requester
+            .heard(header.source, header.command_code, self.rt.now);
         let ok = self.dispatch(header, msg);
         self.rt.ack(header, ok);
         self.notify_changes();
@@ -557,6 +576,7 @@ impl<B: Behaviour> Component<B> {
         }
         if self.rt.next_tick <= now {
             self.rt.next_tick = next_after(self.rt.next_tick, self.rt.config.tick, now);
+            self.rt.renew_silent_subscriptions();
             self.rt.source = None;
             self.behaviour.tick(&mut Context {
                 rt: &mut self.rt,

@@ -170,6 +170,20 @@ impl<I: Interface> Runtime<I> {
         true
     }
 
+    /// Asks again for the service connections whose reports stopped.
+    pub(super) fn renew_silent_subscriptions(&mut self) {
+        while let Some((provider, report, rate, pv)) = self.requester.due_again(self.now) {
+            tracing::debug!(address = %self.address, %provider, %report, "service connection silent: asked for again");
+            let msg = CreateServiceConnection {
+                service_connection_command_code: report.0,
+                requested_periodic_update_rate: rate,
+                presence_vector: pv,
+            };
+            self.send(provider, msg.into(), true, 0);
+            self.stats.subscriptions_renewed += 1;
+        }
+    }
+
     pub(super) fn unsubscribe(&mut self, provider: Address, report: CommandCode) {
         if let Some(instance) = self.requester.remove(provider, report) {
             let msg = TerminateServiceConnection {
