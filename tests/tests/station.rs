@@ -145,7 +145,33 @@ fn a_station_follows_commands_and_recovers_the_vehicle() {
         }),
         Err(StationError::WrongComponent { id: 47, .. })
     ));
-    assert_eq!(errors(&view(&mut bus)).len(), 5);
+    // An obstacle for the world model: a bad radius or the wrong component is refused;
+    // a good one is stored and drawn once the store lists it.
+    const WM: Address = Address::new(1, 1, 61, 1);
+    let obstacle = |world_model: Address, radius: f64| Command::StoreObstacle {
+        world_model,
+        point: at(20.0, 20.0),
+        radius,
+        class: 9,
+    };
+    let st = station(&mut bus);
+    assert!(matches!(
+        st.submit(obstacle(WM, -1.0)),
+        Err(StationError::Radius { .. })
+    ));
+    assert!(matches!(
+        st.submit(obstacle(GWD, 0.7)),
+        Err(StationError::WrongComponent { id: 61, .. })
+    ));
+    st.submit(obstacle(WM, 0.7)).unwrap();
+    assert_eq!(errors(&view(&mut bus)).len(), 7);
+    bus.run_for(Duration::from_secs(3));
+    let v = view(&mut bus);
+    let stored = v.subsystems[0].objects.iter().find(|o| {
+        let (x, y) = o.points[0];
+        (x - 20.0).hypot(y - 20.0) < 0.05 && (o.buffer - 0.7).abs() < 1e-3
+    });
+    assert!(stored.is_some(), "{:?}", v.subsystems[0].objects);
 
     // Control with authority 5, then two waypoints driven to arrival.
     station(&mut bus)

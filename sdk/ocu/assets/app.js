@@ -395,6 +395,17 @@ $("spool").onclick = () => {
   send({ op: "spool", spooler: s.roles.spooler, driver: s.roles.waypoint_driver, speed: speed(), points: ocu.draft.map((p) => ({ x: p.x, y: p.y })) });
   ocu.draft = [];
 };
+$("obstacle").onclick = () => {
+  const s = needVehicle();
+  if (!s) return;
+  if (!s.roles.world_model) return localNotice("this vehicle has no world model");
+  const p = ocu.draft[ocu.draft.length - 1];
+  if (!p) return localNotice("click the map where the obstacle is first");
+  const radius = Number($("obstacle-radius").value);
+  send({ op: "obstacle", world_model: s.roles.world_model, radius, points: [{ x: p.x, y: p.y }] });
+  ocu.draft.pop();
+  drawMap(); drawSide();
+};
 for (const [id, action] of [["m-run", "run"], ["m-pause", "pause"], ["m-resume", "resume"], ["m-abort", "abort"]]) {
   $(id).onclick = () => { const s = needVehicle(); if (s && s.roles.spooler) send({ op: "mission", spooler: s.roles.spooler, action }); };
 }

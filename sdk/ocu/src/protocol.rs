@@ -11,6 +11,7 @@
 //! {"op": "path", "driver": "1.1.47.1", "speed": 2.0, "points": [{"lat": 38.9, "lon": -77.0}]}
 //! {"op": "spool", "spooler": "1.1.36.1", "driver": "1.1.45.1", "speed": 2.0, "points": [...]}
 //! {"op": "mission", "spooler": "1.1.36.1", "action": "run"}   (run, pause, resume, abort)
+//! {"op": "obstacle", "world_model": "1.1.61.1", "radius": 0.5, "points": [{"x": 4, "y": 1}]}
 //! ```
 //!
 //! Points are metres east (`x`) and north (`y`) of the map's origin, or WGS 84 degrees
@@ -39,7 +40,7 @@ pub enum PageError {
         why: String,
     },
     /// Unknown operation.
-    #[error("unknown operation `{0}` (take, release, emergency, clear_emergency, resume, standby, waypoints, path, spool, mission)")]
+    #[error("unknown operation `{0}` (take, release, emergency, clear_emergency, resume, standby, waypoints, path, spool, mission, obstacle)")]
     Op(String),
     /// Points given in map metres before any position arrived.
     #[error("{0}: the map has no origin yet (no position received): give lat/lon")]
@@ -175,6 +176,21 @@ pub fn parse(text: &str, frame: Option<&LocalFrame>) -> Result<Command, PageErro
                 _ => return Err(f.err("action", "expected run, pause, resume or abort")),
             },
         },
+        "obstacle" => {
+            let points = f.points(frame)?;
+            let [point] = points[..] else {
+                return Err(f.err("points", "expected one point"));
+            };
+            Command::StoreObstacle {
+                world_model: f.address("world_model")?,
+                point,
+                radius: f.number("radius")?,
+                class: v["class"]
+                    .as_u64()
+                    .and_then(|n| u16::try_from(n).ok())
+                    .unwrap_or(1),
+            }
+        }
         other => return Err(PageError::Op(other.to_string())),
     })
 }
@@ -218,6 +234,31 @@ mod tests {
             parse(r#"{"op":"emergency","subsystem":3}"#, None).unwrap(),
             Command::Emergency { subsystem: 3 }
         );
+        let c = parse(
+            r#"{"op":"obstacle","world_model":"1.1.61.1","radius":0.5,"class":7,"points":[{"x":0,"y":0}]}"#,
+            Some(&frame),
+        )
+        .unwrap();
+        let Command::StoreObstacle {
+            world_model,
+            point,
+            radius,
+            class,
+        } = c
+        else {
+            panic!("{c:?}")
+        };
+        assert_eq!(
+            (world_model, radius, class),
+            (Address::new(1, 1, 61, 1), 0.5, 7)
+        );
+        assert!((point.latitude - 38.0).abs() < 1e-9);
+        let e = parse(
+            r#"{"op":"obstacle","world_model":"1.1.61.1","radius":0.5,"points":[{"x":0,"y":0},{"x":1,"y":1}]}"#,
+            Some(&frame),
+        )
+        .unwrap_err();
+        assert!(e.to_string().contains("points"), "{e}");
     }
 
     #[test]

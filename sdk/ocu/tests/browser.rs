@@ -4,7 +4,8 @@
 //! (visible errors), takes control of the waypoint driver, gets two waypoints clicked on
 //! the map, shows the vehicle's marker arriving, drives a path segment through the Global
 //! Path Segment Driver, spools a two-move mission to the Mission Spooler and runs it to
-//! Finished, and after the emergency stop shows the vehicle stopped and its state
+//! Finished, stores an obstacle clicked on the map in the world model and draws it, and
+//! after the emergency stop shows the vehicle stopped and its state
 //! Emergency. A screenshot is saved as
 //! `target/ocu/console.png`.
 //!
@@ -391,6 +392,19 @@ async fn the_page_drives_the_simulated_vehicle_and_stops_it() {
     )
     .await;
     arrive(&c, "the mission's last move", moves[1]).await;
+    // An obstacle stored in the world model from the map, drawn once the store lists it.
+    let rock = (start.0 + 15.0, start.1 + 5.0);
+    set_input(&c, "obstacle-radius", "0.8").await;
+    click_map(&c, rock.0, rock.1).await;
+    click(&c, "obstacle").await;
+    wait_for("the obstacle on the map", Duration::from_secs(10), async || {
+        let objects = js(&c, "return ocu.view.subsystems[0].objects.map(o => [o.points[0][0], o.points[0][1], o.buffer]);").await;
+        objects.as_array()?.iter().find_map(|o| {
+            let (x, y, r) = (o[0].as_f64()?, o[1].as_f64()?, o[2].as_f64()?);
+            ((x - rock.0).hypot(y - rock.1) < 0.5 && (r - 0.8).abs() < 1e-3).then_some(())
+        })
+    })
+    .await;
     // Back to the waypoint driver for the rest.
     take(&c, "1.1.45.1", "5").await;
 

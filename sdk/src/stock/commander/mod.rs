@@ -29,6 +29,7 @@ pub mod view;
 pub use keeper::{ControlEvent, ControlKeeper, KeeperConfig};
 pub use station::{
     Command, GeoPoint, MissionAction, Station, StationConfig, StationError, TreeInput, MAX_POINTS,
+    MAX_RADIUS,
 };
 pub use subsystem::{StockSubsystemCommander, SubsystemConfig};
 pub use view::SystemView;

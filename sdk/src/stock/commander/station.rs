@@ -13,11 +13,12 @@ use super::view::{
 };
 use crate::component::{Context, CoreState, Interface};
 use crate::messages::{
-    AbortMission, ClearEmergency, ClearEmergencyCode, ControlResponse, EmergencyCode, Message,
-    MissionCommand, MissionStatusType, PauseMission, QueryComponentControl, QueryComponentStatus,
-    QueryGlobalPose, QueryMissionStatus, QueryVelocityState, QueryVksObjects, ReportGlobalPose,
-    ReportVelocityState, Resume, ResumeMission, RunMission, SetEmergency, SetGlobalPathSegment,
-    SetGlobalWaypoint, SetTravelSpeed, SpoolMission, Standby,
+    AbortMission, ClearEmergency, ClearEmergencyCode, ControlResponse, CreateVksObjects,
+    EmergencyCode, Message, MissionCommand, MissionStatusType, PauseMission, QueryComponentControl,
+    QueryComponentStatus, QueryGlobalPose, QueryMissionStatus, QueryVelocityState, QueryVksObjects,
+    ReportGlobalPose, ReportVelocityState, Resume, ResumeMission, RunMission, SetEmergency,
+    SetGlobalPathSegment, SetGlobalWaypoint, SetTravelSpeed, SpoolMission, Standby, VksAttribute,
+    VksFeatureClass, VksObject, VksObjectType, VksPoint,
 };
 use crate::stock::geo::LocalFrame;
 use crate::stock::spooler::{command, leaf_task, mission_of};
@@ -42,6 +43,10 @@ const POSE_PRESENCE: u16 = 0x43;
 const VELOCITY_PRESENCE: u32 = 0x43;
 /// The request id of the station's Query VKS Objects.
 const VKS_REQUEST: u8 = 0xC1;
+/// Request id of the station's Create VKS Objects.
+const CREATE_REQUEST: u8 = 0xC2;
+/// Largest obstacle radius the station stores, m.
+pub const MAX_RADIUS: f64 = 1000.0;
 /// Most points of one waypoint list, path or mission.
 pub const MAX_POINTS: usize = 255;
 
@@ -193,6 +198,19 @@ pub enum Command {
         /// What to do.
         action: MissionAction,
     },
+    /// Store an obstacle in a World Model Vector Knowledge Store (no control needed: the
+    /// store takes objects from anyone): a point object with a buffer of `radius` metres
+    /// and feature class `class`, which planners querying the store then avoid.
+    StoreObstacle {
+        /// The World Model Vector Knowledge Store.
+        world_model: Address,
+        /// Where the obstacle is.
+        point: GeoPoint,
+        /// Its radius (the object's buffer), m.
+        radius: f64,
+        /// Feature class id given to it.
+        class: u16,
+    },
 }
 
 impl Command {
@@ -209,6 +227,7 @@ impl Command {
             Command::SpoolMission { spooler, .. } | Command::Mission { spooler, .. } => {
                 Some(*spooler)
             }
+            Command::StoreObstacle { world_model, .. } => Some(*world_model),
             Command::Emergency { .. } | Command::ClearEmergency { .. } => None,
         }
     }
@@ -271,6 +290,14 @@ pub enum StationError {
     /// No mission was spooled on the spooler.
     #[error("{0}: no mission spooled by this station")]
     NoMission(Address),
+    /// An obstacle's radius is not a number or out of range.
+    #[error("obstacle radius {value} m is not within (0, {max}] m")]
+    Radius {
+        /// The value given.
+        value: f64,
+        /// Highest accepted (what the object's buffer field carries).
+        max: f64,
+    },
     /// Too many commands waiting.
     #[error("{0} commands are waiting to be sent: try again")]
     Busy(usize),
@@ -544,6 +571,28 @@ impl Station {
                 self.check_route(points, *speed)?;
                 held(*spooler, "Spool Mission")
             }
+            Command::StoreObstacle {
+                world_model,
+                point,
+                radius,
+                ..
+            } => {
+                kind(
+                    *world_model,
+                    "Create VKS Objects",
+                    "World Model Vector Knowledge Store",
+                    id::WORLD_MODEL,
+                )?;
+                self.check_points(std::slice::from_ref(point))?;
+                if radius.is_finite() && *radius > 0.0 && *radius <= MAX_RADIUS {
+                    Ok(())
+                } else {
+                    Err(StationError::Radius {
+                        value: *radius,
+                        max: MAX_RADIUS,
+                    })
+                }
+            }
             Command::Mission { spooler, .. } => {
                 held(*spooler, "a mission command")?;
                 let spooled = self
@@ -564,6 +613,17 @@ impl Station {
         if points.is_empty() || points.len() > MAX_POINTS {
             return Err(StationError::Points(points.len()));
         }
+        self.check_points(points)?;
+        if !(speed.is_finite() && speed > 0.0 && speed <= self.config.max_speed) {
+            return Err(StationError::Speed {
+                value: speed,
+                max: self.config.max_speed,
+            });
+        }
+        Ok(())
+    }
+
+    fn check_points(&self, points: &[GeoPoint]) -> Result<(), StationError> {
         for (index, p) in points.iter().enumerate() {
             for (field, value, max) in [
                 ("latitude", p.latitude, 90.0),
@@ -579,12 +639,6 @@ impl Station {
                     });
                 }
             }
-        }
-        if !(speed.is_finite() && speed > 0.0 && speed <= self.config.max_speed) {
-            return Err(StationError::Speed {
-                value: speed,
-                max: self.config.max_speed,
-            });
         }
         Ok(())
     }
@@ -901,6 +955,42 @@ impl Station {
                     }
                     Err(e) => self.notice(true, format!("{spooler}: mission not spooled: {e}")),
                 }
+            }
+            Command::StoreObstacle {
+                world_model,
+                point,
+                radius,
+                class,
+            } => {
+                let object = VksObject {
+                    object_type: VksObjectType::Point,
+                    buffer: Some(radius as f32),
+                    feature_classes: vec![VksFeatureClass {
+                        id: class,
+                        attribute: VksAttribute::Default,
+                    }],
+                    points: vec![VksPoint {
+                        latitude: point.latitude,
+                        longitude: point.longitude,
+                    }],
+                };
+                send(
+                    ctx,
+                    world_model,
+                    CreateVksObjects {
+                        buffered: true,
+                        message_properties: 0,
+                        request_id: CREATE_REQUEST,
+                        objects: vec![object],
+                    }
+                    .into(),
+                );
+                // Drawn once the store lists it.
+                self.next_world = None;
+                self.notice(
+                    false,
+                    format!("{world_model}: obstacle of {radius} m stored (class {class})"),
+                );
             }
             Command::Mission { spooler, action } => {
                 let Some(id) = self
