@@ -19,6 +19,31 @@
 //!         jaus::stock::sensors::StockGlobalPoseSensor<jaus_sim::SimVehicle>>>>(
 //!     jaus::Address::new(5, 2, 38, 1)).is_some());
 //! ```
+//!
+//! The Communicator ([`Stock::Communicator`]) is real hardware rather than simulated:
+//! its [`Entry::links`] are UDP data links ([`UdpLink`]) to the far communicators, and
+//! the node that hosts it must name it as its gateway (`NodeConfig::communicator`,
+//! see [`Host::communicator_of`]):
+//!
+//! ```
+//! use std::time::Instant;
+//! use jaus::net::udp::link::UdpLinkConfig;
+//! use jaus::net::{Node, NodeConfig};
+//! use jaus_sim::host::{Host, Stock};
+//!
+//! let t0 = Instant::now();
+//! let mut comm = Host::entry(Stock::Communicator);
+//! let any = "127.0.0.1:0".parse().unwrap();
+//! comm.links.push(UdpLinkConfig::new(1, any, "127.0.0.1:4002".parse().unwrap()));
+//! let config = NodeConfig {
+//!     subsystem: 5,
+//!     communicator: Host::communicator_of(5, 2, [&comm]),
+//!     ..NodeConfig::default()
+//! };
+//! let mut node = Node::new(NodeConfig { node: 2, ..config }, t0);
+//! node.add_boxed(Host::new(5, 2, t0).build(&comm).unwrap()).unwrap();
+//! assert_eq!(node.stats().to_communicator, 0);
+//! ```
 
 use std::time::Instant;
 
@@ -44,6 +69,10 @@ use jaus::components::{
     manipulator_joint_velocity_sensor, primitive_manipulator,
 };
 use jaus::components::{range_sensor, visual_sensor};
+use jaus::net::udp::link::{UdpLink, UdpLinkConfig};
+use jaus::stock::communicator::{
+    CommunicatorConfig, CommunicatorEndpoint, CommunicatorError, StockCommunicator,
+};
 use jaus::stock::drivers::{
     Navigator, PrimitiveConfig, ReflexiveConfig, StockPrimitiveDriver, StockReflexiveDriver,
     StockVectorDriver,
@@ -118,6 +147,10 @@ pub enum Stock {
     JointMoveDriver,
     /// Manipulator End-Effector Discrete Pose Driver (59).
     EndEffectorDiscretePoseDriver,
+    /// Communicator (35): the subsystem's gateway to other subsystems over the UDP data
+    /// links of its [`Entry::links`] (at least one). The node hosting it must have it
+    /// as `NodeConfig::communicator` ([`Host::communicator_of`]).
+    Communicator,
 }
 
 impl Stock {
@@ -154,6 +187,7 @@ impl Stock {
             "end_effector_discrete_pose_driver",
             Stock::EndEffectorDiscretePoseDriver,
         ),
+        ("communicator", Stock::Communicator),
     ];
 
     /// The component by its configuration name.
@@ -197,6 +231,7 @@ impl Stock {
             Stock::EndEffectorVelocityStateDriver => 57,
             Stock::JointMoveDriver => 58,
             Stock::EndEffectorDiscretePoseDriver => 59,
+            Stock::Communicator => 35,
         }
     }
 }
@@ -221,6 +256,10 @@ pub struct Entry {
     pub pose: Option<Address>,
     /// Its authority (default 0; the demo gives the spooler 100).
     pub authority: u8,
+    /// For the Communicator: its data links, each a UDP socket and the far
+    /// communicator's link socket (at least one; distinct ids; the first is selected).
+    /// Ignored by the other components.
+    pub links: Vec<UdpLinkConfig>,
 }
 
 impl Entry {
@@ -249,6 +288,24 @@ pub enum HostError {
         component: &'static str,
         /// The address.
         address: Address,
+    },
+    /// The Communicator's links: none, or two with the same id.
+    #[error("{component}: {error} (give its data links in `links:`; only a node hosts a communicator, as its gateway)")]
+    Links {
+        /// The component's name.
+        component: &'static str,
+        /// What is wrong.
+        error: CommunicatorError,
+    },
+    /// A data link of the Communicator could not be set up (its socket, its MTU).
+    #[error("{component}: {error}")]
+    Link {
+        /// The component's name.
+        component: &'static str,
+        /// The link's id.
+        link: u8,
+        /// What went wrong (`jaus::net::udp::link::UdpLinkError`, as text).
+        error: String,
     },
 }
 
@@ -301,7 +358,21 @@ impl Host {
             output: None,
             pose: None,
             authority: 0,
+            links: Vec::new(),
         }
+    }
+
+    /// The Communicator among `entries`, at `subsystem`.`node`, if one is there: what
+    /// the hosting node's `NodeConfig::communicator` must be.
+    pub fn communicator_of<'a>(
+        subsystem: u8,
+        node: u8,
+        entries: impl IntoIterator<Item = &'a Entry>,
+    ) -> Option<Address> {
+        entries
+            .into_iter()
+            .find(|e| e.stock == Stock::Communicator)
+            .map(|e| Address::new(subsystem, node, Stock::Communicator.id(), e.instance))
     }
 
     /// Tells the host the node will also host a Reflexive Driver, so that drivers
@@ -340,7 +411,6 @@ impl Host {
                 address: at,
             });
         }
-        self.built.push(at);
         if e.stock == Stock::ReflexiveDriver {
             self.reflexive = true;
         }
@@ -376,7 +446,8 @@ impl Host {
             ..ArmDriverConfig::default()
         };
         let a = self.arm.clone();
-        Ok(match e.stock {
+        let built: Box<dyn Endpoint> = match e.stock {
+            Stock::Communicator => self.communicator(at, e)?,
             Stock::RangeSensor => Box::new(range_sensor::component(
                 at,
                 StockRangeSensor::new(self.scanner.clone(), RangeConfig::default()),
@@ -549,7 +620,47 @@ impl Host {
                 cfg,
                 t0,
             )),
-        })
+        };
+        // (A communicator whose links failed is not hosted: it may be entered again.)
+        self.built.push(at);
+        Ok(built)
+    }
+}
+
+impl Host {
+    /// The Communicator of `e` at `at`: its links bound, all On, the first selected.
+    fn communicator(&self, at: Address, e: &Entry) -> Result<Box<dyn Endpoint>, HostError> {
+        let component = Stock::Communicator.name();
+        // Checked before any socket is bound (StockCommunicator::new checks again).
+        let ids: Vec<u8> = e.links.iter().map(|l| l.id).collect();
+        let error = if ids.is_empty() {
+            Some(CommunicatorError::NoLinks)
+        } else {
+            (1..ids.len())
+                .find(|&i| ids[..i].contains(&ids[i]))
+                .map(|i| CommunicatorError::DuplicateId(ids[i]))
+        };
+        if let Some(error) = error {
+            return Err(HostError::Links { component, error });
+        }
+        let links = e
+            .links
+            .iter()
+            .map(|l| {
+                UdpLink::bind(l.clone()).map_err(|err| HostError::Link {
+                    component,
+                    link: l.id,
+                    error: err.to_string(),
+                })
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        let stock = StockCommunicator::new(links, CommunicatorConfig::default(), self.t0)
+            .map_err(|error| HostError::Links { component, error })?;
+        let cfg = Config {
+            authority: e.authority,
+            ..Config::default()
+        };
+        Ok(Box::new(CommunicatorEndpoint::new(at, stock, cfg, self.t0)))
     }
 }
 
@@ -561,14 +672,71 @@ mod tests {
     fn every_stock_component_is_hosted_at_its_id_and_instance() {
         let t0 = Instant::now();
         let mut host = Host::new(7, 3, t0);
+        let any: std::net::SocketAddr = "127.0.0.1:0".parse().unwrap();
         for (name, s) in Stock::ALL {
             assert_eq!(Stock::by_name(name), Some(*s));
-            let e = host.build(&Host::entry(*s).instance(4)).unwrap();
+            let mut entry = Host::entry(*s).instance(4);
+            if *s == Stock::Communicator {
+                entry.links.push(UdpLinkConfig::new(1, any, any));
+            }
+            let e = host.build(&entry).unwrap();
             assert_eq!(e.address(), Address::new(7, 3, s.id(), 4), "{name}");
         }
         let again = host.build(&Host::entry(Stock::WorldModel).instance(4));
         assert!(matches!(again, Err(HostError::Duplicate { .. })));
         let zero = host.build(&Host::entry(Stock::WorldModel).instance(0));
         assert!(matches!(zero, Err(HostError::Instance { .. })));
+    }
+
+    #[test]
+    fn a_communicator_needs_its_links_and_is_the_nodes_gateway() {
+        let t0 = Instant::now();
+        let mut host = Host::new(2, 1, t0);
+        let any: std::net::SocketAddr = "127.0.0.1:0".parse().unwrap();
+        let mut e = Host::entry(Stock::Communicator);
+        let none = host.build(&e).err().unwrap();
+        assert_eq!(
+            none.to_string(),
+            "communicator: a communicator needs at least one data link (give its data links in `links:`; only a node hosts a communicator, as its gateway)"
+        );
+        e.links = vec![
+            UdpLinkConfig::new(3, any, any),
+            UdpLinkConfig::new(3, any, any),
+        ];
+        assert!(matches!(
+            host.build(&e),
+            Err(HostError::Links {
+                error: CommunicatorError::DuplicateId(3),
+                ..
+            })
+        ));
+        // A socket that cannot be bound names the link.
+        let taken = std::net::UdpSocket::bind(any).unwrap();
+        e.links = vec![UdpLinkConfig::new(4, taken.local_addr().unwrap(), any)];
+        let busy = host.build(&e).err().unwrap();
+        assert!(matches!(busy, HostError::Link { link: 4, .. }), "{busy}");
+        assert!(
+            busy.to_string()
+                .starts_with("communicator: data link 4: cannot use 127.0.0.1:"),
+            "{busy}"
+        );
+        // Failed attempts hosted nothing: the same address takes a good entry.
+        e.links = vec![
+            UdpLinkConfig::new(1, any, any),
+            UdpLinkConfig::new(2, any, any),
+        ];
+        let c = host.build(&e).unwrap();
+        assert_eq!(c.address(), Address::new(2, 1, 35, 1));
+        let gw = c
+            .as_any()
+            .downcast_ref::<CommunicatorEndpoint<UdpLink>>()
+            .unwrap();
+        assert_eq!(gw.communicator().link_ids().collect::<Vec<_>>(), [1, 2]);
+        let other = Host::entry(Stock::GlobalPoseSensor);
+        assert_eq!(
+            Host::communicator_of(2, 1, [&other, &e.clone().instance(3)]),
+            Some(Address::new(2, 1, 35, 3))
+        );
+        assert_eq!(Host::communicator_of(2, 1, [&other]), None);
     }
 }

@@ -24,7 +24,11 @@ use jaus::net::{udp, Framing, Node, NodeConfig, SystemTree};
 ///   - global_pose_sensor                     # a stock component at instance 1
 ///   - { component: world_model, instance: 2 }
 ///   - { component: global_waypoint_driver, output: 1.1.33.1, pose: 1.1.38.1 }
+///   - component: communicator                # the gateway to other subsystems
+///     links:
+///       - { id: 1, udp: { bind: "0.0.0.0:4001", peer: "192.168.1.20:4001" } }
 /// io: { spin_us: 50, batch: 32 }  # optional: how the socket is read (udp::IoOptions)
+/// communicator: 1.2.35.1 # optional: the subsystem's communicator on another node
 /// ```
 ///
 /// A `host:` entry is `vehicle`, `arm` (the Primitive Manipulator, the three joint sensors
@@ -42,6 +46,18 @@ use jaus::net::{udp, Framing, Node, NodeConfig, SystemTree};
 /// sensor they follow; default: this node's 43.1 or 33.1, and 38.1 or 41.1; manipulator
 /// drivers: 49.1) and `authority` (0). Those that need hardware share one simulated
 /// vehicle, the manipulator components one simulated arm.
+///
+/// `communicator` (Part 1 §5.2.1, id 35) is the subsystem's gateway to the other
+/// subsystems, over real data links: its `links:` (at least one) are each
+/// `{ id, udp: { bind, peer, mtu, silence_ms, keepalive_ms, assume_up, poll_ms } }`,
+/// a UDP socket bound to `bind` exchanging one datagram per JAUS packet with the far
+/// communicator's link socket `peer` (an IP radio modem, a tether; `mtu` 4096 bytes,
+/// down after `silence_ms` 3000 of silence, a keep-alive after `keepalive_ms` 1000
+/// without sending (0: none), up before anything is heard unless `assume_up: false`,
+/// read every `poll_ms` 10: `jaus::net::udp::link::UdpLinkConfig`). A node hosting
+/// one sends every message for another subsystem through it and takes those from
+/// other subsystems only from it (`NodeConfig::communicator`); the other nodes of the
+/// subsystem name it with `communicator:`. At most one per node.
 #[derive(Debug, Clone, serde::Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct NodeFile {
@@ -82,6 +98,11 @@ pub struct NodeFile {
     /// How the node reads its socket (`udp::IoOptions`; defaults when absent).
     #[serde(default)]
     pub io: Option<IoFile>,
+    /// The subsystem's Communicator when another node hosts it
+    /// (`subsystem.node.component.instance`): messages for other subsystems go to that
+    /// node (`NodeConfig::communicator`). A node hosting one needs none.
+    #[serde(default)]
+    pub communicator: Option<String>,
 }
 
 /// `io:` of a node file: how the node waits for and reads datagrams.
@@ -177,6 +198,9 @@ pub enum HostItem {
         /// Its authority.
         #[serde(default)]
         authority: Option<u8>,
+        /// The Communicator's data links (checked field by field when loaded).
+        #[serde(default)]
+        links: Option<serde_yaml::Value>,
     },
 }
 
@@ -224,8 +248,59 @@ impl NodeFile {
                 ));
             }
         }
-        f.hosted_at(&at)?;
+        let hosted = f.hosted_at(&at)?;
+        f.communicator_at(&hosted, &at)?;
         Ok(f)
+    }
+
+    /// The subsystem's Communicator: the one hosted here, else `communicator:`, checked
+    /// (`at` gives the file:line:column of a YAML path).
+    fn communicator_at(
+        &self,
+        hosted: &[Hosted],
+        at: &dyn Fn(&str) -> String,
+    ) -> Result<Option<jaus::Address>, String> {
+        let entries = hosted.iter().filter_map(|h| match h {
+            Hosted::Stock(e) => Some(e),
+            Hosted::Vehicle | Hosted::Arm => None,
+        });
+        let here = jaus_sim::host::Host::communicator_of(self.subsystem, self.node, entries);
+        let Some(text) = &self.communicator else {
+            return Ok(here);
+        };
+        let a: jaus::Address = text.parse().map_err(|_| {
+            format!(
+                "{}: communicator: `{text}` is not an address subsystem.node.component.instance",
+                at("communicator")
+            )
+        })?;
+        if a.subsystem != self.subsystem || a.node == 0 || a.node == 255 {
+            return Err(format!(
+                "{}: communicator: {a} is not a component of this subsystem ({}): a node reaches other subsystems only through its own subsystem's communicator",
+                at("communicator"),
+                self.subsystem
+            ));
+        }
+        match here {
+            Some(h) if h != a => Err(format!(
+                "{}: communicator: {a}, but this node hosts the communicator {h}",
+                at("communicator")
+            )),
+            None if a.node == self.node => Err(format!(
+                "{}: communicator: {a} is on this node but not hosted here (add `communicator` with its `links:` to `host:`)",
+                at("communicator")
+            )),
+            _ => Ok(Some(a)),
+        }
+    }
+
+    /// The subsystem's Communicator (checked by [`NodeFile::load`]): the one this
+    /// node hosts, else `communicator:`.
+    pub fn communicator(&self) -> Option<jaus::Address> {
+        let hosted = self.hosted();
+        self.communicator_at(&hosted, &|k| k.to_string())
+            .ok()
+            .flatten()
     }
 
     /// The `host:` entries, checked (`at` gives the file:line:column of a YAML path).
@@ -259,11 +334,13 @@ impl NodeFile {
                 ));
             };
             let mut e = jaus_sim::host::Host::entry(stock);
+            let is_communicator = stock == jaus_sim::host::Stock::Communicator;
             if let HostItem::Component {
                 instance,
                 output,
                 pose,
                 authority,
+                links,
                 ..
             } = h
             {
@@ -292,6 +369,32 @@ impl NodeFile {
                 e.output = addr(output, "output")?;
                 e.pose = addr(pose, "pose")?;
                 e.authority = authority.unwrap_or(0);
+                match links {
+                    Some(v) if is_communicator => e.links = links_at(v, i, at)?,
+                    Some(_) => {
+                        return Err(format!(
+                            "{}: host[{i}].links: `links` is for the communicator, not `{name}`",
+                            at(&format!("host[{i}].links"))
+                        ))
+                    }
+                    None => {}
+                }
+            }
+            if is_communicator && e.links.is_empty() {
+                return Err(format!(
+                    "{}: host[{i}]: `communicator` needs its data links: `{{ component: communicator, links: [{{ id: 1, udp: {{ bind: IP:PORT, peer: IP:PORT }} }}] }}`",
+                    at(&format!("host[{i}]"))
+                ));
+            }
+            if is_communicator
+                && out
+                    .iter()
+                    .any(|o| matches!(o, Hosted::Stock(p) if p.stock == stock))
+            {
+                return Err(format!(
+                    "{}: host[{i}]: a second `communicator`: a node hosts at most one (the subsystem's gateway)",
+                    at(&key)
+                ));
             }
             let clash = out.iter().any(|o| match o {
                 Hosted::Stock(p) => p.stock == e.stock && p.instance == e.instance,
@@ -312,6 +415,17 @@ impl NodeFile {
     /// The `host:` entries (checked by [`NodeFile::load`]).
     pub fn hosted(&self) -> Vec<Hosted> {
         self.hosted_at(&|k| k.to_string()).unwrap_or_default()
+    }
+
+    /// The data links of the communicator this node hosts (none if it hosts none).
+    pub fn communicator_links(&self) -> Vec<jaus::net::udp::link::UdpLinkConfig> {
+        self.hosted()
+            .into_iter()
+            .find_map(|h| match h {
+                Hosted::Stock(e) if e.stock == jaus_sim::host::Stock::Communicator => Some(e.links),
+                _ => None,
+            })
+            .unwrap_or_default()
     }
 
     /// The node configuration.
@@ -339,8 +453,179 @@ impl NodeFile {
         if let Some(m) = &self.multicast {
             c.multicast = Some(SocketAddr::from((m.group, self.bind.port())));
         }
+        c.communicator = self.communicator();
         c
     }
+
+    /// The node this file describes, its `host:` entries built and added, starting at
+    /// `t0` (`path`: the file, for the errors).
+    pub fn build_node(&self, path: &Path, t0: Instant) -> Result<Node, String> {
+        let mut node = Node::new(self.node_config(), t0);
+        let hosted = self.hosted();
+        let mut host = jaus_sim::host::Host::new(self.subsystem, self.node, t0);
+        if hosted.iter().any(
+            |h| matches!(h, Hosted::Stock(e) if e.stock == jaus_sim::host::Stock::ReflexiveDriver),
+        ) {
+            host.expect_reflexive_driver();
+        }
+        // One `Hosted` per `host:` entry, in order.
+        for (i, h) in hosted.into_iter().enumerate() {
+            let parts = match h {
+                Hosted::Vehicle => {
+                    jaus_sim::demo::vehicle_at(
+                        t0,
+                        &jaus_sim::demo::Options::default(),
+                        self.subsystem,
+                        self.node,
+                    )
+                    .0
+                }
+                Hosted::Arm => jaus_sim::arm_demo::arm_components(
+                    &jaus_sim::SimArm::new(jaus_sim::ArmParams::six_axis()),
+                    self.subsystem,
+                    self.node,
+                    t0,
+                ),
+                Hosted::Stock(e) => vec![host
+                    .build(&e)
+                    .map_err(|e| format!("{}: host[{i}]: {e}", path.display()))?],
+            };
+            for p in parts {
+                node.add_boxed(p)
+                    .map_err(|e| format!("{}: host[{i}]: {e}", path.display()))?;
+            }
+        }
+        Ok(node)
+    }
+}
+
+/// The `links:` of host entry `i` (a communicator's data links), checked field by field
+/// (`at` gives the file:line:column of a YAML path).
+fn links_at(
+    v: &serde_yaml::Value,
+    i: usize,
+    at: &dyn Fn(&str) -> String,
+) -> Result<Vec<jaus::net::udp::link::UdpLinkConfig>, String> {
+    use jaus::net::udp::link::{UdpLinkConfig, MAX_UDP_PAYLOAD};
+    use serde_yaml::Value;
+    let here = format!("host[{i}].links");
+    let Value::Sequence(items) = v else {
+        return Err(format!(
+            "{}: {here}: a list of data links `- {{ id: 1, udp: {{ bind: IP:PORT, peer: IP:PORT }} }}`",
+            at(&here)
+        ));
+    };
+    // A mapping's keys, each known, as (key, value).
+    let fields = |v: &Value, path: &str, known: &[&str]| -> Result<Vec<(String, Value)>, String> {
+        let Value::Mapping(m) = v else {
+            return Err(format!(
+                "{}: {path}: a map with {}",
+                at(path),
+                known.join(", ")
+            ));
+        };
+        let mut out = Vec::new();
+        for (k, v) in m {
+            let key = k.as_str().unwrap_or_default().to_string();
+            if !known.contains(&key.as_str()) {
+                return Err(format!(
+                    "{}: {path}: unknown field `{}` (known: {})",
+                    at(&format!("{path}.{key}")),
+                    serde_yaml::to_string(k).unwrap_or_default().trim(),
+                    known.join(", ")
+                ));
+            }
+            out.push((key, v.clone()));
+        }
+        Ok(out)
+    };
+    let int =
+        |v: &Value, path: &str, range: std::ops::RangeInclusive<u64>| -> Result<u64, String> {
+            v.as_u64().filter(|n| range.contains(n)).ok_or_else(|| {
+                format!(
+                    "{}: {path}: {} is not an integer in {}..={}",
+                    at(path),
+                    serde_yaml::to_string(v).unwrap_or_default().trim(),
+                    range.start(),
+                    range.end()
+                )
+            })
+        };
+    let socket = |v: &Value, path: &str| -> Result<SocketAddr, String> {
+        v.as_str().and_then(|s| s.parse().ok()).ok_or_else(|| {
+            format!(
+                "{}: {path}: {} is not a socket address IP:PORT",
+                at(path),
+                serde_yaml::to_string(v).unwrap_or_default().trim()
+            )
+        })
+    };
+    let mut links: Vec<UdpLinkConfig> = Vec::new();
+    for (j, item) in items.iter().enumerate() {
+        let path = format!("{here}[{j}]");
+        let f = fields(item, &path, &["id", "udp"])?;
+        let get = |k: &str| f.iter().find(|(n, _)| n == k).map(|(_, v)| v);
+        let missing = |k: &str| format!("{}: {path}: `{k}` missing", at(&path));
+        let id_path = format!("{path}.id");
+        let id = int(get("id").ok_or_else(|| missing("id"))?, &id_path, 0..=255)? as u8;
+        if links.iter().any(|l| l.id == id) {
+            return Err(format!(
+                "{}: {id_path}: data link id {id} is used twice",
+                at(&id_path)
+            ));
+        }
+        let udp_path = format!("{path}.udp");
+        let udp = fields(
+            get("udp").ok_or_else(|| missing("udp"))?,
+            &udp_path,
+            &[
+                "bind",
+                "peer",
+                "mtu",
+                "silence_ms",
+                "keepalive_ms",
+                "assume_up",
+                "poll_ms",
+            ],
+        )?;
+        let uget = |k: &str| udp.iter().find(|(n, _)| n == k).map(|(_, v)| v);
+        let umissing = |k: &str| format!("{}: {udp_path}: `{k}` missing", at(&udp_path));
+        let field = |k: &str| format!("{udp_path}.{k}");
+        let bind = socket(
+            uget("bind").ok_or_else(|| umissing("bind"))?,
+            &field("bind"),
+        )?;
+        let peer = socket(
+            uget("peer").ok_or_else(|| umissing("peer"))?,
+            &field("peer"),
+        )?;
+        let mut c = UdpLinkConfig::new(id, bind, peer);
+        if let Some(v) = uget("mtu") {
+            c.mtu = int(v, &field("mtu"), 16..=MAX_UDP_PAYLOAD as u64)? as usize;
+        }
+        if let Some(v) = uget("silence_ms") {
+            c.silence = Duration::from_millis(int(v, &field("silence_ms"), 10..=3_600_000)?);
+        }
+        if let Some(v) = uget("keepalive_ms") {
+            let ms = int(v, &field("keepalive_ms"), 0..=3_600_000)?;
+            c.keepalive = (ms > 0).then(|| Duration::from_millis(ms));
+        }
+        if let Some(v) = uget("poll_ms") {
+            c.poll = Duration::from_millis(int(v, &field("poll_ms"), 1..=100)?);
+        }
+        if let Some(v) = uget("assume_up") {
+            c.assume_up = v.as_bool().ok_or_else(|| {
+                format!(
+                    "{}: {}: {} is not true or false",
+                    at(&field("assume_up")),
+                    field("assume_up"),
+                    serde_yaml::to_string(v).unwrap_or_default().trim()
+                )
+            })?;
+        }
+        links.push(c);
+    }
+    Ok(links)
 }
 
 /// Shows a system tree at most once per `every`, and only when it changed.
@@ -397,39 +682,7 @@ pub fn node(
 ) -> Result<(), String> {
     let file = NodeFile::load(config)?;
     let t0 = Instant::now();
-    let mut node = Node::new(file.node_config(), t0);
-    let hosted = file.hosted();
-    let mut host = jaus_sim::host::Host::new(file.subsystem, file.node, t0);
-    if hosted
-        .iter()
-        .any(|h| matches!(h, Hosted::Stock(e) if e.stock == jaus_sim::host::Stock::ReflexiveDriver))
-    {
-        host.expect_reflexive_driver();
-    }
-    for h in hosted {
-        let parts = match h {
-            Hosted::Vehicle => {
-                jaus_sim::demo::vehicle_at(
-                    t0,
-                    &jaus_sim::demo::Options::default(),
-                    file.subsystem,
-                    file.node,
-                )
-                .0
-            }
-            Hosted::Arm => jaus_sim::arm_demo::arm_components(
-                &jaus_sim::SimArm::new(jaus_sim::ArmParams::six_axis()),
-                file.subsystem,
-                file.node,
-                t0,
-            ),
-            Hosted::Stock(e) => vec![host.build(&e).map_err(|e| e.to_string())?],
-        };
-        for p in parts {
-            node.add_boxed(p)
-                .map_err(|e| format!("{}: {e}", config.display()))?;
-        }
-    }
+    let mut node = file.build_node(config, t0)?;
     let _ = writeln!(
         out,
         "node {} on {} ({:?}), peers {:?}",
@@ -438,6 +691,19 @@ pub fn node(
         file.framing,
         file.peers
     );
+    if let Some(c) = file.communicator() {
+        let links: Vec<String> = file
+            .communicator_links()
+            .iter()
+            .map(|l| format!("link {} {} -> {}", l.id, l.bind, l.peer))
+            .collect();
+        let _ = writeln!(
+            out,
+            "other subsystems through the communicator {c}{}{}",
+            if links.is_empty() { "" } else { ": " },
+            links.join(", ")
+        );
+    }
     let _ = out.flush();
     let mut printer = TreePrinter::new(Duration::from_secs(1));
     let socket = std::net::UdpSocket::bind(file.bind).map_err(|e| format!("{}: {e}", file.bind))?;
@@ -549,7 +815,7 @@ pub fn node(
     }
     let _ = writeln!(
         out,
-        "stats: received {} sent {} delivered_local {} bad_framing {} bad_packet {} from_self {} not_for_us {} no_such_component {} outbox_full {} flooded {} reassembly_timed_out {} reassembly_over_limit {} reassembly_buffered {buffered} reports_missed {missed} commands_refused {refused}",
+        "stats: received {} sent {} delivered_local {} bad_framing {} bad_packet {} from_self {} not_for_us {} no_such_component {} outbox_full {} flooded {} reassembly_timed_out {} reassembly_over_limit {} reassembly_buffered {buffered} reports_missed {missed} commands_refused {refused} to_communicator {} from_communicator {} not_via_communicator {}",
         st.received,
         st.sent,
         st.delivered_local,
@@ -562,6 +828,9 @@ pub fn node(
         st.flooded,
         reassembly.timed_out,
         reassembly.over_limit,
+        st.to_communicator,
+        st.from_communicator,
+        st.not_via_communicator,
     );
     let _ = out.flush();
     if let (Some(w), Some(p)) = (writer.as_mut(), capture) {

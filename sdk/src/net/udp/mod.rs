@@ -1,5 +1,10 @@
 //! The I/O shell: one blocking UDP socket driving a sans-IO [`Participant`]
 //! (a [`Node`](super::Node), [`Attached`](super::Attached) components) with the real clock.
+//!
+//! `link` (with the `stock` feature) is the Communicator's data link over UDP
+//! (`link::UdpLink`), the hardware a node hosting a
+//! `jaus::stock::communicator::CommunicatorEndpoint` uses to reach other subsystems
+//! through an IP radio or any other socket.
 
 use std::io::ErrorKind;
 use std::net::{SocketAddr, UdpSocket};
@@ -8,6 +13,8 @@ use std::time::{Duration, Instant};
 
 use super::Participant;
 
+#[cfg(feature = "stock")]
+pub mod link;
 mod socket;
 
 pub use socket::MAX_BATCH;
