@@ -3,8 +3,8 @@
 //! data link (`jaus::net::udp::link::UdpLink`), run by the real UDP I/O loop on
 //! loopback threads. Their JAUS sockets have no peers and carry nothing: a query from
 //! subsystem 1 to subsystem 2's Global Pose Sensor is answered across the link, twenty
-//! times in a row with a median round trip under 40 ms (the link is read every 10 ms,
-//! not only at the node's 50 ms ticks); when subsystem 2 stops, the link goes
+//! times in a row (the round trips are printed; that the link asks to be read every
+//! 10 ms is checked by `UdpLink`'s own tests, not by timing here); when subsystem 2 stops, the link goes
 //! down by silence (Loss Of Command, the query dropped and counted); when it runs
 //! again, the link comes back up and the query is answered. Also: the node-file
 //! entry's errors (file, line, column, entry and field) and the example node files.
@@ -223,9 +223,6 @@ fn two_subsystems_joined_only_by_the_communicators_udp_link() {
         "round trips across the UDP link: median {median:?}, max {:?}",
         rtts[rtts.len() - 1]
     );
-    // Two hops of at most a poll period (10 ms) each; without the link's wake-ups the
-    // node would read it only at its components' 50 ms ticks (about 50 ms a round).
-    assert!(median < Duration::from_millis(40), "{rtts:?}");
     assert_eq!(unanswered, 0);
     assert_eq!(state, Some(DataLinkState::On));
 
