@@ -9,6 +9,8 @@
 //! again, the link comes back up and the query is answered. Also: the node-file
 //! entry's errors (file, line, column, entry and field) and the example node files.
 
+mod common;
+
 use std::net::{SocketAddr, UdpSocket};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -32,15 +34,6 @@ const PROBE: Address = Address::new(1, 1, 200, 1);
 const GPS: Address = Address::new(2, 1, 38, 1);
 
 type Gateway = CommunicatorEndpoint<UdpLink>;
-
-/// A free UDP port on 127.0.0.1 (bound then released; good enough for a test).
-fn free_port() -> u16 {
-    UdpSocket::bind("127.0.0.1:0")
-        .unwrap()
-        .local_addr()
-        .unwrap()
-        .port()
-}
 
 fn temp_dir(tag: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("jaus-comm-udp-{tag}-{}", std::process::id()));
@@ -167,7 +160,7 @@ fn two_subsystems_joined_only_by_the_communicators_udp_link() {
         UdpSocket::bind("127.0.0.1:0").unwrap(),
         UdpSocket::bind("127.0.0.1:0").unwrap(),
     );
-    let (l1, l2) = (free_port(), free_port());
+    let (l1, l2) = (common::free_port(), common::free_port());
     let (f1, p1) = load(
         &dir,
         "station",

@@ -25,14 +25,6 @@ impl Drop for Running {
     }
 }
 
-fn free_port() -> u16 {
-    UdpSocket::bind("127.0.0.1:0")
-        .unwrap()
-        .local_addr()
-        .unwrap()
-        .port()
-}
-
 /// A 16-byte JAUS header (docs/wire.md §1.1) + body, written out by hand.
 fn packet(code: u16, dst: [u8; 4], src: [u8; 4], body: &[u8]) -> Vec<u8> {
     let mut p = vec![0x06, 0x02]; // priority 6, version 2
@@ -75,7 +67,11 @@ fn recv_code(
 fn a_node_serves_an_openjaus_component_process() {
     let dir = std::env::temp_dir().join(format!("jaus-oj-node-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    let (pn, pc, pd) = (free_port(), free_port(), free_port());
+    let (pn, pc, pd) = (
+        common::free_port(),
+        common::free_port(),
+        common::free_port(),
+    );
     let cfg = dir.join("node.yaml");
     std::fs::write(
         &cfg,
@@ -138,7 +134,7 @@ fn a_node_serves_an_openjaus_component_process() {
             "query", "--to", "3.1.38.2", "--me", "4.1.40.1", "--wait", "3",
         ])
         .arg("--bind")
-        .arg(format!("127.0.0.1:{}", free_port()))
+        .arg(format!("127.0.0.1:{}", common::free_port()))
         .arg("--peer")
         .arg(format!("127.0.0.1:{pn}"))
         .arg(r#"{"message":"QueryGlobalPose","fields":{"presence_vector":3}}"#)

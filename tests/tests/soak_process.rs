@@ -24,14 +24,6 @@ use jaus::net::Framing;
 use jaus::wire::{DataFlag, Header};
 use jaus::{Address, JausMessage};
 
-fn free_port() -> u16 {
-    UdpSocket::bind("127.0.0.1:0")
-        .unwrap()
-        .local_addr()
-        .unwrap()
-        .port()
-}
-
 fn rss_kib(pid: u32) -> Option<u64> {
     let s = std::fs::read_to_string(format!("/proc/{pid}/status")).ok()?;
     s.lines()
@@ -68,7 +60,7 @@ fn a_node_process_holds_under_hostile_traffic() {
         .unwrap_or(20);
     let dir = std::env::temp_dir().join(format!("jaus-soak-process-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    let port = free_port();
+    let port = common::free_port();
     let node_addr: SocketAddr = format!("127.0.0.1:{port}").parse().unwrap();
     let cfg = dir.join("vehicle.yaml");
     std::fs::write(
@@ -101,7 +93,7 @@ fn a_node_process_holds_under_hostile_traffic() {
         ])
         .args(["--seconds", &(seconds - 2).to_string()])
         .arg("--bind")
-        .arg(format!("127.0.0.1:{}", free_port()))
+        .arg(format!("127.0.0.1:{}", common::free_port()))
         .arg("--peer")
         .arg(node_addr.to_string())
         .stdout(Stdio::piped())

@@ -6,21 +6,11 @@
 mod common;
 
 use std::io::{BufRead, BufReader};
-use std::net::UdpSocket;
 use std::process::{Child, Command, Stdio};
 use std::sync::mpsc;
 use std::time::{Duration, Instant};
 
 use common::jaus_bin;
-
-/// A free UDP port on 127.0.0.1 (bound then released; good enough for a test).
-fn free_port() -> u16 {
-    UdpSocket::bind("127.0.0.1:0")
-        .unwrap()
-        .local_addr()
-        .unwrap()
-        .port()
-}
 
 struct Running(Child);
 
@@ -106,7 +96,11 @@ fn wait_for(rx: &mpsc::Receiver<String>, needles: &[&str], limit: Duration) -> R
 fn two_node_processes_discover_each_other_and_answer_a_query() {
     let dir = std::env::temp_dir().join(format!("jaus-udp-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    let (pa, pb, pc) = (free_port(), free_port(), free_port());
+    let (pa, pb, pc) = (
+        common::free_port(),
+        common::free_port(),
+        common::free_port(),
+    );
     let (_a, rx_a) = node(
         &dir,
         "vehicle",
@@ -243,7 +237,7 @@ fn json_lines(out: &[u8]) -> Vec<serde_json::Value> {
 
 /// A vehicle node at subsystem 20 (the vehicle is no longer bound to 1.1).
 fn vehicle20(dir: &std::path::Path) -> (Running, mpsc::Receiver<String>, u16) {
-    let pa = free_port();
+    let pa = common::free_port();
     let (n, rx) = node(
         dir,
         "vehicle20",
@@ -266,7 +260,7 @@ fn cli(pa: u16, args: &[&str]) -> Command {
         .arg("--peer")
         .arg(format!("127.0.0.1:{pa}"))
         .arg("--bind")
-        .arg(format!("127.0.0.1:{}", free_port()));
+        .arg(format!("127.0.0.1:{}", common::free_port()));
     c
 }
 
@@ -489,9 +483,9 @@ fn silence_names_the_port_rule() {
     let out = Command::new(jaus_bin())
         .args(["query", "--to", "1.1.38.1", "--wait", "0.5"])
         .arg("--peer")
-        .arg(format!("127.0.0.1:{}", free_port()))
+        .arg(format!("127.0.0.1:{}", common::free_port()))
         .arg("--bind")
-        .arg(format!("127.0.0.1:{}", free_port()))
+        .arg(format!("127.0.0.1:{}", common::free_port()))
         .arg(r#"{"message":"QueryGlobalPose","fields":{"presence_vector":3}}"#)
         .output()
         .unwrap();
@@ -509,7 +503,7 @@ fn silence_names_the_port_rule() {
 fn the_node_prints_its_tree_at_most_once_a_second() {
     let dir = std::env::temp_dir().join(format!("jaus-udp-tree-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    let (pa, pb) = (free_port(), free_port());
+    let (pa, pb) = (common::free_port(), common::free_port());
     let (_a, rx_a) = node(
         &dir,
         "a",
@@ -581,7 +575,7 @@ fn a_rejected_control_request_is_an_error() {
 fn a_node_hosts_any_stock_component_at_any_instance() {
     let dir = std::env::temp_dir().join(format!("jaus-udp-host-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    let (pa, pb) = (free_port(), free_port());
+    let (pa, pb) = (common::free_port(), common::free_port());
     let (_a, _rx_a) = node(
         &dir,
         "arm",
@@ -653,7 +647,7 @@ fn refused_config(path: &std::path::Path, yaml: &str) -> String {
 fn a_node_hosts_the_arm_and_reports_its_specifications() {
     let dir = std::env::temp_dir().join(format!("jaus-udp-arm-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    let pa = free_port();
+    let pa = common::free_port();
     let (_n, rx) = node(
         &dir,
         "arm",
@@ -704,7 +698,7 @@ fn a_node_hosts_the_arm_and_reports_its_specifications() {
 fn the_networked_demo_operator_finishes_and_writes_its_plot() {
     let dir = std::env::temp_dir().join(format!("jaus-udp-ocu-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    let (pa, pb) = (free_port(), free_port());
+    let (pa, pb) = (common::free_port(), common::free_port());
     let capture = dir.join("vehicle.pcapng");
     let (_vehicle, _rx) = node_with(
         &dir,
@@ -808,7 +802,7 @@ fn the_networked_demo_operator_finishes_and_writes_its_plot() {
     }
 
     // ... and what the vehicle received, replayed into a fresh vehicle, drives it.
-    let pc = free_port();
+    let pc = common::free_port();
     let (_fresh, rx_fresh) = node(
         &dir,
         "fresh",
@@ -839,7 +833,7 @@ fn the_networked_demo_operator_finishes_and_writes_its_plot() {
             "query", "--to", "1.1.41.1", "--me", "1.3.40.1", "--wait", "2",
         ])
         .arg("--bind")
-        .arg(format!("127.0.0.1:{}", free_port()))
+        .arg(format!("127.0.0.1:{}", common::free_port()))
         .arg("--peer")
         .arg(format!("127.0.0.1:{pc}"))
         .arg(r#"{"message":"QueryLocalPose","fields":{"presence_vector":3}}"#)

@@ -18,19 +18,11 @@ use jaus::net::NodeConfig;
 use jaus::CommandCode;
 use vendor_rover::messages::Message;
 
-fn free_port() -> u16 {
-    UdpSocket::bind("127.0.0.1:0")
-        .unwrap()
-        .local_addr()
-        .unwrap()
-        .port()
-}
-
 #[test]
 fn the_stock_cli_drives_the_vendor_node_over_udp() {
     let socket = UdpSocket::bind("127.0.0.1:0").unwrap();
     let node_addr = socket.local_addr().unwrap();
-    let cli_port = free_port();
+    let cli_port = common::free_port();
     let t0 = Instant::now();
     let config = NodeConfig {
         subsystem: 9,

@@ -161,6 +161,11 @@ async fn take(c: &Client, address: &str, authority: &str) {
         .unwrap_or_else(|e| panic!("select {address}: {e}"));
     set_input(c, "authority", authority).await;
     click(c, "take").await;
+    held(c).await;
+}
+
+/// Waits until the page says the selected component's control is held.
+async fn held(c: &Client) {
     wait_for(
         "control of the selected component",
         Duration::from_secs(10),
@@ -280,21 +285,7 @@ async fn the_page_drives_the_simulated_vehicle_and_stops_it() {
 
     // Take control.
     click(&c, "take").await;
-    wait_for(
-        "control of the waypoint driver",
-        Duration::from_secs(10),
-        async || {
-            (c.find(Locator::Id("driver-control"))
-                .await
-                .ok()?
-                .text()
-                .await
-                .ok()?
-                == "held")
-                .then_some(())
-        },
-    )
-    .await;
+    held(&c).await;
 
     // A malformed speed: refused, visibly, naming the field.
     set_speed(&c, "fast").await;

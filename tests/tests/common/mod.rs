@@ -1,4 +1,4 @@
-//! Shared by the tests that run the `jaus` binary as a process.
+//! Shared by the tests that run the `jaus` binary as a process or need a free port.
 //!
 //! The binary belongs to the `jaus-cli` package, so `CARGO_BIN_EXE_jaus` is not available
 //! here. It is found next to the test's executable (`<target>/<profile>/jaus`, the test
@@ -6,11 +6,13 @@
 //! which is a quick no-op when the binary is up to date and keeps it from going stale.
 //! `JAUS_BIN` overrides the path (and skips the build).
 
+use std::net::UdpSocket;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::OnceLock;
 
 /// Path of the `jaus` binary, built once per test process.
+#[allow(dead_code)]
 pub fn jaus_bin() -> &'static Path {
     static BIN: OnceLock<PathBuf> = OnceLock::new();
     BIN.get_or_init(|| {
@@ -49,4 +51,14 @@ pub fn jaus_bin() -> &'static Path {
         assert!(bin.is_file(), "jaus binary not found at {}", bin.display());
         bin
     })
+}
+
+/// A free UDP port on 127.0.0.1 (bound then released; good enough for a test).
+#[allow(dead_code)]
+pub fn free_port() -> u16 {
+    UdpSocket::bind("127.0.0.1:0")
+        .unwrap()
+        .local_addr()
+        .unwrap()
+        .port()
 }
