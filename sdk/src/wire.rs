@@ -526,12 +526,15 @@ impl<'a> PacketRef<'a> {
     #[inline]
     pub fn parse(bytes: &'a [u8]) -> Result<PacketRef<'a>, DecodeError> {
         let header = Header::parse(bytes)?;
-        let body = &bytes[HEADER_LEN..];
+        let (Some(raw), Some(body)) = (bytes.first_chunk::<HEADER_LEN>(), bytes.get(HEADER_LEN..))
+        else {
+            return Err(truncated_header(bytes.len()));
+        };
         // The data size read again from the datagram, not from `header`: the compiler
         // otherwise reloaded it together with the command code in one 8-byte load
         // straddling the header's narrow field stores on the stack (a store-forwarding
         // stall that cost about 40 % of decoding a fixed-size packet).
-        let data_size = u16::from_le_bytes([bytes[12], bytes[13]]) & 0x0FFF;
+        let data_size = u16::from_le_bytes([raw[12], raw[13]]) & 0x0FFF;
         if body.len() != usize::from(data_size) {
             return Err(DecodeError::new(
                 DecodeErrorKind::DataSizeMismatch {

@@ -12,6 +12,7 @@ use jaus::component::local::{LocalBus, Probe};
 use jaus::component::Config;
 use jaus::components::system_commander;
 use jaus::messages::*;
+use jaus::stock::commander::view::ComponentView;
 use jaus::stock::commander::{
     Command, GeoPoint, MissionAction, Station, StationConfig, StationError, SystemView, TreeInput,
 };
@@ -50,13 +51,36 @@ fn vehicle_xy(v: &SystemView) -> (f64, f64) {
     (p.x, p.y)
 }
 
-fn state(v: &SystemView, a: Address) -> Option<String> {
+fn component(v: &SystemView, a: Address) -> Option<&ComponentView> {
     v.subsystems
         .iter()
         .flat_map(|s| &s.nodes)
         .flat_map(|n| &n.components)
         .find(|c| c.address == a.to_string())
-        .and_then(|c| c.state.clone())
+}
+
+fn state(v: &SystemView, a: Address) -> Option<String> {
+    component(v, a).and_then(|c| c.state.clone())
+}
+
+/// Spools a mission of moves of the waypoint driver to `points` at 2 m/s on the
+/// spooler, then runs it.
+fn spool_and_run(bus: &mut LocalBus, points: Vec<GeoPoint>) {
+    station(bus)
+        .submit(Command::SpoolMission {
+            spooler: MS,
+            driver: GWD,
+            points,
+            speed: 2.0,
+        })
+        .unwrap();
+    bus.run_for(Duration::from_secs(1));
+    station(bus)
+        .submit(Command::Mission {
+            spooler: MS,
+            action: MissionAction::Run,
+        })
+        .unwrap();
 }
 
 fn errors(v: &SystemView) -> Vec<String> {
@@ -183,12 +207,7 @@ fn a_station_follows_commands_and_recovers_the_vehicle() {
     // Granted, then seen in the next status round (every second).
     bus.run_for(Duration::from_millis(2500));
     let v = view(&mut bus);
-    let gwd = v.subsystems[0].nodes[0]
-        .components
-        .iter()
-        .find(|c| c.address == "1.1.45.1")
-        .unwrap()
-        .clone();
+    let gwd = component(&v, GWD).unwrap().clone();
     assert!(gwd.held, "{gwd:?}");
     assert_eq!(gwd.controller.as_deref(), Some("200.1.40.1"));
     assert_eq!(gwd.controller_authority, Some(5));
@@ -308,21 +327,7 @@ fn a_station_follows_commands_and_recovers_the_vehicle() {
         "{r:?} {:?}",
         errors(&view(&mut bus))
     );
-    station(&mut bus)
-        .submit(Command::SpoolMission {
-            spooler: MS,
-            driver: GWD,
-            points: vec![at(5.0, -3.0), at(0.0, 0.0)],
-            speed: 2.0,
-        })
-        .unwrap();
-    bus.run_for(Duration::from_secs(1));
-    station(&mut bus)
-        .submit(Command::Mission {
-            spooler: MS,
-            action: MissionAction::Run,
-        })
-        .unwrap();
+    spool_and_run(&mut bus, vec![at(5.0, -3.0), at(0.0, 0.0)]);
     bus.run_for(Duration::from_secs(30));
     let v = view(&mut bus);
     let m = v.subsystems[0].mission.clone().unwrap();
@@ -356,33 +361,14 @@ fn a_station_follows_commands_and_recovers_the_vehicle() {
     bus.run_for(Duration::from_secs(2));
     let v = view(&mut bus);
     for sensor in [GPS, LPS, VSS] {
-        let c = v.subsystems[0]
-            .nodes
-            .iter()
-            .flat_map(|n| &n.components)
-            .find(|c| c.address == sensor.to_string())
-            .unwrap();
+        let c = component(&v, sensor).unwrap();
         assert!(c.controller.is_none() && !c.held, "{c:?}");
     }
     assert_eq!(state(&v, GWD).as_deref(), Some("Standby"));
 
     // An emergency in the middle of a mission stops the vehicle; once it is cleared,
     // running the mission again carries on from the move it was in, to the end.
-    station(&mut bus)
-        .submit(Command::SpoolMission {
-            spooler: MS,
-            driver: GWD,
-            points: vec![at(8.0, 0.0), at(0.0, 0.0)],
-            speed: 2.0,
-        })
-        .unwrap();
-    bus.run_for(Duration::from_secs(1));
-    station(&mut bus)
-        .submit(Command::Mission {
-            spooler: MS,
-            action: MissionAction::Run,
-        })
-        .unwrap();
+    spool_and_run(&mut bus, vec![at(8.0, 0.0), at(0.0, 0.0)]);
     bus.run_for(Duration::from_secs(3));
     let v = view(&mut bus);
     let (x, _) = vehicle_xy(&v);

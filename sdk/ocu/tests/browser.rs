@@ -164,21 +164,17 @@ async fn take(c: &Client, address: &str, authority: &str) {
     held(c).await;
 }
 
+/// The text of the element `id`, if it is there.
+async fn text(c: &Client, id: &str) -> Option<String> {
+    c.find(Locator::Id(id)).await.ok()?.text().await.ok()
+}
+
 /// Waits until the page says the selected component's control is held.
 async fn held(c: &Client) {
     wait_for(
         "control of the selected component",
         Duration::from_secs(10),
-        async || {
-            (c.find(Locator::Id("driver-control"))
-                .await
-                .ok()?
-                .text()
-                .await
-                .ok()?
-                == "held")
-                .then_some(())
-        },
+        async || (text(c, "driver-control").await? == "held").then_some(()),
     )
     .await;
 }
@@ -356,13 +352,7 @@ async fn the_page_drives_the_simulated_vehicle_and_stops_it() {
     }
     click(&c, "spool").await;
     wait_for("the mission spooled", Duration::from_secs(10), async || {
-        let t = c
-            .find(Locator::Id("mission-status"))
-            .await
-            .ok()?
-            .text()
-            .await
-            .ok()?;
+        let t = text(&c, "mission-status").await?;
         t.starts_with("mission").then_some(())
     })
     .await;
@@ -371,13 +361,7 @@ async fn the_page_drives_the_simulated_vehicle_and_stops_it() {
         "the mission finished",
         Duration::from_secs(60),
         async || {
-            let t = c
-                .find(Locator::Id("mission-status"))
-                .await
-                .ok()?
-                .text()
-                .await
-                .ok()?;
+            let t = text(&c, "mission-status").await?;
             t.contains("Finished").then_some(())
         },
     )
@@ -409,13 +393,7 @@ async fn the_page_drives_the_simulated_vehicle_and_stops_it() {
     click(&c, "estop-all").await;
     let t_stop = Instant::now();
     wait_for("state Emergency", Duration::from_secs(5), async || {
-        let s = c
-            .find(Locator::Id("veh-state"))
-            .await
-            .ok()?
-            .text()
-            .await
-            .ok()?;
+        let s = text(&c, "veh-state").await?;
         s.contains("Emergency").then_some(())
     })
     .await;
