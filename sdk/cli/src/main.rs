@@ -82,9 +82,16 @@ enum Cmd {
         #[arg(long)]
         config: Option<std::path::PathBuf>,
         /// The web server's address (keep it on 127.0.0.1 unless the network is trusted:
-        /// the page commands vehicles).
+        /// the page commands vehicles). Open the address printed at start-up: it carries
+        /// the run's key, without which the server refuses everything but its static
+        /// files; on any address other than loopback that key is all that keeps others
+        /// out, and plain HTTP carries it unencrypted.
         #[arg(long, default_value = "127.0.0.1:8700")]
         http: std::net::SocketAddr,
+        /// A DNS name the page may be opened under besides IP addresses and `localhost`
+        /// (every other name is refused, against DNS rebinding); repeatable.
+        #[arg(long = "allow-host", value_name = "NAME")]
+        allow_hosts: Vec<String>,
         /// The console's JAUS socket (without --config).
         #[arg(long, default_value = "127.0.0.1:0")]
         bind: std::net::SocketAddr,
@@ -380,8 +387,8 @@ fn session(
         to,
         catalogue: catalogue.clone(),
     };
-    let stderr = std::io::stderr();
-    let o = c.session(&script, &STOP, out, &mut stderr.lock())?;
+    // Not locked for the session: its threads (and the log) write to stderr too.
+    let o = c.session(&script, &STOP, out, &mut std::io::stderr())?;
     if let Some(conflict) = o.conflict {
         return Err(conflict);
     }
@@ -428,10 +435,11 @@ fn main() -> ExitCode {
         .with_writer(std::io::stderr)
         .with_ansi(std::io::IsTerminal::is_terminal(&std::io::stderr()))
         .init();
-    let stdout = std::io::stdout();
-    let mut out = stdout.lock();
-    let stderr = std::io::stderr();
-    let mut err = stderr.lock();
+    // Standard output and error are locked per write, never for a whole command:
+    // commands run threads (a simulated vehicle, the console's web server, socket
+    // receivers) that log to stderr, and a lock held here would block them forever.
+    let mut out = std::io::stdout();
+    let mut err = std::io::stderr();
     let catalogue = match jaus_cli::catalogue::Catalogue::load(&cli.spec) {
         Ok(c) => std::sync::Arc::new(c),
         Err(e) => {
@@ -511,6 +519,7 @@ fn main() -> ExitCode {
         Cmd::Ocu {
             config,
             http,
+            allow_hosts,
             bind,
             peers,
             subsystem,
@@ -523,6 +532,7 @@ fn main() -> ExitCode {
                 &jaus_cli::ocu::OcuArgs {
                     config,
                     http,
+                    allow_hosts,
                     bind,
                     peers,
                     subsystem,

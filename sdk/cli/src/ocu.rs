@@ -5,6 +5,7 @@ use std::io::Write;
 use std::net::SocketAddr;
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use jaus::net::{udp, NodeConfig};
@@ -18,6 +19,8 @@ pub struct OcuArgs {
     pub config: Option<PathBuf>,
     /// The web server's socket.
     pub http: SocketAddr,
+    /// DNS names the page may be opened under besides IP addresses and `localhost`.
+    pub allow_hosts: Vec<String>,
     /// The console's JAUS socket (without a config).
     pub bind: SocketAddr,
     /// Peers (without a config).
@@ -36,6 +39,7 @@ pub struct OcuArgs {
 pub fn ocu(args: &OcuArgs, stop: &AtomicBool, out: &mut impl Write) -> Result<(), String> {
     let mut options = ConsoleOptions {
         http: args.http,
+        allowed_hosts: args.allow_hosts.clone(),
         bind: args.bind,
         ..ConsoleOptions::default()
     };
@@ -60,20 +64,29 @@ pub fn ocu(args: &OcuArgs, stop: &AtomicBool, out: &mut impl Write) -> Result<()
             };
         }
     }
-    let local_stop = AtomicBool::new(false);
+    let local_stop = Arc::new(AtomicBool::new(false));
     let deadline = args.duration.map(|d| Instant::now() + d);
-    std::thread::scope(|scope| {
-        let vehicle = if args.vehicle {
-            let socket = std::net::UdpSocket::bind("127.0.0.1:0")
-                .map_err(|e| format!("simulated vehicle: 127.0.0.1:0: {e}"))?;
-            let at = socket.local_addr().map_err(|e| e.to_string())?;
-            options.node.peers.push(at);
-            let local_stop = &local_stop;
-            Some(scope.spawn(move || run_vehicle(&socket, local_stop)))
-        } else {
-            None
-        };
-        let watcher = scope.spawn(|| {
+    // Owned threads, each waited for within a bound at the end: one that is stuck is
+    // named and the command fails instead of hanging.
+    let vehicle = if args.vehicle {
+        let socket = std::net::UdpSocket::bind("127.0.0.1:0")
+            .map_err(|e| format!("simulated vehicle: 127.0.0.1:0: {e}"))?;
+        let at = socket.local_addr().map_err(|e| e.to_string())?;
+        options.node.peers.push(at);
+        let vehicle_stop = local_stop.clone();
+        Some(
+            std::thread::Builder::new()
+                .name("simulated-vehicle".into())
+                .spawn(move || run_vehicle(&socket, &vehicle_stop))
+                .map_err(|e| format!("simulated vehicle: {e}"))?,
+        )
+    } else {
+        None
+    };
+    let result = std::thread::scope(|scope| {
+        // Turns Ctrl-C and --seconds into the console's stop (it only sleeps and reads
+        // flags, so the scope's wait for it is short).
+        scope.spawn(|| {
             while !local_stop.load(Ordering::Relaxed) {
                 if stop.load(Ordering::Relaxed) || deadline.is_some_and(|d| Instant::now() >= d) {
                     local_stop.store(true, Ordering::Relaxed);
@@ -84,8 +97,8 @@ pub fn ocu(args: &OcuArgs, stop: &AtomicBool, out: &mut impl Write) -> Result<()
         let result = jaus_ocu::run(&options, &local_stop, |b| {
             let _ = writeln!(
                 out,
-                "operator console: open http://{}/  (System Commander {} on {}, peers {:?}{})",
-                b.http,
+                "operator console: open {}  (System Commander {} on {}, peers {:?}{})",
+                b.url(),
                 b.me,
                 b.udp,
                 options.node.peers,
@@ -95,19 +108,25 @@ pub fn ocu(args: &OcuArgs, stop: &AtomicBool, out: &mut impl Write) -> Result<()
                     ""
                 }
             );
+            if b.is_public() {
+                let _ = writeln!(
+                    out,
+                    "warning: the console answers on {} beyond this machine: anyone who can reach it and has the address above (its key) can command vehicles, and plain HTTP carries the key unencrypted",
+                    b.http
+                );
+            }
             let _ = out.flush();
         })
         .map_err(|e| e.to_string());
         local_stop.store(true, Ordering::Relaxed);
-        let _ = watcher.join();
-        if let Some(v) = vehicle {
-            match v.join() {
-                Ok(r) => r?,
-                Err(_) => return Err("the simulated vehicle's thread failed".to_string()),
-            }
-        }
         result
-    })
+    });
+    let vehicle = vehicle.map(|v| match udp::join_within(v, udp::SHUTDOWN_BOUND) {
+        Ok(r) => r,
+        Err(e) => Err(e.to_string()),
+    });
+    result?;
+    vehicle.unwrap_or(Ok(()))
 }
 
 /// The demo's simulated vehicle (subsystem 1, node 1), as `jaus node` with `host:

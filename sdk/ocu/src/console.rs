@@ -30,6 +30,12 @@ pub struct ConsoleOptions {
     pub bind: SocketAddr,
     /// The web server's socket (127.0.0.1 unless asked otherwise).
     pub http: SocketAddr,
+    /// The key the page must carry ([`crate::guard`]); `None` (the default): a new random
+    /// one for this run.
+    pub key: Option<String>,
+    /// DNS names besides `localhost` the page may be opened under (the Host check
+    /// refuses every other name, against DNS rebinding). Default none.
+    pub allowed_hosts: Vec<String>,
     /// The System Commander's instance (its address is `subsystem.node.40.instance`).
     pub instance: u8,
     /// The component's default authority.
@@ -53,6 +59,8 @@ impl Default for ConsoleOptions {
             },
             bind: SocketAddr::from(([127, 0, 0, 1], 0)),
             http: SocketAddr::from(([127, 0, 0, 1], 8700)),
+            key: None,
+            allowed_hosts: Vec::new(),
             instance: 1,
             authority: 0,
             origin: None,
@@ -84,17 +92,38 @@ pub enum ConsoleError {
     /// The node refused the console's component.
     #[error("the console's component: {0}")]
     Node(String),
+    /// A key given in the options that is too short or not URL- and cookie-safe.
+    #[error("the console's key must be at least 16 characters of A-Z, a-z, 0-9, `-` or `_`")]
+    Key,
+    /// A thread of the console did not end (named).
+    #[error("shutdown: {0}")]
+    Shutdown(#[from] udp::ShutdownError),
 }
 
 /// Where a running console is.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Bound {
     /// The JAUS socket.
     pub udp: SocketAddr,
-    /// The web server (open `http://{http}/`).
+    /// The web server (open [`url`](Self::url)).
     pub http: SocketAddr,
     /// The System Commander's address.
     pub me: Address,
+    /// The run's key (the page gets it from [`url`](Self::url); scripts send it as an
+    /// `X-Jaus-Key` header).
+    pub key: String,
+}
+
+impl Bound {
+    /// The address to open: it carries the key, which the server turns into a cookie.
+    pub fn url(&self) -> String {
+        format!("http://{}/?key={}", self.http, self.key)
+    }
+
+    /// Whether the web server answers beyond this machine.
+    pub fn is_public(&self) -> bool {
+        !self.http.ip().is_loopback()
+    }
 }
 
 /// Runs the console until `stop` is set: binds both sockets, calls `ready` with where
@@ -147,18 +176,36 @@ pub fn run(
     let server_shared = shared.clone();
     let server_stop = Arc::new(AtomicBool::new(false));
     let server_stop2 = server_stop.clone();
+    let key = match &options.key {
+        Some(k) if crate::guard::key_is_sound(k) => k.clone(),
+        Some(_) => return Err(ConsoleError::Key),
+        None => crate::guard::new_key().map_err(|source| ConsoleError::Http {
+            addr: http_local,
+            source,
+        })?,
+    };
+    let guard = Arc::new(crate::guard::Guard::new(
+        key.clone(),
+        http_local.port(),
+        options.allowed_hosts.clone(),
+    ));
     let server = std::thread::Builder::new()
         .name("ocu-http".into())
-        .spawn(move || crate::server::serve(listener, server_shared, &server_stop2))
+        .spawn(move || crate::server::serve(listener, server_shared, guard, &server_stop2))
         .map_err(|source| ConsoleError::Http {
             addr: http_local,
             source,
         })?;
-    ready(Bound {
+    let bound = Bound {
         udp: udp_local,
         http: http_local,
         me,
-    });
+        key,
+    };
+    if bound.is_public() {
+        tracing::warn!(http = %http_local, "the console answers beyond this machine: only the key keeps others out, and plain HTTP carries it unencrypted");
+    }
+    ready(bound);
     let mut publisher = Publisher {
         me,
         shared: shared.clone(),
@@ -186,11 +233,12 @@ pub fn run(
         },
     );
     server_stop.store(true, Ordering::Relaxed);
-    let _ = server.join();
+    let ended = udp::join_within(server, udp::SHUTDOWN_BOUND);
     result.map_err(|source| ConsoleError::Udp {
         addr: udp_local,
         source,
-    })
+    })?;
+    Ok(ended?)
 }
 
 /// The node thread's work between events.

@@ -16,9 +16,11 @@
 //! | [`protocol`] | the page's JSON commands → station commands, with field-naming errors |
 //! | [`log`] | the message log (decoded JSON of what was sent and received) |
 //! | [`server`] | HTTP and WebSocket (axum) |
+//! | [`guard`] | who may use the server: Host, Origin, the run's key, JSON commands |
 //! | [`shared`] | what the node thread and the server share (commands, views, log) |
 
 pub mod console;
+pub mod guard;
 pub mod log;
 pub mod protocol;
 pub mod server;

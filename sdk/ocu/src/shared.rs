@@ -29,6 +29,8 @@ pub struct Published {
 pub struct Shared {
     pub(crate) inbox: Mutex<VecDeque<String>>,
     pub(crate) dropped: AtomicU64,
+    /// Requests the web server refused (guard).
+    pub(crate) refused: AtomicU64,
     /// The latest view, new at most every [`ConsoleOptions::publish_period`].
     pub view: watch::Sender<Arc<Published>>,
     /// The latest view with trails, refreshed at most once a second and when asked.
@@ -49,6 +51,7 @@ impl Shared {
         Arc::new(Self {
             inbox: Mutex::new(VecDeque::new()),
             dropped: 0.into(),
+            refused: 0.into(),
             view: watch::Sender::new(Arc::new(Published::default())),
             trails: Mutex::new(Arc::new(String::from("{}"))),
             trails_wanted: AtomicBool::new(true),
@@ -66,6 +69,17 @@ impl Shared {
         }
         q.push_back(text);
         true
+    }
+
+    /// The web server's counters as JSON: requests refused by the guard, page
+    /// messages waiting and dropped.
+    pub fn stats_json(&self) -> String {
+        serde_json::json!({
+            "refused": self.refused.load(Ordering::Relaxed),
+            "inbox": lock(&self.inbox).len(),
+            "dropped": self.dropped.load(Ordering::Relaxed),
+        })
+        .to_string()
     }
 
     /// The latest view with trails (JSON); asks the node thread for a fresh one.

@@ -76,6 +76,109 @@ async fn wait_for<T>(
     }
 }
 
+/// A page at `http://{host}:{port}/` (served by a thread of the test) that tries the
+/// console's commands; the test checks the attempts failed, nothing was run (no notice,
+/// the vehicle not in emergency) and the console counted the refusals.
+async fn attack_from(c: &Client, host: &str, bound: &Bound) {
+    let target = format!("http://{}", bound.http);
+    let emergency = r#"{"op":"emergency","subsystem":1}"#;
+    let page = format!(
+        r#"<!doctype html><html><body><iframe name="sink"></iframe><script>
+const results = {{}};
+window.results = results;
+const body = '{emergency}';
+fetch("{target}/api/command", {{method: "POST", mode: "no-cors", headers: {{"Content-Type": "text/plain"}}, body}})
+  .then(() => results.nocors = "sent").catch(() => results.nocors = "failed");
+fetch("{target}/api/command", {{method: "POST", headers: {{"Content-Type": "application/json"}}, body}})
+  .then(r => results.cors = "status " + r.status).catch(() => results.cors = "blocked");
+fetch("{target}/api/view").then(r => r.text()).then(t => results.read = t).catch(() => results.read = "blocked");
+const ws = new WebSocket("ws://{http}/ws");
+ws.onopen = () => {{ results.ws = "open"; ws.send(body); }};
+ws.onclose = () => {{ if (!results.ws) results.ws = "refused"; }};
+const f = document.createElement("form");
+f.method = "POST"; f.action = "{target}/api/command"; f.enctype = "text/plain"; f.target = "sink";
+const i = document.createElement("input"); i.name = body; i.value = ""; f.appendChild(i);
+document.body.appendChild(f); f.submit(); results.form = "submitted";
+</script></body></html>"#,
+        http = bound.http
+    );
+    let listener = std::net::TcpListener::bind(format!("{host}:0")).unwrap();
+    let port = listener.local_addr().unwrap().port();
+    std::thread::spawn(move || {
+        use std::io::{Read, Write};
+        // A handful of requests (the page, a favicon); then the thread ends with the test.
+        for stream in listener.incoming().take(4).flatten() {
+            let mut stream = stream;
+            let mut buf = [0u8; 2048];
+            let _ = stream.read(&mut buf);
+            let _ = write!(
+                stream,
+                "HTTP/1.1 200 OK\r\nContent-Type: text/html\r\nContent-Length: {}\r\nConnection: close\r\n\r\n{page}",
+                page.len()
+            );
+        }
+    });
+    let before = stats(bound)["refused"].as_u64().unwrap();
+    c.goto(&format!("http://{host}:{port}/"))
+        .await
+        .expect("the other page");
+    let results = wait_for("the attempts", Duration::from_secs(10), async || {
+        let r = js(c, "return window.results;").await;
+        ["nocors", "cors", "read", "ws", "form"]
+            .iter()
+            .all(|k| r.get(k).is_some())
+            .then_some(r)
+    })
+    .await;
+    assert_eq!(results["ws"], json!("refused"), "from {host}: {results}");
+    assert_eq!(results["cors"], json!("blocked"), "from {host}: {results}");
+    assert_eq!(results["read"], json!("blocked"), "from {host}: {results}");
+    // The no-cors fetch and the form were sent (a browser cannot be stopped from
+    // sending them) and refused by the server, as were the view and the WebSocket; the
+    // JSON fetch never left the browser (its preflight is not granted).
+    let refused = wait_for("the refusals counted", Duration::from_secs(5), async || {
+        let n = stats(bound)["refused"].as_u64().unwrap();
+        (n >= before + 4).then_some(n)
+    })
+    .await;
+    tokio::time::sleep(Duration::from_millis(500)).await;
+    let view = get(bound, "/api/view");
+    assert_eq!(
+        view["notice_count"],
+        json!(0),
+        "from {host}: a refused command ran: {view}"
+    );
+    assert_eq!(
+        view["subsystems"][0]["emergency"],
+        json!(false),
+        "from {host}"
+    );
+    eprintln!(
+        "browser test: from http://{host}:{port}/: {results}; {} refused",
+        refused - before
+    );
+}
+
+/// A keyed GET of the console's API.
+fn get(bound: &Bound, path: &str) -> Value {
+    use std::io::{Read, Write};
+    let mut s = std::net::TcpStream::connect(bound.http).unwrap();
+    write!(
+        s,
+        "GET {path} HTTP/1.1\r\nHost: {}\r\nX-Jaus-Key: {}\r\nConnection: close\r\n\r\n",
+        bound.http, bound.key
+    )
+    .unwrap();
+    let mut text = String::new();
+    s.read_to_string(&mut text).unwrap();
+    let body = text.split_once("\r\n\r\n").map_or("", |(_, b)| b);
+    serde_json::from_str(body).unwrap_or_else(|e| panic!("{path}: {e}: {text}"))
+}
+
+fn stats(bound: &Bound) -> Value {
+    get(bound, "/api/stats")
+}
+
 async fn js(c: &Client, script: &str) -> Value {
     c.execute(script, vec![]).await.expect(script)
 }
@@ -251,12 +354,11 @@ async fn the_page_drives_the_simulated_vehicle_and_stops_it() {
             .ok()
     })
     .await;
-    c.goto(&format!("http://{}/", bound.http))
-        .await
-        .expect("the page");
+    // The address `jaus ocu` prints: it carries the key, which becomes the page's cookie.
+    c.goto(&bound.url()).await.expect("the page");
 
     // The vehicle appears with its waypoint driver.
-    let start = wait_for(
+    wait_for(
         "the vehicle on the map",
         Duration::from_secs(20),
         async || vehicle_xy(&c).await,
@@ -266,6 +368,22 @@ async fn the_page_drives_the_simulated_vehicle_and_stops_it() {
         (js(&c, "return document.getElementById('driver').value;").await == json!("1.1.45.1"))
             .then_some(())
     })
+    .await;
+
+    // Pages of other origins try the console's commands (a no-cors fetch, a JSON fetch, a
+    // form, a WebSocket): one on another site (localhost), one on another port of the
+    // same site (127.0.0.1, which gets the cookie). Nothing gets through.
+    for host in ["localhost", "127.0.0.1"] {
+        attack_from(&c, host, &bound).await;
+    }
+    c.goto(&format!("http://{}/", bound.http))
+        .await
+        .expect("the page again, with its cookie");
+    let start = wait_for(
+        "the vehicle on the map again",
+        Duration::from_secs(20),
+        async || vehicle_xy(&c).await,
+    )
     .await;
 
     // A route without control: refused, visibly.

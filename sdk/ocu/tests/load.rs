@@ -1,11 +1,12 @@
 //! Page update latency against a console that is already running (ignored by default; the
-//! measurement of docs/performance.md "Operator console"): opens `OCU_URL` in headless
+//! measurement of docs/performance.md "Operator console"): opens `OCU_URL` (the address
+//! `jaus ocu` printed, with its key) in headless
 //! Chromium for `OCU_SECONDS` (default 30) and prints, for every pose the console
 //! received, the time until the page had drawn it (the console stamps each pose with its
 //! arrival; the page records when it drew it), and the views drawn per second.
 //!
 //! ```text
-//! OCU_URL=http://127.0.0.1:8720/ cargo test --release -p jaus-ocu --test load -- --ignored --nocapture
+//! OCU_URL='http://127.0.0.1:8720/?key=…' cargo test --release -p jaus-ocu --test load -- --ignored --nocapture
 //! ```
 
 use std::time::Duration;

@@ -15,8 +15,10 @@ use super::Participant;
 
 #[cfg(feature = "stock")]
 pub mod link;
+pub mod shutdown;
 mod socket;
 
+pub use shutdown::{join_within, ShutdownError, SHUTDOWN_BOUND};
 pub use socket::MAX_BATCH;
 use socket::{Receiver, MAX_DATAGRAM};
 
@@ -186,89 +188,124 @@ pub fn run_node(
         (Via::ComponentControl, sockets.component_control),
         (Via::ComponentData, sockets.component_data),
     ];
-    let dropped = std::sync::atomic::AtomicU64::new(0);
-    let done = AtomicBool::new(false);
-    std::thread::scope(|scope| {
-        for (via, socket) in receivers {
-            let Some(socket) = socket else { continue };
-            let tx = tx.clone();
-            let (dropped, done) = (&dropped, &done);
-            scope.spawn(move || -> std::io::Result<()> {
-                socket.set_read_timeout(Some(Duration::from_millis(100)))?;
-                let mut buf = vec![0u8; MAX_DATAGRAM];
-                while !stop.load(Ordering::Relaxed) && !done.load(Ordering::Relaxed) {
-                    match socket.recv_from(&mut buf) {
-                        Ok((n, peer)) => {
-                            // Bounded: a full queue drops (and counts) rather than blocks.
-                            if tx.try_send((via, peer, buf[..n].to_vec())).is_err() {
-                                dropped.fetch_add(1, Ordering::Relaxed);
-                            }
-                        }
-                        Err(e)
-                            if matches!(
-                                e.kind(),
-                                ErrorKind::WouldBlock
-                                    | ErrorKind::TimedOut
-                                    | ErrorKind::ConnectionReset
-                            ) => {}
-                        Err(e) => return Err(e),
-                    }
-                }
-                Ok(())
-            });
-        }
-        drop(tx);
-        let result = (|| -> std::io::Result<()> {
-            loop {
-                if stopping(stop, until) {
-                    return Ok(());
-                }
-                let now = Instant::now();
-                let wait = next_wait(&*node, now);
-                match rx.recv_timeout(wait) {
-                    Ok((via, peer, bytes)) => match via {
-                        Via::Network => {
-                            tap(Direction::Received, peer, &bytes);
-                            node.handle_datagram(Instant::now(), peer, &bytes);
-                        }
-                        Via::ComponentControl => {
-                            node.handle_component_control(Instant::now(), peer, &bytes)
-                        }
-                        Via::ComponentData => {
-                            node.handle_component_data(Instant::now(), peer, &bytes)
-                        }
-                    },
-                    Err(mpsc::RecvTimeoutError::Timeout) => {}
-                    Err(mpsc::RecvTimeoutError::Disconnected) => {
-                        return Err(std::io::Error::other("a socket's receiver stopped"))
-                    }
-                }
-                node.handle_timeout(Instant::now());
-                on_tick(node);
-                while let Some(d) = node.poll_transmit() {
-                    let socket = match d.via {
-                        Via::Network => Some(sockets.network),
-                        Via::ComponentControl => sockets.component_control,
-                        Via::ComponentData => sockets.component_data,
-                    };
-                    let Some(socket) = socket else { continue };
-                    match socket.send_to(&d.bytes, d.to) {
-                        Ok(_) if d.via == Via::Network => tap(Direction::Sent, d.to, &d.bytes),
-                        Ok(_) => {}
-                        Err(e) => tracing::debug!(to = %d.to, "send failed: {e}"),
-                    }
-                    node.recycle(d.bytes);
-                }
+    let dropped = std::sync::Arc::new(std::sync::atomic::AtomicU64::new(0));
+    let done = std::sync::Arc::new(AtomicBool::new(false));
+    // Owned threads (not scoped ones): one that does not stop is reported and left
+    // behind instead of holding the node's shutdown forever.
+    let mut threads = Vec::new();
+    let mut spawned = Ok(());
+    for (via, socket) in receivers {
+        let Some(socket) = socket else { continue };
+        let started = socket.try_clone().and_then(|socket| {
+            let (tx, dropped, done) = (tx.clone(), dropped.clone(), done.clone());
+            std::thread::Builder::new()
+                .name(format!("jaus-rx-{}", via_name(via)))
+                .spawn(move || receive(&socket, via, &tx, &dropped, &done))
+        });
+        match started {
+            Ok(h) => threads.push(h),
+            Err(e) => {
+                spawned = Err(e);
+                break;
             }
-        })();
-        // Let the receivers end.
-        done.store(true, Ordering::Relaxed);
-        result
-    })?;
+        }
+    }
+    drop(tx);
+    let result = spawned.and_then(|()| loop {
+        if stopping(stop, until) {
+            return Ok(());
+        }
+        let now = Instant::now();
+        let wait = next_wait(&*node, now);
+        match rx.recv_timeout(wait) {
+            Ok((via, peer, bytes)) => match via {
+                Via::Network => {
+                    tap(Direction::Received, peer, &bytes);
+                    node.handle_datagram(Instant::now(), peer, &bytes);
+                }
+                Via::ComponentControl => {
+                    node.handle_component_control(Instant::now(), peer, &bytes)
+                }
+                Via::ComponentData => node.handle_component_data(Instant::now(), peer, &bytes),
+            },
+            Err(mpsc::RecvTimeoutError::Timeout) => {}
+            Err(mpsc::RecvTimeoutError::Disconnected) => {
+                return Err(std::io::Error::other("a socket's receiver stopped"))
+            }
+        }
+        node.handle_timeout(Instant::now());
+        on_tick(node);
+        while let Some(d) = node.poll_transmit() {
+            let socket = match d.via {
+                Via::Network => Some(sockets.network),
+                Via::ComponentControl => sockets.component_control,
+                Via::ComponentData => sockets.component_data,
+            };
+            let Some(socket) = socket else { continue };
+            match socket.send_to(&d.bytes, d.to) {
+                Ok(_) if d.via == Via::Network => tap(Direction::Sent, d.to, &d.bytes),
+                Ok(_) => {}
+                Err(e) => tracing::debug!(to = %d.to, "send failed: {e}"),
+            }
+            node.recycle(d.bytes);
+        }
+    });
+    // Let the receivers end; each is waited for within the bound.
+    done.store(true, Ordering::Relaxed);
+    let mut ended = Ok(());
+    for h in threads {
+        match join_within(h, SHUTDOWN_BOUND) {
+            Ok(Ok(())) => {}
+            Ok(Err(e)) => tracing::warn!("a receiver ended with an error: {e}"),
+            Err(e) => ended = Err(std::io::Error::from(e)),
+        }
+    }
+    result?;
+    ended?;
     let lost = dropped.load(Ordering::Relaxed);
     if lost > 0 {
         tracing::warn!("{lost} datagrams dropped: the receive queue was full");
     }
+    Ok(())
+}
+
+/// The short name of a socket of a node, for thread names and logs.
+fn via_name(via: super::Via) -> &'static str {
+    match via {
+        super::Via::Network => "network",
+        super::Via::ComponentControl => "component-control",
+        super::Via::ComponentData => "component-data",
+    }
+}
+
+/// One socket's receiver thread of [`run_node`]: reads (100 ms timeout) into the
+/// bounded queue until `done` is set; a full queue drops and counts.
+fn receive(
+    socket: &UdpSocket,
+    via: super::Via,
+    tx: &std::sync::mpsc::SyncSender<(super::Via, SocketAddr, Vec<u8>)>,
+    dropped: &std::sync::atomic::AtomicU64,
+    done: &AtomicBool,
+) -> std::io::Result<()> {
+    socket.set_read_timeout(Some(Duration::from_millis(100)))?;
+    tracing::debug!(socket = via_name(via), local = ?socket.local_addr().ok(), "receiving");
+    let mut buf = vec![0u8; MAX_DATAGRAM];
+    while !done.load(Ordering::Relaxed) {
+        match socket.recv_from(&mut buf) {
+            Ok((n, peer)) => {
+                if tx.try_send((via, peer, buf[..n].to_vec())).is_err() {
+                    dropped.fetch_add(1, Ordering::Relaxed);
+                }
+            }
+            Err(e)
+                if matches!(
+                    e.kind(),
+                    ErrorKind::WouldBlock | ErrorKind::TimedOut | ErrorKind::ConnectionReset
+                ) => {}
+            Err(e) => return Err(e),
+        }
+    }
+    tracing::debug!(socket = via_name(via), "receiver stopped");
     Ok(())
 }
 
