@@ -110,9 +110,30 @@ fn address((ss, n, c, i): (u8, u8, u8, u8)) -> jaus::Address {
     jaus::Address::new(ss, n, c, i)
 }
 
-/// (c) A node (the reassembler behind it) fed a sequence of [`NodeStep`]s at virtual
-/// times: the reassembly buffer stays within its bound, the outbox is always drained,
-/// and nothing panics.
+/// The node target's access policy (on when the input's first byte is odd): rules of
+/// each kind for subsystems the fuzzer reaches easily.
+fn fuzz_policy() -> jaus::net::Policy {
+    use jaus::net::policy::{Permission, Policy, Rule};
+    let rule = |from: &str, may, emergency| Rule {
+        from: from.parse().expect("a pattern"),
+        may,
+        emergency,
+    };
+    Policy {
+        rules: vec![
+            rule("0.*.*.*", Permission::Command { max_authority: 7 }, true),
+            rule("2.*.*.*", Permission::Query, true),
+            rule("3.*.*.*", Permission::None, false),
+        ],
+        default: Permission::Query,
+        default_emergency: true,
+    }
+}
+
+/// (c) A node (the reassembler behind it, its access policy when the first byte is odd)
+/// fed a sequence of [`NodeStep`]s at virtual times: the reassembly buffer stays within
+/// its bound, the outbox is always drained, every refusal of the policy is counted
+/// once, and nothing panics.
 pub fn node(data: &[u8]) {
     use arbitrary::{Arbitrary, Unstructured};
     use jaus::net::Framing;
@@ -124,9 +145,11 @@ pub fn node(data: &[u8]) {
         total: 256 * 1024,
         timeout: Duration::from_millis(500),
     };
+    let policy = data.first().is_some_and(|b| b % 2 == 1).then(fuzz_policy);
     let mut node = Node::new(
         NodeConfig {
             reassembly: limits,
+            policy,
             ..NodeConfig::default()
         },
         t0,
@@ -203,6 +226,8 @@ pub fn node(data: &[u8]) {
             buffered <= limits.total,
             "reassembly holds {buffered} bytes"
         );
+        let per_rule: u64 = node.policy().map_or(0, |p| p.counts().iter().sum());
+        assert_eq!(node.stats().policy_refused, per_rule);
     }
 }
 

@@ -13,6 +13,7 @@ pub mod framing;
 pub mod manager;
 pub mod node;
 pub mod oj;
+pub mod policy;
 pub mod udp;
 
 use std::net::SocketAddr;
@@ -22,6 +23,7 @@ pub use attached::{Attached, AttachedConfig, AttachedStats};
 pub use framing::{Framing, Reassembler, ReassemblyLimits};
 pub use manager::{ManagerConfig, SystemTree};
 pub use node::{Datagram, NetStats, Node, NodeConfig, Via};
+pub use policy::{Permission, Policy, Rule};
 
 use crate::Address;
 

@@ -13,6 +13,7 @@ use super::framing::{
     split, DatagramError, Framing, Reassembler, ReassemblyLimits, ReassemblyStats, MAX_PACKET_BODY,
 };
 use super::manager::{ManagerConfig, StockNodeManager, SystemTree};
+use super::policy::{PolicyState, Verdict};
 use super::{NetError, Participant};
 use crate::component::{Component, Config};
 use crate::component::{Endpoint, Endpoints, Outgoing};
@@ -64,6 +65,10 @@ pub struct NodeConfig {
     /// [`NetStats::not_via_communicator`]) unless a node relays them from its
     /// communicator. Default `None`: other subsystems are reached over UDP like nodes.
     pub communicator: Option<Address>,
+    /// Who may command the components here, take control of them and with what
+    /// authority ([`Policy`](super::policy::Policy)), checked before a message from
+    /// outside the node reaches a component. Default `None`: open, as RA 3.3 is.
+    pub policy: Option<super::policy::Policy>,
 }
 
 /// The defaults the field documentation states:
@@ -76,6 +81,7 @@ pub struct NodeConfig {
 /// assert_eq!(n.external_timeout, std::time::Duration::from_secs(3));
 /// assert!(n.multicast.is_none());
 /// assert!(n.communicator.is_none());
+/// assert!(n.policy.is_none());
 /// ```
 impl Default for NodeConfig {
     fn default() -> Self {
@@ -92,6 +98,7 @@ impl Default for NodeConfig {
             external_timeout: std::time::Duration::from_secs(3),
             multicast: None,
             communicator: None,
+            policy: None,
         }
     }
 }
@@ -158,6 +165,9 @@ pub struct NetStats {
     /// Dropped: a datagram from another subsystem that did not come through the
     /// subsystem's communicator.
     pub not_via_communicator: u64,
+    /// Messages refused by the node's policy ([`NodeConfig::policy`]; per rule in
+    /// [`Node::policy`]).
+    pub policy_refused: u64,
 }
 
 /// Where a message being routed comes from.
@@ -207,6 +217,7 @@ pub struct Node {
     /// capacity).
     transmits: Vec<Outgoing>,
     stats: NetStats,
+    policy: Option<PolicyState>,
 }
 
 /// Most byte buffers a node keeps for reuse.
@@ -239,6 +250,7 @@ impl Node {
         let me = Address::new(config.subsystem, config.node, 1, 1);
         let stock = StockNodeManager::new(me, config.manager.clone());
         let manager = node_manager::component(me, stock, config.component.clone(), now);
+        let policy = config.policy.clone().map(PolicyState::new);
         Self {
             reassembler: Reassembler::new(config.reassembly),
             config,
@@ -253,6 +265,7 @@ impl Node {
             pool: Vec::new(),
             transmits: Vec::new(),
             stats: NetStats::default(),
+            policy,
         }
     }
 
@@ -307,6 +320,11 @@ impl Node {
     /// Counters of the interface and the routing.
     pub fn stats(&self) -> NetStats {
         self.stats
+    }
+
+    /// The node's policy and its refusals per rule, when it has one.
+    pub fn policy(&self) -> Option<&PolicyState> {
+        self.policy.as_ref()
     }
 
     /// Reassembly counters.
@@ -782,7 +800,7 @@ impl Node {
 
     /// Routes a message whose body the node owns (a component's, a reassembled one).
     fn route(&mut self, header: Header, body: Vec<u8>, origin: Origin) {
-        if self.route_common(&header, &body, origin) {
+        if self.route_common(&header, &body, origin) && self.admitted(&header, &body, origin) {
             self.enqueue(header, body);
         } else {
             self.recycle(body);
@@ -792,13 +810,38 @@ impl Node {
     /// Routes a message read from a datagram: delivered from the datagram's bytes when
     /// nothing waits before it, copied into a pooled buffer only when it must wait.
     fn route_borrowed(&mut self, header: Header, body: &[u8], origin: Origin) {
-        if self.route_common(&header, body, origin) {
+        if self.route_common(&header, body, origin) && self.admitted(&header, body, origin) {
             if self.local_queue.is_empty() {
                 self.deliver(&header, body);
             } else {
                 let mut b = self.buffer();
                 b.extend_from_slice(body);
                 self.enqueue(header, b);
+            }
+        }
+    }
+
+    /// The node's policy on a message for a component here: messages from outside the
+    /// node (other nodes, other subsystems, external components) are checked; a refused
+    /// one is counted and its answers (Confirm Component Control, NAK) are sent.
+    fn admitted(&mut self, header: &Header, body: &[u8], origin: Origin) -> bool {
+        let Some(policy) = self.policy.as_mut() else {
+            return true;
+        };
+        if origin == Origin::Local && !self.external.contains_key(&header.source) {
+            return true;
+        }
+        match policy.check(self.now, header, body) {
+            Verdict::Pass => true,
+            Verdict::Refuse(answers) => {
+                self.stats.policy_refused += 1;
+                for (h, b) in answers {
+                    // From the component the message was for: not checked again.
+                    if self.route_common(&h, &b, Origin::Local) {
+                        self.enqueue(h, b);
+                    }
+                }
+                false
             }
         }
     }

@@ -28,10 +28,12 @@ mod demo;
 mod node;
 mod output;
 mod place;
+mod policy_file;
 mod session;
 
 pub use attach::{attach_openjaus, OjNodeManager};
 pub use demo::demo_operator;
 pub use node::{node, tree_json, NodeFile, TreePrinter};
+pub use policy_file::{PolicyFile, RuleFile};
 pub use place::{bind_socket, default_me, silence_hint, Client, Commander, Mode};
 pub use session::{parse_message, Outcome, Script};

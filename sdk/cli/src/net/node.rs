@@ -28,6 +28,9 @@ use jaus::net::{udp, Framing, Node, NodeConfig, SystemTree};
 ///     links:
 ///       - { id: 1, udp: { bind: "0.0.0.0:4001", peer: "192.168.1.20:4001" } }
 /// io: { spin_us: 50, batch: 32 }  # optional: how the socket is read (udp::IoOptions)
+/// policy:               # optional: who may command (see `PolicyFile`); default open
+///   default: query
+///   rules: [{ from: 200.*.*.*, may: command, max_authority: 100 }]
 /// communicator: 1.2.35.1 # optional: the subsystem's communicator on another node
 /// ```
 ///
@@ -103,6 +106,9 @@ pub struct NodeFile {
     /// node (`NodeConfig::communicator`). A node hosting one needs none.
     #[serde(default)]
     pub communicator: Option<String>,
+    /// The node's access policy (`jaus::net::Policy`; open without it).
+    #[serde(default)]
+    pub policy: Option<super::PolicyFile>,
 }
 
 /// `io:` of a node file: how the node waits for and reads datagrams.
@@ -250,6 +256,9 @@ impl NodeFile {
         }
         let hosted = f.hosted_at(&at)?;
         f.communicator_at(&hosted, &at)?;
+        if let Some(p) = &f.policy {
+            p.policy(&at)?;
+        }
         Ok(f)
     }
 
@@ -454,6 +463,11 @@ impl NodeFile {
             c.multicast = Some(SocketAddr::from((m.group, self.bind.port())));
         }
         c.communicator = self.communicator();
+        // Checked by `load`.
+        c.policy = self
+            .policy
+            .as_ref()
+            .and_then(|p| p.policy(&|k| k.to_string()).ok());
         c
     }
 
@@ -691,6 +705,13 @@ pub fn node(
         file.framing,
         file.peers
     );
+    let _ = match node.policy() {
+        Some(p) if !p.policy().is_open() => writeln!(out, "access policy: {}", p.policy().describe()),
+        _ => writeln!(
+            out,
+            "access: open (no `policy:`): any sender that reaches this node may command its components and take control of them"
+        ),
+    };
     if let Some(c) = file.communicator() {
         let links: Vec<String> = file
             .communicator_links()
@@ -815,7 +836,7 @@ pub fn node(
     }
     let _ = writeln!(
         out,
-        "stats: received {} sent {} delivered_local {} bad_framing {} bad_packet {} from_self {} not_for_us {} no_such_component {} outbox_full {} flooded {} reassembly_timed_out {} reassembly_over_limit {} reassembly_buffered {buffered} reports_missed {missed} commands_refused {refused} to_communicator {} from_communicator {} not_via_communicator {}",
+        "stats: received {} sent {} delivered_local {} bad_framing {} bad_packet {} from_self {} not_for_us {} no_such_component {} outbox_full {} flooded {} reassembly_timed_out {} reassembly_over_limit {} reassembly_buffered {buffered} reports_missed {missed} commands_refused {refused} to_communicator {} from_communicator {} not_via_communicator {} policy_refused {}",
         st.received,
         st.sent,
         st.delivered_local,
@@ -831,6 +852,7 @@ pub fn node(
         st.to_communicator,
         st.from_communicator,
         st.not_via_communicator,
+        st.policy_refused,
     );
     let _ = out.flush();
     if let (Some(w), Some(p)) = (writer.as_mut(), capture) {
