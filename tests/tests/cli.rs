@@ -408,6 +408,22 @@ fn messages_describes_one_message_with_an_example_that_parses() {
         .trim();
     let parsed = jaus_cli::net::parse_message(example).expect("the example parses");
     assert_eq!(parsed.1.name(), "ReportGlobalPose");
+    // Issue 37: the definition's file by name and line, never the build machine's path.
+    let line = text
+        .lines()
+        .find(|l| l.trim_start().starts_with("defined in"))
+        .expect("the definition's place");
+    let defs = std::fs::read_to_string(jaus_spec::defs_dir().join("platform.yaml")).unwrap();
+    let at = defs
+        .lines()
+        .position(|l| l.trim() == "- name: ReportGlobalPose")
+        .unwrap()
+        + 1;
+    assert_eq!(
+        line.trim(),
+        format!("defined in platform.yaml:{at} (the SDK's definitions)")
+    );
+    assert!(!text.contains(env!("CARGO_MANIFEST_DIR")), "{text}");
     let bad = run(&["messages", "ReportGlobalPos"], "");
     assert!(!bad.status.success());
     let err = String::from_utf8_lossy(&bad.stderr);

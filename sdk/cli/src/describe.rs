@@ -21,6 +21,16 @@ pub fn spec_with(overlays: &[std::path::PathBuf]) -> Result<Spec, String> {
     jaus_spec::load_overlays(overlays).map_err(|e| format!("--spec: {e}"))
 }
 
+/// A definition file as a user should see it: the SDK's own files by name (they are
+/// built into the binary, and the directory they were built from is the build
+/// machine's), a vendor's overlay as its path was given.
+fn shown_path(path: &std::path::Path) -> (String, &'static str) {
+    match path.strip_prefix(jaus_spec::defs_dir()) {
+        Ok(rel) => (rel.display().to_string(), " (the SDK's definitions)"),
+        Err(_) => (path.display().to_string(), ""),
+    }
+}
+
 fn wire_text(w: &Wire) -> String {
     match w {
         Wire::Int(i) => i.rust().to_string(),
@@ -144,7 +154,12 @@ pub fn describe(spec: &Spec, name: &str) -> Result<String, String> {
         let _ = writeln!(s, "  answered by {} ({})", r.def.name, r.def.code);
     }
     let src = &spec.sources[m.source];
-    let _ = writeln!(s, "  defined in {}", src.path.display());
+    let (file, whose) = shown_path(&src.path);
+    let _ = writeln!(
+        s,
+        "  defined in {file}:{}{whose}",
+        src.index.find(&format!("{}.name", m.path)).line
+    );
     if let Some(p) = m.presence {
         let _ = writeln!(
             s,
