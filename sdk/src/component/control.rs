@@ -242,6 +242,7 @@ impl<B: Behaviour> Component<B> {
             }
             Some(cur) if authority > cur.authority => {
                 c.send(cur.address, RejectComponentControl {}.into(), false, 0);
+                c.displaced = Some((cur.address, c.now));
                 c.controller = Some(Controller {
                     address: source,
                     authority,

@@ -713,7 +713,16 @@ impl<B: Behaviour> Component<B> {
             self.rt.address,
             header.source,
         );
-        if matches!(why, Refusal::Vendor(Refused::Unsupported)) {
+        // A command from the controller a higher authority just displaced crossed the
+        // Reject Component Control on its way here: normal in JAUS, not a fault.
+        let crossed = matches!(why, Refusal::NotController)
+            && self.rt.displaced.is_some_and(|(a, t)| {
+                a == source && self.rt.now.saturating_duration_since(t) < DISPLACED_GRACE
+            });
+        if crossed {
+            tracing::debug!(component, %address, %source, message = msg.name(),
+                "refused: {why} (it lost control to a higher authority; this crossed the Reject Component Control)");
+        } else if matches!(why, Refusal::Vendor(Refused::Unsupported)) {
             // Normal when peers probe what a component offers.
             tracing::debug!(component, %address, %source, message = msg.name(), "refused: {why}");
         } else {
@@ -907,6 +916,11 @@ impl<B: Behaviour> Component<B> {
 
 /// The message set of a behaviour's interface.
 type Set<B> = <<B as Behaviour>::Interface as Interface>::Messages;
+
+/// How long after a higher authority took control the former controller's commands are
+/// taken to have crossed the Reject Component Control (refused all the same, logged at
+/// debug instead of warn).
+const DISPLACED_GRACE: Duration = Duration::from_secs(1);
 
 /// Why a message was not acted on.
 #[derive(Debug)]

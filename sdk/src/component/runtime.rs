@@ -34,6 +34,9 @@ pub(super) struct Runtime<I: Interface> {
     pub(super) controller: Option<Controller>,
     /// The controller the behaviour last knew of (to tell it when control is lost).
     pub(super) known_controller: Option<Address>,
+    /// The last controller displaced by a higher authority, and when: its commands
+    /// that crossed the Reject Component Control are refused quietly.
+    pub(super) displaced: Option<(Address, Instant)>,
     pub(super) emergencies: Vec<Address>,
     /// Components that confirmed this one's control, each with the state it last
     /// reported (Report Component Status), if any since control was granted.
@@ -62,6 +65,7 @@ impl<I: Interface> Runtime<I> {
             mode: <I::Modes as Modes>::INITIAL,
             controller: None,
             known_controller: None,
+            displaced: None,
             emergencies: Vec::new(),
             held_control: Vec::new(),
             clock: clock::Clock::default(),
