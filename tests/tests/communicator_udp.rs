@@ -416,6 +416,7 @@ fn the_example_node_files_are_a_communicator_pair() {
         links[0].clone()
     };
     let (v, s) = (link(&vehicle), link(&station));
-    assert_eq!((v.peer, s.peer), (s.bind, v.bind));
-    assert_eq!(v.id, s.id);
+    assert_eq!((v.kind(), s.kind()), ("udp", "udp"));
+    assert_eq!((v.peer(), s.peer()), (s.bind(), v.bind()));
+    assert_eq!(v.id(), s.id());
 }

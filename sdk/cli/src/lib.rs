@@ -10,7 +10,8 @@
 //! * [`report`]: the demo's table and SVG plot;
 //! * [`arm_report`]: the arm demo's table and SVG plot;
 //! * [`capture`]: pcap/pcapng captures of JAUS traffic, written and read;
-//! * [`traffic`]: captures decoded to JSON lines and replayed to a node.
+//! * [`traffic`]: captures decoded to JSON lines and replayed to a node;
+//! * [`keygen`]: a node's key and certificate for authenticated QUIC data links.
 //!
 //! The SDK (`jaus`) carries none of this: a vendor's build pulls no clap, serde_yaml or
 //! tracing-subscriber.
@@ -20,6 +21,7 @@ pub mod capture;
 pub mod catalogue;
 pub mod commands;
 pub mod describe;
+pub mod keygen;
 pub mod net;
 pub mod ocu;
 pub mod report;

@@ -21,9 +21,10 @@
 //! ```
 //!
 //! The Communicator ([`Stock::Communicator`]) is real hardware rather than simulated:
-//! its [`Entry::links`] are UDP data links ([`UdpLink`]) to the far communicators, and
-//! the node that hosts it must name it as its gateway (`NodeConfig::communicator`,
-//! see [`Host::communicator_of`]):
+//! its [`Entry::links`] are UDP data links ([`UdpLink`]) to the far communicators
+//! (links of other kinds, such as `jaus-quic`'s authenticated QUIC link, are made by the
+//! caller and handed to [`Host::build_communicator`]), and the node that hosts it must
+//! name it as its gateway (`NodeConfig::communicator`, see [`Host::communicator_of`]):
 //!
 //! ```
 //! use std::time::Instant;
@@ -71,7 +72,7 @@ use jaus::components::{
 use jaus::components::{range_sensor, visual_sensor};
 use jaus::net::udp::link::{UdpLink, UdpLinkConfig};
 use jaus::stock::communicator::{
-    CommunicatorConfig, CommunicatorEndpoint, CommunicatorError, StockCommunicator,
+    CommunicatorConfig, CommunicatorEndpoint, CommunicatorError, DataLink, StockCommunicator,
 };
 use jaus::stock::drivers::{
     Navigator, PrimitiveConfig, ReflexiveConfig, StockPrimitiveDriver, StockReflexiveDriver,
@@ -395,8 +396,8 @@ impl Host {
         Address::new(self.subsystem, self.node, component, 1)
     }
 
-    /// Builds one component.
-    pub fn build(&mut self, e: &Entry) -> Result<Box<dyn Endpoint>, HostError> {
+    /// Where `e` goes on this node, checked: its instance in 1..=254, not hosted yet.
+    fn address_of(&self, e: &Entry) -> Result<Address, HostError> {
         let name = e.stock.name();
         if e.instance == 0 || e.instance == 255 {
             return Err(HostError::Instance {
@@ -411,6 +412,12 @@ impl Host {
                 address: at,
             });
         }
+        Ok(at)
+    }
+
+    /// Builds one component.
+    pub fn build(&mut self, e: &Entry) -> Result<Box<dyn Endpoint>, HostError> {
+        let at = self.address_of(e)?;
         if e.stock == Stock::ReflexiveDriver {
             self.reflexive = true;
         }
@@ -628,6 +635,43 @@ impl Host {
 }
 
 impl Host {
+    /// A Communicator with the instance and authority of `e` (a [`Stock::Communicator`]
+    /// entry) over `links` that the caller made (any [`DataLink`]: a link of its own
+    /// hardware, a QUIC link, `Box<dyn DataLink>` for a mix), all On, the first
+    /// selected; `e.links` is not used. The UDP links of `e.links` are what
+    /// [`Host::build`] makes itself.
+    pub fn build_communicator<L: DataLink>(
+        &mut self,
+        e: &Entry,
+        links: Vec<L>,
+    ) -> Result<Box<dyn Endpoint>, HostError> {
+        let e = Entry {
+            stock: Stock::Communicator,
+            ..e.clone()
+        };
+        let at = self.address_of(&e)?;
+        let built = self.communicator_over(at, &e, links)?;
+        self.built.push(at);
+        Ok(built)
+    }
+
+    /// The Communicator of `e` at `at` over `links`, all On, the first selected.
+    fn communicator_over<L: DataLink>(
+        &self,
+        at: Address,
+        e: &Entry,
+        links: Vec<L>,
+    ) -> Result<Box<dyn Endpoint>, HostError> {
+        let component = Stock::Communicator.name();
+        let stock = StockCommunicator::new(links, CommunicatorConfig::default(), self.t0)
+            .map_err(|error| HostError::Links { component, error })?;
+        let cfg = Config {
+            authority: e.authority,
+            ..Config::default()
+        };
+        Ok(Box::new(CommunicatorEndpoint::new(at, stock, cfg, self.t0)))
+    }
+
     /// The Communicator of `e` at `at`: its links bound, all On, the first selected.
     fn communicator(&self, at: Address, e: &Entry) -> Result<Box<dyn Endpoint>, HostError> {
         let component = Stock::Communicator.name();
@@ -654,13 +698,7 @@ impl Host {
                 })
             })
             .collect::<Result<Vec<_>, _>>()?;
-        let stock = StockCommunicator::new(links, CommunicatorConfig::default(), self.t0)
-            .map_err(|error| HostError::Links { component, error })?;
-        let cfg = Config {
-            authority: e.authority,
-            ..Config::default()
-        };
-        Ok(Box::new(CommunicatorEndpoint::new(at, stock, cfg, self.t0)))
+        self.communicator_over(at, e, links)
     }
 }
 
@@ -738,5 +776,38 @@ mod tests {
             Some(Address::new(2, 1, 35, 3))
         );
         assert_eq!(Host::communicator_of(2, 1, [&other]), None);
+    }
+
+    #[test]
+    fn a_communicator_over_links_the_caller_made() {
+        let t0 = Instant::now();
+        let mut host = Host::new(2, 1, t0);
+        let any: std::net::SocketAddr = "127.0.0.1:0".parse().unwrap();
+        let e = Host::entry(Stock::Communicator).instance(2);
+        let none: Vec<Box<dyn DataLink>> = Vec::new();
+        assert!(matches!(
+            host.build_communicator(&e, none),
+            Err(HostError::Links {
+                error: CommunicatorError::NoLinks,
+                ..
+            })
+        ));
+        let links: Vec<Box<dyn DataLink>> = [7, 3]
+            .into_iter()
+            .map(|id| Box::new(UdpLink::bind(UdpLinkConfig::new(id, any, any)).unwrap()) as _)
+            .collect();
+        let c = host.build_communicator(&e, links).unwrap();
+        assert_eq!(c.address(), Address::new(2, 1, 35, 2));
+        let gw = c
+            .as_any()
+            .downcast_ref::<CommunicatorEndpoint<Box<dyn DataLink>>>()
+            .unwrap();
+        assert_eq!(gw.communicator().link_ids().collect::<Vec<_>>(), [7, 3]);
+        // Hosted: the address is taken.
+        let again = vec![UdpLink::bind(UdpLinkConfig::new(1, any, any)).unwrap()];
+        assert!(matches!(
+            host.build_communicator(&e, again),
+            Err(HostError::Duplicate { .. })
+        ));
     }
 }

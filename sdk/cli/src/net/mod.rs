@@ -33,7 +33,7 @@ mod session;
 
 pub use attach::{attach_openjaus, OjNodeManager};
 pub use demo::demo_operator;
-pub use node::{node, tree_json, NodeFile, TreePrinter};
-pub use policy_file::{PolicyFile, RuleFile};
+pub use node::{node, tree_json, LinkFile, NodeFile, QuicLinkFile, TreePrinter};
 pub use place::{bind_socket, default_me, silence_hint, Client, Commander, Mode};
+pub use policy_file::{PolicyFile, RuleFile};
 pub use session::{parse_message, Outcome, Script};

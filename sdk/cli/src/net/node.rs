@@ -2,7 +2,7 @@
 
 use std::io::Write;
 use std::net::SocketAddr;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::sync::atomic::AtomicBool;
 use std::time::{Duration, Instant};
 
@@ -27,6 +27,9 @@ use jaus::net::{udp, Framing, Node, NodeConfig, SystemTree};
 ///   - component: communicator                # the gateway to other subsystems
 ///     links:
 ///       - { id: 1, udp: { bind: "0.0.0.0:4001", peer: "192.168.1.20:4001" } }
+///       - id: 2                                # or authenticated and encrypted:
+///         quic: { bind: "0.0.0.0:4002", peer: "192.168.1.20:4002",
+///                 cert: keys/vehicle.crt, key: keys/vehicle.key, peer_cert: keys/station.crt }
 /// io: { spin_us: 50, batch: 32 }  # optional: how the socket is read (udp::IoOptions)
 /// policy:               # optional: who may command (see `PolicyFile`); default open
 ///   default: query
@@ -57,7 +60,14 @@ use jaus::net::{udp, Framing, Node, NodeConfig, SystemTree};
 /// communicator's link socket `peer` (an IP radio modem, a tether; `mtu` 4096 bytes,
 /// down after `silence_ms` 3000 of silence, a keep-alive after `keepalive_ms` 1000
 /// without sending (0: none), up before anything is heard unless `assume_up: false`,
-/// read every `poll_ms` 10: `jaus::net::udp::link::UdpLinkConfig`). A node hosting
+/// read every `poll_ms` 10: `jaus::net::udp::link::UdpLinkConfig`), or
+/// `{ id, quic: { bind, peer, cert, key, peer_cert, mtu, silence_ms, keepalive_ms } }`,
+/// a QUIC connection between `bind` and the far end's `peer`, authenticated both ways
+/// by pinned certificates and encrypted (`jaus_quic::QuicLink`: this node presents
+/// `cert` and `key`, made by `jaus keygen`, and accepts only `peer_cert`, the far end's
+/// certificate; paths relative to the node file's directory; `mtu` 4096, down after
+/// `silence_ms` 3000 of silence, a QUIC keep-alive after `keepalive_ms` 1000, or a
+/// third of `silence_ms` if that is less). A node hosting
 /// one sends every message for another subsystem through it and takes those from
 /// other subsystems only from it (`NodeConfig::communicator`); the other nodes of the
 /// subsystem name it with `communicator:`. At most one per node.
@@ -256,6 +266,7 @@ impl NodeFile {
         }
         let hosted = f.hosted_at(&at)?;
         f.communicator_at(&hosted, &at)?;
+        f.check_quic_links(path, &at)?;
         if let Some(p) = &f.policy {
             p.policy(&at)?;
         }
@@ -344,6 +355,7 @@ impl NodeFile {
             };
             let mut e = jaus_sim::host::Host::entry(stock);
             let is_communicator = stock == jaus_sim::host::Stock::Communicator;
+            let mut has_links = false;
             if let HostItem::Component {
                 instance,
                 output,
@@ -379,7 +391,12 @@ impl NodeFile {
                 e.pose = addr(pose, "pose")?;
                 e.authority = authority.unwrap_or(0);
                 match links {
-                    Some(v) if is_communicator => e.links = links_at(v, i, at)?,
+                    Some(v) if is_communicator => {
+                        let all = links_at(v, i, at)?;
+                        has_links = !all.is_empty();
+                        // The UDP links are built by the host; the others by build_node.
+                        e.links = all.into_iter().filter_map(LinkFile::into_udp).collect();
+                    }
                     Some(_) => {
                         return Err(format!(
                             "{}: host[{i}].links: `links` is for the communicator, not `{name}`",
@@ -389,7 +406,7 @@ impl NodeFile {
                     None => {}
                 }
             }
-            if is_communicator && e.links.is_empty() {
+            if is_communicator && !has_links {
                 return Err(format!(
                     "{}: host[{i}]: `communicator` needs its data links: `{{ component: communicator, links: [{{ id: 1, udp: {{ bind: IP:PORT, peer: IP:PORT }} }}] }}`",
                     at(&format!("host[{i}]"))
@@ -427,14 +444,94 @@ impl NodeFile {
     }
 
     /// The data links of the communicator this node hosts (none if it hosts none).
-    pub fn communicator_links(&self) -> Vec<jaus::net::udp::link::UdpLinkConfig> {
-        self.hosted()
-            .into_iter()
-            .find_map(|h| match h {
-                Hosted::Stock(e) if e.stock == jaus_sim::host::Stock::Communicator => Some(e.links),
-                _ => None,
-            })
+    pub fn communicator_links(&self) -> Vec<LinkFile> {
+        self.communicator_link_files()
+            .map(|(_, links)| links)
             .unwrap_or_default()
+    }
+
+    /// The `links:` of the communicator this node hosts, and the index of its `host:`
+    /// entry (checked by [`NodeFile::load`]).
+    fn communicator_link_files(&self) -> Option<(usize, Vec<LinkFile>)> {
+        use jaus_sim::host::Stock;
+        self.host.iter().enumerate().find_map(|(i, h)| match h {
+            HostItem::Component {
+                component,
+                links: Some(v),
+                ..
+            } if Stock::by_name(component) == Some(Stock::Communicator) => {
+                Some((i, links_at(v, i, &|k| k.to_string()).unwrap_or_default()))
+            }
+            _ => None,
+        })
+    }
+
+    /// The QUIC links' key files (relative to the directory of the node file `path`)
+    /// read and their configurations checked, before anything is bound (`at` gives the
+    /// file:line:column of a YAML path).
+    fn check_quic_links(&self, path: &Path, at: &dyn Fn(&str) -> String) -> Result<(), String> {
+        let Some((i, links)) = self.communicator_link_files() else {
+            return Ok(());
+        };
+        let dir = path.parent().unwrap_or_else(|| Path::new("."));
+        for (j, link) in links.iter().enumerate() {
+            let LinkFile::Quic(q) = link else { continue };
+            let here = format!("host[{i}].links[{j}].quic");
+            let c = q.config(dir).map_err(|(field, e)| {
+                let f = format!("{here}.{field}");
+                format!("{}: {f}: {e}", at(&f))
+            })?;
+            c.check()
+                .map_err(|e| format!("{}: {here}: {e}", at(&here)))?;
+        }
+        Ok(())
+    }
+
+    /// The communicator of entry `e` over its links, UDP ones built by the host as for
+    /// any stock component, QUIC ones (key files relative to the directory of the node
+    /// file `path`) here.
+    fn build_communicator(
+        &self,
+        host: &mut jaus_sim::host::Host,
+        e: &jaus_sim::host::Entry,
+        path: &Path,
+    ) -> Result<Box<dyn jaus::component::Endpoint>, String> {
+        use jaus::stock::communicator::DataLink;
+        let links = self.communicator_links();
+        let dir = path.parent().unwrap_or_else(|| Path::new("."));
+        let quic = |q: &QuicLinkFile| -> Result<jaus_quic::QuicLink, String> {
+            let c = q
+                .config(dir)
+                .map_err(|(_, e)| format!("communicator: data link {}: {e}", q.id))?;
+            jaus_quic::QuicLink::bind(c).map_err(|e| format!("communicator: {e}"))
+        };
+        let built = if links.iter().all(|l| matches!(l, LinkFile::Udp(_))) {
+            // A communicator over UDP links only: `CommunicatorEndpoint<UdpLink>`.
+            host.build(e)
+        } else if links.iter().all(|l| matches!(l, LinkFile::Quic(_))) {
+            // Over QUIC links only: `CommunicatorEndpoint<QuicLink>`.
+            let mut made = Vec::new();
+            for l in &links {
+                if let LinkFile::Quic(q) = l {
+                    made.push(quic(q)?);
+                }
+            }
+            host.build_communicator(e, made)
+        } else {
+            // A mix: `CommunicatorEndpoint<Box<dyn DataLink>>`.
+            let mut made: Vec<Box<dyn DataLink>> = Vec::new();
+            for l in &links {
+                made.push(match l {
+                    LinkFile::Udp(c) => Box::new(
+                        jaus::net::udp::link::UdpLink::bind(c.clone())
+                            .map_err(|e| format!("communicator: {e}"))?,
+                    ),
+                    LinkFile::Quic(q) => Box::new(quic(q)?),
+                });
+            }
+            host.build_communicator(e, made)
+        };
+        built.map_err(|e| e.to_string())
     }
 
     /// The node configuration.
@@ -500,6 +597,9 @@ impl NodeFile {
                     self.node,
                     t0,
                 ),
+                Hosted::Stock(e) if e.stock == jaus_sim::host::Stock::Communicator => vec![self
+                    .build_communicator(&mut host, &e, path)
+                    .map_err(|e| format!("{}: host[{i}]: {e}", path.display()))?],
                 Hosted::Stock(e) => vec![host
                     .build(&e)
                     .map_err(|e| format!("{}: host[{i}]: {e}", path.display()))?],
@@ -519,13 +619,13 @@ fn links_at(
     v: &serde_yaml::Value,
     i: usize,
     at: &dyn Fn(&str) -> String,
-) -> Result<Vec<jaus::net::udp::link::UdpLinkConfig>, String> {
+) -> Result<Vec<LinkFile>, String> {
     use jaus::net::udp::link::{UdpLinkConfig, MAX_UDP_PAYLOAD};
     use serde_yaml::Value;
     let here = format!("host[{i}].links");
     let Value::Sequence(items) = v else {
         return Err(format!(
-            "{}: {here}: a list of data links `- {{ id: 1, udp: {{ bind: IP:PORT, peer: IP:PORT }} }}`",
+            "{}: {here}: a list of data links `- {{ id: 1, udp: {{ bind: IP:PORT, peer: IP:PORT }} }}` (or `quic:` with `cert`, `key`, `peer_cert` too)",
             at(&here)
         ));
     };
@@ -574,23 +674,83 @@ fn links_at(
             )
         })
     };
-    let mut links: Vec<UdpLinkConfig> = Vec::new();
+    let file = |v: &Value, path: &str| -> Result<PathBuf, String> {
+        v.as_str()
+            .filter(|s| !s.is_empty())
+            .map(PathBuf::from)
+            .ok_or_else(|| {
+                format!(
+                    "{}: {path}: {} is not a file path",
+                    at(path),
+                    serde_yaml::to_string(v).unwrap_or_default().trim()
+                )
+            })
+    };
+    let mut links: Vec<LinkFile> = Vec::new();
     for (j, item) in items.iter().enumerate() {
         let path = format!("{here}[{j}]");
-        let f = fields(item, &path, &["id", "udp"])?;
+        let f = fields(item, &path, &["id", "udp", "quic"])?;
         let get = |k: &str| f.iter().find(|(n, _)| n == k).map(|(_, v)| v);
         let missing = |k: &str| format!("{}: {path}: `{k}` missing", at(&path));
         let id_path = format!("{path}.id");
         let id = int(get("id").ok_or_else(|| missing("id"))?, &id_path, 0..=255)? as u8;
-        if links.iter().any(|l| l.id == id) {
+        if links.iter().any(|l| l.id() == id) {
             return Err(format!(
                 "{}: {id_path}: data link id {id} is used twice",
                 at(&id_path)
             ));
         }
+        if let Some(q) = get("quic") {
+            if get("udp").is_some() {
+                return Err(format!(
+                    "{}: {path}: `udp` and `quic`: a data link is one or the other",
+                    at(&path)
+                ));
+            }
+            let quic_path = format!("{path}.quic");
+            let quic = fields(
+                q,
+                &quic_path,
+                &[
+                    "bind",
+                    "peer",
+                    "cert",
+                    "key",
+                    "peer_cert",
+                    "mtu",
+                    "silence_ms",
+                    "keepalive_ms",
+                ],
+            )?;
+            let qget = |k: &str| quic.iter().find(|(n, _)| n == k).map(|(_, v)| v);
+            let field = |k: &str| format!("{quic_path}.{k}");
+            let need = |k: &str| {
+                qget(k).ok_or_else(|| format!("{}: {quic_path}: `{k}` missing", at(&quic_path)))
+            };
+            let ms = |k: &str, range| -> Result<Option<Duration>, String> {
+                qget(k)
+                    .map(|v| int(v, &field(k), range).map(Duration::from_millis))
+                    .transpose()
+            };
+            links.push(LinkFile::Quic(QuicLinkFile {
+                id,
+                bind: socket(need("bind")?, &field("bind"))?,
+                peer: socket(need("peer")?, &field("peer"))?,
+                cert: file(need("cert")?, &field("cert"))?,
+                key: file(need("key")?, &field("key"))?,
+                peer_cert: file(need("peer_cert")?, &field("peer_cert"))?,
+                mtu: qget("mtu")
+                    .map(|v| int(v, &field("mtu"), 16..=jaus_quic::link::MAX_MTU as u64))
+                    .transpose()?
+                    .map(|n| n as usize),
+                silence: ms("silence_ms", 100..=3_600_000)?,
+                keepalive: ms("keepalive_ms", 10..=3_600_000)?,
+            }));
+            continue;
+        }
         let udp_path = format!("{path}.udp");
         let udp = fields(
-            get("udp").ok_or_else(|| missing("udp"))?,
+            get("udp").ok_or_else(|| missing("udp` or `quic"))?,
             &udp_path,
             &[
                 "bind",
@@ -637,9 +797,115 @@ fn links_at(
                 )
             })?;
         }
-        links.push(c);
+        links.push(LinkFile::Udp(c));
     }
     Ok(links)
+}
+
+/// A data link of a communicator's `links:` (checked field by field).
+#[derive(Debug, Clone, PartialEq)]
+pub enum LinkFile {
+    /// `udp:`: one plain datagram per JAUS packet.
+    Udp(jaus::net::udp::link::UdpLinkConfig),
+    /// `quic:`: authenticated and encrypted.
+    Quic(QuicLinkFile),
+}
+
+impl LinkFile {
+    /// The link's id.
+    pub fn id(&self) -> u8 {
+        match self {
+            LinkFile::Udp(c) => c.id,
+            LinkFile::Quic(q) => q.id,
+        }
+    }
+
+    /// The local socket address.
+    pub fn bind(&self) -> SocketAddr {
+        match self {
+            LinkFile::Udp(c) => c.bind,
+            LinkFile::Quic(q) => q.bind,
+        }
+    }
+
+    /// The far end's socket address.
+    pub fn peer(&self) -> SocketAddr {
+        match self {
+            LinkFile::Udp(c) => c.peer,
+            LinkFile::Quic(q) => q.peer,
+        }
+    }
+
+    /// `udp` or `quic`.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            LinkFile::Udp(_) => "udp",
+            LinkFile::Quic(_) => "quic",
+        }
+    }
+
+    /// The UDP link's configuration, if it is one.
+    pub fn into_udp(self) -> Option<jaus::net::udp::link::UdpLinkConfig> {
+        match self {
+            LinkFile::Udp(c) => Some(c),
+            LinkFile::Quic(_) => None,
+        }
+    }
+}
+
+/// `quic:` of a data link as written: `jaus_quic::QuicLinkConfig` but for the keys,
+/// which are files (relative to the node file's directory) read by
+/// [`QuicLinkFile::config`].
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct QuicLinkFile {
+    /// The link's id.
+    pub id: u8,
+    /// The local socket address.
+    pub bind: SocketAddr,
+    /// The far end's link socket.
+    pub peer: SocketAddr,
+    /// This node's certificate (PEM, `jaus keygen`).
+    pub cert: PathBuf,
+    /// This node's private key (PEM).
+    pub key: PathBuf,
+    /// The far end's certificate, the only one accepted.
+    pub peer_cert: PathBuf,
+    /// `mtu` (default 4096).
+    pub mtu: Option<usize>,
+    /// `silence_ms` (default 3000).
+    pub silence: Option<Duration>,
+    /// `keepalive_ms` (default 1000, or a third of `silence_ms` if less).
+    pub keepalive: Option<Duration>,
+}
+
+impl QuicLinkFile {
+    /// The link's configuration, its key files read relative to `dir`; on error, the
+    /// field (`cert`, `key` or `peer_cert`) and what is wrong (naming the file).
+    pub fn config(&self, dir: &Path) -> Result<jaus_quic::QuicLinkConfig, (&'static str, String)> {
+        use jaus_quic::keys;
+        let cert = keys::load_cert(&dir.join(&self.cert)).map_err(|e| ("cert", e.to_string()))?;
+        let key = keys::load_key(&dir.join(&self.key)).map_err(|e| ("key", e.to_string()))?;
+        let peer_cert = keys::load_cert(&dir.join(&self.peer_cert))
+            .map_err(|e| ("peer_cert", e.to_string()))?;
+        let mut c = jaus_quic::QuicLinkConfig::new(
+            self.id,
+            self.bind,
+            self.peer,
+            jaus_quic::Identity { cert, key },
+            peer_cert,
+        );
+        if let Some(mtu) = self.mtu {
+            c.mtu = mtu;
+        }
+        if let Some(silence) = self.silence {
+            c.silence = silence;
+            c.keepalive = c.keepalive.min(silence / 3);
+        }
+        if let Some(keepalive) = self.keepalive {
+            c.keepalive = keepalive;
+        }
+        Ok(c)
+    }
 }
 
 /// Shows a system tree at most once per `every`, and only when it changed.
@@ -716,7 +982,7 @@ pub fn node(
         let links: Vec<String> = file
             .communicator_links()
             .iter()
-            .map(|l| format!("link {} {} -> {}", l.id, l.bind, l.peer))
+            .map(|l| format!("link {} {} {} -> {}", l.id(), l.kind(), l.bind(), l.peer()))
             .collect();
         let _ = writeln!(
             out,

@@ -59,3 +59,29 @@ pub trait DataLink: Send + 'static {
         let _ = (now, on);
     }
 }
+
+/// A boxed link is a link: a Communicator over links of different kinds (a UDP link and
+/// a QUIC link, say) is a `StockCommunicator<Box<dyn DataLink>>`.
+impl<L: DataLink + ?Sized> DataLink for Box<L> {
+    fn id(&self) -> u8 {
+        (**self).id()
+    }
+    fn send(&mut self, now: Instant, frame: &[u8]) -> Result<(), LinkError> {
+        (**self).send(now, frame)
+    }
+    fn recv(&mut self, now: Instant, buf: &mut Vec<u8>) -> bool {
+        (**self).recv(now, buf)
+    }
+    fn is_up(&self, now: Instant) -> bool {
+        (**self).is_up(now)
+    }
+    fn poll_timeout(&self) -> Option<Instant> {
+        (**self).poll_timeout()
+    }
+    fn ready_at(&self) -> Option<Instant> {
+        (**self).ready_at()
+    }
+    fn set_powered(&mut self, now: Instant, on: bool) {
+        (**self).set_powered(now, on);
+    }
+}
