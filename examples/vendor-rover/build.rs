@@ -1,8 +1,10 @@
 //! Generates this crate's messages and component skeletons from `defs/vendor_rover.yaml`
-//! (which extends the SDK's definitions) and pins their wire layout in
-//! `defs/vendor_rover.lock`: a change of the YAML that changes the wire fails the build
-//! with the list of changes until `JAUS_UPDATE_LOCK=1 cargo build` rewrites the lock
-//! (review and commit it).
+//! (which extends the SDK's definitions) and checks their wire layout against
+//! `defs/vendor_rover.lock` once you pin it. Until that file exists the definitions change
+//! freely (the build warns that they are not pinned); when they are ready for peers,
+//! `JAUS_UPDATE_LOCK=1 cargo build` writes it: commit it. From then on a change of the
+//! YAML that changes the wire fails the build with the list of changes until the same
+//! command updates the lock (review and commit it).
 
 fn main() {
     let out = std::env::var("OUT_DIR").expect("cargo sets OUT_DIR");

@@ -45,9 +45,12 @@
 //! layout ([`snapshot::Snapshot`], from a loaded [`Spec`] or from a lock file), and
 //! classifies every change on a three-level scale ([`diff::Severity`]):
 //!
-//! * `compatible`: peers of either revision interoperate and vendor code still compiles
-//!   (a message, enum value or component added; a field added at the end of a message
-//!   under a new presence bit; bits added in unused bits; a unit changed, flagged);
+//! * `compatible`: peers of either revision interoperate, and vendor code written in the
+//!   forward-compatible style still compiles: struct literals and patterns of generated
+//!   types end with `..` (`..Default::default()`), a `match` on a generated enum or on
+//!   `Message` has a `_` arm (a message, enum value or component added; a field added at
+//!   the end of a message under a new presence bit; bits added in unused bits; a unit
+//!   changed, flagged);
 //! * `source-breaking`: the same bytes, but code written against the old revision may no
 //!   longer compile (a message, field, type, member, variant, component or mode renamed;
 //!   modes and transitions changed; a message no longer emitted);
@@ -65,8 +68,10 @@
 //! load error); a revision is a directory, files, a git `REV:PATH` ([`revision`]) or a
 //! lock file.
 //!
-//! [`Builder::lock`] pins the layout in a committed lock file ([`lock`]): written when
-//! missing, checked on every build, and any difference fails the build with the
+//! [`Builder::lock`] pins the layout in a committed lock file ([`lock`]). Until the
+//! vendor pins it (`JAUS_UPDATE_LOCK=1 cargo build` or `jaus-gen lock`, when the
+//! definitions are ready for peers) nothing is checked and the build says how to pin;
+//! once pinned it is checked on every build, and any difference fails the build with the
 //! classified changes and the command that updates it after review,
 //! `JAUS_UPDATE_LOCK=1 cargo build`:
 //!
@@ -184,6 +189,24 @@ pub struct Generated {
     pub types: usize,
     /// Number of component interfaces generated.
     pub component_count: usize,
+    /// What the lock file check of [`Builder::lock`] found.
+    pub lock: LockState,
+}
+
+/// What [`Builder::check_lock`] found.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum LockState {
+    /// No lock file configured.
+    Off,
+    /// The lock file does not exist: the layout is not pinned yet and nothing is
+    /// checked, so a new crate's definitions can be edited freely. Under cargo the build
+    /// prints how to pin it ([`lock::unpinned_note`]).
+    Unpinned,
+    /// The definitions have the layout of the lock file.
+    Matches,
+    /// The lock file was written: pinned ([`Builder::update_lock`] on a missing file) or
+    /// updated after a reviewed change.
+    Written,
 }
 
 impl Builder {
@@ -249,7 +272,10 @@ impl Builder {
     /// Checks the definitions' wire layout against the lock file at `path` (relative to
     /// the crate's directory in a build script), as Cargo.lock pins dependencies:
     ///
-    /// * no file: it is written (commit it);
+    /// * no file: the layout is not pinned yet, and nothing is checked (a new crate's
+    ///   definitions change freely); under cargo the build warns, naming the command that
+    ///   pins it when the definitions are ready for peers, `JAUS_UPDATE_LOCK=1 cargo
+    ///   build` (or `jaus-gen lock`): commit the file it writes;
     /// * the same layout: nothing happens;
     /// * any difference: [`Builder::render`] and [`Builder::generate`] fail with
     ///   [`Error::Lock`], which lists every change classified as by `jaus-gen diff` (old:
@@ -303,14 +329,21 @@ impl Builder {
         Ok(spec)
     }
 
-    /// Checks (or writes, or updates) the lock file of [`Builder::lock`] against `spec`;
-    /// nothing without one. [`Builder::render`] calls it.
-    pub fn check_lock(&self, spec: &Spec) -> Result<(), Error> {
+    /// Checks (or pins, or updates) the lock file of [`Builder::lock`] against `spec`;
+    /// [`LockState::Off`] without one. [`Builder::render`] calls it.
+    pub fn check_lock(&self, spec: &Spec) -> Result<LockState, Error> {
         let Some(path) = &self.lock else {
-            return Ok(());
+            return Ok(LockState::Off);
         };
+        let exists = path.exists();
         if self.cargo {
-            println!("cargo:rerun-if-changed={}", path.display());
+            // A missing file would rerun the build script at every build: until the lock
+            // is pinned, its directory is watched instead (pinning adds a file to it).
+            let watched = match path.parent() {
+                Some(dir) if !exists && !dir.as_os_str().is_empty() => dir,
+                _ => path.as_path(),
+            };
+            println!("cargo:rerun-if-changed={}", watched.display());
             println!("cargo:rerun-if-env-changed={}", lock::UPDATE_ENV);
         }
         let update = self.update_lock.unwrap_or_else(|| {
@@ -325,17 +358,32 @@ impl Builder {
         let old_text = match std::fs::read_to_string(path) {
             Ok(t) => t,
             Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
-                return write_if_changed(path, &text);
+                if update {
+                    write_if_changed(path, &text)?;
+                    if self.cargo {
+                        println!("cargo:warning={}: pinned; commit it", path.display());
+                    }
+                    return Ok(LockState::Written);
+                }
+                if self.cargo {
+                    for line in lock::unpinned_note(path).lines() {
+                        println!("cargo:warning={line}");
+                    }
+                }
+                return Ok(LockState::Unpinned);
             }
             Err(e) => return Err(io(e)),
         };
         if old_text == text {
-            return Ok(());
+            return Ok(LockState::Matches);
         }
         let name = snapshot::label(path);
         let old = match lock::parse(&old_text, &name) {
             Ok(old) => old,
-            Err(_) if update => return write_if_changed(path, &text),
+            Err(_) if update => {
+                write_if_changed(path, &text)?;
+                return Ok(LockState::Written);
+            }
             Err(e) => {
                 return Err(Error::Lock(format!(
                     "{e}\nrewrite the lock file from the definitions with: {}",
@@ -346,7 +394,7 @@ impl Builder {
         let changes = diff::diff(&old, &snap);
         if changes.changes.is_empty() && lock::to_text(&old) == text {
             // Only the file's formatting or comments differ: the layout is the same.
-            return Ok(());
+            return Ok(LockState::Matches);
         }
         if update {
             if self.cargo {
@@ -354,7 +402,8 @@ impl Builder {
                     println!("cargo:warning={}: {c}", path.display());
                 }
             }
-            return write_if_changed(path, &text);
+            write_if_changed(path, &text)?;
+            return Ok(LockState::Written);
         }
         let listing = if changes.changes.is_empty() {
             "(the lock file holds a layout this version of jaus-gen does not classify)\n"
@@ -374,7 +423,7 @@ impl Builder {
     /// Renders the code without writing it.
     pub fn render(&self) -> Result<Generated, Error> {
         let spec = self.load()?;
-        self.check_lock(&spec)?;
+        let lock = self.check_lock(&spec)?;
         let rt = self.runtime.as_deref().unwrap_or("::jaus");
         let ctx = build_context(&spec, self.feature_gates, rt);
         let mut env = self.environment()?;
@@ -403,6 +452,7 @@ impl Builder {
             messages: spec.messages.len(),
             types: spec.types.len(),
             component_count: comps.len(),
+            lock,
         })
     }
 

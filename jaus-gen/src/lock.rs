@@ -42,6 +42,18 @@ pub const UPDATE_ENV: &str = "JAUS_UPDATE_LOCK";
 /// The command that rewrites a crate's lock file after a reviewed change.
 pub const UPDATE_COMMAND: &str = "JAUS_UPDATE_LOCK=1 cargo build";
 
+/// What the build says while a crate's lock file does not exist: the layout is not
+/// pinned, nothing is checked, and how to pin it.
+pub fn unpinned_note(path: &std::path::Path) -> String {
+    format!(
+        "{p}: the wire layout is not pinned yet, so the definitions are not checked and \
+         may change freely.\n\
+         When they are ready for peers, pin the layout and commit {p}:\n    {UPDATE_COMMAND}\n\
+         From then on every change of the wire layout fails the build until reviewed.",
+        p = path.display()
+    )
+}
+
 /// A double-quoted YAML scalar (JSON string escapes are valid YAML).
 fn quoted(s: &str) -> String {
     let mut o = String::with_capacity(s.len() + 2);

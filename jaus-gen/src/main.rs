@@ -72,7 +72,9 @@ enum Cmd {
     Diff {
         /// The old revision: a directory of YAML, a YAML file, a comma-separated list of
         /// both (`jaus-spec/defs,acme.yaml`), a git revision `REV:PATH`
-        /// (`HEAD~1:jaus-spec/defs`) or a lock file.
+        /// (`HEAD~1:jaus-spec/defs`) or a lock file. YAML without the SDK's `core` group
+        /// and without `extends: none` is a vendor's overlay: it is read on the SDK's
+        /// built-in definitions and only its own items are compared.
         old: String,
         /// The new revision, written the same way.
         new: String,
@@ -83,8 +85,10 @@ enum Cmd {
         #[arg(long, value_enum, default_value_t = FailOn::WireBreaking)]
         fail_on: FailOn,
     },
-    /// Write the lock file of a definition set (the wire-layout snapshot that
+    /// Write (pin) the lock file of a definition set (the wire-layout snapshot that
     /// `Builder::lock` checks); with --check, compare instead and exit 1 on any change.
+    /// A vendor's overlay alone (`--overlay defs/my.yaml`) is read on the SDK's
+    /// definitions and locked with its own items only, as its build checks it.
     Lock {
         #[command(flatten)]
         defs: SpecArgs,
@@ -156,10 +160,16 @@ fn diff(old: &str, new: &str, format: Format, fail_on: Severity) -> ExitCode {
     ExitCode::from(d.exit_status(fail_on))
 }
 
-/// `jaus-gen lock`.
+/// `jaus-gen lock`: the definitions are read as `jaus-gen diff` reads a revision, so an
+/// overlay alone (`--overlay defs/my.yaml`, or `--spec defs` holding only it) is locked
+/// on the SDK's definitions with its own items only, as its build locks it.
 fn lock(defs: SpecArgs, path: PathBuf, check: bool) -> Result<(), jaus_gen::Error> {
-    let spec = builder(defs).load()?;
-    let snap = jaus_gen::snapshot::Snapshot::from_spec(&spec);
+    let paths: Vec<PathBuf> = if defs.spec.is_empty() && defs.overlays.is_empty() {
+        vec![jaus_spec::defs_dir()]
+    } else {
+        defs.spec.into_iter().chain(defs.overlays).collect()
+    };
+    let snap = jaus_gen::revision::load_paths(&paths)?;
     if !check {
         jaus_gen::write_if_changed(&path, &jaus_gen::lock::to_text(&snap))?;
         println!("wrote {}", path.display());

@@ -11,6 +11,21 @@
 //! A path that exists is read from disk even when it contains a colon. Definitions are
 //! validated and resolved by `jaus-spec`; the first problem set is returned as the
 //! error, with file and line.
+//!
+//! ## A vendor's overlay alone
+//!
+//! YAML is read the way the build reads it ([`yaml_snapshot`]):
+//!
+//! * files that hold the SDK's definitions themselves (one of them defines the group
+//!   `core`: `jaus-spec/defs`, `HEAD~1:jaus-spec/defs`, `jaus-spec/defs,acme.yaml`) or
+//!   that say `extends: none` are a definition set of their own, and every item of it is
+//!   compared;
+//! * any other YAML is a vendor's overlay, loaded on the SDK's definitions built into
+//!   jaus-gen (`jaus_spec::load_overlay_texts`, as `Builder::overlay`, `jaus-gen lock
+//!   --overlay` and `jaus --spec` load it): it may use the SDK's types and messages
+//!   (`TimeStamp`), and only its own items are compared, which is also what the lock
+//!   file of such a build holds. So `jaus-gen diff HEAD:defs/my.yaml defs/my.yaml` and
+//!   `jaus-gen diff defs/my.lock defs/my.yaml` compare like with like.
 
 use crate::lock;
 use crate::snapshot::{label, Snapshot};
@@ -164,6 +179,57 @@ pub fn load(arg: &str) -> Result<Snapshot, Error> {
         }
         return lock::parse(&text, &label(Path::new(&name))).map_err(Error::Revision);
     }
-    let spec = jaus_spec::load_texts(yaml)?;
+    yaml_snapshot(yaml)
+}
+
+/// Why a set of YAML files is a definition set of its own rather than a vendor's
+/// overlay on the SDK's definitions (see the module documentation), or `None`.
+pub fn own_set(files: &[(PathBuf, String)]) -> Option<&'static str> {
+    #[derive(serde::Deserialize)]
+    struct Head {
+        #[serde(default)]
+        group: Option<String>,
+        #[serde(default)]
+        extends: Option<String>,
+    }
+    let heads: Vec<Head> = files
+        .iter()
+        .filter_map(|(_, text)| serde_yaml::from_str::<Head>(text).ok())
+        .collect();
+    if heads.iter().any(|h| h.group.as_deref() == Some("core")) {
+        Some("it holds the SDK's definitions (group `core`)")
+    } else if heads.iter().any(|h| h.extends.as_deref() == Some("none")) {
+        Some("`extends: none`")
+    } else {
+        None
+    }
+}
+
+/// The snapshot of YAML files: a definition set of its own, or a vendor's overlay on
+/// the SDK's built-in definitions with only its own items (see the module
+/// documentation).
+pub fn yaml_snapshot(files: Vec<(PathBuf, String)>) -> Result<Snapshot, Error> {
+    let spec = if own_set(&files).is_some() {
+        jaus_spec::load_texts(files)?
+    } else {
+        jaus_spec::load_overlay_texts(files)?
+    };
     Ok(Snapshot::from_spec(&spec))
+}
+
+/// The snapshot of the directories and files `paths` on disk, in order, read as
+/// [`yaml_snapshot`] reads them (what `jaus-gen lock --spec DIR --overlay FILE` locks).
+pub fn load_paths(paths: &[PathBuf]) -> Result<Snapshot, Error> {
+    let mut yaml = Vec::new();
+    for p in paths {
+        let arg = p.display().to_string();
+        if !p.exists() {
+            return Err(err(&arg, "no such file or directory"));
+        }
+        match part(&arg, &arg)? {
+            Loaded::Yaml(v) => yaml.extend(v),
+            Loaded::Lock(..) => return Err(err(&arg, "a lock file is not a definition")),
+        }
+    }
+    yaml_snapshot(yaml)
 }

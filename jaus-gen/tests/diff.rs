@@ -13,13 +13,12 @@
 
 use jaus_gen::diff::{diff, ChangeKind, Diff, Severity};
 use jaus_gen::snapshot::Snapshot;
-use jaus_gen::{lock, revision, Builder, Error};
+use jaus_gen::{lock, revision, Builder, Error, LockState};
 use std::collections::BTreeSet;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
-fn dir() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/diff")
-}
+mod common;
+use common::{dir, golden};
 
 fn snap(name: &str) -> Snapshot {
     let spec = jaus_spec::load_dirs(&[dir().join(name)]).unwrap_or_else(|e| panic!("{e}"));
@@ -28,26 +27,6 @@ fn snap(name: &str) -> Snapshot {
 
 fn full() -> Diff {
     diff(&snap("old"), &snap("new"))
-}
-
-/// Compares `text` with the golden file `name` (rewritten under `UPDATE_GOLDEN`).
-fn golden(name: &str, text: &str) {
-    let path = dir().join(name);
-    if std::env::var_os("UPDATE_GOLDEN").is_some() {
-        std::fs::write(&path, text).unwrap();
-        return;
-    }
-    let expected = std::fs::read_to_string(&path).unwrap_or_default();
-    if expected != text {
-        let d = similar::TextDiff::from_lines(expected.as_str(), text)
-            .unified_diff()
-            .header(&format!("tests/diff/{name}"), "produced")
-            .to_string();
-        panic!(
-            "output differs from tests/diff/{name}; review, then run \
-             `UPDATE_GOLDEN=1 cargo test -p jaus-gen --test diff`:\n{d}"
-        );
-    }
 }
 
 #[test]
@@ -134,7 +113,13 @@ fn changes_carry_positions_on_both_sides() {
     let (old, new) = (c.old.as_ref().unwrap(), c.new.as_ref().unwrap());
     assert_eq!((old.file.as_str(), old.line), ("messages.yaml", 8));
     assert_eq!((new.file.as_str(), new.line), ("messages.yaml", 8));
-    assert_eq!(c.detail, "scale [0, 10000] → [0, 327.67]");
+    // What the change does to a value: 1 m/s is 7 counts of the old scale, 0.035 m/s of
+    // the new one; the new 1 m/s is 200 counts, 30.52 m/s of the old scale.
+    assert_eq!(
+        c.detail,
+        "scale [0, 10000] → [0, 327.67]: an old peer's 1 m/s arrives as 0.035 m/s; \
+         a new peer's 1 m/s arrives at an old peer as 30.52 m/s"
+    );
 }
 
 #[test]
@@ -218,14 +203,14 @@ fn a_malformed_lock_file_is_an_error_with_its_line() {
     );
 }
 
-fn build(spec: &str, lock: &Path, update: bool) -> Result<(), Error> {
+fn build(spec: &str, lock: &Path, update: bool) -> Result<LockState, Error> {
     Builder::new()
         .emit_rerun_if_changed(false)
         .spec_dir(dir().join(spec))
         .lock(lock)
         .update_lock(update)
         .render()
-        .map(|_| ())
+        .map(|g| g.lock)
 }
 
 #[test]
@@ -235,12 +220,16 @@ fn a_build_fails_on_a_layout_that_differs_from_its_lock_until_it_is_updated() {
     std::fs::create_dir_all(&tmp).unwrap();
     let lock = tmp.join("jaus.lock");
 
-    // No lock file: the build writes it.
-    build("old", &lock, false).unwrap();
+    // No lock file: nothing is pinned, nothing is checked, nothing is written.
+    assert_eq!(build("old", &lock, false).unwrap(), LockState::Unpinned);
+    assert_eq!(build("new", &lock, false).unwrap(), LockState::Unpinned);
+    assert!(!lock.exists());
+    // Pinning (`JAUS_UPDATE_LOCK=1 cargo build`) writes it.
+    assert_eq!(build("old", &lock, true).unwrap(), LockState::Written);
     let written = std::fs::read_to_string(&lock).unwrap();
     assert_eq!(written, lock::to_text(&snap("old")));
     // Same layout: nothing to do.
-    build("old", &lock, false).unwrap();
+    assert_eq!(build("old", &lock, false).unwrap(), LockState::Matches);
 
     // A breaking revision fails, naming the change with both positions and the command.
     let e = build("new", &lock, false).unwrap_err();

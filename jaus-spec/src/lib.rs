@@ -533,6 +533,12 @@ fn read_files(files: Vec<PathBuf>) -> Result<Vec<(PathBuf, String)>, SpecErrors>
 /// outside the experimental code range.
 pub fn load_overlays<Q: AsRef<Path>>(overlays: &[Q]) -> Result<Spec, SpecErrors> {
     let own = read_files(overlays.iter().map(|p| p.as_ref().to_path_buf()).collect())?;
+    load_overlay_texts(own)
+}
+
+/// [`load_overlays`] of files already read, as `(path, text)` pairs (the path is used
+/// in errors and positions only): a vendor's overlay from a git revision, say.
+pub fn load_overlay_texts(own: Vec<(PathBuf, String)>) -> Result<Spec, SpecErrors> {
     let mut extends = true;
     let mut errors = Vec::new();
     for (path, text) in &own {
