@@ -75,6 +75,12 @@ impl<I: Interface> Context<'_, I> {
             .and_then(|(_, s)| *s)
     }
 
+    /// Whether `requester` holds an event of this component on `report` (Create Event
+    /// confirmed, not cancelled, its requester not gone).
+    pub fn has_subscriber(&self, requester: Address, report: CommandCode) -> bool {
+        self.rt.events.has(requester, report)
+    }
+
     /// Current UTC (since 1970-01-01), when the clock is set.
     pub fn utc(&self) -> Option<Duration> {
         self.rt.clock.utc(self.rt.now)

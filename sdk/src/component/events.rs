@@ -76,6 +76,13 @@ impl<M> EventTable<M> {
         ReportEvents { events }
     }
 
+    /// Whether `requester` holds an event on `report`.
+    pub(super) fn has(&self, requester: Address, report: CommandCode) -> bool {
+        self.events
+            .iter()
+            .any(|e| e.requester == requester && e.report == report)
+    }
+
     fn free_id(&self) -> Option<u8> {
         (0..=254u8).find(|id| !self.events.iter().any(|e| e.id == *id))
     }

@@ -1,148 +1,21 @@
 //! The node manager component (id 1): identification, configuration and subsystem list
-//! of its node, heartbeats, and the system tree built by discovery (docs/wire.md §8).
+//! of its node, heartbeats, the system tree built by discovery ([`SystemTree`];
+//! docs/wire.md §8), and its node's configuration told to the node managers that hold
+//! it without a subscription (docs/wire.md §8.3).
+
+mod announce;
+mod tree;
 
 use std::collections::BTreeMap;
 use std::time::{Duration, Instant};
+
+pub use tree::{ComponentInfo, NodeInfo, Subscription, SubsystemInfo, SystemTree};
 
 use crate::codec::Encode;
 use crate::component::Refused;
 use crate::components::node_manager::{Ctx, NodeManager};
 use crate::messages::*;
 use crate::{Address, JausMessage};
-
-/// What is known about one component of the system.
-#[derive(Debug, Clone, Default, PartialEq, Eq)]
-pub struct ComponentInfo {
-    /// Identification text, once answered.
-    pub name: Option<String>,
-    /// Service types it reported (component ids; 0 = core), once answered.
-    pub services: Option<Vec<u16>>,
-    /// Command codes of the messages its services take, from the same report.
-    pub inputs: Vec<u16>,
-    /// Command codes of the messages its services send, from the same report.
-    pub outputs: Vec<u16>,
-}
-
-/// What is known about one node.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct NodeInfo {
-    /// Identification text, once answered.
-    pub name: Option<String>,
-    /// Components by (component id, instance).
-    pub components: BTreeMap<(u8, u8), ComponentInfo>,
-    /// Whether a Report Configuration was received.
-    pub configured: bool,
-    /// When it was last heard from.
-    pub last_heard: Instant,
-    /// This node manager's subscription to the node's configuration events.
-    pub subscription: Subscription,
-    /// When its configuration was last asked for (`None`: never).
-    pub config_asked: Option<Instant>,
-}
-
-/// The state of a node manager's subscription to another node's configuration
-/// (Create Event, every change, on Report Configuration of that node).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum Subscription {
-    /// Not asked yet (or the node is this node).
-    #[default]
-    None,
-    /// Create Event sent at that instant, not answered yet.
-    Requested(Instant),
-    /// Confirmed with this event id: configuration changes arrive as Events.
-    Confirmed(u8),
-    /// Refused: the configuration is only re-queried periodically.
-    Rejected,
-}
-
-/// What is known about one subsystem.
-#[derive(Debug, Clone, Default, PartialEq, Eq)]
-pub struct SubsystemInfo {
-    /// Identification text, once answered.
-    pub name: Option<String>,
-    /// Nodes by id.
-    pub nodes: BTreeMap<u8, NodeInfo>,
-}
-
-/// The system as this node manager sees it.
-#[derive(Debug, Clone, Default, PartialEq, Eq)]
-pub struct SystemTree {
-    /// Subsystems by id (this node's own subsystem included, with this node).
-    pub subsystems: BTreeMap<u8, SubsystemInfo>,
-}
-
-impl SystemTree {
-    /// Every component address known.
-    pub fn components(&self) -> Vec<Address> {
-        let mut v = Vec::new();
-        for (ss, s) in &self.subsystems {
-            for (n, node) in &s.nodes {
-                for (c, i) in node.components.keys() {
-                    v.push(Address::new(*ss, *n, *c, *i));
-                }
-            }
-        }
-        v
-    }
-
-    /// What is known about the component at `a`.
-    pub fn component(&self, a: Address) -> Option<&ComponentInfo> {
-        self.subsystems
-            .get(&a.subsystem)?
-            .nodes
-            .get(&a.node)?
-            .components
-            .get(&(a.component, a.instance))
-    }
-
-    /// Whether node `node` of subsystem `ss` is known.
-    pub fn has_node(&self, ss: u8, node: u8) -> bool {
-        self.subsystems
-            .get(&ss)
-            .is_some_and(|s| s.nodes.contains_key(&node))
-    }
-
-    /// A readable multi-line view.
-    pub fn render(&self) -> String {
-        use std::fmt::Write as _;
-        let mut out = String::new();
-        for (ss, s) in &self.subsystems {
-            let _ = writeln!(
-                out,
-                "subsystem {ss} {}",
-                s.name
-                    .as_deref()
-                    .map(|n| format!("'{n}'"))
-                    .unwrap_or_default()
-            );
-            for (n, node) in &s.nodes {
-                let _ = writeln!(
-                    out,
-                    "  node {n} {}",
-                    node.name
-                        .as_deref()
-                        .map(|n| format!("'{n}'"))
-                        .unwrap_or_default()
-                );
-                for ((c, i), info) in &node.components {
-                    let _ = writeln!(
-                        out,
-                        "    {ss}.{n}.{c}.{i} {}{}",
-                        info.name
-                            .as_deref()
-                            .map(|n| format!("'{n}'"))
-                            .unwrap_or_else(|| "(unidentified)".into()),
-                        info.services
-                            .as_ref()
-                            .map(|s| format!(" services {s:?}"))
-                            .unwrap_or_default()
-                    );
-                }
-            }
-        }
-        out
-    }
-}
 
 /// Settings of the node manager.
 #[derive(Debug, Clone)]
@@ -168,6 +41,13 @@ pub struct ManagerConfig {
     pub heartbeat_gap: Duration,
     /// An unanswered Create Event is sent again after this long. Default 3 s.
     pub subscribe_retry: Duration,
+    /// The node manager of another node that has neither asked for this node's
+    /// configuration nor subscribed to it this long after its node was first heard is
+    /// sent the configuration as a report (it may hold it from an earlier run of this
+    /// node: OpenJAUS subscribes only when it discovers a node), and every change after
+    /// that. Default 3 s (external components, heartbeating every second, are back in
+    /// the configuration by then).
+    pub announce_after: Duration,
 }
 
 /// The defaults the field documentation states:
@@ -180,6 +60,7 @@ pub struct ManagerConfig {
 /// assert_eq!(m.heartbeat_to, jaus::Address::new(255, 255, 1, 1));
 /// assert_eq!((m.config_refresh, m.heartbeat_gap, m.subscribe_retry),
 ///     (Duration::from_secs(10), Duration::from_millis(2500), Duration::from_secs(3)));
+/// assert_eq!(m.announce_after, Duration::from_secs(3));
 /// ```
 impl Default for ManagerConfig {
     fn default() -> Self {
@@ -192,6 +73,7 @@ impl Default for ManagerConfig {
             config_refresh: Duration::from_secs(10),
             heartbeat_gap: Duration::from_millis(2500),
             subscribe_retry: Duration::from_secs(3),
+            announce_after: Duration::from_secs(3),
         }
     }
 }
@@ -208,6 +90,7 @@ pub struct StockNodeManager {
     gone: Vec<Address>,
     changes: u64,
     request_id: u8,
+    announcer: announce::Announcer,
 }
 
 impl StockNodeManager {
@@ -224,6 +107,7 @@ impl StockNodeManager {
             gone: Vec::new(),
             changes: 0,
             request_id: 0,
+            announcer: announce::Announcer::default(),
         }
     }
 
@@ -280,6 +164,37 @@ impl StockNodeManager {
                 })
                 .collect(),
         }
+    }
+
+    /// This node's configuration (node level: its components; subsystem level: every
+    /// node of the subsystem in the tree), the answer to Query Configuration.
+    fn configuration(&self, level: QueryLevel) -> Option<ReportConfiguration> {
+        let nodes = match level {
+            QueryLevel::Node => vec![self.own_node()],
+            QueryLevel::Subsystem => self
+                .tree
+                .subsystems
+                .get(&self.me.subsystem)
+                .map(|s| {
+                    s.nodes
+                        .iter()
+                        .map(|(n, info)| NodeConfiguration {
+                            node_id: *n,
+                            components: info
+                                .components
+                                .keys()
+                                .map(|(c, i)| ComponentConfiguration {
+                                    component_id: *c,
+                                    instance_id: *i,
+                                })
+                                .collect(),
+                        })
+                        .collect()
+                })
+                .unwrap_or_default(),
+            _ => return None,
+        };
+        Some(ReportConfiguration { nodes })
     }
 
     /// The node of `a`, if it is in the tree.
@@ -420,37 +335,16 @@ impl NodeManager for StockNodeManager {
         ctx: &mut Ctx<'_>,
         q: &QueryConfiguration,
     ) -> Result<ReportConfiguration, Refused> {
-        self.refresh_self(ctx.now());
-        match q.query_field {
-            QueryLevel::Node => Ok(ReportConfiguration {
-                nodes: vec![self.own_node()],
-            }),
-            QueryLevel::Subsystem => {
-                let nodes = self
-                    .tree
-                    .subsystems
-                    .get(&self.me.subsystem)
-                    .map(|s| {
-                        s.nodes
-                            .iter()
-                            .map(|(n, info)| NodeConfiguration {
-                                node_id: *n,
-                                components: info
-                                    .components
-                                    .keys()
-                                    .map(|(c, i)| ComponentConfiguration {
-                                        component_id: *c,
-                                        instance_id: *i,
-                                    })
-                                    .collect(),
-                            })
-                            .collect()
-                    })
-                    .unwrap_or_default();
-                Ok(ReportConfiguration { nodes })
-            }
-            _ => Err(Refused::Unsupported),
+        let now = ctx.now();
+        self.refresh_self(now);
+        let report = self
+            .configuration(q.query_field)
+            .ok_or(Refused::Unsupported)?;
+        if let Some(src) = ctx.source() {
+            self.announcer
+                .answered(self.me, src, q.query_field, &report, now);
         }
+        Ok(report)
     }
 
     fn on_query_subsystem_list(
@@ -701,6 +595,25 @@ impl NodeManager for StockNodeManager {
     fn tick(&mut self, ctx: &mut Ctx<'_>) {
         let now = ctx.now();
         self.refresh_self(now);
+        // Node managers holding this node's configuration without a subscription are
+        // told of a change before anything else is sent (a component that just joined
+        // is asked its identification below).
+        let me = self.me;
+        let others: Vec<(u8, u8)> = self
+            .tree
+            .subsystems
+            .iter()
+            .flat_map(|(ss, s)| s.nodes.keys().map(move |n| (*ss, *n)))
+            .filter(|&(ss, n)| (ss, n) != (me.subsystem, me.node))
+            .collect();
+        let mut announcer = std::mem::take(&mut self.announcer);
+        announcer.run(
+            ctx,
+            &others,
+            |level| self.configuration(level).unwrap_or_default(),
+            self.config.announce_after,
+        );
+        self.announcer = announcer;
         if self.next_heartbeat.is_none_or(|t| now >= t) {
             self.next_heartbeat = Some(now + self.config.heartbeat);
             ctx.send(self.config.heartbeat_to, ReportHeartbeatPulse {});
@@ -709,7 +622,6 @@ impl NodeManager for StockNodeManager {
         // period while unanswered (queries and answers may be lost).
         if self.next_requery.is_none_or(|t| now >= t) {
             self.next_requery = Some(now + self.config.heartbeat);
-            let me = self.me;
             let pending: Vec<Address> = self
                 .tree
                 .components()
@@ -752,7 +664,6 @@ impl NodeManager for StockNodeManager {
         // Staleness: remote nodes not heard from within the timeout are removed, with
         // their components.
         let timeout = self.config.node_timeout;
-        let me = self.me;
         let mut gone = Vec::new();
         for (ss, s) in &mut self.tree.subsystems {
             s.nodes.retain(|n, info| {
