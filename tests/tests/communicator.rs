@@ -91,7 +91,12 @@ fn data_link_messages_select_set_and_report_only_for_the_controller() {
     with_ack(&mut bus, QueryDataLinkStatus { data_link_id: 9 });
     bus.run_for(Duration::from_millis(20));
     assert_eq!(answers(&mut bus, AckNak::Nak), 1);
-    assert!(replies(&mut bus).is_empty());
+    // No report: only the reason of the NAK (the SDK's Report Refusal).
+    let r = replies(&mut bus);
+    assert!(
+        r.iter().all(|m| matches!(m, Message::ReportRefusal(_))) && r.len() == 1,
+        "{r:?}"
+    );
 
     // Commands need control.
     with_ack(&mut bus, SetDataLinkSelect { data_link_id: 2 });

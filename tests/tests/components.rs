@@ -883,10 +883,20 @@ fn acknowledgements_follow_the_outcome() {
         .received()
         .iter()
         .map(|r| r.header.ack_nak)
+        .filter(|a| *a != jaus::wire::AckNak::None)
         .collect();
     // The probe keeps decodable messages; an ACK/NAK has an empty body, which Set Wrench
     // Effort (presence vector first) does not decode, so read the bus trace instead.
     assert!(naks.is_empty());
+    // The reason came first, in the SDK's Report Refusal (issue 29).
+    let reason = probe(&bus, OCU).messages().find_map(|m| match m {
+        Message::ReportRefusal(r) => Some(r.clone()),
+        _ => None,
+    });
+    let reason = reason.expect("a Report Refusal");
+    assert_eq!(reason.refused_code, SetWrenchEffort::CODE.0);
+    assert_eq!(reason.reason, jaus::messages::RefusalReason::NotController);
+    assert_eq!(reason.text, "sender is not the component in control");
     let nak = bus
         .trace()
         .any(|d| d.header.source == PD && d.header.ack_nak == jaus::wire::AckNak::Nak);

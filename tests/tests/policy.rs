@@ -12,8 +12,8 @@ use std::time::{Duration, Instant};
 use jaus::codec::{Decode, Encode};
 use jaus::messages::{
     ClearEmergency, ClearEmergencyCode, ComponentState, ConfirmComponentControl, ControlResponse,
-    EmergencyCode, QueryComponentStatus, ReportComponentStatus, RequestComponentControl,
-    SetEmergency, Standby,
+    EmergencyCode, QueryComponentStatus, RefusalReason, ReportComponentStatus, ReportRefusal,
+    RequestComponentControl, SetEmergency, Standby,
 };
 use jaus::net::policy::{Permission, Policy, Rule};
 use jaus::net::{udp, Framing, NetStats, NodeConfig};
@@ -307,7 +307,7 @@ fn a_query_rule_answers_queries_refuses_commands_and_lets_emergencies_through() 
     assert!(v.log().contains("sender=42.1.40.1"), "{}", v.log());
     // (tracing prints the `message` field, the message's name, without its key.)
     assert!(
-        v.log().contains(" Standby code=0x0003 rule=rule 1"),
+        v.log().contains("refused by the node's policy: rule 1 (from 42.1.*.*) may query only sender=42.1.40.1 destination=1.1.33.1 Standby code=0x0003"),
         "{}",
         v.log()
     );
@@ -348,9 +348,32 @@ fn senders_no_rule_names_get_the_default() {
     let v = vehicle(Some(policy()));
     let d = Sender::new("9.1.40.1", &v);
     ready(&d);
-    assert!(!d.acked(&Standby {}));
+    // NAKed, and the reason comes first, in the SDK's Report Refusal.
+    d.send(PD, &Standby {}, true);
+    let got = d.received(Duration::from_secs(1));
+    let codes: Vec<_> = got
+        .iter()
+        .map(|(h, _)| (h.command_code, h.ack_nak))
+        .collect();
+    let at = |code, ack| codes.iter().position(|c| *c == (code, ack));
+    let report = at(ReportRefusal::CODE, AckNak::None).expect("a Report Refusal");
+    let nak = at(Standby::CODE, AckNak::Nak).expect("a NAK");
+    assert!(report < nak, "{codes:?}");
+    let r = ReportRefusal::from_bytes(&got[report].1).unwrap();
+    assert_eq!(
+        (r.refused_code, r.reason),
+        (Standby::CODE.0, RefusalReason::Policy)
+    );
+    assert_eq!(
+        r.text,
+        "refused by the node's policy: the default may query only"
+    );
     assert_eq!(v.seen().per_rule, [0, 0, 0, 1]);
-    assert!(v.log().contains("rule=the default"), "{}", v.log());
+    assert!(
+        v.log().contains("the default may query only"),
+        "{}",
+        v.log()
+    );
 }
 
 #[test]

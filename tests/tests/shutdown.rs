@@ -15,8 +15,9 @@ use std::time::{Duration, Instant};
 use common::{free_port, jaus_bin};
 use serde_json::Value;
 
-/// Kills the process if the test fails before it ended.
-struct Proc(Child);
+/// A process (killed if the test fails before it ended) whose stderr is read as it
+/// comes (a full pipe would block the process's logging: not the bug under test).
+struct Proc(Child, std::sync::Arc<std::sync::Mutex<String>>);
 
 impl Drop for Proc {
     fn drop(&mut self) {
@@ -26,6 +27,25 @@ impl Drop for Proc {
 }
 
 impl Proc {
+    fn new(mut child: Child) -> Self {
+        let text = std::sync::Arc::new(std::sync::Mutex::new(String::new()));
+        if let Some(mut e) = child.stderr.take() {
+            let t = text.clone();
+            std::thread::spawn(move || {
+                let mut buf = [0u8; 4096];
+                while let Ok(n) = e.read(&mut buf) {
+                    if n == 0 {
+                        break;
+                    }
+                    t.lock()
+                        .unwrap()
+                        .push_str(&String::from_utf8_lossy(&buf[..n]));
+                }
+            });
+        }
+        Proc(child, text)
+    }
+
     /// Waits up to `limit` for the process to end.
     fn exit_within(&mut self, limit: Duration) -> Option<ExitStatus> {
         let until = Instant::now() + limit;
@@ -46,12 +66,11 @@ impl Proc {
         assert!(ok.success());
     }
 
+    /// What the process wrote to stderr so far (all of it once it ended: give the
+    /// reader a moment).
     fn stderr(&mut self) -> String {
-        let mut s = String::new();
-        if let Some(mut e) = self.0.stderr.take() {
-            let _ = e.read_to_string(&mut s);
-        }
-        s
+        std::thread::sleep(Duration::from_millis(100));
+        self.1.lock().unwrap().clone()
     }
 }
 
@@ -80,9 +99,11 @@ fn vehicle(view: &Value) -> Option<&Value> {
 /// through the API and checks the vehicle is shown in Emergency within a second.
 fn ocu_with_an_emergency(seconds: u32) -> (Proc, Instant) {
     let port = free_port();
+    // (Built first: the clock starts when the process does.)
+    let bin = jaus_bin();
     let started = Instant::now();
-    let mut p = Proc(
-        Command::new(jaus_bin())
+    let mut p = Proc::new(
+        Command::new(bin)
             .args(["-v", "ocu", "--vehicle", "--seconds", &seconds.to_string()])
             .args(["--http", &format!("127.0.0.1:{port}")])
             .stdout(Stdio::piped())
@@ -180,7 +201,7 @@ fn node_with_receivers(seconds: Option<u32>) -> Proc {
     if let Some(s) = seconds {
         cmd.args(["--seconds", &s.to_string()]);
     }
-    Proc(
+    Proc::new(
         cmd.stdout(Stdio::null())
             .stderr(Stdio::piped())
             .spawn()

@@ -24,6 +24,15 @@ pub struct Catalogue {
     schema: Option<Schema>,
 }
 
+/// An unknown message name, said without `--spec`: a vendor's message is known only
+/// with its overlay, so the error says how to give it.
+pub fn with_overlay_hint(error: String, overlays: bool) -> String {
+    if overlays || !error.starts_with("no message named") {
+        return error;
+    }
+    format!("{error} (the SDK's messages only: a vendor's experimental message needs its YAML overlay, e.g. --spec defs/my_vehicle.yaml)")
+}
+
 impl Catalogue {
     /// The SDK's messages only.
     pub fn sdk() -> Catalogue {
@@ -92,7 +101,7 @@ impl Catalogue {
     pub fn encode_line(&self, line: &str) -> Result<String, String> {
         match &self.schema {
             Some(s) => s.encode_line(line),
-            None => jaus::json::encode_line(line),
+            None => jaus::json::encode_line(line).map_err(|e| with_overlay_hint(e, false)),
         }
     }
 
@@ -100,7 +109,7 @@ impl Catalogue {
     /// it has one. An overlay's message becomes a [`Message::Raw`] of its encoded body.
     pub fn parse_message(&self, json: &str) -> Result<(Option<Address>, Message), String> {
         let Some(s) = &self.schema else {
-            return crate::net::parse_message(json);
+            return crate::net::parse_message(json).map_err(|e| with_overlay_hint(e, false));
         };
         let (header, parsed) = s.parse_line(json).map_err(|e| e.to_string())?;
         match &parsed {

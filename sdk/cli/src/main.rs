@@ -125,6 +125,18 @@ enum Cmd {
         #[arg(long, value_name = "FILE")]
         capture: Option<std::path::PathBuf>,
     },
+    /// Make a node's key and certificate for authenticated QUIC data links: writes
+    /// NAME.crt (for the far end's `peer_cert`) and NAME.key (mode 0600; stays on this
+    /// node), prints both paths and the certificate's SHA-256 fingerprint. Never
+    /// overwrites existing files.
+    Keygen {
+        /// The node's name (letters, digits, `-`, `_`, `.`): the files' names and the
+        /// certificate's subject.
+        name: String,
+        /// Where to write the files (created if missing).
+        #[arg(long, default_value = ".")]
+        dir: std::path::PathBuf,
+    },
     /// Run stock components as OpenJAUS component processes under an OpenJAUS node
     /// manager (or a `jaus node` with `openjaus_components`): each checks in for its
     /// address on the control socket, then talks raw JAUS on the data socket.
@@ -332,7 +344,13 @@ fn parse_sc(
     };
     let code = catalogue
         .code_of(name)
-        .ok_or_else(|| format!("--sc {s}: no message named `{name}` (see `jaus messages`)"))?;
+        .ok_or_else(|| {
+            jaus_cli::catalogue::with_overlay_hint(
+                format!("no message named `{name}` (see `jaus messages`)"),
+                catalogue.schema().is_some(),
+            )
+        })
+        .map_err(|e| format!("--sc {s}: {e}"))?;
     let hz: f64 = hz
         .parse()
         .map_err(|_| format!("--sc {s}: `{hz}` is not a rate in Hz"))?;
@@ -401,16 +419,29 @@ fn session(
             c.wait,
         ));
     }
+    // Every way a command failed to have its effect, in one line (each was printed
+    // with its reason as it happened).
+    let mut failed = Vec::new();
     if o.rejected > 0 {
-        return Err(format!("{} control request(s) rejected", o.rejected));
+        failed.push(format!("{} control request(s) rejected", o.rejected));
     }
     if o.naks > 0 {
-        return Err(format!("{} command(s) refused (NAK)", o.naks));
+        failed.push(format!("{} command(s) refused (NAK)", o.naks));
+    }
+    if !o.unacknowledged.is_empty() {
+        failed.push(format!(
+            "{} command(s) not acknowledged",
+            o.unacknowledged.len()
+        ));
     }
     if o.bad_lines > 0 {
-        return Err(format!("{} bad input line(s)", o.bad_lines));
+        failed.push(format!("{} bad input line(s)", o.bad_lines));
     }
-    Ok(o)
+    if failed.is_empty() {
+        Ok(o)
+    } else {
+        Err(failed.join(", "))
+    }
 }
 
 fn main() -> ExitCode {
@@ -467,7 +498,11 @@ fn main() -> ExitCode {
         } => report(
             &mut err,
             jaus_cli::describe::spec_with(&cli.spec)
-                .and_then(|spec| jaus_cli::describe::describe(&spec, &name))
+                .and_then(|spec| {
+                    jaus_cli::describe::describe(&spec, &name).map_err(|e| {
+                        jaus_cli::catalogue::with_overlay_hint(e, !cli.spec.is_empty())
+                    })
+                })
                 .map(|text| {
                     let _ = write!(out, "{text}");
                 }),
@@ -554,6 +589,9 @@ fn main() -> ExitCode {
                 &mut err,
                 jaus_cli::net::node(&config, d, capture.as_deref(), &STOP, &mut out),
             )
+        }
+        Cmd::Keygen { name, dir } => {
+            report(&mut err, jaus_cli::keygen::keygen(&name, &dir, &mut out))
         }
         Cmd::Attach {
             host,

@@ -13,8 +13,22 @@ use jaus::wire::PacketRef;
 
 use crate::capture::{self, Datagram};
 
+/// Which of OpenJAUS's local component-interface sockets a datagram crossed, if any
+/// (docs/wire.md §8.5): its control socket carries 8-byte control datagrams (check-in,
+/// lookups: not JAUS messages), its data socket raw JAUS packets without JUDP framing.
+fn openjaus_socket(d: &Datagram) -> Option<u16> {
+    use jaus::net::oj::{CONTROL_PORT, DATA_PORT};
+    [d.src.port(), d.dst.port()]
+        .into_iter()
+        .find(|p| *p == CONTROL_PORT || *p == DATA_PORT)
+}
+
 /// The JAUS packet inside a datagram, whichever framing it uses.
-fn unframe(payload: &[u8]) -> Result<&[u8], String> {
+fn unframe(d: &Datagram) -> Result<&[u8], String> {
+    let payload = &d.payload[..];
+    if openjaus_socket(d) == Some(jaus::net::oj::DATA_PORT) {
+        return Ok(payload);
+    }
     let framing = if payload.starts_with(b"JAUS01.0") {
         Framing::Opc
     } else {
@@ -25,7 +39,9 @@ fn unframe(payload: &[u8]) -> Result<&[u8], String> {
 
 /// `jaus decode --pcap FILE`: one JSON line per JAUS message (the form of `jaus decode`
 /// plus `t`, seconds since the first datagram, and the `src`/`dst` sockets); datagrams
-/// that are not JAUS get one error line each on `err`. Returns (messages, errors).
+/// that are not JAUS get one error line each on `err`. OpenJAUS's local component
+/// interface is recognised: raw packets on its data socket (port 24629) are decoded, its
+/// control datagrams (port 24627) skipped with one note. Returns (messages, errors).
 pub fn decode_capture(
     path: &Path,
     catalogue: &crate::catalogue::Catalogue,
@@ -36,10 +52,14 @@ pub fn decode_capture(
     let mut reassembler = Reassembler::new(ReassemblyLimits::default());
     let t0 = datagrams.first().map_or(Duration::ZERO, |d| d.time);
     let clock = Instant::now();
-    let (mut messages, mut errors) = (0, 0);
+    let (mut messages, mut errors, mut control) = (0, 0, 0);
     for (i, d) in datagrams.iter().enumerate() {
+        if openjaus_socket(d) == Some(jaus::net::oj::CONTROL_PORT) {
+            control += 1;
+            continue;
+        }
         let line = (|| -> Result<Option<String>, String> {
-            let bytes = unframe(&d.payload)?;
+            let bytes = unframe(d)?;
             let packet = PacketRef::parse(bytes).map_err(|e| e.to_string())?;
             // The capture's own clock orders the parts of a multi-packet message.
             let now = clock + d.time.saturating_sub(t0);
@@ -75,6 +95,14 @@ pub fn decode_capture(
                 );
             }
         }
+    }
+    if control > 0 {
+        let _ = writeln!(
+            err,
+            "{}: {control} datagrams of OpenJAUS's component control socket (port {}: check-in and lookups, not JAUS messages) skipped",
+            path.display(),
+            jaus::net::oj::CONTROL_PORT
+        );
     }
     if stats.skipped > 0 {
         let _ = writeln!(

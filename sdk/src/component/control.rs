@@ -45,10 +45,7 @@ impl<B: Behaviour> Component<B> {
                 self.set_emergency(source);
                 Ok(())
             }
-            Message::ClearEmergency(_) => {
-                self.clear_emergency(source);
-                Ok(())
-            }
+            Message::ClearEmergency(_) => self.clear_emergency(source),
             Message::SetTime(m) => controlled(self).and_then(|()| {
                 let now = self.rt.now;
                 if self
@@ -188,23 +185,25 @@ impl<B: Behaviour> Component<B> {
         }
     }
 
-    fn clear_emergency(&mut self, source: Address) {
+    /// Clear Emergency: ends `source`'s emergency. A sender that set none is counted;
+    /// while another sender's emergency stands, it is refused (NAKed, with the reason),
+    /// since only the component that set an emergency may clear it.
+    fn clear_emergency(&mut self, source: Address) -> Result<(), Refusal> {
         let c = &mut self.rt;
         let before = c.emergencies.len();
         c.emergencies.retain(|a| *a != source);
         if c.emergencies.len() == before {
             c.stats.foreign_clear_emergency += 1;
-            tracing::warn!(
-                component = <B::Interface as Interface>::NAME,
-                address = %c.address,
-                source = %source,
-                "Clear Emergency ignored: this sender set no emergency"
-            );
-            return;
+            return if c.emergencies.is_empty() {
+                Ok(())
+            } else {
+                Err(Refusal::ForeignClear(c.emergencies.clone()))
+            };
         }
         if c.emergencies.is_empty() && c.state == CoreState::Emergency {
             let _ = c.set_state(CoreTransition::ClearEmergency);
         }
+        Ok(())
     }
 
     /// Request Component Control (docs/wire.md §5.3, plus the own-authority check).

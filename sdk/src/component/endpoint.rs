@@ -49,6 +49,12 @@ pub trait Endpoint: Send + 'static {
     fn forget(&mut self, gone: Address) {
         let _ = gone;
     }
+    /// The wall clock, from an I/O shell that reads one: UTC (since 1970-01-01) at
+    /// `now`. A component whose clock nobody set (no `Config::utc`, no Set Time yet)
+    /// takes it, so its time stamps carry the system's time. Ignored by default.
+    fn wall_clock(&mut self, now: Instant, utc: std::time::Duration) {
+        let _ = (now, utc);
+    }
     /// The runtime's counters, for a component (`None` for anything else).
     fn stats(&self) -> Option<super::Stats> {
         None
@@ -126,6 +132,9 @@ impl<B: Behaviour> Endpoint for Component<B> {
     }
     fn forget(&mut self, gone: Address) {
         Component::forget(self, gone);
+    }
+    fn wall_clock(&mut self, now: Instant, utc: std::time::Duration) {
+        Component::wall_clock(self, now, utc);
     }
     fn as_any(&self) -> &dyn Any {
         self
@@ -257,6 +266,13 @@ impl Endpoints {
             }
         }
         any
+    }
+
+    /// Gives every one the wall clock ([`Endpoint::wall_clock`]).
+    pub fn wall_clock(&mut self, now: Instant, utc: std::time::Duration) {
+        for e in &mut self.0 {
+            e.wall_clock(now, utc);
+        }
     }
 
     /// Tells every one that `gone` disappeared.

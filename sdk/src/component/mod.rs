@@ -314,7 +314,8 @@ pub struct Config {
     /// Identification text (`None`, the default: the component name).
     pub identification: Option<String>,
     /// UTC (since 1970-01-01) at the first instant the component sees, if known.
-    /// Default `None` (Set Time sets it).
+    /// Default `None`: the I/O shell's wall clock when it runs on a real network
+    /// ([`Component::wall_clock`], e.g. `jaus::net::udp::run`), else Set Time.
     pub utc: Option<Duration>,
 }
 
@@ -489,6 +490,15 @@ impl<B: Behaviour> Component<B> {
         &mut self.behaviour
     }
 
+    /// The wall clock from an I/O shell: UTC (since 1970-01-01) at `now`. Taken only if
+    /// nobody set the component's clock yet (`Config::utc`, Set Time), so that its time
+    /// stamps carry the system's time; the sans-IO runtime reads no clock of its own.
+    pub fn wall_clock(&mut self, now: Instant, utc: Duration) {
+        if self.rt.clock.utc(now).is_none() {
+            self.rt.clock.set(now, utc);
+        }
+    }
+
     /// Forgets everything about `gone` (the node layer calls this when a component
     /// disappears): control held by it, its service connections and events.
     pub fn forget(&mut self, gone: Address) {
@@ -525,6 +535,12 @@ impl<B: Behaviour> Component<B> {
                     code = %header.command_code,
                     "undecodable message dropped: {e}"
                 );
+                if header.ack_nak == AckNak::Request {
+                    let text = format!("undecodable: {e}");
+                    let report =
+                        refusal_report(header.command_code, RefusalReason::Undecodable, &text);
+                    self.rt.send(header.source, report.into(), false, 0);
+                }
                 self.rt.ack(header, false);
                 return;
             }
@@ -707,6 +723,12 @@ impl<B: Behaviour> Component<B> {
             Refusal::State(_) => s.wrong_state += 1,
             Refusal::Vendor(Refused::Unsupported) => s.unsupported += 1,
             Refusal::Vendor(Refused::Invalid(_) | Refused::OutOfRange { .. }) => s.invalid += 1,
+            // Counted where it is found.
+            Refusal::ForeignClear(_) => {}
+        }
+        if header.ack_nak == AckNak::Request {
+            let report = refusal_report(header.command_code, why.reason(), &why.to_string());
+            self.rt.send(header.source, report.into(), false, 0);
         }
         let (component, address, source) = (
             <B::Interface as Interface>::NAME,
@@ -928,6 +950,22 @@ enum Refusal {
     NotController,
     State(CoreState),
     Vendor(Refused),
+    /// Clear Emergency from a sender that set none, while these senders' emergencies
+    /// stand.
+    ForeignClear(Vec<Address>),
+}
+
+impl Refusal {
+    fn reason(&self) -> RefusalReason {
+        match self {
+            Refusal::NotController => RefusalReason::NotController,
+            Refusal::State(_) => RefusalReason::WrongState,
+            Refusal::Vendor(Refused::Unsupported) => RefusalReason::Unsupported,
+            Refusal::Vendor(Refused::Invalid(_)) => RefusalReason::Invalid,
+            Refusal::Vendor(Refused::OutOfRange { .. }) => RefusalReason::OutOfRange,
+            Refusal::ForeignClear(_) => RefusalReason::ForeignClearEmergency,
+        }
+    }
 }
 
 impl std::fmt::Display for Refusal {
@@ -936,7 +974,29 @@ impl std::fmt::Display for Refusal {
             Refusal::NotController => f.write_str("sender is not the component in control"),
             Refusal::State(s) => write!(f, "not allowed in {s}"),
             Refusal::Vendor(r) => write!(f, "{r}"),
+            Refusal::ForeignClear(by) => {
+                f.write_str("this sender set no emergency; only the sender that set an emergency may clear it (set by ")?;
+                for (i, a) in by.iter().enumerate() {
+                    if i > 0 {
+                        f.write_str(", ")?;
+                    }
+                    write!(f, "{a}")?;
+                }
+                f.write_str(")")
+            }
         }
+    }
+}
+
+/// The SDK's experimental Report Refusal (0xDF01) for a refused message with code
+/// `refused`: sent, before the NAK, to a sender that asked for an acknowledgement, by the
+/// component runtime and by a node's access policy. `text` is cut to the 255 Latin-1
+/// characters the field carries.
+pub fn refusal_report(refused: CommandCode, reason: RefusalReason, text: &str) -> ReportRefusal {
+    ReportRefusal {
+        refused_code: refused.0,
+        reason,
+        text: crate::codec::fit_latin1(text, 255),
     }
 }
 

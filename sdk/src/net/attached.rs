@@ -281,6 +281,10 @@ impl Participant for Attached {
         .min()
     }
 
+    fn wall_clock(&mut self, now: Instant, utc: std::time::Duration) {
+        self.components.wall_clock(now, utc);
+    }
+
     fn as_any(&self) -> &dyn std::any::Any {
         self
     }

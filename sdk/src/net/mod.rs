@@ -44,6 +44,12 @@ pub trait Participant: std::fmt::Debug + Send + 'static {
     }
     /// When [`handle_timeout`](Self::handle_timeout) must next be called.
     fn poll_timeout(&self) -> Option<Instant>;
+    /// The wall clock from the shell: UTC (since 1970-01-01) at `now`, for components
+    /// whose clock nobody set (see `jaus::component::Component::wall_clock`). Ignored
+    /// by default.
+    fn wall_clock(&mut self, now: Instant, utc: std::time::Duration) {
+        let _ = (now, utc);
+    }
     /// For downcasting to the concrete host.
     fn as_any(&self) -> &dyn std::any::Any;
     /// For downcasting to the concrete host.

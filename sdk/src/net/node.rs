@@ -1084,6 +1084,11 @@ impl Participant for Node {
         Node::poll_timeout(self)
     }
 
+    fn wall_clock(&mut self, now: Instant, utc: std::time::Duration) {
+        self.manager.wall_clock(now, utc);
+        self.locals.wall_clock(now, utc);
+    }
+
     fn as_any(&self) -> &dyn std::any::Any {
         self
     }

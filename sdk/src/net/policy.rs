@@ -31,6 +31,7 @@ use std::fmt;
 use std::time::{Duration, Instant};
 
 use crate::codec::{Decode, Encode};
+use crate::component::refusal_report;
 use crate::messages::{
     ActivateServiceConnection, CancelEvent, ClearEmergency, ConfirmComponentControl,
     ConfirmEventRequest, ConfirmServiceConnection, ControlResponse, CreateEvent,
@@ -38,6 +39,7 @@ use crate::messages::{
     RequestComponentControl, SetEmergency, SuspendServiceConnection, TerminateServiceConnection,
     UpdateEvent,
 };
+use crate::messages::{RefusalReason, ReportRefusal};
 use crate::wire::{AckNak, MessageClass};
 use crate::{Address, CommandCode, Header, JausMessage, MessageInfo};
 
@@ -355,11 +357,29 @@ impl PolicyState {
         if let Some(c) = self.counts.get_mut(slot) {
             *c += 1;
         }
-        self.log(now, header, kind, by);
-        Verdict::Refuse(answers(header, kind))
+        let why = self.why(kind, by);
+        self.log(now, header, &why);
+        Verdict::Refuse(answers(header, kind, &why))
     }
 
-    fn log(&mut self, now: Instant, header: &Header, kind: Kind, by: Decider) {
+    /// The refusal in words: the rule and what it lets the sender do.
+    fn why(&self, kind: Kind, by: Decider) -> String {
+        let (rule, may) = match by {
+            Decider::Rule(i) => {
+                let r = &self.policy.rules[i];
+                (format!("rule {i} (from {})", r.from), r.may)
+            }
+            Decider::Default => ("the default".to_string(), self.policy.default),
+        };
+        let what = match kind {
+            Kind::Control(a) => format!("control with authority {a}; "),
+            Kind::Emergency => "emergency messages refused; ".to_string(),
+            Kind::Read | Kind::Command => String::new(),
+        };
+        format!("refused by the node's policy: {what}{rule} may {may}")
+    }
+
+    fn log(&mut self, now: Instant, header: &Header, why: &str) {
         if self
             .warn_second
             .is_none_or(|t| now.saturating_duration_since(t) >= Duration::from_secs(1))
@@ -368,22 +388,6 @@ impl PolicyState {
             self.warned = 0;
         }
         let message = MessageInfo::of(header.command_code).map_or("(not in this set)", |i| i.name);
-        let (rule, may, _) = match by {
-            Decider::Rule(i) => {
-                let r = &self.policy.rules[i];
-                (format!("rule {i} (from {})", r.from), r.may, r.emergency)
-            }
-            Decider::Default => (
-                "the default".to_string(),
-                self.policy.default,
-                self.policy.default_emergency,
-            ),
-        };
-        let why = match kind {
-            Kind::Control(a) => format!("control with authority {a}; may {may}"),
-            Kind::Emergency => format!("emergency messages refused; may {may}"),
-            _ => format!("may {may}"),
-        };
         if self.warned < WARNINGS_PER_SECOND {
             self.warned += 1;
             let left_out = std::mem::take(&mut self.unwarned);
@@ -392,21 +396,21 @@ impl PolicyState {
                 destination = %header.destination,
                 message,
                 code = %header.command_code,
-                rule = %rule,
                 left_out,
-                "refused by the node's policy: {why}"
+                "{why}"
             );
         } else {
             self.unwarned += 1;
-            tracing::debug!(sender = %header.source, message, rule = %rule, "refused by the node's policy: {why}");
+            tracing::debug!(sender = %header.source, message, "{why}");
         }
     }
 }
 
 /// What a component that refuses would answer: Confirm Component Control (insufficient
 /// authority) to a control request, a NAK to a message that asked for an
-/// acknowledgement. Nothing for a broadcast.
-fn answers(header: &Header, kind: Kind) -> Vec<(Header, Vec<u8>)> {
+/// acknowledgement, preceded by the SDK's Report Refusal with `why`. Nothing for a
+/// broadcast.
+fn answers(header: &Header, kind: Kind, why: &str) -> Vec<(Header, Vec<u8>)> {
     let me = header.destination;
     if me.subsystem == 255 || me.node == 255 || me.component == 255 || me.instance == 255 {
         return Vec::new();
@@ -424,6 +428,10 @@ fn answers(header: &Header, kind: Kind) -> Vec<(Header, Vec<u8>)> {
         }
     }
     if header.ack_nak == AckNak::Request {
+        let report = refusal_report(header.command_code, RefusalReason::Policy, why);
+        if let Ok(body) = report.to_bytes() {
+            out.push((Header::new(ReportRefusal::CODE, header.source, me), body));
+        }
         let mut h = Header::new(header.command_code, header.source, me);
         h.ack_nak = AckNak::Nak;
         out.push((h, Vec::new()));
@@ -552,7 +560,7 @@ mod tests {
         let Verdict::Refuse(answers) = s.check(now, &h, &[150]) else {
             panic!("authority 150 passed");
         };
-        assert_eq!(answers.len(), 2);
+        assert_eq!(answers.len(), 3);
         let (ch, cb) = &answers[0];
         assert_eq!(ch.command_code, ConfirmComponentControl::CODE);
         assert_eq!(
@@ -565,8 +573,17 @@ mod tests {
                 .response_code,
             ControlResponse::InsufficientAuthority
         );
-        assert_eq!(answers[1].0.ack_nak, AckNak::Nak);
-        assert_eq!(answers[1].0.command_code, RequestComponentControl::CODE);
+        let (rh, rb) = &answers[1];
+        assert_eq!(rh.command_code, ReportRefusal::CODE);
+        let r = ReportRefusal::from_bytes(rb).unwrap();
+        assert_eq!(r.reason, RefusalReason::Policy);
+        assert_eq!(r.refused_code, RequestComponentControl::CODE.0);
+        assert_eq!(
+            r.text,
+            "refused by the node's policy: control with authority 150; rule 0 (from 200.*.*.*) may command, authority at most 100"
+        );
+        assert_eq!(answers[2].0.ack_nak, AckNak::Nak);
+        assert_eq!(answers[2].0.command_code, RequestComponentControl::CODE);
         assert_eq!(s.check(now, &h, &[100]), Verdict::Pass);
         // A command without an acknowledgement request: refused, nothing to answer.
         let h = header::<crate::messages::SetWrenchEffort>("9.1.1.1");

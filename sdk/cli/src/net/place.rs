@@ -121,6 +121,25 @@ impl Link {
         }
     }
 
+    /// What the system tree says of `to`: `Some(true)` listed, `Some(false)` its node is
+    /// known and does not list it (with the components it lists), `None` its node is not
+    /// known (or the CLI joined a node and keeps no tree).
+    pub(super) fn lists(&self, to: Address) -> Option<(bool, Vec<Address>)> {
+        let Link::Node(n) = self else {
+            return None;
+        };
+        let tree = n.tree();
+        if !tree.has_node(to.subsystem, to.node) {
+            return None;
+        }
+        let on_node: Vec<Address> = tree
+            .components()
+            .into_iter()
+            .filter(|a| a.subsystem == to.subsystem && a.node == to.node)
+            .collect();
+        Some((on_node.contains(&to), on_node))
+    }
+
     /// Whether messages to `to` can go now (its node located, or attached).
     pub(super) fn reaches(&self, to: Address) -> bool {
         match self {

@@ -61,6 +61,11 @@ pub struct Outcome {
     pub bad_lines: usize,
     /// Control requests rejected (Reject Component Control received).
     pub rejected: usize,
+    /// Commands (sent with an acknowledgement request) that got neither ACK nor NAK,
+    /// each with what the system tree says of its destination and what to do.
+    pub unacknowledged: Vec<String>,
+    /// Refusals received (NAKs), each with its reason when the receiver gave one.
+    pub refusals: Vec<String>,
     /// The socket the session used.
     pub local: Option<SocketAddr>,
     /// Another node answers as this tool's node (`--me`'s subsystem and node): the
@@ -113,6 +118,10 @@ impl Client {
         let mut pending: Option<(Option<CommandCode>, Address, CommandCode, Instant)> = None;
         let mut last_sent: Option<Instant> = None;
         let mut controlled: Vec<Address> = Vec::new();
+        // Commands sent with an acknowledgement request, waiting for their ACK or NAK.
+        let mut awaiting_ack: Vec<(Address, CommandCode)> = Vec::new();
+        // Reasons given by Report Refusal, until their NAK arrives.
+        let mut reasons: Vec<(Address, CommandCode, String)> = Vec::new();
         let mut opened = false;
         let mut tap = Tap {
             me,
@@ -179,6 +188,7 @@ impl Client {
                         let class = cat.class_of(code);
                         if class == MessageClass::Command {
                             header.ack_nak = AckNak::Request;
+                            awaiting_ack.push((to, code));
                         }
                         if matches!(msg, Message::RequestComponentControl(_)) {
                             requested.push(to);
@@ -261,9 +271,27 @@ impl Client {
                                     pending = None;
                                 }
                                 outcome.answered += 1;
+                                if let Some(i) = awaiting_ack
+                                    .iter()
+                                    .position(|(a, c)| a.matches(&h.source) && *c == h.command_code)
+                                {
+                                    awaiting_ack.remove(i);
+                                }
                                 if h.ack_nak == AckNak::Nak {
                                     outcome.naks += 1;
-                                    let _ = writeln!(err, "NAK from {} for {name}: refused (the receiver's log names the reason)", h.source);
+                                    let reason = reasons
+                                        .iter()
+                                        .position(|(a, c, _)| {
+                                            *a == h.source && *c == h.command_code
+                                        })
+                                        .map(|i| reasons.remove(i).2);
+                                    let text = format!(
+                                        "NAK from {} for {name}: {}",
+                                        h.source,
+                                        reason.as_deref().unwrap_or("refused (the receiver gave no reason: its log may name it)")
+                                    );
+                                    let _ = writeln!(err, "{text}");
+                                    outcome.refusals.push(text);
                                 }
                                 let line = AckLine {
                                     t,
@@ -292,6 +320,17 @@ impl Client {
                                             && !controlled.contains(&from_addr) =>
                                     {
                                         controlled.push(from_addr);
+                                    }
+                                    Message::ReportRefusal(r) => {
+                                        // The reason of the NAK that follows.
+                                        if reasons.len() >= 64 {
+                                            reasons.remove(0);
+                                        }
+                                        reasons.push((
+                                            from_addr,
+                                            CommandCode(r.refused_code),
+                                            r.text.clone(),
+                                        ));
                                     }
                                     Message::RejectComponentControl(_) => {
                                         if requested.contains(&from_addr)
@@ -352,6 +391,28 @@ impl Client {
             let host = link.host();
             host.handle_timeout(Instant::now());
             flush(host, &socket);
+        }
+        // Commands nobody acknowledged, with what the system tree says of them.
+        for (to, code) in awaiting_ack {
+            let name = cat.name_of(code).unwrap_or("?");
+            let text = match link.lists(to) {
+                Some((false, listed)) => format!(
+                    "{name} to {to}: no such component: node {}.{} lists {} (`jaus discover` shows the system)",
+                    to.subsystem,
+                    to.node,
+                    listed.iter().map(ToString::to_string).collect::<Vec<_>>().join(", ")
+                ),
+                None if !link.reaches(to) => format!(
+                    "{name} to {to}: no node {}.{} answered: check the address and --peer (`jaus discover` shows the system)",
+                    to.subsystem, to.node
+                ),
+                _ => format!(
+                    "{name} to {to}: no acknowledgement within {:.1} s; the component is there but did not acknowledge (OpenJAUS never does): check the effect with a query",
+                    self.wait.as_secs_f64()
+                ),
+            };
+            let _ = writeln!(err, "error: {text}");
+            outcome.unacknowledged.push(text);
         }
         // End cleanly: service connections ended, control given back.
         let now = Instant::now();

@@ -103,6 +103,7 @@ pub fn run_tapped<P: Participant>(
     mut tap: impl FnMut(Direction, SocketAddr, &[u8]),
 ) -> std::io::Result<()> {
     tracing::info!(bind = ?socket.local_addr().ok(), "up");
+    give_wall_clock(node);
     let mut receiver = Receiver::new(io);
     loop {
         if stopping(stop, until) {
@@ -132,6 +133,15 @@ pub fn run_tapped<P: Participant>(
             node.recycle(d.bytes);
         }
     }
+}
+
+/// The system's clock for the components whose clock nobody set (the shell reads the
+/// clocks; the sans-IO core does not).
+fn give_wall_clock<P: Participant + ?Sized>(node: &mut P) {
+    let utc = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .unwrap_or_default();
+    node.wall_clock(Instant::now(), utc);
 }
 
 /// Whether the I/O loop must end: `stop` set or `until` passed.
@@ -182,6 +192,7 @@ pub fn run_node(
         return run_tapped(node, sockets.network, io, stop, until, on_tick, tap);
     }
     tracing::info!(bind = ?sockets.network.local_addr().ok(), "up, with OpenJAUS component sockets");
+    give_wall_clock(node);
     let (tx, rx) = mpsc::sync_channel::<(Via, SocketAddr, Vec<u8>)>(1024);
     let receivers = [
         (Via::Network, Some(sockets.network)),
