@@ -152,10 +152,13 @@ function grow(ext, x, y) {
   return [Math.min(ext[0], x), Math.min(ext[1], y), Math.max(ext[2], x), Math.max(ext[3], y)];
 }
 
+// The extent grows to keep every vehicle, its whole trail, its route, the world-model
+// objects and the clicked points in view ("Fit" starts it again from what is there now).
 function mapExtent() {
   let ext = ocu.extent;
   for (const s of ocu.view.subsystems) {
     if (s.pose) ext = grow(ext, s.pose.x, s.pose.y);
+    for (const p of ocu.trails.get(s.id) || []) ext = grow(ext, p[0], p[1]);
     for (const p of s.route) ext = grow(ext, p[0], p[1]);
     for (const o of s.objects) for (const p of o.points) ext = grow(ext, p[0], p[1]);
   }
@@ -187,6 +190,7 @@ function drawMap() {
     grid.append(svg("line", { x1: x, x2: x, y1: -(y0 + h), y2: -y0, class: x === 0 ? "grid-axis" : "grid-line" }));
   for (let y = Math.ceil(y0 / step) * step; y <= y0 + h; y += step)
     grid.append(svg("line", { x1: x0, x2: x0 + w, y1: -y, y2: -y, class: y === 0 ? "grid-axis" : "grid-line" }));
+  drawScale(x0, y0, w, h);
   const objects = $("objects"), routes = $("routes"), trails = $("trails"), vehicles = $("vehicles");
   objects.replaceChildren(); routes.replaceChildren(); trails.replaceChildren(); vehicles.replaceChildren();
   for (const s of ocu.view.subsystems) {
@@ -235,6 +239,27 @@ function drawMap() {
       draft.append(t);
     });
   }
+}
+
+// A scale bar in the lower left corner: a round length (1, 2 or 5 times a power of ten)
+// near a fifth of the width.
+function drawScale(x0, y0, w, h) {
+  const g = $("scale");
+  g.replaceChildren();
+  const target = w / 5;
+  const p = Math.pow(10, Math.floor(Math.log10(target)));
+  const len = [5, 2, 1].map((k) => k * p).find((l) => l <= target) || p;
+  const x = x0 + w * 0.04, y = -(y0 + h * 0.05), tick = h * 0.012;
+  const sw = w / 400;
+  g.append(svg("polyline", {
+    points: `${x},${y - tick} ${x},${y} ${x + len},${y} ${x + len},${y - tick}`,
+    class: "scale-bar", "stroke-width": sw,
+  }));
+  const t = svg("text", { x: x, y: y - tick * 1.6, class: "scale-text", "font-size": w / 45 });
+  t.textContent = len >= 1000 ? `${len / 1000} km` : `${len} m`;
+  t.id = "scale-text";
+  g.append(t);
+  ocu.scale = { metres: len };
 }
 
 // Map metres -> client pixels (tests click through it) and back.

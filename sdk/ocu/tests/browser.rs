@@ -485,6 +485,23 @@ async fn the_page_drives_the_simulated_vehicle_and_stops_it() {
     )
     .await;
     arrive(&c, "the mission's last move", moves[1]).await;
+    // Left to itself, the map keeps the whole trail in view, with a scale bar.
+    let seen = js(
+        &c,
+        "const r = document.getElementById('map').getBoundingClientRect(); \
+         const t = ocu.trails.get(1) || []; \
+         const out = t.filter(p => { const q = ocu.worldToClient(p[0], p[1]); \
+           return q.x < r.left - 1 || q.x > r.right + 1 || q.y < r.top - 1 || q.y > r.bottom + 1; }); \
+         return [t.length, out.length, document.getElementById('scale-text').textContent];",
+    )
+    .await;
+    assert!(seen[0].as_u64().unwrap() > 50, "a trail: {seen}");
+    assert_eq!(seen[1], json!(0), "trail points off the map: {seen}");
+    let scale = seen[2].as_str().unwrap();
+    assert!(
+        scale.ends_with(" m") && scale.trim_end_matches(" m").parse::<f64>().is_ok(),
+        "{scale}"
+    );
     // An obstacle stored in the world model from the map, drawn once the store lists it.
     let rock = (start.0 + 15.0, start.1 + 5.0);
     set_input(&c, "obstacle-radius", "0.8").await;

@@ -43,8 +43,12 @@ pub struct DriverConfig {
     pub lookahead: f64,
     /// Distance to the final point at which a path or waypoint list is complete, m.
     pub arrival_tolerance: f64,
-    /// Deceleration used to slow down before the final point, m/s².
+    /// Deceleration used to slow down before the final point and into turns, m/s².
     pub deceleration: f64,
+    /// How far the vehicle may stray from the path where it turns (a waypoint's corner,
+    /// a tight curve), m: paths are driven slowly enough through their turns to keep
+    /// within it (`Path::turn_speed`). Default 0.05 m.
+    pub corner_tolerance: f64,
     /// The WGS 84 origin of the local frame global drivers work in (`None`: the first
     /// global fix).
     pub origin: Option<LocalFrame>,
@@ -53,8 +57,8 @@ pub struct DriverConfig {
 /// The defaults: output 1.1.33.1 (the Primitive Driver), pose sensor 1.1.41.1,
 /// velocity sensor 1.1.42.1, feedback at 20 Hz with a 300 ms watchdog, vector commands
 /// stale after 2 s, 2 m/s and 1.5 rad/s at full effort, heading gain 2.5 /s, speed gain
-/// 0.5, look-ahead 0.5 m, arrival within 0.15 m, deceleration 0.8 m/s², origin at the
-/// first fix.
+/// 0.5, look-ahead 0.5 m, arrival within 0.15 m, deceleration 0.8 m/s², turns within
+/// 0.05 m, origin at the first fix.
 ///
 /// ```
 /// use std::time::Duration;
@@ -63,6 +67,7 @@ pub struct DriverConfig {
 /// assert_eq!(d.command_timeout, Some(Duration::from_secs(2)));
 /// assert_eq!((d.max_speed, d.max_yaw_rate, d.heading_gain, d.speed_gain), (2.0, 1.5, 2.5, 0.5));
 /// assert_eq!((d.lookahead, d.arrival_tolerance, d.deceleration), (0.5, 0.15, 0.8));
+/// assert_eq!(d.corner_tolerance, 0.05);
 /// assert_eq!(d.output, jaus::Address::new(1, 1, 33, 1));
 /// ```
 impl Default for DriverConfig {
@@ -81,6 +86,7 @@ impl Default for DriverConfig {
             lookahead: 0.5,
             arrival_tolerance: 0.15,
             deceleration: 0.8,
+            corner_tolerance: 0.05,
             origin: None,
         }
     }

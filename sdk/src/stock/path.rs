@@ -145,6 +145,57 @@ impl Path {
         }
     }
 
+    /// The fastest speed at arc length `s` from which the vehicle can still slow down,
+    /// at `deceleration`, to take every turn ahead within `tolerance` of the path,
+    /// turning at `yaw_rate` (rad/s); at most `limit`. A turn is the change of
+    /// direction across a vertex, measured over `window` m either side (so a sampled
+    /// curve counts as the turn it makes, not as many tiny ones). Taking a turn of angle
+    /// θ on an arc of radius r strays r (1/cos(θ/2) − 1) from the corner, so the speed
+    /// through it is `yaw_rate` · r for the r that strays `tolerance`. A turn less than
+    /// `window` behind `s` still limits the speed (the vehicle is still in it).
+    pub fn turn_speed(
+        &self,
+        s: f64,
+        limit: f64,
+        (deceleration, tolerance, yaw_rate, window): (f64, f64, f64, f64),
+    ) -> f64 {
+        // NaN limits and decelerations are no limits.
+        if self.points.len() < 3
+            || limit.is_nan()
+            || limit <= 0.0
+            || deceleration.is_nan()
+            || deceleration <= 0.0
+        {
+            return limit;
+        }
+        // Only the turns within braking distance of `limit` matter.
+        let horizon = s + limit * limit / (2.0 * deceleration) + window;
+        // A turn just passed (within the window) still holds: the vehicle is in it.
+        let first = self.arc.partition_point(|a| *a <= s - window).max(1);
+        let mut v = limit;
+        for i in first..self.points.len() - 1 {
+            let at = self.arc[i];
+            if at > horizon {
+                break;
+            }
+            let before = self.at(at) - self.at(at - window);
+            let after = self.at(at + window) - self.at(at);
+            if before.norm() < 1e-9 || after.norm() < 1e-9 {
+                continue;
+            }
+            let cos = (before.dot(&after) / (before.norm() * after.norm())).clamp(-1.0, 1.0);
+            let angle = cos.acos();
+            let stray = 1.0 / (angle / 2.0).cos().max(1e-6) - 1.0;
+            if stray < 1e-9 {
+                continue;
+            }
+            let through = yaw_rate * tolerance / stray;
+            let d = (at - s).max(0.0);
+            v = v.min((through * through + 2.0 * deceleration * d).sqrt());
+        }
+        v
+    }
+
     /// The nearest point of the path to `p`, searched among segments whose arc length
     /// lies in `[from, to]` (pass the whole range for a global search).
     pub fn project(&self, p: Vector2<f64>, from: f64, to: f64) -> Option<Projection> {
@@ -181,6 +232,41 @@ mod tests {
             p2: Vector3::new(5.0, 1.0, 0.0),
             w1: 1.5,
         }
+    }
+
+    #[test]
+    fn turns_limit_the_speed_before_them_and_in_them() {
+        let corner = Path::new([
+            Vector2::new(0.0, 0.0),
+            Vector2::new(10.0, 0.0),
+            Vector2::new(10.0, 10.0),
+        ]);
+        let params = (0.8, 0.05, 0.75, 0.3);
+        // A right angle strays r (√2 − 1): 0.05 m at r = 0.05 / 0.414.
+        let through = 0.75 * 0.05 / (2f64.sqrt() - 1.0);
+        assert!((corner.turn_speed(10.0, 2.0, params) - through).abs() < 1e-9);
+        // Within the window after it, still in the turn.
+        assert!((corner.turn_speed(10.2, 2.0, params) - through).abs() < 1e-9);
+        // One metre before: what braking at 0.8 m/s² leaves.
+        let v = corner.turn_speed(9.0, 2.0, params);
+        assert!((v - (through * through + 1.6).sqrt()).abs() < 1e-9, "{v}");
+        // Far before, and past it: the limit.
+        assert_eq!(corner.turn_speed(0.0, 2.0, params), 2.0);
+        assert_eq!(corner.turn_speed(12.0, 2.0, params), 2.0);
+        // A straight line never slows.
+        let straight = Path::new([
+            Vector2::new(0.0, 0.0),
+            Vector2::new(5.0, 0.0),
+            Vector2::new(9.0, 0.0),
+        ]);
+        assert_eq!(straight.turn_speed(4.9, 1.0, params), 1.0);
+        // A gentle bend slows less than a sharp one.
+        let gentle = Path::new([
+            Vector2::new(0.0, 0.0),
+            Vector2::new(10.0, 0.0),
+            Vector2::new(20.0, 2.0),
+        ]);
+        assert!(gentle.turn_speed(10.0, 2.0, params) > 5.0 * through);
     }
 
     #[test]

@@ -2,6 +2,7 @@
 //! [`Navigator`] over element lists, pursuing straight legs or Part 1 path segments.
 
 use nalgebra::{Vector2, Vector3};
+use std::time::Instant;
 
 use super::finite;
 use crate::component::{Context, CoreState, EmittedBy, Interface, Modes, Refused, StopReason};
@@ -186,6 +187,9 @@ struct Tracker {
     /// Arc length at the end of each element.
     ends: Vec<f64>,
     s: f64,
+    /// The speed last commanded and when (speed rises at most at the deceleration
+    /// rate, so that the vehicle leaves a turn on its new heading).
+    commanded: Option<(Instant, f64)>,
 }
 
 /// A waypoint or path-segment driver: a list of elements, a travel speed, and a
@@ -344,7 +348,12 @@ impl<E: Element> Navigator<E> {
         for e in &self.elements {
             extend(&mut path, &mut ends, e.geometry(frame.as_ref())?);
         }
-        Some(Tracker { path, ends, s: 0.0 })
+        Some(Tracker {
+            path,
+            ends,
+            s: 0.0,
+            commanded: None,
+        })
     }
 
     fn state_changed<I: NavInterface>(
@@ -454,18 +463,40 @@ impl<E: Element> Navigator<E> {
             self.motion.stop(ctx);
             return;
         }
-        let target = if len - t.s <= c.lookahead {
+        let remaining = (len - t.s).max(to_end);
+        // Slow enough to stop at the end, and to take the turns ahead within the
+        // corner tolerance (turning at half the platform's yaw rate, the rest kept for
+        // steering).
+        let speed = t
+            .path
+            .turn_speed(
+                t.s,
+                self.travel_speed
+                    .min((2.0 * c.deceleration * remaining).sqrt()),
+                (
+                    0.5 * c.deceleration,
+                    c.corner_tolerance,
+                    0.5 * c.max_yaw_rate,
+                    0.3,
+                ),
+            )
+            .max(0.05);
+        // From the speed last commanded, or at the start from the speed measured.
+        let (at, last) = t
+            .commanded
+            .unwrap_or((now, self.motion.speed(now).unwrap_or(0.0).max(0.0)));
+        let dt = now.saturating_duration_since(at).as_secs_f64();
+        let speed = speed.min(last + c.deceleration * dt).max(0.05);
+        t.commanded = Some((now, speed));
+        // Look ahead less when slow (through a turn) so the pursuit cuts less of it.
+        let lookahead = c.lookahead.min(0.15 + 0.5 * speed);
+        let target = if len - t.s <= lookahead {
             end
         } else {
-            t.path.at(t.s + c.lookahead)
+            t.path.at(t.s + lookahead)
         };
         let d = target - pos;
         let heading = d.y.atan2(d.x);
-        let remaining = (len - t.s).max(to_end);
-        let speed = self
-            .travel_speed
-            .min((2.0 * c.deceleration * remaining).sqrt())
-            .max(0.05);
         self.motion.drive(ctx, speed, heading);
     }
 }
