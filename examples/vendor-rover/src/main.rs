@@ -8,6 +8,16 @@ use std::time::{Duration, Instant};
 use jaus::net::{udp, NodeConfig};
 
 fn main() -> Result<(), String> {
+    // Warnings and what the node does (`RUST_LOG` overrides): a refused command is
+    // logged with its reason.
+    tracing_subscriber::fmt()
+        .with_env_filter(
+            tracing_subscriber::EnvFilter::try_from_default_env()
+                .unwrap_or_else(|_| tracing_subscriber::EnvFilter::new("info")),
+        )
+        .with_writer(std::io::stderr)
+        .with_ansi(std::io::IsTerminal::is_terminal(&std::io::stderr()))
+        .init();
     let mut config = NodeConfig::default();
     let mut bind: SocketAddr = "127.0.0.1:3794".parse().map_err(|e| format!("{e}"))?;
     let mut seconds = None;
