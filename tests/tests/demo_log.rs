@@ -6,34 +6,17 @@
 //! crossing is normal in JAUS and is now logged at debug; a command from a sender that
 //! never had control is still a warning.)
 
-use std::sync::{Arc, Mutex};
+mod common;
 
-#[derive(Clone)]
-struct LogBuffer(Arc<Mutex<Vec<u8>>>);
-
-impl std::io::Write for LogBuffer {
-    fn write(&mut self, b: &[u8]) -> std::io::Result<usize> {
-        self.0.lock().unwrap().extend_from_slice(b);
-        Ok(b.len())
-    }
-    fn flush(&mut self) -> std::io::Result<()> {
-        Ok(())
-    }
-}
+use common::LogBuffer;
 
 #[test]
 fn the_demo_logs_no_warning_and_no_error() {
-    let log = Arc::new(Mutex::new(Vec::new()));
-    let buf = LogBuffer(log.clone());
-    let subscriber = tracing_subscriber::fmt()
-        .with_writer(move || buf.clone())
-        .with_ansi(false)
-        .with_max_level(tracing_subscriber::filter::LevelFilter::WARN)
-        .finish();
-    let _guard = tracing_subscriber::util::SubscriberInitExt::set_default(subscriber);
+    let log = LogBuffer::default();
+    let _guard = log.capture();
     let run = jaus_sim::demo::run(&jaus_sim::demo::Options::default(), |_| {}).expect("the demo");
     assert!(!run.legs.is_empty());
-    let text = String::from_utf8_lossy(&log.lock().unwrap()).into_owned();
+    let text = log.text();
     assert!(text.is_empty(), "the demo logged:\n{text}");
 }
 

@@ -4,11 +4,14 @@
 //! Component Control with insufficient authority, a NAK), the node counts it (in total
 //! and per rule), and it is logged at warn with the sender, the message and the rule.
 
+mod common;
+
 use std::net::{SocketAddr, UdpSocket};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
+use common::LogBuffer;
 use jaus::codec::{Decode, Encode};
 use jaus::messages::{
     ClearEmergency, ClearEmergencyCode, ComponentState, ConfirmComponentControl, ControlResponse,
@@ -34,7 +37,7 @@ struct Vehicle {
     at: SocketAddr,
     stop: Arc<AtomicBool>,
     seen: Arc<Mutex<Seen>>,
-    log: Arc<Mutex<Vec<u8>>>,
+    log: LogBuffer,
     thread: Option<std::thread::JoinHandle<()>>,
 }
 
@@ -47,33 +50,15 @@ impl Drop for Vehicle {
     }
 }
 
-#[derive(Clone)]
-struct LogBuffer(Arc<Mutex<Vec<u8>>>);
-
-impl std::io::Write for LogBuffer {
-    fn write(&mut self, b: &[u8]) -> std::io::Result<usize> {
-        self.0.lock().unwrap().extend_from_slice(b);
-        Ok(b.len())
-    }
-    fn flush(&mut self) -> std::io::Result<()> {
-        Ok(())
-    }
-}
-
 fn vehicle(policy: Option<Policy>) -> Vehicle {
     let socket = UdpSocket::bind("127.0.0.1:0").unwrap();
     let at = socket.local_addr().unwrap();
     let stop = Arc::new(AtomicBool::new(false));
     let seen = Arc::new(Mutex::new(Seen::default()));
-    let log = Arc::new(Mutex::new(Vec::new()));
-    let (s, seen2, buf) = (stop.clone(), seen.clone(), LogBuffer(log.clone()));
+    let log = LogBuffer::default();
+    let (s, seen2, buf) = (stop.clone(), seen.clone(), log.clone());
     let thread = std::thread::spawn(move || {
-        let subscriber = tracing_subscriber::fmt()
-            .with_writer(move || buf.clone())
-            .with_ansi(false)
-            .with_max_level(tracing_subscriber::filter::LevelFilter::WARN)
-            .finish();
-        let _log = tracing_subscriber::util::SubscriberInitExt::set_default(subscriber);
+        let _log = buf.capture();
         {
             let config = NodeConfig {
                 policy,
@@ -105,7 +90,7 @@ impl Vehicle {
     }
 
     fn log(&self) -> String {
-        String::from_utf8_lossy(&self.log.lock().unwrap()).into_owned()
+        self.log.text()
     }
 }
 

@@ -62,3 +62,40 @@ pub fn free_port() -> u16 {
         .unwrap()
         .port()
 }
+
+/// A log writer that keeps what is logged, for tests that assert on a log: `capture`
+/// installs it (warnings and errors) as the current thread's subscriber until the guard
+/// is dropped.
+#[allow(dead_code)]
+#[derive(Clone, Default)]
+pub struct LogBuffer(pub std::sync::Arc<std::sync::Mutex<Vec<u8>>>);
+
+#[allow(dead_code)]
+impl LogBuffer {
+    /// Logs warnings and errors of this thread here until the guard is dropped.
+    #[must_use = "logging is captured until the guard is dropped"]
+    pub fn capture(&self) -> impl Sized {
+        let buf = self.clone();
+        let subscriber = tracing_subscriber::fmt()
+            .with_writer(move || buf.clone())
+            .with_ansi(false)
+            .with_max_level(tracing_subscriber::filter::LevelFilter::WARN)
+            .finish();
+        tracing_subscriber::util::SubscriberInitExt::set_default(subscriber)
+    }
+
+    /// What was logged so far.
+    pub fn text(&self) -> String {
+        String::from_utf8_lossy(&self.0.lock().unwrap()).into_owned()
+    }
+}
+
+impl std::io::Write for LogBuffer {
+    fn write(&mut self, b: &[u8]) -> std::io::Result<usize> {
+        self.0.lock().unwrap().extend_from_slice(b);
+        Ok(b.len())
+    }
+    fn flush(&mut self) -> std::io::Result<()> {
+        Ok(())
+    }
+}
