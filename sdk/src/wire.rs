@@ -309,6 +309,15 @@ impl Header {
         }
     }
 
+    /// The acknowledgement answering a message with this header: the same command code,
+    /// from `from` (the component it was for) to its source, ACK when `ok`, else NAK; the
+    /// body is empty.
+    pub fn acknowledgement(&self, from: Address, ok: bool) -> Header {
+        let mut h = Header::new(self.command_code, self.source, from);
+        h.ack_nak = if ok { AckNak::Ack } else { AckNak::Nak };
+        h
+    }
+
     /// The 16 header bytes with `data_size` as given (the body length of this packet).
     pub fn encode_with_size(&self, data_size: usize) -> Result<[u8; HEADER_LEN], EncodeError> {
         let (lo, hi) = self.words_with_size(data_size)?;

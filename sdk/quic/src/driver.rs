@@ -3,8 +3,8 @@
 //! frames between the node's queues and the current connection.
 
 use std::net::SocketAddr;
-use std::sync::atomic::{AtomicU64, Ordering};
-use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::{Arc, Mutex};
 use std::thread::JoinHandle;
 use std::time::Duration;
 
@@ -13,7 +13,7 @@ use quinn::crypto::rustls::{QuicClientConfig, QuicServerConfig};
 use quinn::{Connection, ConnectionError, Endpoint, EndpointConfig, TransportConfig};
 use tokio::sync::{mpsc, oneshot, Semaphore};
 
-use crate::link::{Carrier, QuicLinkConfig, QuicLinkError, Role, Shared, MAX_MTU};
+use crate::settings::{QuicLinkConfig, QuicLinkError, QuicLinkStats, Role, MAX_MTU};
 
 /// The server name the connecting end asks for (certificates are pinned, not matched to
 /// names).
@@ -49,6 +49,31 @@ const ACCEPTED: &[u8] = b"jaus-link accepted";
 /// Application close codes.
 const CLOSE_STOPPED: u32 = 0;
 const CLOSE_REPLACED: u32 = 1;
+
+/// How a frame crossed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Carrier {
+    Datagram,
+    Stream,
+}
+
+/// What the node's thread and the link's thread share.
+#[derive(Debug, Default)]
+pub(crate) struct Shared {
+    /// A connection is established.
+    pub(crate) up: AtomicBool,
+    /// The counters (all but the refusals).
+    pub(crate) stats: Mutex<QuicLinkStats>,
+    /// Certificates refused by this end's verifier.
+    pub(crate) refused: Arc<AtomicU64>,
+}
+
+impl Shared {
+    /// Updates the counters.
+    pub(crate) fn count(&self, f: impl FnOnce(&mut QuicLinkStats)) {
+        f(&mut self.stats.lock().unwrap_or_else(|e| e.into_inner()));
+    }
+}
 
 /// A link's configuration turned into quinn's.
 pub(crate) struct Setup {

@@ -48,6 +48,7 @@ pub mod link;
 pub mod pin;
 
 mod driver;
+mod settings;
 
 pub use keys::{fingerprint, Identity};
 pub use link::{QuicLink, QuicLinkConfig, QuicLinkError, QuicLinkStats, Role};

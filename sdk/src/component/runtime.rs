@@ -121,10 +121,8 @@ impl<I: Interface> Runtime<I> {
         if request.ack_nak != AckNak::Request {
             return;
         }
-        let mut header = self.header(request.command_code, request.source);
-        header.ack_nak = if ok { AckNak::Ack } else { AckNak::Nak };
         self.push(Transmit {
-            header,
+            header: request.acknowledgement(self.address, ok),
             message: None,
         });
     }

@@ -432,9 +432,7 @@ fn answers(header: &Header, kind: Kind, why: &str) -> Vec<(Header, Vec<u8>)> {
         if let Ok(body) = report.to_bytes() {
             out.push((Header::new(ReportRefusal::CODE, header.source, me), body));
         }
-        let mut h = Header::new(header.command_code, header.source, me);
-        h.ack_nak = AckNak::Nak;
-        out.push((h, Vec::new()));
+        out.push((header.acknowledgement(me, false), Vec::new()));
     }
     out
 }

@@ -25,6 +25,7 @@
 
 mod attach;
 mod demo;
+mod links_file;
 mod node;
 mod output;
 mod place;
@@ -33,7 +34,8 @@ mod session;
 
 pub use attach::{attach_openjaus, OjNodeManager};
 pub use demo::demo_operator;
-pub use node::{node, tree_json, LinkFile, NodeFile, QuicLinkFile, TreePrinter};
+pub use links_file::{LinkFile, QuicLinkFile};
+pub use node::{node, tree_json, NodeFile, TreePrinter};
 pub use place::{bind_socket, default_me, silence_hint, Client, Commander, Mode};
 pub use policy_file::{PolicyFile, RuleFile};
 pub use session::{parse_message, Outcome, Script};
