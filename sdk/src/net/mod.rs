@@ -1,10 +1,11 @@
-//! The network layer: UDP framing and multi-packet messages ([`framing`]), the node
+//! The network layer: framing and multi-packet messages ([`framing`]), the node
 //! manager and its system tree ([`manager`]), a sans-IO node that routes between its
-//! components and the network ([`node`]) and a thin blocking UDP shell ([`udp`]). The
-//! `jaus-sim` crate runs nodes on a simulated lossy network with a virtual clock.
-
+//! components and the network ([`node`]), the seam to any datagram carrier
+//! ([`Transport`]) with the one loop that drives a node over it ([`shell`]), and UDP,
+//! the carrier of RA 3.3's JUDP ([`udp`]). The `jaus-sim` crate runs nodes on a
+//! simulated lossy network with a virtual clock.
 //!
-//! Two hosts drive components on a UDP interface, both [`Participant`]s: a [`Node`]
+//! Two hosts drive components on a carrier, both [`Participant`]s: a [`Node`]
 //! (its own node manager, routing for the node) and [`Attached`] (components in a
 //! process of their own, joined to a node through its socket).
 
@@ -14,6 +15,8 @@ pub mod manager;
 pub mod node;
 pub mod oj;
 pub mod policy;
+pub mod shell;
+mod transport;
 pub mod udp;
 
 use std::net::SocketAddr;
@@ -24,19 +27,29 @@ pub use framing::{Framing, Reassembler, ReassemblyLimits};
 pub use manager::{ManagerConfig, SystemTree};
 pub use node::{Datagram, NetStats, Node, NodeConfig, Via};
 pub use policy::{Permission, Policy, Rule};
+pub use transport::{PeerAddr, Transport};
 
 use crate::Address;
 
-/// Something that lives on a UDP interface, sans-IO: fed datagrams and timeouts, it
+/// Something that lives on a datagram carrier, sans-IO: fed datagrams and timeouts, it
 /// hands back datagrams to send and the next instant it wants to be woken. The shells
-/// ([`udp::run`], a simulated network) drive any of them the same way.
-pub trait Participant: std::fmt::Debug + Send + 'static {
+/// ([`shell::run`] over any [`Transport`], a simulated network) drive any of them the
+/// same way. `A` is the carrier's peer address (a UDP socket address by default).
+pub trait Participant<A: PeerAddr = SocketAddr>: std::fmt::Debug + Send + 'static {
     /// A datagram arrived from `peer`.
-    fn handle_datagram(&mut self, now: Instant, peer: SocketAddr, datagram: &[u8]);
+    fn handle_datagram(&mut self, now: Instant, peer: A, datagram: &[u8]);
+    /// A datagram arrived from `peer` on socket `via` of the host. The default takes
+    /// the carrier's ([`Via::Network`]) and drops the others: only a [`Node`] serves
+    /// OpenJAUS's component sockets.
+    fn handle_via(&mut self, now: Instant, via: Via, peer: A, datagram: &[u8]) {
+        if via == Via::Network {
+            self.handle_datagram(now, peer, datagram);
+        }
+    }
     /// Time passed.
     fn handle_timeout(&mut self, now: Instant);
     /// The next datagram to send.
-    fn poll_transmit(&mut self) -> Option<Datagram>;
+    fn poll_transmit(&mut self) -> Option<Datagram<A>>;
     /// The bytes of a datagram from [`poll_transmit`](Self::poll_transmit), handed
     /// back once sent so that the host can reuse the buffer (the default drops it).
     fn recycle(&mut self, bytes: Vec<u8>) {

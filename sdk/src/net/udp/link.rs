@@ -29,7 +29,7 @@ use std::io::ErrorKind;
 use std::net::{SocketAddr, UdpSocket};
 use std::time::{Duration, Instant};
 
-use crate::stock::communicator::{DataLink, LinkError};
+use crate::link::{DataLink, LinkError};
 use crate::wire::HEADER_LEN;
 
 /// The keep-alive datagram: shorter than a JAUS header, so never a frame.
@@ -150,7 +150,7 @@ pub struct UdpLinkStats {
 /// ```
 /// use std::time::Instant;
 /// use jaus::net::udp::link::{UdpLink, UdpLinkConfig};
-/// use jaus::stock::communicator::DataLink;
+/// use jaus::link::DataLink;
 ///
 /// let any = "127.0.0.1:0".parse().unwrap();
 /// let mut a = UdpLink::bind(UdpLinkConfig::new(1, any, any)).unwrap();

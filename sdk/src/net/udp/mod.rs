@@ -1,19 +1,23 @@
-//! The I/O shell: one blocking UDP socket driving a sans-IO [`Participant`]
-//! (a [`Node`](super::Node), [`Attached`](super::Attached) components) with the real clock.
+//! UDP, the carrier of JUDP: a socket (or a node's sockets, with OpenJAUS's component
+//! interface) as a [`Transport`], and the calls that run a sans-IO [`Participant`]
+//! (a [`Node`](super::Node), [`Attached`](super::Attached) components) on it through
+//! the one loop, [`shell::run`].
 //!
-//! `link` (with the `stock` feature) is the Communicator's data link over UDP
+//! `link` is the Communicator's data link over UDP
 //! (`link::UdpLink`), the hardware a node hosting a
 //! `jaus::stock::communicator::CommunicatorEndpoint` uses to reach other subsystems
 //! through an IP radio or any other socket.
 
 use std::io::ErrorKind;
 use std::net::{SocketAddr, UdpSocket};
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::{mpsc, Arc};
 use std::time::{Duration, Instant};
 
-use super::Participant;
+use super::{shell, Datagram, Participant, Transport, Via};
 
-#[cfg(feature = "stock")]
+pub use super::shell::Direction;
+
 pub mod link;
 pub mod shutdown;
 mod socket;
@@ -82,15 +86,6 @@ pub fn run_on<P: Participant>(
     )
 }
 
-/// Which way a datagram went, for a [`run_tapped`] observer.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Direction {
-    /// Received from the peer.
-    Received,
-    /// Sent to the peer (after the socket accepted it).
-    Sent,
-}
-
 /// [`run_on`] with `io` options, showing `tap` every datagram received and sent
 /// (direction, peer, datagram), e.g. to write a capture.
 pub fn run_tapped<P: Participant>(
@@ -99,64 +94,67 @@ pub fn run_tapped<P: Participant>(
     io: &IoOptions,
     stop: &AtomicBool,
     until: Option<Instant>,
-    mut on_tick: impl FnMut(&mut P),
-    mut tap: impl FnMut(Direction, SocketAddr, &[u8]),
+    on_tick: impl FnMut(&mut P),
+    tap: impl FnMut(Direction, SocketAddr, &[u8]),
 ) -> std::io::Result<()> {
-    tracing::info!(bind = ?socket.local_addr().ok(), "up");
-    give_wall_clock(node);
-    let mut receiver = Receiver::new(io);
-    loop {
-        if stopping(stop, until) {
-            return Ok(());
-        }
-        let now = Instant::now();
-        let wait = next_wait(node, now);
-        match receiver.recv(socket, now, wait) {
-            Ok(n) => {
-                for i in 0..n {
-                    let (peer, datagram) = receiver.datagram(i);
-                    tap(Direction::Received, peer, datagram);
-                    node.handle_datagram(Instant::now(), peer, datagram);
-                }
-            }
-            // A previous send to a closed port (ICMP unreachable on some systems).
-            Err(e) if e.kind() == ErrorKind::ConnectionReset => {}
-            Err(e) => return Err(e),
-        }
-        node.handle_timeout(Instant::now());
-        on_tick(node);
-        while let Some(d) = node.poll_transmit() {
-            match socket.send_to(&d.bytes, d.to) {
-                Ok(_) => tap(Direction::Sent, d.to, &d.bytes),
-                Err(e) => tracing::debug!(to = %d.to, "send failed: {e}"),
-            }
-            node.recycle(d.bytes);
+    let mut transport = UdpTransport::new(socket, io);
+    shell::run(node, &mut transport, stop, until, on_tick, tap)
+}
+
+/// One UDP socket as a [`Transport`]: batched, spinning reads ([`IoOptions`]); every
+/// datagram is the carrier's ([`Via::Network`]).
+#[derive(Debug)]
+pub struct UdpTransport<'a> {
+    socket: &'a UdpSocket,
+    receiver: Receiver,
+}
+
+impl<'a> UdpTransport<'a> {
+    /// The transport over `socket`, reading as `io` says.
+    pub fn new(socket: &'a UdpSocket, io: &IoOptions) -> Self {
+        Self {
+            socket,
+            receiver: Receiver::new(io),
         }
     }
 }
 
-/// The system's clock for the components whose clock nobody set (the shell reads the
-/// clocks; the sans-IO core does not).
-fn give_wall_clock<P: Participant + ?Sized>(node: &mut P) {
-    let utc = std::time::SystemTime::now()
-        .duration_since(std::time::UNIX_EPOCH)
-        .unwrap_or_default();
-    node.wall_clock(Instant::now(), utc);
+impl Transport for UdpTransport<'_> {
+    type Addr = SocketAddr;
+
+    fn recv<F: FnMut(Via, SocketAddr, &[u8])>(
+        &mut self,
+        wait: Duration,
+        mut on: F,
+    ) -> std::io::Result<()> {
+        match self.receiver.recv(self.socket, Instant::now(), wait) {
+            Ok(n) => {
+                for i in 0..n {
+                    let (peer, datagram) = self.receiver.datagram(i);
+                    on(Via::Network, peer, datagram);
+                }
+                Ok(())
+            }
+            // A previous send to a closed port (ICMP unreachable on some systems).
+            Err(e) if e.kind() == ErrorKind::ConnectionReset => Ok(()),
+            Err(e) => Err(e),
+        }
+    }
+
+    fn send(&mut self, d: &Datagram) -> std::io::Result<()> {
+        self.socket.send_to(&d.bytes, d.to).map(drop)
+    }
+
+    fn describe(&self) -> String {
+        local(self.socket)
+    }
 }
 
-/// Whether the I/O loop must end: `stop` set or `until` passed.
-fn stopping(stop: &AtomicBool, until: Option<Instant>) -> bool {
-    stop.load(Ordering::Relaxed) || until.is_some_and(|u| Instant::now() >= u)
-}
-
-/// How long the I/O loop may wait for a datagram: until the node's next timeout, within
-/// 100 µs to 100 ms (so that `stop` is seen at least every 100 ms).
-fn next_wait<P: Participant + ?Sized>(node: &P, now: Instant) -> Duration {
-    node.poll_timeout()
-        .map_or(Duration::from_millis(100), |t| {
-            t.saturating_duration_since(now)
-        })
-        .clamp(Duration::from_micros(100), Duration::from_millis(100))
+/// A socket's local address, for logs.
+fn local(socket: &UdpSocket) -> String {
+    socket
+        .local_addr()
+        .map_or_else(|e| format!("(unknown: {e})"), |a| a.to_string())
 }
 
 /// The sockets of a [`Node`](super::Node): its JAUS socket, and when it serves
@@ -183,109 +181,143 @@ pub fn run_node(
     io: &IoOptions,
     stop: &AtomicBool,
     until: Option<Instant>,
-    mut on_tick: impl FnMut(&mut super::Node),
-    mut tap: impl FnMut(Direction, SocketAddr, &[u8]),
+    on_tick: impl FnMut(&mut super::Node),
+    tap: impl FnMut(Direction, SocketAddr, &[u8]),
 ) -> std::io::Result<()> {
-    use super::Via;
-    use std::sync::mpsc;
     if sockets.component_control.is_none() && sockets.component_data.is_none() {
         return run_tapped(node, sockets.network, io, stop, until, on_tick, tap);
     }
-    tracing::info!(bind = ?sockets.network.local_addr().ok(), "up, with OpenJAUS component sockets");
-    give_wall_clock(node);
-    let (tx, rx) = mpsc::sync_channel::<(Via, SocketAddr, Vec<u8>)>(1024);
-    let receivers = [
-        (Via::Network, Some(sockets.network)),
-        (Via::ComponentControl, sockets.component_control),
-        (Via::ComponentData, sockets.component_data),
-    ];
-    let dropped = std::sync::Arc::new(std::sync::atomic::AtomicU64::new(0));
-    let done = std::sync::Arc::new(AtomicBool::new(false));
-    // Owned threads (not scoped ones): one that does not stop is reported and left
-    // behind instead of holding the node's shutdown forever.
-    let mut threads = Vec::new();
-    let mut spawned = Ok(());
-    for (via, socket) in receivers {
-        let Some(socket) = socket else { continue };
-        let started = socket.try_clone().and_then(|socket| {
-            let (tx, dropped, done) = (tx.clone(), dropped.clone(), done.clone());
-            std::thread::Builder::new()
-                .name(format!("jaus-rx-{}", via_name(via)))
-                .spawn(move || receive(&socket, via, &tx, &dropped, &done))
-        });
-        match started {
-            Ok(h) => threads.push(h),
-            Err(e) => {
-                spawned = Err(e);
-                break;
-            }
-        }
-    }
-    drop(tx);
-    let result = spawned.and_then(|()| loop {
-        if stopping(stop, until) {
-            return Ok(());
-        }
-        let now = Instant::now();
-        let wait = next_wait(&*node, now);
-        match rx.recv_timeout(wait) {
-            Ok((via, peer, bytes)) => match via {
-                Via::Network => {
-                    tap(Direction::Received, peer, &bytes);
-                    node.handle_datagram(Instant::now(), peer, &bytes);
-                }
-                Via::ComponentControl => {
-                    node.handle_component_control(Instant::now(), peer, &bytes)
-                }
-                Via::ComponentData => node.handle_component_data(Instant::now(), peer, &bytes),
-            },
-            Err(mpsc::RecvTimeoutError::Timeout) => {}
-            Err(mpsc::RecvTimeoutError::Disconnected) => {
-                return Err(std::io::Error::other("a socket's receiver stopped"))
-            }
-        }
-        node.handle_timeout(Instant::now());
-        on_tick(node);
-        while let Some(d) = node.poll_transmit() {
-            let socket = match d.via {
-                Via::Network => Some(sockets.network),
-                Via::ComponentControl => sockets.component_control,
-                Via::ComponentData => sockets.component_data,
-            };
-            let Some(socket) = socket else { continue };
-            match socket.send_to(&d.bytes, d.to) {
-                Ok(_) if d.via == Via::Network => tap(Direction::Sent, d.to, &d.bytes),
-                Ok(_) => {}
-                Err(e) => tracing::debug!(to = %d.to, "send failed: {e}"),
-            }
-            node.recycle(d.bytes);
-        }
-    });
-    // Let the receivers end; each is waited for within the bound.
-    done.store(true, Ordering::Relaxed);
-    let mut ended = Ok(());
-    for h in threads {
-        match join_within(h, SHUTDOWN_BOUND) {
-            Ok(Ok(())) => {}
-            Ok(Err(e)) => tracing::warn!("a receiver ended with an error: {e}"),
-            Err(e) => ended = Err(std::io::Error::from(e)),
-        }
-    }
+    let mut transport = Sockets::start(sockets)?;
+    let result = shell::run(node, &mut transport, stop, until, on_tick, tap);
+    let ended = transport.finish();
     result?;
-    ended?;
-    let lost = dropped.load(Ordering::Relaxed);
-    if lost > 0 {
-        tracing::warn!("{lost} datagrams dropped: the receive queue was full");
+    ended
+}
+
+/// Several sockets as one [`Transport`]: a receiving thread per socket feeds a bounded
+/// queue (a full queue drops and counts); sends go out on the datagram's socket.
+struct Sockets<'a> {
+    sockets: NodeSockets<'a>,
+    rx: mpsc::Receiver<(Via, SocketAddr, Vec<u8>)>,
+    threads: Vec<std::thread::JoinHandle<std::io::Result<()>>>,
+    dropped: Arc<AtomicU64>,
+    done: Arc<AtomicBool>,
+}
+
+impl<'a> Sockets<'a> {
+    /// Starts a receiver per socket.
+    fn start(sockets: NodeSockets<'a>) -> std::io::Result<Self> {
+        let (tx, rx) = mpsc::sync_channel::<(Via, SocketAddr, Vec<u8>)>(1024);
+        let mut me = Self {
+            sockets,
+            rx,
+            threads: Vec::new(),
+            dropped: Arc::new(AtomicU64::new(0)),
+            done: Arc::new(AtomicBool::new(false)),
+        };
+        let receivers = [
+            (Via::Network, Some(sockets.network)),
+            (Via::ComponentControl, sockets.component_control),
+            (Via::ComponentData, sockets.component_data),
+        ];
+        // Owned threads (not scoped ones): one that does not stop is reported and left
+        // behind instead of holding the node's shutdown forever.
+        for (via, socket) in receivers {
+            let Some(socket) = socket else { continue };
+            let started = socket.try_clone().and_then(|socket| {
+                let (tx, dropped, done) = (tx.clone(), me.dropped.clone(), me.done.clone());
+                std::thread::Builder::new()
+                    .name(format!("jaus-rx-{}", via_name(via)))
+                    .spawn(move || receive(&socket, via, &tx, &dropped, &done))
+            });
+            match started {
+                Ok(h) => me.threads.push(h),
+                Err(e) => {
+                    // The receivers already started end with the error.
+                    let _ = me.finish();
+                    return Err(e);
+                }
+            }
+        }
+        Ok(me)
     }
-    Ok(())
+
+    /// Lets the receivers end, each waited for within the bound.
+    fn finish(&mut self) -> std::io::Result<()> {
+        self.done.store(true, Ordering::Relaxed);
+        let mut ended = Ok(());
+        for h in self.threads.drain(..) {
+            match join_within(h, SHUTDOWN_BOUND) {
+                Ok(Ok(())) => {}
+                Ok(Err(e)) => tracing::warn!("a receiver ended with an error: {e}"),
+                Err(e) => ended = Err(std::io::Error::from(e)),
+            }
+        }
+        let lost = self.dropped.swap(0, Ordering::Relaxed);
+        if lost > 0 {
+            tracing::warn!("{lost} datagrams dropped: the receive queue was full");
+        }
+        ended
+    }
+}
+
+impl Transport for Sockets<'_> {
+    type Addr = SocketAddr;
+
+    fn recv<F: FnMut(Via, SocketAddr, &[u8])>(
+        &mut self,
+        wait: Duration,
+        mut on: F,
+    ) -> std::io::Result<()> {
+        match self.rx.recv_timeout(wait) {
+            Ok((via, peer, bytes)) => {
+                on(via, peer, &bytes);
+                Ok(())
+            }
+            Err(mpsc::RecvTimeoutError::Timeout) => Ok(()),
+            Err(mpsc::RecvTimeoutError::Disconnected) => {
+                Err(std::io::Error::other("a socket's receiver stopped"))
+            }
+        }
+    }
+
+    fn send(&mut self, d: &Datagram) -> std::io::Result<()> {
+        let socket = match d.via {
+            Via::Network => Some(self.sockets.network),
+            Via::ComponentControl => self.sockets.component_control,
+            Via::ComponentData => self.sockets.component_data,
+        };
+        let socket = socket.ok_or_else(|| {
+            std::io::Error::new(
+                ErrorKind::NotConnected,
+                format!("no {} socket", via_name(d.via)),
+            )
+        })?;
+        socket.send_to(&d.bytes, d.to).map(drop)
+    }
+
+    fn describe(&self) -> String {
+        format!(
+            "{}, with OpenJAUS component sockets",
+            local(self.sockets.network)
+        )
+    }
+}
+
+impl Drop for Sockets<'_> {
+    fn drop(&mut self) {
+        if !self.threads.is_empty() {
+            let _ = self.finish();
+        }
+    }
 }
 
 /// The short name of a socket of a node, for thread names and logs.
-fn via_name(via: super::Via) -> &'static str {
+fn via_name(via: Via) -> &'static str {
     match via {
-        super::Via::Network => "network",
-        super::Via::ComponentControl => "component-control",
-        super::Via::ComponentData => "component-data",
+        Via::Network => "network",
+        Via::ComponentControl => "component-control",
+        Via::ComponentData => "component-data",
     }
 }
 
@@ -293,9 +325,9 @@ fn via_name(via: super::Via) -> &'static str {
 /// bounded queue until `done` is set; a full queue drops and counts.
 fn receive(
     socket: &UdpSocket,
-    via: super::Via,
-    tx: &std::sync::mpsc::SyncSender<(super::Via, SocketAddr, Vec<u8>)>,
-    dropped: &std::sync::atomic::AtomicU64,
+    via: Via,
+    tx: &mpsc::SyncSender<(Via, SocketAddr, Vec<u8>)>,
+    dropped: &AtomicU64,
     done: &AtomicBool,
 ) -> std::io::Result<()> {
     socket.set_read_timeout(Some(Duration::from_millis(100)))?;

@@ -5,7 +5,7 @@
 use std::collections::VecDeque;
 use std::time::{Duration, Instant};
 
-use super::link::{DataLink, LinkError};
+use crate::link::{DataLink, LinkError};
 use crate::component::Refused;
 use crate::components::communicator as cm;
 use crate::messages::*;

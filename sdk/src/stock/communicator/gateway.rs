@@ -5,7 +5,7 @@ use std::any::Any;
 use std::time::Instant;
 
 use super::component::StockCommunicator;
-use super::link::DataLink;
+use crate::link::DataLink;
 use crate::component::{Component, Config, Endpoint, Outgoing, Stats};
 use crate::components::communicator;
 use crate::{Address, Header};

@@ -14,8 +14,7 @@
 
 mod component;
 mod gateway;
-mod link;
 
 pub use component::{CommunicatorConfig, CommunicatorError, LinkStats, StockCommunicator};
 pub use gateway::{CommunicatorComponent, CommunicatorEndpoint};
-pub use link::{DataLink, LinkError};
+pub use crate::link::{DataLink, LinkError};

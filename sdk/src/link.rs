@@ -1,5 +1,8 @@
-//! The hardware of the Communicator: a data link ([`DataLink`]), a radio or any other
-//! channel that carries JAUS packets between subsystems. Sans-IO like the rest of the
+//! A data link ([`DataLink`]): the hardware a subsystem's Communicator reaches other
+//! subsystems through, a radio or any other channel that carries JAUS packets. It sits
+//! below both the network layer (`jaus::net::udp::link` is one) and the stock
+//! Communicator (`jaus::stock::communicator`, which drives any of them), so neither
+//! imports the other. Sans-IO like the rest of the
 //! SDK: every call takes the time, nothing blocks, no thread or socket is implied.
 
 use std::time::Instant;

@@ -1,0 +1,186 @@
+//! A node's settings, the datagrams it hands its shell and its counters.
+
+use std::net::SocketAddr;
+
+use super::super::framing::{Framing, ReassemblyLimits};
+use super::super::manager::ManagerConfig;
+use super::super::PeerAddr;
+use crate::component::Config;
+use crate::Address;
+
+/// Settings of a node.
+#[derive(Debug, Clone)]
+pub struct NodeConfig<A: PeerAddr = SocketAddr> {
+    /// Subsystem id (1-254). Default 1.
+    pub subsystem: u8,
+    /// Node id (1-254). Default 1.
+    pub node: u8,
+    /// Node manager settings (names, heartbeat, node timeout; defaults there).
+    pub manager: ManagerConfig,
+    /// Framing of the node's datagrams. Default JUDP.
+    pub framing: Framing,
+    /// Peers always sent broadcasts and messages to nodes not yet located. Default
+    /// none.
+    pub peers: Vec<A>,
+    /// Reassembly limits (defaults there: 1 MiB per message, 2 MiB per source, 16 MiB
+    /// in all, 2 s).
+    pub reassembly: ReassemblyLimits,
+    /// Most datagrams waiting to be sent (more are dropped and counted). Default 8192.
+    pub max_outbox: usize,
+    /// Settings of the node manager component (the component defaults).
+    pub component: Config,
+    /// Most external components (other processes using this node's socket). Default
+    /// 64.
+    pub max_external: usize,
+    /// An external component not heard from for this long is removed (they heartbeat
+    /// every second). Default 3 s.
+    pub external_timeout: std::time::Duration,
+    /// Multicast discovery (docs/wire.md §9.5): messages to every subsystem or every
+    /// node (heartbeats, broadcast queries) go to this group (e.g. 224.1.0.1:3794)
+    /// and the configured peers, instead of to every node learned. Default `None`
+    /// (off, as in OpenJAUS's default configuration). The I/O shell joins the group.
+    pub multicast: Option<A>,
+    /// The subsystem's Communicator (Part 1 §5.2.1 and Figure 5-1: the single point of
+    /// entry into the subsystem), on this node or another node of the subsystem.
+    /// When set, every message for another subsystem goes through it: on this node it
+    /// is handed, packet by packet, to the communicator's endpoint
+    /// ([`Endpoint::gateway_send`](crate::component::Endpoint::gateway_send), e.g. `jaus::stock::communicator::CommunicatorEndpoint`)
+    /// instead of to a UDP peer, and the packets it receives from its data links are
+    /// routed as if received (to the components here and the other nodes of the
+    /// subsystem); on another node, such messages are sent to that node. Datagrams on
+    /// the UDP interface from other subsystems are then dropped (counted in
+    /// [`NetStats::not_via_communicator`]) unless a node relays them from its
+    /// communicator. Default `None`: other subsystems are reached over UDP like nodes.
+    pub communicator: Option<Address>,
+    /// Who may command the components here, take control of them and with what
+    /// authority ([`Policy`](crate::net::policy::Policy)), checked before a message from
+    /// outside the node reaches a component. Default `None`: open, as RA 3.3 is.
+    pub policy: Option<crate::net::policy::Policy>,
+}
+
+/// The defaults the field documentation states:
+///
+/// ```
+/// let n = jaus::net::NodeConfig::default();
+/// assert_eq!((n.subsystem, n.node, n.framing), (1, 1, jaus::net::Framing::Judp));
+/// assert!(n.peers.is_empty());
+/// assert_eq!((n.max_outbox, n.max_external), (8192, 64));
+/// assert_eq!(n.external_timeout, std::time::Duration::from_secs(3));
+/// assert!(n.multicast.is_none());
+/// assert!(n.communicator.is_none());
+/// assert!(n.policy.is_none());
+/// ```
+impl Default for NodeConfig<SocketAddr> {
+    fn default() -> Self {
+        Self {
+            subsystem: 1,
+            node: 1,
+            manager: ManagerConfig::default(),
+            framing: Framing::Judp,
+            peers: Vec::new(),
+            reassembly: ReassemblyLimits::default(),
+            max_outbox: 8192,
+            component: Config::default(),
+            max_external: 64,
+            external_timeout: std::time::Duration::from_secs(3),
+            multicast: None,
+            communicator: None,
+            policy: None,
+        }
+    }
+}
+
+impl<A: PeerAddr> NodeConfig<A> {
+    /// The same settings on another carrier: `peers` and `multicast` are addresses of
+    /// that carrier ([`PeerAddr`]); everything else is kept.
+    ///
+    /// ```
+    /// // A node on a serial bus whose drops have one-byte addresses.
+    /// let c = jaus::net::NodeConfig::default().with_peers(vec![2u8, 3], None);
+    /// assert_eq!((c.subsystem, c.peers.len()), (1, 2));
+    /// ```
+    pub fn with_peers<B: PeerAddr>(self, peers: Vec<B>, multicast: Option<B>) -> NodeConfig<B> {
+        NodeConfig {
+            subsystem: self.subsystem,
+            node: self.node,
+            manager: self.manager,
+            framing: self.framing,
+            peers,
+            reassembly: self.reassembly,
+            max_outbox: self.max_outbox,
+            component: self.component,
+            max_external: self.max_external,
+            external_timeout: self.external_timeout,
+            multicast,
+            communicator: self.communicator,
+            policy: self.policy,
+        }
+    }
+}
+
+/// A datagram to send.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Datagram<A = SocketAddr> {
+    /// The peer.
+    pub to: A,
+    /// Framed bytes.
+    pub bytes: Vec<u8>,
+    /// The socket it leaves from ([`Via::Network`] on a carrier that has only one).
+    pub via: Via,
+}
+
+/// Which socket of a node a datagram leaves from: the network interface, or one of the
+/// two sockets of OpenJAUS's local component interface ([`oj`](crate::net::oj)), which a
+/// node serves when its shell binds them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum Via {
+    /// The node's JAUS socket (JUDP or "JAUS01.0").
+    #[default]
+    Network,
+    /// The component data socket (raw packets, port 24629).
+    ComponentData,
+    /// The component control socket (8-byte control datagrams, port 24627).
+    ComponentControl,
+}
+
+/// Counters of the interface and the routing.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct NetStats {
+    /// Datagrams received.
+    pub received: u64,
+    /// Datagrams sent (taken from the queue).
+    pub sent: u64,
+    /// Messages delivered to local components (from anywhere).
+    pub delivered_local: u64,
+    /// Dropped: bad transport framing.
+    pub bad_framing: u64,
+    /// Dropped: bad JAUS header or data size not matching the datagram.
+    pub bad_packet: u64,
+    /// Dropped: looped back from this very node.
+    pub from_self: u64,
+    /// Dropped: addressed to another node (nothing is forwarded between nodes).
+    pub not_for_us: u64,
+    /// Dropped: no local component matches the destination.
+    pub no_such_component: u64,
+    /// Dropped: the outgoing queue was full.
+    pub outbox_full: u64,
+    /// Dropped: a message that could not be encoded or split.
+    pub encode_errors: u64,
+    /// Messages sent to every peer because their node is not located yet.
+    pub flooded: u64,
+    /// External components refused (table full, or an id a built-in component has).
+    pub external_refused: u64,
+    /// External components removed after their timeout.
+    pub external_timed_out: u64,
+    /// Packets handed to this node's communicator, leaving the subsystem
+    /// ([`NodeConfig::communicator`]).
+    pub to_communicator: u64,
+    /// Packets this node's communicator received from its data links.
+    pub from_communicator: u64,
+    /// Dropped: a datagram from another subsystem that did not come through the
+    /// subsystem's communicator.
+    pub not_via_communicator: u64,
+    /// Messages refused by the node's policy ([`NodeConfig::policy`]; per rule in
+    /// [`Node::policy`](super::Node::policy)).
+    pub policy_refused: u64,
+}
