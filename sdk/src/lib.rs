@@ -75,6 +75,7 @@ pub mod codec;
 #[cfg(feature = "component")]
 pub mod component;
 pub mod hex;
+pub mod link;
 #[cfg(feature = "serde")]
 pub mod json;
 #[cfg(feature = "net")]
@@ -205,3 +206,9 @@ pub mod components {
 pub mod messages {
     include!(concat!(env!("OUT_DIR"), "/messages.rs"));
 }
+
+/// The Rust examples of the workspace's README.md, compiled and run as doctests
+/// (`cargo test -p jaus --doc`), so that the README shows code that works.
+#[cfg(doctest)]
+#[doc = include_str!("../../README.md")]
+pub struct ReadmeExamples;
