@@ -107,6 +107,29 @@ enum Cmd {
         /// Also run the demo's simulated vehicle (subsystem 1) on loopback.
         #[arg(long)]
         vehicle: bool,
+        /// The map's origin in degrees: the point whose metres east and north the map
+        /// counts (default: the first position received). Give it with --background so
+        /// the image's metres mean the same place on every run; --tiles needs an origin
+        /// (this, or the first position) to place tiles.
+        #[arg(long, value_name = "LAT,LON", value_parser = jaus_cli::ocu::parse_origin, allow_hyphen_values = true)]
+        origin: Option<(f64, f64)>,
+        /// A background image under the map (PNG or JPEG; read once at start-up, never
+        /// fetched). Placed in the map's frame (metres east, north of the origin) by
+        /// --background-bounds, else by its world file beside it (map.png -> map.pgw,
+        /// map.jpg -> map.jgw, or .wld: six lines: metres per pixel east, rotation,
+        /// rotation, metres per pixel north (negative), then x and y of the centre of the
+        /// upper-left pixel).
+        #[arg(long, value_name = "PATH")]
+        background: Option<std::path::PathBuf>,
+        /// Where the background image's outer edges lie: west, south, east, north, in
+        /// metres east and north of the map's origin (e.g. -100,-50,100,50).
+        #[arg(long, value_name = "X0,Y0,X1,Y1", requires = "background", value_parser = jaus_cli::ocu::parse_bounds, allow_hyphen_values = true)]
+        background_bounds: Option<[f64; 4]>,
+        /// A local directory of map tiles in the usual z/x/y.png layout (as tile
+        /// downloaders and tile servers' caches write; .jpg and .webp too), drawn under
+        /// the map by latitude and longitude; nothing is fetched from the network.
+        #[arg(long, value_name = "DIR")]
+        tiles: Option<std::path::PathBuf>,
         /// Stop after this many seconds (default: run until interrupted).
         #[arg(long)]
         seconds: Option<f64>,
@@ -560,6 +583,10 @@ fn main() -> ExitCode {
             subsystem,
             node,
             vehicle,
+            origin,
+            background,
+            background_bounds,
+            tiles,
             seconds,
         } => report(
             &mut err,
@@ -573,6 +600,10 @@ fn main() -> ExitCode {
                     subsystem,
                     node,
                     vehicle,
+                    origin,
+                    background,
+                    background_bounds,
+                    tiles,
                     duration: duration(seconds),
                 },
                 &STOP,

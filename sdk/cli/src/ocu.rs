@@ -9,7 +9,7 @@ use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use jaus::net::{udp, NodeConfig};
-use jaus_ocu::ConsoleOptions;
+use jaus_ocu::{BackgroundSource, ConsoleOptions, MapOptions};
 
 /// What `jaus ocu` was asked for.
 #[derive(Debug, Clone)]
@@ -31,6 +31,15 @@ pub struct OcuArgs {
     pub node: u8,
     /// Also run the demo's simulated vehicle (subsystem 1) on loopback.
     pub vehicle: bool,
+    /// The map's origin (latitude, longitude, degrees); default the first position.
+    pub origin: Option<(f64, f64)>,
+    /// A background image under the map.
+    pub background: Option<PathBuf>,
+    /// Its outer edges (west, south, east, north, metres in the map's frame); without
+    /// them, its world file.
+    pub background_bounds: Option<[f64; 4]>,
+    /// A directory of z/x/y map tiles.
+    pub tiles: Option<PathBuf>,
     /// Stop after this long.
     pub duration: Option<Duration>,
 }
@@ -41,6 +50,16 @@ pub fn ocu(args: &OcuArgs, stop: &AtomicBool, out: &mut impl Write) -> Result<()
         http: args.http,
         allowed_hosts: args.allow_hosts.clone(),
         bind: args.bind,
+        origin: args.origin,
+        map: MapOptions {
+            background: args
+                .background
+                .clone()
+                .map(|image| BackgroundSource::new(image, args.background_bounds))
+                .transpose()
+                .map_err(|e| e.to_string())?,
+            tiles: args.tiles.clone(),
+        },
         ..ConsoleOptions::default()
     };
     match &args.config {
@@ -136,4 +155,61 @@ fn run_vehicle(socket: &std::net::UdpSocket, stop: &AtomicBool) -> Result<(), St
         .map_err(|e| format!("simulated vehicle: {e}"))?;
     udp::run_on(&mut node, socket, stop, None, |_| {})
         .map_err(|e| format!("simulated vehicle: {e}"))
+}
+
+/// `--origin LAT,LON`: degrees, latitude within ±90 and longitude within ±180.
+pub fn parse_origin(text: &str) -> Result<(f64, f64), String> {
+    let v = numbers(text, 2, "LAT,LON")?;
+    if v[0].abs() > 90.0 || v[1].abs() > 180.0 {
+        return Err(format!(
+            "`{text}`: latitude within ±90 and longitude within ±180 degrees"
+        ));
+    }
+    Ok((v[0], v[1]))
+}
+
+/// `--background-bounds X0,Y0,X1,Y1`: west, south, east, north, metres, with x0 < x1
+/// and y0 < y1.
+pub fn parse_bounds(text: &str) -> Result<[f64; 4], String> {
+    let v = numbers(text, 4, "X0,Y0,X1,Y1")?;
+    if v[0] >= v[2] || v[1] >= v[3] {
+        return Err(format!(
+            "`{text}`: west, south, east, north (metres), with west < east and south < north"
+        ));
+    }
+    Ok([v[0], v[1], v[2], v[3]])
+}
+
+/// `n` finite numbers separated by commas.
+fn numbers(text: &str, n: usize, form: &str) -> Result<Vec<f64>, String> {
+    let v: Vec<f64> = text
+        .split(',')
+        .map(|p| p.trim().parse::<f64>().ok().filter(|x| x.is_finite()))
+        .collect::<Option<_>>()
+        .ok_or_else(|| format!("`{text}`: expected {form} (numbers separated by commas)"))?;
+    if v.len() != n {
+        return Err(format!(
+            "`{text}`: expected {form} ({n} numbers, got {})",
+            v.len()
+        ));
+    }
+    Ok(v)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn origins_and_bounds_are_checked() {
+        assert_eq!(parse_origin("29.6436,-82.3549"), Ok((29.6436, -82.3549)));
+        assert!(parse_origin("91,0").is_err());
+        assert!(parse_origin("1").unwrap_err().contains("2 numbers"));
+        assert_eq!(parse_bounds("-10, -5, 10, 5"), Ok([-10.0, -5.0, 10.0, 5.0]));
+        assert!(parse_bounds("10,-5,-10,5")
+            .unwrap_err()
+            .contains("west < east"));
+        assert!(parse_bounds("a,b,c,d").unwrap_err().contains("X0,Y0,X1,Y1"));
+        assert!(parse_bounds("0,0,1,nan").is_err());
+    }
 }

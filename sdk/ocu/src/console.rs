@@ -16,6 +16,7 @@ use jaus::stock::commander::{Station, StationConfig, TreeInput};
 use jaus::Address;
 
 use crate::log::MessageLog;
+use crate::map::{MapError, MapLayers, MapOptions};
 use crate::shared::{lock, Published, Shared};
 
 /// The console's System Commander: the station as a component.
@@ -42,6 +43,8 @@ pub struct ConsoleOptions {
     pub authority: u8,
     /// The map's origin (default: the first position received).
     pub origin: Option<(f64, f64)>,
+    /// The map's optional background (default none).
+    pub map: MapOptions,
     /// The station's settings.
     pub station: StationConfig,
     /// How often the view is published to the page when no new pose arrived (a new
@@ -64,6 +67,7 @@ impl Default for ConsoleOptions {
             instance: 1,
             authority: 0,
             origin: None,
+            map: MapOptions::default(),
             station: StationConfig::default(),
             publish_period: Duration::from_millis(50),
         }
@@ -95,6 +99,9 @@ pub enum ConsoleError {
     /// A key given in the options that is too short or not URL- and cookie-safe.
     #[error("the console's key must be at least 16 characters of A-Z, a-z, 0-9, `-` or `_`")]
     Key,
+    /// A background layer of the map (the file and what is wrong).
+    #[error("{0}")]
+    Map(#[from] MapError),
     /// A thread of the console did not end (named).
     #[error("shutdown: {0}")]
     Shutdown(#[from] udp::ShutdownError),
@@ -133,6 +140,7 @@ pub fn run(
     stop: &AtomicBool,
     ready: impl FnOnce(Bound),
 ) -> Result<(), ConsoleError> {
+    let map = Arc::new(MapLayers::load(&options.map)?);
     let socket = UdpSocket::bind(options.bind).map_err(|source| ConsoleError::Udp {
         addr: options.bind,
         source,
@@ -191,7 +199,7 @@ pub fn run(
     ));
     let server = std::thread::Builder::new()
         .name("ocu-http".into())
-        .spawn(move || crate::server::serve(listener, server_shared, guard, &server_stop2))
+        .spawn(move || crate::server::serve(listener, server_shared, guard, map, &server_stop2))
         .map_err(|source| ConsoleError::Http {
             addr: http_local,
             source,

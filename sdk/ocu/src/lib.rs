@@ -17,13 +17,16 @@
 //! | [`log`] | the message log (decoded JSON of what was sent and received) |
 //! | [`server`] | HTTP and WebSocket (axum) |
 //! | [`guard`] | who may use the server: Host, Origin, the run's key, JSON commands |
+//! | [`map`] | the map's optional background: a georeferenced image, local tiles |
 //! | [`shared`] | what the node thread and the server share (commands, views, log) |
 
 pub mod console;
 pub mod guard;
 pub mod log;
+pub mod map;
 pub mod protocol;
 pub mod server;
 pub mod shared;
 
 pub use console::{run, Bound, ConsoleError, ConsoleOptions};
+pub use map::{BackgroundSource, MapOptions, Placement};

@@ -1,8 +1,10 @@
 //! The local web server: the page (embedded in the binary), the full view with trails
 //! (`GET /api/view`), commands (`POST /api/command`, one page message as the body), the
-//! server's counters (`GET /api/stats`) and a WebSocket (`/ws`) that pushes the view and
-//! the new log entries as they are published and takes the page's commands. Every route
-//! but the static files passes the [`Guard`]; `GET /?key=KEY` (the address printed at
+//! server's counters (`GET /api/stats`), a WebSocket (`/ws`) that pushes the view and
+//! the new log entries as they are published and takes the page's commands, and the
+//! map's optional layers ([`crate::map`]): what they are (`GET /api/map`), the background
+//! image (`GET /map/background`) and tiles (`GET /map/tiles/Z/X/Y.png`). Every route but
+//! the static files passes the [`Guard`]; `GET /?key=KEY` (the address printed at
 //! start-up) sets the key's cookie and sends the browser on to `/`.
 
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -10,7 +12,7 @@ use std::sync::Arc;
 use std::time::Duration;
 
 use axum::extract::ws::{Message as WsMessage, WebSocket, WebSocketUpgrade};
-use axum::extract::{RawQuery, State};
+use axum::extract::{Path, RawQuery, State};
 use axum::http::{header, HeaderMap, StatusCode};
 use axum::response::{IntoResponse, Response};
 use axum::routing::{get, post};
@@ -18,6 +20,7 @@ use axum::serve::ListenerExt;
 use axum::Router;
 
 use crate::guard::{Access, Guard, Refusal};
+use crate::map::{tiles, MapLayers};
 use crate::shared::Shared;
 
 /// What every route sees.
@@ -25,6 +28,7 @@ use crate::shared::Shared;
 struct App {
     shared: Arc<Shared>,
     guard: Arc<Guard>,
+    map: Arc<MapLayers>,
 }
 
 /// Log entries sent in one push at most.
@@ -34,8 +38,8 @@ const INDEX: &str = include_str!("../assets/index.html");
 const APP: &str = include_str!("../assets/app.js");
 const STYLE: &str = include_str!("../assets/style.css");
 
-/// The page's routes over `shared`, behind `guard`.
-pub fn router(shared: Arc<Shared>, guard: Arc<Guard>) -> Router {
+/// The page's routes over `shared` and the map's layers `map`, behind `guard`.
+pub fn router(shared: Arc<Shared>, guard: Arc<Guard>, map: Arc<MapLayers>) -> Router {
     Router::new()
         .route("/", get(index))
         .route(
@@ -56,7 +60,10 @@ pub fn router(shared: Arc<Shared>, guard: Arc<Guard>) -> Router {
         .route("/api/stats", get(stats))
         .route("/api/command", post(command))
         .route("/ws", get(ws))
-        .with_state(App { shared, guard })
+        .route("/api/map", get(map_layers))
+        .route("/map/background", get(background))
+        .route("/map/tiles/{z}/{x}/{y}", get(tile))
+        .with_state(App { shared, guard, map })
 }
 
 /// `None` when the request passes the guard's checks for `access`; else the refusal
@@ -173,6 +180,81 @@ async fn ws(State(app): State<App>, headers: HeaderMap, upgrade: WebSocketUpgrad
     upgrade.on_upgrade(move |socket| session(socket, shared))
 }
 
+/// `/api/map`: the layers the page may draw under the vehicles (JSON; nulls when none).
+async fn map_layers(State(app): State<App>, headers: HeaderMap) -> Response {
+    if let Some(r) = gate(&app, Access::Read, &headers, "/api/map") {
+        return r;
+    }
+    ([(header::CONTENT_TYPE, "application/json")], app.map.json()).into_response()
+}
+
+/// `/map/background`: the background image given at start-up (read then), or 404.
+async fn background(State(app): State<App>, headers: HeaderMap) -> Response {
+    if let Some(r) = gate(&app, Access::Read, &headers, "/map/background") {
+        return r;
+    }
+    match &app.map.background {
+        Some(b) => (
+            [
+                (header::CONTENT_TYPE, b.format.mime()),
+                (header::CACHE_CONTROL, "no-cache"),
+            ],
+            axum::body::Bytes::from_owner(b.bytes.clone()),
+        )
+            .into_response(),
+        None => not_found("no background image (jaus ocu --background)"),
+    }
+}
+
+/// `/map/tiles/Z/X/Y.EXT`: one tile of the tile directory ([`tiles::Tiles::read`]),
+/// 400 for an address that is not three integers in range, 404 for anything else.
+async fn tile(
+    State(app): State<App>,
+    headers: HeaderMap,
+    Path((z, x, y)): Path<(String, String, String)>,
+) -> Response {
+    if let Some(r) = gate(&app, Access::Read, &headers, "/map/tiles") {
+        return r;
+    }
+    let Some(tiles) = app.map.tiles.clone() else {
+        return not_found("no tile directory (jaus ocu --tiles)");
+    };
+    let read = tokio::task::spawn_blocking(move || tiles.read(&z, &x, &y)).await;
+    match read {
+        Ok(Ok((bytes, mime))) => (
+            [
+                (header::CONTENT_TYPE, mime),
+                (header::CACHE_CONTROL, "private, max-age=300"),
+            ],
+            bytes,
+        )
+            .into_response(),
+        Ok(Err(tiles::Miss::BadAddress)) => (
+            StatusCode::BAD_REQUEST,
+            [(header::CONTENT_TYPE, "text/plain; charset=utf-8")],
+            "a tile is /map/tiles/Z/X/Y.EXT: integers in range, the directory's extension\n",
+        )
+            .into_response(),
+        Ok(Err(tiles::Miss::NotFound(why))) => {
+            tracing::debug!("tile not served: {why}");
+            not_found("no such tile")
+        }
+        Err(e) => {
+            tracing::warn!("tile: {e}");
+            StatusCode::INTERNAL_SERVER_ERROR.into_response()
+        }
+    }
+}
+
+fn not_found(what: &'static str) -> Response {
+    (
+        StatusCode::NOT_FOUND,
+        [(header::CONTENT_TYPE, "text/plain; charset=utf-8")],
+        what,
+    )
+        .into_response()
+}
+
 /// One page's WebSocket: the full view first, then every published view with the log
 /// entries new since the last push; page messages go to the node thread.
 async fn session(mut socket: WebSocket, shared: Arc<Shared>) {
@@ -221,11 +303,13 @@ async fn session(mut socket: WebSocket, shared: Arc<Shared>) {
     }
 }
 
-/// Serves the page on `listener` behind `guard` until `stop` is set.
+/// Serves the page and the map's layers `map` on `listener` behind `guard` until `stop`
+/// is set.
 pub fn serve(
     listener: std::net::TcpListener,
     shared: Arc<Shared>,
     guard: Arc<Guard>,
+    map: Arc<MapLayers>,
     stop: &AtomicBool,
 ) {
     let runtime = match tokio::runtime::Builder::new_multi_thread()
@@ -264,7 +348,7 @@ pub fn serve(
                 listener.tap_io(|tcp| {
                     let _ = tcp.set_nodelay(true);
                 }),
-                router(shared, guard),
+                router(shared, guard, map),
             ) => {
                 if let Err(e) = r {
                     tracing::error!("web server: {e}");

@@ -12,69 +12,16 @@
 //! Without `chromedriver` the test is skipped with a message, unless
 //! `JAUS_REQUIRE_BROWSER` is set (CI installs the packages and sets it).
 
-use std::net::{SocketAddr, UdpSocket};
+mod common;
+
 use std::path::PathBuf;
-use std::process::{Child, Command, Stdio};
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::{mpsc, Arc};
 use std::time::{Duration, Instant};
 
+use common::browser::{get, js, vehicle_xy, wait_for, Browser, Rig};
 use fantoccini::actions::{InputSource, MouseActions, PointerAction, MOUSE_BUTTON_LEFT};
-use fantoccini::{Client, ClientBuilder, Locator};
-use jaus::net::{udp, NodeConfig};
+use fantoccini::{Client, Locator};
 use jaus_ocu::{Bound, ConsoleOptions};
 use serde_json::{json, Value};
-
-struct Driver(Child);
-impl Drop for Driver {
-    fn drop(&mut self) {
-        let _ = self.0.kill();
-        let _ = self.0.wait();
-    }
-}
-
-fn chromedriver() -> Option<PathBuf> {
-    let p = PathBuf::from("/usr/bin/chromedriver");
-    if p.exists() {
-        return Some(p);
-    }
-    std::env::var_os("PATH").and_then(|paths| {
-        std::env::split_paths(&paths)
-            .map(|d| d.join("chromedriver"))
-            .find(|p| p.exists())
-    })
-}
-
-fn free_port() -> u16 {
-    std::net::TcpListener::bind("127.0.0.1:0")
-        .and_then(|l| l.local_addr())
-        .map(|a| a.port())
-        .expect("a free port")
-}
-
-/// The demo's vehicle on a node of its own (subsystem 1), as `jaus node` hosts it.
-fn vehicle(socket: UdpSocket, stop: Arc<AtomicBool>) -> std::thread::JoinHandle<()> {
-    std::thread::spawn(move || {
-        let mut node = jaus_sim::demo::vehicle_node(Instant::now(), NodeConfig::default(), 1, 1)
-            .expect("the vehicle's components");
-        udp::run_on(&mut node, &socket, &stop, None, |_| {}).expect("the vehicle's node");
-    })
-}
-
-async fn wait_for<T>(
-    what: &str,
-    timeout: Duration,
-    mut probe: impl AsyncFnMut() -> Option<T>,
-) -> T {
-    let until = Instant::now() + timeout;
-    loop {
-        if let Some(v) = probe().await {
-            return v;
-        }
-        assert!(Instant::now() < until, "timed out waiting for {what}");
-        tokio::time::sleep(Duration::from_millis(100)).await;
-    }
-}
 
 /// A page at `http://{host}:{port}/` (served by a thread of the test) that tries the
 /// console's commands; the test checks the attempts failed, nothing was run (no notice,
@@ -159,28 +106,8 @@ document.body.appendChild(f); f.submit(); results.form = "submitted";
     );
 }
 
-/// A keyed GET of the console's API.
-fn get(bound: &Bound, path: &str) -> Value {
-    use std::io::{Read, Write};
-    let mut s = std::net::TcpStream::connect(bound.http).unwrap();
-    write!(
-        s,
-        "GET {path} HTTP/1.1\r\nHost: {}\r\nX-Jaus-Key: {}\r\nConnection: close\r\n\r\n",
-        bound.http, bound.key
-    )
-    .unwrap();
-    let mut text = String::new();
-    s.read_to_string(&mut text).unwrap();
-    let body = text.split_once("\r\n\r\n").map_or("", |(_, b)| b);
-    serde_json::from_str(body).unwrap_or_else(|e| panic!("{path}: {e}: {text}"))
-}
-
 fn stats(bound: &Bound) -> Value {
     get(bound, "/api/stats")
-}
-
-async fn js(c: &Client, script: &str) -> Value {
-    c.execute(script, vec![]).await.expect(script)
 }
 
 async fn click(c: &Client, id: &str) {
@@ -224,15 +151,6 @@ async fn notices(c: &Client) -> Vec<String> {
                 .collect()
         })
         .unwrap_or_default()
-}
-
-async fn vehicle_xy(c: &Client) -> Option<(f64, f64)> {
-    let v = js(
-        c,
-        "const g = document.getElementById('vehicle-1'); return g ? [Number(g.dataset.x), Number(g.dataset.y)] : null;",
-    )
-    .await;
-    Some((v[0].as_f64()?, v[1].as_f64()?))
 }
 
 async fn speed(c: &Client) -> Option<f64> {
@@ -294,66 +212,12 @@ async fn arrive(c: &Client, what: &str, to: (f64, f64)) -> (f64, f64) {
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn the_page_drives_the_simulated_vehicle_and_stops_it() {
-    let Some(driver_path) = chromedriver() else {
-        assert!(
-            std::env::var_os("JAUS_REQUIRE_BROWSER").is_none(),
-            "JAUS_REQUIRE_BROWSER is set but chromedriver is not installed"
-        );
-        eprintln!("skipped: chromedriver not found (apt-get install chromium chromium-driver)");
+    let Some(browser) = Browser::start().await else {
         return;
     };
-    let stop = Arc::new(AtomicBool::new(false));
-    let vsock = UdpSocket::bind("127.0.0.1:0").unwrap();
-    let vaddr = vsock.local_addr().unwrap();
-    let vthread = vehicle(vsock, stop.clone());
-    let options = ConsoleOptions {
-        node: NodeConfig {
-            subsystem: 200,
-            node: 1,
-            peers: vec![vaddr],
-            ..NodeConfig::default()
-        },
-        http: SocketAddr::from(([127, 0, 0, 1], 0)),
-        ..ConsoleOptions::default()
-    };
-    let (tx, rx) = mpsc::channel::<Bound>();
-    let cstop = stop.clone();
-    let cthread = std::thread::spawn(move || {
-        jaus_ocu::run(&options, &cstop, |b| {
-            let _ = tx.send(b);
-        })
-        .expect("the console")
-    });
-    let bound = rx
-        .recv_timeout(Duration::from_secs(10))
-        .expect("the console is up");
-
-    let port = free_port();
-    let _driver = Driver(
-        Command::new(&driver_path)
-            .arg(format!("--port={port}"))
-            .stdout(Stdio::null())
-            .stderr(Stdio::null())
-            .spawn()
-            .expect("chromedriver starts"),
-    );
-    let mut caps = serde_json::Map::new();
-    caps.insert(
-        "goog:chromeOptions".into(),
-        json!({
-            "binary": "/usr/bin/chromium",
-            "args": ["--headless=new", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage", "--window-size=1500,1000"]
-        }),
-    );
-    let connector = hyper_util::client::legacy::connect::HttpConnector::new();
-    let c = wait_for("chromedriver", Duration::from_secs(20), async || {
-        ClientBuilder::new(connector.clone())
-            .capabilities(caps.clone())
-            .connect(&format!("http://127.0.0.1:{port}"))
-            .await
-            .ok()
-    })
-    .await;
+    let rig = Rig::start(ConsoleOptions::default());
+    let bound = rig.bound.clone();
+    let c = browser.client.clone();
     // The address `jaus ocu` prints: it carries the key, which becomes the page's cookie.
     c.goto(&bound.url()).await.expect("the page");
 
@@ -570,7 +434,5 @@ async fn the_page_drives_the_simulated_vehicle_and_stops_it() {
         dir.join("console.png").display()
     );
     let _ = c.close().await;
-    stop.store(true, Ordering::Relaxed);
-    cthread.join().unwrap();
-    vthread.join().unwrap();
+    rig.finish();
 }

@@ -6,49 +6,18 @@
 mod common;
 
 use std::net::SocketAddr;
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::{mpsc, Arc};
+use std::sync::atomic::AtomicBool;
 use std::time::{Duration, Instant};
 
-use common::{request, ws_upgrade};
-use jaus_ocu::{Bound, ConsoleOptions};
+use common::{request, ws_upgrade, Console};
+use jaus_ocu::ConsoleOptions;
 use serde_json::Value;
 
-struct Console {
-    bound: Bound,
-    stop: Arc<AtomicBool>,
-    thread: Option<std::thread::JoinHandle<()>>,
-}
-
-impl Drop for Console {
-    fn drop(&mut self) {
-        self.stop.store(true, Ordering::Relaxed);
-        if let Some(t) = self.thread.take() {
-            let _ = t.join();
-        }
-    }
-}
-
 fn console() -> Console {
-    let options = ConsoleOptions {
+    common::console(ConsoleOptions {
         http: SocketAddr::from(([127, 0, 0, 1], 0)),
         ..ConsoleOptions::default()
-    };
-    let stop = Arc::new(AtomicBool::new(false));
-    let (tx, rx) = mpsc::channel();
-    let s = stop.clone();
-    let thread = std::thread::spawn(move || {
-        jaus_ocu::run(&options, &s, |b| {
-            let _ = tx.send(b);
-        })
-        .expect("the console");
-    });
-    let bound = rx.recv_timeout(Duration::from_secs(10)).expect("up");
-    Console {
-        bound,
-        stop,
-        thread: Some(thread),
-    }
+    })
 }
 
 /// What a request is, its headers, the status expected.

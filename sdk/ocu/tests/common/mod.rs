@@ -1,19 +1,61 @@
 //! A plain HTTP/1.1 client over a TCP socket for the console's tests: every header is
 //! written exactly as given (Host, Origin, Content-Type, Upgrade), as an attacker's page
-//! or tool would send it.
+//! or tool would send it; and a console on a thread of the test.
 
 #![allow(dead_code)]
 
+pub mod browser;
+
 use std::io::{Read, Write};
 use std::net::{SocketAddr, TcpStream};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{mpsc, Arc};
 use std::time::Duration;
 
-/// An answer: status, headers (lower-case names), body.
+use jaus_ocu::{Bound, ConsoleOptions};
+
+/// A console running on a thread of the test until dropped.
+pub struct Console {
+    pub bound: Bound,
+    stop: Arc<AtomicBool>,
+    thread: Option<std::thread::JoinHandle<()>>,
+}
+
+impl Drop for Console {
+    fn drop(&mut self) {
+        self.stop.store(true, Ordering::Relaxed);
+        if let Some(t) = self.thread.take() {
+            let _ = t.join();
+        }
+    }
+}
+
+/// Starts a console with `options` and waits until it is up.
+pub fn console(options: ConsoleOptions) -> Console {
+    let stop = Arc::new(AtomicBool::new(false));
+    let (tx, rx) = mpsc::channel();
+    let s = stop.clone();
+    let thread = std::thread::spawn(move || {
+        jaus_ocu::run(&options, &s, |b| {
+            let _ = tx.send(b);
+        })
+        .expect("the console");
+    });
+    let bound = rx.recv_timeout(Duration::from_secs(10)).expect("up");
+    Console {
+        bound,
+        stop,
+        thread: Some(thread),
+    }
+}
+
+/// An answer: status, headers (lower-case names), body (as text, and as sent).
 #[derive(Debug)]
 pub struct Answer {
     pub status: u16,
     pub headers: Vec<(String, String)>,
     pub body: String,
+    pub bytes: Vec<u8>,
 }
 
 impl Answer {
@@ -67,6 +109,10 @@ pub fn request(
         }
     }
     let text = String::from_utf8_lossy(&raw).into_owned();
+    let bytes = raw
+        .windows(4)
+        .position(|w| w == b"\r\n\r\n")
+        .map_or_else(Vec::new, |end| raw[end + 4..].to_vec());
     let (head, body) = text.split_once("\r\n\r\n").unwrap_or((&text, ""));
     let mut lines = head.lines();
     let status = lines
@@ -82,6 +128,7 @@ pub fn request(
         status,
         headers,
         body: body.to_string(),
+        bytes,
     }
 }
 
