@@ -392,24 +392,68 @@ impl Header {
 
     /// Writes a whole packet, this header (its data size set from the body) and `body`,
     /// into `buf`; returns the packet's length. Nothing is allocated: the hot path's
-    /// encoder, into a buffer the caller reuses.
+    /// encoder, into a buffer the caller reuses (`buf[..n]` is the packet).
+    ///
+    /// The body is walked once: it is written after a reserved header, then the header
+    /// is written with the data size the body took.
+    ///
+    /// Errors, first match wins: the body is longer than [`MAX_DATA_SIZE`]
+    /// ([`EncodeError::BodyTooLarge`]); a header field is wider than its bits; `buf` is
+    /// too small for the packet ([`EncodeError::BufferTooSmall`], `needed` counting the
+    /// bytes up to the one that did not fit); a body field's own error. After an error
+    /// the bytes of `buf` are unspecified (part of a packet may have been written): do
+    /// not send them.
     #[inline]
     pub fn write_packet<B: Encode + ?Sized>(
         &self,
         body: &B,
         buf: &mut [u8],
     ) -> Result<usize, EncodeError> {
+        // The writer ends where the longest body would: a body over the limit stops
+        // there instead of being written out in full.
+        let end = buf.len().min(HEADER_LEN + MAX_DATA_SIZE);
+        let (head, rest) = buf.split_at_mut(end.min(HEADER_LEN));
+        let (Ok(head), Some(window)) = (
+            <&mut [u8; HEADER_LEN]>::try_from(head),
+            rest.get_mut(..end.saturating_sub(HEADER_LEN)),
+        ) else {
+            return Err(self.packet_error(body, buf));
+        };
+        let mut w = Writer::new(window);
+        let written = body.encode(&mut w).map(|()| w.position());
+        match written.and_then(|len| self.words_with_size(len).map(|words| (len, words))) {
+            Ok((len, (lo, hi))) => {
+                head[..8].copy_from_slice(&lo.to_le_bytes());
+                head[8..].copy_from_slice(&hi.to_le_bytes());
+                Ok(HEADER_LEN + len)
+            }
+            Err(_) => Err(self.packet_error(body, buf)),
+        }
+    }
+
+    /// The error of a packet [`Header::write_packet`] could not write, in the order it
+    /// documents (off the hot path: the body is measured and written again from the
+    /// start of `buf`, so that offsets and sizes count from the packet's first byte).
+    #[cold]
+    #[inline(never)]
+    fn packet_error<B: Encode + ?Sized>(&self, body: &B, buf: &mut [u8]) -> EncodeError {
         let len = body.encoded_len();
         if len > MAX_DATA_SIZE {
-            return Err(EncodeError::BodyTooLarge {
+            return EncodeError::BodyTooLarge {
                 len,
                 max: MAX_DATA_SIZE,
-            });
+            };
         }
+        let capacity = buf.len();
         let mut w = Writer::new(buf);
-        self.put(&mut w, len)?;
-        body.encode(&mut w)?;
-        Ok(w.position())
+        match self.put(&mut w, len).and_then(|()| body.encode(&mut w)) {
+            Err(e) => e,
+            // Unreachable for a body whose encoding does not change between calls.
+            Ok(()) => EncodeError::BufferTooSmall {
+                needed: HEADER_LEN + len,
+                capacity,
+            },
+        }
     }
 
     /// Parses the first 16 bytes of `bytes`.
@@ -616,6 +660,88 @@ mod tests {
             Packet::parse(&bytes[..5]).unwrap_err().kind(),
             &DecodeErrorKind::TruncatedHeader { len: 5 }
         ));
+    }
+
+    /// A body of `n` bytes that counts the calls of `encoded_len`.
+    struct Counted(Vec<u8>, std::cell::Cell<u32>);
+
+    impl Encode for Counted {
+        fn encoded_len(&self) -> usize {
+            self.1.set(self.1.get() + 1);
+            self.0.len()
+        }
+        fn encode(&self, w: &mut Writer<'_>) -> Result<(), EncodeError> {
+            w.put(&self.0)
+        }
+    }
+
+    fn body(n: usize) -> Counted {
+        Counted((0..n).map(|i| i as u8).collect(), Default::default())
+    }
+
+    #[test]
+    fn write_packet_walks_the_body_once() {
+        let h = Header::new(
+            CommandCode(0x4402),
+            Address::new(1, 2, 3, 4),
+            Address::new(5, 6, 7, 8),
+        );
+        let mut buf = vec![0xAA; 64];
+        for n in [0, 3, 48] {
+            let b = body(n);
+            let len = h.write_packet(&b, &mut buf).unwrap();
+            assert_eq!(b.1.get(), 0, "encoded_len called on the success path");
+            let packet = Packet::new(h, b.0.clone()).to_bytes().unwrap();
+            assert_eq!(buf[..len], packet[..]);
+            assert_eq!(PacketRef::parse(&buf[..len]).unwrap().body, &b.0[..]);
+        }
+        let mut buf = vec![0; HEADER_LEN + MAX_DATA_SIZE];
+        assert_eq!(
+            h.write_packet(&body(MAX_DATA_SIZE), &mut buf),
+            Ok(buf.len())
+        );
+        assert_eq!(Header::parse(&buf).unwrap().data_size, 0x0FFF);
+    }
+
+    #[test]
+    fn write_packet_errors_in_their_order() {
+        let h = Header::new(
+            CommandCode(0x4402),
+            Address::new(1, 2, 3, 4),
+            Address::new(5, 6, 7, 8),
+        );
+        let too_large = Err(EncodeError::BodyTooLarge {
+            len: MAX_DATA_SIZE + 1,
+            max: MAX_DATA_SIZE,
+        });
+        // Over the limit whatever the buffer, and before a bad header field.
+        for cap in [4, 64, HEADER_LEN + MAX_DATA_SIZE, 8192] {
+            let mut buf = vec![0; cap];
+            assert_eq!(
+                h.write_packet(&body(MAX_DATA_SIZE + 1), &mut buf),
+                too_large
+            );
+        }
+        let bad = Header { priority: 16, ..h };
+        let mut buf = vec![0; 8192];
+        assert_eq!(
+            bad.write_packet(&body(MAX_DATA_SIZE + 1), &mut buf),
+            too_large
+        );
+        assert!(matches!(
+            bad.write_packet(&body(3), &mut buf),
+            Err(EncodeError::BitsOverflow {
+                field: "Header.priority",
+                value: 16,
+                width: 4
+            })
+        ));
+        let small = |cap: usize, n: usize| h.write_packet(&body(n), &mut vec![0; cap]);
+        let short = |needed, capacity| Err(EncodeError::BufferTooSmall { needed, capacity });
+        assert_eq!(small(18, 3), short(19, 18));
+        assert_eq!(small(12, 0), short(16, 12));
+        assert_eq!(small(5, 0), short(8, 5));
+        assert_eq!(small(HEADER_LEN + 3, 3), Ok(HEADER_LEN + 3));
     }
 
     #[test]

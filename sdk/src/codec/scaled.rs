@@ -16,6 +16,8 @@ pub trait ScaledRepr: Encode + Decode + Copy {
     fn from_count(x: f64) -> Self;
     /// Widens to f64.
     fn to_count(self) -> f64;
+    /// The integer whose two's complement is the low bits of `bits`.
+    fn from_low_bits(bits: u64) -> Self;
 }
 
 macro_rules! scaled_repr {
@@ -29,6 +31,8 @@ macro_rules! scaled_repr {
             fn from_count(x: f64) -> Self { x as $t }
             #[inline]
             fn to_count(self) -> f64 { self as f64 }
+            #[inline]
+            fn from_low_bits(bits: u64) -> Self { bits as $t }
         }
     )*};
 }
@@ -89,16 +93,34 @@ pub fn scale_to<T: ScaledRepr>(v: f64, s: &'static ScaledField) -> Result<T, Enc
     Ok(to_count(v, s.lo, s.hi))
 }
 
-/// The integer of an in-range value.
+/// The integer of an in-range value: the quotient `(v - bias) / sf` rounded half away
+/// from zero. Divide (not multiply by the inverse): exact ties such as 50 % in a u8
+/// [0, 100] then round as OpenJAUS rounds them (128).
+///
+/// Divisions are the slowest instructions of an encoding (a few scaled fields keep the
+/// divider busy longer than the rest of the message takes), so for counts below 2³²
+/// (every type up to 32 bits) the quotient is first estimated as the product by the
+/// reciprocal, within 1.5 · 2⁻²⁰ of it (three roundings of relative error 2⁻⁵³), and
+/// rounded to the nearest integer by adding 1.5 · 2⁵², whose low bits are then that
+/// integer. Both roundings agree unless the estimate lies within [`NEAR_TIE`] of a
+/// half-integer; only there (about one value in 2¹⁵, and exact ties) is the division
+/// done.
 #[inline(always)]
 fn to_count<T: ScaledRepr>(v: f64, lo: f64, hi: f64) -> T {
     let (sf, bias) = scale_bias::<T>(lo, hi);
-    // Divide (not multiply by the inverse): exact ties such as 50 % in a u8 [0, 100]
-    // then round as OpenJAUS rounds them (128).
-    let counts = (v - bias) / sf;
+    let d = v - bias;
+    if T::DIVISOR <= 4_294_967_295.0 {
+        let estimate = d * (1.0 / sf);
+        let y = estimate + ROUNDER;
+        // `y - ROUNDER` is the nearest integer, exactly; `estimate` minus it is exact.
+        if (estimate - (y - ROUNDER)).abs() < 0.5 - NEAR_TIE {
+            return T::from_low_bits(y.to_bits());
+        }
+    }
     // Round half away from zero by truncating `x ± 0.5` (a single conversion
     // instruction; `f64::round` is a library call on baseline x86-64). `from_count` is
     // an `as` conversion: it truncates toward zero and saturates at the type's limits.
+    let counts = d / sf;
     let x = if counts >= 0.0 {
         counts + 0.5
     } else {
@@ -106,6 +128,14 @@ fn to_count<T: ScaledRepr>(v: f64, lo: f64, hi: f64) -> T {
     };
     T::from_count(x)
 }
+
+/// 1.5 · 2⁵²: a float of magnitude below 2⁵¹ added to it is rounded to an integer
+/// (ties to even), held in the low bits of the sum in two's complement.
+const ROUNDER: f64 = 6_755_399_441_055_744.0;
+
+/// Distance from a half-integer within which the reciprocal's estimate of a scaled
+/// count is not trusted to round as the quotient does: 2⁻¹⁶, ten times its error.
+const NEAR_TIE: f64 = 1.0 / 65_536.0;
 
 /// The nearest integer count of `v` (as a float, so that it cannot overflow).
 fn nearest_count<T: ScaledRepr>(v: f64, lo: f64, hi: f64) -> f64 {

@@ -65,6 +65,76 @@ fn every_in_range_wire_integer_round_trips() {
     }
 }
 
+/// The quotient rounded half away from zero: the rule `scale_to` implements (by
+/// multiplying where that gives the same integer).
+fn by_division<T: ScaledRepr>(v: f64, lo: f64, hi: f64) -> T {
+    let sf = (hi - lo) / T::DIVISOR;
+    let bias = if T::SIGNED { (hi + lo) / 2.0 } else { lo };
+    let q = (v - bias) / sf;
+    T::from_count(if q >= 0.0 { q + 0.5 } else { q - 0.5 })
+}
+
+/// The float `k` ulps from `v` (nonzero), away from zero for positive `k`.
+fn ulp(v: f64, k: i64) -> f64 {
+    f64::from_bits(v.to_bits().wrapping_add_signed(k))
+}
+
+fn agrees_with_division<T: ScaledRepr + PartialEq + std::fmt::Debug>(lo: f64, hi: f64) {
+    let s = f(lo, hi);
+    let step = scale_step::<T>(lo, hi);
+    let mut seed = 0x9E37_79B9_7F4A_7C15u64;
+    let mut next = move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 11) as f64 / (1u64 << 53) as f64
+    };
+    for i in 0..20_000 {
+        // Random values, and values at (or a few ulps from) a tie between two counts.
+        let v = lo + (hi - lo) * next();
+        let n = scale_to::<T>(v, s).unwrap();
+        let tie = scale_from::<T>(n, lo, hi) + step / 2.0;
+        let at = lo + step * (i as f64 + 0.5);
+        let near = [
+            v,
+            tie,
+            ulp(tie, 1),
+            ulp(tie, -1),
+            ulp(tie, 3),
+            ulp(tie, -3),
+            at,
+        ];
+        for v in near.into_iter().filter(|v| (lo..=hi).contains(v)) {
+            assert_eq!(
+                scale_to::<T>(v, s).unwrap(),
+                by_division::<T>(v, lo, hi),
+                "{v} in [{lo}, {hi}]"
+            );
+        }
+    }
+}
+
+#[test]
+fn scaled_encoding_rounds_as_the_division_does() {
+    let ranges = [
+        (-90.0, 90.0),
+        (-180.0, 180.0),
+        (0.0, 100.0),
+        (-100.0, 100.0),
+        (0.5, 0.75),
+    ];
+    for (lo, hi) in ranges {
+        agrees_with_division::<i32>(lo, hi);
+        agrees_with_division::<u32>(lo, hi);
+        agrees_with_division::<i16>(lo, hi);
+        agrees_with_division::<u16>(lo, hi);
+        agrees_with_division::<u8>(lo, hi);
+        agrees_with_division::<i64>(lo, hi);
+    }
+    agrees_with_division::<i16>(-std::f64::consts::PI, std::f64::consts::PI);
+    agrees_with_division::<i32>(-10_000.0, 35_000.0);
+}
+
 #[test]
 fn out_of_range_values_are_errors_beyond_one_count() {
     let pct = f(0.0, 100.0);
