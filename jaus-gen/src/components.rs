@@ -41,6 +41,17 @@ pub struct ComponentCtx {
     pub modes: Option<ModesCtx>,
     /// `file:line` of the definition.
     pub origin: String,
+    /// The SDK's stock implementation (`stock:`), if any.
+    pub stock: Option<StockCtx>,
+}
+
+/// The SDK's stock implementation of a component.
+#[derive(Debug, Clone, Serialize)]
+pub struct StockCtx {
+    /// Its name in node files (`world_model`).
+    pub name: String,
+    /// The `Hardware` variant it runs over (`Vehicle`).
+    pub needs: String,
 }
 
 /// A trait method.
@@ -360,6 +371,10 @@ pub fn build_components(spec: &Spec, gates: bool) -> Vec<ComponentCtx> {
                 safe_stop: d.safe_stop,
                 modes,
                 origin,
+                stock: d.stock.as_ref().map(|s| StockCtx {
+                    name: s.name.clone(),
+                    needs: pascal(s.needs.as_str()),
+                }),
             }
         })
         .collect()

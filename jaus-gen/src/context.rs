@@ -1,7 +1,7 @@
 //! The template context: every message and type of a spec, with Rust types, derive
 //! attributes and documentation already worked out.
 
-use jaus_spec::{Bits, Code, Field, FieldDef, Len, MessageDef, Spec, TypeForm, TypeKind, Wire};
+use jaus_spec::{Bits, Code, Field, Len, MessageDef, Spec, TypeForm, TypeKind, Wire};
 use serde::Serialize;
 
 /// Everything the templates see.
@@ -484,7 +484,7 @@ fn field_ctx(spec: &Spec, field: &Field, rt: &str) -> FieldCtx {
             m.attr.insert(i + 1, format!("unit = {u:?}"));
         }
     }
-    if vars(spec).iter().any(|v| v == &f.name) {
+    if spec.vars().contains(&f.name) {
         m.attr.push(format!("var = \"{}\"", f.name));
     }
     let mut doc = doc_lines(f.description.as_deref());
@@ -542,37 +542,6 @@ fn field_ctx(spec: &Spec, field: &Field, rt: &str) -> FieldCtx {
         serde: serde.join(", "),
         doc,
     }
-}
-
-/// Names of fields other fields depend on (`count_field`, `present_if`): such fields
-/// publish their value while encoding and decoding.
-fn vars(spec: &Spec) -> Vec<String> {
-    fn walk<'a>(fields: impl Iterator<Item = &'a FieldDef>, out: &mut Vec<String>) {
-        for f in fields {
-            out.extend(
-                f.count_field
-                    .iter()
-                    .map(|c| c.split('-').next().unwrap_or(c).trim().to_string()),
-            );
-            out.extend(f.present_if.iter().cloned());
-            out.extend(f.tag_field.iter().cloned());
-            if let Some(e) = &f.of {
-                walk(std::iter::once(&e.0), out);
-            }
-        }
-    }
-    let mut out = Vec::new();
-    for fields in spec
-        .messages
-        .iter()
-        .map(|m| m.fields.as_slice())
-        .chain(spec.types.iter().map(|t| t.fields()))
-    {
-        walk(fields.iter().map(|f| &f.def), &mut out);
-    }
-    out.sort();
-    out.dedup();
-    out
 }
 
 /// Whether a struct of these fields can derive `Default`.

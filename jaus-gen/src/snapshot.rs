@@ -14,7 +14,7 @@
 //! name, enum values by value, bit-field members by their lowest bit, union variants by
 //! tag, and a component's messages and modes by name. Fields keep their wire order.
 
-use jaus_spec::{Bits, Int, Len, Spec, TypeForm, TypeKind, Wire};
+use jaus_spec::{Bits, CountRef, Int, Len, Spec, TypeForm, TypeKind, Wire};
 use serde::Serialize;
 use std::fmt;
 use std::path::Path;
@@ -68,7 +68,7 @@ pub struct MessageSnap {
 pub struct FieldSnap {
     /// Its name.
     pub name: String,
-    /// Its wire form (a `count_field` expression without spaces: `num_joints-1`).
+    /// Its wire form.
     pub wire: Wire,
     /// Presence bit.
     pub bit: Option<u32>,
@@ -256,7 +256,7 @@ impl Snapshot {
                 .enumerate()
                 .map(|(i, f)| FieldSnap {
                     name: f.def.name.clone(),
-                    wire: normalize(&f.wire),
+                    wire: f.wire.clone(),
                     bit: f.def.bit,
                     present_if: f.def.present_if.clone(),
                     unit: f.def.unit.clone(),
@@ -335,7 +335,7 @@ impl Snapshot {
                             .map(|(i, v)| VariantSnap {
                                 name: v.def.name.clone(),
                                 tag: v.def.tag,
-                                wire: v.wire.as_ref().map(normalize),
+                                wire: v.wire.clone(),
                                 at: at("variants", i),
                             })
                             .collect();
@@ -441,26 +441,6 @@ pub(crate) fn bit_range(b: Bits) -> (u32, u32) {
     }
 }
 
-/// The wire form as compared: `count_field` expressions without spaces.
-fn normalize(w: &Wire) -> Wire {
-    match w {
-        Wire::List { count, elem } => Wire::List {
-            count: *count,
-            elem: Box::new(normalize(elem)),
-        },
-        Wire::ListField {
-            field,
-            elem,
-            offsets_of,
-        } => Wire::ListField {
-            field: field.split_whitespace().collect(),
-            elem: Box::new(normalize(elem)),
-            offsets_of: offsets_of.clone(),
-        },
-        other => other.clone(),
-    }
-}
-
 /// The name of a type kind as written in YAML.
 pub(crate) fn kind_name(k: TypeKind) -> &'static str {
     match k {
@@ -522,7 +502,7 @@ pub fn wire_text(w: &Wire) -> String {
             elem,
             offsets_of,
         } => {
-            let field: String = field.split_whitespace().collect();
+            let field: String = field.to_string().split_whitespace().collect();
             match offsets_of {
                 Some(o) => format!(
                     "list count_field {field} offsets_of {o} of {}",
@@ -650,7 +630,9 @@ fn parse_tokens(t: &mut Tokens<'_>) -> Result<Wire, String> {
                 "count" => (Some(int_of(t.next())?), None, None),
                 "rest" => (None, None, None),
                 "count_field" => {
-                    let f = word(t, "a field name")?.to_string();
+                    let f = word(t, "a field name")?
+                        .parse::<CountRef>()
+                        .map_err(|e| e.to_string())?;
                     let o = match t.next_if_eq(&"offsets_of") {
                         Some(_) => Some(word(t, "a field name")?.to_string()),
                         None => None,

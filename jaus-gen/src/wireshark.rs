@@ -190,13 +190,10 @@ fn wire(w: &Wire) -> String {
         ),
         Wire::ListField { field, elem, .. } => {
             // `count_field: name - k`: the count is the named field's value minus k.
-            let (name, minus) = match field.split_once('-') {
-                Some((n, k)) => (n.trim(), k.trim().parse::<u32>().unwrap_or(0)),
-                None => (field.trim(), 0),
-            };
             format!(
-                "{{ k = \"listf\", field = {}, minus = {minus}, elem = {} }}",
-                lua_str(name),
+                "{{ k = \"listf\", field = {}, minus = {}, elem = {} }}",
+                lua_str(&field.field),
+                field.minus,
                 wire(elem)
             )
         }

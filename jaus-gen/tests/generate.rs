@@ -36,14 +36,31 @@ fn every_component_gets_a_documented_trait_interface_and_dispatch() {
             "{name}"
         );
         assert!(
-            code.contains(&format!("const ID: u8 = {};", c.def.id)),
+            code.contains(&format!("pub const ID: u8 = {};", c.def.id)),
             "{name}"
         );
-        assert!(
-            code.contains(&format!("const NAME: &'static str = \"{name}\";")),
-            "{name}"
-        );
+        assert!(code.contains(&format!("name: \"{name}\",")), "{name}");
+        if let Some(stock) = &c.def.stock {
+            assert!(
+                code.contains(&format!("name: \"{}\",", stock.name)),
+                "{name}"
+            );
+        }
     }
+    // The component table: every component's INFO, stock implementations with the
+    // hardware they run over.
+    assert!(code.contains("pub static COMPONENTS: &[ComponentInfo] = &["));
+    assert!(code.contains("    global_pose_sensor::INFO,"));
+    let wm = &code[code
+        .find("pub mod world_model_vector_knowledge_store")
+        .unwrap()..];
+    let wm = &wm[..wm.find("pub trait").unwrap()];
+    assert!(
+        wm.contains("name: \"world_model\",") && wm.contains("needs: Hardware::None"),
+        "{wm}"
+    );
+    let rs = &code[code.find("pub mod range_sensor").unwrap()..];
+    assert!(rs[..rs.find("pub trait").unwrap()].contains("needs: Hardware::Scanner"));
     // Function text, rules and the definition's position are in the trait docs.
     let wpd = &code[code.find("pub trait GlobalWaypointDriver").unwrap() - 4000
         ..code.find("pub trait GlobalWaypointDriver").unwrap()];

@@ -489,6 +489,56 @@ pub struct ComponentDef {
     /// Component-specific sub-states of the core Ready state.
     #[serde(default)]
     pub modes: Option<ModesDef>,
+    /// The SDK's stock implementation of this component, which `jaus node` hosts
+    /// (`jaus_sim::host`): its name in a node file and the hardware it runs over.
+    /// Absent when the SDK ships none.
+    #[serde(default)]
+    pub stock: Option<StockDef>,
+}
+
+/// The SDK's stock implementation of a component (`stock:` of a component).
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StockDef {
+    /// Its name in a node file's `host:` list (snake_case, unique; usually the
+    /// component's module name, `global_pose_sensor` for `GlobalPoseSensor`).
+    pub name: String,
+    /// The hardware it runs over (default: none).
+    #[serde(default)]
+    pub needs: Hardware,
+}
+
+/// The hardware a stock component runs over (`stock.needs` of a component).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Hardware {
+    /// None: it works on messages alone (a driver above the Primitive Driver, a store).
+    #[default]
+    None,
+    /// The vehicle: its actuators, or its pose and velocity.
+    Vehicle,
+    /// A range scanner on the vehicle.
+    Scanner,
+    /// A pan/tilt camera on the vehicle.
+    Camera,
+    /// A manipulator arm: its joints' actuators and sensors.
+    Arm,
+    /// Data links to other subsystems (a radio, a tether).
+    Links,
+}
+
+impl Hardware {
+    /// The name as written in the YAML (`vehicle`).
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Hardware::None => "none",
+            Hardware::Vehicle => "vehicle",
+            Hardware::Scanner => "scanner",
+            Hardware::Camera => "camera",
+            Hardware::Arm => "arm",
+            Hardware::Links => "links",
+        }
+    }
 }
 
 /// Sub-states of Ready and the legal transitions between them.

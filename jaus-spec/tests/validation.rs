@@ -201,3 +201,56 @@ fn overlays_extend_the_sdk_definitions() {
     );
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// A list's `count_field` is parsed once, by validation, into a [`jaus_spec::CountRef`]
+/// (`num_joints - 1`: the field and the constant), and [`jaus_spec::Spec::vars`] names
+/// every field another depends on.
+#[test]
+fn count_fields_resolve_to_count_refs_and_vars() {
+    use jaus_spec::{CountRef, Wire};
+    let spec = jaus_spec::load_sdk().unwrap_or_else(|e| panic!("{e}"));
+    let linked = spec
+        .types
+        .iter()
+        .flat_map(|t| t.fields())
+        .chain(spec.messages.iter().flat_map(|m| &m.fields))
+        .find(|f| f.def.name == "linked_joints")
+        .expect("a field `linked_joints`");
+    let Wire::ListField { field, .. } = &linked.wire else {
+        panic!("{:?}", linked.wire);
+    };
+    assert_eq!(
+        *field,
+        CountRef {
+            field: "num_joints".into(),
+            minus: 1
+        }
+    );
+    assert_eq!(field.to_string(), "num_joints - 1");
+    let vars = spec.vars();
+    // A count (with and without a constant), a flag of `present_if`, a `tag_field`.
+    for v in [
+        "num_joints",
+        "object_count",
+        "confidence_and_object_id",
+        "type_code",
+    ] {
+        assert!(vars.contains(v), "{v} in {vars:?}");
+    }
+    assert!(!vars.contains("latitude"));
+
+    // Inside a list element too: there a constant that does not parse is an error.
+    let text = "group: g\nmessages:\n  - name: ReportX\n    code: 0x4F00\n    fields:\n      - { name: n, type: u8 }\n      - { name: rows, type: list, count: u8, of: { type: list, count_field: n - x, of: u8 } }\n";
+    let errs = jaus_spec::load_texts(vec![("inline.yaml".into(), text.into())]).unwrap_err();
+    assert!(
+        errs.to_string().contains("inline.yaml:7:")
+            && errs.to_string().contains(
+                "list element: `count_field` is a field name, optionally minus a constant"
+            ),
+        "{errs}"
+    );
+    let text = text.replace("n - x", "n - 1");
+    let spec =
+        jaus_spec::load_texts(vec![("inline.yaml".into(), text)]).unwrap_or_else(|e| panic!("{e}"));
+    assert!(spec.vars().contains("n"));
+}

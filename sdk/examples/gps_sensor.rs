@@ -7,7 +7,7 @@
 use std::time::{Duration, Instant};
 
 use jaus::component::local::{LocalBus, Probe};
-use jaus::component::{Config, Refused};
+use jaus::component::{Config, InitError, Refused};
 use jaus::components::global_pose_sensor::{self, Ctx, GlobalPoseSensor};
 use jaus::messages::{CreateServiceConnection, Message, QueryGlobalPose, ReportGlobalPose};
 use jaus::Address;
@@ -25,7 +25,7 @@ impl FakeGps {
 }
 
 impl GlobalPoseSensor for FakeGps {
-    fn initialize(&mut self, ctx: &mut Ctx<'_>) -> Result<(), String> {
+    fn initialize(&mut self, ctx: &mut Ctx<'_>) -> Result<(), InitError> {
         self.start = Some(ctx.now()); // open the serial port here
         Ok(())
     }

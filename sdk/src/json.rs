@@ -16,27 +16,55 @@ pub struct JsonPacket {
 }
 
 /// Decodes one hex packet to a JSON line.
-pub fn decode_line(hex: &str) -> Result<String, String> {
-    let bytes = crate::hex::decode(hex.trim()).map_err(|e| format!("bad hex: {e}"))?;
-    let packet = Packet::parse(&bytes).map_err(|e| e.to_string())?;
+pub fn decode_line(hex: &str) -> Result<String, DecodeLineError> {
+    let bytes = crate::hex::decode(hex.trim())?;
+    let packet = Packet::parse(&bytes).map_err(DecodeLineError::Packet)?;
     decode_packet(&packet)
 }
 
 /// Decodes a parsed packet to a JSON line.
-pub fn decode_packet(packet: &Packet) -> Result<String, String> {
+pub fn decode_packet(packet: &Packet) -> Result<String, DecodeLineError> {
     if packet.header.data_flag != crate::wire::DataFlag::Single {
-        return Err(format!(
-            "packet {} of a multi-packet message ({:?}): reassemble the sequence first",
-            packet.header.sequence_number, packet.header.data_flag
-        ));
+        return Err(DecodeLineError::MultiPacket {
+            sequence: packet.header.sequence_number,
+            data_flag: packet.header.data_flag,
+        });
     }
-    let message =
-        Message::decode(packet.header.command_code, &packet.body).map_err(|e| e.to_string())?;
+    let message = Message::decode(packet.header.command_code, &packet.body)
+        .map_err(DecodeLineError::Message)?;
     serde_json::to_string(&JsonPacket {
         header: packet.header,
         message,
     })
-    .map_err(|e| e.to_string())
+    .map_err(|e| DecodeLineError::Json(e.to_string()))
+}
+
+/// Why a hex packet is not a JSON line ([`decode_line`], [`decode_packet`]): each names
+/// what failed (the hex digit and its position, the header field, the message and its
+/// field, with their byte offsets).
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum DecodeLineError {
+    /// The line is not hex.
+    #[error("bad hex: {0}")]
+    Hex(#[from] crate::hex::HexError),
+    /// The bytes are not a packet (header too short, data size wrong).
+    #[error("{0}")]
+    Packet(crate::codec::DecodeError),
+    /// The packet is one of a multi-packet message.
+    #[error("packet {sequence} of a multi-packet message ({data_flag:?}): reassemble the sequence first")]
+    MultiPacket {
+        /// Its sequence number.
+        sequence: u16,
+        /// Its place in the sequence.
+        data_flag: crate::wire::DataFlag,
+    },
+    /// The body is not the message its command code names (the error names the message
+    /// and the field).
+    #[error("{0}")]
+    Message(crate::codec::DecodeError),
+    /// The message does not serialise to JSON.
+    #[error("{0}")]
+    Json(String),
 }
 
 /// Why a JSON line is not a message.
@@ -279,3 +307,42 @@ pub const REFERENCE_PACKETS: &[(&str, &str)] = &[
         "06020f0404030201080706051d0000000307006fd12b2a403a75c54fcf1db9b7f62b2aee3075c523441fb9c500",
     ),
 ];
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Each failure of `decode_line` is its own variant, and its text names what failed.
+    #[test]
+    fn decode_line_errors_name_what_failed() {
+        let pose = REFERENCE_PACKETS[0].1;
+        let e = decode_line(&format!("zz{}", &pose[2..])).unwrap_err();
+        assert!(matches!(e, DecodeLineError::Hex(_)), "{e:?}");
+        assert!(e.to_string().contains("invalid hex digit"), "{e}");
+
+        let e = decode_line(&pose[..10]).unwrap_err();
+        assert!(matches!(e, DecodeLineError::Packet(_)), "{e:?}");
+        assert!(e.to_string().contains("truncated header"), "{e}");
+
+        // The header says 6 body bytes, and 6 follow: the body ends inside the longitude.
+        let short = format!("{}0600{}", &pose[..24], &pose[28..44]);
+        let e = decode_line(&short).unwrap_err();
+        assert!(matches!(e, DecodeLineError::Message(_)), "{e:?}");
+        let text = e.to_string();
+        assert!(
+            text.contains("ReportGlobalPose") && text.contains("longitude"),
+            "{text}"
+        );
+
+        let mut first = Packet::parse(&crate::hex::decode(pose).unwrap()).unwrap();
+        first.header.data_flag = crate::wire::DataFlag::First;
+        let e = decode_packet(&first).unwrap_err();
+        assert!(
+            matches!(e, DecodeLineError::MultiPacket { sequence: 0, .. }),
+            "{e:?}"
+        );
+        assert!(e.to_string().contains("reassemble"), "{e}");
+
+        assert!(decode_line(pose).is_ok());
+    }
+}

@@ -3,11 +3,13 @@
 //! scenario returns a transcript of everything that crossed the bus; the determinism
 //! test runs them 100 times and requires identical transcripts.
 
+mod common;
+
 use std::sync::OnceLock;
 use std::time::{Duration, Instant};
 
 use jaus::component::local::{LocalBus, Probe};
-use jaus::component::{Config, CoreState, Modes, Refused, StopReason, TransitionError};
+use jaus::component::{Config, CoreState, InitError, Modes, Refused, StopReason, TransitionError};
 use jaus::components::global_pose_sensor::{self, GlobalPoseSensor};
 use jaus::components::global_waypoint_driver::{self, GlobalWaypointDriver};
 use jaus::components::primitive_driver::{self, PrimitiveDriver};
@@ -494,7 +496,7 @@ struct Follower {
 }
 
 impl GlobalWaypointDriver for Follower {
-    fn initialize(&mut self, ctx: &mut global_waypoint_driver::Ctx<'_>) -> Result<(), String> {
+    fn initialize(&mut self, ctx: &mut global_waypoint_driver::Ctx<'_>) -> Result<(), InitError> {
         // A rate the message cannot carry is refused up front, nothing sent.
         let too_fast = ctx.create_service_connection(GPS, CommandCode(0x4402), 5000.0, 0xFFFF);
         assert_eq!(
@@ -505,7 +507,7 @@ impl GlobalWaypointDriver for Follower {
             })
         );
         ctx.create_service_connection(GPS, CommandCode(0x4402), 20.0, 0xFFFF)
-            .map_err(|e| e.to_string())
+            .map_err(|e| InitError::new(format!("the GPS feed: {e}")))
     }
 
     fn on_report_global_pose(
@@ -541,6 +543,42 @@ impl GlobalWaypointDriver for Follower {
 }
 
 type Wpd = jaus::component::Component<global_waypoint_driver::Dispatch<Follower>>;
+
+/// A GPS whose receiver is not there.
+struct NoReceiver;
+
+impl GlobalPoseSensor for NoReceiver {
+    fn initialize(&mut self, _ctx: &mut global_pose_sensor::Ctx<'_>) -> Result<(), InitError> {
+        Err(InitError::new(
+            "cannot open /dev/ttyUSB0 (the GPS receiver): no such device",
+        ))
+    }
+}
+
+#[test]
+fn a_component_that_cannot_initialise_enters_failure_and_logs_why() {
+    let log = common::LogBuffer::default();
+    let _guard = log.capture();
+    let mut bus = bus();
+    let at = Address::new(SS, NODE, global_pose_sensor::ID, 2);
+    bus.add(global_pose_sensor::component(
+        at,
+        NoReceiver,
+        config(),
+        t0(),
+    ));
+    step(&mut bus);
+    type Dead = jaus::component::Component<global_pose_sensor::Dispatch<NoReceiver>>;
+    assert_eq!(bus.get::<Dead>(at).unwrap().state(), CoreState::Failure);
+    let healthy = bus.get::<Sensor>(GPS).unwrap();
+    assert_eq!(healthy.state(), CoreState::Standby);
+    let text = log.text();
+    assert!(
+        text.contains("initialisation failed: cannot open /dev/ttyUSB0 (the GPS receiver)")
+            && text.contains("GlobalPoseSensor"),
+        "{text}"
+    );
+}
 
 #[test]
 fn a_component_subscribes_by_service_connection_and_ends_it() {

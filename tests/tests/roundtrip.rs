@@ -169,11 +169,9 @@ fn record_strategy(spec: &Spec, fields: &[Field], depth: u32) -> BoxedStrategy<V
             let name = f.name.clone();
             // Fields other fields depend on (counts kept apart, presence flags) take
             // small values, so that random cases are often consistent.
-            let governs = fields.iter().map(|g| &g.def).any(|g| {
-                g.present_if.as_deref() == Some(f.name.as_str())
-                    || g.count_field
-                        .as_deref()
-                        .is_some_and(|c| c.split('-').next().unwrap_or(c).trim() == f.name)
+            let governs = fields.iter().any(|g| {
+                g.def.present_if.as_deref() == Some(f.name.as_str())
+                    || matches!(&g.wire, Wire::ListField { field, .. } if field.field == f.name)
             });
             let s = match wire {
                 Wire::Int(_) if governs => (0u64..4).prop_map(|v| json!(v)).boxed(),

@@ -119,8 +119,10 @@ fn a_station_follows_commands_and_recovers_the_vehicle() {
     assert_eq!(s1.roles.waypoint_driver.as_deref(), Some("1.1.45.1"));
     assert_eq!(state(&v, GWD).as_deref(), Some("Standby"));
     let frame = *station(&mut bus).frame().unwrap();
+    // A point of the view: x metres east, y metres north of the station's origin (the
+    // frame counts north, east).
     let at = |x: f64, y: f64| {
-        let (latitude, longitude) = frame.to_global(Vector2::new(x, y));
+        let (latitude, longitude) = frame.to_global(Vector2::new(y, x));
         GeoPoint {
             latitude,
             longitude,

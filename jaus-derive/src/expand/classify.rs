@@ -4,6 +4,7 @@
 use super::shape::{Elem, Len, ScaledSpec, Shape};
 use super::types::{generic_inner, is_int_type, type_name};
 use crate::attr::{eval_f64, span_of, Errors, FieldAttrs, Int, IntSpan, Scaled};
+use jaus_spec::CountRef;
 use proc_macro2::Span;
 use syn::Type;
 
@@ -167,19 +168,16 @@ pub(super) fn classify(
             }
             None => Elem::Plain(inner.clone()),
         };
-        // `name` or `name - N`.
-        let (name, minus) = match var.split_once('-') {
-            Some((n, m)) => match m.trim().parse::<u64>() {
-                Ok(m) => (n.trim().to_string(), m),
-                Err(_) => {
-                    errors.error(*span, "`count_var` is a field name, optionally minus a constant: \"n\" or \"n - 1\"");
-                    return None;
-                }
-            },
-            None => (var.trim().to_string(), 0),
+        // `name` or `name - N`: read as jaus-spec reads `count_field`.
+        let Ok(CountRef { field, minus }) = CountRef::parse(var) else {
+            errors.error(
+                *span,
+                "`count_var` is a field name, optionally minus a constant: \"n\" or \"n - 1\"",
+            );
+            return None;
         };
         return Some(Shape::ListVar {
-            var: name,
+            var: field,
             minus,
             elem,
         });

@@ -1,8 +1,10 @@
 #[allow(unused_imports)]
 use ::jaus::component::{
-    Behaviour, Component, Config, Context, CoreState, CoreTransition, Emits, Modes,
-    NoModes, Refused, StopReason,
+    Behaviour, Component, Config, Context, CoreState, CoreTransition, Emits, InitError,
+    Modes, NoModes, Refused, StopReason,
 };
+/// The row type of [`COMPONENTS`] (the `INFO` of each module) and what it holds.
+pub use ::jaus::component::{ComponentInfo, Hardware, StockInfo};
 #[allow(unused_imports)]
 use ::jaus::messages::*;
 #[allow(unused_imports)]
@@ -12,6 +14,16 @@ use ::jaus::{Address, CommandCode, JausMessage};
 /// The function of the Operator Unit is to let an operator command any component.
 pub mod operator_unit {
     use super::*;
+    /// The Operator Unit's component id.
+    pub const ID: u8 = 213;
+    /// The Operator Unit's row of the component table.
+    pub const INFO: ComponentInfo = ComponentInfo {
+        name: "OperatorUnit",
+        module: "operator_unit",
+        id: ID,
+        function: "The function of the Operator Unit is to let an operator command any component.",
+        stock: None,
+    };
     /// Operator Unit (component id 213).
     ///
     /// The function of the Operator Unit is to let an operator command any component.
@@ -35,8 +47,10 @@ pub mod operator_unit {
             let _ = (ctx, msg);
             Err(Refused::Unsupported)
         }
-        /// Called in Initialize; return an error to enter Failure instead of Standby.
-        fn initialize(&mut self, ctx: &mut Ctx<'_>) -> Result<(), String> {
+        /// Called in Initialize; return an error to enter Failure instead of Standby (the
+        /// runtime logs it with the component's name and address: say what failed and what
+        /// to check).
+        fn initialize(&mut self, ctx: &mut Ctx<'_>) -> Result<(), InitError> {
             let _ = ctx;
             Ok(())
         }
@@ -53,9 +67,9 @@ pub mod operator_unit {
     #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
     pub struct Interface;
     impl ::jaus::component::Interface for Interface {
-        const NAME: &'static str = "OperatorUnit";
-        const ID: u8 = 213;
-        const FUNCTION: &'static str = "The function of the Operator Unit is to let an operator command any component.";
+        const NAME: &'static str = INFO.name;
+        const ID: u8 = ID;
+        const FUNCTION: &'static str = INFO.function;
         const COMMANDS: &'static [CommandCode] = &[];
         const ACCEPTS: &'static [CommandCode] = &[];
         const EMITS: &'static [CommandCode] = &[];
@@ -86,7 +100,7 @@ pub mod operator_unit {
                 other => self.0.on_other_message(ctx, other),
             }
         }
-        fn initialize(&mut self, ctx: &mut Ctx<'_>) -> Result<(), String> {
+        fn initialize(&mut self, ctx: &mut Ctx<'_>) -> Result<(), InitError> {
             self.0.initialize(ctx)
         }
         fn state_changed(&mut self, ctx: &mut Ctx<'_>, from: CoreState, to: CoreState) {
@@ -108,11 +122,6 @@ pub mod operator_unit {
 }
 #[allow(unused_imports)]
 pub use operator_unit::OperatorUnit;
-/// Every component interface: (id, name, function).
-pub static COMPONENTS: &[(u8, &str, &str)] = &[
-    (
-        213,
-        "OperatorUnit",
-        "The function of the Operator Unit is to let an operator command any component.",
-    ),
-];
+/// Every component interface: its name, module, id, function and stock implementation
+/// (the `INFO` of each module), in definition order.
+pub static COMPONENTS: &[ComponentInfo] = &[operator_unit::INFO];

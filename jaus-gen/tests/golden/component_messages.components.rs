@@ -1,8 +1,10 @@
 #[allow(unused_imports)]
 use ::jaus::component::{
-    Behaviour, Component, Config, Context, CoreState, CoreTransition, Emits, Modes,
-    NoModes, Refused, StopReason,
+    Behaviour, Component, Config, Context, CoreState, CoreTransition, Emits, InitError,
+    Modes, NoModes, Refused, StopReason,
 };
+/// The row type of [`COMPONENTS`] (the `INFO` of each module) and what it holds.
+pub use ::jaus::component::{ComponentInfo, Hardware, StockInfo};
 #[allow(unused_imports)]
 use ::jaus::messages::*;
 #[allow(unused_imports)]
@@ -12,6 +14,19 @@ use ::jaus::{Address, CommandCode, JausMessage};
 /// The function of the Track Driver is to turn effort commands into track speeds.
 pub mod track_driver {
     use super::*;
+    /// The Track Driver's component id.
+    pub const ID: u8 = 210;
+    /// The Track Driver's row of the component table.
+    pub const INFO: ComponentInfo = ComponentInfo {
+        name: "TrackDriver",
+        module: "track_driver",
+        id: ID,
+        function: "The function of the Track Driver is to turn effort commands into track speeds.",
+        stock: Some(StockInfo {
+            name: "track_driver",
+            needs: Hardware::Vehicle,
+        }),
+    };
     /// Track Driver (component id 210).
     ///
     /// The function of the Track Driver is to turn effort commands into track speeds.
@@ -109,8 +124,10 @@ pub mod track_driver {
             let _ = (ctx, msg);
             Err(Refused::Unsupported)
         }
-        /// Called in Initialize; return an error to enter Failure instead of Standby.
-        fn initialize(&mut self, ctx: &mut Ctx<'_>) -> Result<(), String> {
+        /// Called in Initialize; return an error to enter Failure instead of Standby (the
+        /// runtime logs it with the component's name and address: say what failed and what
+        /// to check).
+        fn initialize(&mut self, ctx: &mut Ctx<'_>) -> Result<(), InitError> {
             let _ = ctx;
             Ok(())
         }
@@ -127,9 +144,9 @@ pub mod track_driver {
     #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
     pub struct Interface;
     impl ::jaus::component::Interface for Interface {
-        const NAME: &'static str = "TrackDriver";
-        const ID: u8 = 210;
-        const FUNCTION: &'static str = "The function of the Track Driver is to turn effort commands into track speeds.";
+        const NAME: &'static str = INFO.name;
+        const ID: u8 = ID;
+        const FUNCTION: &'static str = INFO.function;
         const COMMANDS: &'static [CommandCode] = &[
             CommandCode(0x0405),
             CommandCode(0x040A),
@@ -178,7 +195,7 @@ pub mod track_driver {
                 other => self.0.on_other_message(ctx, other),
             }
         }
-        fn initialize(&mut self, ctx: &mut Ctx<'_>) -> Result<(), String> {
+        fn initialize(&mut self, ctx: &mut Ctx<'_>) -> Result<(), InitError> {
             self.0.initialize(ctx)
         }
         fn state_changed(&mut self, ctx: &mut Ctx<'_>, from: CoreState, to: CoreState) {
@@ -203,11 +220,6 @@ pub mod track_driver {
 }
 #[allow(unused_imports)]
 pub use track_driver::TrackDriver;
-/// Every component interface: (id, name, function).
-pub static COMPONENTS: &[(u8, &str, &str)] = &[
-    (
-        210,
-        "TrackDriver",
-        "The function of the Track Driver is to turn effort commands into track speeds.",
-    ),
-];
+/// Every component interface: its name, module, id, function and stock implementation
+/// (the `INFO` of each module), in definition order.
+pub static COMPONENTS: &[ComponentInfo] = &[track_driver::INFO];

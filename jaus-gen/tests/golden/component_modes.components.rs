@@ -1,8 +1,10 @@
 #[allow(unused_imports)]
 use ::jaus::component::{
-    Behaviour, Component, Config, Context, CoreState, CoreTransition, Emits, Modes,
-    NoModes, Refused, StopReason,
+    Behaviour, Component, Config, Context, CoreState, CoreTransition, Emits, InitError,
+    Modes, NoModes, Refused, StopReason,
 };
+/// The row type of [`COMPONENTS`] (the `INFO` of each module) and what it holds.
+pub use ::jaus::component::{ComponentInfo, Hardware, StockInfo};
 #[allow(unused_imports)]
 use ::jaus::messages::*;
 #[allow(unused_imports)]
@@ -12,6 +14,16 @@ use ::jaus::{Address, CommandCode, JausMessage};
 /// The function of the Waypoint Follower is to drive to one waypoint at a time.
 pub mod waypoint_follower {
     use super::*;
+    /// The Waypoint Follower's component id.
+    pub const ID: u8 = 211;
+    /// The Waypoint Follower's row of the component table.
+    pub const INFO: ComponentInfo = ComponentInfo {
+        name: "WaypointFollower",
+        module: "waypoint_follower",
+        id: ID,
+        function: "The function of the Waypoint Follower is to drive to one waypoint at a time.",
+        stock: None,
+    };
     /// Waypoint Follower (component id 211).
     ///
     /// The function of the Waypoint Follower is to drive to one waypoint at a time.
@@ -54,8 +66,10 @@ pub mod waypoint_follower {
             let _ = (ctx, msg);
             Err(Refused::Unsupported)
         }
-        /// Called in Initialize; return an error to enter Failure instead of Standby.
-        fn initialize(&mut self, ctx: &mut Ctx<'_>) -> Result<(), String> {
+        /// Called in Initialize; return an error to enter Failure instead of Standby (the
+        /// runtime logs it with the component's name and address: say what failed and what
+        /// to check).
+        fn initialize(&mut self, ctx: &mut Ctx<'_>) -> Result<(), InitError> {
             let _ = ctx;
             Ok(())
         }
@@ -72,9 +86,9 @@ pub mod waypoint_follower {
     #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
     pub struct Interface;
     impl ::jaus::component::Interface for Interface {
-        const NAME: &'static str = "WaypointFollower";
-        const ID: u8 = 211;
-        const FUNCTION: &'static str = "The function of the Waypoint Follower is to drive to one waypoint at a time.";
+        const NAME: &'static str = INFO.name;
+        const ID: u8 = ID;
+        const FUNCTION: &'static str = INFO.function;
         const COMMANDS: &'static [CommandCode] = &[CommandCode(0x040C)];
         const ACCEPTS: &'static [CommandCode] = &[];
         const EMITS: &'static [CommandCode] = &[];
@@ -173,7 +187,7 @@ pub mod waypoint_follower {
                 other => self.0.on_other_message(ctx, other),
             }
         }
-        fn initialize(&mut self, ctx: &mut Ctx<'_>) -> Result<(), String> {
+        fn initialize(&mut self, ctx: &mut Ctx<'_>) -> Result<(), InitError> {
             self.0.initialize(ctx)
         }
         fn state_changed(&mut self, ctx: &mut Ctx<'_>, from: CoreState, to: CoreState) {
@@ -200,6 +214,16 @@ pub use waypoint_follower::WaypointFollower;
 /// The function of the Recorder is to record.
 pub mod recorder {
     use super::*;
+    /// The Recorder's component id.
+    pub const ID: u8 = 212;
+    /// The Recorder's row of the component table.
+    pub const INFO: ComponentInfo = ComponentInfo {
+        name: "Recorder",
+        module: "recorder",
+        id: ID,
+        function: "The function of the Recorder is to record.",
+        stock: None,
+    };
     /// Recorder (component id 212).
     ///
     /// The function of the Recorder is to record.
@@ -227,8 +251,10 @@ pub mod recorder {
             let _ = (ctx, msg);
             Err(Refused::Unsupported)
         }
-        /// Called in Initialize; return an error to enter Failure instead of Standby.
-        fn initialize(&mut self, ctx: &mut Ctx<'_>) -> Result<(), String> {
+        /// Called in Initialize; return an error to enter Failure instead of Standby (the
+        /// runtime logs it with the component's name and address: say what failed and what
+        /// to check).
+        fn initialize(&mut self, ctx: &mut Ctx<'_>) -> Result<(), InitError> {
             let _ = ctx;
             Ok(())
         }
@@ -245,9 +271,9 @@ pub mod recorder {
     #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
     pub struct Interface;
     impl ::jaus::component::Interface for Interface {
-        const NAME: &'static str = "Recorder";
-        const ID: u8 = 212;
-        const FUNCTION: &'static str = "The function of the Recorder is to record.";
+        const NAME: &'static str = INFO.name;
+        const ID: u8 = ID;
+        const FUNCTION: &'static str = INFO.function;
         const COMMANDS: &'static [CommandCode] = &[];
         const ACCEPTS: &'static [CommandCode] = &[];
         const EMITS: &'static [CommandCode] = &[];
@@ -304,7 +330,7 @@ pub mod recorder {
                 other => self.0.on_other_message(ctx, other),
             }
         }
-        fn initialize(&mut self, ctx: &mut Ctx<'_>) -> Result<(), String> {
+        fn initialize(&mut self, ctx: &mut Ctx<'_>) -> Result<(), InitError> {
             self.0.initialize(ctx)
         }
         fn state_changed(&mut self, ctx: &mut Ctx<'_>, from: CoreState, to: CoreState) {
@@ -326,12 +352,6 @@ pub mod recorder {
 }
 #[allow(unused_imports)]
 pub use recorder::Recorder;
-/// Every component interface: (id, name, function).
-pub static COMPONENTS: &[(u8, &str, &str)] = &[
-    (
-        211,
-        "WaypointFollower",
-        "The function of the Waypoint Follower is to drive to one waypoint at a time.",
-    ),
-    (212, "Recorder", "The function of the Recorder is to record."),
-];
+/// Every component interface: its name, module, id, function and stock implementation
+/// (the `INFO` of each module), in definition order.
+pub static COMPONENTS: &[ComponentInfo] = &[waypoint_follower::INFO, recorder::INFO];

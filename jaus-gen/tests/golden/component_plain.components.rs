@@ -1,8 +1,10 @@
 #[allow(unused_imports)]
 use ::jaus::component::{
-    Behaviour, Component, Config, Context, CoreState, CoreTransition, Emits, Modes,
-    NoModes, Refused, StopReason,
+    Behaviour, Component, Config, Context, CoreState, CoreTransition, Emits, InitError,
+    Modes, NoModes, Refused, StopReason,
 };
+/// The row type of [`COMPONENTS`] (the `INFO` of each module) and what it holds.
+pub use ::jaus::component::{ComponentInfo, Hardware, StockInfo};
 #[allow(unused_imports)]
 use ::jaus::messages::*;
 #[allow(unused_imports)]
@@ -13,6 +15,16 @@ use ::jaus::{Address, CommandCode, JausMessage};
 /// component answers and nothing else.
 pub mod beacon {
     use super::*;
+    /// The Beacon's component id.
+    pub const ID: u8 = 200;
+    /// The Beacon's row of the component table.
+    pub const INFO: ComponentInfo = ComponentInfo {
+        name: "Beacon",
+        module: "beacon",
+        id: ID,
+        function: "The function of the Beacon is to be seen on the network: it answers what every JAUS component answers and nothing else.",
+        stock: None,
+    };
     /// Beacon (component id 200).
     ///
     /// The function of the Beacon is to be seen on the network: it answers what every JAUS
@@ -41,8 +53,10 @@ pub mod beacon {
             let _ = (ctx, msg);
             Err(Refused::Unsupported)
         }
-        /// Called in Initialize; return an error to enter Failure instead of Standby.
-        fn initialize(&mut self, ctx: &mut Ctx<'_>) -> Result<(), String> {
+        /// Called in Initialize; return an error to enter Failure instead of Standby (the
+        /// runtime logs it with the component's name and address: say what failed and what
+        /// to check).
+        fn initialize(&mut self, ctx: &mut Ctx<'_>) -> Result<(), InitError> {
             let _ = ctx;
             Ok(())
         }
@@ -59,9 +73,9 @@ pub mod beacon {
     #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
     pub struct Interface;
     impl ::jaus::component::Interface for Interface {
-        const NAME: &'static str = "Beacon";
-        const ID: u8 = 200;
-        const FUNCTION: &'static str = "The function of the Beacon is to be seen on the network: it answers what every JAUS component answers and nothing else.";
+        const NAME: &'static str = INFO.name;
+        const ID: u8 = ID;
+        const FUNCTION: &'static str = INFO.function;
         const COMMANDS: &'static [CommandCode] = &[];
         const ACCEPTS: &'static [CommandCode] = &[];
         const EMITS: &'static [CommandCode] = &[];
@@ -87,7 +101,7 @@ pub mod beacon {
                 other => self.0.on_other_message(ctx, other),
             }
         }
-        fn initialize(&mut self, ctx: &mut Ctx<'_>) -> Result<(), String> {
+        fn initialize(&mut self, ctx: &mut Ctx<'_>) -> Result<(), InitError> {
             self.0.initialize(ctx)
         }
         fn state_changed(&mut self, ctx: &mut Ctx<'_>, from: CoreState, to: CoreState) {
@@ -109,11 +123,6 @@ pub mod beacon {
 }
 #[allow(unused_imports)]
 pub use beacon::Beacon;
-/// Every component interface: (id, name, function).
-pub static COMPONENTS: &[(u8, &str, &str)] = &[
-    (
-        200,
-        "Beacon",
-        "The function of the Beacon is to be seen on the network: it answers what every JAUS component answers and nothing else.",
-    ),
-];
+/// Every component interface: its name, module, id, function and stock implementation
+/// (the `INFO` of each module), in definition order.
+pub static COMPONENTS: &[ComponentInfo] = &[beacon::INFO];

@@ -1,8 +1,10 @@
 #[allow(unused_imports)]
 use ::jaus::component::{
-    Behaviour, Component, Config, Context, CoreState, CoreTransition, Emits, Modes,
-    NoModes, Refused, StopReason,
+    Behaviour, Component, Config, Context, CoreState, CoreTransition, Emits, InitError,
+    Modes, NoModes, Refused, StopReason,
 };
+/// The row type of [`COMPONENTS`] (the `INFO` of each module) and what it holds.
+pub use ::jaus::component::{ComponentInfo, Hardware, StockInfo};
 #[allow(unused_imports)]
 use ::jaus::messages::*;
 #[allow(unused_imports)]
@@ -13,6 +15,16 @@ use ::jaus::{Address, CommandCode, JausMessage};
 #[cfg(all(feature = "planning", feature = "sensors"))]
 pub mod navigator {
     use super::*;
+    /// The Navigator's component id.
+    pub const ID: u8 = 220;
+    /// The Navigator's row of the component table.
+    pub const INFO: ComponentInfo = ComponentInfo {
+        name: "Navigator",
+        module: "navigator",
+        id: ID,
+        function: "The function of the Navigator is to drive through waypoints.",
+        stock: None,
+    };
     /// Navigator (component id 220).
     ///
     /// The function of the Navigator is to drive through waypoints.
@@ -82,8 +94,10 @@ pub mod navigator {
             let _ = (ctx, msg);
             Err(Refused::Unsupported)
         }
-        /// Called in Initialize; return an error to enter Failure instead of Standby.
-        fn initialize(&mut self, ctx: &mut Ctx<'_>) -> Result<(), String> {
+        /// Called in Initialize; return an error to enter Failure instead of Standby (the
+        /// runtime logs it with the component's name and address: say what failed and what
+        /// to check).
+        fn initialize(&mut self, ctx: &mut Ctx<'_>) -> Result<(), InitError> {
             let _ = ctx;
             Ok(())
         }
@@ -100,9 +114,9 @@ pub mod navigator {
     #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
     pub struct Interface;
     impl ::jaus::component::Interface for Interface {
-        const NAME: &'static str = "Navigator";
-        const ID: u8 = 220;
-        const FUNCTION: &'static str = "The function of the Navigator is to drive through waypoints.";
+        const NAME: &'static str = INFO.name;
+        const ID: u8 = ID;
+        const FUNCTION: &'static str = INFO.function;
         const COMMANDS: &'static [CommandCode] = &[CommandCode(0x040C)];
         const ACCEPTS: &'static [CommandCode] = &[
             CommandCode(0x240C),
@@ -145,7 +159,7 @@ pub mod navigator {
                 other => self.0.on_other_message(ctx, other),
             }
         }
-        fn initialize(&mut self, ctx: &mut Ctx<'_>) -> Result<(), String> {
+        fn initialize(&mut self, ctx: &mut Ctx<'_>) -> Result<(), InitError> {
             self.0.initialize(ctx)
         }
         fn state_changed(&mut self, ctx: &mut Ctx<'_>, from: CoreState, to: CoreState) {
@@ -168,8 +182,9 @@ pub mod navigator {
 #[cfg(all(feature = "planning", feature = "sensors"))]
 #[allow(unused_imports)]
 pub use navigator::Navigator;
-/// Every component interface: (id, name, function).
-pub static COMPONENTS: &[(u8, &str, &str)] = &[
+/// Every component interface: its name, module, id, function and stock implementation
+/// (the `INFO` of each module), in definition order.
+pub static COMPONENTS: &[ComponentInfo] = &[
     #[cfg(all(feature = "planning", feature = "sensors"))]
-    (220, "Navigator", "The function of the Navigator is to drive through waypoints."),
+    navigator::INFO,
 ];

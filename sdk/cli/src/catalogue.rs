@@ -81,26 +81,27 @@ impl Catalogue {
     /// `jaus decode`: one hex packet to a JSON line.
     pub fn decode_line(&self, hex: &str) -> Result<String, String> {
         match &self.schema {
-            Some(s) => s.decode_line(hex),
-            None => jaus::json::decode_line(hex),
+            Some(s) => s.decode_line(hex).map_err(|e| e.to_string()),
+            None => jaus::json::decode_line(hex).map_err(|e| e.to_string()),
         }
     }
 
     /// A whole (reassembled) packet to a JSON line.
     pub fn decode_packet(&self, packet: PacketRef<'_>) -> Result<String, String> {
         match &self.schema {
-            Some(s) => s.decode_packet(packet),
+            Some(s) => s.decode_packet(packet).map_err(|e| e.to_string()),
             None => jaus::json::decode_packet(&jaus::Packet {
                 header: packet.header,
                 body: packet.body.to_vec(),
-            }),
+            })
+            .map_err(|e| e.to_string()),
         }
     }
 
     /// `jaus encode`: one JSON line to a hex packet.
     pub fn encode_line(&self, line: &str) -> Result<String, String> {
         match &self.schema {
-            Some(s) => s.encode_line(line),
+            Some(s) => s.encode_line(line).map_err(|e| e.to_string()),
             None => jaus::json::encode_line(line).map_err(|e| with_overlay_hint(e, false)),
         }
     }

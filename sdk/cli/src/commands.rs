@@ -134,10 +134,12 @@ pub fn tour(out: &mut impl Write) -> bool {
     );
     for (title, hex) in REFERENCE_PACKETS {
         let _ = writeln!(out, "{title}\n  packet  {hex}");
-        match decode_line(hex).and_then(|json| {
-            let back = encode_line(&json)?;
-            Ok((json, back))
-        }) {
+        match decode_line(hex)
+            .map_err(|e| e.to_string())
+            .and_then(|json| {
+                let back = encode_line(&json)?;
+                Ok((json, back))
+            }) {
             Ok((json, back)) => {
                 let same = back == *hex;
                 ok &= same;

@@ -38,6 +38,7 @@ pub use schema::MessageLayout;
 pub use value::Value;
 
 use jaus::codec::{DecodeError, DecodeErrorKind, EncodeError};
+pub use jaus::json::DecodeLineError;
 use jaus::json::{HeaderInput, JsonError};
 use jaus::{CommandCode, Header, Packet, PacketRef, RawMessage};
 use jaus_spec::{Spec, SpecErrors};
@@ -185,17 +186,18 @@ impl Schema {
     }
 
     /// Encodes one JSON line to a hex packet, as `jaus encode` does.
-    pub fn encode_line(&self, line: &str) -> Result<String, String> {
-        let (header, parsed) = self.parse_line(line).map_err(|e| e.to_string())?;
-        let (name, raw) = self.to_raw(&parsed).map_err(|e| e.to_string())?;
-        let header = header
-            .complete_for(raw.code, name, None, None)
-            .map_err(|e| e.to_string())?;
+    pub fn encode_line(&self, line: &str) -> Result<String, EncodeLineError> {
+        let (header, parsed) = self.parse_line(line)?;
+        let (name, raw) = self.to_raw(&parsed).map_err(EncodeLineError::Body)?;
+        let header = header.complete_for(raw.code, name, None, None)?;
         let bytes = jaus::codec::Encode::to_bytes(&Packet {
             header,
             body: raw.body,
         })
-        .map_err(|e| format!("{name}: {e}"))?;
+        .map_err(|error| EncodeLineError::Packet {
+            message: name,
+            error,
+        })?;
         Ok(jaus::hex::encode(&bytes))
     }
 
@@ -213,45 +215,66 @@ impl Schema {
         }
     }
 
-    /// Decodes one hex packet to a JSON line, as `jaus decode` does.
-    pub fn decode_line(&self, hex: &str) -> Result<String, String> {
-        let bytes = jaus::hex::decode(hex.trim()).map_err(|e| format!("bad hex: {e}"))?;
-        let packet = PacketRef::parse(&bytes).map_err(|e| e.to_string())?;
+    /// Decodes one hex packet to a JSON line, as `jaus decode` does; the errors are
+    /// those of the generated decoder ([`jaus::json::decode_line`]).
+    pub fn decode_line(&self, hex: &str) -> Result<String, DecodeLineError> {
+        let bytes = jaus::hex::decode(hex.trim())?;
+        let packet = PacketRef::parse(&bytes).map_err(DecodeLineError::Packet)?;
         self.decode_packet(packet)
     }
 
     /// Decodes a packet to the JSON line `jaus decode` prints: `{"header": {...},
     /// "message": NAME, "fields": {...}}`; a code this schema does not define is printed
     /// as `"message": "Raw"` with its code and body.
-    pub fn decode_packet(&self, packet: PacketRef<'_>) -> Result<String, String> {
+    pub fn decode_packet(&self, packet: PacketRef<'_>) -> Result<String, DecodeLineError> {
         if packet.header.data_flag != jaus::wire::DataFlag::Single {
-            return Err(format!(
-                "packet {} of a multi-packet message ({:?}): reassemble the sequence first",
-                packet.header.sequence_number, packet.header.data_flag
-            ));
+            return Err(DecodeLineError::MultiPacket {
+                sequence: packet.header.sequence_number,
+                data_flag: packet.header.data_flag,
+            });
         }
-        let fields = self.fields_json(packet.header.command_code, packet.body)?;
+        let fields = self
+            .fields_json(packet.header.command_code, packet.body)
+            .map_err(DecodeLineError::Message)?;
         serde_json::to_string(&Line {
             header: &packet.header,
             fields: &fields,
         })
-        .map_err(|e| e.to_string())
+        .map_err(|e| DecodeLineError::Json(e.to_string()))
     }
 
     /// The `"message"` and `"fields"` of a body as JSON, as the generated types print
     /// them (`"Raw"` for a code this schema does not define).
-    pub fn fields_json(&self, code: CommandCode, body: &[u8]) -> Result<Decoded, String> {
+    pub fn fields_json(&self, code: CommandCode, body: &[u8]) -> Result<Decoded, DecodeError> {
         match self.by_code(code) {
-            Some(_) => self
-                .decode(code, body)
-                .map(Decoded::Message)
-                .map_err(|e| e.to_string()),
+            Some(_) => self.decode(code, body).map(Decoded::Message),
             None => Ok(Decoded::Raw(RawMessage {
                 code,
                 body: body.to_vec(),
             })),
         }
     }
+}
+
+/// Why a JSON line does not encode ([`Schema::encode_line`]): each names what failed
+/// (the JSON, the message and its field, the header).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum EncodeLineError {
+    /// The line is not a message of the schema (not JSON, an unknown message, fields
+    /// that do not fit the layout), or its header is incomplete.
+    #[error("{0}")]
+    Json(#[from] JsonError),
+    /// The message's body does not encode (the error names the message and field).
+    #[error("{0}")]
+    Body(EncodeError),
+    /// The packet holding the body does not encode (a body too long for one packet).
+    #[error("{message}: {error}")]
+    Packet {
+        /// The message.
+        message: &'static str,
+        /// What failed.
+        error: EncodeError,
+    },
 }
 
 /// A message line read by [`Schema::parse_line`].

@@ -3,14 +3,15 @@
 //!
 //! The compilation applies the same reading of the definitions as `jaus-gen` and the
 //! derive macros: which fields publish their value for later fields (`count_field`,
-//! `present_if`, `tag_field` anywhere in the set name them), which count field is
+//! `present_if`, `tag_field` anywhere in the set name them: [`Spec::vars`], which
+//! `jaus-gen` reads too), which count field is
 //! written from the length of the list it counts, which list's elements an offsets
 //! field points at, and the presence bits a body defines.
 
 use crate::intern;
 use jaus::codec::ScaledField;
 use jaus::CommandCode;
-use jaus_spec::{Bits, FieldDef, Int, Len, MessageClass, Spec, TypeForm, Wire};
+use jaus_spec::{Bits, Int, Len, MessageClass, Spec, TypeForm, Wire};
 use std::collections::{BTreeSet, HashMap};
 use std::path::Path;
 
@@ -142,7 +143,7 @@ pub(crate) fn compile(spec: &Spec) -> Layouts {
         .collect();
     let c = Compiler {
         types: type_index,
-        vars: vars(spec),
+        vars: spec.vars(),
     };
     let types = spec
         .types
@@ -358,17 +359,11 @@ impl Compiler<'_> {
                 count: *count,
                 elem: Box::new(self.wire(elem, owner, unit)),
             },
-            Wire::ListField { field, elem, .. } => {
-                let (var, minus) = match field.split_once('-') {
-                    Some((n, m)) => (n.trim(), m.trim().parse().unwrap_or(0)),
-                    None => (field.trim(), 0),
-                };
-                WireLayout::ListVar {
-                    var: intern::name(var),
-                    minus,
-                    elem: Box::new(self.wire(elem, owner, unit)),
-                }
-            }
+            Wire::ListField { field, elem, .. } => WireLayout::ListVar {
+                var: intern::name(&field.field),
+                minus: field.minus,
+                elem: Box::new(self.wire(elem, owner, unit)),
+            },
             Wire::Flag => WireLayout::Flag,
             Wire::Packet { size } => WireLayout::Packet { size: *size },
         }
@@ -402,34 +397,4 @@ impl FieldLayout {
     pub(crate) fn is_optional(&self) -> bool {
         (self.bit.is_some() && !matches!(self.wire, WireLayout::Flag)) || self.present_if.is_some()
     }
-}
-
-/// Names of the fields other fields depend on anywhere in the set (`count_field`,
-/// `present_if`, `tag_field`): such fields publish their value while encoding and
-/// decoding, as the generated types do.
-fn vars(spec: &Spec) -> BTreeSet<String> {
-    fn walk<'a>(fields: impl Iterator<Item = &'a FieldDef>, out: &mut BTreeSet<String>) {
-        for f in fields {
-            out.extend(
-                f.count_field
-                    .iter()
-                    .map(|c| c.split('-').next().unwrap_or(c).trim().to_string()),
-            );
-            out.extend(f.present_if.iter().cloned());
-            out.extend(f.tag_field.iter().cloned());
-            if let Some(e) = &f.of {
-                walk(std::iter::once(&e.0), out);
-            }
-        }
-    }
-    let mut out = BTreeSet::new();
-    for fields in spec
-        .messages
-        .iter()
-        .map(|m| m.fields.as_slice())
-        .chain(spec.types.iter().map(|t| t.fields()))
-    {
-        walk(fields.iter().map(|f| &f.def), &mut out);
-    }
-    out
 }

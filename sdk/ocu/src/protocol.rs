@@ -111,7 +111,8 @@ impl Fields<'_> {
                 } else {
                     let (x, y) = (num("x")?, num("y")?);
                     let f = frame.ok_or_else(|| PageError::NoOrigin(self.op.to_string()))?;
-                    let (latitude, longitude) = f.to_global(Vector2::new(x, y));
+                    // The page's (east, north) as the frame's (north, east).
+                    let (latitude, longitude) = f.to_global(Vector2::new(y, x));
                     Ok(GeoPoint {
                         latitude,
                         longitude,

@@ -47,29 +47,40 @@ use jaus::{Address, JausMessage};
 
 /// Addresses of the arm node.
 pub mod addr {
+    use jaus::components as c;
     use jaus::Address;
     /// Primitive Manipulator.
-    pub const PM: Address = Address::new(1, 3, 49, 1);
+    pub const PM: Address = Address::new(1, 3, c::primitive_manipulator::ID, 1);
     /// Joint Position Sensor.
-    pub const JPS: Address = Address::new(1, 3, 51, 1);
+    pub const JPS: Address = Address::new(1, 3, c::manipulator_joint_position_sensor::ID, 1);
     /// Joint Velocity Sensor.
-    pub const JVS: Address = Address::new(1, 3, 52, 1);
+    pub const JVS: Address = Address::new(1, 3, c::manipulator_joint_velocity_sensor::ID, 1);
     /// Joint Force/Torque Sensor.
-    pub const FTS: Address = Address::new(1, 3, 53, 1);
+    pub const FTS: Address = Address::new(1, 3, c::manipulator_joint_force_torque_sensor::ID, 1);
     /// Joint Positions Driver.
-    pub const JPD: Address = Address::new(1, 3, 54, 1);
+    pub const JPD: Address = Address::new(1, 3, c::manipulator_joint_positions_driver::ID, 1);
     /// End-Effector Pose Driver.
-    pub const EPD: Address = Address::new(1, 3, 55, 1);
+    pub const EPD: Address = Address::new(1, 3, c::manipulator_end_effector_pose_driver::ID, 1);
     /// Joint Velocities Driver.
-    pub const JVD: Address = Address::new(1, 3, 56, 1);
+    pub const JVD: Address = Address::new(1, 3, c::manipulator_joint_velocities_driver::ID, 1);
     /// End-Effector Velocity State Driver.
-    pub const EVD: Address = Address::new(1, 3, 57, 1);
+    pub const EVD: Address = Address::new(
+        1,
+        3,
+        c::manipulator_end_effector_velocity_state_driver::ID,
+        1,
+    );
     /// Joint Move Driver.
-    pub const JMD: Address = Address::new(1, 3, 58, 1);
+    pub const JMD: Address = Address::new(1, 3, c::manipulator_joint_move_driver::ID, 1);
     /// End-Effector Discrete Pose Driver.
-    pub const DPD: Address = Address::new(1, 3, 59, 1);
+    pub const DPD: Address = Address::new(
+        1,
+        3,
+        c::manipulator_end_effector_discrete_pose_driver::ID,
+        1,
+    );
     /// The operator.
-    pub const OCU: Address = Address::new(1, 2, 40, 1);
+    pub const OCU: Address = Address::new(1, 2, c::system_commander::ID, 1);
 }
 
 /// Control period of the arm components.
@@ -543,15 +554,15 @@ pub fn arm_components(arm: &SimArm, ss: u8, node: u8, t0: Instant) -> Vec<Box<dy
     let at = |id: u8| Address::new(ss, node, id, 1);
     let chain = arm.lock().chain().clone();
     let drivers = ArmDriverConfig {
-        output: at(49),
-        position_sensor: at(51),
-        velocity_sensor: Some(at(52)),
+        output: at(pm::ID),
+        position_sensor: at(jps::ID),
+        velocity_sensor: Some(at(jvs::ID)),
         ..ArmDriverConfig::default()
     };
     let cfg = arm_config;
     vec![
         Box::new(pm::component(
-            at(49),
+            at(pm::ID),
             StockPrimitiveManipulator::new(
                 arm.clone(),
                 chain,
@@ -561,55 +572,55 @@ pub fn arm_components(arm: &SimArm, ss: u8, node: u8, t0: Instant) -> Vec<Box<dy
             t0,
         )),
         Box::new(jps::component(
-            at(51),
+            at(jps::ID),
             StockJointSensor::new(arm.clone()),
             cfg(),
             t0,
         )),
         Box::new(jvs::component(
-            at(52),
+            at(jvs::ID),
             StockJointSensor::new(arm.clone()),
             cfg(),
             t0,
         )),
         Box::new(fts::component(
-            at(53),
+            at(fts::ID),
             StockJointSensor::new(arm.clone()),
             cfg(),
             t0,
         )),
         Box::new(jpd::component(
-            at(54),
+            at(jpd::ID),
             StockJointPositionsDriver::new(drivers.clone()),
             cfg(),
             t0,
         )),
         Box::new(epd::component(
-            at(55),
+            at(epd::ID),
             StockEndEffectorPoseDriver::new(drivers.clone()),
             cfg(),
             t0,
         )),
         Box::new(jvd::component(
-            at(56),
+            at(jvd::ID),
             StockJointVelocitiesDriver::new(drivers.clone()),
             cfg(),
             t0,
         )),
         Box::new(evd::component(
-            at(57),
+            at(evd::ID),
             StockEndEffectorVelocityStateDriver::new(drivers.clone()),
             cfg(),
             t0,
         )),
         Box::new(jmd::component(
-            at(58),
+            at(jmd::ID),
             StockJointMoveDriver::new(drivers.clone()),
             cfg(),
             t0,
         )),
         Box::new(dpd::component(
-            at(59),
+            at(dpd::ID),
             StockEndEffectorDiscretePoseDriver::new(drivers),
             cfg(),
             t0,

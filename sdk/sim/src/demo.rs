@@ -32,6 +32,7 @@ use std::time::{Duration, Instant};
 use nalgebra::{Vector2, Vector3};
 
 use crate::camera::SimCamera;
+use crate::host::HostConfig;
 use crate::scanner::{ScannerParams, Scene, SimScanner};
 use crate::vehicle::{SimVehicle, VehicleParams};
 use jaus::component::local::{Endpoint, LocalBus};
@@ -64,36 +65,37 @@ use jaus::Address;
 
 /// Addresses of the demo subsystem.
 pub mod addr {
+    use jaus::components as c;
     use jaus::Address;
     /// Primitive Driver.
-    pub const PD: Address = Address::new(1, 1, 33, 1);
+    pub const PD: Address = Address::new(1, 1, c::primitive_driver::ID, 1);
     /// Reflexive Driver.
-    pub const RD: Address = Address::new(1, 1, 43, 1);
+    pub const RD: Address = Address::new(1, 1, c::reflexive_driver::ID, 1);
     /// Global Pose Sensor.
-    pub const GPS: Address = Address::new(1, 1, 38, 1);
+    pub const GPS: Address = Address::new(1, 1, c::global_pose_sensor::ID, 1);
     /// Local Pose Sensor.
-    pub const LPS: Address = Address::new(1, 1, 41, 1);
+    pub const LPS: Address = Address::new(1, 1, c::local_pose_sensor::ID, 1);
     /// Velocity State Sensor.
-    pub const VSS: Address = Address::new(1, 1, 42, 1);
+    pub const VSS: Address = Address::new(1, 1, c::velocity_state_sensor::ID, 1);
     /// Global Waypoint Driver.
-    pub const GWD: Address = Address::new(1, 1, 45, 1);
+    pub const GWD: Address = Address::new(1, 1, c::global_waypoint_driver::ID, 1);
     /// Local Path Segment Driver.
-    pub const LPSD: Address = Address::new(1, 1, 48, 1);
+    pub const LPSD: Address = Address::new(1, 1, c::local_path_segment_driver::ID, 1);
     /// Global Path Segment Driver (not used by the scripted run; operator stations
     /// such as `jaus ocu` drive path segments in WGS 84 with it).
-    pub const GPSD: Address = Address::new(1, 1, 47, 1);
+    pub const GPSD: Address = Address::new(1, 1, c::global_path_segment_driver::ID, 1);
     /// Mission Spooler.
-    pub const MS: Address = Address::new(1, 1, 36, 1);
+    pub const MS: Address = Address::new(1, 1, c::mission_spooler::ID, 1);
     /// World Model Vector Knowledge Store.
-    pub const WM: Address = Address::new(1, 1, 61, 1);
+    pub const WM: Address = Address::new(1, 1, c::world_model_vector_knowledge_store::ID, 1);
     /// Range Sensor.
-    pub const RS: Address = Address::new(1, 1, 50, 1);
+    pub const RS: Address = Address::new(1, 1, c::range_sensor::ID, 1);
     /// Visual Sensor.
-    pub const VS: Address = Address::new(1, 1, 37, 1);
+    pub const VS: Address = Address::new(1, 1, c::visual_sensor::ID, 1);
     /// Subsystem Commander (it hands the operator's missions to the spooler).
-    pub const SC: Address = Address::new(1, 1, 32, 1);
+    pub const SC: Address = Address::new(1, 1, c::subsystem_commander::ID, 1);
     /// The operator (System Commander).
-    pub const OCU: Address = Address::new(1, 2, 40, 1);
+    pub const OCU: Address = Address::new(1, 2, c::system_commander::ID, 1);
 
     /// `a` moved to node `node` of subsystem `ss`.
     pub const fn on(a: Address, ss: u8, node: u8) -> Address {
@@ -172,6 +174,25 @@ pub const OBSTACLE: ((f64, f64), f64) = ((5.5, -2.5), 0.6);
 /// An obstacle on the way home that nobody stores: only the Range Sensor's detections
 /// put it in the world model. Centre (local metres) and radius.
 pub const UNKNOWN_OBSTACLE: ((f64, f64), f64) = ((1.5, -2.0), 0.4);
+
+/// The demo's world as it is: the obstacle the operator stores ([`OBSTACLE`]) and one
+/// nobody stores ([`UNKNOWN_OBSTACLE`]).
+pub fn scene() -> Scene {
+    let circle = |((x, y), r): ((f64, f64), f64)| (Vector2::new(x, y), r);
+    Scene {
+        circles: vec![circle(OBSTACLE), circle(UNKNOWN_OBSTACLE)],
+    }
+}
+
+/// The demo's world for a [`Host`](crate::host::Host) (`Host::with_config`): its
+/// frame's origin ([`ORIGIN`]), its [`scene`] and the arm demo's control period.
+pub fn host_config() -> HostConfig {
+    HostConfig {
+        origin: LocalFrame::new(ORIGIN.0, ORIGIN.1, ORIGIN.2),
+        scene: scene(),
+        arm_control_period: crate::arm_demo::CONTROL_PERIOD,
+    }
+}
 
 /// Feature class of the objects the operator stores (the Range Sensor's are class 2).
 pub const OPERATOR_CLASS: u16 = 1;
@@ -715,11 +736,7 @@ pub fn vehicle_at(
             ..Default::default()
         },
     );
-    // The world as it is: the obstacle the operator stores and one nobody stores.
-    let circle = |((x, y), r): ((f64, f64), f64)| (Vector2::new(x, y), r);
-    let scene = Scene {
-        circles: vec![circle(OBSTACLE), circle(UNKNOWN_OBSTACLE)],
-    };
+    let scene = scene();
     let vs = StockVisualSensor::new(
         SimCamera::new(vehicle.clone(), scene.clone()),
         VisualConfig::default(),

@@ -5,9 +5,7 @@ use std::marker::PhantomData;
 use std::time::{Duration, Instant};
 
 use super::runtime::Runtime;
-use super::{
-    CoreState, CoreTransition, EmittedBy, Interface, Modes, ServiceConnectionError, TransitionError,
-};
+use super::{CoreState, CoreTransition, EmittedBy, Interface, Modes, TransitionError};
 use crate::messages::*;
 use crate::{Address, CommandCode, JausMessage};
 
@@ -228,3 +226,24 @@ core_messages!(
     CancelEvent,
     QueryEvents,
 );
+
+/// Why [`Context::create_service_connection`] sent no request.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ServiceConnectionError {
+    /// [`Config::max_subscriptions`](super::Config::max_subscriptions) connections are
+    /// already open or asked for.
+    #[error("{max} service connections are already open or asked for")]
+    TooMany {
+        /// The configured limit.
+        max: usize,
+    },
+    /// The rate cannot be carried by Create Service Connection: the field is a scaled
+    /// u16 over 0 to 1092 Hz, and a rate must be above 0 (and a number).
+    #[error("rate {rate} Hz is outside (0, {max}] Hz, what Create Service Connection carries")]
+    Rate {
+        /// The rate asked for.
+        rate: f64,
+        /// The largest rate the message carries.
+        max: f64,
+    },
+}

@@ -3,7 +3,6 @@
 use std::time::Duration;
 
 use super::CoreState;
-use super::Refused;
 use crate::messages::{RefusalReason, ReportRefusal};
 use crate::{Address, CommandCode};
 
@@ -65,5 +64,58 @@ pub fn refusal_report(refused: CommandCode, reason: RefusalReason, text: &str) -
         refused_code: refused.0,
         reason,
         text: crate::codec::fit_latin1(text, 255),
+    }
+}
+
+/// Why a component did not act on a message.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum Refused {
+    /// The vendor did not implement this message.
+    #[error("not supported by this component")]
+    Unsupported,
+    /// The message is understood but its content cannot be executed (NaN, an unknown
+    /// waypoint, a mission that is running, ...).
+    #[error("{0}")]
+    Invalid(String),
+    /// A field's value is outside what this component accepts (its own limit, which
+    /// may be narrower than the field's range on the wire).
+    #[error(
+        "field `{field}` = {value} {unit} is outside this component's limit [{min}, {max}] {unit}"
+    )]
+    OutOfRange {
+        /// The field, as named in the message definition.
+        field: &'static str,
+        /// The value received.
+        value: f64,
+        /// Lowest accepted value.
+        min: f64,
+        /// Highest accepted value.
+        max: f64,
+        /// Unit of the values.
+        unit: &'static str,
+    },
+}
+
+impl Refused {
+    /// `value` if it lies in `[min, max]`, else the [`Refused::OutOfRange`] naming
+    /// `field` (NaN is out of every range).
+    pub fn check_range(
+        field: &'static str,
+        value: f64,
+        min: f64,
+        max: f64,
+        unit: &'static str,
+    ) -> Result<f64, Refused> {
+        if value >= min && value <= max {
+            Ok(value)
+        } else {
+            Err(Refused::OutOfRange {
+                field,
+                value,
+                min,
+                max,
+                unit,
+            })
+        }
     }
 }

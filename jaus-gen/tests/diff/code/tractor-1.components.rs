@@ -1,8 +1,10 @@
 #[allow(unused_imports)]
 use ::jaus::component::{
-    Behaviour, Component, Config, Context, CoreState, CoreTransition, Emits, Modes,
-    NoModes, Refused, StopReason,
+    Behaviour, Component, Config, Context, CoreState, CoreTransition, Emits, InitError,
+    Modes, NoModes, Refused, StopReason,
 };
+#[allow(unused_imports)]
+use ::jaus::component::{ComponentInfo, Hardware, StockInfo};
 #[allow(unused_imports)]
 use ::jaus::messages::*;
 #[allow(unused_imports)]
@@ -16,6 +18,16 @@ use super::Message;
 /// Raises, lowers and reports the implement.
 pub mod implement_controller {
     use super::*;
+    /// The Implement Controller's component id.
+    pub const ID: u8 = 220;
+    /// The Implement Controller's row of the component table.
+    pub const INFO: ComponentInfo = ComponentInfo {
+        name: "ImplementController",
+        module: "implement_controller",
+        id: ID,
+        function: "Raises, lowers and reports the implement.",
+        stock: None,
+    };
     /// Implement Controller (component id 220).
     ///
     /// Raises, lowers and reports the implement.
@@ -73,8 +85,10 @@ pub mod implement_controller {
             let _ = (ctx, msg);
             Err(Refused::Unsupported)
         }
-        /// Called in Initialize; return an error to enter Failure instead of Standby.
-        fn initialize(&mut self, ctx: &mut Ctx<'_>) -> Result<(), String> {
+        /// Called in Initialize; return an error to enter Failure instead of Standby (the
+        /// runtime logs it with the component's name and address: say what failed and what
+        /// to check).
+        fn initialize(&mut self, ctx: &mut Ctx<'_>) -> Result<(), InitError> {
             let _ = ctx;
             Ok(())
         }
@@ -91,9 +105,9 @@ pub mod implement_controller {
     #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
     pub struct Interface;
     impl ::jaus::component::Interface for Interface {
-        const NAME: &'static str = "ImplementController";
-        const ID: u8 = 220;
-        const FUNCTION: &'static str = "Raises, lowers and reports the implement.";
+        const NAME: &'static str = INFO.name;
+        const ID: u8 = ID;
+        const FUNCTION: &'static str = INFO.function;
         const COMMANDS: &'static [CommandCode] = &[
             CommandCode(0xD200),
             CommandCode(0xD202),
@@ -133,7 +147,7 @@ pub mod implement_controller {
                 other => self.0.on_other_message(ctx, other),
             }
         }
-        fn initialize(&mut self, ctx: &mut Ctx<'_>) -> Result<(), String> {
+        fn initialize(&mut self, ctx: &mut Ctx<'_>) -> Result<(), InitError> {
             self.0.initialize(ctx)
         }
         fn state_changed(&mut self, ctx: &mut Ctx<'_>, from: CoreState, to: CoreState) {
@@ -160,6 +174,16 @@ pub use implement_controller::ImplementController;
 /// Logs what it is sent.
 pub mod implement_logger {
     use super::*;
+    /// The Implement Logger's component id.
+    pub const ID: u8 = 221;
+    /// The Implement Logger's row of the component table.
+    pub const INFO: ComponentInfo = ComponentInfo {
+        name: "ImplementLogger",
+        module: "implement_logger",
+        id: ID,
+        function: "Logs what it is sent.",
+        stock: None,
+    };
     /// Implement Logger (component id 221).
     ///
     /// Logs what it is sent.
@@ -187,8 +211,10 @@ pub mod implement_logger {
             let _ = (ctx, msg);
             Err(Refused::Unsupported)
         }
-        /// Called in Initialize; return an error to enter Failure instead of Standby.
-        fn initialize(&mut self, ctx: &mut Ctx<'_>) -> Result<(), String> {
+        /// Called in Initialize; return an error to enter Failure instead of Standby (the
+        /// runtime logs it with the component's name and address: say what failed and what
+        /// to check).
+        fn initialize(&mut self, ctx: &mut Ctx<'_>) -> Result<(), InitError> {
             let _ = ctx;
             Ok(())
         }
@@ -205,9 +231,9 @@ pub mod implement_logger {
     #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
     pub struct Interface;
     impl ::jaus::component::Interface for Interface {
-        const NAME: &'static str = "ImplementLogger";
-        const ID: u8 = 221;
-        const FUNCTION: &'static str = "Logs what it is sent.";
+        const NAME: &'static str = INFO.name;
+        const ID: u8 = ID;
+        const FUNCTION: &'static str = INFO.function;
         const COMMANDS: &'static [CommandCode] = &[];
         const ACCEPTS: &'static [CommandCode] = &[];
         const EMITS: &'static [CommandCode] = &[];
@@ -233,7 +259,7 @@ pub mod implement_logger {
                 other => self.0.on_other_message(ctx, other),
             }
         }
-        fn initialize(&mut self, ctx: &mut Ctx<'_>) -> Result<(), String> {
+        fn initialize(&mut self, ctx: &mut Ctx<'_>) -> Result<(), InitError> {
             self.0.initialize(ctx)
         }
         fn state_changed(&mut self, ctx: &mut Ctx<'_>, from: CoreState, to: CoreState) {
@@ -255,8 +281,9 @@ pub mod implement_logger {
 }
 #[allow(unused_imports)]
 pub use implement_logger::ImplementLogger;
-/// Every component interface: (id, name, function).
-pub static COMPONENTS: &[(u8, &str, &str)] = &[
-    (220, "ImplementController", "Raises, lowers and reports the implement."),
-    (221, "ImplementLogger", "Logs what it is sent."),
+/// Every component interface: its name, module, id, function and stock implementation
+/// (the `INFO` of each module), in definition order.
+pub static COMPONENTS: &[ComponentInfo] = &[
+    implement_controller::INFO,
+    implement_logger::INFO,
 ];

@@ -40,7 +40,7 @@ pub fn attach_openjaus(
     let mut assigned = Vec::new();
     for name in host {
         let stock = Stock::by_name(name).ok_or_else(|| {
-            let known: Vec<&str> = Stock::ALL.iter().map(|(n, _)| *n).collect();
+            let known: Vec<&str> = Stock::names().collect();
             format!("unknown component `{name}` (known: {})", known.join(", "))
         })?;
         let a = udp::oj_check_in(

@@ -41,19 +41,16 @@ use super::links_file::{links_at, LinkFile, QuicLinkFile};
 ///
 /// A `host:` entry is `vehicle`, `arm` (the Primitive Manipulator, the three joint sensors
 /// and the six manipulator drivers of `jaus_sim::arm_demo::arm_components` over one
-/// simulated 6-axis arm) or a stock component (`jaus_sim::host::Stock::ALL`:
-/// `primitive_driver`, `reflexive_driver`, `global_pose_sensor`, `local_pose_sensor`,
-/// `velocity_state_sensor`, `global_vector_driver`, `local_vector_driver`,
-/// `global_waypoint_driver`, `local_waypoint_driver`, `global_path_segment_driver`,
-/// `local_path_segment_driver`, `mission_spooler`, `world_model`, `range_sensor`, `visual_sensor`, and the manipulator
-/// components `primitive_manipulator`, `joint_position_sensor`, `joint_velocity_sensor`,
-/// `joint_force_torque_sensor`, `joint_positions_driver`, `end_effector_pose_driver`,
-/// `joint_velocities_driver`, `end_effector_velocity_state_driver`, `joint_move_driver`,
-/// `end_effector_discrete_pose_driver`), by name or as a map with `component`,
+/// simulated 6-axis arm) or a stock component by its name in the definitions (`stock:`
+/// of a component in `jaus-spec/defs`, `jaus_sim::host::Stock::names()`: for example
+/// `primitive_driver`, `global_pose_sensor`, `global_waypoint_driver`, `world_model`,
+/// `range_sensor`, `joint_position_sensor`, `communicator`; an unknown name's error
+/// lists them all), by name or as a map with `component`,
 /// `instance` (1), `output` and `pose` (drivers: where the efforts go and which pose
 /// sensor they follow; default: this node's 43.1 or 33.1, and 38.1 or 41.1; manipulator
 /// drivers: 49.1) and `authority` (0). Those that need hardware share one simulated
-/// vehicle, the manipulator components one simulated arm.
+/// vehicle, the manipulator components one simulated arm, in an empty world (no
+/// obstacles; the vehicle at the origin of the default frame: `jaus_sim::host::HostConfig`).
 ///
 /// `communicator` (Part 1 §5.2.1, id 35) is the subsystem's gateway to the other
 /// subsystems, over real data links: its `links:` (at least one) are each
@@ -329,7 +326,7 @@ impl NodeFile {
     fn hosted_at(&self, at: &dyn Fn(&str) -> String) -> Result<Vec<Hosted>, String> {
         let known = || {
             let mut k = vec!["vehicle", "arm"];
-            k.extend(jaus_sim::host::Stock::ALL.iter().map(|(n, _)| *n));
+            k.extend(jaus_sim::host::Stock::names());
             k.join(", ")
         };
         let mut out = Vec::new();
@@ -356,7 +353,7 @@ impl NodeFile {
                 ));
             };
             let mut e = jaus_sim::host::Host::entry(stock);
-            let is_communicator = stock == jaus_sim::host::Stock::Communicator;
+            let is_communicator = stock.id() == jaus::components::communicator::ID;
             let mut has_links = false;
             if let HostItem::Component {
                 instance,
@@ -461,7 +458,9 @@ impl NodeFile {
                 component,
                 links: Some(v),
                 ..
-            } if Stock::by_name(component) == Some(Stock::Communicator) => {
+            } if Stock::by_name(component).map(Stock::id)
+                == Some(jaus::components::communicator::ID) =>
+            {
                 Some((i, links_at(v, i, &|k| k.to_string()).unwrap_or_default()))
             }
             _ => None,
@@ -577,7 +576,7 @@ impl NodeFile {
         let hosted = self.hosted();
         let mut host = jaus_sim::host::Host::new(self.subsystem, self.node, t0);
         if hosted.iter().any(
-            |h| matches!(h, Hosted::Stock(e) if e.stock == jaus_sim::host::Stock::ReflexiveDriver),
+            |h| matches!(h, Hosted::Stock(e) if e.stock.id() == jaus::components::reflexive_driver::ID),
         ) {
             host.expect_reflexive_driver();
         }
@@ -599,9 +598,11 @@ impl NodeFile {
                     self.node,
                     t0,
                 ),
-                Hosted::Stock(e) if e.stock == jaus_sim::host::Stock::Communicator => vec![self
-                    .build_communicator(&mut host, &e, path)
-                    .map_err(|e| format!("{}: host[{i}]: {e}", path.display()))?],
+                Hosted::Stock(e) if e.stock.id() == jaus::components::communicator::ID => {
+                    vec![self
+                        .build_communicator(&mut host, &e, path)
+                        .map_err(|e| format!("{}: host[{i}]: {e}", path.display()))?]
+                }
                 Hosted::Stock(e) => vec![host
                     .build(&e)
                     .map_err(|e| format!("{}: host[{i}]: {e}", path.display()))?],

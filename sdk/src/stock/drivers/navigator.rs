@@ -5,7 +5,9 @@ use nalgebra::{Vector2, Vector3};
 use std::time::Instant;
 
 use super::finite;
-use crate::component::{Context, CoreState, EmittedBy, Interface, Modes, Refused, StopReason};
+use crate::component::{
+    Context, CoreState, EmittedBy, InitError, Interface, Modes, Refused, StopReason,
+};
 use crate::components::{
     global_path_segment_driver as gpsd, global_waypoint_driver as gwd,
     local_path_segment_driver as lpsd, local_waypoint_driver as lwd,
@@ -560,7 +562,7 @@ macro_rules! navigator_common {
             self.motion.on_velocity(ctx.now(), r);
             Ok(())
         }
-        fn initialize(&mut self, ctx: &mut $m::Ctx<'_>) -> Result<(), String> {
+        fn initialize(&mut self, ctx: &mut $m::Ctx<'_>) -> Result<(), InitError> {
             self.motion
                 .subscribe(ctx, <$m::Interface as NavInterface>::POSE_REPORT);
             Ok(())

@@ -4,7 +4,7 @@
 use std::time::Instant;
 
 use super::finite;
-use crate::component::{Context, CoreState, EmittedBy, Interface, Refused, StopReason};
+use crate::component::{Context, CoreState, EmittedBy, InitError, Interface, Refused, StopReason};
 use crate::components::{global_vector_driver as gvd, local_vector_driver as lvd};
 use crate::messages::*;
 use crate::stock::motion::{DriverConfig, Motion};
@@ -80,7 +80,7 @@ pub type StockGlobalVectorDriver = StockVectorDriver<SetGlobalVector>;
 pub type StockLocalVectorDriver = StockVectorDriver<SetLocalVector>;
 
 impl gvd::GlobalVectorDriver for StockGlobalVectorDriver {
-    fn initialize(&mut self, ctx: &mut gvd::Ctx<'_>) -> Result<(), String> {
+    fn initialize(&mut self, ctx: &mut gvd::Ctx<'_>) -> Result<(), InitError> {
         self.motion.subscribe(ctx, ReportGlobalPose::CODE);
         Ok(())
     }
@@ -146,7 +146,7 @@ impl gvd::GlobalVectorDriver for StockGlobalVectorDriver {
 }
 
 impl lvd::LocalVectorDriver for StockLocalVectorDriver {
-    fn initialize(&mut self, ctx: &mut lvd::Ctx<'_>) -> Result<(), String> {
+    fn initialize(&mut self, ctx: &mut lvd::Ctx<'_>) -> Result<(), InitError> {
         self.motion.subscribe(ctx, ReportLocalPose::CODE);
         Ok(())
     }

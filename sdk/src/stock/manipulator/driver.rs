@@ -179,7 +179,10 @@ impl Ramp {
 /// feedback, stop, state changes, tick), written once for the six generated traits.
 macro_rules! arm_driver_plumbing {
     (positions: $p:literal, velocities: $v:literal, $m:ident) => {
-        fn initialize(&mut self, ctx: &mut $m::Ctx<'_>) -> Result<(), String> {
+        fn initialize(
+            &mut self,
+            ctx: &mut $m::Ctx<'_>,
+        ) -> Result<(), $crate::component::InitError> {
             self.link.subscribe(ctx, $p, $v);
             Ok(())
         }

@@ -6,7 +6,7 @@ use std::time::{Duration, Instant};
 
 use super::hardware::JointActuators;
 use super::kinematics::Chain;
-use crate::component::{CoreState, Refused, StopReason};
+use crate::component::{CoreState, InitError, Refused, StopReason};
 use crate::components::primitive_manipulator as pm;
 use crate::messages::*;
 
@@ -137,7 +137,7 @@ impl<A: JointActuators> pm::PrimitiveManipulator for StockPrimitiveManipulator<A
         })
     }
 
-    fn initialize(&mut self, ctx: &mut pm::Ctx<'_>) -> Result<(), String> {
+    fn initialize(&mut self, ctx: &mut pm::Ctx<'_>) -> Result<(), InitError> {
         self.zero(ctx.now());
         Ok(())
     }

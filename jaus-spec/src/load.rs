@@ -1,0 +1,306 @@
+//! Reading definitions (the built-in set, directories, files, texts, a vendor's
+//! overlay) and handing them to validation; the errors it reports.
+
+use crate::location::{LocationIndex, Pos};
+use crate::model::SpecFile;
+use crate::validate;
+use crate::{Component, Group, Spec};
+use std::fmt;
+use std::path::{Path, PathBuf};
+
+/// Directory holding the RA 3.3 definitions shipped with this crate.
+pub fn defs_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("defs")
+}
+
+/// The RA 3.3 definitions of [`defs_dir`], built into this crate (file name, text;
+/// sorted by name, the order [`load_dirs`] reads them in): a program that loads a
+/// vendor's overlay at run time needs no copy of the directory beside it.
+pub const SDK_DEFS: &[(&str, &str)] = &[
+    (
+        "communications.yaml",
+        include_str!("../defs/communications.yaml"),
+    ),
+    ("core.yaml", include_str!("../defs/core.yaml")),
+    (
+        "dynamic_configuration.yaml",
+        include_str!("../defs/dynamic_configuration.yaml"),
+    ),
+    ("environment.yaml", include_str!("../defs/environment.yaml")),
+    ("events.yaml", include_str!("../defs/events.yaml")),
+    ("manipulator.yaml", include_str!("../defs/manipulator.yaml")),
+    ("payload.yaml", include_str!("../defs/payload.yaml")),
+    ("planning.yaml", include_str!("../defs/planning.yaml")),
+    ("platform.yaml", include_str!("../defs/platform.yaml")),
+    ("world_model.yaml", include_str!("../defs/world_model.yaml")),
+];
+
+/// The built-in definitions as `(path, text)` pairs, each path inside [`defs_dir`].
+pub fn sdk_texts() -> Vec<(PathBuf, String)> {
+    SDK_DEFS
+        .iter()
+        .map(|(name, text)| (defs_dir().join(name), (*text).to_string()))
+        .collect()
+}
+
+/// Loads and validates the built-in definitions ([`SDK_DEFS`]).
+pub fn load_sdk() -> Result<Spec, SpecErrors> {
+    load_texts(sdk_texts())
+}
+
+/// One problem found in the definitions.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct SpecError {
+    /// File the problem is in.
+    pub file: PathBuf,
+    /// Where in the file.
+    pub pos: Pos,
+    /// The message/type/field concerned, e.g. `message ReportGlobalPose, field latitude`.
+    pub context: String,
+    /// What is wrong and what to do.
+    pub message: String,
+}
+
+impl fmt::Display for SpecError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "{}:{}:{}: ",
+            self.file.display(),
+            self.pos.line,
+            self.pos.column
+        )?;
+        if !self.context.is_empty() {
+            write!(f, "{}: ", self.context)?;
+        }
+        f.write_str(&self.message)
+    }
+}
+
+/// Every problem found, in file order.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct SpecErrors(pub Vec<SpecError>);
+
+impl fmt::Display for SpecErrors {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        for (i, e) in self.0.iter().enumerate() {
+            if i > 0 {
+                writeln!(f)?;
+            }
+            write!(f, "{e}")?;
+        }
+        Ok(())
+    }
+}
+
+impl std::error::Error for SpecErrors {}
+
+/// A loaded source file.
+#[derive(Debug)]
+pub struct Source {
+    /// Its path.
+    pub path: PathBuf,
+    /// Its text.
+    pub text: String,
+    /// Node positions.
+    pub index: LocationIndex,
+}
+
+/// Loads every `*.yaml` file of `dirs` (sorted by name within each directory) and
+/// validates the set.
+pub fn load_dirs<P: AsRef<Path>>(dirs: &[P]) -> Result<Spec, SpecErrors> {
+    load(dirs, &[] as &[PathBuf])
+}
+
+/// Loads the `*.yaml` files of `dirs`, then the `overlays` files (which may add types,
+/// messages and components to existing groups, or new groups), and validates the set.
+pub fn load<P: AsRef<Path>, Q: AsRef<Path>>(
+    dirs: &[P],
+    overlays: &[Q],
+) -> Result<Spec, SpecErrors> {
+    let mut files = yaml_files(dirs)?;
+    files.extend(overlays.iter().map(|p| p.as_ref().to_path_buf()));
+    load_texts(read_files(files)?)
+}
+
+/// The `*.yaml` files of `dirs`, sorted by name within each directory.
+fn yaml_files<P: AsRef<Path>>(dirs: &[P]) -> Result<Vec<PathBuf>, SpecErrors> {
+    let mut files = Vec::new();
+    let mut errors = Vec::new();
+    for d in dirs {
+        let d = d.as_ref();
+        match std::fs::read_dir(d) {
+            Ok(rd) => {
+                let mut v: Vec<PathBuf> = rd
+                    .filter_map(|e| e.ok().map(|e| e.path()))
+                    .filter(|p| p.extension().is_some_and(|x| x == "yaml" || x == "yml"))
+                    .collect();
+                v.sort();
+                files.extend(v);
+            }
+            Err(e) => errors.push(SpecError {
+                file: d.to_path_buf(),
+                pos: Pos { line: 0, column: 0 },
+                context: String::new(),
+                message: format!("cannot read definition directory: {e}"),
+            }),
+        }
+    }
+    if errors.is_empty() {
+        Ok(files)
+    } else {
+        Err(SpecErrors(errors))
+    }
+}
+
+/// Reads every file.
+fn read_files(files: Vec<PathBuf>) -> Result<Vec<(PathBuf, String)>, SpecErrors> {
+    let mut errors = Vec::new();
+    let mut texts = Vec::new();
+    for f in files {
+        match std::fs::read_to_string(&f) {
+            Ok(t) => texts.push((f, t)),
+            Err(e) => errors.push(SpecError {
+                file: f,
+                pos: Pos { line: 0, column: 0 },
+                context: String::new(),
+                message: format!("cannot read definition file: {e}"),
+            }),
+        }
+    }
+    if errors.is_empty() {
+        Ok(texts)
+    } else {
+        Err(SpecErrors(errors))
+    }
+}
+
+/// Loads a vendor's overlay files on the definitions they extend: the SDK's own
+/// ([`defs_dir`]) unless a file says `extends: none`. The overlay's types, messages and
+/// components may use every type and message of the base; names and codes may not
+/// repeat the base's (an error naming both positions); [`Spec::is_own`] tells the
+/// overlay's items from the base's, and [`Spec::warnings`] lists overlay messages
+/// outside the experimental code range.
+pub fn load_overlays<Q: AsRef<Path>>(overlays: &[Q]) -> Result<Spec, SpecErrors> {
+    let own = read_files(overlays.iter().map(|p| p.as_ref().to_path_buf()).collect())?;
+    load_overlay_texts(own)
+}
+
+/// [`load_overlays`] of files already read, as `(path, text)` pairs (the path is used
+/// in errors and positions only): a vendor's overlay from a git revision, say.
+pub fn load_overlay_texts(own: Vec<(PathBuf, String)>) -> Result<Spec, SpecErrors> {
+    let mut extends = true;
+    let mut errors = Vec::new();
+    for (path, text) in &own {
+        #[derive(serde::Deserialize)]
+        struct Head {
+            #[serde(default)]
+            extends: Option<String>,
+        }
+        let Ok(head) = serde_yaml::from_str::<Head>(text) else {
+            continue; // the full load reports the syntax error
+        };
+        match head.extends.as_deref() {
+            None | Some("jaus") => {}
+            Some("none") => extends = false,
+            Some(other) => errors.push(SpecError {
+                file: path.clone(),
+                pos: LocationIndex::build(text).find("extends"),
+                context: String::new(),
+                message: format!(
+                    "`extends: {other}`: an overlay extends `jaus` (the SDK's definitions, the default) or `none`"
+                ),
+            }),
+        }
+    }
+    if !errors.is_empty() {
+        return Err(SpecErrors(errors));
+    }
+    let base = if extends { sdk_texts() } else { Vec::new() };
+    load_texts_on(base, own)
+}
+
+/// Loads definitions from `(path, text)` pairs (the path is used in errors only).
+pub fn load_texts(texts: Vec<(PathBuf, String)>) -> Result<Spec, SpecErrors> {
+    load_texts_on(Vec::new(), texts)
+}
+
+/// Loads `own` definitions on `base` ones ([`load_overlays`]).
+pub fn load_texts_on(
+    base: Vec<(PathBuf, String)>,
+    own: Vec<(PathBuf, String)>,
+) -> Result<Spec, SpecErrors> {
+    let base_sources = base.len();
+    let texts = base.into_iter().chain(own);
+    let mut draft = validate::Draft {
+        base_sources,
+        sources: Vec::new(),
+        groups: Vec::new(),
+        types: Vec::new(),
+        messages: Vec::new(),
+        components: Vec::new(),
+    };
+    let mut errors = Vec::new();
+    for (path, text) in texts {
+        let index = LocationIndex::build(&text);
+        let source = draft.sources.len();
+        match serde_yaml::from_str::<SpecFile>(&text) {
+            Ok(file) => {
+                if !draft.groups.iter().any(|g| g.name == file.group) {
+                    draft.groups.push(Group {
+                        name: file.group.clone(),
+                        title: file
+                            .title
+                            .clone()
+                            .unwrap_or_else(|| file.group.replace('_', " ")),
+                        description: file.description.clone(),
+                    });
+                }
+                for (i, t) in file.types.into_iter().enumerate() {
+                    draft.types.push(validate::Parsed {
+                        def: t,
+                        group: file.group.clone(),
+                        source,
+                        path: format!("types[{i}]"),
+                    });
+                }
+                for (i, m) in file.messages.into_iter().enumerate() {
+                    draft.messages.push(validate::Parsed {
+                        def: m,
+                        group: file.group.clone(),
+                        source,
+                        path: format!("messages[{i}]"),
+                    });
+                }
+                for (i, c) in file.components.into_iter().enumerate() {
+                    draft.components.push(Component {
+                        def: c,
+                        group: file.group.clone(),
+                        source,
+                        path: format!("components[{i}]"),
+                    });
+                }
+            }
+            Err(e) => {
+                let pos = e.location().map_or(Pos { line: 1, column: 1 }, |l| Pos {
+                    line: l.line(),
+                    column: l.column(),
+                });
+                let msg = e.to_string();
+                // serde_yaml appends " at line N column M"; the position is printed in front.
+                let msg = msg.split(" at line ").next().unwrap_or(&msg).to_string();
+                errors.push(SpecError {
+                    file: path.clone(),
+                    pos,
+                    context: String::new(),
+                    message: msg,
+                });
+            }
+        }
+        draft.sources.push(Source { path, text, index });
+    }
+    if !errors.is_empty() {
+        return Err(SpecErrors(errors));
+    }
+    validate::validate(draft).map_err(SpecErrors)
+}
