@@ -1,0 +1,325 @@
+//! Building what a node file describes: its hosted components (stock cores over one
+//! simulated vehicle or arm, the communicator and its data links) and the node.
+
+use std::path::Path;
+use std::time::Instant;
+
+use jaus::net::Node;
+
+use super::super::links_file::{links_at, LinkFile, QuicLinkFile};
+
+use super::*;
+
+impl NodeFile {
+    /// The subsystem's Communicator: the one hosted here, else `communicator:`, checked
+    /// (`at` gives the file:line:column of a YAML path).
+    pub(super) fn communicator_at(
+        &self,
+        hosted: &[Hosted],
+        at: &dyn Fn(&str) -> String,
+    ) -> Result<Option<jaus::Address>, String> {
+        let entries = hosted.iter().filter_map(|h| match h {
+            Hosted::Stock(e) => Some(e),
+            Hosted::Vehicle | Hosted::Arm => None,
+        });
+        let here = jaus_sim::host::Host::communicator_of(self.subsystem, self.node, entries);
+        let Some(text) = &self.communicator else {
+            return Ok(here);
+        };
+        let a: jaus::Address = text.parse().map_err(|_| {
+            format!(
+                "{}: communicator: `{text}` is not an address subsystem.node.component.instance",
+                at("communicator")
+            )
+        })?;
+        if a.subsystem != self.subsystem || a.node == 0 || a.node == 255 {
+            return Err(format!(
+                "{}: communicator: {a} is not a component of this subsystem ({}): a node reaches other subsystems only through its own subsystem's communicator",
+                at("communicator"),
+                self.subsystem
+            ));
+        }
+        match here {
+            Some(h) if h != a => Err(format!(
+                "{}: communicator: {a}, but this node hosts the communicator {h}",
+                at("communicator")
+            )),
+            None if a.node == self.node => Err(format!(
+                "{}: communicator: {a} is on this node but not hosted here (add `communicator` with its `links:` to `host:`)",
+                at("communicator")
+            )),
+            _ => Ok(Some(a)),
+        }
+    }
+
+    /// The subsystem's Communicator (checked by [`NodeFile::load`]): the one this
+    /// node hosts, else `communicator:`.
+    pub fn communicator(&self) -> Option<jaus::Address> {
+        let hosted = self.hosted();
+        self.communicator_at(&hosted, &|k| k.to_string())
+            .ok()
+            .flatten()
+    }
+
+    /// The `host:` entries, checked (`at` gives the file:line:column of a YAML path).
+    pub(super) fn hosted_at(&self, at: &dyn Fn(&str) -> String) -> Result<Vec<Hosted>, String> {
+        let known = || {
+            let mut k = vec!["vehicle", "arm"];
+            k.extend(jaus_sim::host::Stock::names());
+            k.join(", ")
+        };
+        let mut out = Vec::new();
+        for (i, h) in self.host.iter().enumerate() {
+            let (name, key) = match h {
+                HostItem::Name(n) => (n, format!("host[{i}]")),
+                HostItem::Component { component, .. } => {
+                    (component, format!("host[{i}].component"))
+                }
+            };
+            if name == "vehicle" {
+                out.push(Hosted::Vehicle);
+                continue;
+            }
+            if name == "arm" {
+                out.push(Hosted::Arm);
+                continue;
+            }
+            let Some(stock) = jaus_sim::host::Stock::by_name(name) else {
+                return Err(format!(
+                    "{}: unknown component `{name}` (known: {})",
+                    at(&key),
+                    known()
+                ));
+            };
+            let mut e = jaus_sim::host::Host::entry(stock);
+            let is_communicator = stock.id() == jaus::components::communicator::ID;
+            let mut has_links = false;
+            if let HostItem::Component {
+                instance,
+                output,
+                pose,
+                authority,
+                links,
+                ..
+            } = h
+            {
+                if let Some(n) = instance {
+                    if *n == 0 || *n == 255 {
+                        return Err(format!(
+                            "{}: instance {n} is not in 1..=254",
+                            at(&format!("host[{i}].instance"))
+                        ));
+                    }
+                    e.instance = *n;
+                }
+                let addr =
+                    |v: &Option<String>, key: &str| -> Result<Option<jaus::Address>, String> {
+                        v.as_deref()
+                            .map(|s| {
+                                s.parse().map_err(|_| {
+                                    format!(
+                                    "{}: `{s}` is not an address subsystem.node.component.instance",
+                                    at(&format!("host[{i}].{key}"))
+                                )
+                                })
+                            })
+                            .transpose()
+                    };
+                e.output = addr(output, "output")?;
+                e.pose = addr(pose, "pose")?;
+                e.authority = authority.unwrap_or(0);
+                match links {
+                    Some(v) if is_communicator => {
+                        let all = links_at(v, i, at)?;
+                        has_links = !all.is_empty();
+                        // The UDP links are built by the host; the others by build_node.
+                        e.links = all.into_iter().filter_map(LinkFile::into_udp).collect();
+                    }
+                    Some(_) => {
+                        return Err(format!(
+                            "{}: host[{i}].links: `links` is for the communicator, not `{name}`",
+                            at(&format!("host[{i}].links"))
+                        ))
+                    }
+                    None => {}
+                }
+            }
+            if is_communicator && !has_links {
+                return Err(format!(
+                    "{}: host[{i}]: `communicator` needs its data links: `{{ component: communicator, links: [{{ id: 1, udp: {{ bind: IP:PORT, peer: IP:PORT }} }}] }}`",
+                    at(&format!("host[{i}]"))
+                ));
+            }
+            if is_communicator
+                && out
+                    .iter()
+                    .any(|o| matches!(o, Hosted::Stock(p) if p.stock == stock))
+            {
+                return Err(format!(
+                    "{}: host[{i}]: a second `communicator`: a node hosts at most one (the subsystem's gateway)",
+                    at(&key)
+                ));
+            }
+            let clash = out.iter().any(|o| match o {
+                Hosted::Stock(p) => p.stock == e.stock && p.instance == e.instance,
+                Hosted::Vehicle | Hosted::Arm => false,
+            });
+            if clash {
+                return Err(format!(
+                    "{}: `{name}` instance {} is hosted twice",
+                    at(&key),
+                    e.instance
+                ));
+            }
+            out.push(Hosted::Stock(e));
+        }
+        Ok(out)
+    }
+
+    /// The `host:` entries (checked by [`NodeFile::load`]).
+    pub fn hosted(&self) -> Vec<Hosted> {
+        self.hosted_at(&|k| k.to_string()).unwrap_or_default()
+    }
+
+    /// The data links of the communicator this node hosts (none if it hosts none).
+    pub fn communicator_links(&self) -> Vec<LinkFile> {
+        self.communicator_link_files()
+            .map(|(_, links)| links)
+            .unwrap_or_default()
+    }
+
+    /// The `links:` of the communicator this node hosts, and the index of its `host:`
+    /// entry (checked by [`NodeFile::load`]).
+    pub(super) fn communicator_link_files(&self) -> Option<(usize, Vec<LinkFile>)> {
+        use jaus_sim::host::Stock;
+        self.host.iter().enumerate().find_map(|(i, h)| match h {
+            HostItem::Component {
+                component,
+                links: Some(v),
+                ..
+            } if Stock::by_name(component).map(Stock::id)
+                == Some(jaus::components::communicator::ID) =>
+            {
+                Some((i, links_at(v, i, &|k| k.to_string()).unwrap_or_default()))
+            }
+            _ => None,
+        })
+    }
+
+    /// The QUIC links' key files (relative to the directory of the node file `path`)
+    /// read and their configurations checked, before anything is bound (`at` gives the
+    /// file:line:column of a YAML path).
+    pub(super) fn check_quic_links(
+        &self,
+        path: &Path,
+        at: &dyn Fn(&str) -> String,
+    ) -> Result<(), String> {
+        let Some((i, links)) = self.communicator_link_files() else {
+            return Ok(());
+        };
+        let dir = path.parent().unwrap_or_else(|| Path::new("."));
+        for (j, link) in links.iter().enumerate() {
+            let LinkFile::Quic(q) = link else { continue };
+            let here = format!("host[{i}].links[{j}].quic");
+            let c = q.config(dir).map_err(|(field, e)| {
+                let f = format!("{here}.{field}");
+                format!("{}: {f}: {e}", at(&f))
+            })?;
+            c.check()
+                .map_err(|e| format!("{}: {here}: {e}", at(&here)))?;
+        }
+        Ok(())
+    }
+
+    /// The communicator of entry `e` over its links, UDP ones built by the host as for
+    /// any stock component, QUIC ones (key files relative to the directory of the node
+    /// file `path`) here.
+    pub(super) fn build_communicator(
+        &self,
+        host: &mut jaus_sim::host::Host,
+        e: &jaus_sim::host::Entry,
+        path: &Path,
+    ) -> Result<Box<dyn jaus::component::Endpoint>, String> {
+        use jaus::stock::communicator::DataLink;
+        let links = self.communicator_links();
+        let dir = path.parent().unwrap_or_else(|| Path::new("."));
+        let quic = |q: &QuicLinkFile| -> Result<jaus_quic::QuicLink, String> {
+            let c = q
+                .config(dir)
+                .map_err(|(_, e)| format!("communicator: data link {}: {e}", q.id))?;
+            jaus_quic::QuicLink::bind(c).map_err(|e| format!("communicator: {e}"))
+        };
+        let built = if links.iter().all(|l| matches!(l, LinkFile::Udp(_))) {
+            // A communicator over UDP links only: `CommunicatorEndpoint<UdpLink>`.
+            host.build(e)
+        } else if links.iter().all(|l| matches!(l, LinkFile::Quic(_))) {
+            // Over QUIC links only: `CommunicatorEndpoint<QuicLink>`.
+            let mut made = Vec::new();
+            for l in &links {
+                if let LinkFile::Quic(q) = l {
+                    made.push(quic(q)?);
+                }
+            }
+            host.build_communicator(e, made)
+        } else {
+            // A mix: `CommunicatorEndpoint<Box<dyn DataLink>>`.
+            let mut made: Vec<Box<dyn DataLink>> = Vec::new();
+            for l in &links {
+                made.push(match l {
+                    LinkFile::Udp(c) => Box::new(
+                        jaus::net::udp::link::UdpLink::bind(c.clone())
+                            .map_err(|e| format!("communicator: {e}"))?,
+                    ),
+                    LinkFile::Quic(q) => Box::new(quic(q)?),
+                });
+            }
+            host.build_communicator(e, made)
+        };
+        built.map_err(|e| e.to_string())
+    }
+    /// The node this file describes, its `host:` entries built and added, starting at
+    /// `t0` (`path`: the file, for the errors).
+    pub fn build_node(&self, path: &Path, t0: Instant) -> Result<Node, String> {
+        let mut node = Node::new(self.node_config(), t0);
+        let hosted = self.hosted();
+        let mut host = jaus_sim::host::Host::new(self.subsystem, self.node, t0);
+        if hosted.iter().any(
+            |h| matches!(h, Hosted::Stock(e) if e.stock.id() == jaus::components::reflexive_driver::ID),
+        ) {
+            host.expect_reflexive_driver();
+        }
+        // One `Hosted` per `host:` entry, in order.
+        for (i, h) in hosted.into_iter().enumerate() {
+            let parts = match h {
+                Hosted::Vehicle => {
+                    jaus_sim::demo::vehicle_at(
+                        t0,
+                        &jaus_sim::demo::Options::default(),
+                        self.subsystem,
+                        self.node,
+                    )
+                    .0
+                }
+                Hosted::Arm => jaus_sim::arm_demo::arm_components(
+                    &jaus_sim::SimArm::new(jaus_sim::ArmParams::six_axis()),
+                    self.subsystem,
+                    self.node,
+                    t0,
+                ),
+                Hosted::Stock(e) if e.stock.id() == jaus::components::communicator::ID => {
+                    vec![self
+                        .build_communicator(&mut host, &e, path)
+                        .map_err(|e| format!("{}: host[{i}]: {e}", path.display()))?]
+                }
+                Hosted::Stock(e) => vec![host
+                    .build(&e)
+                    .map_err(|e| format!("{}: host[{i}]: {e}", path.display()))?],
+            };
+            for p in parts {
+                node.add_boxed(p)
+                    .map_err(|e| format!("{}: host[{i}]: {e}", path.display()))?;
+            }
+        }
+        Ok(node)
+    }
+}

@@ -1,0 +1,307 @@
+//! `jaus node`: a node from a YAML file, its system tree printed when it changes.
+
+use std::net::SocketAddr;
+use std::path::Path;
+use std::time::Duration;
+
+use jaus::net::{udp, Framing, NodeConfig};
+
+mod build;
+mod run;
+
+pub use run::{node, tree_json, TreePrinter};
+
+/// A node configuration file (YAML).
+///
+/// ```yaml
+/// subsystem: 1
+/// node: 1
+/// subsystem_name: demo vehicle
+/// node_name: vehicle computer
+/// bind: 127.0.0.1:3794
+/// framing: judp          # or opc ("JAUS01.0")
+/// peers: [127.0.0.2:3794]
+/// host:                  # what the node hosts (see below)
+///   - vehicle                                # the demo's whole simulated vehicle
+///   - arm                                    # the ten manipulator components, one arm
+///   - global_pose_sensor                     # a stock component at instance 1
+///   - { component: world_model, instance: 2 }
+///   - { component: global_waypoint_driver, output: 1.1.33.1, pose: 1.1.38.1 }
+///   - component: communicator                # the gateway to other subsystems
+///     links:
+///       - { id: 1, udp: { bind: "0.0.0.0:4001", peer: "192.168.1.20:4001" } }
+///       - id: 2                                # or authenticated and encrypted:
+///         quic: { bind: "0.0.0.0:4002", peer: "192.168.1.20:4002",
+///                 cert: keys/vehicle.crt, key: keys/vehicle.key, peer_cert: keys/station.crt }
+/// io: { spin_us: 50, batch: 32 }  # optional: how the socket is read (udp::IoOptions)
+/// policy:               # optional: who may command (see `PolicyFile`); default open
+///   default: query
+///   rules: [{ from: 200.*.*.*, may: command, max_authority: 100 }]
+/// communicator: 1.2.35.1 # optional: the subsystem's communicator on another node
+/// ```
+///
+/// A `host:` entry is `vehicle`, `arm` (the Primitive Manipulator, the three joint sensors
+/// and the six manipulator drivers of `jaus_sim::arm_demo::arm_components` over one
+/// simulated 6-axis arm) or a stock component by its name in the definitions (`stock:`
+/// of a component in `jaus-spec/defs`, `jaus_sim::host::Stock::names()`: for example
+/// `primitive_driver`, `global_pose_sensor`, `global_waypoint_driver`, `world_model`,
+/// `range_sensor`, `joint_position_sensor`, `communicator`; an unknown name's error
+/// lists them all), by name or as a map with `component`,
+/// `instance` (1), `output` and `pose` (drivers: where the efforts go and which pose
+/// sensor they follow; default: this node's 43.1 or 33.1, and 38.1 or 41.1; manipulator
+/// drivers: 49.1) and `authority` (0). Those that need hardware share one simulated
+/// vehicle, the manipulator components one simulated arm, in an empty world (no
+/// obstacles; the vehicle at the origin of the default frame: `jaus_sim::host::HostConfig`).
+///
+/// `communicator` (Part 1 §5.2.1, id 35) is the subsystem's gateway to the other
+/// subsystems, over real data links: its `links:` (at least one) are each
+/// `{ id, udp: { bind, peer, mtu, silence_ms, keepalive_ms, assume_up, poll_ms } }`,
+/// a UDP socket bound to `bind` exchanging one datagram per JAUS packet with the far
+/// communicator's link socket `peer` (an IP radio modem, a tether; `mtu` 4096 bytes,
+/// down after `silence_ms` 3000 of silence, a keep-alive after `keepalive_ms` 1000
+/// without sending (0: none), up before anything is heard unless `assume_up: false`,
+/// read every `poll_ms` 10: `jaus::net::udp::link::UdpLinkConfig`), or
+/// `{ id, quic: { bind, peer, cert, key, peer_cert, mtu, silence_ms, keepalive_ms } }`,
+/// a QUIC connection between `bind` and the far end's `peer`, authenticated both ways
+/// by pinned certificates and encrypted (`jaus_quic::QuicLink`: this node presents
+/// `cert` and `key`, made by `jaus keygen`, and accepts only `peer_cert`, the far end's
+/// certificate; paths relative to the node file's directory; `mtu` 4096, down after
+/// `silence_ms` 3000 of silence, a QUIC keep-alive after `keepalive_ms` 1000, or a
+/// third of `silence_ms` if that is less). A node hosting
+/// one sends every message for another subsystem through it and takes those from
+/// other subsystems only from it (`NodeConfig::communicator`); the other nodes of the
+/// subsystem name it with `communicator:`. At most one per node.
+#[derive(Debug, Clone, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct NodeFile {
+    /// Subsystem id.
+    pub subsystem: u8,
+    /// Node id.
+    pub node: u8,
+    /// Subsystem name.
+    #[serde(default)]
+    pub subsystem_name: Option<String>,
+    /// Node name.
+    #[serde(default)]
+    pub node_name: Option<String>,
+    /// Local address and port.
+    pub bind: SocketAddr,
+    /// Framing.
+    #[serde(default)]
+    pub framing: Framing,
+    /// Peers sent broadcasts and messages to nodes not yet located.
+    #[serde(default)]
+    pub peers: Vec<SocketAddr>,
+    /// What to host.
+    #[serde(default)]
+    pub host: Vec<HostItem>,
+    /// Heartbeat period, ms.
+    #[serde(default)]
+    pub heartbeat_ms: Option<u64>,
+    /// Node timeout, ms.
+    #[serde(default)]
+    pub node_timeout_ms: Option<u64>,
+    /// Multicast discovery (off without it).
+    #[serde(default)]
+    pub multicast: Option<MulticastFile>,
+    /// Serve OpenJAUS component processes over their local interface
+    /// (`openjaus_components: {}` for OpenJAUS's ports 24627 and 24629 on 127.0.0.1).
+    #[serde(default)]
+    pub openjaus_components: Option<OjComponentsFile>,
+    /// How the node reads its socket (`udp::IoOptions`; defaults when absent).
+    #[serde(default)]
+    pub io: Option<IoFile>,
+    /// The subsystem's Communicator when another node hosts it
+    /// (`subsystem.node.component.instance`): messages for other subsystems go to that
+    /// node (`NodeConfig::communicator`). A node hosting one needs none.
+    #[serde(default)]
+    pub communicator: Option<String>,
+    /// The node's access policy (`jaus::net::Policy`; open without it).
+    #[serde(default)]
+    pub policy: Option<super::PolicyFile>,
+}
+
+/// `io:` of a node file: how the node waits for and reads datagrams.
+#[derive(Debug, Clone, Default, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct IoFile {
+    /// After a datagram, keep reading without blocking for this many microseconds
+    /// (0: always block). Default 50.
+    #[serde(default)]
+    pub spin_us: Option<u64>,
+    /// Datagrams read per system call where the OS offers it, 1 to 64. Default 32.
+    #[serde(default)]
+    pub batch: Option<usize>,
+}
+
+impl IoFile {
+    /// The options, defaults filled in.
+    pub fn options(&self) -> udp::IoOptions {
+        let d = udp::IoOptions::default();
+        udp::IoOptions {
+            spin: self.spin_us.map_or(d.spin, Duration::from_micros),
+            batch: self.batch.unwrap_or(d.batch),
+        }
+    }
+}
+
+/// `openjaus_components:` of a node file: the two sockets of OpenJAUS's local component
+/// interface (docs/wire.md §8.5).
+#[derive(Debug, Clone, Default, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OjComponentsFile {
+    /// The control socket (check-in, lookups). Default 127.0.0.1:24627.
+    #[serde(default)]
+    pub control: Option<SocketAddr>,
+    /// The data socket (raw JAUS packets). Default 127.0.0.1:24629.
+    #[serde(default)]
+    pub data: Option<SocketAddr>,
+}
+
+impl OjComponentsFile {
+    /// The control and data sockets, defaults filled in.
+    pub fn sockets(&self) -> (SocketAddr, SocketAddr) {
+        let local = |port| SocketAddr::from(([127, 0, 0, 1], port));
+        (
+            self.control
+                .unwrap_or_else(|| local(jaus::net::oj::CONTROL_PORT)),
+            self.data.unwrap_or_else(|| local(jaus::net::oj::DATA_PORT)),
+        )
+    }
+}
+
+/// `multicast:` of a node file: broadcasts go to `group` on the node's port, and the
+/// node listens to it (docs/wire.md §9.5).
+#[derive(Debug, Clone, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MulticastFile {
+    /// The group: 224.1.0.1 is OpenJAUS's subsystem-level group, 225.1.0.1 its node-level
+    /// one.
+    pub group: std::net::Ipv4Addr,
+    /// Time to live of what the node sends to the group. Default 32 (OpenJAUS's
+    /// subsystem level).
+    #[serde(default)]
+    pub ttl: Option<u32>,
+    /// Whether the node's own multicasts come back to this host (other nodes on the
+    /// same host then hear them). Default false, as OpenJAUS.
+    #[serde(default)]
+    pub loopback: Option<bool>,
+    /// The local interface address to join on. Default 0.0.0.0 (the system's choice).
+    /// What the node sends to the group leaves by the route to 224.0.0.0/4.
+    #[serde(default)]
+    pub interface: Option<std::net::Ipv4Addr>,
+}
+
+/// One `host:` entry as written.
+#[derive(Debug, Clone, serde::Deserialize)]
+#[serde(untagged)]
+pub enum HostItem {
+    /// `vehicle` or a stock component's name.
+    Name(String),
+    /// A stock component with settings.
+    Component {
+        /// Its name.
+        component: String,
+        /// Its instance.
+        #[serde(default)]
+        instance: Option<u8>,
+        /// Where a driver's efforts go (`ss.node.component.instance`).
+        #[serde(default)]
+        output: Option<String>,
+        /// A driver's pose sensor.
+        #[serde(default)]
+        pose: Option<String>,
+        /// Its authority.
+        #[serde(default)]
+        authority: Option<u8>,
+        /// The Communicator's data links (checked field by field when loaded).
+        #[serde(default)]
+        links: Option<serde_yaml::Value>,
+    },
+}
+
+/// What a node hosts, checked.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Hosted {
+    /// The demo's simulated vehicle (every component of `jaus_sim::demo::vehicle_at`).
+    Vehicle,
+    /// The arm demo's ten manipulator components over one simulated arm
+    /// (`jaus_sim::arm_demo::arm_components`).
+    Arm,
+    /// One stock component.
+    Stock(jaus_sim::host::Entry),
+}
+impl NodeFile {
+    /// Reads and checks a configuration file.
+    pub fn load(path: &Path) -> Result<NodeFile, String> {
+        let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+        let f: NodeFile =
+            serde_yaml::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
+        let index = jaus_spec::location::LocationIndex::build(&text);
+        let at = |key: &str| {
+            let p = index.find(key);
+            format!("{}:{}:{}", path.display(), p.line, p.column)
+        };
+        for (what, v) in [("subsystem", f.subsystem), ("node", f.node)] {
+            if v == 0 || v == 255 {
+                return Err(format!("{}: {what} {v} is not in 1..=254", at(what)));
+            }
+        }
+        if let Some(io) = &f.io {
+            if io.spin_us.is_some_and(|s| s > 10_000) {
+                return Err(format!(
+                    "{}: spin_us {} is over 10000 (10 ms of busy waiting per datagram)",
+                    at("io.spin_us"),
+                    io.spin_us.unwrap_or_default()
+                ));
+            }
+            if let Some(b) = io.batch.filter(|b| !(1..=udp::MAX_BATCH).contains(b)) {
+                return Err(format!(
+                    "{}: batch {b} is not in 1..={}",
+                    at("io.batch"),
+                    udp::MAX_BATCH
+                ));
+            }
+        }
+        let hosted = f.hosted_at(&at)?;
+        f.communicator_at(&hosted, &at)?;
+        f.check_quic_links(path, &at)?;
+        if let Some(p) = &f.policy {
+            p.policy(&at)?;
+        }
+        Ok(f)
+    }
+    /// The node configuration.
+    pub fn node_config(&self) -> NodeConfig {
+        let mut c = NodeConfig {
+            subsystem: self.subsystem,
+            node: self.node,
+            framing: self.framing,
+            peers: self.peers.clone(),
+            ..NodeConfig::default()
+        };
+        if let Some(n) = &self.subsystem_name {
+            c.manager.subsystem_name = n.clone();
+        }
+        c.manager.node_name = self
+            .node_name
+            .clone()
+            .unwrap_or_else(|| format!("node {}.{}", self.subsystem, self.node));
+        if let Some(ms) = self.heartbeat_ms {
+            c.manager.heartbeat = Duration::from_millis(ms.max(10));
+        }
+        if let Some(ms) = self.node_timeout_ms {
+            c.manager.node_timeout = Duration::from_millis(ms.max(100));
+        }
+        if let Some(m) = &self.multicast {
+            c.multicast = Some(SocketAddr::from((m.group, self.bind.port())));
+        }
+        c.communicator = self.communicator();
+        // Checked by `load`.
+        c.policy = self
+            .policy
+            .as_ref()
+            .and_then(|p| p.policy(&|k| k.to_string()).ok());
+        c
+    }
+}

@@ -1,0 +1,266 @@
+//! Running a node file: the node on its sockets, its system tree printed when it
+//! changes.
+
+use std::io::Write;
+use std::net::SocketAddr;
+use std::path::Path;
+use std::sync::atomic::AtomicBool;
+use std::time::{Duration, Instant};
+
+use jaus::net::{udp, SystemTree};
+
+use super::*;
+
+/// Shows a system tree at most once per `every`, and only when it changed.
+#[derive(Debug)]
+pub struct TreePrinter {
+    every: Duration,
+    shown_version: Option<u64>,
+    shown_text: String,
+    last: Option<Instant>,
+}
+
+impl TreePrinter {
+    /// At most once per `every`.
+    pub fn new(every: Duration) -> Self {
+        Self {
+            every,
+            shown_version: None,
+            shown_text: String::new(),
+            last: None,
+        }
+    }
+
+    /// The text to print now, if any: the tree is rendered only when its version moved
+    /// and `every` has passed since the last print, and printed only if the text
+    /// differs.
+    pub fn poll(&mut self, now: Instant, version: u64, tree: &SystemTree) -> Option<String> {
+        if self.shown_version == Some(version)
+            || self
+                .last
+                .is_some_and(|t| now.saturating_duration_since(t) < self.every)
+        {
+            return None;
+        }
+        self.shown_version = Some(version);
+        let text = tree.render();
+        if text == self.shown_text {
+            return None;
+        }
+        self.last = Some(now);
+        self.shown_text.clone_from(&text);
+        Some(text)
+    }
+}
+
+/// `jaus node --config FILE [--capture PCAPNG]`: runs a node until interrupted (or for
+/// `duration`), printing the system tree when it changed, at most once a second; with
+/// `capture`, every datagram it receives and sends is written to that pcapng file.
+pub fn node(
+    config: &Path,
+    duration: Option<Duration>,
+    capture: Option<&Path>,
+    stop: &AtomicBool,
+    out: &mut impl Write,
+) -> Result<(), String> {
+    let file = NodeFile::load(config)?;
+    let t0 = Instant::now();
+    let mut node = file.build_node(config, t0)?;
+    let _ = writeln!(
+        out,
+        "node {} on {} ({:?}), peers {:?}",
+        node.address(),
+        file.bind,
+        file.framing,
+        file.peers
+    );
+    let _ = match node.policy() {
+        Some(p) if !p.policy().is_open() => writeln!(out, "access policy: {}", p.policy().describe()),
+        _ => writeln!(
+            out,
+            "access: open (no `policy:`): any sender that reaches this node may command its components and take control of them"
+        ),
+    };
+    if let Some(c) = file.communicator() {
+        let links: Vec<String> = file
+            .communicator_links()
+            .iter()
+            .map(|l| format!("link {} {} {} -> {}", l.id(), l.kind(), l.bind(), l.peer()))
+            .collect();
+        let _ = writeln!(
+            out,
+            "other subsystems through the communicator {c}{}{}",
+            if links.is_empty() { "" } else { ": " },
+            links.join(", ")
+        );
+    }
+    let _ = out.flush();
+    let mut printer = TreePrinter::new(Duration::from_secs(1));
+    let socket = std::net::UdpSocket::bind(file.bind).map_err(|e| format!("{}: {e}", file.bind))?;
+    let local = socket
+        .local_addr()
+        .map_err(|e| format!("{}: {e}", file.bind))?;
+    if let Some(m) = &file.multicast {
+        let at =
+            |e: std::io::Error| format!("{}: multicast group {}: {e}", config.display(), m.group);
+        if !m.group.is_multicast() {
+            return Err(at(std::io::Error::other("not a multicast address")));
+        }
+        let interface = m.interface.unwrap_or(std::net::Ipv4Addr::UNSPECIFIED);
+        socket.join_multicast_v4(&m.group, &interface).map_err(at)?;
+        socket
+            .set_multicast_ttl_v4(m.ttl.unwrap_or(32))
+            .map_err(at)?;
+        socket
+            .set_multicast_loop_v4(m.loopback.unwrap_or(false))
+            .map_err(at)?;
+        let _ = writeln!(
+            out,
+            "multicast discovery: group {}:{} (ttl {}, interface {interface})",
+            m.group,
+            local.port(),
+            m.ttl.unwrap_or(32)
+        );
+    }
+    let mut writer = match capture {
+        Some(p) => Some(
+            crate::capture::CaptureWriter::create(p)
+                .map_err(|e| format!("{}: {e}", p.display()))?,
+        ),
+        None => None,
+    };
+    let mut capture_error = None;
+    let mut last_flush = Instant::now();
+    let oj = match &file.openjaus_components {
+        Some(o) => {
+            let (control, data) = o.sockets();
+            let bind = |a: SocketAddr| {
+                std::net::UdpSocket::bind(a).map_err(|e| {
+                    format!("{}: OpenJAUS component socket {a}: {e}", config.display())
+                })
+            };
+            let pair = (bind(control)?, bind(data)?);
+            let _ = writeln!(
+                out,
+                "OpenJAUS component interface: control {control}, data {data}"
+            );
+            Some(pair)
+        }
+        None => None,
+    };
+    let sockets = udp::NodeSockets {
+        network: &socket,
+        component_control: oj.as_ref().map(|p| &p.0),
+        component_data: oj.as_ref().map(|p| &p.1),
+    };
+    let io = file.io.clone().unwrap_or_default().options();
+    let result = udp::run_node(
+        &mut node,
+        sockets,
+        &io,
+        stop,
+        duration.map(|d| t0 + d),
+        |n| {
+            let now = Instant::now();
+            if let Some(text) = printer.poll(now, n.tree_version(), n.tree()) {
+                let _ = writeln!(
+                    out,
+                    "--- system tree at {:.1} s\n{text}",
+                    t0.elapsed().as_secs_f64()
+                );
+                let _ = out.flush();
+            }
+        },
+        |direction, peer, datagram| {
+            let Some(w) = writer.as_mut() else {
+                return;
+            };
+            let time = std::time::SystemTime::now()
+                .duration_since(std::time::UNIX_EPOCH)
+                .unwrap_or_default();
+            let (src, dst) = match direction {
+                udp::Direction::Received => (peer, local),
+                udp::Direction::Sent => (local, peer),
+            };
+            let mut written = w.write(time, src, dst, datagram);
+            if written.is_ok() && last_flush.elapsed() >= Duration::from_secs(1) {
+                last_flush = Instant::now();
+                written = w.flush();
+            }
+            if let Err(e) = written {
+                // Stop capturing; the node keeps running.
+                capture_error.get_or_insert(e.to_string());
+                writer = None;
+            }
+        },
+    )
+    .map_err(|e| format!("{}: {e}", file.bind));
+    // What the node counted, for whoever watched it run (one line, `key value` pairs).
+    let st = node.stats();
+    let (reassembly, buffered) = node.reassembly();
+    let (mut missed, mut refused) = (0, 0);
+    for (_, c) in node.component_stats() {
+        missed += c.reports_missed;
+        refused += c.not_controller + c.wrong_state + c.invalid;
+    }
+    let _ = writeln!(
+        out,
+        "stats: received {} sent {} delivered_local {} bad_framing {} bad_packet {} from_self {} not_for_us {} no_such_component {} outbox_full {} flooded {} reassembly_timed_out {} reassembly_over_limit {} reassembly_buffered {buffered} reports_missed {missed} commands_refused {refused} to_communicator {} from_communicator {} not_via_communicator {} policy_refused {}",
+        st.received,
+        st.sent,
+        st.delivered_local,
+        st.bad_framing,
+        st.bad_packet,
+        st.from_self,
+        st.not_for_us,
+        st.no_such_component,
+        st.outbox_full,
+        st.flooded,
+        reassembly.timed_out,
+        reassembly.over_limit,
+        st.to_communicator,
+        st.from_communicator,
+        st.not_via_communicator,
+        st.policy_refused,
+    );
+    let _ = out.flush();
+    if let (Some(w), Some(p)) = (writer.as_mut(), capture) {
+        w.flush().map_err(|e| format!("{}: {e}", p.display()))?;
+    }
+    if let (Some(e), Some(p)) = (capture_error, capture) {
+        return Err(format!("{}: capture stopped: {e}", p.display()));
+    }
+    result
+}
+
+/// The system tree as JSON (`jaus discover --json`): subsystems, their nodes, and the
+/// components of each with their identification and service types (null until
+/// answered).
+pub fn tree_json(tree: &SystemTree) -> serde_json::Value {
+    let subsystems: Vec<serde_json::Value> = tree
+        .subsystems
+        .iter()
+        .map(|(ss, s)| {
+            let nodes: Vec<serde_json::Value> = s
+                .nodes
+                .iter()
+                .map(|(n, node)| {
+                    let components: Vec<serde_json::Value> = node
+                        .components
+                        .iter()
+                        .map(|((c, i), info)| {
+                            serde_json::json!({
+                                "address": jaus::Address::new(*ss, *n, *c, *i).to_string(),
+                                "name": info.name,
+                                "services": info.services,
+                            })
+                        })
+                        .collect();
+                    serde_json::json!({ "id": n, "name": node.name, "components": components })
+                })
+                .collect();
+            serde_json::json!({ "id": ss, "name": s.name, "nodes": nodes })
+        })
+        .collect();
+    serde_json::json!({ "subsystems": subsystems })
+}
