@@ -2,6 +2,7 @@
 //! demo's pick-and-place sequence, control, emergency, watchdogs and refusals.
 
 mod common;
+mod plots;
 
 use std::process::Command;
 use std::time::Duration;
@@ -73,11 +74,68 @@ fn jaus_demo_arm_prints_the_table_and_writes_the_plot() {
         assert!(stdout.contains(row), "missing {row:?} in\n{stdout}");
     }
     let svg = std::fs::read_to_string(dir.join("arm.svg")).expect("arm.svg");
-    assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"));
+    let texts = plots::check_document(
+        &svg,
+        &[
+            "time (s)",
+            "joint angle (°)",
+            "joint 1",
+            "joint 6",
+            "y, right (m)",
+            "x, forward (m)",
+            "height, −z (m)",
+            "tool point (true)",
+            "commanded target",
+        ],
+    );
+    let traces = plots::traces(&svg);
     assert_eq!(
-        svg.matches("<polyline").count(),
+        traces.len(),
         8,
-        "six joints and two views of the tool"
+        "six joints and two views of the tool: {traces:?}"
+    );
+    let mut colours: Vec<&str> = traces.iter().map(|(c, _)| c.as_str()).collect();
+    colours.sort();
+    colours.dedup();
+    assert_eq!(
+        colours.len(),
+        7,
+        "a colour per joint, one for the tool: {traces:?}"
+    );
+    assert!(traces.iter().all(|(_, p)| p.len() > 50), "{traces:?}");
+    // The time axis starts at 0 s: its first tick is 0, on the joint panel's left edge
+    // (the leftmost vertical axis) where the joint traces start, and none is negative.
+    // (Its ticks are those left of the side view's axis label.)
+    let side = texts
+        .iter()
+        .find(|t| t.content == "height, −z (m)")
+        .map_or(f64::INFINITY, |t| t.x);
+    let ticks = plots::x_ticks(&texts, "time (s)", side);
+    assert!(ticks.len() >= 4, "time ticks {ticks:?}");
+    assert_eq!(ticks[0].1, 0.0, "time ticks {ticks:?}");
+    assert!(ticks.iter().all(|(_, t)| *t >= 0.0), "time ticks {ticks:?}");
+    assert!(
+        ticks.windows(2).all(|w| w[1].1 > w[0].1),
+        "time ticks {ticks:?}"
+    );
+    let axes = plots::y_axes(&svg);
+    assert_eq!(axes.len(), 3, "joint panel and two views: {axes:?}");
+    assert!(
+        (ticks[0].0 - axes[0]).abs() <= 1.5,
+        "the 0 s tick at x {} is not on the time axis' left end at {}",
+        ticks[0].0,
+        axes[0]
+    );
+    let starts: Vec<f64> = traces
+        .iter()
+        .filter_map(|(_, p)| p.first().map(|xy| xy.0))
+        .filter(|x| *x < side)
+        .collect();
+    assert_eq!(starts.len(), 6, "six joint traces: {starts:?}");
+    assert!(
+        starts.iter().all(|x| (x - ticks[0].0).abs() <= 1.5),
+        "joint traces start at x {starts:?}, the 0 s tick is at {}",
+        ticks[0].0
     );
     let _ = std::fs::remove_dir_all(&dir);
 }

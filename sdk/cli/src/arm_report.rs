@@ -1,10 +1,15 @@
 //! The arm demo's report for people (`jaus demo --arm`): a table of the moves and an SVG
-//! of the joint angles over time and the tool path seen from above and from the side.
+//! plot (plotters) of the joint angles over time and the tool path seen from above and
+//! from the side.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
+use jaus::stock::nalgebra::Vector3;
 use jaus_sim::arm_demo::ArmReport;
+use plotters::prelude::*;
+
+use crate::plot::{self, Swatch};
 
 /// The table: per move, the driver, the time from command to settled and the final
 /// error of the true tool pose against the commanded one.
@@ -49,179 +54,226 @@ pub fn summary(r: &ArmReport) -> String {
 pub fn write_svg(report: &ArmReport, dir: &Path) -> std::io::Result<PathBuf> {
     std::fs::create_dir_all(dir)?;
     let path = dir.join("arm.svg");
-    std::fs::write(&path, svg(report))?;
+    std::fs::write(&path, svg(report)?)?;
     Ok(path)
 }
 
-const COLOURS: [&str; 6] = [
-    "#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b",
+/// Canvas, column and panel sizes of the arm plot (pixels).
+const WIDTH: u32 = 1240;
+const HEIGHT: u32 = 760;
+const JOINT_COLUMN: u32 = 720;
+const TITLE: u32 = 30;
+const LEFT: u32 = 62;
+const BOTTOM: u32 = 48;
+const MARGIN: u32 = 10;
+const LEGEND: u32 = 110;
+
+/// One colour per joint.
+const JOINT_COLOURS: [RGBColor; 6] = [
+    RGBColor(0x1f, 0x77, 0xb4),
+    RGBColor(0xff, 0x7f, 0x0e),
+    RGBColor(0x2c, 0xa0, 0x2c),
+    RGBColor(0xd6, 0x27, 0x28),
+    RGBColor(0x94, 0x67, 0xbd),
+    RGBColor(0x8c, 0x56, 0x4b),
+];
+const TOOL_PATH: RGBColor = RGBColor(0x11, 0x7a, 0x8b);
+
+/// The joint names of the legend.
+const JOINT_NAMES: [&str; 6] = [
+    "joint 1", "joint 2", "joint 3", "joint 4", "joint 5", "joint 6",
 ];
 
-/// A panel at (`x0`, `y0`) of `w` × `h` pixels mapping data bounds to pixels.
-struct Panel {
-    x0: f64,
-    y0: f64,
-    w: f64,
-    h: f64,
-    lo: (f64, f64),
-    hi: (f64, f64),
-}
-
-impl Panel {
-    fn new(x0: f64, y0: f64, w: f64, h: f64, points: impl Iterator<Item = (f64, f64)>) -> Self {
-        let (mut lo, mut hi) = (
-            (f64::INFINITY, f64::INFINITY),
-            (f64::NEG_INFINITY, f64::NEG_INFINITY),
-        );
-        for (a, b) in points {
-            lo = (lo.0.min(a), lo.1.min(b));
-            hi = (hi.0.max(a), hi.1.max(b));
+/// The SVG plot: on the left the six joint angles (degrees) over time from 0 s, one
+/// trace per joint; on the right the tool path from above (y right, x up: the vehicle's
+/// forward up the page) and from the side (x right, height = −z up), one metre the same
+/// length on both axes, the commanded targets circled. Legends are below the panels.
+///
+/// The joint traces are the simulated arm's true angles every 50 ms, one polyline per
+/// joint over the whole run (the angles are not wrapped: the joints stay within ±3 rad).
+/// Their jumps where a move starts are the arm's own motion, not the drawing (default
+/// seed, sampled every 10 ms):
+/// * between drivers (before the joint move, the jog and the square) the operator puts
+///   the previous driver in Standby, which sets every effort to zero, and the next one
+///   servoes about 0.13 s later: in between the arm falls under gravity (peaks of
+///   joint 2 +7 to +8°, joint 3 6 to 11°, joint 5 up to 5°) and the next driver holds it
+///   where it caught it, 3 to 7° from where the previous move left it. The same sag,
+///   0.14 s long, happens at 0 s before the first driver holds the arm;
+/// * the pose driver's joint reference (above, down to and back up from the pick point)
+///   moves each joint at a constant rate and stops on the target without slowing, so
+///   the servo overshoots by up to 4° (joints 2, 5 and 6) and settles within about
+///   0.3 s.
+pub fn svg(r: &ArmReport) -> std::io::Result<String> {
+    let deg: Vec<(f64, Vec<f64>)> = r
+        .joints
+        .iter()
+        .map(|(t, q)| (*t, q.iter().map(|v| v.to_degrees()).collect()))
+        .collect();
+    let n = deg.iter().map(|(_, q)| q.len()).max().unwrap_or(0);
+    let t_end = deg
+        .last()
+        .map_or(r.duration, |(t, _)| t.max(r.duration))
+        .max(1e-3);
+    let angles = plot::Bounds::of(deg.iter().flat_map(|(t, q)| q.iter().map(|v| (*t, *v))));
+    let above = |p: &Vector3<f64>| (p.y, p.x);
+    let side = |p: &Vector3<f64>| (p.x, -p.z);
+    plot::render("arm.svg", (WIDTH, HEIGHT), |root| {
+        let (left, right) = root.split_horizontally(JOINT_COLUMN);
+        let (panel, legend) = left.split_vertically(HEIGHT - LEGEND);
+        let panel = titled(&panel, "joint angles (the arm's true angles, every 50 ms)")?;
+        let mut chart = ChartBuilder::on(&panel)
+            .margin(MARGIN)
+            .y_label_area_size(LEFT)
+            .x_label_area_size(BOTTOM)
+            .build_cartesian_2d(
+                0.0..t_end,
+                plot::padded(angles.lo.1, angles.hi.1, 0.05, 1.0),
+            )?;
+        chart
+            .configure_mesh()
+            .x_labels(12)
+            .y_labels(12)
+            .bold_line_style(plot::GRID)
+            .light_line_style(TRANSPARENT)
+            .x_desc("time (s)")
+            .y_desc("joint angle (°)")
+            .x_label_formatter(&plot::tick)
+            .y_label_formatter(&plot::tick)
+            .label_style(plot::text(12.0, &plot::INK))
+            .axis_desc_style(plot::text(13.0, &plot::INK))
+            .draw()?;
+        for j in 0..n {
+            chart.draw_series(LineSeries::new(
+                deg.iter().filter_map(|(t, q)| q.get(j).map(|v| (*t, *v))),
+                JOINT_COLOURS[j % JOINT_COLOURS.len()].stroke_width(2),
+            ))?;
         }
-        if !lo.0.is_finite() {
-            (lo, hi) = ((0.0, 0.0), (1.0, 1.0));
-        }
-        // A little room, and never a zero span.
-        let pad = |l: f64, h: f64| {
-            let m = ((h - l) * 0.05).max(1e-3);
-            (l - m, h + m)
-        };
-        let (l0, h0) = pad(lo.0, hi.0);
-        let (l1, h1) = pad(lo.1, hi.1);
-        Self {
-            x0,
-            y0,
-            w,
-            h,
-            lo: (l0, l1),
-            hi: (h0, h1),
-        }
-    }
-
-    fn px(&self, a: f64, b: f64) -> (f64, f64) {
-        (
-            self.x0 + (a - self.lo.0) / (self.hi.0 - self.lo.0) * self.w,
-            self.y0 + self.h - (b - self.lo.1) / (self.hi.1 - self.lo.1) * self.h,
-        )
-    }
-
-    fn frame(&self, s: &mut String, title: &str, x_label: &str, y_label: &str) {
-        let _ = writeln!(
-            s,
-            r##"<rect x="{:.1}" y="{:.1}" width="{:.1}" height="{:.1}" fill="none" stroke="#999"/>"##,
-            self.x0, self.y0, self.w, self.h
-        );
-        let _ = writeln!(
-            s,
-            r#"<text x="{:.1}" y="{:.1}">{title}</text>"#,
-            self.x0,
-            self.y0 - 8.0
-        );
-        let _ = writeln!(
-            s,
-            r##"<text x="{:.1}" y="{:.1}" fill="#555">{x_label}: {:.2} … {:.2}</text>"##,
-            self.x0,
-            self.y0 + self.h + 16.0,
-            self.lo.0,
-            self.hi.0
-        );
-        let _ = writeln!(
-            s,
-            r##"<text x="{:.1}" y="{:.1}" fill="#555">{y_label}: {:.2} … {:.2}</text>"##,
-            self.x0,
-            self.y0 + self.h + 32.0,
-            self.lo.1,
-            self.hi.1
-        );
-    }
-
-    fn line(&self, s: &mut String, pts: impl Iterator<Item = (f64, f64)>, colour: &str) {
-        let points: Vec<String> = pts
-            .map(|(a, b)| {
-                let (x, y) = self.px(a, b);
-                format!("{x:.1},{y:.1}")
+        let entries: Vec<(Swatch, &str)> = (0..n)
+            .map(|j| {
+                (
+                    Swatch::Line(JOINT_COLOURS[j % JOINT_COLOURS.len()].to_rgba(), 3),
+                    JOINT_NAMES.get(j).copied().unwrap_or("joint"),
+                )
             })
             .collect();
-        let _ = writeln!(
-            s,
-            r##"<polyline points="{}" fill="none" stroke="{colour}" stroke-width="1.5"/>"##,
-            points.join(" ")
-        );
-    }
-
-    fn marks(&self, s: &mut String, pts: impl Iterator<Item = (f64, f64)>) {
-        for (a, b) in pts {
-            let (x, y) = self.px(a, b);
-            let _ = writeln!(
-                s,
-                r##"<circle cx="{x:.1}" cy="{y:.1}" r="4" fill="none" stroke="#000"/>"##
-            );
+        plot::legend(
+            &legend,
+            ((MARGIN + LEFT) as i32, 14),
+            6,
+            (104, 24),
+            &entries,
+        )?;
+        for (i, line) in [
+            "Jumps where a move starts are the arm's own motion: between drivers it has no",
+            "effort for about 0.13 s and sags; the pose driver's ramp stops without slowing.",
+        ]
+        .iter()
+        .enumerate()
+        {
+            legend.draw(&Text::new(
+                *line,
+                ((MARGIN + LEFT) as i32, 50 + 18 * i as i32),
+                plot::text_left(12.0, &plot::INK),
+            ))?;
         }
-    }
+
+        let (views, legend) = right.split_vertically(HEIGHT - LEGEND);
+        let (top, bottom) = views.split_vertically((HEIGHT - LEGEND) * 11 / 20);
+        let views = [
+            (
+                top,
+                "tool path from above",
+                "y, right (m)",
+                "x, forward (m)",
+                &above as &dyn Fn(&Vector3<f64>) -> (f64, f64),
+            ),
+            (
+                bottom,
+                "tool path from the side",
+                "x, forward (m)",
+                "height, −z (m)",
+                &side,
+            ),
+        ];
+        for (area, title, x_desc, y_desc, project) in views {
+            let area = titled(&area, title)?;
+            let b = plot::Bounds::of(
+                r.tool
+                    .iter()
+                    .map(|(_, p)| project(p))
+                    .chain(r.targets.iter().map(project)),
+            );
+            let (xs, ys) =
+                plot::equal_aspect(b, 0.06, plot::plot_size(&area, MARGIN, LEFT, BOTTOM));
+            let mut chart = ChartBuilder::on(&area)
+                .margin(MARGIN)
+                .y_label_area_size(LEFT)
+                .x_label_area_size(BOTTOM)
+                .build_cartesian_2d(xs, ys)?;
+            chart
+                .configure_mesh()
+                .x_labels(8)
+                .y_labels(8)
+                .bold_line_style(plot::GRID)
+                .light_line_style(TRANSPARENT)
+                .x_desc(x_desc)
+                .y_desc(y_desc)
+                .x_label_formatter(&plot::tick)
+                .y_label_formatter(&plot::tick)
+                .label_style(plot::text(12.0, &plot::INK))
+                .axis_desc_style(plot::text(13.0, &plot::INK))
+                .draw()?;
+            chart.draw_series(LineSeries::new(
+                r.tool.iter().map(|(_, p)| project(p)),
+                TOOL_PATH.stroke_width(2),
+            ))?;
+            for p in &r.targets {
+                Swatch::Ring(BLACK).draw(chart.plotting_area(), project(p))?;
+            }
+        }
+        plot::legend(
+            &legend,
+            ((MARGIN + LEFT) as i32, 14),
+            2,
+            (200, 24),
+            &[
+                (Swatch::Line(TOOL_PATH.to_rgba(), 3), "tool point (true)"),
+                (Swatch::Ring(BLACK), "commanded target"),
+            ],
+        )?;
+        legend.draw(&Text::new(
+            "1 m is the same length on both axes of a view",
+            ((MARGIN + LEFT) as i32, 50),
+            plot::text_left(12.0, &plot::INK),
+        ))?;
+        Ok(())
+    })
 }
 
-/// The SVG: joint angles (degrees) over time on the left; on the right the tool path
-/// from above (y right, x up: the vehicle's forward up the page) and from the side (x
-/// right, height up: −z), commanded targets circled.
-pub fn svg(r: &ArmReport) -> String {
-    let mut s = String::new();
-    let (w, h) = (1100.0, 560.0);
-    let _ = writeln!(
-        s,
-        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}" font-family="sans-serif" font-size="13">"#
-    );
-    let _ = writeln!(s, r##"<rect width="100%" height="100%" fill="#fff"/>"##);
-    let joints = Panel::new(
-        40.0,
-        40.0,
-        560.0,
-        440.0,
-        r.joints
-            .iter()
-            .flat_map(|(t, q)| q.iter().map(move |v| (*t, v.to_degrees()))),
-    );
-    joints.frame(&mut s, "joint angles", "time s", "angle °");
-    let n = r.joints.first().map_or(0, |j| j.1.len());
-    for j in 0..n {
-        joints.line(
-            &mut s,
-            r.joints.iter().map(|(t, q)| (*t, q[j].to_degrees())),
-            COLOURS[j % COLOURS.len()],
-        );
-        let _ = writeln!(
-            s,
-            r##"<text x="{:.1}" y="{:.1}" fill="{}">joint {}</text>"##,
-            40.0 + 70.0 * j as f64,
-            h - 12.0,
-            COLOURS[j % COLOURS.len()],
-            j + 1
-        );
+/// `area` below a title line, the area left for the chart.
+fn titled<'a>(
+    area: &plot::Area<'a>,
+    title: &str,
+) -> Result<plot::Area<'a>, Box<dyn std::error::Error>> {
+    let (head, rest) = area.split_vertically(TITLE);
+    head.draw(&Text::new(
+        title.to_string(),
+        ((MARGIN + LEFT) as i32, (TITLE / 2 + 4) as i32),
+        plot::text_left(15.0, &plot::INK),
+    ))?;
+    Ok(rest)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_empty_run_still_draws_its_axes() {
+        let svg = svg(&ArmReport::default()).unwrap();
+        assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"));
+        for label in ["time (s)", "joint angle (°)", "tool path from above"] {
+            assert!(svg.contains(label), "{label}");
+        }
     }
-    let top = Panel::new(
-        660.0,
-        40.0,
-        400.0,
-        200.0,
-        r.tool
-            .iter()
-            .map(|(_, p)| (p.y, p.x))
-            .chain(r.targets.iter().map(|p| (p.y, p.x))),
-    );
-    top.frame(&mut s, "tool path from above", "y m", "x m");
-    top.line(&mut s, r.tool.iter().map(|(_, p)| (p.y, p.x)), "#d62728");
-    top.marks(&mut s, r.targets.iter().map(|p| (p.y, p.x)));
-    let side = Panel::new(
-        660.0,
-        300.0,
-        400.0,
-        180.0,
-        r.tool
-            .iter()
-            .map(|(_, p)| (p.x, -p.z))
-            .chain(r.targets.iter().map(|p| (p.x, -p.z))),
-    );
-    side.frame(&mut s, "tool path from the side", "x m", "height m");
-    side.line(&mut s, r.tool.iter().map(|(_, p)| (p.x, -p.z)), "#d62728");
-    side.marks(&mut s, r.targets.iter().map(|p| (p.x, -p.z)));
-    let _ = writeln!(s, "</svg>");
-    s
 }

@@ -24,5 +24,6 @@ pub mod describe;
 pub mod keygen;
 pub mod net;
 pub mod ocu;
+mod plot;
 pub mod report;
 pub mod traffic;
