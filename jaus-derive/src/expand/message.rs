@@ -1,7 +1,7 @@
 //! `#[derive(JausMessage)]` and `#[derive(JausRecord)]`: the codec of a struct from the
 //! model of its fields, and the command code of a message.
 
-use super::field::{self, Parts};
+use super::field::{self, Parts, Slot};
 use super::model::{struct_model, Shape};
 use super::{fallback, lit};
 use crate::attr::{crate_path, parse_container_attrs, Errors, Int};
@@ -60,6 +60,38 @@ pub fn message(input: &DeriveInput, is_message: bool) -> TokenStream {
         },
         _ => quote!(false),
     };
+    // The presence vector and then each field, fixed-size runs through one chunk.
+    let mut slots: Vec<Option<Slot>> = model
+        .presence
+        .map(|p| Some(Slot::presence(p)))
+        .into_iter()
+        .chain(model.fields.iter().map(|f| field::slot(f, &codec)))
+        .collect();
+    let fused = field::fuse_presence(&mut slots, &model.fields, model.presence);
+    // A record of fixed length: lists of it are written through one bounds check.
+    let fixed = if is_message || model.presence.is_some() {
+        None
+    } else {
+        field::fixed_whole(&slots, &codec)
+    };
+    let fixed_fns = fixed.map(|(len, puts)| {
+        quote! {
+            #[inline(always)]
+            fn fixed_len() -> usize {
+                #len
+            }
+            #[inline]
+            fn encode_fixed(&self, out: &mut [u8]) -> ::core::result::Result<(), #codec::EncodeError> {
+                match out.first_chunk_mut::<#len>() {
+                    ::core::option::Option::Some(c) => {
+                        #(#puts)*
+                        Ok(())
+                    }
+                    ::core::option::Option::None => self.encode(&mut #codec::Writer::new(out)),
+                }
+            }
+        }
+    });
     let pv = field::presence_vector(
         model.presence,
         ident,
@@ -68,8 +100,9 @@ pub fn message(input: &DeriveInput, is_message: bool) -> TokenStream {
         is_message,
         known,
         &rest_present,
+        &fused,
     );
-    let (pv_encode, pv_decode, pv_skip) = (pv.encode, pv.decode, pv.skip);
+    let (pv_compute, pv_decode, pv_skip) = (pv.compute, pv.decode, pv.skip);
     let Parts {
         prelude,
         lens,
@@ -79,12 +112,14 @@ pub fn message(input: &DeriveInput, is_message: bool) -> TokenStream {
         clamps,
         ..
     } = parts;
+    let slow = model.presence.map(|_| pv.encode).into_iter().chain(encodes);
+    let encodes = field::fixed_runs(slots, slow.collect(), &codec);
     let unused_w =
         (model.fields.is_empty() && model.presence.is_none()).then(|| quote!(let _ = w;));
     let encode_body = quote! {
         #unused_w
         #(#prelude)*
-        #pv_encode
+        #pv_compute
         #(#encodes)*
         Ok(())
     };
@@ -148,6 +183,7 @@ pub fn message(input: &DeriveInput, is_message: bool) -> TokenStream {
                 #encode_body
             }
             #clamp_fn
+            #fixed_fns
         }
         #[allow(clippy::approx_constant)]
         impl #impl_g #codec::Decode for #ident #ty_g #where_g {

@@ -224,7 +224,9 @@ impl<'a> Reader<'a> {
 pub struct Writer<'a> {
     buf: &'a mut [u8],
     pos: usize,
-    vars: Vars,
+    /// Set by the first field that publishes a variable: a body without such fields
+    /// (most messages) never pays for clearing them.
+    vars: Option<Vars>,
 }
 
 impl<'a> Writer<'a> {
@@ -234,20 +236,21 @@ impl<'a> Writer<'a> {
         Self {
             buf,
             pos: 0,
-            vars: Vars::default(),
+            vars: None,
         }
     }
 
     /// Variables set by fields encoded so far.
     #[inline]
     pub fn vars(&mut self) -> &mut Vars {
-        &mut self.vars
+        self.vars.get_or_insert_with(Vars::default)
     }
 
     /// The value of variable `name`, or a typed error if no earlier field set it.
     pub fn var(&self, name: &'static str, field: &'static str) -> Result<u64, EncodeError> {
         self.vars
-            .get(name)
+            .as_ref()
+            .and_then(|v| v.get(name))
             .ok_or(EncodeError::MissingVariable { field, name })
     }
 
@@ -272,6 +275,46 @@ impl<'a> Writer<'a> {
                 capacity: self.buf.len(),
             }),
         }
+    }
+
+    /// The next `N` bytes, to be written at constant offsets and then counted with
+    /// [`Writer::advance`], or `None` when fewer than `N` bytes are left (the derive
+    /// then writes field by field, which reports the field that does not fit). One
+    /// bounds check for a run of fixed-size fields.
+    #[inline]
+    pub fn chunk_mut<const N: usize>(&mut self) -> Option<&mut [u8; N]> {
+        self.buf
+            .get_mut(self.pos..)
+            .and_then(<[u8]>::first_chunk_mut::<N>)
+    }
+
+    /// Counts `n` more bytes as written (bytes written through [`Writer::chunk_mut`]);
+    /// never beyond the end of the buffer.
+    #[inline]
+    pub fn advance(&mut self, n: usize) {
+        self.pos = self.buf.len().min(self.pos.wrapping_add(n));
+    }
+
+    /// The next `N` bytes, counted as written, or `None` (and nothing counted) when
+    /// fewer are left: [`Writer::chunk_mut`] then [`Writer::advance`] by `N`.
+    #[inline]
+    pub fn array_mut<const N: usize>(&mut self) -> Option<&mut [u8; N]> {
+        let chunk = self
+            .buf
+            .get_mut(self.pos..)
+            .and_then(<[u8]>::first_chunk_mut::<N>)?;
+        self.pos += N;
+        Some(chunk)
+    }
+
+    /// The next `n` bytes, counted as written, or `None` (and nothing counted) when
+    /// fewer are left.
+    #[inline]
+    pub fn slice_mut(&mut self, n: usize) -> Option<&mut [u8]> {
+        let end = self.pos.checked_add(n)?;
+        let dst = self.buf.get_mut(self.pos..end)?;
+        self.pos = end;
+        Some(dst)
     }
 
     /// Appends `n` zero bytes (padding of fixed-length fields).

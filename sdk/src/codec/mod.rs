@@ -35,6 +35,24 @@ pub trait Encode {
     /// Writes the value.
     fn encode(&self, w: &mut Writer<'_>) -> Result<(), EncodeError>;
 
+    /// The length of every encoding of this type when it never varies, else 0. The
+    /// derive sets it for records made only of numbers and scaled values; lists of
+    /// such records are then written through one bounds check.
+    #[inline(always)]
+    fn fixed_len() -> usize
+    where
+        Self: Sized,
+    {
+        0
+    }
+
+    /// Writes the value into `out`, which holds [`Encode::fixed_len`] bytes (used only
+    /// when that is not 0); the same bytes and errors as [`Encode::encode`].
+    #[inline]
+    fn encode_fixed(&self, out: &mut [u8]) -> Result<(), EncodeError> {
+        self.encode(&mut Writer::new(out))
+    }
+
     /// Encodes into a new vector of exactly [`Encode::encoded_len`] bytes.
     fn to_bytes(&self) -> Result<Vec<u8>, EncodeError> {
         let mut out = vec![0u8; self.encoded_len()];
@@ -106,6 +124,15 @@ macro_rules! primitive {
     )*};
 }
 primitive!(u8, u16, u32, u64, i8, i16, i32, i64, f32, f64);
+
+/// Writes `bytes` at offset `at` of a chunk from [`Writer::chunk_mut`] (the derive's
+/// offsets lie within it; with a constant offset the compiler removes every check).
+#[inline(always)]
+pub fn put_at<const N: usize, const K: usize>(chunk: &mut [u8; N], at: usize, bytes: [u8; K]) {
+    if let Some(dst) = chunk.get_mut(at..).and_then(<[u8]>::first_chunk_mut::<K>) {
+        *dst = bytes;
+    }
+}
 
 /// True when `v` equals its type's default (used to omit zero reserved bits in JSON).
 pub fn is_default<T: Default + PartialEq>(v: &T) -> bool {

@@ -111,10 +111,14 @@ fn to_count<T: ScaledRepr>(v: f64, lo: f64, hi: f64) -> T {
     let d = v - bias;
     if T::DIVISOR <= 4_294_967_295.0 {
         let estimate = d * (1.0 / sf);
-        let y = estimate + ROUNDER;
-        // `y - ROUNDER` is the nearest integer, exactly; `estimate` minus it is exact.
-        if (estimate - (y - ROUNDER)).abs() < 0.5 - NEAR_TIE {
-            return T::from_low_bits(y.to_bits());
+        // The nearest integers of `estimate ± NEAR_TIE` (two independent roundings,
+        // not one after the other): equal when no half-integer lies within NEAR_TIE
+        // of the estimate, so none lies between the estimate and the quotient either
+        // (the additions of NEAR_TIE round by at most 2⁻²¹ below 2³²).
+        let up = (estimate + NEAR_TIE) + ROUNDER;
+        let down = (estimate - NEAR_TIE) + ROUNDER;
+        if up.to_bits() == down.to_bits() {
+            return T::from_low_bits(up.to_bits());
         }
     }
     // Round half away from zero by truncating `x ± 0.5` (a single conversion

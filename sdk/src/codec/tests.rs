@@ -242,3 +242,148 @@ fn text_is_fitted_to_a_fixed_string_field() {
     let fitted = fit_latin1("ééééééééééééééééééé", 15);
     assert_eq!(latin1_len(&fitted), 15);
 }
+
+#[test]
+fn chunks_are_taken_whole_or_not_at_all() {
+    let mut buf = [0u8; 6];
+    let mut w = Writer::new(&mut buf);
+    w.put(&[1]).unwrap();
+    assert!(w.chunk_mut::<6>().is_none());
+    assert!(w.array_mut::<6>().is_none());
+    assert_eq!(w.position(), 1);
+    *w.array_mut::<2>().unwrap() = [2, 3];
+    assert_eq!(w.position(), 3);
+    w.chunk_mut::<3>().unwrap()[0] = 4;
+    w.advance(1);
+    assert_eq!(w.position(), 4);
+    w.advance(10);
+    assert_eq!(w.position(), 6);
+    assert_eq!(buf[..4], [1, 2, 3, 4]);
+}
+
+/// A body written into every buffer too short for it fails where field-by-field
+/// writing fails: `needed` is the end of the first field that does not fit (the
+/// derive writes runs of fixed-size fields through one chunk when the whole run fits).
+#[test]
+fn short_buffers_report_the_first_field_that_does_not_fit() {
+    use crate::messages::{SetGlobalPathSegment, SetWrenchEffort};
+    let swe = SetWrenchEffort {
+        propulsive_linear_effort_x: Some(10.0),
+        propulsive_rotational_effort_z: Some(-20.0),
+        resistive_linear_effort_x: Some(5.0),
+        ..Default::default()
+    };
+    let bytes = swe.to_bytes().unwrap();
+    // The presence vector u16, two i16, a u8 (resistive effort).
+    let ends = [2usize, 4, 6, 7];
+    assert_eq!(bytes.len(), 7);
+    for cap in 0..bytes.len() {
+        let mut buf = vec![0u8; cap];
+        let err = swe.encode(&mut Writer::new(&mut buf)).unwrap_err();
+        let needed = ends.iter().copied().find(|&e| e > cap).unwrap();
+        assert!(
+            matches!(err, EncodeError::BufferTooSmall { needed: n, capacity: c } if n == needed && c == cap),
+            "{cap}: {err:?}"
+        );
+    }
+    let sgps = SetGlobalPathSegment {
+        path_segment_number: 3,
+        p1_latitude: 10.0,
+        p1_longitude: 20.0,
+        p1_altitude: Some(30.0),
+        ..Default::default()
+    };
+    let bytes = sgps.to_bytes().unwrap();
+    // Presence vector u8, number u16, latitude, longitude and altitude i32, latitude
+    // and longitude i32 (no second altitude), weighting factor u16.
+    let ends = [1usize, 3, 7, 11, 15, 19, 23, 25];
+    assert_eq!(bytes.len(), 25);
+    for cap in 0..bytes.len() {
+        let mut buf = vec![0u8; cap];
+        let err = sgps.encode(&mut Writer::new(&mut buf)).unwrap_err();
+        let needed = ends.iter().copied().find(|&e| e > cap).unwrap();
+        assert!(
+            matches!(err, EncodeError::BufferTooSmall { needed: n, .. } if n == needed),
+            "{cap}: {err:?}"
+        );
+    }
+    // Within a run written through one chunk, a value beyond its limits is still the
+    // error of its own field.
+    let mut bad = swe.clone();
+    bad.propulsive_rotational_effort_z = Some(-150.0);
+    let mut buf = vec![0u8; 64];
+    let err = bad.encode(&mut Writer::new(&mut buf)).unwrap_err();
+    assert!(
+        matches!(err, EncodeError::OutOfRange { scaled, value, .. }
+            if scaled.field == "SetWrenchEffort.propulsive_rotational_effort_z" && value == -150.0),
+        "{err:?}"
+    );
+    let mut buf = vec![0u8; bytes.len()];
+    let mut w = Writer::new(&mut buf);
+    sgps.encode(&mut w).unwrap();
+    assert_eq!(w.position(), bytes.len());
+    assert_eq!(buf, bytes);
+}
+
+/// Lists of fixed-length records (written through one slice when the whole list fits)
+/// fail as element-by-element writing does: on a short buffer at the element that does
+/// not fit, on a value beyond its limits at that value's field.
+#[test]
+fn lists_of_fixed_length_records_fail_at_their_element() {
+    use crate::messages::{VksPoint, VksStoredObject};
+    assert_eq!(<VksPoint as Encode>::fixed_len(), 8);
+    assert_eq!(<VksStoredObject as Encode>::fixed_len(), 0);
+    let object = VksStoredObject {
+        object_id: 7,
+        buffer: 1.5,
+        points: (0..3)
+            .map(|i| VksPoint {
+                latitude: 10.0 + f64::from(i),
+                longitude: -20.0,
+            })
+            .collect(),
+        ..Default::default()
+    };
+    let bytes = object.to_bytes().unwrap();
+    // id u32, type u8, buffer f32, no feature class (count u8), point count u16, then
+    // three points of two i32.
+    let ends = [4usize, 5, 9, 10, 12, 16, 20, 24, 28, 32, 36];
+    assert_eq!(bytes.len(), 36);
+    let mut one_by_one = vec![0u8; 36];
+    let mut w = Writer::new(&mut one_by_one);
+    for (i, e) in [
+        7u32.to_le_bytes().as_slice(),
+        &[0],
+        &1.5f32.to_le_bytes(),
+        &[0],
+        &[3, 0],
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        assert_eq!(w.position(), [0, 4, 5, 9, 10][i]);
+        w.put(e).unwrap();
+    }
+    for p in &object.points {
+        p.encode(&mut w).unwrap();
+    }
+    assert_eq!(bytes, one_by_one);
+    for cap in 0..bytes.len() {
+        let mut buf = vec![0u8; cap];
+        let err = object.encode(&mut Writer::new(&mut buf)).unwrap_err();
+        let needed = ends.iter().copied().find(|&e| e > cap).unwrap();
+        assert!(
+            matches!(err, EncodeError::BufferTooSmall { needed: n, capacity: c } if n == needed && c == cap),
+            "{cap}: {err:?}"
+        );
+    }
+    let mut bad = object.clone();
+    bad.points[1].longitude = 200.0;
+    let mut buf = vec![0u8; 64];
+    let err = bad.encode(&mut Writer::new(&mut buf)).unwrap_err();
+    assert!(
+        matches!(err, EncodeError::OutOfRange { scaled, value, .. }
+            if scaled.field == "VksPoint.longitude" && value == 200.0),
+        "{err:?}"
+    );
+}

@@ -2,7 +2,7 @@
 //! counted by one (`count_var`), byte offsets of a list (`offsets`), optional fields
 //! present by one (`present_if`) and unions tagged by one (`tag_var`).
 
-use super::list::{elems_len, encode_elem};
+use super::list::{elems_len, encode_elem, encode_elems};
 use super::number::read_scaled;
 use super::{Parts, ValueCode};
 use crate::expand::lit;
@@ -59,10 +59,13 @@ pub(super) fn count_var(
                     }
                 }
             });
-            (
-                quote!(#v.len()),
-                quote!(for (i, e) in #v.iter().enumerate() { let _ = i; #patch #each }),
-            )
+            let body = match patch {
+                Some(patch) => {
+                    quote!(for (i, e) in #v.iter().enumerate() { #patch #each })
+                }
+                None => encode_elems(elem, v, path, codec),
+            };
+            (quote!(#v.len()), body)
         }
     };
     let encode = quote! {

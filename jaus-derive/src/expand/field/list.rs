@@ -23,10 +23,10 @@ pub(super) fn list(
         let c = c.ident();
         quote!(#codec::put_count::<#c>(w, #v.len(), #path)?;)
     });
-    let each = encode_elem(elem, path, codec);
+    let each = encode_elems(elem, v, path, codec);
     ValueCode {
         len: quote!(#c + #elems),
-        encode: quote!(#prefix for e in #v.iter() { #each }),
+        encode: quote!(#prefix #each),
         decode: decode(count, elem, codec),
         min_len: quote!(#c),
     }
@@ -78,6 +78,34 @@ pub(super) fn elems_len(elem: &Elem, v: &TokenStream, codec: &TokenStream) -> To
             let n = s.int.bytes();
             quote!(#v.len() * #n)
         }
+    }
+}
+
+/// Writes every element of list `v`. Elements of a type whose encodings all have the
+/// same length (`Encode::fixed_len`) are written into one slice when the whole list
+/// fits; otherwise, as other elements are, one by one (so that an error names the
+/// element that does not fit).
+pub(super) fn encode_elems(
+    elem: &Elem,
+    v: &TokenStream,
+    path: &LitStr,
+    codec: &TokenStream,
+) -> TokenStream {
+    let each = encode_elem(elem, path, codec);
+    let one_by_one = quote!(for e in #v.iter() { #each });
+    match elem {
+        Elem::Plain(ty) => quote! {
+            let k = <#ty as #codec::Encode>::fixed_len();
+            match if k == 0 { None } else { #v.len().checked_mul(k).and_then(|n| w.slice_mut(n)) } {
+                ::core::option::Option::Some(dst) => {
+                    for (e, d) in #v.iter().zip(dst.chunks_exact_mut(k)) {
+                        #codec::Encode::encode_fixed(e, d)?;
+                    }
+                }
+                ::core::option::Option::None => { #one_by_one }
+            }
+        },
+        Elem::Scaled(_) => one_by_one,
     }
 }
 

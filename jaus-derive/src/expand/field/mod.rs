@@ -4,10 +4,12 @@
 
 mod bytes;
 mod dependent;
+mod fixed;
 mod list;
 mod number;
 mod presence;
 
+pub(super) use fixed::{encodes as fixed_runs, fuse_presence, slot, whole as fixed_whole, Slot};
 pub(super) use presence::vector as presence_vector;
 
 use super::model::{Elem, FieldModel, Shape};
@@ -38,8 +40,8 @@ pub(super) struct Parts {
     pub(super) decodes: Vec<TokenStream>,
     /// Terms of `MIN_LEN` (of the fields that are always there).
     pub(super) mins: Vec<TokenStream>,
-    /// Statements setting the presence bits in `pv` before it is written.
-    pub(super) pv_sets: Vec<TokenStream>,
+    /// Statements setting the presence bits in `pv` before it is written, by field.
+    pub(super) pv_sets: Vec<(syn::Ident, TokenStream)>,
     /// Statements of `clamp_to_range`: every scaled value clamped to its limits.
     pub(super) clamps: Vec<TokenStream>,
 }

@@ -47,11 +47,17 @@ pub(super) fn encode_scaled(
     path: &LitStr,
     codec: &TokenStream,
 ) -> TokenStream {
-    let (t, lo, hi) = scaled_args(s);
-    let unit = &s.unit;
-    // A constant: promoted to a static, so the error can refer to it.
-    let field = quote!(&#codec::ScaledField { field: #path, lo: #lo, hi: #hi, unit: #unit });
+    let t = s.int.ident();
+    let field = scaled_field(s, path, codec);
     quote!(#codec::Encode::encode(&#codec::scale_to::<#t>(#value, #field)?, w)?;)
+}
+
+/// A `&'static ScaledField` of the field `path` with spec `s`: a constant, promoted to
+/// a static, so that an encode error can refer to it.
+pub(super) fn scaled_field(s: &ScaledSpec, path: &LitStr, codec: &TokenStream) -> TokenStream {
+    let (_, lo, hi) = scaled_args(s);
+    let unit = &s.unit;
+    quote!(&#codec::ScaledField { field: #path, lo: #lo, hi: #hi, unit: #unit })
 }
 
 /// Clamps the real value behind `v` (a `&mut f64`) to the limits.

@@ -31,7 +31,7 @@ pub(super) fn flag(f: &FieldModel, bit: u32, p: &Ident, parts: &mut Parts) {
     let set_var_dec = publish_decoded(f);
     parts
         .pv_sets
-        .push(quote!(if self.#id { pv |= (1 as #p) << #bit; }));
+        .push((id.clone(), quote!(if self.#id { pv |= (1 as #p) << #bit; })));
     parts.encodes.push(quote!(#set));
     parts
         .decodes
@@ -55,9 +55,10 @@ pub(super) fn optional(
     parts
         .encodes
         .push(quote!(if let Some(v) = &self.#id { #enc }));
-    parts
-        .pv_sets
-        .push(quote!(if self.#id.is_some() { pv |= (1 as #p) << #bit; }));
+    parts.pv_sets.push((
+        id.clone(),
+        quote!(if self.#id.is_some() { pv |= (1 as #p) << #bit; }),
+    ));
     parts
         .decodes
         .push(quote!(let #id = if pv & ((1 as #p) << #bit) != 0 { Some(#dec) } else { None };));
@@ -71,7 +72,10 @@ pub(super) fn optional(
 /// checked by `codec::check_presence`: in a message body (`is_message`) the fields a
 /// newer revision appends under them are skipped to the end of the body; in a record
 /// they are an error. `rest_present` is an expression telling whether the last field
-/// runs to the end of the body and is present.
+/// runs to the end of the body and is present. The bits of the fields in `fused` are
+/// set while those fields are written (see `fixed::fuse_presence`), or by
+/// `PresenceCode::fused_sets` before `pv` is written field by field.
+#[allow(clippy::too_many_arguments)]
 pub(in crate::expand) fn vector(
     presence: Option<Int>,
     ident: &Ident,
@@ -80,8 +84,12 @@ pub(in crate::expand) fn vector(
     is_message: bool,
     known: u64,
     rest_present: &TokenStream,
+    fused: &[Ident],
 ) -> PresenceCode {
-    let pv_sets = &parts.pv_sets;
+    let (late, early): (Vec<_>, Vec<_>) =
+        parts.pv_sets.iter().partition(|(id, _)| fused.contains(id));
+    let pv_sets = early.iter().map(|(_, set)| set);
+    let fused_sets = late.iter().map(|(_, set)| set);
     match presence {
         Some(p) => {
             let p = p.ident();
@@ -106,7 +114,8 @@ pub(in crate::expand) fn vector(
                 )
             };
             PresenceCode {
-                encode: quote!(let mut pv: #p = 0; #(#pv_sets)* #codec::Encode::encode(&pv, w)?;),
+                compute: quote!(let mut pv: #p = 0; #(#pv_sets)*),
+                encode: quote!(#(#fused_sets)* #codec::Encode::encode(&pv, w)?;),
                 decode: quote! {
                     let at = r.offset();
                     let pv = match <#p as #codec::Decode>::decode(r) {
@@ -126,6 +135,9 @@ pub(in crate::expand) fn vector(
 /// the decoding of a message body after its known fields.
 #[derive(Default)]
 pub(in crate::expand) struct PresenceCode {
+    /// Computes `pv` from the fields.
+    pub(in crate::expand) compute: TokenStream,
+    /// Sets the bits of the fused fields, then writes `pv`.
     pub(in crate::expand) encode: TokenStream,
     pub(in crate::expand) decode: TokenStream,
     pub(in crate::expand) skip: TokenStream,
