@@ -98,7 +98,7 @@ use jaus_spec::{Spec, SpecErrors};
 use minijinja::Environment;
 use std::path::{Path, PathBuf};
 
-pub use components::{build_components, ComponentCtx};
+pub use components::{build_components, build_parts, ComponentCtx, PartCtx, PartRef};
 pub use context::{build_context, Context};
 pub use docs::{render_docs, DOC_TEMPLATES};
 
@@ -436,6 +436,7 @@ impl Builder {
             .get_template("components.rs.j2")?
             .render(minijinja::context! {
                 components => &comps,
+                parts => build_parts(&spec, self.feature_gates),
                 vendor => ctx.vendor,
                 own_messages => spec
                     .messages

@@ -44,8 +44,6 @@ pub mod model;
 #[cfg(feature = "yaml")]
 mod resolved;
 #[cfg(feature = "yaml")]
-mod stock;
-#[cfg(feature = "yaml")]
 mod validate;
 
 pub use count::{CountRef, CountRefError};

@@ -4,7 +4,7 @@
 use crate::location::{LocationIndex, Pos};
 use crate::model::SpecFile;
 use crate::validate;
-use crate::{Component, Group, Spec};
+use crate::{Component, Group, Part, Spec};
 use std::fmt;
 use std::path::{Path, PathBuf};
 
@@ -239,6 +239,7 @@ pub fn load_texts_on(
         types: Vec::new(),
         messages: Vec::new(),
         components: Vec::new(),
+        parts: Vec::new(),
     };
     let mut errors = Vec::new();
     for (path, text) in texts {
@@ -278,6 +279,14 @@ pub fn load_texts_on(
                         group: file.group.clone(),
                         source,
                         path: format!("components[{i}]"),
+                    });
+                }
+                for (i, p) in file.parts.into_iter().enumerate() {
+                    draft.parts.push(Part {
+                        def: p,
+                        group: file.group.clone(),
+                        source,
+                        path: format!("parts[{i}]"),
                     });
                 }
             }

@@ -30,6 +30,9 @@ pub struct SpecFile {
     /// Component interfaces.
     #[serde(default)]
     pub components: Vec<ComponentDef>,
+    /// Parts that several component interfaces share ([`PartDef`]).
+    #[serde(default)]
+    pub parts: Vec<PartDef>,
 }
 
 /// A 16-bit command code, written as an integer or a `"0x...."` string.
@@ -100,6 +103,10 @@ pub struct MessageDef {
     /// For a query: there is no report (an explicit exception to the complement rule).
     #[serde(default)]
     pub no_report: bool,
+    /// For a command: the query whose report reads back what the command sets
+    /// (`readback: QueryTravelSpeed`); `jaus conform` checks the value read back.
+    #[serde(default)]
+    pub readback: Option<String>,
     /// A vendor/OpenJAUS experimental message.
     #[serde(default)]
     pub experimental: bool,
@@ -494,6 +501,42 @@ pub struct ComponentDef {
     /// Absent when the SDK ships none.
     #[serde(default)]
     pub stock: Option<StockDef>,
+    /// The shared parts ([`PartDef`], by name) it handles as the other components
+    /// sharing them do; its lists still name every message of its interface.
+    #[serde(default)]
+    pub parts: Vec<String>,
+}
+
+/// A part of several component interfaces (`parts:` of a file): messages that Part 1
+/// gives the same meaning in each, and the behaviour that goes with them. The generator
+/// emits one trait for it; each component that shares it (`parts: [Name]`) routes
+/// those messages to it.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PartDef {
+    /// PascalCase name (the trait's).
+    pub name: String,
+    /// What the components share, for the trait's documentation.
+    pub description: String,
+    /// Command-class messages of the part: every sharing component lists them in
+    /// `commands`.
+    #[serde(default)]
+    pub commands: Vec<String>,
+    /// Accepted messages of the part: every sharing component lists them in `accepts`.
+    #[serde(default)]
+    pub accepts: Vec<String>,
+    /// Messages the part sends on its own: every sharing component lists them in
+    /// `emits`.
+    #[serde(default)]
+    pub emits: Vec<String>,
+    /// Entries of `commands` and `accepts` a sharing component may leave out (it then
+    /// never receives them); one that lists them lists them in the same role.
+    #[serde(default)]
+    pub optional: Vec<String>,
+    /// Behaviour rules shared by the components, one sentence each (rendered into the
+    /// docs).
+    #[serde(default)]
+    pub rules: Vec<String>,
 }
 
 /// The SDK's stock implementation of a component (`stock:` of a component).

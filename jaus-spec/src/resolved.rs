@@ -3,7 +3,9 @@
 //! (a query's report, the fields others depend on).
 
 use crate::location::Pos;
-use crate::model::{BitDef, ComponentDef, FieldDef, MessageDef, TypeDef, TypeKind, VariantDef};
+use crate::model::{
+    BitDef, ComponentDef, FieldDef, MessageDef, PartDef, TypeDef, TypeKind, VariantDef,
+};
 use crate::{CountRef, Source, SpecError};
 use std::collections::BTreeSet;
 use std::path::Path;
@@ -139,6 +141,19 @@ pub struct Component {
     pub path: String,
 }
 
+/// A shared part of component interfaces with the file it came from.
+#[derive(Debug, Clone)]
+pub struct Part {
+    /// The definition.
+    pub def: PartDef,
+    /// Group name.
+    pub group: String,
+    /// Index into [`Spec::sources`].
+    pub source: usize,
+    /// YAML path of the definition (`parts[0]`).
+    pub path: String,
+}
+
 /// A message group, merged over every file that names it.
 #[derive(Debug, Clone)]
 pub struct Group {
@@ -172,6 +187,8 @@ pub struct Spec {
     pub messages: Vec<Message>,
     /// Components in file order.
     pub components: Vec<Component>,
+    /// Parts shared by components, in file order.
+    pub parts: Vec<Part>,
 }
 
 /// Integer wire types.
@@ -335,6 +352,11 @@ impl Spec {
     /// The message named `name`.
     pub fn message(&self, name: &str) -> Option<&Message> {
         self.messages.iter().find(|m| m.def.name == name)
+    }
+
+    /// The shared part named `name`.
+    pub fn part(&self, name: &str) -> Option<&Part> {
+        self.parts.iter().find(|p| p.def.name == name)
     }
 
     /// The message with command code `code`.

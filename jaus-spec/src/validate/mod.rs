@@ -11,17 +11,21 @@
 //! - [`types`]: named types (enum values, bit-field members, union variants, records
 //!   that contain themselves);
 //! - [`messages`]: command codes, classes, reports and runtime roles;
-//! - [`components`]: component interfaces and their modes.
+//! - [`components`]: component interfaces and their modes;
+//! - [`parts`]: parts shared by component interfaces.
 
 mod components;
 mod fields;
 mod messages;
 mod names;
+mod parts;
+mod readback;
+mod stock;
 mod types;
 mod wire;
 
 use crate::model::{MessageDef, TypeDef};
-use crate::{Component, Group, Message, Source, Spec, SpecError, Type, TypeForm};
+use crate::{Component, Group, Message, Part, Source, Spec, SpecError, Type, TypeForm};
 use fields::Body;
 
 /// A definition as parsed, with the file it came from.
@@ -47,6 +51,7 @@ pub(crate) struct Draft {
     pub types: Vec<Parsed<TypeDef>>,
     pub messages: Vec<Parsed<MessageDef>>,
     pub components: Vec<Component>,
+    pub parts: Vec<Part>,
 }
 
 impl Draft {
@@ -100,7 +105,9 @@ pub(crate) fn validate(draft: Draft) -> Result<Spec, Vec<SpecError>> {
     types::check_record_cycles(&mut cx);
     let bodies = messages::check_messages(&mut cx);
     components::check_components(&mut cx);
-    cx.errors.extend(crate::stock::check(&draft));
+    parts::check_parts(&mut cx);
+    readback::check_readbacks(&mut cx);
+    cx.errors.extend(stock::check(&draft));
     let mut errors = cx.errors;
     // Every definition that could not be resolved reported why, so with no errors
     // every form and body is there.
@@ -155,6 +162,7 @@ fn assemble(draft: Draft, forms: Vec<TypeForm>, bodies: Vec<Body>) -> Spec {
             })
             .collect(),
         components: draft.components,
+        parts: draft.parts,
     }
 }
 

@@ -8,6 +8,7 @@ use super::finite;
 use crate::component::{
     Context, CoreState, EmittedBy, InitError, Interface, Modes, Refused, StopReason,
 };
+use crate::components::parts::NavigationDriver;
 use crate::components::{
     global_path_segment_driver as gpsd, global_waypoint_driver as gwd,
     local_path_segment_driver as lpsd, local_waypoint_driver as lwd,
@@ -358,25 +359,6 @@ impl<E: Element> Navigator<E> {
         })
     }
 
-    fn state_changed<I: NavInterface>(
-        &mut self,
-        ctx: &mut Context<'_, I>,
-        from: CoreState,
-        to: CoreState,
-    ) where
-        SetWrenchEffort: EmittedBy<I>,
-    {
-        if from == CoreState::Standby && to == CoreState::Ready {
-            // Part 1: the travel speed is zero after every Standby -> Ready.
-            self.travel_speed = 0.0;
-        }
-        if to != CoreState::Ready {
-            self.tracker = None;
-            self.motion.stop(ctx);
-            self.motion.release_output(ctx);
-        }
-    }
-
     /// Stops the vehicle and forgets the path being followed; after an emergency or a
     /// loss of control the travel speed is zero too, so that nothing moves again until a
     /// controller sets one.
@@ -393,12 +375,134 @@ impl<E: Element> Navigator<E> {
             self.travel_speed = 0.0;
         }
     }
+}
 
-    fn tick<I: NavInterface>(&mut self, ctx: &mut Context<'_, I>)
-    where
-        SetWrenchEffort: EmittedBy<I>,
-        ReportMissionStatus: EmittedBy<I>,
-    {
+fn extend(path: &mut Path, ends: &mut Vec<f64>, g: Geometry) {
+    match g {
+        Geometry::Point(p) => path.push(p),
+        Geometry::Segment { p1, p2, w1 } => {
+            let p0 = path.points().last().copied().unwrap_or(p1);
+            path.push_segment(&PathSegment {
+                p0: Vector3::new(p0.x, p0.y, 0.0),
+                p1: Vector3::new(p1.x, p1.y, 0.0),
+                p2: Vector3::new(p2.x, p2.y, 0.0),
+                w1,
+            });
+        }
+    }
+    ends.push(path.length());
+}
+
+/// The part the four drivers share (`NavigationDriver` of `platform.yaml`): the travel
+/// speed, the pose and velocity feedback, the element count, spooled lists, subscribing
+/// to the pose report, and what happens on state changes and every tick.
+impl<E: Element, I: NavInterface> NavigationDriver<I> for Navigator<E>
+where
+    SetWrenchEffort: EmittedBy<I>,
+    ReportMissionStatus: EmittedBy<I>,
+{
+    fn on_set_travel_speed(
+        &mut self,
+        _ctx: &mut Context<'_, I>,
+        m: &SetTravelSpeed,
+    ) -> Result<(), Refused> {
+        self.set_speed(m.speed)
+    }
+
+    fn on_spool_mission(
+        &mut self,
+        ctx: &mut Context<'_, I>,
+        m: &SpoolMission,
+    ) -> Result<(), Refused> {
+        self.spool(ctx, m)
+    }
+
+    fn on_query_spooling_preference(
+        &mut self,
+        _ctx: &mut Context<'_, I>,
+        _q: &QuerySpoolingPreference,
+    ) -> Result<ReportSpoolingPreference, Refused> {
+        Ok(ReportSpoolingPreference {
+            spool_type: SpoolingLimitType::MessageCount,
+            data: 4096,
+        })
+    }
+
+    fn on_query_travel_speed(
+        &mut self,
+        _ctx: &mut Context<'_, I>,
+        _q: &QueryTravelSpeed,
+    ) -> Result<ReportTravelSpeed, Refused> {
+        Ok(ReportTravelSpeed {
+            speed: self.travel_speed,
+        })
+    }
+
+    fn on_report_velocity_state(
+        &mut self,
+        ctx: &mut Context<'_, I>,
+        r: &ReportVelocityState,
+    ) -> Result<(), Refused> {
+        self.motion.on_velocity(ctx.now(), r);
+        Ok(())
+    }
+
+    fn on_query_waypoint_count(
+        &mut self,
+        _ctx: &mut Context<'_, I>,
+        _q: &QueryWaypointCount,
+    ) -> Result<ReportWaypointCount, Refused> {
+        Ok(ReportWaypointCount {
+            waypoint_count: self.elements.len() as u16,
+        })
+    }
+
+    fn on_query_path_segment_count(
+        &mut self,
+        _ctx: &mut Context<'_, I>,
+        _q: &QueryPathSegmentCount,
+    ) -> Result<ReportPathSegmentCount, Refused> {
+        Ok(ReportPathSegmentCount {
+            path_segment_count: self.elements.len() as u16,
+        })
+    }
+
+    fn on_report_global_pose(
+        &mut self,
+        ctx: &mut Context<'_, I>,
+        r: &ReportGlobalPose,
+    ) -> Result<(), Refused> {
+        self.motion.on_global_pose(ctx.now(), r);
+        Ok(())
+    }
+
+    fn on_report_local_pose(
+        &mut self,
+        ctx: &mut Context<'_, I>,
+        r: &ReportLocalPose,
+    ) -> Result<(), Refused> {
+        self.motion.on_local_pose(ctx.now(), r);
+        Ok(())
+    }
+
+    fn initialize(&mut self, ctx: &mut Context<'_, I>) -> Result<(), InitError> {
+        self.motion.subscribe(ctx, I::POSE_REPORT);
+        Ok(())
+    }
+
+    fn state_changed(&mut self, ctx: &mut Context<'_, I>, from: CoreState, to: CoreState) {
+        if from == CoreState::Standby && to == CoreState::Ready {
+            // Part 1: the travel speed is zero after every Standby -> Ready.
+            self.travel_speed = 0.0;
+        }
+        if to != CoreState::Ready {
+            self.tracker = None;
+            self.motion.stop(ctx);
+            self.motion.release_output(ctx);
+        }
+    }
+
+    fn tick(&mut self, ctx: &mut Context<'_, I>) {
         if ctx.state() != CoreState::Ready {
             return;
         }
@@ -503,84 +607,13 @@ impl<E: Element> Navigator<E> {
     }
 }
 
-fn extend(path: &mut Path, ends: &mut Vec<f64>, g: Geometry) {
-    match g {
-        Geometry::Point(p) => path.push(p),
-        Geometry::Segment { p1, p2, w1 } => {
-            let p0 = path.points().last().copied().unwrap_or(p1);
-            path.push_segment(&PathSegment {
-                p0: Vector3::new(p0.x, p0.y, 0.0),
-                p1: Vector3::new(p1.x, p1.y, 0.0),
-                p2: Vector3::new(p2.x, p2.y, 0.0),
-                w1,
-            });
-        }
-    }
-    ends.push(path.length());
-}
-
-macro_rules! navigator_common {
-    ($m:ident) => {
-        fn on_set_travel_speed(
-            &mut self,
-            _ctx: &mut $m::Ctx<'_>,
-            m: &SetTravelSpeed,
-        ) -> Result<(), Refused> {
-            self.set_speed(m.speed)
-        }
-        fn on_spool_mission(
-            &mut self,
-            ctx: &mut $m::Ctx<'_>,
-            m: &SpoolMission,
-        ) -> Result<(), Refused> {
-            self.spool(ctx, m)
-        }
-        fn on_query_spooling_preference(
-            &mut self,
-            _ctx: &mut $m::Ctx<'_>,
-            _q: &QuerySpoolingPreference,
-        ) -> Result<ReportSpoolingPreference, Refused> {
-            Ok(ReportSpoolingPreference {
-                spool_type: SpoolingLimitType::MessageCount,
-                data: 4096,
-            })
-        }
-        fn on_query_travel_speed(
-            &mut self,
-            _ctx: &mut $m::Ctx<'_>,
-            _q: &QueryTravelSpeed,
-        ) -> Result<ReportTravelSpeed, Refused> {
-            Ok(ReportTravelSpeed {
-                speed: self.travel_speed,
-            })
-        }
-        fn on_report_velocity_state(
-            &mut self,
-            ctx: &mut $m::Ctx<'_>,
-            r: &ReportVelocityState,
-        ) -> Result<(), Refused> {
-            self.motion.on_velocity(ctx.now(), r);
-            Ok(())
-        }
-        fn initialize(&mut self, ctx: &mut $m::Ctx<'_>) -> Result<(), InitError> {
-            self.motion
-                .subscribe(ctx, <$m::Interface as NavInterface>::POSE_REPORT);
-            Ok(())
-        }
-        fn state_changed(&mut self, ctx: &mut $m::Ctx<'_>, from: CoreState, to: CoreState) {
-            Navigator::state_changed(self, ctx, from, to);
-        }
-        fn stop(&mut self, ctx: &mut $m::Ctx<'_>, reason: StopReason) {
-            Navigator::stop(self, ctx, reason);
-        }
-        fn tick(&mut self, ctx: &mut $m::Ctx<'_>) {
-            Navigator::tick(self, ctx);
-        }
-    };
-}
-
 impl gwd::GlobalWaypointDriver for StockGlobalWaypointDriver {
-    navigator_common!(gwd);
+    fn navigation_driver(&mut self) -> Option<&mut dyn NavigationDriver<gwd::Interface>> {
+        Some(self)
+    }
+    fn stop(&mut self, ctx: &mut gwd::Ctx<'_>, reason: StopReason) {
+        Navigator::stop(self, ctx, reason);
+    }
     fn on_set_global_waypoint(
         &mut self,
         ctx: &mut gwd::Ctx<'_>,
@@ -607,27 +640,15 @@ impl gwd::GlobalWaypointDriver for StockGlobalWaypointDriver {
             yaw: w.yaw,
         })
     }
-    fn on_query_waypoint_count(
-        &mut self,
-        _ctx: &mut gwd::Ctx<'_>,
-        _q: &QueryWaypointCount,
-    ) -> Result<ReportWaypointCount, Refused> {
-        Ok(ReportWaypointCount {
-            waypoint_count: self.elements.len() as u16,
-        })
-    }
-    fn on_report_global_pose(
-        &mut self,
-        ctx: &mut gwd::Ctx<'_>,
-        r: &ReportGlobalPose,
-    ) -> Result<(), Refused> {
-        self.motion.on_global_pose(ctx.now(), r);
-        Ok(())
-    }
 }
 
 impl lwd::LocalWaypointDriver for StockLocalWaypointDriver {
-    navigator_common!(lwd);
+    fn navigation_driver(&mut self) -> Option<&mut dyn NavigationDriver<lwd::Interface>> {
+        Some(self)
+    }
+    fn stop(&mut self, ctx: &mut lwd::Ctx<'_>, reason: StopReason) {
+        Navigator::stop(self, ctx, reason);
+    }
     fn on_set_local_waypoint(
         &mut self,
         ctx: &mut lwd::Ctx<'_>,
@@ -654,27 +675,15 @@ impl lwd::LocalWaypointDriver for StockLocalWaypointDriver {
             yaw: w.yaw,
         })
     }
-    fn on_query_waypoint_count(
-        &mut self,
-        _ctx: &mut lwd::Ctx<'_>,
-        _q: &QueryWaypointCount,
-    ) -> Result<ReportWaypointCount, Refused> {
-        Ok(ReportWaypointCount {
-            waypoint_count: self.elements.len() as u16,
-        })
-    }
-    fn on_report_local_pose(
-        &mut self,
-        ctx: &mut lwd::Ctx<'_>,
-        r: &ReportLocalPose,
-    ) -> Result<(), Refused> {
-        self.motion.on_local_pose(ctx.now(), r);
-        Ok(())
-    }
 }
 
 impl gpsd::GlobalPathSegmentDriver for StockGlobalPathSegmentDriver {
-    navigator_common!(gpsd);
+    fn navigation_driver(&mut self) -> Option<&mut dyn NavigationDriver<gpsd::Interface>> {
+        Some(self)
+    }
+    fn stop(&mut self, ctx: &mut gpsd::Ctx<'_>, reason: StopReason) {
+        Navigator::stop(self, ctx, reason);
+    }
     fn on_set_global_path_segment(
         &mut self,
         ctx: &mut gpsd::Ctx<'_>,
@@ -704,27 +713,15 @@ impl gpsd::GlobalPathSegmentDriver for StockGlobalPathSegmentDriver {
             weighting_factor: s.weighting_factor,
         })
     }
-    fn on_query_path_segment_count(
-        &mut self,
-        _ctx: &mut gpsd::Ctx<'_>,
-        _q: &QueryPathSegmentCount,
-    ) -> Result<ReportPathSegmentCount, Refused> {
-        Ok(ReportPathSegmentCount {
-            path_segment_count: self.elements.len() as u16,
-        })
-    }
-    fn on_report_global_pose(
-        &mut self,
-        ctx: &mut gpsd::Ctx<'_>,
-        r: &ReportGlobalPose,
-    ) -> Result<(), Refused> {
-        self.motion.on_global_pose(ctx.now(), r);
-        Ok(())
-    }
 }
 
 impl lpsd::LocalPathSegmentDriver for StockLocalPathSegmentDriver {
-    navigator_common!(lpsd);
+    fn navigation_driver(&mut self) -> Option<&mut dyn NavigationDriver<lpsd::Interface>> {
+        Some(self)
+    }
+    fn stop(&mut self, ctx: &mut lpsd::Ctx<'_>, reason: StopReason) {
+        Navigator::stop(self, ctx, reason);
+    }
     fn on_set_local_path_segment(
         &mut self,
         ctx: &mut lpsd::Ctx<'_>,
@@ -753,23 +750,6 @@ impl lpsd::LocalPathSegmentDriver for StockLocalPathSegmentDriver {
             p2_z: s.p2_z.filter(|_| q.presence_vector & 2 != 0),
             weighting_factor: s.weighting_factor,
         })
-    }
-    fn on_query_path_segment_count(
-        &mut self,
-        _ctx: &mut lpsd::Ctx<'_>,
-        _q: &QueryPathSegmentCount,
-    ) -> Result<ReportPathSegmentCount, Refused> {
-        Ok(ReportPathSegmentCount {
-            path_segment_count: self.elements.len() as u16,
-        })
-    }
-    fn on_report_local_pose(
-        &mut self,
-        ctx: &mut lpsd::Ctx<'_>,
-        r: &ReportLocalPose,
-    ) -> Result<(), Refused> {
-        self.motion.on_local_pose(ctx.now(), r);
-        Ok(())
     }
 }
 

@@ -7,8 +7,13 @@
 use std::time::Instant;
 
 use super::link::{ArmDriverConfig, ArmLink};
-use crate::component::{Context, CoreState, EmittedBy, Interface, Refused};
-use crate::messages::{QueryManipulatorSpecifications, SetJointEfforts};
+use crate::component::{Context, CoreState, EmittedBy, InitError, Interface, Refused};
+use crate::components::parts::ManipulatorDriver;
+use crate::messages::{
+    QueryManipulatorSpecifications, ReportJointEfforts, ReportJointPositions,
+    ReportJointVelocities, ReportManipulatorSpecifications, SetJointEfforts,
+};
+use crate::JausMessage;
 
 /// What a driver's command asks of the joints, sampled once per control period.
 pub trait Goal: std::fmt::Debug + Send + 'static {
@@ -175,72 +180,71 @@ impl Ramp {
     }
 }
 
-/// The messages every manipulator driver handles the same way (specifications, joint
-/// feedback, stop, state changes, tick), written once for the six generated traits.
-macro_rules! arm_driver_plumbing {
-    (positions: $p:literal, velocities: $v:literal, $m:ident) => {
-        fn initialize(
-            &mut self,
-            ctx: &mut $m::Ctx<'_>,
-        ) -> Result<(), $crate::component::InitError> {
-            self.link.subscribe(ctx, $p, $v);
-            Ok(())
-        }
-        fn on_report_manipulator_specifications(
-            &mut self,
-            ctx: &mut $m::Ctx<'_>,
-            r: &ReportManipulatorSpecifications,
-        ) -> Result<(), Refused> {
-            self.link.on_specifications(ctx, r);
-            Ok(())
-        }
-        fn on_report_joint_efforts(
-            &mut self,
-            _ctx: &mut $m::Ctx<'_>,
-            _r: &ReportJointEfforts,
-        ) -> Result<(), Refused> {
-            Ok(())
-        }
-        fn stop(&mut self, ctx: &mut $m::Ctx<'_>, _reason: StopReason) {
-            self.halt(ctx);
-        }
-        fn state_changed(&mut self, ctx: &mut $m::Ctx<'_>, _from: CoreState, to: CoreState) {
-            if to != CoreState::Ready {
-                self.leave_ready(ctx);
-            }
-        }
-    };
-}
+/// The part the six drivers share (`ManipulatorDriver` of `manipulator.yaml`): the
+/// specifications and joint feedback into the link, feedback subscribed to as the
+/// driver's interface takes it, every effort to zero on leaving Ready, one control
+/// period per tick.
+impl<G: Goal, I: Interface> ManipulatorDriver<I> for StockArmDriver<G>
+where
+    SetJointEfforts: EmittedBy<I>,
+    QueryManipulatorSpecifications: EmittedBy<I>,
+{
+    fn on_report_manipulator_specifications(
+        &mut self,
+        ctx: &mut Context<'_, I>,
+        r: &ReportManipulatorSpecifications,
+    ) -> Result<(), Refused> {
+        self.link.on_specifications(ctx, r);
+        Ok(())
+    }
 
-/// Report Joint Positions into the link.
-macro_rules! arm_driver_positions {
-    ($m:ident) => {
-        fn on_report_joint_positions(
-            &mut self,
-            ctx: &mut $m::Ctx<'_>,
-            r: &ReportJointPositions,
-        ) -> Result<(), Refused> {
-            self.link.on_positions(ctx.now(), r);
-            Ok(())
-        }
-    };
-}
+    fn on_report_joint_efforts(
+        &mut self,
+        _ctx: &mut Context<'_, I>,
+        _r: &ReportJointEfforts,
+    ) -> Result<(), Refused> {
+        Ok(())
+    }
 
-/// Report Joint Velocities into the link.
-macro_rules! arm_driver_velocities {
-    ($m:ident) => {
-        fn on_report_joint_velocities(
-            &mut self,
-            ctx: &mut $m::Ctx<'_>,
-            r: &ReportJointVelocities,
-        ) -> Result<(), Refused> {
-            self.link.on_velocities(ctx.now(), r);
-            Ok(())
-        }
-    };
-}
+    fn on_report_joint_positions(
+        &mut self,
+        ctx: &mut Context<'_, I>,
+        r: &ReportJointPositions,
+    ) -> Result<(), Refused> {
+        self.link.on_positions(ctx.now(), r);
+        Ok(())
+    }
 
-pub(super) use {arm_driver_plumbing, arm_driver_positions, arm_driver_velocities};
+    fn on_report_joint_velocities(
+        &mut self,
+        ctx: &mut Context<'_, I>,
+        r: &ReportJointVelocities,
+    ) -> Result<(), Refused> {
+        self.link.on_velocities(ctx.now(), r);
+        Ok(())
+    }
+
+    /// Subscribes to the joint feedback the driver's interface takes.
+    fn initialize(&mut self, ctx: &mut Context<'_, I>) -> Result<(), InitError> {
+        let takes = |code| I::ACCEPTS.contains(&code);
+        let (positions, velocities) = (
+            takes(ReportJointPositions::CODE),
+            takes(ReportJointVelocities::CODE),
+        );
+        self.link.subscribe(ctx, positions, velocities);
+        Ok(())
+    }
+
+    fn state_changed(&mut self, ctx: &mut Context<'_, I>, _from: CoreState, to: CoreState) {
+        if to != CoreState::Ready {
+            self.leave_ready(ctx);
+        }
+    }
+
+    fn tick(&mut self, ctx: &mut Context<'_, I>) {
+        self.run(ctx);
+    }
+}
 
 /// A joint list of a command checked against the arm: the right count, finite values
 /// within each joint's limits (`limit(j)` gives them).

@@ -3,13 +3,11 @@
 
 use std::time::Instant;
 
-use super::driver::{
-    arm_driver_plumbing, arm_driver_positions, arm_driver_velocities, check_joints, Goal, Ramp,
-    StockArmDriver,
-};
+use super::driver::{check_joints, Goal, Ramp, StockArmDriver};
 use super::link::ArmLink;
 use super::profile::{JointMove, JointSet};
-use crate::component::{CoreState, Refused, StopReason};
+use crate::component::{Refused, StopReason};
+use crate::components::parts::ManipulatorDriver;
 use crate::components::{
     manipulator_joint_move_driver as jmd, manipulator_joint_positions_driver as jpd,
     manipulator_joint_velocities_driver as jvd,
@@ -73,8 +71,13 @@ impl Goal for JointTarget {
 pub type StockJointPositionsDriver = StockArmDriver<JointTarget>;
 
 impl jpd::ManipulatorJointPositionsDriver for StockJointPositionsDriver {
-    arm_driver_plumbing!(positions: true, velocities: false, jpd);
-    arm_driver_positions!(jpd);
+    fn manipulator_driver(&mut self) -> Option<&mut dyn ManipulatorDriver<jpd::Interface>> {
+        Some(self)
+    }
+
+    fn stop(&mut self, ctx: &mut jpd::Ctx<'_>, _reason: StopReason) {
+        self.halt(ctx);
+    }
 
     fn on_set_joint_positions(
         &mut self,
@@ -92,10 +95,6 @@ impl jpd::ManipulatorJointPositionsDriver for StockJointPositionsDriver {
         )?;
         self.goal.set(m.joint_position.clone());
         Ok(())
-    }
-
-    fn tick(&mut self, ctx: &mut jpd::Ctx<'_>) {
-        self.run(ctx);
     }
 }
 
@@ -166,8 +165,13 @@ impl Goal for JointRates {
 pub type StockJointVelocitiesDriver = StockArmDriver<JointRates>;
 
 impl jvd::ManipulatorJointVelocitiesDriver for StockJointVelocitiesDriver {
-    arm_driver_plumbing!(positions: false, velocities: true, jvd);
-    arm_driver_velocities!(jvd);
+    fn manipulator_driver(&mut self) -> Option<&mut dyn ManipulatorDriver<jvd::Interface>> {
+        Some(self)
+    }
+
+    fn stop(&mut self, ctx: &mut jvd::Ctx<'_>, _reason: StopReason) {
+        self.halt(ctx);
+    }
 
     fn on_set_joint_velocities(
         &mut self,
@@ -185,10 +189,6 @@ impl jvd::ManipulatorJointVelocitiesDriver for StockJointVelocitiesDriver {
         )?;
         self.goal.set(ctx.now(), m.joint_velocity.clone());
         Ok(())
-    }
-
-    fn tick(&mut self, ctx: &mut jvd::Ctx<'_>) {
-        self.run(ctx);
     }
 }
 
@@ -254,9 +254,13 @@ impl Goal for JointMotion {
 pub type StockJointMoveDriver = StockArmDriver<JointMotion>;
 
 impl jmd::ManipulatorJointMoveDriver for StockJointMoveDriver {
-    arm_driver_plumbing!(positions: true, velocities: true, jmd);
-    arm_driver_positions!(jmd);
-    arm_driver_velocities!(jmd);
+    fn manipulator_driver(&mut self) -> Option<&mut dyn ManipulatorDriver<jmd::Interface>> {
+        Some(self)
+    }
+
+    fn stop(&mut self, ctx: &mut jmd::Ctx<'_>, _reason: StopReason) {
+        self.halt(ctx);
+    }
 
     fn on_set_joint_motion(
         &mut self,

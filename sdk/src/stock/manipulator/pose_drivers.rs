@@ -10,14 +10,13 @@ use std::time::Instant;
 use nalgebra::{Dyn, Isometry3, Matrix6, OMatrix, Quaternion, Translation3, UnitQuaternion, U6};
 use nalgebra::{Vector3, Vector6};
 
-use super::driver::{
-    arm_driver_plumbing, arm_driver_positions, arm_driver_velocities, Goal, StockArmDriver,
-};
+use super::driver::{Goal, StockArmDriver};
 use super::joint_drivers::JointTarget;
 use super::kinematics::{Chain, IkSolver};
 use super::link::ArmLink;
 use super::profile::PosePath;
-use crate::component::{CoreState, Refused, StopReason};
+use crate::component::{Refused, StopReason};
+use crate::components::parts::ManipulatorDriver;
 use crate::components::{
     manipulator_end_effector_discrete_pose_driver as dpd,
     manipulator_end_effector_pose_driver as epd,
@@ -114,8 +113,13 @@ impl Goal for PoseTarget {
 pub type StockEndEffectorPoseDriver = StockArmDriver<PoseTarget>;
 
 impl epd::ManipulatorEndEffectorPoseDriver for StockEndEffectorPoseDriver {
-    arm_driver_plumbing!(positions: true, velocities: false, epd);
-    arm_driver_positions!(epd);
+    fn manipulator_driver(&mut self) -> Option<&mut dyn ManipulatorDriver<epd::Interface>> {
+        Some(self)
+    }
+
+    fn stop(&mut self, ctx: &mut epd::Ctx<'_>, _reason: StopReason) {
+        self.halt(ctx);
+    }
 
     fn on_set_tool_point(
         &mut self,
@@ -163,10 +167,6 @@ impl epd::ManipulatorEndEffectorPoseDriver for StockEndEffectorPoseDriver {
         self.goal.joints.set(joints);
         self.goal.pose = Some(target);
         Ok(())
-    }
-
-    fn tick(&mut self, ctx: &mut epd::Ctx<'_>) {
-        self.run(ctx);
     }
 }
 
@@ -277,9 +277,13 @@ impl Goal for ToolVelocity {
 pub type StockEndEffectorVelocityStateDriver = StockArmDriver<ToolVelocity>;
 
 impl evd::ManipulatorEndEffectorVelocityStateDriver for StockEndEffectorVelocityStateDriver {
-    arm_driver_plumbing!(positions: true, velocities: true, evd);
-    arm_driver_positions!(evd);
-    arm_driver_velocities!(evd);
+    fn manipulator_driver(&mut self) -> Option<&mut dyn ManipulatorDriver<evd::Interface>> {
+        Some(self)
+    }
+
+    fn stop(&mut self, ctx: &mut evd::Ctx<'_>, _reason: StopReason) {
+        self.halt(ctx);
+    }
 
     fn on_set_end_effector_velocity_state(
         &mut self,
@@ -303,10 +307,6 @@ impl evd::ManipulatorEndEffectorVelocityStateDriver for StockEndEffectorVelocity
         }
         self.goal.command = Some((ctx.now(), frame, linear, angular));
         Ok(())
-    }
-
-    fn tick(&mut self, ctx: &mut evd::Ctx<'_>) {
-        self.run(ctx);
     }
 }
 
@@ -413,9 +413,13 @@ impl Goal for PathMotion {
 pub type StockEndEffectorDiscretePoseDriver = StockArmDriver<PathMotion>;
 
 impl dpd::ManipulatorEndEffectorDiscretePoseDriver for StockEndEffectorDiscretePoseDriver {
-    arm_driver_plumbing!(positions: true, velocities: true, dpd);
-    arm_driver_positions!(dpd);
-    arm_driver_velocities!(dpd);
+    fn manipulator_driver(&mut self) -> Option<&mut dyn ManipulatorDriver<dpd::Interface>> {
+        Some(self)
+    }
+
+    fn stop(&mut self, ctx: &mut dpd::Ctx<'_>, _reason: StopReason) {
+        self.halt(ctx);
+    }
 
     fn on_set_end_effector_path_motion(
         &mut self,

@@ -3,7 +3,7 @@
 
 use std::collections::HashMap;
 
-use crate::validate::Draft;
+use super::Draft;
 use crate::SpecError;
 
 /// Words of a node file's `host:` list that are not components.
