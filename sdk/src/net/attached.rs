@@ -102,20 +102,8 @@ impl Attached {
     /// `jaus_sim::host`).
     pub fn add_boxed(&mut self, endpoint: Box<dyn Endpoint>) -> Result<Address, NetError> {
         let a = endpoint.address();
-        if a.subsystem != self.config.subsystem
-            || a.node != self.config.node
-            || !a.is_valid()
-            || a.component == 1
-        {
-            return Err(NetError::NotOnThisNode {
-                component: a,
-                subsystem: self.config.subsystem,
-                node: self.config.node,
-            });
-        }
-        if self.components.contains(a) {
-            return Err(NetError::Duplicate(a));
-        }
+        let taken = self.components.contains(a);
+        NetError::check_join(a, self.config.subsystem, self.config.node, taken)?;
         self.components.push(endpoint);
         Ok(a)
     }

@@ -87,3 +87,27 @@ pub enum NetError {
     #[error("component {0} is already on this node")]
     Duplicate(Address),
 }
+
+impl NetError {
+    /// Whether a component at `a` may join the node `subsystem.node` whose components
+    /// already include it (`taken`) or not: the rule both hosts, [`Node`] and
+    /// [`Attached`], apply.
+    pub(crate) fn check_join(
+        a: Address,
+        subsystem: u8,
+        node: u8,
+        taken: bool,
+    ) -> Result<(), NetError> {
+        if a.subsystem != subsystem || a.node != node || !a.is_valid() || a.component == 1 {
+            return Err(NetError::NotOnThisNode {
+                component: a,
+                subsystem,
+                node,
+            });
+        }
+        if taken {
+            return Err(NetError::Duplicate(a));
+        }
+        Ok(())
+    }
+}

@@ -151,20 +151,8 @@ impl<A: PeerAddr> Node<A> {
     /// Adds a boxed local component; it must be on this node.
     pub fn add_boxed(&mut self, endpoint: Box<dyn Endpoint>) -> Result<Address, NetError> {
         let a = endpoint.address();
-        if a.subsystem != self.config.subsystem
-            || a.node != self.config.node
-            || !a.is_valid()
-            || a.component == 1
-        {
-            return Err(NetError::NotOnThisNode {
-                component: a,
-                subsystem: self.config.subsystem,
-                node: self.config.node,
-            });
-        }
-        if self.locals.contains(a) {
-            return Err(NetError::Duplicate(a));
-        }
+        let taken = self.locals.contains(a);
+        NetError::check_join(a, self.config.subsystem, self.config.node, taken)?;
         self.manager.add_local(a);
         self.locals.push(endpoint);
         Ok(a)
