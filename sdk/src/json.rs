@@ -277,20 +277,55 @@ pub fn parse_message(line: &str) -> Result<(HeaderInput, Message), JsonError> {
     Ok((header, message))
 }
 
+/// Why a JSON line does not encode ([`encode_line`], and `jaus_dynamic`'s
+/// `Schema::encode_line` for a set loaded at run time): each names what failed (the
+/// JSON, the header, the message and its field).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum EncodeLineError {
+    /// The line is not a message (not JSON, an unknown message, fields that do not fit
+    /// the layout), or its header is incomplete.
+    #[error("{0}")]
+    Json(#[from] JsonError),
+    /// The message's body does not encode; the error names the message and field.
+    #[error("{0}")]
+    Body(crate::codec::EncodeError),
+    /// The body of `message` does not encode (the error names the field).
+    #[error("{message}: {error}")]
+    Message {
+        /// The message.
+        message: &'static str,
+        /// What failed.
+        error: crate::codec::EncodeError,
+    },
+    /// The packet holding the body does not encode (a body too long for one packet).
+    #[error("{message}: {error}")]
+    Packet {
+        /// The message.
+        message: &'static str,
+        /// What failed.
+        error: crate::codec::EncodeError,
+    },
+}
+
 /// Encodes one JSON line to a hex packet. The data size is computed from the body; the
 /// header's other fields default as [`HeaderInput`] says, but the destination and the
 /// source must be given.
-pub fn encode_line(line: &str) -> Result<String, String> {
-    let (header, message) = parse_message(line).map_err(|e| e.to_string())?;
-    let header = header
-        .complete(&message, None, None)
-        .map_err(|e| e.to_string())?;
+pub fn encode_line(line: &str) -> Result<String, EncodeLineError> {
+    let (header, message) = parse_message(line)?;
+    let header = header.complete(&message, None, None)?;
+    let name = message.name();
     let body = message
         .to_bytes()
-        .map_err(|e| format!("{}: {e}", message.name()))?;
+        .map_err(|error| EncodeLineError::Message {
+            message: name,
+            error,
+        })?;
     let bytes = Packet { header, body }
         .to_bytes()
-        .map_err(|e| format!("{}: {e}", message.name()))?;
+        .map_err(|error| EncodeLineError::Packet {
+            message: name,
+            error,
+        })?;
     Ok(crate::hex::encode(&bytes))
 }
 

@@ -102,7 +102,9 @@ impl Catalogue {
     pub fn encode_line(&self, line: &str) -> Result<String, String> {
         match &self.schema {
             Some(s) => s.encode_line(line).map_err(|e| e.to_string()),
-            None => jaus::json::encode_line(line).map_err(|e| with_overlay_hint(e, false)),
+            None => {
+                jaus::json::encode_line(line).map_err(|e| with_overlay_hint(e.to_string(), false))
+            }
         }
     }
 

@@ -137,7 +137,7 @@ pub fn tour(out: &mut impl Write) -> bool {
         match decode_line(hex)
             .map_err(|e| e.to_string())
             .and_then(|json| {
-                let back = encode_line(&json)?;
+                let back = encode_line(&json).map_err(|e| e.to_string())?;
                 Ok((json, back))
             }) {
             Ok((json, back)) => {

@@ -256,26 +256,9 @@ impl Schema {
     }
 }
 
-/// Why a JSON line does not encode ([`Schema::encode_line`]): each names what failed
-/// (the JSON, the message and its field, the header).
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-pub enum EncodeLineError {
-    /// The line is not a message of the schema (not JSON, an unknown message, fields
-    /// that do not fit the layout), or its header is incomplete.
-    #[error("{0}")]
-    Json(#[from] JsonError),
-    /// The message's body does not encode (the error names the message and field).
-    #[error("{0}")]
-    Body(EncodeError),
-    /// The packet holding the body does not encode (a body too long for one packet).
-    #[error("{message}: {error}")]
-    Packet {
-        /// The message.
-        message: &'static str,
-        /// What failed.
-        error: EncodeError,
-    },
-}
+/// Why a JSON line does not encode ([`Schema::encode_line`]): the SDK's type, shared
+/// with `jaus::json::encode_line`.
+pub use jaus::json::EncodeLineError;
 
 /// A message line read by [`Schema::parse_line`].
 #[derive(Debug, Clone, PartialEq)]
