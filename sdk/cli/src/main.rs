@@ -1,5 +1,7 @@
 //! `jaus`: the command-line tool of the SDK.
 
+mod conform;
+
 use clap::{Parser, Subcommand};
 use jaus_cli::{commands, report};
 use std::io::{BufRead, Write};
@@ -176,6 +178,14 @@ enum Cmd {
         /// Stop after this many seconds (default: run until interrupted).
         #[arg(long)]
         seconds: Option<f64>,
+    },
+    /// Test components on the network against Part 1 and the core rules (checks read
+    /// from the definitions, --spec overlays included); exits 1 when a required check fails.
+    Conform {
+        #[command(flatten)]
+        net: NetArgs,
+        #[command(flatten)]
+        args: conform::ConformArgs,
     },
     /// Listen for a while and print the system tree seen on the network.
     Discover {
@@ -638,6 +648,10 @@ fn main() -> ExitCode {
                 &STOP,
                 &mut out,
             ),
+        ),
+        Cmd::Conform { net, args } => report(
+            &mut err,
+            conform::conform(&net, &args, &cli.spec, &mut out),
         ),
         Cmd::Discover { net, json } => report(
             &mut err,

@@ -1,0 +1,129 @@
+//! `jaus conform`: the conformance tester (crate `jaus-conform`) on UDP, with its
+//! reports written where asked.
+
+use std::io::Write;
+use std::path::PathBuf;
+use std::time::Duration;
+
+use jaus_conform::session::Voices;
+use jaus_conform::udp::UdpSession;
+use jaus_conform::{report, Options};
+
+/// `jaus conform`'s own options (the network ones are [`super::NetArgs`]).
+#[derive(clap::Args)]
+pub struct ConformArgs {
+    /// The component to test (subsystem.node.component.instance).
+    #[arg(long, conflicts_with = "subsystem")]
+    target: Option<jaus::Address>,
+    /// Test every component discovery finds in this subsystem (node managers aside).
+    #[arg(long)]
+    subsystem: Option<u8>,
+    /// Write the run as JSON to this file.
+    #[arg(long, value_name = "FILE")]
+    json: Option<PathBuf>,
+    /// Write the run as JUnit XML to this file (failed required checks are failures).
+    #[arg(long, value_name = "FILE")]
+    junit: Option<PathBuf>,
+    /// Write the run as one HTML page to this file.
+    #[arg(long, value_name = "FILE")]
+    html: Option<PathBuf>,
+    /// Seconds to wait for each answer during the checks.
+    #[arg(long, default_value_t = 1.0)]
+    answer_wait: f64,
+    /// Milliseconds to wait after a command before reading back what it did.
+    #[arg(long, default_value_t = 200)]
+    settle_ms: u64,
+}
+
+fn write_file(path: &PathBuf, text: &str) -> Result<(), String> {
+    std::fs::write(path, text).map_err(|e| format!("cannot write {}: {e}", path.display()))
+}
+
+/// Runs the checks and writes the reports; `Err` when a required check failed (exit
+/// status 1) or the run could not start.
+pub fn conform(
+    net: &super::NetArgs,
+    args: &ConformArgs,
+    spec_paths: &[PathBuf],
+    out: &mut impl Write,
+) -> Result<(), String> {
+    let client = net.client()?;
+    let spec = if spec_paths.is_empty() {
+        jaus_spec::load_sdk()
+    } else {
+        jaus_spec::load_overlays(spec_paths)
+    }
+    .map_err(|e| e.to_string())?;
+    let socket = jaus_cli::net::bind_socket(client.bind, &client.peers)?;
+    let voices = Voices::on(client.me.subsystem, client.me.node);
+    let mut session = UdpSession::new(socket, client.peers.clone(), client.framing, &voices)?;
+    let targets = match (args.target, args.subsystem) {
+        (Some(t), _) if (t.subsystem, t.node) == (client.me.subsystem, client.me.node) => {
+            return Err(format!(
+                "--target {t} is on the tester's own node ({}.{}, from --me): give --me a node of its own (the tester runs one)",
+                t.subsystem, t.node
+            ));
+        }
+        (Some(t), _) => {
+            // A moment for the nodes to meet.
+            session.discover(client.wait.min(Duration::from_millis(500)));
+            vec![t]
+        }
+        (None, Some(s)) => {
+            let found = session.discover(client.wait);
+            let t = jaus_conform::targets_in(&found, s, &voices);
+            if t.is_empty() {
+                let local = session
+                    .local_addr()
+                    .unwrap_or_else(|| std::net::SocketAddr::from(([0, 0, 0, 0], 0)));
+                return Err(if session.heard() {
+                    format!(
+                        "no component of subsystem {s} found within {:.1} s (found: {found:?})",
+                        client.wait.as_secs_f64()
+                    )
+                } else {
+                    jaus_cli::net::silence_hint(&local, &client.peers, client.wait)
+                });
+            }
+            t
+        }
+        (None, None) => return Err("give --target S.N.C.I or --subsystem S".into()),
+    };
+    let opts = Options {
+        wait: Duration::from_secs_f64(args.answer_wait.max(0.01)),
+        settle: Duration::from_millis(args.settle_ms),
+    };
+    let mut run = jaus_conform::run(&mut session, &spec, voices, &targets, opts);
+    run.peer = client
+        .peers
+        .iter()
+        .map(|p| p.to_string())
+        .collect::<Vec<_>>()
+        .join(", ");
+    let _ = write!(out, "{}", report::summary(&run));
+    if let Some(p) = &args.json {
+        write_file(p, &report::json(&run))?;
+    }
+    if let Some(p) = &args.junit {
+        write_file(p, &report::junit(&run))?;
+    }
+    if let Some(p) = &args.html {
+        write_file(p, &report::html(&run))?;
+    }
+    if !session.heard() {
+        let local = session
+            .local_addr()
+            .unwrap_or_else(|| std::net::SocketAddr::from(([0, 0, 0, 0], 0)));
+        return Err(jaus_cli::net::silence_hint(
+            &local,
+            &client.peers,
+            client.wait,
+        ));
+    }
+    let failed: usize = run.components.iter().map(|c| c.required_failures()).sum();
+    if failed > 0 {
+        Err(format!("{failed} required checks failed"))
+    } else {
+        Ok(())
+    }
+}

@@ -1,0 +1,164 @@
+//! Component control: grant, report, equal authority, preemption, release.
+
+use jaus::messages::{Message, ReleaseComponentControl};
+use jaus::Address;
+
+use super::talk::ControlAnswer;
+use super::Engine;
+use crate::check::Verdict;
+
+type Found = (Verdict, String);
+
+impl Engine<'_> {
+    /// Whether `voice` received Reject Component Control during this check.
+    fn rejected(&self, voice: Address) -> bool {
+        let (from, to) = (self.target.to_string(), voice.to_string());
+        self.evidence.iter().any(|e| {
+            e.dir == "received"
+                && e.message == "RejectComponentControl"
+                && e.from == from
+                && e.to == to
+        })
+    }
+
+    pub(super) fn control_grant(&mut self) -> Found {
+        let c = self.voices.controller;
+        match self.acquire(c, self.authority) {
+            Some(ControlAnswer::Accepted) => (
+                Verdict::Pass,
+                format!("{c} at authority {} confirmed", self.authority),
+            ),
+            Some(ControlAnswer::Refused(why)) => (Verdict::Fail, format!("refused: {why}")),
+            None => (
+                Verdict::Fail,
+                format!(
+                    "no answer to Request Component Control within {:?}",
+                    self.opts.wait
+                ),
+            ),
+        }
+    }
+
+    pub(super) fn control_report(&mut self) -> Found {
+        if let Err(e) = self.hold_control() {
+            return (Verdict::Inconclusive, e);
+        }
+        let c = self.voices.controller;
+        match self.controller() {
+            Some(Some((a, _))) if a == c => (Verdict::Pass, format!("names {c}")),
+            Some(other) => (
+                Verdict::Fail,
+                format!(
+                    "names {} instead of {c}",
+                    super::describe_controller(Some(other))
+                ),
+            ),
+            None => (
+                Verdict::Fail,
+                format!(
+                    "no answer to Query Component Control within {:?}",
+                    self.opts.wait
+                ),
+            ),
+        }
+    }
+
+    pub(super) fn control_equal(&mut self) -> Found {
+        if let Err(e) = self.hold_control() {
+            return (Verdict::Inconclusive, e);
+        }
+        let (c, r) = (self.voices.controller, self.voices.rival);
+        let answer = self.acquire(r, self.authority);
+        // The controller must not have been told it lost control.
+        self.drain(self.opts.settle);
+        let rejected = self.rejected(c);
+        match (answer, rejected) {
+            (Some(ControlAnswer::Accepted), _) => (
+                Verdict::Fail,
+                format!(
+                    "{r} at the same authority {} was given control",
+                    self.authority
+                ),
+            ),
+            (_, true) => (
+                Verdict::Fail,
+                format!("the controller {c} received Reject Component Control"),
+            ),
+            (Some(ControlAnswer::Refused(why)), false) => (
+                Verdict::Pass,
+                format!("{r} refused: {why}; {c} kept control"),
+            ),
+            (None, false) => (
+                Verdict::Pass,
+                format!("{r} got no answer (not given control); {c} kept control"),
+            ),
+        }
+    }
+
+    pub(super) fn control_preempt(&mut self) -> Found {
+        if self.authority == u8::MAX {
+            return (
+                Verdict::Inconclusive,
+                "the component's authority is 255: no higher authority exists".into(),
+            );
+        }
+        if let Err(e) = self.hold_control() {
+            return (Verdict::Inconclusive, e);
+        }
+        let (c, s) = (self.voices.controller, self.voices.senior);
+        let answer = self.acquire(s, self.authority + 1);
+        if !self.rejected(c) {
+            let target = self.target;
+            self.wait_for(self.opts.wait, |p| {
+                p.header.source == target
+                    && p.header.destination == c
+                    && p.header.command_code.0 == 0x0010
+            });
+        }
+        let rejected = self.rejected(c);
+        let verdict = match (&answer, rejected) {
+            (Some(ControlAnswer::Accepted), true) => (
+                Verdict::Pass,
+                format!("{s} at authority {} took control; {c} was rejected", self.authority + 1),
+            ),
+            (Some(ControlAnswer::Accepted), false) => (
+                Verdict::Fail,
+                format!("{s} took control but the old controller {c} received no Reject Component Control"),
+            ),
+            (Some(ControlAnswer::Refused(why)), _) => (
+                Verdict::Fail,
+                format!("{s} at the higher authority {} was refused: {why}", self.authority + 1),
+            ),
+            (None, _) => (
+                Verdict::Fail,
+                format!("no answer to {s}'s Request Component Control within {:?}", self.opts.wait),
+            ),
+        };
+        self.send(s, &Message::from(ReleaseComponentControl {}), false);
+        self.drain(self.opts.settle);
+        verdict
+    }
+
+    pub(super) fn control_release(&mut self) -> Found {
+        if let Err(e) = self.hold_control() {
+            return (Verdict::Inconclusive, e);
+        }
+        self.send(
+            self.voices.controller,
+            &ReleaseComponentControl {}.into(),
+            false,
+        );
+        self.drain(self.opts.settle);
+        match self.controller() {
+            Some(None) => (Verdict::Pass, "nobody in control after the release".into()),
+            Some(Some((a, auth))) => (
+                Verdict::Fail,
+                format!("{a} (authority {auth}) still in control after the release"),
+            ),
+            None => (
+                Verdict::Inconclusive,
+                "Query Component Control not answered: the release cannot be seen".into(),
+            ),
+        }
+    }
+}

@@ -1,0 +1,319 @@
+//! Read-back checks, from the definitions alone: for a command with `readback: Query`,
+//! the current value is asked, the command is built from it (fields named alike) with
+//! one scaled field moved, and the value the query reports afterwards is compared
+//! within one count of that field's scaling. The same command from a component not in
+//! control must change nothing.
+
+use jaus::codec::Encode;
+use jaus::messages::{ComponentState, Message};
+use jaus_spec::{Int, Wire};
+use serde_json::{Map, Value};
+
+use super::core::ack_text;
+use super::talk::fields_of;
+use super::Engine;
+use crate::check::Verdict;
+
+type Found = (Verdict, String);
+
+/// A command ready to send, and how to judge what is read back.
+struct Trial {
+    /// The command with the moved value.
+    moved: Message,
+    /// The command restoring what was read first, when it could be built.
+    restore: Option<Message>,
+    /// The field moved.
+    field: String,
+    /// Its value before (as read back), when the report carried it.
+    before: Option<f64>,
+    /// The value sent, as the wire carries it.
+    sent: f64,
+    /// One count of the field's scaling.
+    count: f64,
+}
+
+/// The largest value of integer type `ty` (`u8`, `i16`, ...).
+fn int_max(ty: &str) -> Option<u64> {
+    Int::parse(ty).map(|i| {
+        let bits = 8 * i.bytes() as u32 - u32::from(!i.unsigned());
+        if bits >= 64 {
+            u64::MAX
+        } else {
+            (1u64 << bits) - 1
+        }
+    })
+}
+
+/// A value read back, or that the report left it out.
+fn shown(v: Option<f64>) -> String {
+    v.map_or_else(|| "absent".to_string(), |v| v.to_string())
+}
+
+fn build(name: &str, fields: Map<String, Value>) -> Result<Message, String> {
+    serde_json::from_value(serde_json::json!({ "message": name, "fields": fields }))
+        .map_err(|e| format!("{name}: {e}"))
+}
+
+impl Engine<'_> {
+    /// The read-back query, its presence vectors all ones, its other integers zero.
+    fn query(&self, query: &str) -> Result<Message, String> {
+        let def = self
+            .spec
+            .message(query)
+            .ok_or_else(|| format!("query `{query}` is not defined"))?;
+        let mut fields = Map::new();
+        for f in &def.def.fields {
+            let max = int_max(&f.ty).ok_or_else(|| {
+                format!(
+                    "{query}.{}: only integer query fields are filled in",
+                    f.name
+                )
+            })?;
+            // Presence vectors ask for every field; a selector (a camera, a waypoint
+            // number) asks for the first one.
+            let v = if f.name.contains("presence") { max } else { 1 };
+            fields.insert(f.name.clone(), v.into());
+        }
+        build(query, fields)
+    }
+
+    /// A query the definitions give the component is answered with its report.
+    pub(super) fn query_answered(&mut self, query: &str) -> Found {
+        let q = match self.query(query) {
+            Ok(q) => q,
+            Err(e) => return (Verdict::Inconclusive, e),
+        };
+        let selectors: Vec<String> = self
+            .spec
+            .message(query)
+            .map(|m| {
+                m.def
+                    .fields
+                    .iter()
+                    .filter(|f| !f.name.contains("presence"))
+                    .map(|f| format!("{} = 1", f.name))
+                    .collect()
+            })
+            .unwrap_or_default();
+        match self.ask(self.voices.outsider, q) {
+            Some(r) => (Verdict::Pass, format!("answered with {}", r.name())),
+            // The component may hold no such item: not decided.
+            None if !selectors.is_empty() => (
+                Verdict::Inconclusive,
+                format!(
+                    "no answer to {query} asking for {} (the component may hold none)",
+                    selectors.join(", ")
+                ),
+            ),
+            None => (
+                Verdict::Fail,
+                format!("no answer to {query} within {:?}", self.opts.wait),
+            ),
+        }
+    }
+
+    /// Reads the current value and prepares the trial.
+    fn trial(&mut self, command: &str, query: &Message) -> Result<Option<Trial>, String> {
+        let cmd = self
+            .spec
+            .message(command)
+            .ok_or_else(|| format!("command `{command}` is not defined"))?;
+        let Some(report) = self.ask(self.voices.outsider, query.clone()) else {
+            return Ok(None);
+        };
+        let Value::Object(now) = fields_of(&report) else {
+            return Err(format!("{} carries no fields", report.name()));
+        };
+        let mut fields = Map::new();
+        for f in &cmd.def.fields {
+            if let Some(v) = now.get(&f.name) {
+                fields.insert(f.name.clone(), v.clone());
+            }
+        }
+        let restore = build(command, fields.clone()).ok();
+        // The field moved: the first scaled one the report carries, else the first
+        // integer (moved by one, compared exactly).
+        let carried = |f: &&jaus_spec::Field| now.contains_key(&f.def.name) || f.def.bit.is_some();
+        let scaled = cmd
+            .fields
+            .iter()
+            .filter(carried)
+            .find_map(|f| match &f.wire {
+                Wire::Scaled { int, lo, hi } => Some((f.def.name.clone(), *lo, *hi, *int)),
+                _ => None,
+            });
+        let (field, value, count, before) = match scaled {
+            Some((field, lo, hi, int)) => {
+                let count = (hi - lo) / ((2f64).powi(8 * int.bytes() as i32) - 1.0);
+                let before = now.get(&field).and_then(Value::as_f64);
+                // A modest value (a platform may refuse speeds beyond what it can do),
+                // at least three counts from the current one.
+                let value = [1.0, 0.5, 2.0, lo + (hi - lo) * 0.0013, (lo + hi) / 2.0]
+                    .into_iter()
+                    .filter(|v| (lo..=hi).contains(v))
+                    .find(|v| before.is_none_or(|b| (v - b).abs() > 3.0 * count))
+                    .unwrap_or(lo);
+                (field, Value::from(value), count, before)
+            }
+            None => {
+                let (field, max) = cmd
+                    .fields
+                    .iter()
+                    .filter(carried)
+                    .find_map(|f| match &f.wire {
+                        Wire::Int(i) => int_max(i.rust()).map(|m| (f.def.name.clone(), m)),
+                        _ => None,
+                    })
+                    .ok_or_else(|| {
+                        format!("{command} has no scaled or integer field its report carries")
+                    })?;
+                let b = now.get(&field).and_then(Value::as_u64).unwrap_or(0);
+                let v = if b < max { b + 1 } else { b - 1 };
+                (field, Value::from(v), 0.0, Some(b as f64))
+            }
+        };
+        fields.insert(field.clone(), value.clone());
+        let moved = build(command, fields)?;
+        // The value as the wire carries it.
+        let bytes = moved.to_bytes().map_err(|e| format!("{command}: {e}"))?;
+        let wire =
+            Message::decode_known(moved.code(), &bytes).map_err(|e| format!("{command}: {e}"))?;
+        let sent = fields_of(&wire)
+            .get(&field)
+            .and_then(Value::as_f64)
+            .or(value.as_f64())
+            .unwrap_or(0.0);
+        Ok(Some(Trial {
+            moved,
+            restore,
+            field,
+            before,
+            sent,
+            count,
+        }))
+    }
+
+    /// The field's value in a fresh read-back.
+    fn read(&mut self, query: &Message, field: &str) -> Option<Option<f64>> {
+        let r = self.ask(self.voices.outsider, query.clone())?;
+        Some(fields_of(&r).get(field).and_then(Value::as_f64))
+    }
+
+    pub(super) fn readback(&mut self, command: &str, query: &str) -> Found {
+        // Commands are carried out in Ready (a driver in Standby may refuse them).
+        if let Err(e) = self.prepare(Some(ComponentState::Ready)) {
+            return (Verdict::Inconclusive, e);
+        }
+        let q = match self.query(query) {
+            Ok(q) => q,
+            Err(e) => return (Verdict::Inconclusive, e),
+        };
+        let t = match self.trial(command, &q) {
+            Ok(Some(t)) => t,
+            Ok(None) => {
+                return (
+                    Verdict::Fail,
+                    format!(
+                        "no answer to {query} within {:?}: nothing is read back",
+                        self.opts.wait
+                    ),
+                )
+            }
+            Err(e) => return (Verdict::Inconclusive, e),
+        };
+        let c = self.voices.controller;
+        let ack = self.command(c, &t.moved);
+        let found = match self.read(&q, &t.field) {
+            None => (
+                Verdict::Fail,
+                format!("no answer to {query} after {command} ({})", ack_text(ack)),
+            ),
+            Some(None) => (
+                Verdict::Fail,
+                format!(
+                    "{query}'s report does not carry `{}` after {command} set it",
+                    t.field
+                ),
+            ),
+            Some(Some(v)) if (v - t.sent).abs() <= t.count * 1.01 + 1e-12 => (
+                Verdict::Pass,
+                format!(
+                    "{} = {v} read back ({} sent, one count {:.3e}); {}",
+                    t.field,
+                    t.sent,
+                    t.count,
+                    ack_text(ack)
+                ),
+            ),
+            Some(Some(v)) => (
+                Verdict::Fail,
+                format!(
+                    "{} = {v} read back, {} sent (one count {:.3e}); {}",
+                    t.field,
+                    t.sent,
+                    t.count,
+                    ack_text(ack)
+                ),
+            ),
+        };
+        if let Some(r) = &t.restore {
+            self.command(c, r);
+        }
+        found
+    }
+
+    pub(super) fn outsider_command(&mut self, command: &str, query: &str) -> Found {
+        // Commands are carried out in Ready (a driver in Standby may refuse them).
+        if let Err(e) = self.prepare(Some(ComponentState::Ready)) {
+            return (Verdict::Inconclusive, e);
+        }
+        let q = match self.query(query) {
+            Ok(q) => q,
+            Err(e) => return (Verdict::Inconclusive, e),
+        };
+        let t = match self.trial(command, &q) {
+            Ok(Some(t)) => t,
+            Ok(None) => {
+                return (
+                    Verdict::Inconclusive,
+                    format!("no answer to {query}: the value cannot be read back"),
+                )
+            }
+            Err(e) => return (Verdict::Inconclusive, e),
+        };
+        let o = self.voices.outsider;
+        let ack = self.command(o, &t.moved);
+        self.drain(self.opts.settle);
+        let found = match self.read(&q, &t.field) {
+            None => (
+                Verdict::Inconclusive,
+                format!("no answer to {query} after {command} from {o}"),
+            ),
+            Some(Some(v)) if (v - t.sent).abs() <= t.count * 1.01 + 1e-12 => (
+                Verdict::Fail,
+                format!(
+                    "{} changed to {v} (was {}) by {command} from {o}, which is not in control ({})",
+                    t.field,
+                    shown(t.before),
+                    ack_text(ack)
+                ),
+            ),
+            Some(v) => (
+                Verdict::Pass,
+                format!(
+                    "{} = {} after {command} from {o} ({} sent; {})",
+                    t.field,
+                    shown(v),
+                    t.sent,
+                    ack_text(ack)
+                ),
+            ),
+        };
+        if found.0 == Verdict::Fail {
+            if let Some(r) = &t.restore {
+                self.command(self.voices.controller, r);
+            }
+        }
+        found
+    }
+}

@@ -1,0 +1,58 @@
+//! Robustness: a malformed or unknown packet, then Query Identification must still be
+//! answered.
+
+use jaus::messages::{Message, QueryIdentification, QueryLevel};
+use jaus::{CommandCode, JausMessage};
+
+use super::Engine;
+use crate::check::{Malformed, Verdict};
+
+impl Engine<'_> {
+    /// A command code neither the SDK nor the loaded definitions define.
+    fn unknown_code(&self) -> CommandCode {
+        (0x1E00u16..0x2000)
+            .find(|c| {
+                jaus::messages::MESSAGES.iter().all(|m| m.code.0 != *c)
+                    && self.spec.message_by_code(*c).is_none()
+            })
+            .map_or(CommandCode(0x1FFF), CommandCode)
+    }
+
+    pub(super) fn robust(&mut self, m: Malformed) -> (Verdict, String) {
+        let o = self.voices.outsider;
+        let what = match m {
+            Malformed::TruncatedBody => {
+                // Query Identification's body is one byte: send none.
+                self.send_raw(o, QueryIdentification::CODE, &[], None);
+                "Query Identification without its body"
+            }
+            Malformed::WrongDataSize => {
+                // Query Component Status has no body: announce 10 bytes.
+                self.send_raw(o, CommandCode(0x2002), &[], Some(10));
+                "Query Component Status announcing 10 bytes it does not carry"
+            }
+            Malformed::UnknownCode => {
+                let code = self.unknown_code();
+                self.send_raw(o, code, &[0xAB, 0xCD], None);
+                "a message with an unknown command code"
+            }
+        };
+        self.drain(self.opts.settle);
+        let q = QueryIdentification {
+            query_field: QueryLevel::Component,
+        };
+        match self.ask(o, q.into()) {
+            Some(Message::ReportIdentification(_)) => (
+                Verdict::Pass,
+                format!("still answers Query Identification after {what}"),
+            ),
+            _ => (
+                Verdict::Fail,
+                format!(
+                    "no answer to Query Identification within {:?} after {what}",
+                    self.opts.wait
+                ),
+            ),
+        }
+    }
+}

@@ -1,0 +1,146 @@
+//! The seam between the checks and the network (as quinn-proto is to quinn): a
+//! [`Session`] sends packets from the tester's voices, sends malformed packets, and
+//! hands back what arrives for the voices by a deadline. The engine and its checks use
+//! nothing else, so they run without sockets over [`crate::memory::MemorySession`] (a
+//! target node in the same process, on a virtual clock) and over UDP with
+//! [`crate::udp::UdpSession`].
+//!
+//! The tester speaks with four voices: System Commanders on the tester's node at
+//! instances 1-4 of component 40 ([`Voices`]), so that it can be a controller, a second
+//! requester at the same authority, a requester at a higher one, and a component that
+//! never holds control.
+
+use std::collections::VecDeque;
+use std::sync::{Arc, Mutex};
+use std::time::Instant;
+
+use jaus::component::{Endpoint, Outgoing};
+use jaus::{Address, Header};
+
+/// A packet received by one of the tester's voices.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Incoming {
+    /// When it arrived (the session's clock).
+    pub at: Instant,
+    /// Its header (an acknowledgement has `ack_nak` set and an empty body).
+    pub header: Header,
+    /// Its body.
+    pub body: Vec<u8>,
+}
+
+/// The network as the engine sees it.
+pub trait Session {
+    /// The session's clock (virtual for [`crate::memory::MemorySession`]).
+    fn now(&self) -> Instant;
+    /// Sends `body` under `header` (its data size is set from the body) from the voice
+    /// named by `header.source`.
+    fn send(&mut self, header: Header, body: Vec<u8>);
+    /// Sends one packet exactly as given (a 16-byte header and whatever follows, right
+    /// or wrong) to the node of `to`, framed for the carrier.
+    fn send_raw(&mut self, to: Address, packet: Vec<u8>);
+    /// The next packet for any voice, waiting until `deadline` at most.
+    fn recv(&mut self, deadline: Instant) -> Option<Incoming>;
+}
+
+/// The tester's addresses.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Voices {
+    /// The controller.
+    pub controller: Address,
+    /// A second requester at the controller's authority.
+    pub rival: Address,
+    /// A requester at a higher authority.
+    pub senior: Address,
+    /// A component that never asks for control.
+    pub outsider: Address,
+}
+
+impl Voices {
+    /// The four voices on node `subsystem`.`node`: 40.1 to 40.4.
+    pub fn on(subsystem: u8, node: u8) -> Self {
+        let a = |i| Address::new(subsystem, node, 40, i);
+        Voices {
+            controller: a(1),
+            rival: a(2),
+            senior: a(3),
+            outsider: a(4),
+        }
+    }
+
+    /// All four.
+    pub fn all(&self) -> [Address; 4] {
+        [self.controller, self.rival, self.senior, self.outsider]
+    }
+}
+
+/// What the voices received, shared by the voices' endpoints and the session.
+pub type Inbox = Arc<Mutex<VecDeque<Incoming>>>;
+
+/// A voice on the tester's node: keeps every packet addressed to it (acknowledgements
+/// included) in the shared inbox, sends nothing of its own.
+#[derive(Debug)]
+pub struct Ear {
+    address: Address,
+    inbox: Inbox,
+}
+
+impl Ear {
+    /// A voice at `address` keeping what it hears in `inbox`.
+    pub fn new(address: Address, inbox: Inbox) -> Self {
+        Ear { address, inbox }
+    }
+}
+
+/// Most packets kept unread (a flood from the target cannot grow the tester without
+/// bound).
+const MAX_INBOX: usize = 10_000;
+
+impl Endpoint for Ear {
+    fn address(&self) -> Address {
+        self.address
+    }
+    fn handle(&mut self, now: Instant, header: &Header, body: &[u8]) {
+        if let Ok(mut q) = self.inbox.lock() {
+            if q.len() < MAX_INBOX {
+                q.push_back(Incoming {
+                    at: now,
+                    header: *header,
+                    body: body.to_vec(),
+                });
+            }
+        }
+    }
+    fn handle_timeout(&mut self, _now: Instant) {}
+    fn poll_transmit(&mut self) -> Option<Outgoing> {
+        None
+    }
+    fn poll_timeout(&self) -> Option<Instant> {
+        None
+    }
+    fn as_any(&self) -> &dyn std::any::Any {
+        self
+    }
+    fn as_any_mut(&mut self) -> &mut dyn std::any::Any {
+        self
+    }
+}
+
+/// Takes the oldest packet from `inbox`.
+pub(crate) fn pop(inbox: &Inbox) -> Option<Incoming> {
+    inbox.lock().ok().and_then(|mut q| q.pop_front())
+}
+
+/// A tester node hosting the four voices.
+pub(crate) fn tester_node<A: jaus::net::PeerAddr>(
+    config: jaus::net::NodeConfig<A>,
+    voices: &Voices,
+    inbox: &Inbox,
+    now: Instant,
+) -> Result<jaus::net::Node<A>, String> {
+    let mut node = jaus::net::Node::new(config, now);
+    for a in voices.all() {
+        node.add(Ear::new(a, inbox.clone()))
+            .map_err(|e| format!("tester voice {a}: {e}"))?;
+    }
+    Ok(node)
+}

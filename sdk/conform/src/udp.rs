@@ -1,0 +1,147 @@
+//! The [`Session`] over UDP: the tester's node (its own node manager, the four voices)
+//! on a socket, driven by the SDK's one I/O loop ([`jaus::net::shell::run`] over
+//! [`UdpTransport`]) until a voice has mail or the deadline passes.
+
+use std::net::{SocketAddr, UdpSocket};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::{Duration, Instant};
+
+use jaus::net::udp::{IoOptions, UdpTransport};
+use jaus::net::{shell, Framing, Node, NodeConfig};
+use jaus::{Address, Header};
+
+use crate::session::{pop, tester_node, Inbox, Incoming, Session, Voices};
+
+/// The tester on a UDP socket.
+#[derive(Debug)]
+pub struct UdpSession {
+    socket: UdpSocket,
+    node: Node,
+    inbox: Inbox,
+    peers: Vec<SocketAddr>,
+    framing: Framing,
+    io: IoOptions,
+    heard: bool,
+}
+
+impl UdpSession {
+    /// The tester's node at `voices`' subsystem and node on `socket`, talking to
+    /// `peers` (the target's node, and any other node to discover).
+    pub fn new(
+        socket: UdpSocket,
+        peers: Vec<SocketAddr>,
+        framing: Framing,
+        voices: &Voices,
+    ) -> Result<Self, String> {
+        let inbox = Inbox::default();
+        let mut config = NodeConfig {
+            subsystem: voices.controller.subsystem,
+            node: voices.controller.node,
+            framing,
+            peers: peers.clone(),
+            ..NodeConfig::default()
+        };
+        config.manager.node_name = "jaus conform".into();
+        config.manager.subsystem_name = "jaus conform".into();
+        let node = tester_node(config, voices, &inbox, Instant::now())?;
+        Ok(UdpSession {
+            socket,
+            node,
+            inbox,
+            peers,
+            framing,
+            io: IoOptions::default(),
+            heard: false,
+        })
+    }
+
+    /// Runs the node for `wait` (its node manager discovers the system), then the
+    /// components the system tree lists.
+    pub fn discover(&mut self, wait: Duration) -> Vec<Address> {
+        self.drive(Instant::now() + wait, false);
+        if let Ok(mut q) = self.inbox.lock() {
+            q.clear();
+        }
+        self.node.tree().components()
+    }
+
+    /// Whether any datagram came from a peer.
+    pub fn heard(&self) -> bool {
+        self.heard
+    }
+
+    /// The socket's local address.
+    pub fn local_addr(&self) -> Option<SocketAddr> {
+        self.socket.local_addr().ok()
+    }
+
+    fn drive(&mut self, deadline: Instant, stop_on_mail: bool) {
+        let stop = AtomicBool::new(false);
+        let inbox = self.inbox.clone();
+        let peers = self.peers.clone();
+        let mut heard = false;
+        let mut transport = UdpTransport::new(&self.socket, &self.io);
+        let r = shell::run(
+            &mut self.node,
+            &mut transport,
+            &stop,
+            Some(deadline),
+            |_| {
+                if stop_on_mail && inbox.lock().is_ok_and(|q| !q.is_empty()) {
+                    stop.store(true, Ordering::Relaxed);
+                }
+            },
+            |dir, peer, _| {
+                if dir == shell::Direction::Received && peers.contains(&peer) {
+                    heard = true;
+                }
+            },
+        );
+        self.heard |= heard;
+        if let Err(e) = r {
+            tracing::warn!("jaus conform: socket error: {e}");
+        }
+    }
+
+    /// The socket of `to`'s node: the one the tester's node located, else the first
+    /// peer.
+    fn socket_of(&self, to: Address) -> Option<SocketAddr> {
+        self.node
+            .peers()
+            .get(&(to.subsystem, to.node))
+            .copied()
+            .or(self.peers.first().copied())
+    }
+}
+
+impl Session for UdpSession {
+    fn now(&self) -> Instant {
+        Instant::now()
+    }
+    fn send(&mut self, header: Header, body: Vec<u8>) {
+        self.node.send(Instant::now(), header, body);
+        while let Some(d) = self.node.poll_transmit() {
+            if let Err(e) = self.socket.send_to(&d.bytes, d.to) {
+                tracing::debug!(to = %d.to, "send failed: {e}");
+            }
+            self.node.recycle(d.bytes);
+        }
+    }
+    fn send_raw(&mut self, to: Address, packet: Vec<u8>) {
+        if let Some(peer) = self.socket_of(to) {
+            let bytes = self.framing.encode(&packet);
+            if let Err(e) = self.socket.send_to(&bytes, peer) {
+                tracing::debug!(to = %peer, "send failed: {e}");
+            }
+        }
+    }
+    fn recv(&mut self, deadline: Instant) -> Option<Incoming> {
+        if let Some(p) = pop(&self.inbox) {
+            return Some(p);
+        }
+        if Instant::now() < deadline {
+            self.drive(deadline, true);
+        }
+        pop(&self.inbox)
+    }
+}

@@ -1,0 +1,319 @@
+//! `jaus conform` as a process over UDP: against `jaus node` hosting every stock
+//! component (all required checks pass) and against a node in this process hosting a
+//! component that takes commands from anyone (exactly its controller-only checks
+//! fail, exit status 1). The JSON and JUnit files it writes parse.
+//!
+//! The binary belongs to the `jaus-cli` package, so `CARGO_BIN_EXE_jaus` is not
+//! available here: it is built once with `cargo build -p jaus-cli --bin jaus` (a quick
+//! no-op when up to date) and found next to this test's executable. `JAUS_BIN`
+//! overrides the path.
+
+mod broken;
+
+use std::io::Read;
+use std::net::{SocketAddr, UdpSocket};
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Output, Stdio};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Arc, OnceLock};
+use std::time::{Duration, Instant};
+
+use jaus::net::{Node, NodeConfig};
+use jaus_sim::host::{Host, Stock};
+use serde_json::Value;
+
+fn jaus_bin() -> &'static Path {
+    static BIN: OnceLock<PathBuf> = OnceLock::new();
+    BIN.get_or_init(|| {
+        if let Some(p) = std::env::var_os("JAUS_BIN") {
+            return PathBuf::from(p);
+        }
+        let exe = std::env::current_exe().expect("test executable path");
+        let deps = exe.parent().expect("deps directory");
+        let profile = if deps.file_name().is_some_and(|n| n == "deps") {
+            deps.parent().expect("profile directory")
+        } else {
+            deps
+        };
+        let bin = profile.join(format!("jaus{}", std::env::consts::EXE_SUFFIX));
+        let mut cmd = Command::new(env!("CARGO"));
+        cmd.args(["build", "--quiet", "-p", "jaus-cli", "--bin", "jaus"])
+            .arg("--manifest-path")
+            .arg(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../Cargo.toml"))
+            .arg("--target-dir")
+            .arg(profile.parent().expect("target directory"));
+        if profile.file_name().is_some_and(|n| n == "release") {
+            cmd.arg("--release");
+        }
+        assert!(
+            cmd.status().expect("run cargo build").success(),
+            "cargo build -p jaus-cli failed"
+        );
+        bin
+    })
+}
+
+fn free_port() -> u16 {
+    UdpSocket::bind("127.0.0.1:0")
+        .unwrap()
+        .local_addr()
+        .unwrap()
+        .port()
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("jaus-conform-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// A child process killed when dropped.
+struct Running(Child);
+
+impl Drop for Running {
+    fn drop(&mut self) {
+        let _ = self.0.kill();
+        let _ = self.0.wait();
+    }
+}
+
+/// Runs `jaus conform` with `args`, killed after `limit`; its output and the JSON and
+/// JUnit files it wrote (`Null`/empty when it wrote none).
+fn conform(dir: &Path, args: &[&str], limit: Duration) -> (Output, Value, String) {
+    let (json, junit, html) = (
+        dir.join("run.json"),
+        dir.join("run.xml"),
+        dir.join("run.html"),
+    );
+    let mut child = Command::new(jaus_bin())
+        .arg("conform")
+        .args(args)
+        .arg("--json")
+        .arg(&json)
+        .arg("--junit")
+        .arg(&junit)
+        .arg("--html")
+        .arg(&html)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("start jaus conform");
+    // Drain both pipes on threads so that a full pipe cannot block the child.
+    let mut so = child.stdout.take().unwrap();
+    let mut se = child.stderr.take().unwrap();
+    let t_out = std::thread::spawn(move || {
+        let mut v = Vec::new();
+        let _ = so.read_to_end(&mut v);
+        v
+    });
+    let t_err = std::thread::spawn(move || {
+        let mut v = Vec::new();
+        let _ = se.read_to_end(&mut v);
+        v
+    });
+    let end = Instant::now() + limit;
+    let status = loop {
+        if let Some(s) = child.try_wait().unwrap() {
+            break s;
+        }
+        if Instant::now() > end {
+            let _ = child.kill();
+            panic!("jaus conform did not finish within {limit:?}");
+        }
+        std::thread::sleep(Duration::from_millis(50));
+    };
+    let out = Output {
+        status,
+        stdout: t_out.join().unwrap(),
+        stderr: t_err.join().unwrap(),
+    };
+    let json = std::fs::read_to_string(&json)
+        .ok()
+        .map(|t| serde_json::from_str(&t).expect("--json writes JSON"))
+        .unwrap_or(Value::Null);
+    let junit = std::fs::read_to_string(&junit).unwrap_or_default();
+    if !junit.is_empty() {
+        assert!(junit.starts_with("<?xml") && junit.trim_end().ends_with("</testsuites>"));
+        assert_eq!(
+            junit.matches("<testcase ").count(),
+            junit.matches("</testcase>").count()
+        );
+        let html = std::fs::read_to_string(&html).expect("--html writes a page");
+        assert!(html.starts_with("<!DOCTYPE html>") && html.trim_end().ends_with("</html>"));
+    }
+    (out, json, junit)
+}
+
+fn text(b: &[u8]) -> String {
+    String::from_utf8_lossy(b).into_owned()
+}
+
+#[test]
+fn jaus_node_hosting_every_stock_component_conforms() {
+    let dir = scratch("stock");
+    let (port, link_a, link_b) = (free_port(), free_port(), free_port());
+    // Every stock component; the Communicator with a data link to nowhere.
+    let names: Vec<&str> = Stock::all()
+        .filter(|s| s.id() != 35)
+        .map(|s| s.name())
+        .collect();
+    let mut yaml = format!("subsystem: 1\nnode: 1\nbind: 127.0.0.1:{port}\nhost:\n");
+    for n in &names {
+        yaml.push_str(&format!("  - {n}\n"));
+    }
+    yaml.push_str(&format!(
+        "  - component: communicator\n    links:\n      - {{ id: 1, udp: {{ bind: \"127.0.0.1:{link_a}\", peer: \"127.0.0.1:{link_b}\" }} }}\n"
+    ));
+    let cfg = dir.join("node.yaml");
+    std::fs::write(&cfg, yaml).unwrap();
+    let log = std::fs::File::create(dir.join("node.log")).unwrap();
+    let _node = Running(
+        Command::new(jaus_bin())
+            .args(["node", "--config"])
+            .arg(&cfg)
+            .args(["--seconds", "300"])
+            .stdout(Stdio::null())
+            .stderr(log)
+            .spawn()
+            .expect("start jaus node"),
+    );
+    std::thread::sleep(Duration::from_millis(500));
+    let peer = format!("127.0.0.1:{port}");
+    let (out, json, junit) = conform(
+        &dir,
+        &[
+            "--peer",
+            &peer,
+            "--bind",
+            "127.0.0.1:0",
+            // On subsystem 1: a node hosting a Communicator reaches other subsystems
+            // only through its data link.
+            "--me",
+            "1.9.40.1",
+            "--subsystem",
+            "1",
+            "--wait",
+            "2",
+            "--settle-ms",
+            "60",
+        ],
+        Duration::from_secs(270),
+    );
+    let stdout = text(&out.stdout);
+    println!("{stdout}");
+    assert!(out.status.success(), "{stdout}\n{}", text(&out.stderr));
+    assert!(stdout.contains("CONFORMS"), "{stdout}");
+    let components = json["components"].as_array().expect("components");
+    assert_eq!(components.len(), names.len() + 1, "{stdout}");
+    let mut total = 0;
+    for c in components {
+        let n = c["outcomes"].as_array().expect("outcomes").len();
+        assert!(n >= 20, "{}: {n} checks", c["address"]);
+        total += n;
+        // The summary prints each component's count of checks.
+        let line = format!("{} ", c["address"].as_str().unwrap());
+        assert!(stdout
+            .lines()
+            .any(|l| l.starts_with(&line) && l.contains(&format!("{n} checks"))));
+    }
+    assert!(total > 400, "{total} checks");
+    // The documented deviations (docs/conformance.md): advisory, the stock Primitive
+    // Driver does not implement two queries its definition accepts.
+    let advisory_failures: Vec<String> = components
+        .iter()
+        .flat_map(|c| {
+            c["outcomes"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .filter(|o| o["verdict"] == "fail")
+                .map(move |o| {
+                    format!(
+                        "{} {}",
+                        c["address"].as_str().unwrap(),
+                        o["id"].as_str().unwrap()
+                    )
+                })
+        })
+        .collect();
+    assert_eq!(
+        advisory_failures,
+        [
+            "1.1.33.1 query.QueryPlatformSpecifications",
+            "1.1.33.1 query.QueryPlatformOperationalData"
+        ]
+    );
+    assert_eq!(junit.matches("<testcase ").count(), total);
+    assert_eq!(junit.matches("<failure ").count(), 0);
+}
+
+#[test]
+fn a_component_taking_commands_from_anyone_fails_over_udp() {
+    let dir = scratch("broken");
+    let socket = UdpSocket::bind("127.0.0.1:0").unwrap();
+    let peer: SocketAddr = socket.local_addr().unwrap();
+    let t0 = Instant::now();
+    let mut host = Host::new(3, 1, t0);
+    let mut node = Node::new(
+        NodeConfig {
+            subsystem: 3,
+            ..NodeConfig::default()
+        },
+        t0,
+    );
+    let gvd = Stock::by_id(34).unwrap();
+    let built = host.build(&Host::entry(gvd)).unwrap();
+    node.add_boxed(Box::new(broken::AnyoneCommands::new(built)))
+        .unwrap();
+    let stop = Arc::new(AtomicBool::new(false));
+    let s = stop.clone();
+    let runner = std::thread::spawn(move || {
+        let _ = jaus::net::udp::run_on(
+            &mut node,
+            &socket,
+            &s,
+            Some(Instant::now() + Duration::from_secs(120)),
+            |_| {},
+        );
+    });
+    let p = peer.to_string();
+    let (out, json, junit) = conform(
+        &dir,
+        &[
+            "--peer",
+            &p,
+            "--bind",
+            "127.0.0.1:0",
+            "--target",
+            "3.1.34.1",
+            "--settle-ms",
+            "60",
+        ],
+        Duration::from_secs(60),
+    );
+    stop.store(true, Ordering::Relaxed);
+    let _ = runner.join();
+    let stdout = text(&out.stdout);
+    println!("{stdout}");
+    assert_eq!(
+        out.status.code(),
+        Some(1),
+        "{stdout}\n{}",
+        text(&out.stderr)
+    );
+    let outcomes = json["components"][0]["outcomes"]
+        .as_array()
+        .expect("outcomes");
+    let failed: Vec<&str> = outcomes
+        .iter()
+        .filter(|o| o["verdict"] == "fail" && o["level"] == "required")
+        .map(|o| o["id"].as_str().unwrap())
+        .collect();
+    let citing: Vec<&str> = outcomes
+        .iter()
+        .filter(|o| o["rule"]["id"] == "controller-only")
+        .map(|o| o["id"].as_str().unwrap())
+        .collect();
+    assert_eq!(failed, citing, "{stdout}");
+    assert_eq!(junit.matches("<failure ").count(), citing.len());
+}
