@@ -75,9 +75,9 @@ pub mod codec;
 #[cfg(feature = "component")]
 pub mod component;
 pub mod hex;
-pub mod link;
 #[cfg(feature = "serde")]
 pub mod json;
+pub mod link;
 #[cfg(feature = "net")]
 pub mod net;
 #[cfg(feature = "payload")]

@@ -649,10 +649,9 @@ fn main() -> ExitCode {
                 &mut out,
             ),
         ),
-        Cmd::Conform { net, args } => report(
-            &mut err,
-            conform::conform(&net, &args, &cli.spec, &mut out),
-        ),
+        Cmd::Conform { net, args } => {
+            report(&mut err, conform::conform(&net, &args, &cli.spec, &mut out))
+        }
         Cmd::Discover { net, json } => report(
             &mut err,
             net.client().and_then(|c| {

@@ -5,9 +5,9 @@
 use std::collections::VecDeque;
 use std::time::{Duration, Instant};
 
-use crate::link::{DataLink, LinkError};
 use crate::component::Refused;
 use crate::components::communicator as cm;
+use crate::link::{DataLink, LinkError};
 use crate::messages::*;
 use crate::Address;
 

@@ -5,9 +5,9 @@ use std::any::Any;
 use std::time::Instant;
 
 use super::component::StockCommunicator;
-use crate::link::DataLink;
 use crate::component::{Component, Config, Endpoint, Outgoing, Stats};
 use crate::components::communicator;
+use crate::link::DataLink;
 use crate::{Address, Header};
 
 /// The Communicator under the component runtime.

@@ -15,6 +15,6 @@
 mod component;
 mod gateway;
 
+pub use crate::link::{DataLink, LinkError};
 pub use component::{CommunicatorConfig, CommunicatorError, LinkStats, StockCommunicator};
 pub use gateway::{CommunicatorComponent, CommunicatorEndpoint};
-pub use crate::link::{DataLink, LinkError};
