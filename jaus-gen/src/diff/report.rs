@@ -110,6 +110,7 @@ impl Diff {
                 used_by: &c.used_by,
             })
             .collect();
+        // A `serde_json::Value` (string keys only) always serialises.
         let mut s = serde_json::to_string_pretty(&v).expect("changes serialise");
         s.push('\n');
         s

@@ -15,6 +15,9 @@ use jaus::{Address, CommandCode, Header, MessageSet};
 
 use super::Engine;
 use crate::check::Exchange;
+
+/// Most exchanges kept as the evidence of one check.
+const MAX_EVIDENCE: usize = 2_000;
 use crate::session::Incoming;
 
 /// How a control request was answered.
@@ -43,6 +46,21 @@ impl Engine<'_> {
             * 1000.0
     }
 
+    /// Adds `e` to the check's evidence, at most [`MAX_EVIDENCE`] of them: a target that
+    /// floods the tester cannot grow a report without bound; the cut is said in the
+    /// evidence itself.
+    fn keep(&mut self, e: Exchange) {
+        match self.evidence.len() {
+            n if n < MAX_EVIDENCE => self.evidence.push(e),
+            n if n == MAX_EVIDENCE => self.evidence.push(Exchange {
+                message: format!("(more than {MAX_EVIDENCE} packets: the rest are not kept)"),
+                fields: serde_json::Value::Null,
+                ..e
+            }),
+            _ => {}
+        }
+    }
+
     /// Keeps a packet as evidence.
     pub(super) fn record(&mut self, dir: &'static str, header: &Header, body: &[u8]) {
         let (message, fields) = match header.ack_nak {
@@ -67,7 +85,7 @@ impl Engine<'_> {
             },
         };
         let t_ms = self.t_ms();
-        self.evidence.push(Exchange {
+        self.keep(Exchange {
             t_ms,
             dir,
             from: header.source.to_string(),
@@ -103,7 +121,7 @@ impl Engine<'_> {
         let mut header = Header::new(code, self.target, from);
         header.data_size = data_size.unwrap_or(body.len() as u16);
         let t_ms = self.t_ms();
-        self.evidence.push(Exchange {
+        self.keep(Exchange {
             t_ms,
             dir: "sent",
             from: from.to_string(),
