@@ -27,6 +27,10 @@ pub struct ConformArgs {
     /// Write the run as one HTML page to this file.
     #[arg(long, value_name = "FILE")]
     html: Option<PathBuf>,
+    /// Keep every datagram the tester sent and received in this pcapng file (the
+    /// evidence, for Wireshark or `jaus decode --pcap`).
+    #[arg(long, value_name = "FILE")]
+    pcap: Option<PathBuf>,
     /// Seconds to wait for each answer during the checks.
     #[arg(long, default_value_t = 1.0)]
     answer_wait: f64,
@@ -37,6 +41,40 @@ pub struct ConformArgs {
 
 fn write_file(path: &PathBuf, text: &str) -> Result<(), String> {
     std::fs::write(path, text).map_err(|e| format!("cannot write {}: {e}", path.display()))
+}
+
+/// Writes the datagrams of the run as pcapng; says what could not be kept.
+fn write_pcap(
+    path: &std::path::Path,
+    rec: jaus_conform::capture::Recording,
+    out: &mut impl Write,
+) -> Result<(), String> {
+    let fail = |e: jaus_cli::capture::CaptureError| format!("cannot write {}: {e}", path.display());
+    let mut w = jaus_cli::capture::CaptureWriter::create(path).map_err(fail)?;
+    for d in &rec.datagrams {
+        w.write(d.time, d.from, d.to, &d.bytes).map_err(fail)?;
+    }
+    w.flush().map_err(fail)?;
+    let _ = writeln!(
+        out,
+        "pcap: {} datagrams in {}{}{}",
+        rec.datagrams.len() as u64 - w.skipped,
+        path.display(),
+        if rec.dropped > 0 {
+            format!(
+                "; {} not kept (the capture's bound was reached)",
+                rec.dropped
+            )
+        } else {
+            String::new()
+        },
+        if w.skipped > 0 {
+            format!("; {} not written (IPv6 addresses)", w.skipped)
+        } else {
+            String::new()
+        },
+    );
+    Ok(())
 }
 
 /// Runs the checks and writes the reports; `Err` when a required check failed (exit
@@ -57,6 +95,9 @@ pub fn conform(
     let socket = jaus_cli::net::bind_socket(client.bind, &client.peers)?;
     let voices = Voices::on(client.me.subsystem, client.me.node);
     let mut session = UdpSession::new(socket, client.peers.clone(), client.framing, &voices)?;
+    if args.pcap.is_some() {
+        session.record();
+    }
     let targets = match (args.target, args.subsystem) {
         (Some(t), _) if (t.subsystem, t.node) == (client.me.subsystem, client.me.node) => {
             return Err(format!(
@@ -109,6 +150,9 @@ pub fn conform(
     }
     if let Some(p) = &args.html {
         write_file(p, &report::html(&run))?;
+    }
+    if let Some(p) = &args.pcap {
+        write_pcap(p, session.take_recording(), out)?;
     }
     if !session.heard() {
         let local = session

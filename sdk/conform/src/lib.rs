@@ -14,7 +14,8 @@
 //! * [`session`]: the seam to the network; [`memory`] runs a target node in the same
 //!   process on a virtual clock, [`udp`] talks to a real one;
 //! * [`engine`]: runs the checks on one component and leaves it as found;
-//! * [`report`]: the terminal summary, JSON, JUnit XML and an HTML page.
+//! * [`report`]: the terminal summary, JSON, JUnit XML and an HTML page;
+//! * [`capture`]: the datagrams of a run, for a pcap file.
 //!
 //! ```
 //! use std::time::Instant;
@@ -31,6 +32,7 @@
 //! assert!(run.components.is_empty() && run.passed());
 //! ```
 
+pub mod capture;
 pub mod check;
 pub mod engine;
 pub mod memory;

@@ -10,6 +10,7 @@ use jaus::codec::Encode;
 use jaus::net::{Framing, Node, NodeConfig};
 use jaus::{Address, Header, Packet};
 
+use crate::capture::{wall_now, Recording};
 use crate::session::{pop, tester_node, Inbox, Incoming, Session, Voices};
 
 /// The target node's (pretend) socket.
@@ -24,6 +25,11 @@ pub struct MemorySession {
     target: Node,
     tester: Node,
     inbox: Inbox,
+    /// The first instant and the wall-clock time it stands for (captures are stamped
+    /// with virtual time on the wall clock's scale).
+    t0: Instant,
+    wall0: Duration,
+    recording: Option<Recording>,
 }
 
 /// Most datagrams handed over in one pump (two nodes answering each other forever
@@ -49,6 +55,9 @@ impl MemorySession {
             target,
             tester,
             inbox,
+            t0,
+            wall0: wall_now(),
+            recording: None,
         };
         s.run_until(t0 + Duration::from_secs(1), false);
         if let Ok(mut q) = s.inbox.lock() {
@@ -62,18 +71,40 @@ impl MemorySession {
         &mut self.target
     }
 
+    /// Keeps every datagram between the two nodes from now on (for a pcap file).
+    pub fn record(&mut self) {
+        self.recording.get_or_insert_with(Recording::default);
+    }
+
+    /// The datagrams kept since [`record`](Self::record), leaving an empty recording.
+    pub fn take_recording(&mut self) -> Recording {
+        self.recording
+            .as_mut()
+            .map(std::mem::take)
+            .unwrap_or_default()
+    }
+
+    fn keep(&mut self, from: SocketAddr, to: SocketAddr, bytes: &[u8]) {
+        let time = self.wall0 + self.now.saturating_duration_since(self.t0);
+        if let Some(r) = self.recording.as_mut() {
+            r.push(time, from, to, bytes);
+        }
+    }
+
     fn pump(&mut self) {
         for _ in 0..MAX_PUMP {
             let mut moved = false;
             while let Some(d) = self.target.poll_transmit() {
                 moved = true;
                 if d.to == TESTER {
+                    self.keep(TARGET, TESTER, &d.bytes);
                     self.tester.handle_datagram(self.now, TARGET, &d.bytes);
                 }
             }
             while let Some(d) = self.tester.poll_transmit() {
                 moved = true;
                 if d.to == TARGET {
+                    self.keep(TESTER, TARGET, &d.bytes);
                     self.target.handle_datagram(self.now, TESTER, &d.bytes);
                 }
             }
@@ -118,6 +149,7 @@ impl Session for MemorySession {
     }
     fn send_raw(&mut self, _to: Address, packet: Vec<u8>) {
         let bytes = Framing::Judp.encode(&packet);
+        self.keep(TESTER, TARGET, &bytes);
         self.target.handle_datagram(self.now, TESTER, &bytes);
         self.pump();
     }

@@ -32,8 +32,8 @@ pub mod rules {
     /// Heartbeat.
     pub const HEARTBEAT: Rule = Rule {
         id: "heartbeat",
-        source: "core rule",
-        text: "Query Heartbeat Pulse is answered with Report Heartbeat Pulse.",
+        source: "communications message set (Part 1 does not require every component to answer)",
+        text: "Query Heartbeat Pulse is answered with Report Heartbeat Pulse, so that a peer can tell the component is alive.",
     };
     /// Authority.
     pub const AUTHORITY: Rule = Rule {
@@ -188,7 +188,7 @@ pub fn plan(spec: &Spec, component: u8) -> Vec<Check> {
             "core.heartbeat",
             "Query Heartbeat Pulse is answered",
             HEARTBEAT,
-            Required,
+            Advisory,
             Kind::Heartbeat,
         ),
         check(

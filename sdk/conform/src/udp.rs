@@ -10,6 +10,7 @@ use jaus::net::udp::{IoOptions, UdpTransport};
 use jaus::net::{shell, Framing, Node, NodeConfig};
 use jaus::{Address, Header};
 
+use crate::capture::{wall_now, Recording};
 use crate::session::{pop, tester_node, Inbox, Incoming, Session, Voices};
 
 /// The tester on a UDP socket.
@@ -22,6 +23,8 @@ pub struct UdpSession {
     framing: Framing,
     io: IoOptions,
     heard: bool,
+    recording: Option<Recording>,
+    local: SocketAddr,
 }
 
 impl UdpSession {
@@ -44,6 +47,9 @@ impl UdpSession {
         config.manager.node_name = "jaus conform".into();
         config.manager.subsystem_name = "jaus conform".into();
         let node = tester_node(config, voices, &inbox, Instant::now())?;
+        let local = socket
+            .local_addr()
+            .map_err(|e| format!("tester socket: {e}"))?;
         Ok(UdpSession {
             socket,
             node,
@@ -52,7 +58,33 @@ impl UdpSession {
             framing,
             io: IoOptions::default(),
             heard: false,
+            recording: None,
+            local,
         })
+    }
+
+    /// Keeps every datagram the socket sends or receives from now on (for a pcap file).
+    pub fn record(&mut self) {
+        self.recording.get_or_insert_with(Recording::default);
+    }
+
+    /// The datagrams kept since [`record`](Self::record), leaving an empty recording.
+    pub fn take_recording(&mut self) -> Recording {
+        self.recording
+            .as_mut()
+            .map(std::mem::take)
+            .unwrap_or_default()
+    }
+
+    fn keep(&mut self, sent: bool, peer: SocketAddr, bytes: &[u8]) {
+        if let Some(r) = self.recording.as_mut() {
+            let (from, to) = if sent {
+                (self.local, peer)
+            } else {
+                (peer, self.local)
+            };
+            r.push(wall_now(), from, to, bytes);
+        }
     }
 
     /// Runs the node for `wait` (its node manager discovers the system), then the
@@ -80,6 +112,7 @@ impl UdpSession {
         let inbox = self.inbox.clone();
         let peers = self.peers.clone();
         let mut heard = false;
+        let (recording, local) = (&mut self.recording, self.local);
         let mut transport = UdpTransport::new(&self.socket, &self.io);
         let r = shell::run(
             &mut self.node,
@@ -91,9 +124,18 @@ impl UdpSession {
                     stop.store(true, Ordering::Relaxed);
                 }
             },
-            |dir, peer, _| {
-                if dir == shell::Direction::Received && peers.contains(&peer) {
+            |dir, peer, bytes| {
+                let received = dir == shell::Direction::Received;
+                if received && peers.contains(&peer) {
                     heard = true;
+                }
+                if let Some(r) = recording.as_mut() {
+                    let (from, to) = if received {
+                        (peer, local)
+                    } else {
+                        (local, peer)
+                    };
+                    r.push(wall_now(), from, to, bytes);
                 }
             },
         );
@@ -121,8 +163,9 @@ impl Session for UdpSession {
     fn send(&mut self, header: Header, body: Vec<u8>) {
         self.node.send(Instant::now(), header, body);
         while let Some(d) = self.node.poll_transmit() {
-            if let Err(e) = self.socket.send_to(&d.bytes, d.to) {
-                tracing::debug!(to = %d.to, "send failed: {e}");
+            match self.socket.send_to(&d.bytes, d.to) {
+                Ok(_) => self.keep(true, d.to, &d.bytes),
+                Err(e) => tracing::debug!(to = %d.to, "send failed: {e}"),
             }
             self.node.recycle(d.bytes);
         }
@@ -130,8 +173,9 @@ impl Session for UdpSession {
     fn send_raw(&mut self, to: Address, packet: Vec<u8>) {
         if let Some(peer) = self.socket_of(to) {
             let bytes = self.framing.encode(&packet);
-            if let Err(e) = self.socket.send_to(&bytes, peer) {
-                tracing::debug!(to = %peer, "send failed: {e}");
+            match self.socket.send_to(&bytes, peer) {
+                Ok(_) => self.keep(true, peer, &bytes),
+                Err(e) => tracing::debug!(to = %peer, "send failed: {e}"),
             }
         }
     }

@@ -80,10 +80,11 @@ impl Drop for Running {
 /// Runs `jaus conform` with `args`, killed after `limit`; its output and the JSON and
 /// JUnit files it wrote (`Null`/empty when it wrote none).
 fn conform(dir: &Path, args: &[&str], limit: Duration) -> (Output, Value, String) {
-    let (json, junit, html) = (
+    let (json, junit, html, pcap) = (
         dir.join("run.json"),
         dir.join("run.xml"),
         dir.join("run.html"),
+        dir.join("run.pcapng"),
     );
     let mut child = Command::new(jaus_bin())
         .arg("conform")
@@ -94,6 +95,8 @@ fn conform(dir: &Path, args: &[&str], limit: Duration) -> (Output, Value, String
         .arg(&junit)
         .arg("--html")
         .arg(&html)
+        .arg("--pcap")
+        .arg(&pcap)
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
         .spawn()
@@ -142,6 +145,29 @@ fn conform(dir: &Path, args: &[&str], limit: Duration) -> (Output, Value, String
         assert!(html.starts_with("<!DOCTYPE html>") && html.trim_end().ends_with("</html>"));
     }
     (out, json, junit)
+}
+
+/// The UDP datagrams of a pcapng file of raw IPv4 packets: (source, destination,
+/// payload).
+fn read_pcapng(path: &Path) -> Vec<(SocketAddr, SocketAddr, Vec<u8>)> {
+    use pcap_file::pcapng::{Block, PcapNgReader};
+    let file = std::fs::File::open(path).expect("--pcap writes a file");
+    let mut r = PcapNgReader::new(file).expect("a pcapng file");
+    let mut v = Vec::new();
+    while let Some(block) = r.next_block() {
+        if let Block::EnhancedPacket(p) = block.expect("a pcapng block") {
+            let d = &p.data;
+            assert_eq!((d[0], d[9]), (0x45, 17), "IPv4 carrying UDP");
+            let ip = |o: usize| std::net::Ipv4Addr::new(d[o], d[o + 1], d[o + 2], d[o + 3]);
+            let port = |o: usize| u16::from_be_bytes([d[o], d[o + 1]]);
+            v.push((
+                SocketAddr::from((ip(12), port(20))),
+                SocketAddr::from((ip(16), port(22))),
+                d[28..].to_vec(),
+            ));
+        }
+    }
+    v
 }
 
 fn text(b: &[u8]) -> String {
@@ -295,6 +321,20 @@ fn a_component_taking_commands_from_anyone_fails_over_udp() {
     let _ = runner.join();
     let stdout = text(&out.stdout);
     println!("{stdout}");
+    // The pcap holds the exchange: the tester's queries to the target's socket and
+    // the target's answers from it, each a JUDP datagram.
+    let datagrams = read_pcapng(&dir.join("run.pcapng"));
+    assert!(
+        stdout.contains(&format!("pcap: {} datagrams", datagrams.len())),
+        "{stdout}"
+    );
+    let code = |d: &[u8]| u16::from_le_bytes([d[7], d[8]]);
+    assert!(datagrams.iter().all(|(_, _, d)| d.len() >= 21 && d[0] == 1));
+    let to_target = datagrams.iter().filter(|(_, to, _)| *to == peer);
+    let from_target = datagrams.iter().filter(|(from, _, _)| *from == peer);
+    assert!(to_target.clone().any(|(_, _, d)| code(d) == 0x2B00));
+    assert!(from_target.clone().any(|(_, _, d)| code(d) == 0x4B00));
+    assert!(from_target.count() > 50 && to_target.count() > 50);
     assert_eq!(
         out.status.code(),
         Some(1),

@@ -28,7 +28,10 @@ impl Engine<'_> {
                 Verdict::Pass,
                 format!("{c} at authority {} confirmed", self.authority),
             ),
-            Some(ControlAnswer::Refused(why)) => (Verdict::Fail, format!("refused: {why}")),
+            Some(ControlAnswer::Refused(why)) => match self.held_by_another() {
+                Some(held) => (Verdict::Inconclusive, held),
+                None => (Verdict::Fail, format!("refused: {why}")),
+            },
             None => (
                 Verdict::Fail,
                 format!(
@@ -36,6 +39,18 @@ impl Engine<'_> {
                     self.opts.wait
                 ),
             ),
+        }
+    }
+
+    /// When a component that is not one of the tester's voices holds control (the
+    /// rule then does not apply: control is granted while nobody holds it), says so.
+    fn held_by_another(&mut self) -> Option<String> {
+        match self.controller() {
+            Some(Some((a, auth))) if !self.voices.all().contains(&a) => Some(format!(
+                "{a} holds control at authority {auth} (the tester asked at {}); the rule applies while nobody holds control",
+                self.authority
+            )),
+            _ => None,
         }
     }
 

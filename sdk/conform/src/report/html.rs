@@ -1,6 +1,12 @@
-//! One HTML page per run: per component a table of its checks (id, rule, level,
-//! verdict, detail), each with the messages exchanged in a `<details>`. Everything
-//! printed is escaped: identification texts and field values come from the network.
+//! One HTML page per run: a contents list with each component's counts, then per
+//! component a table of its checks (id, rule, level, verdict, detail), each with the
+//! messages exchanged in a `<details>`; a filter shows every check, those that did not
+//! pass, or the required failures only.
+//!
+//! Everything printed is escaped: identification texts and field values come from the
+//! network. As a second wall, the page's Content-Security-Policy loads nothing and runs
+//! only its own script (by a nonce drawn for the page), so markup that escaped the
+//! escaping could still not run.
 
 use std::fmt::Write;
 
@@ -12,14 +18,36 @@ const STYLE: &str =
     "body{font-family:sans-serif;margin:1.5em}table{border-collapse:collapse;width:100%}\
 td,th{border:1px solid #ccc;padding:4px;vertical-align:top;text-align:left}\
 .pass{background:#e6f4e6}.fail{background:#fbe3e3}.inconclusive{background:#f6f1dc}\
-pre{margin:0;font-size:85%;white-space:pre-wrap}";
+pre{margin:0;font-size:85%;white-space:pre-wrap}\
+body.only-failed tr.pass,body.only-failed tr.inconclusive,body.only-required tr.check:not(.required-failure){display:none}\
+#filter{position:sticky;top:0;background:#fff;padding:.4em 0}";
+
+/// The filter: the body's class says which rows show.
+const SCRIPT: &str = "for(const r of document.querySelectorAll('#filter input')){\
+r.addEventListener('change',()=>{document.body.className=r.value;});}";
+
+/// A fresh value for the page's script nonce (the standard library's per-process
+/// random hash keys, mixed with the time).
+fn nonce() -> String {
+    use std::hash::{BuildHasher, Hasher};
+    let mut h = std::collections::hash_map::RandomState::new().build_hasher();
+    h.write_u128(
+        std::time::SystemTime::now()
+            .duration_since(std::time::UNIX_EPOCH)
+            .map_or(0, |d| d.as_nanos()),
+    );
+    format!("{:016x}", h.finish())
+}
 
 /// The run as one HTML page.
 pub fn html(run: &RunReport) -> String {
     let mut s = String::new();
+    let nonce = nonce();
     let _ = write!(
         s,
-        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>{}</title><style>{STYLE}</style></head><body>\n",
+        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\
+<meta http-equiv=\"Content-Security-Policy\" content=\"default-src 'none'; style-src 'unsafe-inline'; script-src 'nonce-{nonce}'\">\
+<title>{}</title><style>{STYLE}</style></head><body>\n",
         escape(&format!("{}: {}", run.tool, run.peer))
     );
     let _ = writeln!(
@@ -35,10 +63,27 @@ pub fn html(run: &RunReport) -> String {
             "does not conform"
         }
     );
+    s.push_str("<p id=\"filter\">Show: \
+<label><input type=\"radio\" name=\"show\" value=\"\" checked> every check</label> \
+<label><input type=\"radio\" name=\"show\" value=\"only-failed\"> checks that did not pass</label> \
+<label><input type=\"radio\" name=\"show\" value=\"only-required\"> required failures</label></p>\n<ul id=\"contents\">\n");
     for c in &run.components {
         let _ = writeln!(
             s,
-            "<h2 id=\"{}\">{} {} <small>{}</small></h2><p>{} checks: {} pass, {} fail ({} required), {} inconclusive</p>",
+            "<li><a href=\"#c-{}\">{} {}</a>: {} checks, {} fail ({} required)</li>",
+            escape(&c.address),
+            escape(&c.address),
+            escape(c.component_type.as_deref().unwrap_or("unknown type")),
+            c.outcomes.len(),
+            c.count(Verdict::Fail),
+            c.required_failures()
+        );
+    }
+    s.push_str("</ul>\n");
+    for c in &run.components {
+        let _ = writeln!(
+            s,
+            "<h2 id=\"c-{}\">{} {} <small>{}</small></h2><p>{} checks: {} pass, {} fail ({} required), {} inconclusive</p>",
             escape(&c.address),
             escape(&c.address),
             escape(c.component_type.as_deref().unwrap_or("unknown type")),
@@ -58,7 +103,12 @@ pub fn html(run: &RunReport) -> String {
             };
             let _ = write!(
                 s,
-                "<tr class=\"{verdict}\"><td>{}<br><small>{}</small></td><td>{}<br><small>{}</small></td><td>{}</td><td>{verdict}</td><td>{}<details><summary>{} messages</summary><pre>",
+                "<tr class=\"check {verdict}{}\"><td>{}<br><small>{}</small></td><td>{}<br><small>{}</small></td><td>{}</td><td>{verdict}</td><td>{}<details><summary>{} messages</summary><pre>",
+                if o.is_required_failure() {
+                    " required-failure"
+                } else {
+                    ""
+                },
                 escape(&o.check.id),
                 escape(&o.check.title),
                 escape(o.check.rule.text),
@@ -84,6 +134,9 @@ pub fn html(run: &RunReport) -> String {
         }
         s.push_str("</table>\n");
     }
-    s.push_str("</body></html>\n");
+    let _ = write!(
+        s,
+        "<script nonce=\"{nonce}\">{SCRIPT}</script>\n</body></html>\n"
+    );
     s
 }

@@ -5,6 +5,7 @@
 #![allow(dead_code)]
 
 pub mod browser;
+pub mod chromium;
 
 use std::io::{Read, Write};
 use std::net::{SocketAddr, TcpStream};
