@@ -89,6 +89,12 @@ pub enum Kind {
     Robust(Malformed),
     /// A service connection is confirmed, streams, suspends, resumes and ends.
     ServiceConnection,
+    /// A periodic event on Report Component Status runs its course.
+    EventPeriodic,
+    /// An every-change event on Report Component Status reports state changes.
+    EventEveryChange,
+    /// Query Time is answered with the time of day.
+    Time,
     /// A query the component's definition accepts is answered.
     QueryAnswered {
         /// The query's name.

@@ -57,6 +57,9 @@ pub struct RunReport {
     pub peer: String,
     /// One report per component tested.
     pub components: Vec<ComponentReport>,
+    /// Packets for the tester's voices that were not kept because its inbox was full
+    /// (a target flooding the tester); checks waiting for them may have failed.
+    pub tester_dropped: u64,
 }
 
 impl RunReport {
@@ -87,6 +90,7 @@ pub fn run(
         tool: format!("jaus conform {}", env!("CARGO_PKG_VERSION")),
         peer: String::new(),
         components,
+        tester_dropped: session.dropped(),
     }
 }
 

@@ -11,7 +11,7 @@ use jaus::net::{Framing, Node, NodeConfig};
 use jaus::{Address, Header, Packet};
 
 use crate::capture::{wall_now, Recording};
-use crate::session::{pop, tester_node, Inbox, Incoming, Session, Voices};
+use crate::session::{dropped, pop, tester_node, Inbox, Incoming, Session, Voices};
 
 /// The target node's (pretend) socket.
 pub const TARGET: SocketAddr = SocketAddr::V4(SocketAddrV4::new(Ipv4Addr::new(10, 0, 0, 1), 3794));
@@ -152,6 +152,9 @@ impl Session for MemorySession {
         self.keep(TESTER, TARGET, &bytes);
         self.target.handle_datagram(self.now, TESTER, &bytes);
         self.pump();
+    }
+    fn dropped(&self) -> u64 {
+        dropped(&self.inbox)
     }
     fn recv(&mut self, deadline: Instant) -> Option<Incoming> {
         if let Some(p) = pop(&self.inbox) {

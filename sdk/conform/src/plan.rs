@@ -77,6 +77,18 @@ pub mod rules {
         source: "core rule (service connections)",
         text: "A service connection for a report the component answers is confirmed; its reports come at the confirmed rate with the service-connection flag, stop while suspended, resume when activated and end when terminated.",
     };
+    /// Events.
+    pub const EVENTS: Rule = Rule {
+        id: "events",
+        source: "core rule (events)",
+        text: "Create Event on a report the component answers is confirmed with the request's id; Event messages then carry that report, periodically at the confirmed rate or on every change of its value; Query Events lists the event and Cancel Event ends it.",
+    };
+    /// Time.
+    pub const TIME: Rule = Rule {
+        id: "time",
+        source: "core rule (time)",
+        text: "Query Time is answered with the component's time of day (UTC), which a fielded system keeps within a minute of its peers'.",
+    };
     /// Queries answered.
     pub const QUERIES: Rule = Rule {
         id: "queries",
@@ -295,6 +307,27 @@ pub fn plan(spec: &Spec, component: u8) -> Vec<Check> {
             },
         ));
     }
+    v.push(check(
+        "core.time",
+        "Query Time is answered with the time of day",
+        TIME,
+        Advisory,
+        Kind::Time,
+    ));
+    v.push(check(
+        "events.periodic",
+        "A periodic event on Report Component Status runs its course",
+        EVENTS,
+        Required,
+        Kind::EventPeriodic,
+    ));
+    v.push(check(
+        "events.every-change",
+        "An every-change event on Report Component Status reports Standby and Resume",
+        EVENTS,
+        Advisory,
+        Kind::EventEveryChange,
+    ));
     v.push(check(
         "sc.component-status",
         "A service connection on Report Component Status runs its course",

@@ -40,6 +40,8 @@ pub trait Session {
     fn send_raw(&mut self, to: Address, packet: Vec<u8>);
     /// The next packet for any voice, waiting until `deadline` at most.
     fn recv(&mut self, deadline: Instant) -> Option<Incoming>;
+    /// Packets for the voices not kept because the inbox was full (a flooding target).
+    fn dropped(&self) -> u64;
 }
 
 /// The tester's addresses.
@@ -73,8 +75,34 @@ impl Voices {
     }
 }
 
+/// What the voices received and not yet read, at most [`MAX_INBOX`] packets.
+#[derive(Debug, Default)]
+pub struct Mailbox {
+    queue: VecDeque<Incoming>,
+    /// Packets not kept because the mailbox was full.
+    pub dropped: u64,
+}
+
+impl Mailbox {
+    /// Whether nothing waits.
+    pub fn is_empty(&self) -> bool {
+        self.queue.is_empty()
+    }
+    /// Forgets what waits (the drop count stays).
+    pub fn clear(&mut self) {
+        self.queue.clear();
+    }
+    fn push(&mut self, p: Incoming) {
+        if self.queue.len() < MAX_INBOX {
+            self.queue.push_back(p);
+        } else {
+            self.dropped += 1;
+        }
+    }
+}
+
 /// What the voices received, shared by the voices' endpoints and the session.
-pub type Inbox = Arc<Mutex<VecDeque<Incoming>>>;
+pub type Inbox = Arc<Mutex<Mailbox>>;
 
 /// A voice on the tester's node: keeps every packet addressed to it (acknowledgements
 /// included) in the shared inbox, sends nothing of its own.
@@ -93,7 +121,7 @@ impl Ear {
 
 /// Most packets kept unread (a flood from the target cannot grow the tester without
 /// bound).
-const MAX_INBOX: usize = 10_000;
+pub const MAX_INBOX: usize = 10_000;
 
 impl Endpoint for Ear {
     fn address(&self) -> Address {
@@ -101,13 +129,11 @@ impl Endpoint for Ear {
     }
     fn handle(&mut self, now: Instant, header: &Header, body: &[u8]) {
         if let Ok(mut q) = self.inbox.lock() {
-            if q.len() < MAX_INBOX {
-                q.push_back(Incoming {
-                    at: now,
-                    header: *header,
-                    body: body.to_vec(),
-                });
-            }
+            q.push(Incoming {
+                at: now,
+                header: *header,
+                body: body.to_vec(),
+            });
         }
     }
     fn handle_timeout(&mut self, _now: Instant) {}
@@ -127,7 +153,12 @@ impl Endpoint for Ear {
 
 /// Takes the oldest packet from `inbox`.
 pub(crate) fn pop(inbox: &Inbox) -> Option<Incoming> {
-    inbox.lock().ok().and_then(|mut q| q.pop_front())
+    inbox.lock().ok().and_then(|mut q| q.queue.pop_front())
+}
+
+/// How many packets `inbox` dropped.
+pub(crate) fn dropped(inbox: &Inbox) -> u64 {
+    inbox.lock().map_or(0, |q| q.dropped)
 }
 
 /// A tester node hosting the four voices.
@@ -143,4 +174,26 @@ pub(crate) fn tester_node<A: jaus::net::PeerAddr>(
             .map_err(|e| format!("tester voice {a}: {e}"))?;
     }
     Ok(node)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_full_inbox_counts_what_it_drops() {
+        let inbox = Inbox::default();
+        let mut ear = Ear::new(Address::new(1, 1, 40, 1), inbox.clone());
+        let h = Header::new(
+            jaus::CommandCode(0x4002),
+            Address::new(1, 1, 40, 1),
+            Address::new(2, 1, 33, 1),
+        );
+        let now = Instant::now();
+        for _ in 0..MAX_INBOX + 2 {
+            ear.handle(now, &h, &[0; 5]);
+        }
+        assert_eq!(dropped(&inbox), 2);
+        assert!(pop(&inbox).is_some());
+    }
 }

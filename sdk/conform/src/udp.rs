@@ -11,7 +11,7 @@ use jaus::net::{shell, Framing, Node, NodeConfig};
 use jaus::{Address, Header};
 
 use crate::capture::{wall_now, Recording};
-use crate::session::{pop, tester_node, Inbox, Incoming, Session, Voices};
+use crate::session::{dropped, pop, tester_node, Inbox, Incoming, Session, Voices};
 
 /// The tester on a UDP socket.
 #[derive(Debug)]
@@ -178,6 +178,9 @@ impl Session for UdpSession {
                 Err(e) => tracing::debug!(to = %peer, "send failed: {e}"),
             }
         }
+    }
+    fn dropped(&self) -> u64 {
+        dropped(&self.inbox)
     }
     fn recv(&mut self, deadline: Instant) -> Option<Incoming> {
         if let Some(p) = pop(&self.inbox) {

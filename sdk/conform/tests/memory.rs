@@ -217,3 +217,34 @@ fn reports_parse_and_carry_the_evidence() {
     let html = report::html(&run);
     assert!(html.contains("readback.SetTravelSpeed") && html.contains("</html>"));
 }
+
+#[test]
+fn a_component_ignoring_cancel_event_fails_its_events_checks() {
+    let t0 = Instant::now();
+    let vss = Stock::by_id(42).expect("velocity state sensor");
+    // Cancel Event dropped on arrival: the events keep coming, nothing confirms.
+    let cancel = jaus::CommandCode(0x01F2);
+    let node = node(t0, &[vss], |e| Box::new(broken::Mute::new(e, cancel)));
+    let run = run(node, t0, &[address(vss)]);
+    println!("{}", report::summary(&run));
+    let (failed, citing) = failed_and_citing(&run, "events");
+    assert_eq!(failed, citing);
+    assert_eq!(
+        failed,
+        vec![
+            "events.periodic".to_string(),
+            "events.every-change".to_string()
+        ]
+    );
+    let periodic = &run.components[0].outcomes;
+    let detail = &periodic
+        .iter()
+        .find(|o| o.check.id == "events.periodic")
+        .expect("planned")
+        .detail;
+    assert!(
+        detail.contains("no answer to Cancel Event") && detail.contains("after Cancel Event"),
+        "{detail}"
+    );
+    assert!(!run.passed());
+}

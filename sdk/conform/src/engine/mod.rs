@@ -5,6 +5,7 @@
 mod connections;
 mod control;
 mod core;
+mod events;
 mod readback;
 mod robust;
 mod state;
@@ -171,6 +172,9 @@ impl<'a> Engine<'a> {
             Kind::Robust(m) => self.robust(*m),
             Kind::ServiceConnection => self.service_connection(),
             Kind::QueryAnswered { query } => self.query_answered(query),
+            Kind::EventPeriodic => self.event_periodic(),
+            Kind::EventEveryChange => self.event_every_change(),
+            Kind::Time => self.time(),
         };
         Outcome {
             check,

@@ -63,6 +63,13 @@ pub fn summary(run: &RunReport) -> String {
             );
         }
     }
+    if run.tester_dropped > 0 {
+        let _ = writeln!(
+            s,
+            "the tester's inbox was full: {} packets from the target were not kept (checks waiting for them may have failed)",
+            run.tester_dropped
+        );
+    }
     let _ = writeln!(
         s,
         "{} components, {} checks: {pass} pass, {fail} fail ({req} required), {inc} inconclusive: {}",
@@ -131,6 +138,7 @@ mod tests {
                     }],
                 }],
             }],
+            tester_dropped: 0,
         }
     }
 
