@@ -19,6 +19,10 @@
 //!
 //! then `include!(concat!(env!("OUT_DIR"), "/messages.rs"));` in the crate.
 //!
+//! SAE AS-4 definitions in JSIDL are imported first, with [`Builder::jsidl`] (or
+//! `jaus-gen jsidl DIR… --out DIR` once, keeping the YAML): see `jaus_jsidl` and
+//! docs/as4.md.
+//!
 //! Generated structs carry `#[derive(JausMessage)]` and field attributes of
 //! `jaus-derive`; templates hold no byte-level code.
 //!
@@ -156,6 +160,9 @@ pub enum Error {
     /// text lists every change and the command that updates the lock file.
     #[error("{0}")]
     Lock(String),
+    /// JSIDL could not be imported ([`Builder::jsidl`]): the file, line and element.
+    #[error("{0}")]
+    Jsidl(#[from] jaus_jsidl::Error),
 }
 
 /// Configures and runs generation. The whole `build.rs` API.
@@ -163,6 +170,7 @@ pub enum Error {
 pub struct Builder {
     spec_dirs: Vec<PathBuf>,
     overlays: Vec<PathBuf>,
+    jsidl_dirs: Vec<PathBuf>,
     out_dir: Option<PathBuf>,
     templates_dir: Option<PathBuf>,
     feature_gates: bool,
@@ -306,8 +314,44 @@ impl Builder {
         self
     }
 
+    /// Adds a directory of JSIDL (AS5684) files (read recursively) to import instead of
+    /// YAML: each directory is one group, and the imported definitions stand alone
+    /// (`extends: none`; overlays given with [`overlay`](Self::overlay) are loaded with
+    /// them). Cannot be combined with [`spec_dir`](Self::spec_dir). See `jaus_jsidl`.
+    pub fn jsidl(mut self, dir: impl Into<PathBuf>) -> Self {
+        self.jsidl_dirs.push(dir.into());
+        self
+    }
+
+    /// The definitions imported from JSIDL, with the overlays.
+    fn load_jsidl(&self) -> Result<Spec, Error> {
+        if !self.spec_dirs.is_empty() {
+            return Err(Error::Config(
+                "jsidl() and spec_dir() cannot be combined: an imported set stands alone".into(),
+            ));
+        }
+        if self.cargo {
+            for d in &self.jsidl_dirs {
+                println!("cargo:rerun-if-changed={}", d.display());
+            }
+        }
+        let import = jaus_jsidl::import(&self.jsidl_dirs)?;
+        let mut texts = import.texts(Path::new("jsidl"));
+        for o in &self.overlays {
+            let text = std::fs::read_to_string(o).map_err(|source| Error::Io {
+                path: o.clone(),
+                source,
+            })?;
+            texts.push((o.clone(), text));
+        }
+        Ok(jaus_spec::load_texts(texts)?)
+    }
+
     /// Loads and validates the definitions.
     pub fn load(&self) -> Result<Spec, Error> {
+        if !self.jsidl_dirs.is_empty() {
+            return self.load_jsidl();
+        }
         if self.cargo {
             for d in &self.spec_dirs {
                 println!("cargo:rerun-if-changed={}", d.display());

@@ -98,6 +98,18 @@ enum Cmd {
         #[arg(long)]
         check: bool,
     },
+    /// Import JSIDL (AS5684) service definitions and declared type sets: write them as
+    /// YAML definitions (one file per JSIDL file; each DIR, read recursively, is one
+    /// group) and validate the result. Anything the definition language cannot
+    /// represent is an error with the JSIDL file, line and element.
+    Jsidl {
+        /// Directories of JSIDL `*.xml` files; references resolve across all of them.
+        #[arg(required = true, value_name = "DIR")]
+        dirs: Vec<PathBuf>,
+        /// Output directory for the YAML.
+        #[arg(long, value_name = "DIR")]
+        out: PathBuf,
+    },
     /// Write a new vendor crate: its own experimental messages and a component (YAML
     /// extending the SDK's definitions), build.rs, a node on UDP, a test on the bus.
     New {
@@ -194,6 +206,31 @@ fn lock(defs: SpecArgs, path: PathBuf, check: bool) -> Result<(), jaus_gen::Erro
     }
 }
 
+/// `jaus-gen jsidl`: import, validate, write, and say what each file gave.
+fn jsidl(dirs: &[PathBuf], out: &std::path::Path) -> Result<(), jaus_gen::Error> {
+    let import = jaus_jsidl::import(dirs)?;
+    // Written first, so that a validation error points into a file that exists.
+    let files = import.write(out)?;
+    let spec = jaus_spec::load_texts(import.texts(out))?;
+    for (f, p) in import.files.iter().zip(&files) {
+        println!(
+            "wrote {} ({} services, {} messages, {} types)",
+            p.display(),
+            f.services,
+            f.messages,
+            f.types
+        );
+    }
+    println!(
+        "ok: {} services, {} messages, {} types in {} file(s)",
+        spec.services.len(),
+        spec.messages.len(),
+        spec.types.len(),
+        files.len()
+    );
+    Ok(())
+}
+
 fn builder(defs: SpecArgs) -> jaus_gen::Builder {
     let dirs = if defs.spec.is_empty() && defs.overlays.is_empty() {
         vec![jaus_spec::defs_dir()]
@@ -220,6 +257,7 @@ fn main() -> ExitCode {
             fail_on,
         } => return diff(&old, &new, format, fail_on.into()),
         Cmd::Lock { defs, path, check } => lock(defs, path, check),
+        Cmd::Jsidl { dirs, out } => jsidl(&dirs, &out),
         Cmd::New {
             name,
             dir,

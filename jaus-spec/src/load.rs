@@ -4,7 +4,7 @@
 use crate::location::{LocationIndex, Pos};
 use crate::model::SpecFile;
 use crate::validate;
-use crate::{Component, Group, Part, Spec};
+use crate::{Component, Group, Part, Service, Spec};
 use std::fmt;
 use std::path::{Path, PathBuf};
 
@@ -240,6 +240,7 @@ pub fn load_texts_on(
         messages: Vec::new(),
         components: Vec::new(),
         parts: Vec::new(),
+        services: Vec::new(),
     };
     let mut errors = Vec::new();
     for (path, text) in texts {
@@ -287,6 +288,14 @@ pub fn load_texts_on(
                         group: file.group.clone(),
                         source,
                         path: format!("parts[{i}]"),
+                    });
+                }
+                for (i, s) in file.services.into_iter().enumerate() {
+                    draft.services.push(Service {
+                        def: s,
+                        group: file.group.clone(),
+                        source,
+                        path: format!("services[{i}]"),
                     });
                 }
             }

@@ -4,6 +4,9 @@ use serde::de::{self, Deserializer};
 use serde::Deserialize;
 use std::fmt;
 
+mod service;
+pub use service::*;
+
 /// One YAML definition file: a message group with its shared types, messages and
 /// (optionally) component interfaces.
 #[derive(Debug, Clone, Deserialize)]
@@ -33,6 +36,9 @@ pub struct SpecFile {
     /// Parts that several component interfaces share ([`PartDef`]).
     #[serde(default)]
     pub parts: Vec<PartDef>,
+    /// Services with their message sets and protocol behaviour ([`ServiceDef`]).
+    #[serde(default)]
+    pub services: Vec<ServiceDef>,
 }
 
 /// A 16-bit command code, written as an integer or a `"0x...."` string.
@@ -118,6 +124,10 @@ pub struct MessageDef {
     /// A note about interoperability (deviations of other implementations).
     #[serde(default)]
     pub interop: Option<String>,
+    /// Whether the message needs control (AS-4's `is_command`), where that differs
+    /// from its class (a Confirm Control in the command range is not one); informational.
+    #[serde(default)]
+    pub is_command: Option<bool>,
     /// What the component runtime does with this message for every component (the
     /// core service of Report Services); empty for the messages components handle.
     #[serde(default)]

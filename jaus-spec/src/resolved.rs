@@ -4,7 +4,7 @@
 
 use crate::location::Pos;
 use crate::model::{
-    BitDef, ComponentDef, FieldDef, MessageDef, PartDef, TypeDef, TypeKind, VariantDef,
+    BitDef, ComponentDef, FieldDef, MessageDef, PartDef, ServiceDef, TypeDef, TypeKind, VariantDef,
 };
 use crate::{CountRef, Source, SpecError};
 use std::collections::BTreeSet;
@@ -154,6 +154,19 @@ pub struct Part {
     pub path: String,
 }
 
+/// A service with the file it came from.
+#[derive(Debug, Clone)]
+pub struct Service {
+    /// The definition.
+    pub def: ServiceDef,
+    /// Group name.
+    pub group: String,
+    /// Index into [`Spec::sources`].
+    pub source: usize,
+    /// YAML path of the definition (`services[0]`).
+    pub path: String,
+}
+
 /// A message group, merged over every file that names it.
 #[derive(Debug, Clone)]
 pub struct Group {
@@ -189,6 +202,8 @@ pub struct Spec {
     pub components: Vec<Component>,
     /// Parts shared by components, in file order.
     pub parts: Vec<Part>,
+    /// Services, in file order.
+    pub services: Vec<Service>,
 }
 
 /// Integer wire types.
@@ -352,6 +367,11 @@ impl Spec {
     /// The message named `name`.
     pub fn message(&self, name: &str) -> Option<&Message> {
         self.messages.iter().find(|m| m.def.name == name)
+    }
+
+    /// The service named `name`.
+    pub fn service(&self, name: &str) -> Option<&Service> {
+        self.services.iter().find(|s| s.def.name == name)
     }
 
     /// The shared part named `name`.

@@ -12,7 +12,8 @@
 //!   that contain themselves);
 //! - [`messages`]: command codes, classes, reports and runtime roles;
 //! - [`components`]: component interfaces and their modes;
-//! - [`parts`]: parts shared by component interfaces.
+//! - [`parts`]: parts shared by component interfaces;
+//! - [`services`]: services, their events and state machines.
 
 mod components;
 mod fields;
@@ -20,12 +21,13 @@ mod messages;
 mod names;
 mod parts;
 mod readback;
+mod services;
 mod stock;
 mod types;
 mod wire;
 
 use crate::model::{MessageDef, TypeDef};
-use crate::{Component, Group, Message, Part, Source, Spec, SpecError, Type, TypeForm};
+use crate::{Component, Group, Message, Part, Service, Source, Spec, SpecError, Type, TypeForm};
 use fields::Body;
 
 /// A definition as parsed, with the file it came from.
@@ -52,6 +54,7 @@ pub(crate) struct Draft {
     pub messages: Vec<Parsed<MessageDef>>,
     pub components: Vec<Component>,
     pub parts: Vec<Part>,
+    pub services: Vec<Service>,
 }
 
 impl Draft {
@@ -107,6 +110,7 @@ pub(crate) fn validate(draft: Draft) -> Result<Spec, Vec<SpecError>> {
     components::check_components(&mut cx);
     parts::check_parts(&mut cx);
     readback::check_readbacks(&mut cx);
+    services::check_services(&mut cx);
     cx.errors.extend(stock::check(&draft));
     let mut errors = cx.errors;
     // Every definition that could not be resolved reported why, so with no errors
@@ -163,6 +167,7 @@ fn assemble(draft: Draft, forms: Vec<TypeForm>, bodies: Vec<Body>) -> Spec {
             .collect(),
         components: draft.components,
         parts: draft.parts,
+        services: draft.services,
     }
 }
 
