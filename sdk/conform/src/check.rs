@@ -136,6 +136,11 @@ pub enum Malformed {
     WrongDataSize,
     /// A command code no definition knows.
     UnknownCode,
+    /// A field value outside the values its type defines.
+    OutOfRange,
+    /// Multi-packet sequences that do not complete (a first packet alone, a last
+    /// packet without its first).
+    IncompleteSequence,
 }
 
 /// One check: what it tests, against which rule, how much it counts.

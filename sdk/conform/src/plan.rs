@@ -372,6 +372,20 @@ pub fn plan(spec: &Spec, component: u8) -> Vec<Check> {
             Kind::Robust(Malformed::UnknownCode),
         ),
         check(
+            "robust.out-of-range",
+            "A value outside its field's defined values is discarded",
+            ROBUST,
+            Required,
+            Kind::Robust(Malformed::OutOfRange),
+        ),
+        check(
+            "robust.incomplete-sequence",
+            "Multi-packet sequences that never complete are discarded",
+            ROBUST,
+            Required,
+            Kind::Robust(Malformed::IncompleteSequence),
+        ),
+        check(
             "state.Shutdown.outsider",
             "Shutdown from a component not in control is refused",
             CONTROLLER_ONLY,

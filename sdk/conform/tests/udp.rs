@@ -223,7 +223,7 @@ fn jaus_node_hosting_every_stock_component_conforms() {
             "--settle-ms",
             "60",
         ],
-        Duration::from_secs(270),
+        Duration::from_secs(420),
     );
     let stdout = text(&out.stdout);
     println!("{stdout}");

@@ -24,7 +24,7 @@ const EVENT: u16 = 0x41F1;
 const CONFIRM: u16 = 0x01F3;
 const REJECT: u16 = 0x01F4;
 /// The periodic rate asked for, Hz.
-const RATE: f64 = 5.0;
+const RATE: f64 = 10.0;
 /// The request ids the tester uses (a target echoing 0 is caught).
 const CREATE_ID: u8 = 0x5A;
 const CANCEL_ID: u8 = 0x5B;
@@ -174,7 +174,7 @@ impl Engine<'_> {
             Ok(x) => x,
             Err(found) => return found,
         };
-        let window = (self.opts.settle * 5).max(Duration::from_millis(1000));
+        let window = (self.opts.settle * 5).max(Duration::from_millis(500));
         let expected = ((rate * window.as_secs_f64() * 0.5).floor() as usize).max(1);
         let mut problems = Vec::new();
         let seen = self.watch_events(o, id, window);

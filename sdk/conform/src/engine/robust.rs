@@ -2,8 +2,10 @@
 //! answered.
 
 use jaus::messages::{Message, QueryIdentification, QueryLevel};
+use jaus::wire::DataFlag;
 use jaus::{CommandCode, JausMessage};
 
+use super::talk::Raw;
 use super::Engine;
 use crate::check::{Malformed, Verdict};
 
@@ -23,18 +25,45 @@ impl Engine<'_> {
         let what = match m {
             Malformed::TruncatedBody => {
                 // Query Identification's body is one byte: send none.
-                self.send_raw(o, QueryIdentification::CODE, &[], None);
+                self.send_raw(o, Raw::single(QueryIdentification::CODE, &[]));
                 "Query Identification without its body"
             }
             Malformed::WrongDataSize => {
                 // Query Component Status has no body: announce 10 bytes.
-                self.send_raw(o, CommandCode(0x2002), &[], Some(10));
+                self.send_raw(
+                    o,
+                    Raw {
+                        data_size: Some(10),
+                        ..Raw::single(CommandCode(0x2002), &[])
+                    },
+                );
                 "Query Component Status announcing 10 bytes it does not carry"
             }
             Malformed::UnknownCode => {
                 let code = self.unknown_code();
-                self.send_raw(o, code, &[0xAB, 0xCD], None);
+                self.send_raw(o, Raw::single(code, &[0xAB, 0xCD]));
                 "a message with an unknown command code"
+            }
+            Malformed::OutOfRange => {
+                // No query level has the value 0xEE.
+                self.send_raw(o, Raw::single(QueryIdentification::CODE, &[0xEE]));
+                "Query Identification asking for level 0xEE, which no level has"
+            }
+            Malformed::IncompleteSequence => {
+                // The first packet of a two-packet Query Services that never ends,
+                // then a last packet of a sequence never begun.
+                let filler = [0x5Au8; 200];
+                for (flag, sequence) in [(DataFlag::First, 0), (DataFlag::Last, 7)] {
+                    self.send_raw(
+                        o,
+                        Raw {
+                            flag,
+                            sequence,
+                            ..Raw::single(CommandCode(0x2B03), &filler)
+                        },
+                    );
+                }
+                "the first packet of a multi-packet message never completed and a last packet of one never begun"
             }
         };
         self.drain(self.opts.settle);

@@ -10,7 +10,7 @@ use jaus::messages::{
     QueryComponentControl, QueryComponentStatus, RequestComponentControl, Resume, SetEmergency,
     Standby,
 };
-use jaus::wire::AckNak;
+use jaus::wire::{AckNak, DataFlag};
 use jaus::{Address, CommandCode, Header, MessageSet};
 
 use super::Engine;
@@ -19,6 +19,34 @@ use crate::check::Exchange;
 /// Most exchanges kept as the evidence of one check.
 const MAX_EVIDENCE: usize = 2_000;
 use crate::session::Incoming;
+
+/// A packet sent as given, right or wrong.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Raw<'b> {
+    /// Its command code.
+    pub code: CommandCode,
+    /// Its body bytes.
+    pub body: &'b [u8],
+    /// The data size the header announces, when not the body's length.
+    pub data_size: Option<u16>,
+    /// Its data flag (single, first, normal, last).
+    pub flag: DataFlag,
+    /// Its sequence number.
+    pub sequence: u16,
+}
+
+impl<'b> Raw<'b> {
+    /// A single packet carrying `body` under `code`.
+    pub fn single(code: CommandCode, body: &'b [u8]) -> Self {
+        Raw {
+            code,
+            body,
+            data_size: None,
+            flag: DataFlag::Single,
+            sequence: 0,
+        }
+    }
+}
 
 /// How a control request was answered.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -110,29 +138,28 @@ impl Engine<'_> {
         self.session.send(header, body);
     }
 
-    /// Sends a packet exactly as given (`data_size` overriding the header's).
-    pub(super) fn send_raw(
-        &mut self,
-        from: Address,
-        code: CommandCode,
-        body: &[u8],
-        data_size: Option<u16>,
-    ) {
-        let mut header = Header::new(code, self.target, from);
-        header.data_size = data_size.unwrap_or(body.len() as u16);
+    /// Sends a packet exactly as given from `from` to the target: `code`, `body`, the
+    /// header's data flag and sequence number, `data_size` overriding the body's length.
+    pub(super) fn send_raw(&mut self, from: Address, raw: Raw<'_>) {
+        let mut header = Header::new(raw.code, self.target, from);
+        header.data_size = raw.data_size.unwrap_or(raw.body.len() as u16);
+        header.data_flag = raw.flag;
+        header.sequence_number = raw.sequence;
         let t_ms = self.t_ms();
         self.keep(Exchange {
             t_ms,
             dir: "sent",
             from: from.to_string(),
             to: self.target.to_string(),
-            message: format!("raw {code}"),
+            message: format!("raw {}", raw.code),
             fields: serde_json::json!({
-                "hex": jaus::hex::encode(body),
+                "hex": jaus::hex::encode(raw.body),
                 "data_size": header.data_size,
+                "data_flag": format!("{:?}", raw.flag),
+                "sequence_number": raw.sequence,
             }),
         });
-        let bytes = crate::memory::packet_bytes(header, body, data_size);
+        let bytes = crate::memory::packet_bytes(header, raw.body, raw.data_size);
         self.session.send_raw(self.target, bytes);
     }
 
