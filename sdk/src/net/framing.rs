@@ -268,13 +268,81 @@ struct Stream {
     touched: Instant,
 }
 
+/// The memory and time bounds of a reassembler, one rule for both generations (this
+/// module's [`Reassembler`] and AS5669A's): bytes held per source and in total, the
+/// size of one message, and when an incomplete message times out.
+#[derive(Debug)]
+pub(crate) struct ByteBudget<K> {
+    limits: ReassemblyLimits,
+    per_source: HashMap<K, usize>,
+    total: usize,
+}
+
+impl<K: Copy + Eq + std::hash::Hash> ByteBudget<K> {
+    /// An empty budget with `limits`.
+    pub(crate) fn new(limits: ReassemblyLimits) -> Self {
+        Self {
+            limits,
+            per_source: HashMap::new(),
+            total: 0,
+        }
+    }
+
+    /// Bytes held now.
+    pub(crate) fn total(&self) -> usize {
+        self.total
+    }
+
+    /// Whether a packet fits: it adds `add_message` bytes to a message of `message`
+    /// bytes, and `add_held` bytes to what `source` and everyone hold (the same number
+    /// where a packet costs its body; more where it also costs its header).
+    pub(crate) fn admits(
+        &self,
+        source: K,
+        message: usize,
+        add_message: usize,
+        add_held: usize,
+    ) -> bool {
+        let src = self.per_source.get(&source).copied().unwrap_or(0);
+        message + add_message <= self.limits.max_message
+            && src + add_held <= self.limits.per_source
+            && self.total + add_held <= self.limits.total
+    }
+
+    /// `source` holds `delta` bytes more (or fewer).
+    pub(crate) fn adjust(&mut self, source: K, delta: isize) {
+        let src = self.per_source.get(&source).copied().unwrap_or(0);
+        self.total = (self.total as isize + delta) as usize;
+        *self.per_source.entry(source).or_insert(0) = (src as isize + delta) as usize;
+    }
+
+    /// `source` no longer holds `bytes` bytes.
+    pub(crate) fn release(&mut self, source: K, bytes: usize) {
+        self.total -= bytes;
+        if let Some(b) = self.per_source.get_mut(&source) {
+            *b -= bytes;
+            if *b == 0 {
+                self.per_source.remove(&source);
+            }
+        }
+    }
+
+    /// Whether a message last touched at `touched` has timed out at `now`.
+    pub(crate) fn expired(&self, touched: Instant, now: Instant) -> bool {
+        now.saturating_duration_since(touched) >= self.limits.timeout
+    }
+
+    /// When a message last touched at `touched` times out.
+    pub(crate) fn deadline(&self, touched: Instant) -> Instant {
+        touched + self.limits.timeout
+    }
+}
+
 /// Rebuilds multi-packet messages, keyed by (command code, source) as OpenJAUS does.
 #[derive(Debug)]
 pub struct Reassembler {
-    limits: ReassemblyLimits,
+    budget: ByteBudget<Address>,
     streams: HashMap<(CommandCode, Address), Stream>,
-    per_source: HashMap<Address, usize>,
-    total: usize,
     stats: ReassemblyStats,
 }
 
@@ -282,10 +350,8 @@ impl Reassembler {
     /// With `limits`.
     pub fn new(limits: ReassemblyLimits) -> Self {
         Self {
-            limits,
+            budget: ByteBudget::new(limits),
             streams: HashMap::new(),
-            per_source: HashMap::new(),
-            total: 0,
             stats: ReassemblyStats::default(),
         }
     }
@@ -297,24 +363,23 @@ impl Reassembler {
 
     /// Bytes buffered now.
     pub fn buffered(&self) -> usize {
-        self.total
+        self.budget.total()
     }
 
     /// The earliest instant an incomplete message times out.
     pub fn next_timeout(&self) -> Option<Instant> {
         self.streams
             .values()
-            .map(|s| s.touched + self.limits.timeout)
+            .map(|s| self.budget.deadline(s.touched))
             .min()
     }
 
     /// Drops incomplete messages older than the timeout.
     pub fn expire(&mut self, now: Instant) {
-        let timeout = self.limits.timeout;
         let old: Vec<_> = self
             .streams
             .iter()
-            .filter(|(_, s)| now.saturating_duration_since(s.touched) >= timeout)
+            .filter(|(_, s)| self.budget.expired(s.touched, now))
             .map(|(k, _)| *k)
             .collect();
         for k in old {
@@ -325,13 +390,7 @@ impl Reassembler {
 
     fn remove(&mut self, k: (CommandCode, Address)) -> Option<Stream> {
         let s = self.streams.remove(&k)?;
-        self.total -= s.bytes;
-        if let Some(b) = self.per_source.get_mut(&k.1) {
-            *b -= s.bytes;
-            if *b == 0 {
-                self.per_source.remove(&k.1);
-            }
-        }
+        self.budget.release(k.1, s.bytes);
         Some(s)
     }
 
@@ -397,11 +456,10 @@ impl Reassembler {
             }
         }
         // Memory limits, checked before buffering.
-        let src = self.per_source.get(&key.1).copied().unwrap_or(0);
         let stream_bytes = self.streams.get(&key).map_or(0, |s| s.bytes);
-        if stream_bytes + body.len() > self.limits.max_message
-            || src + body.len() > self.limits.per_source
-            || self.total + body.len() > self.limits.total
+        if !self
+            .budget
+            .admits(key.1, stream_bytes, body.len(), body.len())
         {
             self.stats.over_limit += 1;
             self.remove(key);
@@ -425,8 +483,7 @@ impl Reassembler {
             }
         };
         s.bytes = (s.bytes as isize + added) as usize;
-        self.total = (self.total as isize + added) as usize;
-        *self.per_source.entry(key.1).or_insert(0) = (src as isize + added) as usize;
+        self.budget.adjust(key.1, added);
         let last = s.last?;
         if s.parts.len() != usize::from(last) + 1 || s.parts.keys().next_back() != Some(&last) {
             return None;

@@ -8,7 +8,12 @@
 //! Two hosts drive components on a carrier, both [`Participant`]s: a [`Node`]
 //! (its own node manager, routing for the node) and [`Attached`] (components in a
 //! process of their own, joined to a node through its socket).
+//!
+//! [`as5669a`] is the transport of the SAE AS-4 JAUS Service Sets (JUDP version 2),
+//! served beside RA 3.3 on the same socket by wrapping a host in an
+//! [`as5669a::As4Mux`].
 
+pub mod as5669a;
 pub mod attached;
 pub mod framing;
 pub mod manager;

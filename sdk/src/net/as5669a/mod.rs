@@ -1,0 +1,67 @@
+//! AS5669A, JUDP version 2: the transport of the SAE AS-4 JAUS Service Sets, sans-IO,
+//! beside RA 3.3's JUDP on the same socket (docs/wire.md, "AS5669A (JUDP version 2)").
+//!
+//! * [`header`]: the general transport header as typed values ([`As4Header`],
+//!   [`As4Id`], the flag enums) and one message on the wire ([`As4Packet`]: header,
+//!   payload whose first two bytes are the message ID, trailing sequence number).
+//! * [`datagram`]: a datagram is the version byte 2 followed by one or more messages:
+//!   [`parse_datagram`] reads all of them, [`write_datagrams`] packs several into each
+//!   datagram up to a size bound; [`Generation::of`] tells the generations apart by the
+//!   first byte.
+//! * [`split`](mod@split): a payload larger than the per-packet limit becomes first /
+//!   normal / last packets with consecutive sequence numbers ([`split()`]); the
+//!   acknowledgement of a packet is a pure function ([`ack`], [`nak`]).
+//! * [`reassembly`]: the bounded [`As4Reassembler`] (the byte and time bounds of the RA
+//!   3.3 [`Reassembler`](super::Reassembler), one rule for both).
+//! * [`mux`]: one socket, both generations: [`As4Mux`] wraps a host (a
+//!   [`Node`](super::Node)) and hands version-2 datagrams to an [`As4Endpoint`] the host
+//!   supplies, framing its replies as AS5669A to the sender from the same socket.
+//!
+//! Every multi-byte field is little-endian, as the AS-4 messages themselves are (RA 3.3
+//! and its JUDP length are the other way round). Nothing here panics on any bytes:
+//! every malformed input is an [`As4Error`].
+
+pub mod datagram;
+pub mod error;
+pub mod header;
+pub mod mux;
+pub mod reassembly;
+pub mod split;
+
+#[cfg(test)]
+mod proptests;
+
+pub use datagram::{parse_datagram, write_datagrams, Generation};
+pub use error::As4Error;
+pub use header::{
+    AckNak, As4Header, As4Id, As4Packet, Broadcast, DataControl, HcRequest, Priority,
+};
+pub use mux::{As4Config, As4Endpoint, As4Message, As4Mux, As4Send, As4Stack, As4Stats};
+pub use reassembly::{As4Reassembler, As4ReassemblyLimits};
+pub use split::{ack, nak, split};
+
+/// The transport version byte of an AS5669A datagram.
+pub const VERSION: u8 = 2;
+
+/// Bytes of the general transport header without header compression: message type and
+/// HC flags (1), data size (2), properties (1), destination (4), source (4).
+pub const HEADER_LEN: usize = 12;
+
+/// Bytes of the header-compression fields (HC number, HC length) present when the HC
+/// flags are not 0.
+pub const HC_LEN: usize = 2;
+
+/// Bytes of the sequence number after the payload.
+pub const SEQUENCE_LEN: usize = 2;
+
+/// Bytes a message carries besides its payload (without header compression): header
+/// and sequence number. The data size of a message is its payload plus this.
+pub const OVERHEAD: usize = HEADER_LEN + SEQUENCE_LEN;
+
+/// Largest payload in one packet: 4079 bytes, so that a datagram of one message with
+/// header compression fields stays within 4096 bytes (1 + 14 + 2 + 4079), as the
+/// Junior middleware of the JAUS Tool Set bounds it.
+pub const MAX_PAYLOAD: usize = 4079;
+
+/// The message type of a JAUS message (the only one this transport carries).
+pub const JAUS_MESSAGE_TYPE: u8 = 0;

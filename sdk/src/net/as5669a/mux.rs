@@ -1,0 +1,460 @@
+//! One socket, both generations. [`As4Mux`] wraps a host of the RA 3.3 side (a
+//! [`Node`](crate::net::Node), or any [`Participant`]) and looks at the first byte of
+//! every datagram on the carrier: version 2 goes to the AS5669A side, everything else
+//! (version 1, "JAUS01.0") to the host, untouched. The AS5669A side is the sans-IO
+//! [`As4Stack`] (parsing, acknowledgements, reassembly, splitting, sequence numbers,
+//! packing several messages per datagram) and an [`As4Endpoint`] the host supplies,
+//! which sees whole messages and answers with whole messages; its replies are framed as
+//! AS5669A and leave from the same socket for the sender.
+//!
+//! Without a mux nothing changes: a node counts a version-2 datagram as a framing error,
+//! as before.
+
+use std::collections::VecDeque;
+use std::net::SocketAddr;
+use std::time::Instant;
+
+use super::datagram::{parse_datagram, write_datagrams, Generation};
+use super::error::As4Error;
+use super::header::{AckNak, As4Header, As4Id, As4Packet, Broadcast, DataControl, Priority};
+use super::reassembly::{As4Reassembler, As4ReassemblyLimits};
+use super::split::{ack, split};
+use super::MAX_PAYLOAD;
+use crate::net::framing::ReassemblyStats;
+use crate::net::{Datagram, Participant, PeerAddr, Via};
+
+/// A whole AS-4 message: addresses, transport flags, message ID and body.
+#[derive(Debug, Clone, PartialEq, Eq, Hash)]
+pub struct As4Message {
+    /// Destination.
+    pub destination: As4Id,
+    /// Source.
+    pub source: As4Id,
+    /// Priority.
+    pub priority: Priority,
+    /// Broadcast.
+    pub broadcast: Broadcast,
+    /// Whether the sender asks for an acknowledgement of every packet.
+    pub ack_requested: bool,
+    /// The message ID (e.g. 0x2B00 Query Identification).
+    pub message_id: u16,
+    /// The message after its ID.
+    pub body: Vec<u8>,
+}
+
+impl As4Message {
+    /// Message `message_id` with `body` from `source` to `destination`, standard
+    /// priority, no broadcast, no acknowledgement asked.
+    pub fn new(message_id: u16, destination: As4Id, source: As4Id, body: Vec<u8>) -> Self {
+        Self {
+            destination,
+            source,
+            priority: Priority::Standard,
+            broadcast: Broadcast::None,
+            ack_requested: false,
+            message_id,
+            body,
+        }
+    }
+
+    /// An answer to this message: from its destination to its source, at its priority.
+    pub fn reply(&self, message_id: u16, body: Vec<u8>) -> Self {
+        Self {
+            priority: self.priority,
+            ..Self::new(message_id, self.source, self.destination, body)
+        }
+    }
+
+    /// The message a whole (single) packet carries; `None` for an ack or nak, a piece
+    /// of a large message, or a payload without a message ID.
+    pub fn from_packet(p: As4Packet) -> Option<Self> {
+        let message_id = p.message_id()?;
+        if p.header.data_control != DataControl::Single {
+            return None;
+        }
+        let h = p.header;
+        let mut body = p.payload;
+        body.drain(..2);
+        Some(Self {
+            destination: h.destination,
+            source: h.source,
+            priority: h.priority,
+            broadcast: h.broadcast,
+            ack_requested: h.ack_nak == AckNak::Request,
+            message_id,
+            body,
+        })
+    }
+
+    /// The payload on the wire: message ID (LE), then the body.
+    pub fn payload(&self) -> Vec<u8> {
+        let mut p = Vec::with_capacity(2 + self.body.len());
+        p.extend_from_slice(&self.message_id.to_le_bytes());
+        p.extend_from_slice(&self.body);
+        p
+    }
+
+    /// The transport header of its packets (data control set when split).
+    pub fn header(&self) -> As4Header {
+        As4Header {
+            priority: self.priority,
+            broadcast: self.broadcast,
+            ack_nak: if self.ack_requested {
+                AckNak::Request
+            } else {
+                AckNak::None
+            },
+            ..As4Header::new(self.destination, self.source)
+        }
+    }
+}
+
+/// A message for a peer, from an [`As4Endpoint`]'s timer.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct As4Send<A> {
+    /// The peer.
+    pub to: A,
+    /// The message.
+    pub message: As4Message,
+}
+
+/// The AS-4 side of a host, sans-IO: it is handed whole messages with the peer they
+/// came from and answers with whole messages, which go back to that peer.
+pub trait As4Endpoint<A: PeerAddr = SocketAddr>: std::fmt::Debug + Send + 'static {
+    /// `messages` (whole, in order) came from `from` at `now`; the answers go to `from`.
+    fn handle(&mut self, now: Instant, from: A, messages: Vec<As4Message>) -> Vec<As4Message>;
+    /// Time passed ([`poll_timeout`](Self::poll_timeout) is due); messages to send.
+    fn handle_timeout(&mut self, now: Instant) -> Vec<As4Send<A>> {
+        let _ = now;
+        Vec::new()
+    }
+    /// When [`handle_timeout`](Self::handle_timeout) must next be called (default
+    /// never).
+    fn poll_timeout(&self) -> Option<Instant> {
+        None
+    }
+}
+
+/// Settings of an [`As4Stack`].
+#[derive(Debug, Clone, Copy)]
+pub struct As4Config {
+    /// Reassembly limits (defaults there).
+    pub reassembly: As4ReassemblyLimits,
+    /// Largest payload per packet when a message is split. Default [`MAX_PAYLOAD`]
+    /// (4079).
+    pub max_payload: usize,
+    /// Largest datagram written; several messages share one up to it. Default 4096.
+    pub max_datagram: usize,
+    /// Most datagrams waiting to be sent (more are dropped and counted). Default 8192.
+    pub max_outbox: usize,
+}
+
+/// The defaults the field documentation states:
+///
+/// ```
+/// let c = jaus::net::as5669a::As4Config::default();
+/// assert_eq!((c.max_payload, c.max_datagram, c.max_outbox), (4079, 4096, 8192));
+/// assert_eq!(c.reassembly.max_in_progress, 256);
+/// ```
+impl Default for As4Config {
+    fn default() -> Self {
+        Self {
+            reassembly: As4ReassemblyLimits::default(),
+            max_payload: MAX_PAYLOAD,
+            max_datagram: 4096,
+            max_outbox: 8192,
+        }
+    }
+}
+
+/// Counters of an [`As4Stack`].
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct As4Stats {
+    /// Datagrams received.
+    pub datagrams_received: u64,
+    /// Datagrams refused whole (an [`As4Error`]).
+    pub bad_datagrams: u64,
+    /// Packets (messages on the wire) received.
+    pub packets_received: u64,
+    /// Whole messages handed on.
+    pub messages_received: u64,
+    /// Acknowledgements sent for packets that asked.
+    pub acks_sent: u64,
+    /// Acknowledgements received.
+    pub acks_received: u64,
+    /// Negative acknowledgements received.
+    pub naks_received: u64,
+    /// Messages sent.
+    pub messages_sent: u64,
+    /// Datagrams queued.
+    pub datagrams_sent: u64,
+    /// Dropped: the outgoing queue was full.
+    pub outbox_full: u64,
+    /// Dropped: a message that could not be split or written.
+    pub encode_errors: u64,
+}
+
+/// The AS5669A transport of one socket, sans-IO: datagrams in, whole messages out (and
+/// acknowledgements queued); whole messages in, datagrams queued.
+#[derive(Debug)]
+pub struct As4Stack<A = SocketAddr> {
+    config: As4Config,
+    reassembler: As4Reassembler,
+    sequence: u16,
+    outbox: VecDeque<Datagram<A>>,
+    stats: As4Stats,
+}
+
+impl<A: PeerAddr> As4Stack<A> {
+    /// With `config`.
+    pub fn new(config: As4Config) -> Self {
+        Self {
+            reassembler: As4Reassembler::new(config.reassembly),
+            config,
+            sequence: 0,
+            outbox: VecDeque::new(),
+            stats: As4Stats::default(),
+        }
+    }
+
+    /// Counters.
+    pub fn stats(&self) -> As4Stats {
+        self.stats
+    }
+
+    /// Reassembly counters and the bytes held.
+    pub fn reassembly(&self) -> (ReassemblyStats, usize) {
+        (self.reassembler.stats(), self.reassembler.buffered())
+    }
+
+    /// A datagram from `from`: the whole messages it completes. Packets that ask for
+    /// an acknowledgement are acknowledged (queued for `from`); acks and naks are
+    /// counted, not handed on. A malformed datagram is refused whole and counted.
+    pub fn receive(
+        &mut self,
+        now: Instant,
+        from: A,
+        datagram: &[u8],
+    ) -> Result<Vec<As4Message>, As4Error> {
+        self.stats.datagrams_received += 1;
+        let packets = parse_datagram(datagram).inspect_err(|_| self.stats.bad_datagrams += 1)?;
+        let mut acks = Vec::new();
+        let mut out = Vec::new();
+        for p in packets {
+            self.stats.packets_received += 1;
+            match p.header.ack_nak {
+                AckNak::Ack => {
+                    self.stats.acks_received += 1;
+                    continue;
+                }
+                AckNak::Nak => {
+                    self.stats.naks_received += 1;
+                    continue;
+                }
+                AckNak::Request => acks.push(ack(&p)),
+                AckNak::None => {}
+            }
+            if let Some(m) = self
+                .reassembler
+                .message(now, p)
+                .and_then(As4Message::from_packet)
+            {
+                self.stats.messages_received += 1;
+                out.push(m);
+            }
+        }
+        self.stats.acks_sent += acks.len() as u64;
+        self.queue(from, &acks);
+        Ok(out)
+    }
+
+    /// Sends `messages` to `to`: each split as needed, numbered from the stack's running
+    /// sequence number, packed several to a datagram.
+    pub fn send(&mut self, to: A, messages: &[As4Message]) {
+        let mut packets = Vec::new();
+        for m in messages {
+            match split(
+                &m.header(),
+                &m.payload(),
+                self.sequence,
+                self.config.max_payload,
+            ) {
+                Ok(ps) => {
+                    self.sequence = self.sequence.wrapping_add(ps.len() as u16);
+                    self.stats.messages_sent += 1;
+                    packets.extend(ps);
+                }
+                Err(e) => {
+                    self.stats.encode_errors += 1;
+                    tracing::warn!(id = m.message_id, "AS5669A message not sent: {e}");
+                }
+            }
+        }
+        self.queue(to, &packets);
+    }
+
+    fn queue(&mut self, to: A, packets: &[As4Packet]) {
+        if packets.is_empty() {
+            return;
+        }
+        let datagrams = match write_datagrams(packets, self.config.max_datagram) {
+            Ok(d) => d,
+            Err(e) => {
+                self.stats.encode_errors += 1;
+                tracing::warn!("AS5669A datagram not written: {e}");
+                return;
+            }
+        };
+        for bytes in datagrams {
+            if self.outbox.len() >= self.config.max_outbox {
+                self.stats.outbox_full += 1;
+                return;
+            }
+            self.stats.datagrams_sent += 1;
+            self.outbox.push_back(Datagram {
+                to,
+                bytes,
+                via: Via::Network,
+            });
+        }
+    }
+
+    /// The next datagram to send.
+    pub fn poll_transmit(&mut self) -> Option<Datagram<A>> {
+        self.outbox.pop_front()
+    }
+
+    /// Time passed: incomplete messages past the timeout are dropped.
+    pub fn handle_timeout(&mut self, now: Instant) {
+        self.reassembler.expire(now);
+    }
+
+    /// When [`handle_timeout`](Self::handle_timeout) must next be called.
+    pub fn poll_timeout(&self) -> Option<Instant> {
+        self.reassembler.next_timeout()
+    }
+}
+
+/// A host of RA 3.3 (`P`, e.g. a [`Node`](crate::net::Node)) and an AS-4 endpoint on
+/// one carrier: version-2 datagrams go to the endpoint through an [`As4Stack`], all
+/// others to the host. Run it like the host ([`shell::run`](crate::net::shell::run),
+/// [`udp::run_on`](crate::net::udp::run_on)); [`inner`](Self::inner) reaches the host.
+#[derive(Debug)]
+pub struct As4Mux<P, A: PeerAddr = SocketAddr> {
+    inner: P,
+    stack: As4Stack<A>,
+    endpoint: Box<dyn As4Endpoint<A>>,
+}
+
+impl<P: Participant<A>, A: PeerAddr> As4Mux<P, A> {
+    /// `inner` on the carrier, with `endpoint` answering AS5669A peers.
+    pub fn new(inner: P, endpoint: impl As4Endpoint<A>, config: As4Config) -> Self {
+        Self {
+            inner,
+            stack: As4Stack::new(config),
+            endpoint: Box::new(endpoint),
+        }
+    }
+
+    /// The RA 3.3 host.
+    pub fn inner(&self) -> &P {
+        &self.inner
+    }
+
+    /// The RA 3.3 host, mutable.
+    pub fn inner_mut(&mut self) -> &mut P {
+        &mut self.inner
+    }
+
+    /// The AS5669A side.
+    pub fn stack(&self) -> &As4Stack<A> {
+        &self.stack
+    }
+
+    /// The AS5669A side, mutable (e.g. to send a message of one's own).
+    pub fn stack_mut(&mut self) -> &mut As4Stack<A> {
+        &mut self.stack
+    }
+
+    /// The endpoint, for a caller that knows its type.
+    pub fn endpoint(&self) -> &dyn As4Endpoint<A> {
+        self.endpoint.as_ref()
+    }
+
+    /// Whether `datagram` is for the AS5669A side.
+    pub fn is_as4(datagram: &[u8]) -> bool {
+        Generation::of(datagram) == Generation::As5669a
+    }
+
+    fn as4(&mut self, now: Instant, from: A, datagram: &[u8]) {
+        match self.stack.receive(now, from, datagram) {
+            Ok(messages) if !messages.is_empty() => {
+                let replies = self.endpoint.handle(now, from, messages);
+                self.stack.send(from, &replies);
+            }
+            Ok(_) => {}
+            Err(e) => tracing::debug!(%from, "AS5669A datagram dropped: {e}"),
+        }
+    }
+}
+
+impl<P: Participant<A>, A: PeerAddr> Participant<A> for As4Mux<P, A> {
+    fn handle_datagram(&mut self, now: Instant, peer: A, datagram: &[u8]) {
+        if Self::is_as4(datagram) {
+            self.as4(now, peer, datagram);
+        } else {
+            self.inner.handle_datagram(now, peer, datagram);
+        }
+    }
+
+    fn handle_via(&mut self, now: Instant, via: Via, peer: A, datagram: &[u8]) {
+        if via == Via::Network && Self::is_as4(datagram) {
+            self.as4(now, peer, datagram);
+        } else {
+            self.inner.handle_via(now, via, peer, datagram);
+        }
+    }
+
+    fn handle_timeout(&mut self, now: Instant) {
+        self.inner.handle_timeout(now);
+        self.stack.handle_timeout(now);
+        if self.endpoint.poll_timeout().is_some_and(|t| t <= now) {
+            for s in self.endpoint.handle_timeout(now) {
+                self.stack.send(s.to, std::slice::from_ref(&s.message));
+            }
+        }
+    }
+
+    fn poll_transmit(&mut self) -> Option<Datagram<A>> {
+        self.inner
+            .poll_transmit()
+            .or_else(|| self.stack.poll_transmit())
+    }
+
+    fn recycle(&mut self, bytes: Vec<u8>) {
+        self.inner.recycle(bytes);
+    }
+
+    fn poll_timeout(&self) -> Option<Instant> {
+        [
+            self.inner.poll_timeout(),
+            self.stack.poll_timeout(),
+            self.endpoint.poll_timeout(),
+        ]
+        .into_iter()
+        .flatten()
+        .min()
+    }
+
+    fn wall_clock(&mut self, now: Instant, utc: std::time::Duration) {
+        self.inner.wall_clock(now, utc);
+    }
+
+    fn as_any(&self) -> &dyn std::any::Any {
+        self
+    }
+
+    fn as_any_mut(&mut self) -> &mut dyn std::any::Any {
+        self
+    }
+}
