@@ -86,6 +86,8 @@ pub struct Engine<'a> {
     authority: u8,
     /// Its identification, once answered.
     identification: Option<String>,
+    /// The definitions as a codec: messages by name, a vendor overlay's included.
+    schema: jaus_dynamic::Schema,
 }
 
 impl std::fmt::Debug for Engine<'_> {
@@ -125,6 +127,7 @@ impl<'a> Engine<'a> {
             started,
             authority: 0,
             identification: None,
+            schema: jaus_dynamic::Schema::from_spec(spec),
         }
     }
 

@@ -3,14 +3,19 @@
 //! one scaled field moved, and the value the query reports afterwards is compared
 //! within one count of that field's scaling. The same command from a component not in
 //! control must change nothing.
+//!
+//! The messages are built, encoded and decoded through the loaded definitions
+//! ([`jaus_dynamic::Schema`]), so a vendor overlay's commands and queries (`--spec`)
+//! are exchanged on the wire as the SDK's are.
 
-use jaus::codec::Encode;
-use jaus::messages::{ComponentState, Message};
+use jaus::messages::ComponentState;
+use jaus::wire::AckNak;
+use jaus::Address;
+use jaus_dynamic::DynMessage;
 use jaus_spec::{Int, Wire};
 use serde_json::{Map, Value};
 
 use super::core::ack_text;
-use super::talk::fields_of;
 use super::Engine;
 use crate::check::Verdict;
 
@@ -19,9 +24,9 @@ type Found = (Verdict, String);
 /// A command ready to send, and how to judge what is read back.
 struct Trial {
     /// The command with the moved value.
-    moved: Message,
+    moved: DynMessage,
     /// The command restoring what was read first, when it could be built.
-    restore: Option<Message>,
+    restore: Option<DynMessage>,
     /// The field moved.
     field: String,
     /// Its value before (as read back), when the report carried it.
@@ -49,14 +54,49 @@ fn shown(v: Option<f64>) -> String {
     v.map_or_else(|| "absent".to_string(), |v| v.to_string())
 }
 
-fn build(name: &str, fields: Map<String, Value>) -> Result<Message, String> {
-    serde_json::from_value(serde_json::json!({ "message": name, "fields": fields }))
-        .map_err(|e| format!("{name}: {e}"))
-}
-
 impl Engine<'_> {
+    /// The message `name` of the definitions with `fields` (JSON, as `jaus decode`
+    /// prints them).
+    fn build(&self, name: &str, fields: Map<String, Value>) -> Result<DynMessage, String> {
+        self.schema
+            .from_json(name, &Value::Object(fields))
+            .map_err(|e| format!("{name}: {e}"))
+    }
+
+    /// The fields of a body of the definitions' message `code`, as JSON.
+    fn fields(&self, code: jaus::CommandCode, body: &[u8]) -> Option<Map<String, Value>> {
+        let m = self.schema.decode(code, body).ok()?;
+        match serde_json::to_value(&m.fields).ok()? {
+            Value::Object(o) => Some(o),
+            _ => Some(Map::new()),
+        }
+    }
+
+    /// Sends `q` from `from` and waits for its report (named by the definitions); the
+    /// report's fields.
+    fn ask_def(&mut self, from: Address, q: &DynMessage) -> Option<(String, Map<String, Value>)> {
+        let r = self.spec.report_of(&self.spec.message(q.name)?.def)?;
+        let (report, code) = (r.def.name.clone(), jaus::CommandCode(r.def.code.0));
+        let body = self.schema.encode(q).ok()?;
+        self.send_body(from, q.code, body, false);
+        let target = self.target;
+        let p = self.wait_for(self.opts.wait, |p| {
+            p.header.source == target
+                && p.header.destination == from
+                && p.header.command_code == code
+                && !matches!(p.header.ack_nak, AckNak::Ack | AckNak::Nak)
+        })?;
+        Some((report, self.fields(code, &p.body)?))
+    }
+
+    /// Sends command `m` from `from` asking for an acknowledgement.
+    fn command_def(&mut self, from: Address, m: &DynMessage) -> Option<AckNak> {
+        let body = self.schema.encode(m).ok()?;
+        self.command_body(from, m.code, body)
+    }
+
     /// The read-back query, its presence vectors all ones, its other integers zero.
-    fn query(&self, query: &str) -> Result<Message, String> {
+    fn query(&self, query: &str) -> Result<DynMessage, String> {
         let def = self
             .spec
             .message(query)
@@ -74,7 +114,7 @@ impl Engine<'_> {
             let v = if f.name.contains("presence") { max } else { 1 };
             fields.insert(f.name.clone(), v.into());
         }
-        build(query, fields)
+        self.build(query, fields)
     }
 
     /// A query the definitions give the component is answered with its report.
@@ -95,8 +135,8 @@ impl Engine<'_> {
                     .collect()
             })
             .unwrap_or_default();
-        match self.ask(self.voices.outsider, q) {
-            Some(r) => (Verdict::Pass, format!("answered with {}", r.name())),
+        match self.ask_def(self.voices.outsider, &q) {
+            Some((r, _)) => (Verdict::Pass, format!("answered with {r}")),
             // The component may hold no such item: not decided.
             None if !selectors.is_empty() => (
                 Verdict::Inconclusive,
@@ -113,16 +153,13 @@ impl Engine<'_> {
     }
 
     /// Reads the current value and prepares the trial.
-    fn trial(&mut self, command: &str, query: &Message) -> Result<Option<Trial>, String> {
+    fn trial(&mut self, command: &str, query: &DynMessage) -> Result<Option<Trial>, String> {
         let cmd = self
             .spec
             .message(command)
             .ok_or_else(|| format!("command `{command}` is not defined"))?;
-        let Some(report) = self.ask(self.voices.outsider, query.clone()) else {
+        let Some((_, now)) = self.ask_def(self.voices.outsider, query) else {
             return Ok(None);
-        };
-        let Value::Object(now) = fields_of(&report) else {
-            return Err(format!("{} carries no fields", report.name()));
         };
         let mut fields = Map::new();
         for f in &cmd.def.fields {
@@ -130,7 +167,7 @@ impl Engine<'_> {
                 fields.insert(f.name.clone(), v.clone());
             }
         }
-        let restore = build(command, fields.clone()).ok();
+        let restore = self.build(command, fields.clone()).ok();
         // The field moved: the first scaled one the report carries, else the first
         // integer (moved by one, compared exactly).
         let carried = |f: &&jaus_spec::Field| now.contains_key(&f.def.name) || f.def.bit.is_some();
@@ -173,12 +210,15 @@ impl Engine<'_> {
             }
         };
         fields.insert(field.clone(), value.clone());
-        let moved = build(command, fields)?;
+        let moved = self.build(command, fields)?;
         // The value as the wire carries it.
-        let bytes = moved.to_bytes().map_err(|e| format!("{command}: {e}"))?;
-        let wire =
-            Message::decode_known(moved.code(), &bytes).map_err(|e| format!("{command}: {e}"))?;
-        let sent = fields_of(&wire)
+        let bytes = self
+            .schema
+            .encode(&moved)
+            .map_err(|e| format!("{command}: {e}"))?;
+        let sent = self
+            .fields(moved.code, &bytes)
+            .ok_or_else(|| format!("{command}: its own encoding does not decode"))?
             .get(&field)
             .and_then(Value::as_f64)
             .or(value.as_f64())
@@ -194,9 +234,9 @@ impl Engine<'_> {
     }
 
     /// The field's value in a fresh read-back.
-    fn read(&mut self, query: &Message, field: &str) -> Option<Option<f64>> {
-        let r = self.ask(self.voices.outsider, query.clone())?;
-        Some(fields_of(&r).get(field).and_then(Value::as_f64))
+    fn read(&mut self, query: &DynMessage, field: &str) -> Option<Option<f64>> {
+        let (_, r) = self.ask_def(self.voices.outsider, query)?;
+        Some(r.get(field).and_then(Value::as_f64))
     }
 
     pub(super) fn readback(&mut self, command: &str, query: &str) -> Found {
@@ -222,7 +262,7 @@ impl Engine<'_> {
             Err(e) => return (Verdict::Inconclusive, e),
         };
         let c = self.voices.controller;
-        let ack = self.command(c, &t.moved);
+        let ack = self.command_def(c, &t.moved);
         let found = match self.read(&q, &t.field) {
             None => (
                 Verdict::Fail,
@@ -257,7 +297,7 @@ impl Engine<'_> {
             ),
         };
         if let Some(r) = &t.restore {
-            self.command(c, r);
+            self.command_def(c, r);
         }
         found
     }
@@ -282,7 +322,7 @@ impl Engine<'_> {
             Err(e) => return (Verdict::Inconclusive, e),
         };
         let o = self.voices.outsider;
-        let ack = self.command(o, &t.moved);
+        let ack = self.command_def(o, &t.moved);
         self.drain(self.opts.settle);
         let found = match self.read(&q, &t.field) {
             None => (
@@ -311,7 +351,7 @@ impl Engine<'_> {
         };
         if found.0 == Verdict::Fail {
             if let Some(r) = &t.restore {
-                self.command(self.voices.controller, r);
+                self.command_def(self.voices.controller, r);
             }
         }
         found

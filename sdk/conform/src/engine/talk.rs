@@ -106,6 +106,20 @@ impl Engine<'_> {
             ),
             _ => match Message::decode_known(header.command_code, body) {
                 Ok(m) => (m.name().to_string(), fields_of(&m)),
+                // A message of the loaded definitions the SDK does not have (a vendor
+                // overlay's).
+                Err(_) if self.schema.by_code(header.command_code).is_some() => {
+                    match self.schema.decode(header.command_code, body) {
+                        Ok(m) => (
+                            m.name.to_string(),
+                            serde_json::to_value(&m.fields).unwrap_or_default(),
+                        ),
+                        Err(e) => (
+                            format!("raw {}", header.command_code),
+                            serde_json::json!({ "hex": jaus::hex::encode(body), "decode": e.to_string() }),
+                        ),
+                    }
+                }
                 Err(e) => (
                     format!("raw {}", header.command_code),
                     serde_json::json!({ "hex": jaus::hex::encode(body), "decode": e.to_string() }),
@@ -129,7 +143,13 @@ impl Engine<'_> {
             tracing::warn!(message = msg.name(), "jaus conform: cannot encode");
             return;
         };
-        let mut header = Header::new(msg.code(), self.target, from);
+        self.send_body(from, msg.code(), body, ack);
+    }
+
+    /// Sends `body` under `code` from `from` to the target, asking for an
+    /// acknowledgement if `ack`.
+    pub(super) fn send_body(&mut self, from: Address, code: CommandCode, body: Vec<u8>, ack: bool) {
+        let mut header = Header::new(code, self.target, from);
         if ack {
             header.ack_nak = AckNak::Request;
         }
@@ -259,8 +279,20 @@ impl Engine<'_> {
     /// Sends command `msg` from `from` asking for an acknowledgement; the ACK or NAK if
     /// one came within the settle time.
     pub(super) fn command(&mut self, from: Address, msg: &Message) -> Option<AckNak> {
-        self.send(from, msg, true);
-        let (target, code) = (self.target, msg.code());
+        let body = msg.to_bytes().ok()?;
+        self.command_body(from, msg.code(), body)
+    }
+
+    /// Sends `body` under command code `code` from `from` asking for an
+    /// acknowledgement; the ACK or NAK if one came within the settle time.
+    pub(super) fn command_body(
+        &mut self,
+        from: Address,
+        code: CommandCode,
+        body: Vec<u8>,
+    ) -> Option<AckNak> {
+        self.send_body(from, code, body, true);
+        let target = self.target;
         let p = self.wait_for(self.opts.settle, |p| {
             p.header.source == target
                 && p.header.destination == from
