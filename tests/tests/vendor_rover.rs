@@ -158,3 +158,88 @@ fn hex(s: &str) -> Vec<u8> {
         .map(|i| u8::from_str_radix(&s[i..i + 2], 16).unwrap())
         .collect()
 }
+
+/// `jaus conform --spec` against the vendor node: the Tank Monitor's own command, read
+/// back by its own query (`readback:` in the vendor's YAML), is checked on the wire like
+/// the SDK's, from the controller (the valve opens, read back) and from a component not
+/// in control (nothing changes); the run conforms.
+#[test]
+fn jaus_conform_checks_the_vendors_own_command_through_its_overlay() {
+    let socket = UdpSocket::bind("127.0.0.1:0").unwrap();
+    let node_addr = socket.local_addr().unwrap();
+    let tester_port = common::free_port();
+    let t0 = Instant::now();
+    let config = NodeConfig {
+        subsystem: 9,
+        node: 1,
+        peers: vec![format!("127.0.0.1:{tester_port}").parse().unwrap()],
+        ..NodeConfig::default()
+    };
+    let mut node = vendor_rover::node(config, t0).unwrap();
+    let stop = Arc::new(AtomicBool::new(false));
+    let stop2 = stop.clone();
+    let runner = std::thread::spawn(move || {
+        let until = Some(Instant::now() + Duration::from_secs(90));
+        jaus::net::udp::run_on(&mut node, &socket, &stop2, until, |_| {}).unwrap();
+    });
+    let spec = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../examples/vendor-rover/defs/vendor_rover.yaml"
+    );
+    let json =
+        std::env::temp_dir().join(format!("jaus-vendor-conform-{}.json", std::process::id()));
+    let out = Command::new(jaus_bin())
+        .args([
+            "conform",
+            "--spec",
+            spec,
+            "--target",
+            "9.1.210.1",
+            "--me",
+            "9.7.40.1",
+        ])
+        .args(["--settle-ms", "60", "--bind"])
+        .arg(format!("127.0.0.1:{tester_port}"))
+        .arg("--peer")
+        .arg(node_addr.to_string())
+        .arg("--json")
+        .arg(&json)
+        .output()
+        .unwrap();
+    stop.store(true, Ordering::Relaxed);
+    runner.join().unwrap();
+    let text = String::from_utf8_lossy(&out.stdout).into_owned();
+    assert!(
+        out.status.success(),
+        "{text}\n{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let run: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let _ = std::fs::remove_file(&json);
+    let outcomes = run["components"][0]["outcomes"].as_array().unwrap();
+    let verdict = |id: &str| {
+        outcomes
+            .iter()
+            .find(|o| o["id"] == id)
+            .map(|o| {
+                (
+                    o["verdict"].as_str().unwrap().to_string(),
+                    o["detail"].to_string(),
+                )
+            })
+            .unwrap_or_else(|| panic!("{id} not run: {text}"))
+    };
+    let (v, detail) = verdict("readback.SetDrainValve");
+    assert_eq!(v, "pass", "{detail}");
+    assert!(detail.contains("open = 1"), "{detail}");
+    assert_eq!(verdict("outsider.SetDrainValve").0, "pass");
+    assert_eq!(verdict("query.QueryDrainValve").0, "pass");
+    // The evidence names the overlay's messages.
+    let evidence = outcomes
+        .iter()
+        .find(|o| o["id"] == "readback.SetDrainValve")
+        .unwrap()["evidence"]
+        .to_string();
+    assert!(evidence.contains("\"ReportDrainValve\""), "{evidence}");
+}

@@ -29,7 +29,9 @@ pub mod messages {
 }
 
 use messages::components::tank_monitor::{self, Ctx, TankMonitor, Transition};
-use messages::{QueryTankLevels, ReportTankLevels, SetDrainValve};
+use messages::{
+    QueryDrainValve, QueryTankLevels, ReportDrainValve, ReportTankLevels, SetDrainValve,
+};
 
 /// The Tank Monitor's implementation: simulated tanks that drain 1 % per tick while
 /// their valve is open. Replace the level model with your hardware.
@@ -82,6 +84,20 @@ impl TankMonitor for Tanks {
         _: &QueryTankLevels,
     ) -> Result<ReportTankLevels, Refused> {
         Ok(self.report(ctx))
+    }
+
+    fn on_query_drain_valve(
+        &mut self,
+        _: &mut Ctx<'_>,
+        msg: &QueryDrainValve,
+    ) -> Result<ReportDrainValve, Refused> {
+        if usize::from(msg.tank) >= self.levels.len() {
+            return Err(Refused::Invalid(format!("no tank {}", msg.tank)));
+        }
+        Ok(ReportDrainValve {
+            tank: msg.tank,
+            open: u8::from(self.open == Some(msg.tank)),
+        })
     }
 
     fn tick(&mut self, ctx: &mut Ctx<'_>) {

@@ -169,8 +169,17 @@ impl Engine<'_> {
         }
         let restore = self.build(command, fields.clone()).ok();
         // The field moved: the first scaled one the report carries, else the first
-        // integer (moved by one, compared exactly).
-        let carried = |f: &&jaus_spec::Field| now.contains_key(&f.def.name) || f.def.bit.is_some();
+        // integer (moved by one, compared exactly); never a field the query selects
+        // the item by (a tank, a waypoint number).
+        let selectors: Vec<String> = self
+            .spec
+            .message(query.name)
+            .map(|q| q.def.fields.iter().map(|f| f.name.clone()).collect())
+            .unwrap_or_default();
+        let carried = |f: &&jaus_spec::Field| {
+            (now.contains_key(&f.def.name) || f.def.bit.is_some())
+                && !selectors.contains(&f.def.name)
+        };
         let scaled = cmd
             .fields
             .iter()
