@@ -95,6 +95,7 @@ mod docs;
 pub mod lock;
 pub mod revision;
 pub mod scaffold;
+mod services;
 pub mod snapshot;
 pub mod wireshark;
 
@@ -105,6 +106,7 @@ use std::path::{Path, PathBuf};
 pub use components::{build_components, build_parts, ComponentCtx, PartCtx, PartRef};
 pub use context::{build_context, Context};
 pub use docs::{render_docs, DOC_TEMPLATES};
+pub use services::{build_services, ServicesCtx};
 
 /// Templates compiled into the generator (from the crate's `templates/` directory).
 pub const DEFAULT_TEMPLATES: &[(&str, &str)] = &[
@@ -116,6 +118,10 @@ pub const DEFAULT_TEMPLATES: &[(&str, &str)] = &[
     (
         "components.rs.j2",
         include_str!("../templates/components.rs.j2"),
+    ),
+    (
+        "services.rs.j2",
+        include_str!("../templates/services.rs.j2"),
     ),
 ];
 
@@ -160,6 +166,11 @@ pub enum Error {
     /// text lists every change and the command that updates the lock file.
     #[error("{0}")]
     Lock(String),
+    /// The services cannot be generated (a parent outside the definitions, a guard that
+    /// does not parse, a target that is not a state): the text names the service and
+    /// the file and line.
+    #[error("{0}")]
+    Services(String),
     /// JSIDL could not be imported ([`Builder::jsidl`]): the file, line and element.
     #[error("{0}")]
     Jsidl(#[from] jaus_jsidl::Error),
@@ -189,6 +200,12 @@ pub struct Generated {
     /// The formatted Rust source of the component skeletons (`components.rs`), which
     /// needs the `jaus` component runtime.
     pub components: String,
+    /// The formatted Rust source of the services (`services.rs`: a trait, triggers and
+    /// state tables per service of the definitions' `services:`), empty without
+    /// services; it needs the `jaus::hsm` engine.
+    pub services: String,
+    /// Number of services generated.
+    pub service_count: usize,
     /// Files written.
     pub files: Vec<PathBuf>,
     /// Number of messages generated.
@@ -490,9 +507,21 @@ impl Builder {
                     .collect::<Vec<_>>(),
             })?;
         let components = format_code(&raw, self.out_dir.as_deref(), "components")?;
+        let (services, service_count) = if spec.services.is_empty() {
+            (String::new(), 0)
+        } else {
+            let ctx = build_services(&spec).map_err(Error::Services)?;
+            let raw = env.get_template("services.rs.j2")?.render(&ctx)?;
+            (
+                format_code(&raw, self.out_dir.as_deref(), "services")?,
+                ctx.services.len(),
+            )
+        };
         Ok(Generated {
             code,
             components,
+            services,
+            service_count,
             files: Vec::new(),
             messages: spec.messages.len(),
             types: spec.types.len(),
@@ -519,6 +548,11 @@ impl Builder {
         let path = out.join("components.rs");
         write_if_changed(&path, &g.components)?;
         g.files.push(path);
+        if g.service_count > 0 {
+            let path = out.join("services.rs");
+            write_if_changed(&path, &g.services)?;
+            g.files.push(path);
+        }
         Ok(g)
     }
 

@@ -1,7 +1,7 @@
 //! Snapshot tests of the generator: one tiny fixture per feature of the definition
 //! language and of the component layer in `tests/golden/`, each with the code it must
 //! generate next to it (`NAME.messages.rs`, and `NAME.components.rs` when it defines
-//! components), compared byte for byte. A change to a template or to the generator
+//! components, `NAME.services.rs` when it defines services), compared byte for byte. A change to a template or to the generator
 //! shows up here as a diff to review; after reviewing, rewrite the files with
 //!
 //! ```sh
@@ -96,12 +96,14 @@ fn every_fixture_generates_its_golden_files() {
             .render()
             .unwrap_or_else(|e| panic!("fixture {name}: {e}"));
         let components = (g.component_count > 0).then_some(g.components.as_str());
+        let services = (g.service_count > 0).then_some(g.services.as_str());
         for (path, text) in [
             (
                 dir.join(format!("{name}.messages.rs")),
                 Some(g.code.as_str()),
             ),
             (dir.join(format!("{name}.components.rs")), components),
+            (dir.join(format!("{name}.services.rs")), services),
         ] {
             failures.extend(check(&path, text));
         }

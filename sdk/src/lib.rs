@@ -75,6 +75,7 @@ pub mod codec;
 #[cfg(feature = "component")]
 pub mod component;
 pub mod hex;
+pub mod hsm;
 #[cfg(feature = "serde")]
 pub mod json;
 pub mod link;

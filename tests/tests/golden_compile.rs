@@ -10,7 +10,11 @@
 /// Includes `NAME.messages.rs` of each fixture (and `NAME.components.rs` of those with
 /// components) and lists what it included.
 macro_rules! golden {
-    (messages: [$($m:ident),* $(,)?], components: [$($c:ident),* $(,)?] $(,)?) => {
+    (
+        messages: [$($m:ident),* $(,)?],
+        components: [$($c:ident),* $(,)?],
+        services: [$($s:ident),* $(,)?] $(,)?
+    ) => {
         // Nothing here uses most generated items; unused-item lints are not the point,
         // nor the lints of a fixture without messages (its `decode` matches no code).
         mod messages {
@@ -39,9 +43,32 @@ macro_rules! golden {
                 }
             )*
         }
+        // Services: in a child module of their fixture's messages, as documented.
+        mod services {
+            $(
+                #[allow(unused, clippy::match_single_binding)]
+                pub mod $s {
+                    include!(concat!(
+                        env!("CARGO_MANIFEST_DIR"),
+                        "/../jaus-gen/tests/golden/",
+                        stringify!($s),
+                        ".messages.rs"
+                    ));
+                    pub mod services {
+                        include!(concat!(
+                            env!("CARGO_MANIFEST_DIR"),
+                            "/../jaus-gen/tests/golden/",
+                            stringify!($s),
+                            ".services.rs"
+                        ));
+                    }
+                }
+            )*
+        }
         const INCLUDED: &[&str] = &[
             $(concat!(stringify!($m), ".messages.rs"),)*
             $(concat!(stringify!($c), ".components.rs"),)*
+            $(concat!(stringify!($s), ".services.rs"),)*
         ];
     };
 }
@@ -58,6 +85,11 @@ golden! {
         enums,
         feature_gates,
         flags,
+        hsm_extend,
+        hsm_guards,
+        hsm_inherit,
+        hsm_kinds,
+        hsm_nested,
         lists,
         offsets,
         presence,
@@ -76,6 +108,7 @@ golden! {
         component_plain,
         feature_gates,
     ],
+    services: [hsm_extend, hsm_guards, hsm_inherit, hsm_kinds, hsm_nested],
 }
 
 #[test]

@@ -18,3 +18,11 @@ fn component_ui() {
     t.pass("ui/components/pass/*.rs");
     t.compile_fail("ui/components/fail/*.rs");
 }
+
+/// Generated AS-4 services: an implementation of a service's trait that leaves out a
+/// guard does not compile, and the error names the missing method.
+#[test]
+fn service_ui() {
+    let t = trybuild::TestCases::new();
+    t.compile_fail("ui/services/fail/*.rs");
+}

@@ -1,7 +1,8 @@
 //! The `services:` section of a definition file: services with their message sets,
 //! internal events and protocol behaviour (hierarchical state machines), as the SAE
-//! AS-4 service sets define them in JSIDL (AS5684). A service is model data: validation
-//! checks its names and references; no code is generated from it yet.
+//! AS-4 service sets define them in JSIDL (AS5684). Validation checks its names and
+//! references; jaus-gen generates from it a trait of the service's guards and actions
+//! and the tables of its state machines, which `jaus::hsm` runs.
 
 use super::FieldDef;
 use serde::Deserialize;

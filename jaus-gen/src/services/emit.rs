@@ -1,0 +1,715 @@
+//! From the merged machines to the template context: method signatures over every call
+//! site of the set, triggers, numbered call sites and the state tables.
+
+use super::model::{chain, ident, origin, parents, Arg, Call, Conv, Mach, St, Trans, G};
+use super::{
+    ArgVariantCtx, EventCtx, FieldCtx, MachineCtx, MethodCtx, ServiceCtx, ServicesCtx, SiteCtx,
+    StateCtx, TransCtx, TriggerCtx,
+};
+use crate::components::wrap;
+use jaus_spec::model::{FieldDef, TransitionKind};
+use jaus_spec::{Int, Spec};
+use std::collections::{BTreeMap, BTreeSet};
+
+/// The shape of one argument position.
+#[derive(Debug, Clone, PartialEq, Eq)]
+enum Shape {
+    Param(String),
+    Const,
+}
+
+/// How a method is declared.
+#[derive(Debug, Clone)]
+enum Sig {
+    /// One parameter per argument: `(name, Rust type)`.
+    Typed(Vec<(String, String)>),
+    /// Call sites differ: `args: &[Arg<'_>]`.
+    Slice,
+}
+
+#[derive(Debug, Clone)]
+struct Method {
+    guard: bool,
+    sig: Sig,
+    doc: Vec<String>,
+}
+
+fn doc_lines(text: Option<&str>) -> Vec<String> {
+    text.map(|t| wrap(t, 86)).unwrap_or_default()
+}
+
+fn each_call(m: &mut Mach, f: &mut dyn FnMut(&mut Call, bool)) {
+    fn g(x: &mut G, f: &mut dyn FnMut(&mut Call, bool)) {
+        match x {
+            G::Call(c) => f(c, true),
+            G::Const(_) => {}
+            G::Not(e) => g(e, f),
+            G::And(v) | G::Or(v) => v.iter_mut().for_each(|e| g(e, f)),
+        }
+    }
+    fn t(x: &mut Trans, f: &mut dyn FnMut(&mut Call, bool)) {
+        if let Some(e) = &mut x.guard {
+            g(e, f);
+        }
+        x.actions.iter_mut().for_each(|c| f(c, false));
+    }
+    fn s(x: &mut St, f: &mut dyn FnMut(&mut Call, bool)) {
+        x.entry.iter_mut().for_each(|c| f(c, false));
+        x.exit.iter_mut().for_each(|c| f(c, false));
+        x.transitions.iter_mut().for_each(|y| t(y, f));
+        x.defaults.iter_mut().for_each(|y| t(y, f));
+        x.states.iter_mut().for_each(|y| s(y, f));
+    }
+    m.transitions.iter_mut().for_each(|y| t(y, f));
+    m.defaults.iter_mut().for_each(|y| t(y, f));
+    m.states.iter_mut().for_each(|y| s(y, f));
+}
+
+/// The template context of every service of `spec`; the error names the service and
+/// the file and line.
+pub fn build_services(spec: &Spec) -> Result<ServicesCtx, String> {
+    let parents = parents(spec)?;
+    let n = spec.services.len();
+    // Each service's own machines, names resolved against its ancestors.
+    let mut own: Vec<Vec<Mach>> = Vec::with_capacity(n);
+    for svc in 0..n {
+        own.push(
+            Conv {
+                spec,
+                parents: &parents,
+                svc,
+            }
+            .machines()?,
+        );
+    }
+    // A method named without a prefix belongs to the farthest ancestor that declares it
+    // too, so that no trait repeats a supertrait's method.
+    let mut declared: BTreeSet<(usize, String)> = BTreeSet::new();
+    for ms in &mut own {
+        for m in ms.iter_mut() {
+            each_call(m, &mut |c, _| {
+                declared.insert((c.owner, c.method.clone()));
+            });
+        }
+    }
+    for ms in &mut own {
+        for m in ms.iter_mut() {
+            each_call(m, &mut |c, _| {
+                if let Some(up) = chain(&parents, c.owner)
+                    .into_iter()
+                    .rev()
+                    .find(|a| declared.contains(&(*a, c.method.clone())))
+                {
+                    c.owner = up;
+                }
+            });
+        }
+    }
+    let (methods, args) = signatures(&mut own)?;
+    // Merge, root services first.
+    let mut merged: Vec<Option<Vec<Mach>>> = vec![None; n];
+    for i in 0..n {
+        let c = chain(&parents, i);
+        for &k in c.iter().rev() {
+            if merged[k].is_some() {
+                continue;
+            }
+            let mut base = match parents[k] {
+                Some(p) => merged[p].clone().unwrap_or_default(),
+                None => Vec::new(),
+            };
+            let mine = own[k].clone();
+            if parents[k].is_none() {
+                if let Some(m) = mine.iter().find(|m| m.extends) {
+                    return Err(format!(
+                        "{}: service `{}`, state machine `{}` extends a machine, but the service inherits from none",
+                        m.origin, spec.services[k].def.name, m.name
+                    ));
+                }
+            }
+            super::model::merge(&mut base, mine, &spec.services[k].def.name)?;
+            merged[k] = Some(base);
+        }
+    }
+    let mut services = Vec::new();
+    for (i, m) in merged.iter().enumerate() {
+        let machines = m.clone().unwrap_or_default();
+        services.push(service(
+            spec,
+            i,
+            &parents,
+            &machines,
+            &methods,
+            !args.is_empty(),
+        )?);
+    }
+    let has_args = methods.values().any(|m| matches!(m.sig, Sig::Slice));
+    let args_lt = if args.is_empty() { "" } else { "<'a>" }.to_string();
+    let args: Vec<ArgVariantCtx> = args
+        .into_iter()
+        .map(|(name, ty)| ArgVariantCtx { name, ty })
+        .collect();
+    Ok(ServicesCtx {
+        services,
+        has_args,
+        args,
+        args_lt,
+    })
+}
+
+fn shape(a: &Arg) -> Shape {
+    match a {
+        Arg::Param { ty, .. } => Shape::Param(ty.rust.clone()),
+        Arg::Const(_) => Shape::Const,
+    }
+}
+
+/// Every method's signature, from all its call sites in the set.
+#[allow(clippy::type_complexity)]
+fn signatures(
+    own: &mut [Vec<Mach>],
+) -> Result<(BTreeMap<(usize, String), Method>, BTreeMap<String, String>), String> {
+    let mut args: BTreeMap<String, String> = BTreeMap::new();
+    let mut sites: BTreeMap<(usize, String), Vec<(bool, Call)>> = BTreeMap::new();
+    for ms in own.iter_mut() {
+        for m in ms.iter_mut() {
+            each_call(m, &mut |c, guard| {
+                sites
+                    .entry((c.owner, c.method.clone()))
+                    .or_default()
+                    .push((guard, c.clone()));
+            });
+        }
+    }
+    let mut out = BTreeMap::new();
+    for (key, list) in sites {
+        let (guard, first) = (list[0].0, &list[0].1);
+        if let Some((_, c)) = list.iter().find(|(g, _)| *g != guard) {
+            return Err(format!(
+                "{}: `{}` is called as a guard and as an action (also at {}): one method cannot be both",
+                c.origin, c.raw, first.origin
+            ));
+        }
+        let shapes: Vec<Shape> = first.args.iter().map(shape).collect();
+        let uniform = list
+            .iter()
+            .all(|(_, c)| c.args.iter().map(shape).collect::<Vec<_>>() == shapes);
+        if !uniform {
+            for (_, c) in &list {
+                for a in &c.args {
+                    if let Arg::Param { ty, .. } = a {
+                        let top = ty.rust.strip_prefix("super::").unwrap_or(&ty.rust);
+                        args.insert(ty.variant.clone(), top.to_string());
+                    }
+                }
+            }
+        }
+        let sig = if uniform {
+            let mut names: Vec<(String, String)> = Vec::new();
+            for (i, a) in first.args.iter().enumerate() {
+                let (mut name, ty) = match a {
+                    Arg::Param { field, ty } => (field.clone(), format!("&{}", ty.rust)),
+                    Arg::Const(_) => (format!("value{i}"), "&str".to_string()),
+                };
+                if names.iter().any(|(n, _)| *n == name) {
+                    name = format!("{name}{i}");
+                }
+                names.push((name, ty));
+            }
+            Sig::Typed(names)
+        } else {
+            Sig::Slice
+        };
+        let mut doc = doc_lines(list.iter().find_map(|(_, c)| c.doc.as_deref()));
+        if !doc.is_empty() {
+            doc.push(String::new());
+        }
+        let mut calls: Vec<String> = Vec::new();
+        for (_, c) in &list {
+            if !calls
+                .iter()
+                .any(|x| x.starts_with(&format!("`{}` ", c.raw)))
+            {
+                calls.push(format!("`{}` ({})", c.raw, short(&c.origin)));
+            }
+        }
+        let more = calls.len().saturating_sub(3);
+        calls.truncate(3);
+        doc.push(format!(
+            "Called as {}{}.",
+            calls.join(", "),
+            if more > 0 {
+                format!(" and {more} more")
+            } else {
+                String::new()
+            }
+        ));
+        if matches!(sig, Sig::Slice) {
+            doc.push(String::new());
+            doc.push(
+                "Its call sites pass different arguments: each call's are in `args`, in order."
+                    .into(),
+            );
+        }
+        out.insert(key, Method { guard, sig, doc });
+    }
+    Ok((out, args))
+}
+
+/// `file:line` without the file's directory, for generated docs (which must not depend
+/// on where the definitions are).
+fn short(origin: &str) -> String {
+    std::path::Path::new(origin)
+        .file_name()
+        .map_or_else(|| origin.to_string(), |f| f.to_string_lossy().into_owned())
+}
+
+/// The Rust type of an event field.
+fn field_ty(f: &FieldDef) -> String {
+    let base = if f.scale.is_some() {
+        "f64".to_string()
+    } else {
+        match f.ty.as_str() {
+            "string" => "String".into(),
+            "bytes" | "message" => "Vec<u8>".into(),
+            "flag" => "bool".into(),
+            "f32" | "float" => "f32".into(),
+            "f64" | "double" | "long float" => "f64".into(),
+            "list" => {
+                let e = f.of.as_ref().map_or("u8".to_string(), |e| field_ty(&e.0));
+                format!("Vec<{e}>")
+            }
+            t => Int::parse(t).map_or_else(|| t.to_string(), |i| i.rust().to_string()),
+        }
+    };
+    if f.bit.is_some() {
+        format!("Option<{base}>")
+    } else {
+        base
+    }
+}
+
+fn some<T: std::fmt::Display>(v: Option<T>) -> String {
+    v.map_or_else(|| "None".to_string(), |x| format!("Some({x})"))
+}
+
+fn list(v: &[u16]) -> String {
+    format!(
+        "&[{}]",
+        v.iter().map(u16::to_string).collect::<Vec<_>>().join(", ")
+    )
+}
+
+/// Builds one service's context.
+struct Emit<'a> {
+    methods: &'a BTreeMap<(usize, String), Method>,
+    borrows_args: bool,
+    guards: Vec<SiteCtx>,
+    actions: Vec<SiteCtx>,
+    service: String,
+}
+
+impl Emit<'_> {
+    fn call_expr(&mut self, c: &Call) -> String {
+        let slice = matches!(
+            self.methods
+                .get(&(c.owner, c.method.clone()))
+                .map(|m| &m.sig),
+            Some(Sig::Slice)
+        );
+        let args: Vec<String> = c
+            .args
+            .iter()
+            .map(|a| match (a, slice) {
+                (Arg::Const(v), false) => format!("{v:?}"),
+                (Arg::Param { field, .. }, false) => field.clone(),
+                (Arg::Const(v), true) => format!("super::Arg::Const({v:?})"),
+                (Arg::Param { field, ty }, true) => {
+                    format!("super::Arg::{}({field})", ty.variant)
+                }
+            })
+            .collect();
+        if slice {
+            format!("self.0.{}(&[{}])", c.method, args.join(", "))
+        } else {
+            format!("self.0.{}({})", c.method, args.join(", "))
+        }
+    }
+
+    fn pattern(n: usize, key: Option<&str>, c: &Call) -> String {
+        let fields: Vec<&str> = c
+            .args
+            .iter()
+            .filter_map(|a| match a {
+                Arg::Param { field, .. } => Some(field.as_str()),
+                Arg::Const(_) => None,
+            })
+            .collect();
+        match (key, fields.is_empty()) {
+            (Some(k), false) => {
+                let mut f: Vec<&str> = Vec::new();
+                for x in fields {
+                    if !f.contains(&x) {
+                        f.push(x);
+                    }
+                }
+                format!("({n}, Some(Trigger::{k} {{ {}, .. }}))", f.join(", "))
+            }
+            _ => format!("({n}, _)"),
+        }
+    }
+
+    fn site(&mut self, guard: bool, key: Option<&str>, c: &Call) -> Result<u16, String> {
+        if key.is_none() && c.args.iter().any(|a| matches!(a, Arg::Param { .. })) {
+            return Err(format!(
+                "{}: service `{}`: `{}` uses a trigger parameter where there is no trigger (an entry or exit action, or a default transition)",
+                c.origin, self.service, c.raw
+            ));
+        }
+        let call = self.call_expr(c);
+        let v = if guard {
+            &mut self.guards
+        } else {
+            &mut self.actions
+        };
+        let n = v.len();
+        v.push(SiteCtx {
+            pattern: Self::pattern(n, key, c),
+            call,
+        });
+        u16::try_from(n)
+            .map_err(|_| format!("service `{}`: more than 65535 call sites", self.service))
+    }
+
+    fn expr(&mut self, key: Option<&str>, g: &G) -> Result<String, String> {
+        Ok(match g {
+            G::Call(c) => format!("hsm::Expr::Call({})", self.site(true, key, c)?),
+            G::Const(b) => format!("hsm::Expr::Const({b})"),
+            G::Not(e) => format!("hsm::Expr::Not(&{})", self.expr(key, e)?),
+            G::And(v) | G::Or(v) => {
+                let items = v
+                    .iter()
+                    .map(|e| self.expr(key, e))
+                    .collect::<Result<Vec<_>, _>>()?;
+                let op = if matches!(g, G::And(_)) { "And" } else { "Or" };
+                format!("hsm::Expr::{op}(&[{}])", items.join(", "))
+            }
+        })
+    }
+
+    fn actions(&mut self, key: Option<&str>, calls: &[Call]) -> Result<String, String> {
+        let ids = calls
+            .iter()
+            .map(|c| self.site(false, key, c))
+            .collect::<Result<Vec<_>, _>>()?;
+        Ok(list(&ids))
+    }
+
+    fn trans(&mut self, t: &Trans, ids: &BTreeMap<String, usize>) -> Result<TransCtx, String> {
+        let key = t.key.as_deref();
+        let guard = match &t.guard {
+            Some(g) => format!("Some(&{})", self.expr(key, g)?),
+            None => "None".into(),
+        };
+        let actions = self.actions(key, &t.actions)?;
+        let target = match (&t.to, t.kind) {
+            (Some(to), TransitionKind::Simple | TransitionKind::Push) => Some(
+                *ids.get(to).ok_or_else(|| {
+                    format!(
+                        "{}: service `{}`: `{to}` is not a state of the machine (with the inherited states)",
+                        t.origin, self.service
+                    )
+                })?,
+            ),
+            _ => None,
+        };
+        let kind = match t.kind {
+            TransitionKind::Internal => "Internal",
+            TransitionKind::Simple => "Simple",
+            TransitionKind::Push => "Push",
+            TransitionKind::Pop => "Pop",
+        };
+        Ok(TransCtx {
+            trigger: some(key.map(|k| format!("{k:?}"))),
+            guard,
+            kind: kind.into(),
+            target: some(target),
+            actions,
+            raise: some(t.raise.as_ref().map(|k| format!("{k:?}"))),
+            origin: short(&t.origin),
+        })
+    }
+}
+
+/// States in preorder with their paths and parents.
+fn flatten<'m>(
+    states: &'m [St],
+    parent: Option<usize>,
+    prefix: &str,
+    out: &mut Vec<(&'m St, String, Option<usize>)>,
+) {
+    for s in states {
+        let path = if prefix.is_empty() {
+            s.name.clone()
+        } else {
+            format!("{prefix}.{}", s.name)
+        };
+        let id = out.len();
+        out.push((s, path.clone(), parent));
+        flatten(&s.states, Some(id), &path, out);
+    }
+}
+
+fn service(
+    spec: &Spec,
+    i: usize,
+    parents: &[Option<usize>],
+    machines: &[Mach],
+    methods: &BTreeMap<(usize, String), Method>,
+    args: bool,
+) -> Result<ServiceCtx, String> {
+    let s = &spec.services[i];
+    let d = &s.def;
+    let mut e = Emit {
+        methods,
+        borrows_args: args,
+        guards: Vec::new(),
+        actions: Vec::new(),
+        service: d.name.clone(),
+    };
+    // Triggers: the union of the parameters of every transition with the key.
+    let mut triggers: Vec<TriggerCtx> = Vec::new();
+    let mut trig_types: BTreeMap<(String, String), (String, String)> = BTreeMap::new();
+    let mut all: Vec<&Trans> = Vec::new();
+    fn collect<'m>(st: &'m [St], all: &mut Vec<&'m Trans>) {
+        for s in st {
+            all.extend(s.transitions.iter().chain(&s.defaults));
+            collect(&s.states, all);
+        }
+    }
+    for m in machines {
+        all.extend(m.transitions.iter().chain(&m.defaults));
+        collect(&m.states, &mut all);
+    }
+    for t in &all {
+        let Some(k) = &t.key else { continue };
+        let at = match triggers.iter().position(|x| x.variant == *k) {
+            Some(at) => at,
+            None => {
+                let mut doc = vec![match &t.on {
+                    Some(on) if on != k => format!("`{on}` carrying [`{k}`]."),
+                    _ => format!("`{k}`."),
+                }];
+                let more = match d.events.iter().find(|ev| ev.name == *k) {
+                    Some(ev) => doc_lines(ev.description.as_deref()),
+                    None => doc_lines(t.doc.as_deref()),
+                };
+                if !more.is_empty() {
+                    doc.push(String::new());
+                    doc.extend(more);
+                }
+                triggers.push(TriggerCtx {
+                    variant: k.clone(),
+                    doc,
+                    fields: Vec::new(),
+                });
+                triggers.len() - 1
+            }
+        };
+        for (field, ty) in &t.params {
+            let slot = (k.clone(), field.clone());
+            match trig_types.get(&slot) {
+                Some((rust, first)) if *rust != ty.rust => {
+                    return Err(format!(
+                        "{}: service `{}`: trigger `{k}` has parameter `{field}` of type `{}` here and `{rust}` at {first}",
+                        t.origin, d.name, ty.rust
+                    ))
+                }
+                Some(_) => {}
+                None => {
+                    trig_types.insert(slot, (ty.rust.clone(), t.origin.clone()));
+                    triggers[at].fields.push(FieldCtx {
+                        name: field.clone(),
+                        ty: format!("&'a {}", ty.rust),
+                        doc: Vec::new(),
+                    });
+                }
+            }
+        }
+    }
+    let borrows = triggers.iter().any(|t| !t.fields.is_empty());
+    let mut out_machines = Vec::new();
+    let (mut state_count, mut transition_count) = (0, 0);
+    for m in machines {
+        let mut flat = Vec::new();
+        flatten(&m.states, None, "", &mut flat);
+        let ids: BTreeMap<String, usize> = flat
+            .iter()
+            .enumerate()
+            .map(|(k, (_, p, _))| (p.clone(), k))
+            .collect();
+        let start = match &m.start {
+            Some((path, at)) => *ids.get(path).ok_or_else(|| {
+                format!(
+                    "{at}: service `{}`: start state `{path}` is not a state of machine `{}`",
+                    d.name, m.name
+                )
+            })?,
+            None => 0,
+        };
+        let mut states = Vec::new();
+        for (st, path, parent) in &flat {
+            let initial = match &st.initial {
+                Some(init) => Some(*ids.get(&format!("{path}.{init}")).ok_or_else(|| {
+                    format!(
+                        "{}: service `{}`: initial state `{init}` is not a sub-state of `{path}`",
+                        st.origin, d.name
+                    )
+                })?),
+                None => None,
+            };
+            let entry = e.actions(None, &st.entry)?;
+            let exit = e.actions(None, &st.exit)?;
+            let transitions = st
+                .transitions
+                .iter()
+                .map(|t| e.trans(t, &ids))
+                .collect::<Result<Vec<_>, _>>()?;
+            let defaults = st
+                .defaults
+                .iter()
+                .map(|t| e.trans(t, &ids))
+                .collect::<Result<Vec<_>, _>>()?;
+            transition_count += transitions.len() + defaults.len();
+            states.push(StateCtx {
+                name: st.name.clone(),
+                path: path.clone(),
+                parent: some(*parent),
+                initial: some(initial),
+                entry,
+                exit,
+                transitions,
+                defaults,
+            });
+        }
+        state_count += states.len();
+        let transitions = m
+            .transitions
+            .iter()
+            .map(|t| e.trans(t, &ids))
+            .collect::<Result<Vec<_>, _>>()?;
+        let defaults = m
+            .defaults
+            .iter()
+            .map(|t| e.trans(t, &ids))
+            .collect::<Result<Vec<_>, _>>()?;
+        transition_count += transitions.len() + defaults.len();
+        let mut doc = vec![format!("State machine `{}` of [`{}`]", m.name, d.name)];
+        doc[0].push_str(if m.extends || parents[i].is_some() {
+            " (with what it inherits)."
+        } else {
+            "."
+        });
+        if let Some(x) = &m.doc {
+            doc.push(String::new());
+            doc.extend(doc_lines(Some(x)));
+        }
+        out_machines.push(MachineCtx {
+            name: m.name.clone(),
+            ident: ident(&m.name).to_uppercase(),
+            doc,
+            start,
+            states,
+            transitions,
+            defaults,
+        });
+    }
+    // The trait's own methods: guards, then actions, by name.
+    let mut own: Vec<(&String, &Method)> = methods
+        .iter()
+        .filter(|((owner, _), _)| *owner == i)
+        .map(|((_, name), m)| (name, m))
+        .collect();
+    own.sort_by_key(|(name, m)| (!m.guard, (*name).clone()));
+    let methods_ctx = own
+        .into_iter()
+        .map(|(name, m)| {
+            let recv = if m.guard { "&self" } else { "&mut self" };
+            let params = match &m.sig {
+                Sig::Typed(v) => v.iter().map(|(n, t)| format!(", {n}: {t}")).collect(),
+                Sig::Slice => format!(
+                    ", args: &[super::Arg{}]",
+                    if e.borrows_args { "<'_>" } else { "" }
+                ),
+            };
+            let ret = if m.guard { " -> bool" } else { "" };
+            MethodCtx {
+                sig: format!("fn {name}({recv}{params}){ret}"),
+                doc: m.doc.clone(),
+            }
+        })
+        .collect();
+    let events = d
+        .events
+        .iter()
+        .map(|ev| EventCtx {
+            name: ev.name.clone(),
+            doc: {
+                let mut v = vec![format!(
+                    "Internal event `{}` of [`{}`](super::{}).",
+                    ev.name, d.name, d.name
+                )];
+                let more = doc_lines(ev.description.as_deref());
+                if !more.is_empty() {
+                    v.push(String::new());
+                    v.extend(more);
+                }
+                v
+            },
+            fields: ev
+                .fields
+                .iter()
+                .map(|f| FieldCtx {
+                    name: ident(&f.name),
+                    ty: field_ty(f),
+                    doc: doc_lines(f.description.as_deref()),
+                })
+                .collect(),
+        })
+        .collect();
+    let mut doc = vec![format!(
+        "The {} service (`{}` version {}).",
+        d.name, d.id, d.version
+    )];
+    for text in [
+        d.description.as_deref(),
+        d.assumptions.as_deref().map(|a| a.trim()),
+    ] {
+        let lines = doc_lines(text);
+        if !lines.is_empty() {
+            doc.push(String::new());
+            doc.extend(lines);
+        }
+    }
+    Ok(ServiceCtx {
+        name: d.name.clone(),
+        module: ident(&d.name),
+        id: format!("{} {}", d.id, d.version),
+        doc,
+        origin: short(&origin(spec, s.source, &s.path)),
+        supertrait: parents[i].map(|p| {
+            let n = &spec.services[p].def.name;
+            format!("super::{}::{n}", ident(n))
+        }),
+        events,
+        methods: methods_ctx,
+        lt: if borrows { "<'a>" } else { "" }.into(),
+        lt_anon: if borrows { "<'_>" } else { "" }.into(),
+        triggers,
+        guards: e.guards,
+        actions: e.actions,
+        machines: out_machines,
+        state_count,
+        transition_count,
+    })
+}
