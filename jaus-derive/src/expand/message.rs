@@ -36,6 +36,7 @@ pub fn message(input: &DeriveInput, is_message: bool) -> TokenStream {
 
     let pv_bytes = model.presence.map_or(0, Int::bytes);
     let names: Vec<&Ident> = model.fields.iter().map(|f| &f.ident).collect();
+    let locals: Vec<Ident> = model.fields.iter().map(|f| f.local()).collect();
     let mut parts = Parts::default();
     for f in &model.fields {
         field::add(f, model.presence, &k, &mut parts);
@@ -154,7 +155,7 @@ pub fn message(input: &DeriveInput, is_message: bool) -> TokenStream {
     let construct = if model.unit {
         quote!(#ident)
     } else {
-        quote!(#ident { #(#names),* })
+        quote!(#ident { #(#names: #locals),* })
     };
     let unused_r =
         (model.fields.is_empty() && model.presence.is_none()).then(|| quote!(let _ = r;));

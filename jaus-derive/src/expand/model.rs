@@ -29,6 +29,19 @@ pub(super) struct FieldModel {
     pub(super) span: Span,
 }
 
+impl FieldModel {
+    /// The local the decoder binds the field's value to: never the field's own name,
+    /// which could shadow the decoder's reader (`r`) or another local (a field named
+    /// `r`, `pv`, `present`).
+    pub(super) fn local(&self) -> Ident {
+        let name = self.ident.to_string();
+        Ident::new(
+            &format!("__jaus_field_{}", name.trim_start_matches("r#")),
+            self.ident.span(),
+        )
+    }
+}
+
 /// A message or record: its presence vector and fields, checked and linked.
 pub(super) struct StructModel {
     pub(super) presence: Option<Int>,

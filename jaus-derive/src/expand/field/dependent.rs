@@ -136,7 +136,7 @@ pub(super) fn present_if(
     codec: &TokenStream,
     parts: &mut Parts,
 ) {
-    let (id, path) = (&f.ident, &f.path);
+    let (id, path, local) = (&f.ident, &f.path, f.local());
     let (len, enc) = (&code.len, &code.encode);
     let flag = lit(flag);
     parts
@@ -154,7 +154,7 @@ pub(super) fn present_if(
             Ok(x) => x != 0,
             Err(e) => return Err(e.in_field(#path)),
         };
-        let #id = if present { Some(#dec) } else { None };
+        let #local = if present { Some(#dec) } else { None };
     });
 }
 
@@ -187,9 +187,9 @@ pub(super) fn var_encode(f: &FieldModel, name: &str, codec: &TokenStream) -> Tok
 
 /// After decoding a `var` field: publishes its value for later fields.
 pub(super) fn publish_decoded(f: &FieldModel) -> Option<TokenStream> {
-    let id = &f.ident;
+    let local = f.local();
     f.var.as_ref().map(|name| {
         let name = lit(name);
-        quote!(r.vars().set(#name, #id as u64);)
+        quote!(r.vars().set(#name, #local as u64);)
     })
 }

@@ -82,7 +82,8 @@ pub(super) fn add(f: &FieldModel, presence: Option<Int>, k: &TokenStream, parts:
                 None => quote!({ let v = &self.#id; #enc }),
             });
             let set_var_dec = dependent::publish_decoded(f);
-            parts.decodes.push(quote!(let #id = #dec; #set_var_dec));
+            let local = f.local();
+            parts.decodes.push(quote!(let #local = #dec; #set_var_dec));
             parts.mins.push(code.min_len);
         }
     }

@@ -23,7 +23,7 @@ pub(super) fn flag_value(v: &TokenStream, codec: &TokenStream) -> ValueCode {
 
 /// A `bool` that is bit `bit` of the presence vector of type `p`.
 pub(super) fn flag(f: &FieldModel, bit: u32, p: &Ident, parts: &mut Parts) {
-    let id = &f.ident;
+    let (id, local) = (&f.ident, f.local());
     let set = f.var.as_ref().map(|name| {
         let name = lit(name);
         quote!(w.vars().set(#name, u64::from(self.#id));)
@@ -35,7 +35,7 @@ pub(super) fn flag(f: &FieldModel, bit: u32, p: &Ident, parts: &mut Parts) {
     parts.encodes.push(quote!(#set));
     parts
         .decodes
-        .push(quote!(let #id = pv & ((1 as #p) << #bit) != 0; #set_var_dec));
+        .push(quote!(let #local = pv & ((1 as #p) << #bit) != 0; #set_var_dec));
 }
 
 /// An `Option<T>` present when bit `bit` of the presence vector of type `p` is set.
@@ -47,7 +47,7 @@ pub(super) fn optional(
     dec: &TokenStream,
     parts: &mut Parts,
 ) {
-    let id = &f.ident;
+    let (id, local) = (&f.ident, f.local());
     let (len, enc) = (&code.len, &code.encode);
     parts
         .lens
@@ -61,7 +61,7 @@ pub(super) fn optional(
     ));
     parts
         .decodes
-        .push(quote!(let #id = if pv & ((1 as #p) << #bit) != 0 { Some(#dec) } else { None };));
+        .push(quote!(let #local = if pv & ((1 as #p) << #bit) != 0 { Some(#dec) } else { None };));
 }
 
 /// Writing and reading the presence vector of type `presence` of struct `ident`, from
