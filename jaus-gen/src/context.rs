@@ -204,6 +204,8 @@ pub struct MessageCtx {
     pub experimental: bool,
     /// Variant of `jaus::wire::MessageClass` (`Command`, `Query`, ...).
     pub class: String,
+    /// `access: read`: a command that changes nothing a controller owns.
+    pub read_only: bool,
 }
 
 /// A struct field.
@@ -759,6 +761,7 @@ pub fn build_context(spec: &Spec, gates: bool, rt: &str) -> Context {
             report,
             experimental: d.experimental,
             class: class_variant(d).into(),
+            read_only: d.access == Some(jaus_spec::Access::Read),
         };
         if let Some(g) = groups.iter_mut().find(|g| g.name == m.group) {
             g.messages.push(mc.clone());

@@ -67,6 +67,7 @@ impl<'a> Importer<'a> {
             report: None,
             no_report: false,
             readback: None,
+            access: None,
             experimental: false,
             class: None,
             interop: None,

@@ -113,6 +113,11 @@ pub struct MessageDef {
     /// (`readback: QueryTravelSpeed`); `jaus conform` checks the value read back.
     #[serde(default)]
     pub readback: Option<String>,
+    /// For a command: `access: read` says it changes nothing a controller owns (a
+    /// subscription, an event set-up, giving up control), so a node's access policy lets
+    /// it through wherever it lets queries through. Commands are writes by default.
+    #[serde(default)]
+    pub access: Option<Access>,
     /// A vendor/OpenJAUS experimental message.
     #[serde(default)]
     pub experimental: bool,
@@ -247,6 +252,14 @@ impl fmt::Display for RuntimeRole {
             RuntimeRole::Emits => "emits",
         })
     }
+}
+
+/// What a command does to its receiver, for access policies (`access:` of a message).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Access {
+    /// It changes nothing a controller owns: treated as a query.
+    Read,
 }
 
 /// A field of a message or record, or a list element.

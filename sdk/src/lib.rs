@@ -185,6 +185,10 @@ pub struct MessageInfo {
     /// Its class: given by the code's range, or by the definition (`class:`) for an
     /// experimental code.
     pub class: wire::MessageClass,
+    /// A command that changes nothing a controller owns (`access: read` in the
+    /// definitions: subscriptions, event set-up, giving up control): an access policy
+    /// treats it as a query.
+    pub read_only: bool,
 }
 
 impl MessageInfo {

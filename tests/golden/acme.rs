@@ -477,6 +477,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: Some("ReportTanks"),
         experimental: false,
         class: ::jaus::wire::MessageClass::Query,
+        read_only: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0xF100),
@@ -486,6 +487,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Inform,
+        read_only: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0xD101),
@@ -495,6 +497,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Experimental,
+        read_only: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0xD102),
@@ -504,6 +507,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Command,
+        read_only: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0xD103),
@@ -513,5 +517,6 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Inform,
+        read_only: false,
     },
 ];

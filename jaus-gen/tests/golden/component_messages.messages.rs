@@ -248,6 +248,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Command,
+        read_only: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x040A),
@@ -257,6 +258,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Command,
+        read_only: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x2405),
@@ -266,6 +268,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: Some("ReportWrenchEffort"),
         experimental: false,
         class: ::jaus::wire::MessageClass::Query,
+        read_only: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x4405),
@@ -275,6 +278,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Inform,
+        read_only: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x2402),
@@ -284,6 +288,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: Some("ReportGlobalPose"),
         experimental: false,
         class: ::jaus::wire::MessageClass::Query,
+        read_only: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x4402),
@@ -293,5 +298,6 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Inform,
+        read_only: false,
     },
 ];

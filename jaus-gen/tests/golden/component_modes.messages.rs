@@ -133,5 +133,6 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Command,
+        read_only: false,
     },
 ];

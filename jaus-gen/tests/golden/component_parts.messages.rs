@@ -264,6 +264,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Command,
+        read_only: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x040C),
@@ -273,6 +274,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Command,
+        read_only: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x040D),
@@ -282,6 +284,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Command,
+        read_only: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x040A),
@@ -291,6 +294,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Command,
+        read_only: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x240A),
@@ -300,6 +304,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: Some("ReportTravelSpeed"),
         experimental: false,
         class: ::jaus::wire::MessageClass::Query,
+        read_only: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x440A),
@@ -309,6 +314,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Inform,
+        read_only: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x4404),
@@ -318,5 +324,6 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Inform,
+        read_only: false,
     },
 ];

@@ -232,6 +232,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: Some("ReportThing"),
         experimental: false,
         class: ::jaus::wire::MessageClass::Query,
+        read_only: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x4D00),
@@ -241,6 +242,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Inform,
+        read_only: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0xD080),
@@ -250,5 +252,6 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Experimental,
+        read_only: false,
     },
 ];

@@ -182,5 +182,6 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Experimental,
+        read_only: false,
     },
 ];

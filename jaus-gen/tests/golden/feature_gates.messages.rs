@@ -299,6 +299,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: Some("ReportGlobalPose"),
         experimental: false,
         class: ::jaus::wire::MessageClass::Query,
+        read_only: false,
     },
     #[cfg(feature = "planning")]
     ::jaus::MessageInfo {
@@ -309,6 +310,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Command,
+        read_only: false,
     },
     #[cfg(feature = "planning")]
     ::jaus::MessageInfo {
@@ -319,6 +321,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: Some("ReportGlobalWaypoint"),
         experimental: false,
         class: ::jaus::wire::MessageClass::Query,
+        read_only: false,
     },
     #[cfg(feature = "sensors")]
     ::jaus::MessageInfo {
@@ -329,6 +332,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Inform,
+        read_only: false,
     },
     #[cfg(feature = "sensors")]
     ::jaus::MessageInfo {
@@ -339,5 +343,6 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Inform,
+        read_only: false,
     },
 ];

@@ -267,6 +267,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Experimental,
+        read_only: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0xD031),
@@ -276,6 +277,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Experimental,
+        read_only: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0xD032),
@@ -285,5 +287,6 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Experimental,
+        read_only: false,
     },
 ];

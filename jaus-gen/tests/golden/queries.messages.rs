@@ -251,6 +251,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: Some("ReportTemperature"),
         experimental: false,
         class: ::jaus::wire::MessageClass::Query,
+        read_only: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x4D10),
@@ -260,6 +261,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Inform,
+        read_only: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x2D11),
@@ -269,6 +271,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: Some("ReportTemperatureLog"),
         experimental: false,
         class: ::jaus::wire::MessageClass::Query,
+        read_only: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x4D20),
@@ -278,6 +281,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: true,
         class: ::jaus::wire::MessageClass::Inform,
+        read_only: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x2D12),
@@ -287,5 +291,6 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Query,
+        read_only: false,
     },
 ];

@@ -245,6 +245,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Experimental,
+        read_only: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0xD061),
@@ -254,6 +255,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Experimental,
+        read_only: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0xD062),
@@ -263,6 +265,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Experimental,
+        read_only: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0xD063),
@@ -272,5 +275,6 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Experimental,
+        read_only: false,
     },
 ];

@@ -917,6 +917,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Inform,
+        read_only: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x0D40),
@@ -926,6 +927,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Command,
+        read_only: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x0D01),
@@ -935,6 +937,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Command,
+        read_only: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x4D05),
@@ -944,6 +947,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Inform,
+        read_only: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x0D04),
@@ -953,6 +957,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Command,
+        read_only: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x4D04),
@@ -962,6 +967,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Inform,
+        read_only: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x0D08),
@@ -971,6 +977,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Command,
+        read_only: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x0D09),
@@ -980,6 +987,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Command,
+        read_only: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x4D07),
@@ -989,6 +997,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Inform,
+        read_only: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x0D10),
@@ -998,6 +1007,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Command,
+        read_only: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x2D10),
@@ -1007,6 +1017,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: Some("ReportLamp"),
         experimental: false,
         class: ::jaus::wire::MessageClass::Query,
+        read_only: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x4D10),
@@ -1016,6 +1027,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Inform,
+        read_only: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x4D03),
@@ -1025,6 +1037,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Inform,
+        read_only: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x4D30),
@@ -1034,6 +1047,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Inform,
+        read_only: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x0D06),
@@ -1043,5 +1057,6 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Command,
+        read_only: false,
     },
 ];

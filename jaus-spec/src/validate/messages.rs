@@ -49,8 +49,33 @@ pub(super) fn check_messages(cx: &mut Ctx<'_>) -> Vec<Option<Body>> {
         check_runtime(cx, m, &ctx);
         check_class(cx, m, &ctx);
         check_report(cx, m, &ctx);
+        check_access(cx, m, &ctx);
     }
     bodies
+}
+
+/// `access: read` marks a command that changes nothing a controller owns; queries,
+/// reports and the other classes are reads already.
+fn check_access(cx: &mut Ctx<'_>, m: &Parsed<MessageDef>, ctx: &str) {
+    let reads = matches!(
+        m.def.class(),
+        MessageClass::Query
+            | MessageClass::Inform
+            | MessageClass::EventNotification
+            | MessageClass::NodeManagement
+    );
+    if m.def.access.is_some() && reads {
+        cx.err(
+            m.source,
+            &format!("{}.access", m.path),
+            ctx.to_string(),
+            format!(
+                "`access: read` applies to commands (and event set-up); `{}` is a {} message, which an access policy reads as a read already",
+                m.def.name,
+                m.def.class().as_str()
+            ),
+        );
+    }
 }
 
 /// An explicit `class:` is for experimental codes: it may not contradict the class

@@ -33,15 +33,11 @@ use std::time::{Duration, Instant};
 use crate::codec::{Decode, Encode};
 use crate::component::refusal_report;
 use crate::messages::{
-    ActivateServiceConnection, CancelEvent, ClearEmergency, ConfirmComponentControl,
-    ConfirmEventRequest, ConfirmServiceConnection, ControlResponse, CreateEvent,
-    CreateServiceConnection, RejectComponentControl, RejectEventRequest, ReleaseComponentControl,
-    RequestComponentControl, SetEmergency, SuspendServiceConnection, TerminateServiceConnection,
-    UpdateEvent,
+    ClearEmergency, ConfirmComponentControl, ControlResponse, RequestComponentControl, SetEmergency,
 };
 use crate::messages::{RefusalReason, ReportRefusal};
 use crate::wire::{AckNak, MessageClass};
-use crate::{Address, CommandCode, Header, JausMessage, MessageInfo};
+use crate::{Address, Header, JausMessage, MessageInfo};
 
 /// Most refusals logged at warn in one second (the rest at debug, and counted).
 pub const WARNINGS_PER_SECOND: u32 = 20;
@@ -197,35 +193,30 @@ impl Kind {
                 RequestComponentControl::from_bytes(body).map_or(255, |r| r.authority_code);
             return Kind::Control(authority);
         }
-        const READS: [CommandCode; 12] = [
-            CreateServiceConnection::CODE,
-            ConfirmServiceConnection::CODE,
-            ActivateServiceConnection::CODE,
-            SuspendServiceConnection::CODE,
-            TerminateServiceConnection::CODE,
-            ReleaseComponentControl::CODE,
-            ConfirmComponentControl::CODE,
-            RejectComponentControl::CODE,
-            CreateEvent::CODE,
-            UpdateEvent::CODE,
-            CancelEvent::CODE,
-            ConfirmEventRequest::CODE,
-        ];
-        if READS.contains(&code) || code == RejectEventRequest::CODE {
+        let reads = |c: MessageClass| {
+            matches!(
+                c,
+                MessageClass::Query
+                    | MessageClass::Inform
+                    | MessageClass::EventNotification
+                    | MessageClass::NodeManagement
+            )
+        };
+        let class = code.class();
+        if reads(class) {
             return Kind::Read;
         }
-        let class = match code.class() {
-            MessageClass::Experimental => {
-                MessageInfo::of(code).map_or(MessageClass::Command, |i| i.class)
-            }
-            c => c,
+        // A command (or an experimental code) reads when its definition says
+        // `access: read`, or its class (`class:` of an experimental code) is a read.
+        let info = MessageInfo::of(code);
+        let read = match info {
+            Some(i) => i.read_only || (class == MessageClass::Experimental && reads(i.class)),
+            None => false,
         };
-        match class {
-            MessageClass::Query
-            | MessageClass::Inform
-            | MessageClass::EventNotification
-            | MessageClass::NodeManagement => Kind::Read,
-            _ => Kind::Command,
+        if read {
+            Kind::Read
+        } else {
+            Kind::Command
         }
     }
 }
@@ -440,6 +431,8 @@ fn answers(header: &Header, kind: Kind, why: &str) -> Vec<(Header, Vec<u8>)> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::messages::CreateServiceConnection;
+    use crate::CommandCode;
 
     fn a(s: &str) -> Address {
         s.parse().unwrap()
@@ -508,6 +501,16 @@ mod tests {
         );
         // An experimental code nobody defined counts as a command.
         assert_eq!(Kind::of(&h(CommandCode(0xD123)), &[]), Kind::Command);
+        // Every command the definitions mark `access: read` reads (the subscriptions,
+        // event set-up, giving up control), and there are such commands.
+        let reads: Vec<_> = crate::messages::MESSAGES
+            .iter()
+            .filter(|m| m.read_only)
+            .collect();
+        assert!(reads.len() >= 13, "{}", reads.len());
+        for m in reads {
+            assert_eq!(Kind::of(&h(m.code), &[]), Kind::Read, "{}", m.name);
+        }
     }
 
     #[test]

@@ -697,6 +697,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Command,
+        read_only: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x0D02),
@@ -706,6 +707,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Command,
+        read_only: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x0D03),
@@ -715,6 +717,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Command,
+        read_only: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x0D04),
@@ -724,6 +727,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Command,
+        read_only: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x0D05),
@@ -733,6 +737,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Command,
+        read_only: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x4D01),
@@ -742,6 +747,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Inform,
+        read_only: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x4D02),
@@ -751,6 +757,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Inform,
+        read_only: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x4D03),
@@ -760,6 +767,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Inform,
+        read_only: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x4D04),
@@ -769,6 +777,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Inform,
+        read_only: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x4D05),
@@ -778,6 +787,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Inform,
+        read_only: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x4D06),
@@ -787,6 +797,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Inform,
+        read_only: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x4D07),
@@ -796,6 +807,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Inform,
+        read_only: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x4D08),
@@ -805,6 +817,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Inform,
+        read_only: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x4D09),
@@ -814,6 +827,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Inform,
+        read_only: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x4D0A),
@@ -823,5 +837,6 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         report: None,
         experimental: false,
         class: ::jaus::wire::MessageClass::Inform,
+        read_only: false,
     },
 ];
