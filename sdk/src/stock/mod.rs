@@ -23,6 +23,7 @@ pub mod drivers;
 pub mod environment;
 pub mod geo;
 pub mod hardware;
+pub mod journal;
 #[cfg(feature = "manipulator")]
 pub mod manipulator;
 pub mod motion;

@@ -97,6 +97,19 @@ impl<'a> BuildCx<'a> {
         Ok(Box::new(make(self.at, core, config, self.t0())))
     }
 
+    /// The host's durable store, if it has one.
+    pub(super) fn store(&self) -> Option<&'a jaus_store::Store> {
+        self.host.store.as_ref()
+    }
+
+    /// Why this entry's core cannot be loaded from the store.
+    pub(super) fn store_error(&self, e: jaus_store::StoreError) -> HostError {
+        HostError::Store {
+            component: self.entry.stock.name(),
+            error: e.to_string(),
+        }
+    }
+
     /// The simulated vehicle (its actuators, pose and velocity).
     pub(super) fn vehicle(&self) -> SimVehicle {
         self.uses(Hardware::Vehicle);

@@ -40,6 +40,14 @@
 //! driver and camera see, the arm's control period); `jaus_sim::demo::host_config()`
 //! is the demo's.
 //!
+//! # Durable world model and missions
+//!
+//! [`Host::use_store`] hands the host a [`jaus_store::Store`]: the World Models and
+//! Mission Spoolers it builds from then on are rebuilt from what that store holds for
+//! their instance (objects with their ids; missions where they stood, paused) and
+//! commit every change they accept to it before confirming it (`jaus node`'s
+//! `store: PATH`). Without one they keep everything in memory.
+//!
 //! # The Communicator
 //!
 //! The Communicator is real hardware rather than simulated: its [`Entry::links`] are
@@ -178,6 +186,16 @@ pub enum HostError {
         /// What is wrong.
         error: CommunicatorError,
     },
+    /// What the durable store holds for the component cannot be loaded (a record
+    /// that does not decode, the limits of the component).
+    #[error("{component}: {error}")]
+    Store {
+        /// The component's name.
+        component: &'static str,
+        /// What is wrong (`jaus_store::StoreError`, as text: it names the file, table
+        /// and key).
+        error: String,
+    },
     /// A data link of the Communicator could not be set up (its socket, its MTU).
     #[error("{component}: {error}")]
     Link {
@@ -205,6 +223,7 @@ pub struct Host {
     arm: SimArm,
     built: Vec<Address>,
     reflexive: bool,
+    store: Option<jaus_store::Store>,
 }
 
 impl Host {
@@ -236,7 +255,19 @@ impl Host {
             config,
             built: Vec::new(),
             reflexive: false,
+            store: None,
         }
+    }
+
+    /// Makes the World Models and Mission Spoolers built from now on durable in
+    /// `store` (module docs).
+    pub fn use_store(&mut self, store: jaus_store::Store) {
+        self.store = Some(store);
+    }
+
+    /// The durable store, if the host was given one.
+    pub fn store(&self) -> Option<&jaus_store::Store> {
+        self.store.as_ref()
     }
 
     /// An entry with the defaults (instance 1, default output and pose sensor).

@@ -103,16 +103,24 @@ const REGISTRY: &[(u8, Build)] = &[
         )
     }),
     (c::mission_spooler::ID, |cx| {
-        cx.run(
-            c::mission_spooler::component,
-            StockMissionSpooler::new(SpoolerConfig::default()),
-        )
+        let config = SpoolerConfig::default();
+        let core = match cx.store() {
+            Some(s) => s
+                .mission_spooler(cx.at.instance, config)
+                .map_err(|e| cx.store_error(e))?,
+            None => StockMissionSpooler::new(config),
+        };
+        cx.run(c::mission_spooler::component, core)
     }),
     (c::world_model_vector_knowledge_store::ID, |cx| {
-        cx.run(
-            c::world_model_vector_knowledge_store::component,
-            StockWorldModel::new(WorldModelConfig::default()),
-        )
+        let config = WorldModelConfig::default();
+        let core = match cx.store() {
+            Some(s) => s
+                .world_model(cx.at.instance, config)
+                .map_err(|e| cx.store_error(e))?,
+            None => StockWorldModel::new(config),
+        };
+        cx.run(c::world_model_vector_knowledge_store::component, core)
     }),
     (c::range_sensor::ID, |cx| {
         cx.run(

@@ -14,6 +14,9 @@ use crate::JausMessage;
 impl MissionSpooler for StockMissionSpooler {
     fn on_spool_mission(&mut self, ctx: &mut Ctx<'_>, m: &SpoolMission) -> Result<(), Refused> {
         let owner = ctx.source().unwrap_or(ctx.address());
+        // What to put back if the journal cannot commit the change.
+        let before = self.saved(m.mission_id);
+        let stored_before = self.stored;
         let mut items = Vec::new();
         let mut parents = HashMap::new();
         walk(
@@ -102,8 +105,9 @@ impl MissionSpooler for StockMissionSpooler {
                     remote_started: Vec::new(),
                 },
             );
+            self.restored.remove(&m.mission_id);
         }
-        Ok(())
+        self.persist(m.mission_id, before, stored_before)
     }
 
     fn on_run_mission(&mut self, ctx: &mut Ctx<'_>, m: &RunMission) -> Result<(), Refused> {
@@ -115,6 +119,18 @@ impl MissionSpooler for StockMissionSpooler {
                 "the spooler runs missions only in Ready".into(),
             ));
         }
+        if self.restored.contains(&m.mission_id) {
+            // Paused by a restart: runs again from the start of the task it was in.
+            let me = ctx.address();
+            let config = &self.config;
+            if let Some(mission) = self.missions.get_mut(&m.mission_id) {
+                if mission.state == MissionState::Paused {
+                    mission.rewind_task(|dest| self_route(config, me, dest) != dest);
+                    mission.state = MissionState::Pending;
+                }
+            }
+            self.restored.remove(&m.mission_id);
+        }
         let mission = self.mission(m.mission_id)?;
         if mission.state != MissionState::Pending {
             return Err(Refused::Invalid(format!(
@@ -124,6 +140,7 @@ impl MissionSpooler for StockMissionSpooler {
         }
         mission.state = MissionState::Running;
         self.running = Some(m.mission_id);
+        self.touch(m.mission_id);
         ctx.transition(Transition::Run)
             .map_err(|e| Refused::Invalid(e.to_string()))?;
         self.pump(ctx);
@@ -145,10 +162,21 @@ impl MissionSpooler for StockMissionSpooler {
         } else if !mission.paused_tasks.contains(&m.task_id) {
             mission.paused_tasks.push(m.task_id);
         }
+        self.touch(m.mission_id);
+        self.flush();
         Ok(())
     }
 
     fn on_resume_mission(&mut self, ctx: &mut Ctx<'_>, m: &ResumeMission) -> Result<(), Refused> {
+        if m.task_id == 0 && self.restored.contains(&m.mission_id) {
+            // Paused by a restart: the component is Idle, so this runs it.
+            return self.on_run_mission(
+                ctx,
+                &RunMission {
+                    mission_id: m.mission_id,
+                },
+            );
+        }
         let mission = self.mission(m.mission_id)?;
         if m.task_id == 0 {
             if mission.state != MissionState::Paused {
@@ -163,6 +191,7 @@ impl MissionSpooler for StockMissionSpooler {
         } else {
             mission.paused_tasks.retain(|t| *t != m.task_id);
         }
+        self.touch(m.mission_id);
         self.pump(ctx);
         Ok(())
     }
@@ -179,6 +208,9 @@ impl MissionSpooler for StockMissionSpooler {
                     let _ = ctx.transition(Transition::Abort);
                 }
             }
+            self.restored.remove(&m.mission_id);
+            self.touch(m.mission_id);
+            self.flush();
         } else {
             if !mission.aborted_tasks.contains(&m.task_id) {
                 mission.aborted_tasks.push(m.task_id);
@@ -191,6 +223,7 @@ impl MissionSpooler for StockMissionSpooler {
             if waiting_task.is_some_and(|t| mission.task_blocked(t, &mission.aborted_tasks)) {
                 mission.waiting = None;
             }
+            self.touch(m.mission_id);
             self.pump(ctx);
         }
         Ok(())
@@ -201,6 +234,7 @@ impl MissionSpooler for StockMissionSpooler {
         _ctx: &mut Ctx<'_>,
         m: &RemoveMessages,
     ) -> Result<(), Refused> {
+        let (before, stored_before) = (self.saved(m.mission_id), self.stored);
         let mission = self.mission(m.mission_id)?;
         for uid in &m.uids {
             let Some(item) = mission.items.iter().find(|i| i.cmd.uid == *uid) else {
@@ -225,7 +259,7 @@ impl MissionSpooler for StockMissionSpooler {
             n += 1;
         }
         self.stored -= n.min(self.stored);
-        Ok(())
+        self.persist(m.mission_id, before, stored_before)
     }
 
     fn on_replace_messages(
@@ -235,6 +269,7 @@ impl MissionSpooler for StockMissionSpooler {
     ) -> Result<(), Refused> {
         let max = self.config.max_messages;
         let stored = self.stored;
+        let before = self.saved(m.mission_id);
         let mission = self.mission(m.mission_id)?;
         for uid in &m.uids {
             match mission.items.iter().find(|i| i.cmd.uid == *uid) {
@@ -303,7 +338,7 @@ impl MissionSpooler for StockMissionSpooler {
         let added = new.len();
         mission.items.splice(at..at, new);
         self.stored = stored + added - m.uids.len().min(stored + added);
-        Ok(())
+        self.persist(m.mission_id, before, stored)
     }
 
     fn on_query_mission_status(
@@ -446,6 +481,8 @@ impl MissionSpooler for StockMissionSpooler {
                     m.state = MissionState::Pending;
                     m.rewind_task(|dest| self_route(config, me, dest) != dest);
                 }
+                self.touch(id);
+                self.flush();
             }
         }
     }

@@ -59,8 +59,21 @@ impl StockMissionSpooler {
         Some(d)
     }
 
-    /// Sends what can be sent of the running mission.
+    /// Sends what can be sent of the running mission, and commits the missions that
+    /// changed (with a journal).
     pub(super) fn pump(&mut self, ctx: &mut Ctx<'_>) {
+        let (id, sent) = (self.running, self.sent);
+        self.pump_messages(ctx);
+        if let Some(id) = id {
+            if self.sent != sent || self.running != Some(id) {
+                self.touch(id);
+            }
+        }
+        self.flush();
+    }
+
+    /// Sends what can be sent of the running mission.
+    fn pump_messages(&mut self, ctx: &mut Ctx<'_>) {
         let Some(id) = self.running else { return };
         let now = ctx.now();
         let me = ctx.address();
@@ -253,6 +266,9 @@ impl StockMissionSpooler {
         };
         item.state = ItemState::Finished;
         let task = item.task;
+        if self.journal.is_some() {
+            self.dirty.insert(r.mission_id);
+        }
         let me = ctx.address();
         let target = self_route(&self.config, me, item.cmd.message.header.destination);
         if m.waiting == Some(r.task_msg_id) {

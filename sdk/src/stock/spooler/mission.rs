@@ -6,11 +6,16 @@ use std::collections::HashMap;
 use crate::messages::*;
 use crate::Address;
 
+/// Where one message of a mission stands.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(super) enum ItemState {
+pub enum ItemState {
+    /// Not sent yet.
     Pending,
+    /// Sent (a blocking one not reported finished yet).
     Sent,
+    /// Reported finished by its destination.
     Finished,
+    /// Removed or replaced before it was sent.
     Removed,
 }
 
@@ -21,12 +26,18 @@ pub(super) struct Item {
     pub(super) state: ItemState,
 }
 
+/// Where a mission stands.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(super) enum MissionState {
+pub enum MissionState {
+    /// Spooled, not running.
     Pending,
+    /// Running: its messages are being sent.
     Running,
+    /// Paused: nothing is sent until it is resumed.
     Paused,
+    /// Aborted.
     Aborted,
+    /// Every message sent and every blocking one finished.
     Finished,
 }
 

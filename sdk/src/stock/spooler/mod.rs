@@ -31,24 +31,29 @@
 //! flattened into messages and their states), delivery (`delivery`: how and when each
 //! destination gets its messages, control of destinations), the component (`component`:
 //! the Mission Spooler's messages) and the builders other modules use to make missions
-//! ([`command`], [`leaf_task`], [`mission_of`]).
+//! ([`command`], [`leaf_task`], [`mission_of`]), and the persistence seam (`journal`:
+//! [`MissionJournal`], every accepted change committed; [`StockMissionSpooler::restore`]
+//! after a restart).
 
 mod build;
 mod component;
 mod delivery;
+mod journal;
 mod mission;
 
-use std::collections::{BTreeMap, HashMap};
+use std::collections::{BTreeMap, BTreeSet, HashMap};
 use std::time::{Duration, Instant};
 
 use crate::component::Refused;
 use crate::components::mission_spooler::Ctx;
 use crate::messages::*;
 use crate::Address;
-use mission::{wire_status, ItemState, Mission};
+use mission::{wire_status, Mission};
 
 pub use build::{command, leaf_task, mission_of};
 pub use delivery::Delivery;
+pub use journal::{JournalError, MissionJournal, MissionMessage, MissionRecord};
+pub use mission::{ItemState, MissionState};
 
 /// Settings of the spooler.
 #[derive(Debug, Clone)]
@@ -101,6 +106,12 @@ pub struct StockMissionSpooler {
     refused_control: Vec<Address>,
     stored: usize,
     sent: u64,
+    journal: Option<Box<dyn MissionJournal>>,
+    /// Missions changed since the last commit.
+    dirty: BTreeSet<u16>,
+    /// Missions paused by a restart (Resume or Run runs them again).
+    restored: BTreeSet<u16>,
+    journal_failures: u64,
 }
 
 impl StockMissionSpooler {
@@ -117,6 +128,10 @@ impl StockMissionSpooler {
             refused_control: Vec::new(),
             stored: 0,
             sent: 0,
+            journal: None,
+            dirty: BTreeSet::new(),
+            restored: BTreeSet::new(),
+            journal_failures: 0,
         }
     }
 

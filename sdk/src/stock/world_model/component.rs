@@ -24,6 +24,7 @@
 use std::time::{Duration, Instant};
 
 use super::error::StoreError;
+use super::journal::{JournalError, RestoreError, VksChange, VksJournal, VksSnapshot};
 use super::region::Filter;
 use super::store::{Bounds, ObjectId, StoreConfig, VectorStore};
 use crate::codec::Encode;
@@ -89,11 +90,16 @@ struct Transfer {
 ///   none).
 /// * Terminate VKS Data Transfer ends the sender's transfer and is always answered with
 ///   Report VKS Data Transfer Termination.
+///
+/// With a journal ([`StockWorldModel::restore`]), every accepted create, delete and
+/// metadata change is committed before it is confirmed ([`super::journal`]).
 #[derive(Debug)]
 pub struct StockWorldModel {
     store: VectorStore,
     config: WorldModelConfig,
     transfers: Vec<Transfer>,
+    journal: Option<Box<dyn VksJournal>>,
+    journal_failures: u64,
 }
 
 impl Default for StockWorldModel {
@@ -106,6 +112,26 @@ fn invalid(e: StoreError) -> Refused {
     Refused::Invalid(e.to_string())
 }
 
+/// Commits the changes `changes` makes to `journal`, if there is one (counting a
+/// failure in `failures`).
+fn commit(
+    journal: &mut Option<Box<dyn VksJournal>>,
+    failures: &mut u64,
+    changes: impl FnOnce() -> Vec<VksChange>,
+) -> Result<(), JournalError> {
+    let Some(j) = journal.as_mut() else {
+        return Ok(());
+    };
+    let changes = changes();
+    if changes.is_empty() {
+        return Ok(());
+    }
+    j.commit(&changes).inspect_err(|e| {
+        *failures += 1;
+        tracing::warn!("world model: change not committed, refused: {e}");
+    })
+}
+
 impl StockWorldModel {
     /// An empty store.
     pub fn new(mut config: WorldModelConfig) -> Self {
@@ -114,7 +140,48 @@ impl StockWorldModel {
             store: VectorStore::new(config.store.clone()),
             config,
             transfers: Vec::new(),
+            journal: None,
+            journal_failures: 0,
         }
+    }
+
+    /// The store rebuilt from `snapshot` (objects keep their IDs; new IDs continue
+    /// after the highest), committing every change it accepts from now on to
+    /// `journal` before confirming it. Refused (nothing restored) when an object or a
+    /// metadata text of the snapshot breaks the limits of `config`.
+    pub fn restore(
+        mut config: WorldModelConfig,
+        snapshot: VksSnapshot,
+        journal: Box<dyn VksJournal>,
+    ) -> Result<Self, RestoreError> {
+        config.max_report_objects = config.max_report_objects.clamp(1, 65_535);
+        let mut store = VectorStore::restore(config.store.clone(), snapshot.objects)
+            .map_err(|(id, error)| RestoreError::Object { id, error })?;
+        for (class, text) in &snapshot.metadata {
+            store
+                .set_metadata(*class, VksMetadataOption::Overwrite, text)
+                .map_err(|error| RestoreError::Metadata {
+                    class: *class,
+                    error,
+                })?;
+        }
+        Ok(Self {
+            store,
+            config,
+            transfers: Vec::new(),
+            journal: Some(journal),
+            journal_failures: 0,
+        })
+    }
+
+    /// Whether changes are committed to a journal.
+    pub fn is_durable(&self) -> bool {
+        self.journal.is_some()
+    }
+
+    /// Changes refused because the journal could not commit them.
+    pub fn journal_failures(&self) -> u64 {
+        self.journal_failures
     }
 
     /// The store.
@@ -229,6 +296,21 @@ impl WorldModelVectorKnowledgeStore for StockWorldModel {
                 }
             }
         }
+        // Committed before the report: what is confirmed survives a restart.
+        let store = &self.store;
+        let created = || {
+            ids.iter()
+                .filter_map(|id| store.get(*id))
+                .map(|o| VksChange::Created(o.clone()))
+                .collect()
+        };
+        let mut not_committed = None;
+        if let Err(e) = commit(&mut self.journal, &mut self.journal_failures, created) {
+            let stored: Vec<ObjectId> = ids.iter().copied().filter(|id| *id != 0).collect();
+            self.store.delete(&stored);
+            ids.iter_mut().for_each(|id| *id = 0);
+            not_committed = Some(e);
+        }
         if msg.message_properties & 1 != 0 {
             if let Some(src) = ctx.source() {
                 ctx.send(
@@ -239,6 +321,12 @@ impl WorldModelVectorKnowledgeStore for StockWorldModel {
                     },
                 );
             }
+        }
+        if let Some(e) = not_committed {
+            return Err(Refused::Invalid(format!(
+                "none of {} objects stored: the journal did not commit them: {e}",
+                msg.objects.len()
+            )));
         }
         match first_error {
             None => Ok(()),
@@ -254,9 +342,23 @@ impl WorldModelVectorKnowledgeStore for StockWorldModel {
         _ctx: &mut Ctx<'_>,
         msg: &SetVksFeatureClassMetadata,
     ) -> Result<(), Refused> {
+        let class = msg.feature_class_id;
+        let old = self.store.metadata(class).to_string();
         self.store
-            .set_metadata(msg.feature_class_id, msg.metadata_option, &msg.metadata)
-            .map_err(invalid)
+            .set_metadata(class, msg.metadata_option, &msg.metadata)
+            .map_err(invalid)?;
+        let text = self.store.metadata(class).to_string();
+        let metadata = || vec![VksChange::Metadata { class, text }];
+        if let Err(e) = commit(&mut self.journal, &mut self.journal_failures, metadata) {
+            // Puts back what was there (it fitted the limits before).
+            let _ = self
+                .store
+                .set_metadata(class, VksMetadataOption::Overwrite, &old);
+            return Err(Refused::Invalid(format!(
+                "metadata of feature class {class} not changed: the journal did not commit it: {e}"
+            )));
+        }
+        Ok(())
     }
 
     fn on_delete_vks_objects(
@@ -265,7 +367,22 @@ impl WorldModelVectorKnowledgeStore for StockWorldModel {
         msg: &DeleteVksObjects,
     ) -> Result<(), Refused> {
         let filter = Filter::from_delete(msg).map_err(invalid)?;
-        self.store.delete_matching(&filter).map_err(invalid)?;
+        if self.journal.is_none() {
+            self.store.delete_matching(&filter).map_err(invalid)?;
+            return Ok(());
+        }
+        if filter.is_empty() {
+            return Err(invalid(StoreError::EmptyFilter));
+        }
+        // Committed before the objects go: a failed commit deletes nothing.
+        let ids = self.store.query(&filter);
+        let deleted = || ids.iter().map(|id| VksChange::Deleted(*id)).collect();
+        commit(&mut self.journal, &mut self.journal_failures, deleted).map_err(|e| {
+            Refused::Invalid(format!(
+                "nothing deleted: the journal did not commit the deletion: {e}"
+            ))
+        })?;
+        self.store.delete(&ids);
         Ok(())
     }
 

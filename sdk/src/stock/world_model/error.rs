@@ -119,4 +119,7 @@ pub enum StoreError {
         /// The limit.
         max: usize,
     },
+    /// An object of a snapshot being restored that no store could hold as given.
+    #[error("cannot restore the object: {0}")]
+    Restore(&'static str),
 }

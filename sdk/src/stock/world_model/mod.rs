@@ -11,6 +11,7 @@
 //! | [`region`] | [`Geometry`], the buffered region of a query or deletion, and the [`Filter`] that selects objects |
 //! | [`store`] | [`VectorStore`] and its limits ([`StoreConfig`]): the objects, the spatial index, the bounds on memory |
 //! | [`error`] | [`StoreError`]: why the store refused something |
+//! | [`journal`] | [`VksJournal`]: the persistence seam (every accepted change committed before it is confirmed) and [`VksSnapshot`], what a restart restores |
 //! | [`component`] | [`StockWorldModel`]: the component over the store, and how long answers are paged |
 //!
 //! Every public item is re-exported here (`jaus::stock::world_model::VectorStore`).
@@ -20,6 +21,7 @@ mod coords;
 pub mod error;
 pub mod geometry;
 mod index;
+pub mod journal;
 pub mod region;
 pub mod store;
 
@@ -28,5 +30,6 @@ pub use error::StoreError;
 pub use geometry::{
     point_in_polygon, point_segment_distance, segments_intersect, Shape, MAX_VERTICES,
 };
+pub use journal::{JournalError, RestoreError, VksChange, VksJournal, VksSnapshot};
 pub use region::{Filter, Geometry, MAX_REGION_BUFFER};
 pub use store::{Bounds, ObjectId, StoreConfig, VectorStore};

@@ -201,6 +201,16 @@ impl VectorStore {
 
     /// Validates and stores an object without indexing it: its ID and slot.
     fn admit(&mut self, object: &VksObject) -> Result<(ObjectId, u32), StoreError> {
+        self.admit_as(object, None)
+    }
+
+    /// [`admit`](Self::admit) under a given ID (`Some`: one not in use and not 0,
+    /// checked by the caller) or the next free one (`None`).
+    fn admit_as(
+        &mut self,
+        object: &VksObject,
+        given: Option<ObjectId>,
+    ) -> Result<(ObjectId, u32), StoreError> {
         let c = &self.config;
         if self.objects.len() >= c.max_objects {
             return Err(StoreError::TooManyObjects { max: c.max_objects });
@@ -233,7 +243,10 @@ impl VectorStore {
             });
         }
         let (fp, shift) = analyse(shape, &object.points, c.max_vertices)?;
-        let id = self.free_id();
+        let id = match given {
+            Some(id) => id,
+            None => self.free_id(),
+        };
         let stored = Stored {
             object: VksStoredObject {
                 object_id: id,
@@ -314,6 +327,58 @@ impl VectorStore {
             }
         }
         results
+    }
+
+    /// A store with these limits holding `objects` under their own IDs (a store
+    /// rebuilt from what a journal committed: the same checks as
+    /// [`create`](Self::create), indexed by bulk loading). New IDs continue after the
+    /// highest restored one. Refused: an ID of 0 or given twice, or an object the
+    /// limits refuse (the error names its ID).
+    pub fn restore(
+        config: StoreConfig,
+        objects: impl IntoIterator<Item = VksStoredObject>,
+    ) -> Result<Self, (ObjectId, StoreError)> {
+        let mut store = Self::new(config);
+        let mut highest = 0;
+        for o in objects {
+            let id = o.object_id;
+            if id == 0 || store.objects.contains_key(&id) {
+                return Err((id, StoreError::Restore("an object ID of 0 or given twice")));
+            }
+            let object = VksObject {
+                object_type: o.object_type,
+                buffer: Some(o.buffer),
+                feature_classes: o.feature_classes,
+                points: o.points,
+            };
+            store.admit_as(&object, Some(id)).map_err(|e| (id, e))?;
+            highest = highest.max(id);
+        }
+        store.next_id = if highest == u32::MAX { 1 } else { highest + 1 };
+        let entries: Vec<Entry> = store
+            .slots
+            .iter()
+            .enumerate()
+            .filter_map(|(slot, s)| s.as_ref().map(|s| (slot as u32, s)))
+            .flat_map(|(slot, s)| {
+                s.index_boxes().map(move |b| Entry {
+                    slot,
+                    env: b.aabb(),
+                })
+            })
+            .collect();
+        store.tree = RTree::bulk_load(entries);
+        Ok(store)
+    }
+
+    /// The ID the next object created gets unless it is in use.
+    pub fn next_id(&self) -> ObjectId {
+        self.next_id
+    }
+
+    /// Every feature class with metadata text, and its text, by class.
+    pub fn all_metadata(&self) -> impl Iterator<Item = (u16, &str)> + '_ {
+        self.metadata.iter().map(|(c, t)| (*c, t.as_str()))
     }
 
     /// Deletes the objects with these IDs (unknown IDs are ignored); returns how many

@@ -277,12 +277,23 @@ impl NodeFile {
         };
         built.map_err(|e| e.to_string())
     }
+    /// The file of `store:`, relative to the directory of the node file `path`.
+    pub fn store_path(&self, path: &Path) -> Option<std::path::PathBuf> {
+        let dir = path.parent().unwrap_or_else(|| Path::new("."));
+        self.store.as_ref().map(|s| dir.join(s))
+    }
+
     /// The node this file describes, its `host:` entries built and added, starting at
     /// `t0` (`path`: the file, for the errors).
     pub fn build_node(&self, path: &Path, t0: Instant) -> Result<Node, String> {
         let mut node = Node::new(self.node_config(), t0);
         let hosted = self.hosted();
         let mut host = jaus_sim::host::Host::new(self.subsystem, self.node, t0);
+        if let Some(file) = self.store_path(path) {
+            let store = jaus_store::Store::open(&file)
+                .map_err(|e| format!("{}: store: {e}", path.display()))?;
+            host.use_store(store);
+        }
         if hosted.iter().any(
             |h| matches!(h, Hosted::Stock(e) if e.stock.id() == jaus::components::reflexive_driver::ID),
         ) {

@@ -38,7 +38,17 @@ pub use run::{node, tree_json, TreePrinter};
 ///   default: query
 ///   rules: [{ from: 200.*.*.*, may: command, max_authority: 100 }]
 /// communicator: 1.2.35.1 # optional: the subsystem's communicator on another node
+/// store: vehicle.jstore  # optional: world_model and mission_spooler entries durable
 /// ```
+///
+/// `store:` (a file, relative to the node file's directory; created if absent) makes
+/// the `world_model` and `mission_spooler` entries of `host:` durable
+/// (`jaus_store::Store`): every object created or deleted, metadata set, mission
+/// spooled, changed or advanced is committed to it before it is confirmed, and a
+/// restarted node reloads them (objects with their ids, missions where they stood,
+/// paused until Resume or Run Mission). A store that does not load (a record that
+/// does not decode, more than the limits) stops the node with the file, table and key.
+/// The demo `vehicle` stays in memory.
 ///
 /// A `host:` entry is `vehicle`, `arm` (the Primitive Manipulator, the three joint sensors
 /// and the six manipulator drivers of `jaus_sim::arm_demo::arm_components` over one
@@ -119,6 +129,10 @@ pub struct NodeFile {
     /// The node's access policy (`jaus::net::Policy`; open without it).
     #[serde(default)]
     pub policy: Option<super::PolicyFile>,
+    /// The durable store of the hosted world models and mission spoolers (relative to
+    /// the node file's directory); in memory without it.
+    #[serde(default)]
+    pub store: Option<std::path::PathBuf>,
 }
 
 /// `io:` of a node file: how the node waits for and reads datagrams.

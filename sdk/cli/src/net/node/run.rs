@@ -74,6 +74,13 @@ pub fn node(
         file.framing,
         file.peers
     );
+    if let Some(p) = file.store_path(config) {
+        let _ = writeln!(
+            out,
+            "store: {} (world model and mission spooler durable)",
+            p.display()
+        );
+    }
     let _ = match node.policy() {
         Some(p) if !p.policy().is_open() => writeln!(out, "access policy: {}", p.policy().describe()),
         _ => writeln!(

@@ -1,0 +1,188 @@
+"""Type stubs of the extension module ``jaus._jaus`` (re-exported by ``jaus``)."""
+
+import os
+from typing import Any, Dict, Iterator, List, Optional, Sequence, Tuple, Union
+
+Address = Union[Tuple[int, int, int, int], str]
+"""``(subsystem, node, component, instance)``, or ``"s.n.c.i"``."""
+
+Socket = Tuple[str, int]
+"""``(ip, port)``."""
+
+_Path = Union[str, "os.PathLike[str]"]
+
+class JausError(ValueError):
+    """Every error of the jaus package."""
+
+    message: Optional[str]
+    """The message being decoded or encoded, when known."""
+    field: Optional[str]
+    """The field (``Message.field``, or a path into it), when known."""
+    path: List[str]
+    """Decoding: the field and the fields that hold it, innermost first."""
+    offset: Optional[int]
+    """Decoding: the byte offset in the body."""
+
+class DecodeError(JausError):
+    """Bytes that are not a message."""
+
+class EncodeError(JausError):
+    """A message that cannot be encoded, or fields that do not fit a message."""
+
+class SpecError(JausError):
+    """Definition files (vendor overlays) that do not load."""
+
+class Record:
+    """A record inside a message (or a bit field, a union with a value, an unknown
+    enumeration value): its entries as attributes and items."""
+
+    def __getattr__(self, name: str) -> Any: ...
+    def __getitem__(self, key: str) -> Any: ...
+    def __contains__(self, key: object) -> bool: ...
+    def __len__(self) -> int: ...
+    def __iter__(self) -> Iterator[str]: ...
+    def keys(self) -> List[str]: ...
+    def to_dict(self) -> Dict[str, Any]:
+        """The JSON form as a dict."""
+    def to_json(self) -> str:
+        """The JSON form as text."""
+
+class Message:
+    """A JAUS message: its fields are attributes, in the units of the CLI's JSON."""
+
+    @property
+    def name(self) -> str: ...
+    @property
+    def code(self) -> int: ...
+    @property
+    def fields(self) -> List[str]:
+        """The names of the fields present, in wire order."""
+    def __getattr__(self, name: str) -> Any: ...
+    def __getitem__(self, name: str) -> Any: ...
+    def __contains__(self, name: object) -> bool: ...
+    def to_dict(self) -> Dict[str, Any]:
+        """The ``"fields"`` of the line ``jaus decode`` prints."""
+    def to_json(self) -> str:
+        """The ``"fields"`` of the line ``jaus decode`` prints, as text."""
+    def encode(self) -> bytes:
+        """The body."""
+    def doc(self) -> str:
+        """The description ``jaus messages NAME`` prints."""
+    @staticmethod
+    def from_dict(name: str, fields: Optional[Dict[str, Any]] = None) -> "Message":
+        """The SDK's message ``name`` with ``fields`` in the form ``to_dict()`` gives."""
+
+class Packet:
+    """A JAUS packet: the header's fields, the body, the message it holds."""
+
+    @property
+    def priority(self) -> int: ...
+    @property
+    def ack_nak(self) -> str:
+        """``"none"``, ``"request"``, ``"nak"`` or ``"ack"``."""
+    @property
+    def service_connection(self) -> bool: ...
+    @property
+    def experimental(self) -> bool: ...
+    @property
+    def version(self) -> int: ...
+    @property
+    def reserved(self) -> int: ...
+    @property
+    def command_code(self) -> int: ...
+    @property
+    def destination(self) -> Tuple[int, int, int, int]: ...
+    @property
+    def source(self) -> Tuple[int, int, int, int]: ...
+    @property
+    def data_size(self) -> int: ...
+    @property
+    def data_flag(self) -> str:
+        """``"single"``, ``"first"``, ``"normal"``, ``"retransmit"`` or ``"last"``."""
+    @property
+    def sequence_number(self) -> int: ...
+    @property
+    def body(self) -> bytes: ...
+    @property
+    def message(self) -> Optional[Message]:
+        """The message, or None (a code the schema does not define, a part of a
+        multi-packet message)."""
+    @property
+    def name(self) -> str:
+        """The message's name, ``"Raw"`` without one."""
+    def header_dict(self) -> Dict[str, Any]: ...
+    def to_dict(self) -> Dict[str, Any]:
+        """The line ``jaus decode`` prints, as a dict."""
+    def to_json(self) -> str:
+        """The line ``jaus decode`` prints."""
+    def encode(self) -> bytes:
+        """The packet's bytes."""
+
+class Schema:
+    """The messages of a definition set: the SDK's, or the SDK's with vendor overlays."""
+
+    @staticmethod
+    def sdk() -> "Schema": ...
+    @staticmethod
+    def load(overlays: Sequence[_Path]) -> "Schema": ...
+    def messages(self) -> List[str]: ...
+    def code(self, name: str) -> int: ...
+    def name(self, code: int) -> Optional[str]: ...
+    def fields(self, name: str) -> List[str]: ...
+    def doc(self, name: str) -> str: ...
+    def decode(self, body: bytes, code: int) -> Message: ...
+    def decode_packet(self, packet: bytes) -> Packet: ...
+    def encode(self, message: Message) -> bytes: ...
+    def encode_packet(
+        self,
+        message: Message,
+        source: Address,
+        destination: Address,
+        *,
+        priority: int = 6,
+        ack_nak: str = "none",
+        service_connection: bool = False,
+        experimental: bool = False,
+        sequence_number: int = 0,
+    ) -> bytes: ...
+    def message(self, name: str, /, **fields: Any) -> Message: ...
+    def from_dict(self, name: str, fields: Optional[Dict[str, Any]] = None) -> Message: ...
+    def read_pcap(
+        self, path: _Path, *, strict: bool = True
+    ) -> List[Tuple[float, Socket, Socket, Packet]]: ...
+
+def decode(body: bytes, code: int) -> Message:
+    """Decodes the body of the SDK's message with command code ``code``."""
+
+def decode_packet(packet: bytes) -> Packet:
+    """Decodes a whole packet: the 16-byte header and the body."""
+
+def encode(message: Message) -> bytes:
+    """The body of ``message``."""
+
+def encode_packet(
+    message: Message,
+    source: Address,
+    destination: Address,
+    *,
+    priority: int = 6,
+    ack_nak: str = "none",
+    service_connection: bool = False,
+    experimental: bool = False,
+    sequence_number: int = 0,
+) -> bytes:
+    """The packet of ``message`` from ``source`` to ``destination``."""
+
+def message(name: str, /, **fields: Any) -> Message:
+    """The SDK's message ``name`` with the fields given as keywords."""
+
+def messages() -> List[str]:
+    """The names of the SDK's messages, in definition order."""
+
+def doc(name: str) -> str:
+    """The description of message ``name`` (``jaus messages NAME``)."""
+
+def read_pcap(
+    path: _Path, *, strict: bool = True
+) -> List[Tuple[float, Socket, Socket, Packet]]:
+    """Every JAUS message of a pcap/pcapng capture: ``(time, source, destination, packet)``."""

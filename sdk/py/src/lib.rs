@@ -1,0 +1,130 @@
+//! # jaus-py — `import jaus`
+//!
+//! The SDK's codec from Python, built by maturin into the extension module
+//! `jaus._jaus` of the Python package `jaus` (`python/jaus`): every message of the
+//! SDK's definitions, and of a vendor's overlays loaded at run time, decoded and
+//! encoded through `jaus-dynamic` (one codec, byte-exact with the generated types and
+//! OpenJAUS); fields in the names, units and forms of the CLI's JSON lines; pcap and
+//! pcapng captures read into messages; errors as Python exceptions naming the
+//! message, field and byte offset.
+//!
+//! The module's functions ([`decode`], [`encode`], ...) use the SDK's definitions;
+//! `jaus.Schema.load([...])` gives the same methods over a vendor's overlays. The
+//! Python API is documented in docs/python.md; the tests are the pytest suite in
+//! `tests/`.
+
+mod convert;
+mod errors;
+mod message;
+mod packet;
+mod pcap;
+mod schema;
+
+pub use errors::{DecodeError, EncodeError, JausError, SpecError};
+pub use message::{Message, Record};
+pub use packet::Packet;
+pub use schema::Schema;
+
+use pyo3::prelude::*;
+use pyo3::types::{PyBytes, PyDict};
+use std::path::PathBuf;
+
+/// Decodes the body of the message with command code `code` (SDK messages).
+#[pyfunction]
+fn decode(py: Python<'_>, body: &[u8], code: u16) -> PyResult<Message> {
+    let cat = schema::sdk()?;
+    let m = cat.decode(py, code, body)?;
+    Ok(Message::new(cat, m))
+}
+
+/// Decodes a whole packet: the 16-byte RA 3.3 header and the body.
+#[pyfunction]
+fn decode_packet(py: Python<'_>, packet: &[u8]) -> PyResult<Packet> {
+    schema::decode_packet(py, &schema::sdk()?, packet)
+}
+
+/// The body of `message` (by the schema it was made with).
+#[pyfunction]
+fn encode<'py>(py: Python<'py>, message: &Message) -> PyResult<Bound<'py, PyBytes>> {
+    schema::encode(py, &schema::sdk()?, message)
+}
+
+/// The packet of `message` from `source` to `destination`.
+#[pyfunction]
+#[pyo3(signature = (message, source, destination, *, priority = 6, ack_nak = "none", service_connection = false, experimental = false, sequence_number = 0))]
+#[allow(clippy::too_many_arguments)]
+fn encode_packet<'py>(
+    py: Python<'py>,
+    message: &Message,
+    source: &Bound<'py, PyAny>,
+    destination: &Bound<'py, PyAny>,
+    priority: u8,
+    ack_nak: &str,
+    service_connection: bool,
+    experimental: bool,
+    sequence_number: u16,
+) -> PyResult<Bound<'py, PyBytes>> {
+    let opts = schema::HeaderOptions {
+        priority,
+        ack_nak,
+        service_connection,
+        experimental,
+        sequence_number,
+    };
+    schema::encode_packet(py, &schema::sdk()?, message, source, destination, &opts)
+}
+
+/// The SDK's message `name` with the fields given as keywords.
+#[pyfunction]
+#[pyo3(name = "message", signature = (name, /, **fields))]
+fn make_message(
+    py: Python<'_>,
+    name: &str,
+    fields: Option<&Bound<'_, PyDict>>,
+) -> PyResult<Message> {
+    let cat = schema::sdk()?;
+    let m = cat.build(py, name, fields)?;
+    Ok(Message::new(cat, m))
+}
+
+/// The names of the SDK's messages, in definition order.
+#[pyfunction]
+fn messages() -> PyResult<Vec<&'static str>> {
+    Ok(schema::sdk()?.schema.messages().map(|m| m.name).collect())
+}
+
+/// The description of the SDK's message `name` (`jaus messages NAME`).
+#[pyfunction]
+fn doc(name: &str) -> PyResult<String> {
+    schema::sdk()?.doc(name)
+}
+
+/// Every JAUS message of a pcap/pcapng capture (SDK messages).
+#[pyfunction]
+#[pyo3(signature = (path, *, strict = true))]
+fn read_pcap(py: Python<'_>, path: PathBuf, strict: bool) -> PyResult<Vec<pcap::Entry>> {
+    pcap::read(py, &schema::sdk()?, &path, strict)
+}
+
+/// The extension module `jaus._jaus` (the package `jaus` re-exports it).
+#[pymodule]
+fn _jaus(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    let py = m.py();
+    m.add_function(wrap_pyfunction!(decode, m)?)?;
+    m.add_function(wrap_pyfunction!(decode_packet, m)?)?;
+    m.add_function(wrap_pyfunction!(encode, m)?)?;
+    m.add_function(wrap_pyfunction!(encode_packet, m)?)?;
+    m.add_function(wrap_pyfunction!(make_message, m)?)?;
+    m.add_function(wrap_pyfunction!(messages, m)?)?;
+    m.add_function(wrap_pyfunction!(doc, m)?)?;
+    m.add_function(wrap_pyfunction!(read_pcap, m)?)?;
+    m.add_class::<Message>()?;
+    m.add_class::<Record>()?;
+    m.add_class::<Packet>()?;
+    m.add_class::<Schema>()?;
+    m.add("JausError", py.get_type::<JausError>())?;
+    m.add("DecodeError", py.get_type::<DecodeError>())?;
+    m.add("EncodeError", py.get_type::<EncodeError>())?;
+    m.add("SpecError", py.get_type::<SpecError>())?;
+    Ok(())
+}
