@@ -19,7 +19,7 @@ const STYLE: &str =
 td,th{border:1px solid #ccc;padding:4px;vertical-align:top;text-align:left}\
 .pass{background:#e6f4e6}.fail{background:#fbe3e3}.inconclusive{background:#f6f1dc}\
 pre{margin:0;font-size:85%;white-space:pre-wrap}\
-body.only-failed tr.pass,body.only-failed tr.inconclusive,body.only-required tr.check:not(.required-failure){display:none}\
+body.only-failed tr.pass,body.only-required tr.check:not(.required-failure){display:none}\
 #filter{position:sticky;top:0;background:#fff;padding:.4em 0}";
 
 /// The filter: the body's class says which rows show.
