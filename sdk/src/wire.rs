@@ -186,8 +186,8 @@ impl<'de> serde::Deserialize<'de> for Address {
     }
 }
 
-/// ACK/NAK field of the header.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+/// ACK/NAK field of the header: the same two bits in RA 3.3's header and in AS5669A's.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum AckNak {
@@ -200,6 +200,28 @@ pub enum AckNak {
     Nak,
     /// Acknowledgement (3).
     Ack,
+}
+
+impl AckNak {
+    /// The field of the two low bits of `bits`.
+    pub const fn from_bits(bits: u8) -> Self {
+        match bits & 3 {
+            0 => Self::None,
+            1 => Self::Request,
+            2 => Self::Nak,
+            _ => Self::Ack,
+        }
+    }
+
+    /// The 2-bit value.
+    pub const fn bits(self) -> u8 {
+        self as u8
+    }
+
+    /// Whether this is an answer (ack or nak) rather than a message.
+    pub const fn is_answer(self) -> bool {
+        matches!(self, Self::Nak | Self::Ack)
+    }
 }
 
 /// Data flag of a packet in a multi-packet sequence (docs/wire.md §1.3).
@@ -348,12 +370,7 @@ impl Header {
         {
             return Err(self.narrow_field_error(data_size));
         }
-        let ack: u64 = match self.ack_nak {
-            AckNak::None => 0,
-            AckNak::Request => 1,
-            AckNak::Nak => 2,
-            AckNak::Ack => 3,
-        };
+        let ack = u64::from(self.ack_nak.bits());
         let props: u64 = u64::from(self.priority)
             | ack << 4
             | u64::from(self.service_connection) << 6
@@ -470,12 +487,7 @@ impl Header {
         let address = |w: u64| Address::from_wire((w as u32).to_le_bytes());
         Ok(Header {
             priority: (props & 0x0F) as u8,
-            ack_nak: match (props >> 4) & 3 {
-                0 => AckNak::None,
-                1 => AckNak::Request,
-                2 => AckNak::Nak,
-                _ => AckNak::Ack,
-            },
+            ack_nak: AckNak::from_bits((props >> 4) as u8),
             service_connection: props & (1 << 6) != 0,
             experimental: props & (1 << 7) != 0,
             version: ((props >> 8) & 0x3F) as u8,

@@ -31,6 +31,24 @@ pub struct Datagram {
     pub payload: Vec<u8>,
 }
 
+impl Datagram {
+    /// The JAUS packet it carries, whichever framing it uses: JUDP, the OPC
+    /// "JAUS01.0" prefix, or none on OpenJAUS's local data socket (port 24629).
+    pub fn jaus_packet(&self) -> Result<&[u8], String> {
+        let payload = &self.payload[..];
+        let data = jaus::net::oj::DATA_PORT;
+        if self.src.port() == data || self.dst.port() == data {
+            return Ok(payload);
+        }
+        let framing = if payload.starts_with(b"JAUS01.0") {
+            jaus::net::Framing::Opc
+        } else {
+            jaus::net::Framing::Judp
+        };
+        framing.decode(payload).map_err(|e| e.to_string())
+    }
+}
+
 /// Why a capture cannot be written or read.
 #[derive(Debug, thiserror::Error)]
 pub enum CaptureError {

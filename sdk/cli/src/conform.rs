@@ -5,7 +5,7 @@ use std::io::Write;
 use std::path::PathBuf;
 use std::time::Duration;
 
-use jaus_conform::session::Voices;
+use jaus_conform::session::{Session, Voices};
 use jaus_conform::udp::UdpSession;
 use jaus_conform::{report, Options};
 

@@ -8,7 +8,7 @@ use std::path::Path;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
-use jaus::net::framing::{Framing, Reassembler, ReassemblyLimits};
+use jaus::net::framing::{Reassembler, ReassemblyLimits};
 use jaus::wire::PacketRef;
 
 use crate::capture::{self, Datagram};
@@ -21,20 +21,6 @@ fn openjaus_socket(d: &Datagram) -> Option<u16> {
     [d.src.port(), d.dst.port()]
         .into_iter()
         .find(|p| *p == CONTROL_PORT || *p == DATA_PORT)
-}
-
-/// The JAUS packet inside a datagram, whichever framing it uses.
-fn unframe(d: &Datagram) -> Result<&[u8], String> {
-    let payload = &d.payload[..];
-    if openjaus_socket(d) == Some(jaus::net::oj::DATA_PORT) {
-        return Ok(payload);
-    }
-    let framing = if payload.starts_with(b"JAUS01.0") {
-        Framing::Opc
-    } else {
-        Framing::Judp
-    };
-    framing.decode(payload).map_err(|e| e.to_string())
 }
 
 /// `jaus decode --pcap FILE`: one JSON line per JAUS message (the form of `jaus decode`
@@ -59,7 +45,7 @@ pub fn decode_capture(
             continue;
         }
         let line = (|| -> Result<Option<String>, String> {
-            let bytes = unframe(d)?;
+            let bytes = d.jaus_packet()?;
             let packet = PacketRef::parse(bytes).map_err(|e| e.to_string())?;
             // The capture's own clock orders the parts of a multi-packet message.
             let now = clock + d.time.saturating_sub(t0);

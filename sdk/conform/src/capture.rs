@@ -54,6 +54,30 @@ impl Recording {
     }
 }
 
+/// A session's recording: off until [`start`](Tap::start)ed, then keeping what it is
+/// given.
+#[derive(Debug, Clone, Default)]
+pub struct Tap(Option<Recording>);
+
+impl Tap {
+    /// Keeps every datagram pushed from now on.
+    pub fn start(&mut self) {
+        self.0.get_or_insert_with(Recording::default);
+    }
+
+    /// What was kept since [`start`](Tap::start), leaving an empty recording.
+    pub fn take(&mut self) -> Recording {
+        self.0.as_mut().map(std::mem::take).unwrap_or_default()
+    }
+
+    /// Keeps one datagram if recording.
+    pub fn push(&mut self, time: Duration, from: SocketAddr, to: SocketAddr, bytes: &[u8]) {
+        if let Some(r) = self.0.as_mut() {
+            r.push(time, from, to, bytes);
+        }
+    }
+}
+
 /// The wall-clock time now, since the Unix epoch (zero if the clock is before it).
 pub(crate) fn wall_now() -> Duration {
     std::time::SystemTime::now()

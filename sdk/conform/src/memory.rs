@@ -10,7 +10,7 @@ use jaus::codec::Encode;
 use jaus::net::{Framing, Node, NodeConfig};
 use jaus::{Address, Header, Packet};
 
-use crate::capture::{wall_now, Recording};
+use crate::capture::{wall_now, Tap};
 use crate::session::{dropped, pop, tester_node, Inbox, Incoming, Session, Voices};
 
 /// The target node's (pretend) socket.
@@ -29,7 +29,7 @@ pub struct MemorySession {
     /// with virtual time on the wall clock's scale).
     t0: Instant,
     wall0: Duration,
-    recording: Option<Recording>,
+    tap: Tap,
 }
 
 /// Most datagrams handed over in one pump (two nodes answering each other forever
@@ -57,7 +57,7 @@ impl MemorySession {
             inbox,
             t0,
             wall0: wall_now(),
-            recording: None,
+            tap: Tap::default(),
         };
         s.run_until(t0 + Duration::from_secs(1), false);
         if let Ok(mut q) = s.inbox.lock() {
@@ -71,24 +71,9 @@ impl MemorySession {
         &mut self.target
     }
 
-    /// Keeps every datagram between the two nodes from now on (for a pcap file).
-    pub fn record(&mut self) {
-        self.recording.get_or_insert_with(Recording::default);
-    }
-
-    /// The datagrams kept since [`record`](Self::record), leaving an empty recording.
-    pub fn take_recording(&mut self) -> Recording {
-        self.recording
-            .as_mut()
-            .map(std::mem::take)
-            .unwrap_or_default()
-    }
-
     fn keep(&mut self, from: SocketAddr, to: SocketAddr, bytes: &[u8]) {
         let time = self.wall0 + self.now.saturating_duration_since(self.t0);
-        if let Some(r) = self.recording.as_mut() {
-            r.push(time, from, to, bytes);
-        }
+        self.tap.push(time, from, to, bytes);
     }
 
     fn pump(&mut self) {
@@ -152,6 +137,9 @@ impl Session for MemorySession {
         self.keep(TESTER, TARGET, &bytes);
         self.target.handle_datagram(self.now, TESTER, &bytes);
         self.pump();
+    }
+    fn tap(&mut self) -> &mut Tap {
+        &mut self.tap
     }
     fn dropped(&self) -> u64 {
         dropped(&self.inbox)

@@ -42,6 +42,16 @@ pub trait Session {
     fn recv(&mut self, deadline: Instant) -> Option<Incoming>;
     /// Packets for the voices not kept because the inbox was full (a flooding target).
     fn dropped(&self) -> u64;
+    /// The session's recording of the datagrams it exchanges.
+    fn tap(&mut self) -> &mut crate::capture::Tap;
+    /// Keeps every datagram exchanged from now on (for a pcap file).
+    fn record(&mut self) {
+        self.tap().start();
+    }
+    /// The datagrams kept since [`record`](Session::record), leaving an empty recording.
+    fn take_recording(&mut self) -> crate::capture::Recording {
+        self.tap().take()
+    }
 }
 
 /// The tester's addresses.

@@ -10,7 +10,7 @@ use jaus::net::udp::{IoOptions, UdpTransport};
 use jaus::net::{shell, Framing, Node, NodeConfig};
 use jaus::{Address, Header};
 
-use crate::capture::{wall_now, Recording};
+use crate::capture::{wall_now, Tap};
 use crate::session::{dropped, pop, tester_node, Inbox, Incoming, Session, Voices};
 
 /// The tester on a UDP socket.
@@ -23,7 +23,7 @@ pub struct UdpSession {
     framing: Framing,
     io: IoOptions,
     heard: bool,
-    recording: Option<Recording>,
+    tap: Tap,
     local: SocketAddr,
 }
 
@@ -58,33 +58,18 @@ impl UdpSession {
             framing,
             io: IoOptions::default(),
             heard: false,
-            recording: None,
+            tap: Tap::default(),
             local,
         })
     }
 
-    /// Keeps every datagram the socket sends or receives from now on (for a pcap file).
-    pub fn record(&mut self) {
-        self.recording.get_or_insert_with(Recording::default);
-    }
-
-    /// The datagrams kept since [`record`](Self::record), leaving an empty recording.
-    pub fn take_recording(&mut self) -> Recording {
-        self.recording
-            .as_mut()
-            .map(std::mem::take)
-            .unwrap_or_default()
-    }
-
     fn keep(&mut self, sent: bool, peer: SocketAddr, bytes: &[u8]) {
-        if let Some(r) = self.recording.as_mut() {
-            let (from, to) = if sent {
-                (self.local, peer)
-            } else {
-                (peer, self.local)
-            };
-            r.push(wall_now(), from, to, bytes);
-        }
+        let (from, to) = if sent {
+            (self.local, peer)
+        } else {
+            (peer, self.local)
+        };
+        self.tap.push(wall_now(), from, to, bytes);
     }
 
     /// Runs the node for `wait` (its node manager discovers the system), then the
@@ -112,7 +97,7 @@ impl UdpSession {
         let inbox = self.inbox.clone();
         let peers = self.peers.clone();
         let mut heard = false;
-        let (recording, local) = (&mut self.recording, self.local);
+        let (tap, local) = (&mut self.tap, self.local);
         let mut transport = UdpTransport::new(&self.socket, &self.io);
         let r = shell::run(
             &mut self.node,
@@ -129,14 +114,12 @@ impl UdpSession {
                 if received && peers.contains(&peer) {
                     heard = true;
                 }
-                if let Some(r) = recording.as_mut() {
-                    let (from, to) = if received {
-                        (peer, local)
-                    } else {
-                        (local, peer)
-                    };
-                    r.push(wall_now(), from, to, bytes);
-                }
+                let (from, to) = if received {
+                    (peer, local)
+                } else {
+                    (local, peer)
+                };
+                tap.push(wall_now(), from, to, bytes);
             },
         );
         self.heard |= heard;
@@ -178,6 +161,9 @@ impl Session for UdpSession {
                 Err(e) => tracing::debug!(to = %peer, "send failed: {e}"),
             }
         }
+    }
+    fn tap(&mut self) -> &mut Tap {
+        &mut self.tap
     }
     fn dropped(&self) -> u64 {
         dropped(&self.inbox)

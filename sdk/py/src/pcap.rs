@@ -4,9 +4,9 @@
 use crate::errors::decode_error_text;
 use crate::packet::Packet;
 use crate::schema::Catalog;
-use jaus::net::framing::{Framing, Reassembler, ReassemblyLimits};
+use jaus::net::framing::{Reassembler, ReassemblyLimits};
 use jaus::wire::PacketRef;
-use jaus_cli::capture::{self, Datagram};
+use jaus_cli::capture;
 use pyo3::exceptions::PyOSError;
 use pyo3::prelude::*;
 use std::path::Path;
@@ -15,21 +15,6 @@ use std::time::{Duration, Instant};
 
 /// One message of a capture: (time, source, destination, packet).
 pub(crate) type Entry = (f64, (String, u16), (String, u16), Packet);
-
-/// The JAUS packet inside a datagram: JUDP, OPC 2.75 framing, or the raw packets of
-/// OpenJAUS's local data socket.
-fn unframe(d: &Datagram) -> Result<&[u8], String> {
-    let payload = &d.payload[..];
-    if d.src.port() == jaus::net::oj::DATA_PORT || d.dst.port() == jaus::net::oj::DATA_PORT {
-        return Ok(payload);
-    }
-    let framing = if payload.starts_with(b"JAUS01.0") {
-        Framing::Opc
-    } else {
-        Framing::Judp
-    };
-    framing.decode(payload).map_err(|e| e.to_string())
-}
 
 /// Every message of the capture at `path`.
 pub(crate) fn read(
@@ -60,7 +45,9 @@ pub(crate) fn read(
                 d.dst
             )
         };
-        let packet = unframe(d).and_then(|b| PacketRef::parse(b).map_err(|e| e.to_string()));
+        let packet = d
+            .jaus_packet()
+            .and_then(|b| PacketRef::parse(b).map_err(|e| e.to_string()));
         let packet = match packet {
             Ok(p) => p,
             Err(e) if strict => return Err(decode_error_text(py, format!("{}: {e}", at()), None)),

@@ -248,27 +248,41 @@ impl Engine<'_> {
         Some(r.get(field).and_then(Value::as_f64))
     }
 
-    pub(super) fn readback(&mut self, command: &str, query: &str) -> Found {
+    /// What both read-back checks start with: the component in Ready under the
+    /// tester's control, the query, and the trial command built from what it reads now.
+    /// `Err` is the verdict when that fails; `silent` is the verdict when the query is
+    /// not answered.
+    fn setup(
+        &mut self,
+        command: &str,
+        query: &str,
+        silent: Verdict,
+    ) -> Result<(DynMessage, Trial), Found> {
         // Commands are carried out in Ready (a driver in Standby may refuse them).
-        if let Err(e) = self.prepare(Some(ComponentState::Ready)) {
-            return (Verdict::Inconclusive, e);
+        self.prepare(Some(ComponentState::Ready))
+            .map_err(|e| (Verdict::Inconclusive, e))?;
+        let q = self.query(query).map_err(|e| (Verdict::Inconclusive, e))?;
+        match self.trial(command, &q) {
+            Ok(Some(t)) => Ok((q, t)),
+            Ok(None) if silent == Verdict::Fail => Err((
+                silent,
+                format!(
+                    "no answer to {query} within {:?}: nothing is read back",
+                    self.opts.wait
+                ),
+            )),
+            Ok(None) => Err((
+                silent,
+                format!("no answer to {query}: the value cannot be read back"),
+            )),
+            Err(e) => Err((Verdict::Inconclusive, e)),
         }
-        let q = match self.query(query) {
-            Ok(q) => q,
-            Err(e) => return (Verdict::Inconclusive, e),
-        };
-        let t = match self.trial(command, &q) {
-            Ok(Some(t)) => t,
-            Ok(None) => {
-                return (
-                    Verdict::Fail,
-                    format!(
-                        "no answer to {query} within {:?}: nothing is read back",
-                        self.opts.wait
-                    ),
-                )
-            }
-            Err(e) => return (Verdict::Inconclusive, e),
+    }
+
+    pub(super) fn readback(&mut self, command: &str, query: &str) -> Found {
+        let (q, t) = match self.setup(command, query, Verdict::Fail) {
+            Ok(x) => x,
+            Err(found) => return found,
         };
         let c = self.voices.controller;
         let ack = self.command_def(c, &t.moved);
@@ -312,23 +326,9 @@ impl Engine<'_> {
     }
 
     pub(super) fn outsider_command(&mut self, command: &str, query: &str) -> Found {
-        // Commands are carried out in Ready (a driver in Standby may refuse them).
-        if let Err(e) = self.prepare(Some(ComponentState::Ready)) {
-            return (Verdict::Inconclusive, e);
-        }
-        let q = match self.query(query) {
-            Ok(q) => q,
-            Err(e) => return (Verdict::Inconclusive, e),
-        };
-        let t = match self.trial(command, &q) {
-            Ok(Some(t)) => t,
-            Ok(None) => {
-                return (
-                    Verdict::Inconclusive,
-                    format!("no answer to {query}: the value cannot be read back"),
-                )
-            }
-            Err(e) => return (Verdict::Inconclusive, e),
+        let (q, t) = match self.setup(command, query, Verdict::Inconclusive) {
+            Ok(x) => x,
+            Err(found) => return found,
         };
         let o = self.voices.outsider;
         let ack = self.command_def(o, &t.moved);

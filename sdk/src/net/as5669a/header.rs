@@ -135,41 +135,8 @@ impl Broadcast {
     }
 }
 
-/// The 2-bit acknowledgement field.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
-pub enum AckNak {
-    /// 0: no acknowledgement asked.
-    #[default]
-    None,
-    /// 1: the sender asks for an acknowledgement.
-    Request,
-    /// 2: a negative acknowledgement.
-    Nak,
-    /// 3: an acknowledgement.
-    Ack,
-}
-
-impl AckNak {
-    /// The field of the two low bits of `bits`.
-    pub const fn from_bits(bits: u8) -> Self {
-        match bits & 3 {
-            0 => Self::None,
-            1 => Self::Request,
-            2 => Self::Nak,
-            _ => Self::Ack,
-        }
-    }
-
-    /// The 2-bit value.
-    pub const fn bits(self) -> u8 {
-        self as u8
-    }
-
-    /// Whether this is an answer (ack or nak) rather than a message.
-    pub const fn is_answer(self) -> bool {
-        matches!(self, Self::Nak | Self::Ack)
-    }
-}
+/// The 2-bit acknowledgement field: the same as RA 3.3's.
+pub use crate::wire::AckNak;
 
 /// The 2-bit data control field: where a packet stands in a message.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
