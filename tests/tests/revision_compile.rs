@@ -7,7 +7,7 @@
 //! follows, and that makes "compatible" true of it, is in docs/spec-revisions.md: struct
 //! literals and patterns of generated types end with `..`, and a `match` on a generated
 //! enum or on `Message` has a `_` arm. (Without `..`, a field added under a new presence
-//! bit stops a struct literal with E0063: `tests/ui/fail/revision_added_field.rs`.)
+//! bit stops a struct literal with E0063: `tests/compile/ui/fail/revision_added_field.rs`.)
 
 /// A module holding the code generated from revision `$rev` and, in `vendor`, the old
 /// code `$code` compiled against it.

@@ -2,9 +2,9 @@
 //! generated trait that leaves out a guard does not compile, and the error names it.
 #[allow(unused, clippy::match_single_binding)]
 mod guards {
-    include!("../../../../jaus-gen/tests/golden/hsm_guards.messages.rs");
+    include!("../../../../../jaus-gen/tests/golden/hsm_guards.messages.rs");
     pub mod services {
-        include!("../../../../jaus-gen/tests/golden/hsm_guards.services.rs");
+        include!("../../../../../jaus-gen/tests/golden/hsm_guards.services.rs");
     }
 }
 
