@@ -29,6 +29,39 @@ pyo3::create_exception!(
     "Definition files (vendor overlays) that do not load: the message names the file and line."
 );
 
+pyo3::create_exception!(
+    jaus,
+    ClientError,
+    JausError,
+    "What `jaus.Client` could not do: no answer, a NAK, a refused watch, a closed client. `.message` names the message, `.address` the component."
+);
+pyo3::create_exception!(
+    jaus,
+    ControlRefused,
+    ClientError,
+    "A control request refused: `.response_code` is `InsufficientAuthority` or `NotAvailable` (Confirm Component Control), or `Rejected` (Reject Component Control)."
+);
+
+/// A `jaus.ClientError` (or `jaus.ControlRefused` with a response code) about
+/// `message` sent to `address`.
+pub(crate) fn client_error(
+    py: Python<'_>,
+    text: String,
+    message: Option<&str>,
+    address: Option<String>,
+    response_code: Option<String>,
+) -> PyErr {
+    let err = match &response_code {
+        Some(_) => ControlRefused::new_err(text),
+        None => ClientError::new_err(text),
+    };
+    let err = with_attrs(py, err, message, None, None, None);
+    let value = err.value(py);
+    let _ = value.setattr("address", address);
+    let _ = value.setattr("response_code", response_code);
+    err
+}
+
 /// A `jaus.DecodeError` from the codec's error, with its context as attributes.
 pub(crate) fn decode_error(py: Python<'_>, e: &jaus::codec::DecodeError) -> PyErr {
     let offset = if matches!(

@@ -6,21 +6,26 @@
 //! encoded through `jaus-dynamic` (one codec, byte-exact with the generated types and
 //! OpenJAUS); fields in the names, units and forms of the CLI's JSON lines; pcap and
 //! pcapng captures read into messages; errors as Python exceptions naming the
-//! message, field and byte offset.
+//! message, field and byte offset; and `jaus.Client`, a member of a live system as
+//! the `jaus` CLI joins it (discovery, heartbeats, control kept, queries, watches),
+//! its I/O on a Rust thread of its own.
 //!
 //! The module's functions ([`decode`], [`encode`], ...) use the SDK's definitions;
 //! `jaus.Schema.load([...])` gives the same methods over a vendor's overlays. The
 //! Python API is documented in docs/python.md; the tests are the pytest suite in
 //! `tests/`.
 
+mod client;
 mod convert;
 mod errors;
 mod message;
 mod packet;
 mod pcap;
 mod schema;
+pub mod stubs;
 
-pub use errors::{DecodeError, EncodeError, JausError, SpecError};
+pub use client::{Client, Control, Watch};
+pub use errors::{ClientError, ControlRefused, DecodeError, EncodeError, JausError, SpecError};
 pub use message::{Message, Record};
 pub use packet::Packet;
 pub use schema::Schema;
@@ -106,6 +111,14 @@ fn read_pcap(py: Python<'_>, path: PathBuf, strict: bool) -> PyResult<Vec<pcap::
     pcap::read(py, &schema::sdk()?, &path, strict)
 }
 
+/// The text of the package's type stubs (`python/jaus/__init__.pyi`), generated from
+/// the SDK's definitions ([`stubs::render`]).
+#[pyfunction]
+fn _stubs() -> PyResult<String> {
+    let spec = jaus_spec::load_sdk().map_err(|e| SpecError::new_err(e.to_string()))?;
+    Ok(stubs::render(&spec))
+}
+
 /// The extension module `jaus._jaus` (the package `jaus` re-exports it).
 #[pymodule]
 fn _jaus(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -118,13 +131,19 @@ fn _jaus(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(messages, m)?)?;
     m.add_function(wrap_pyfunction!(doc, m)?)?;
     m.add_function(wrap_pyfunction!(read_pcap, m)?)?;
+    m.add_function(wrap_pyfunction!(_stubs, m)?)?;
     m.add_class::<Message>()?;
     m.add_class::<Record>()?;
     m.add_class::<Packet>()?;
     m.add_class::<Schema>()?;
+    m.add_class::<Client>()?;
+    m.add_class::<Control>()?;
+    m.add_class::<Watch>()?;
     m.add("JausError", py.get_type::<JausError>())?;
     m.add("DecodeError", py.get_type::<DecodeError>())?;
     m.add("EncodeError", py.get_type::<EncodeError>())?;
     m.add("SpecError", py.get_type::<SpecError>())?;
+    m.add("ClientError", py.get_type::<ClientError>())?;
+    m.add("ControlRefused", py.get_type::<ControlRefused>())?;
     Ok(())
 }

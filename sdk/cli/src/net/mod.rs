@@ -36,6 +36,8 @@ pub use attach::{attach_openjaus, OjNodeManager};
 pub use demo::demo_operator;
 pub use links_file::{LinkFile, QuicLinkFile};
 pub use node::{node, tree_json, NodeFile, TreePrinter};
-pub use place::{bind_socket, default_me, silence_hint, Client, Commander, Mode};
+pub use place::{
+    bind_socket, default_me, flush, silence_hint, Client, Commander, Link, Mode, Tool,
+};
 pub use policy_file::{PolicyFile, RuleFile};
 pub use session::{parse_message, Outcome, Script};

@@ -13,6 +13,7 @@ use jaus::net::framing::ReassemblyLimits;
 use jaus::net::{
     Attached, AttachedConfig, Datagram, Framing, Node, NodeConfig, Participant, SystemTree,
 };
+use jaus::stock::commander::{ControlEvent, ControlKeeper};
 use jaus::{Address, CommandCode, Header, JausMessage};
 
 /// How the CLI takes its place (see the module docs).
@@ -59,13 +60,21 @@ pub struct Client {
 
 /// The CLI's own component: a System Commander whose runtime answers the discovery
 /// queries of node managers, and which opens and ends the service connections it is
-/// asked for.
+/// asked for, and takes and keeps the control it is asked to keep.
 #[derive(Debug, Default)]
 pub struct Commander {
     /// Service connections to open: (provider, report, rate, presence vector).
     pub open: Vec<(Address, CommandCode, f64, u32)>,
     /// Service connections to end.
     pub close: Vec<(Address, CommandCode)>,
+    /// Control to take and keep from the next tick: (target, authority; `None`: the
+    /// component's own).
+    pub keep: Vec<(Address, Option<u8>)>,
+    /// Control kept to give back at the next tick.
+    pub release: Vec<Address>,
+    /// Control taken and kept: asked for again when lost (`jaus::stock::commander`).
+    /// Nothing is kept unless `keep` asks.
+    pub keeper: ControlKeeper,
 }
 
 impl SystemCommander for Commander {
@@ -87,34 +96,55 @@ impl SystemCommander for Commander {
         for (p, r) in self.close.drain(..) {
             ctx.terminate_service_connection(p, r);
         }
+        // Releases first: a release and a new request of one target in one tick keep
+        // the new request.
+        for target in self.release.drain(..) {
+            self.keeper.release(ctx, target);
+        }
+        for (target, authority) in self.keep.drain(..) {
+            match authority {
+                Some(a) => self.keeper.keep_with(target, a),
+                None => self.keeper.keep(target),
+            }
+        }
+        for e in self.keeper.tick(ctx) {
+            if let ControlEvent::Lost(a) = e {
+                tracing::info!(component = %a, "control lost; asking again");
+            }
+        }
     }
 }
 
-pub(super) type Tool = Component<system_commander::Dispatch<Commander>>;
+pub type Tool = Component<system_commander::Dispatch<Commander>>;
 
 /// The CLI on the network: a node of its own or components attached to the peer's node.
 #[derive(Debug)]
-pub(super) enum Link {
+pub enum Link {
+    /// A node of its own (its own node manager, its own system tree).
     Node(Box<Node>),
+    /// Components of the peer's node (joined through the node's socket).
     Attached(Box<Attached>),
 }
 
 impl Link {
-    pub(super) fn host(&mut self) -> &mut dyn Participant {
+    /// The node or the attached components, as the I/O loop drives them.
+    pub fn host(&mut self) -> &mut dyn Participant {
         match self {
             Link::Node(n) => n.as_mut(),
             Link::Attached(a) => a.as_mut(),
         }
     }
 
-    pub(super) fn tool(&mut self, me: Address) -> Option<&mut Tool> {
+    /// This tool's component (`--me`).
+    pub fn tool(&mut self, me: Address) -> Option<&mut Tool> {
         match self {
             Link::Node(n) => n.get_mut::<Tool>(me),
             Link::Attached(a) => a.get_mut::<Tool>(me),
         }
     }
 
-    pub(super) fn send(&mut self, now: Instant, header: Header, body: Vec<u8>) {
+    /// Sends a packet from a component of this link.
+    pub fn send(&mut self, now: Instant, header: Header, body: Vec<u8>) {
         match self {
             Link::Node(n) => n.send(now, header, body),
             Link::Attached(a) => a.send(now, header, body),
@@ -124,7 +154,7 @@ impl Link {
     /// What the system tree says of `to`: `Some(true)` listed, `Some(false)` its node is
     /// known and does not list it (with the components it lists), `None` its node is not
     /// known (or the CLI joined a node and keeps no tree).
-    pub(super) fn lists(&self, to: Address) -> Option<(bool, Vec<Address>)> {
+    pub fn lists(&self, to: Address) -> Option<(bool, Vec<Address>)> {
         let Link::Node(n) = self else {
             return None;
         };
@@ -141,7 +171,7 @@ impl Link {
     }
 
     /// Whether messages to `to` can go now (its node located, or attached).
-    pub(super) fn reaches(&self, to: Address) -> bool {
+    pub fn reaches(&self, to: Address) -> bool {
         match self {
             Link::Node(n) => {
                 to.subsystem == 255
@@ -243,7 +273,9 @@ impl Client {
         None
     }
 
-    pub(super) fn link(&self, socket: &UdpSocket, t0: Instant) -> Result<Link, String> {
+    /// Takes this client's place on `socket` (see the module docs): the peer's node
+    /// joined, or a node of its own, with this tool's component in it.
+    pub fn link(&self, socket: &UdpSocket, t0: Instant) -> Result<Link, String> {
         if !self.me.is_valid() || self.me.component == 1 {
             return Err(format!(
                 "--me {}: not a component address (ids 1-254, component not 1: the node manager's)",
@@ -337,7 +369,8 @@ impl Client {
             })
     }
 }
-pub(super) fn flush(host: &mut dyn Participant, socket: &UdpSocket) {
+/// Sends every datagram `host` has queued on `socket`.
+pub fn flush(host: &mut dyn Participant, socket: &UdpSocket) {
     while let Some(Datagram { to, bytes, .. }) = host.poll_transmit() {
         if let Err(e) = socket.send_to(&bytes, to) {
             tracing::debug!(%to, "send failed: {e}");

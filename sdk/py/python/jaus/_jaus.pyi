@@ -1,7 +1,7 @@
 """Type stubs of the extension module ``jaus._jaus`` (re-exported by ``jaus``)."""
 
 import os
-from typing import Any, Dict, Iterator, List, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, Generic, Iterator, List, Optional, Sequence, Tuple, TypeVar, Union
 
 Address = Union[Tuple[int, int, int, int], str]
 """``(subsystem, node, component, instance)``, or ``"s.n.c.i"``."""
@@ -31,6 +31,20 @@ class EncodeError(JausError):
 
 class SpecError(JausError):
     """Definition files (vendor overlays) that do not load."""
+
+class ClientError(JausError):
+    """What ``jaus.Client`` could not do: no answer, a NAK, a refused watch, a closed
+    client."""
+
+    address: Optional[str]
+    """The component the message went to, when known."""
+    response_code: Optional[str]
+    """``jaus.ControlRefused`` only: the response code."""
+
+class ControlRefused(ClientError):
+    """A control request refused: ``response_code`` is ``"InsufficientAuthority"`` or
+    ``"NotAvailable"`` (Confirm Component Control), or ``"Rejected"`` (Reject Component
+    Control)."""
 
 class Record:
     """A record inside a message (or a bit field, a union with a value, an unknown
@@ -186,3 +200,99 @@ def read_pcap(
     path: _Path, *, strict: bool = True
 ) -> List[Tuple[float, Socket, Socket, Packet]]:
     """Every JAUS message of a pcap/pcapng capture: ``(time, source, destination, packet)``."""
+
+def _stubs() -> str:
+    """The text of ``jaus/__init__.pyi``, generated from the SDK's definitions."""
+
+_M = TypeVar("_M", bound=Message)
+_C = TypeVar("_C", bound="Client")
+
+class Watch(Generic[_M]):
+    """The reports of ``Client.watch``: iterate (blocking, the GIL released), ``get``,
+    ``close`` (also on ``with`` exit, garbage collection and the client's close)."""
+
+    def __iter__(self) -> "Watch[_M]": ...
+    def __next__(self) -> _M: ...
+    def get(self, timeout: Optional[float] = None) -> Optional[_M]:
+        """The next report; None when none came within ``timeout`` or the watch ended."""
+    @property
+    def closed(self) -> bool: ...
+    @property
+    def end_reason(self) -> Optional[str]: ...
+    @property
+    def dropped(self) -> int:
+        """Reports dropped because the queue was full."""
+    def close(self) -> None:
+        """Ends the service connection or event at the provider."""
+    def __enter__(self) -> "Watch[_M]": ...
+    def __exit__(self, *args: Any) -> bool: ...
+
+class Control:
+    """Control of one component (``Client.control``): ``with`` it, or ``acquire()`` and
+    ``release()``."""
+
+    @property
+    def address(self) -> str: ...
+    @property
+    def held(self) -> bool: ...
+    def acquire(self) -> None:
+        """Requests control and waits until granted; raises ``ControlRefused``."""
+    def release(self) -> None:
+        """Gives control back."""
+    def __enter__(self) -> "Control": ...
+    def __exit__(self, *args: Any) -> bool: ...
+
+class Client:
+    """A member of a JAUS system, joined as the ``jaus`` CLI joins it."""
+
+    def __init__(
+        self,
+        peer: Union[str, Sequence[str], None] = None,
+        me: Optional[Address] = None,
+        *,
+        bind: Optional[str] = None,
+        timeout: float = 5.0,
+        mode: str = "auto",
+        schema: Optional[Schema] = None,
+    ) -> None: ...
+    @property
+    def me(self) -> str: ...
+    @property
+    def local(self) -> Socket: ...
+    @property
+    def joined(self) -> bool: ...
+    @property
+    def closed(self) -> bool: ...
+    def tree(self) -> Dict[str, Any]:
+        """The system tree as ``jaus discover --json`` prints it."""
+    def send(
+        self, dest: Address, message: Message, *, ack: bool = False, timeout: Optional[float] = None
+    ) -> None: ...
+    def query(
+        self,
+        dest: Address,
+        message: Message,
+        *,
+        timeout: Optional[float] = None,
+        report: Optional[str] = None,
+    ) -> Message: ...
+    def control(
+        self, dest: Address, *, authority: Optional[int] = None, timeout: Optional[float] = None
+    ) -> Control: ...
+    def watch(
+        self,
+        dest: Address,
+        query: Message,
+        *,
+        periodic_hz: Optional[float] = None,
+        presence: Optional[int] = None,
+        queue: int = 64,
+        timeout: Optional[float] = None,
+        report: Optional[str] = None,
+    ) -> Watch[Message]: ...
+    def stats(self) -> Dict[str, int]:
+        """The client's counters (datagrams, messages, drops, NAKs, control lost)."""
+    def close(self) -> None:
+        """Ends every watch, gives control back, stops the client's thread."""
+    def __enter__(self: _C) -> _C: ...
+    def __exit__(self, *args: Any) -> bool: ...
