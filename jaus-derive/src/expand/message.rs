@@ -137,6 +137,31 @@ pub fn message(input: &DeriveInput, is_message: bool) -> TokenStream {
     } else {
         encode_body
     };
+    // Optional fields by presence bit: what `keep_present` clears.
+    let keeps: Vec<TokenStream> = model
+        .fields
+        .iter()
+        .filter_map(|f| {
+            let id = &f.ident;
+            match (&f.shape, f.bit) {
+                (Shape::Flag(b), _) => Some(quote! {
+                    if presence_vector & (1u64 << #b) == 0 { self.#id = false; }
+                }),
+                (_, Some(b)) => Some(quote! {
+                    if presence_vector & (1u64 << #b) == 0 { self.#id = ::core::option::Option::None; }
+                }),
+                _ => None,
+            }
+        })
+        .collect();
+    let keep_fn = (!keeps.is_empty()).then(|| {
+        quote! {
+            #[inline]
+            fn keep_present(&mut self, presence_vector: u64) {
+                #(#keeps)*
+            }
+        }
+    });
     let clamp_fn = (!clamps.is_empty()).then(|| {
         quote! {
             #[inline]
@@ -184,6 +209,7 @@ pub fn message(input: &DeriveInput, is_message: bool) -> TokenStream {
                 #encode_body
             }
             #clamp_fn
+            #keep_fn
             #fixed_fns
         }
         #[allow(clippy::approx_constant)]

@@ -44,10 +44,84 @@
 //! may differ from it by a count (a fraction of a micrometre for the local positions);
 //! 8- and 16-bit values use the same divisor and differ at most by the rounding.
 //!
-//! The services' behaviour (access control, events, management, discovery, the drivers)
-//! is not in this crate's definitions: there is no `services:` section.
+//! The services' behaviour is not in this crate's definitions (there is no `services:`
+//! section): it is the hand-written runtime below.
+//!
+//! ## Running AS-4 services
+//!
+//! The Core services (Transport, Events, Access Control, Management, Time, Liveness,
+//! Discovery, List Manager) run sans-IO in [`core::Core`]; a component
+//! ([`component::As4Component`]) puts them together with its other services
+//! ([`service::Service`]) behind one id; a node ([`node::As4Node`]) hosts components
+//! and is the [`As4Endpoint`](jaus::net::as5669a::As4Endpoint) an
+//! [`As4Mux`](jaus::net::as5669a::As4Mux) hands AS5669A messages to, on the socket of
+//! an RA 3.3 node. A standalone component with a toy service, exchanging datagrams with
+//! a client's [`As4Stack`](jaus::net::as5669a::As4Stack) without a socket:
+//!
+//! ```
+//! use std::net::SocketAddr;
+//! use std::time::Instant;
+//!
+//! use jaus::net::as5669a::{As4Config, As4Endpoint, As4Id, As4Message, As4Stack};
+//! use jaus::{CommandCode, JausMessage};
+//! use jaus_as4::component::As4Component;
+//! use jaus_as4::core::CoreConfig;
+//! use jaus_as4::node::As4Node;
+//! use jaus_as4::service::{Cx, Handled, Request, Service, ServiceId};
+//! use jaus_as4::{embedded, Message, QueryTravelSpeed, ReportTravelSpeed};
+//!
+//! /// Answers Query Travel Speed with a constant.
+//! #[derive(Debug)]
+//! struct Cruise;
+//!
+//! impl Service<()> for Cruise {
+//!     fn id(&self) -> ServiceId {
+//!         ServiceId::new("urn:example:Cruise", 1, 0)
+//!     }
+//!     fn receives(&self, code: CommandCode) -> bool {
+//!         code == QueryTravelSpeed::CODE
+//!     }
+//!     fn handle(&mut self, _cx: &mut Cx<'_, ()>, _request: &Request<'_>) -> Handled {
+//!         Handled::Reply(ReportTravelSpeed { speed: 2.0 }.into())
+//!     }
+//! }
+//!
+//! let vehicle = As4Id::new(7, 1, 1);
+//! let mut node: As4Node<(), SocketAddr> = As4Node::new(())
+//!     .with_component(As4Component::new(vehicle, CoreConfig::named("rover")).with_service(Cruise));
+//!
+//! let (judge, judge_at) = (As4Id::new(42, 1, 1), SocketAddr::from(([10, 0, 0, 42], 3794)));
+//! let node_at = SocketAddr::from(([10, 0, 0, 7], 3794));
+//! let mut client: As4Stack<SocketAddr> = As4Stack::new(As4Config::default());
+//! let mut server: As4Stack<SocketAddr> = As4Stack::new(As4Config::default());
+//! let now = Instant::now();
+//!
+//! // The client's query goes out as a datagram...
+//! client.send(node_at, &[As4Message::new(QueryTravelSpeed::CODE.0, vehicle, judge, vec![])]);
+//! let datagram = client.poll_transmit().unwrap();
+//! // ... the node's side reads it and answers (what an As4Mux does on its socket) ...
+//! let messages = server.receive(now, judge_at, &datagram.bytes)?;
+//! let replies = node.handle(now, judge_at, messages);
+//! server.send(judge_at, &replies);
+//! // ... and the client reads the report.
+//! let answer = client.receive(now, node_at, &server.poll_transmit().unwrap().bytes)?;
+//! let mut payload = answer[0].message_id.to_le_bytes().to_vec();
+//! payload.extend_from_slice(&answer[0].body);
+//! let Message::ReportTravelSpeed(report) = embedded::decode(&payload)? else { panic!() };
+//! assert!((report.speed - 2.0).abs() < 0.01); // a scaled 16-bit value
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
+//! On a real socket: `As4Mux::new(ra33_node, as4_node, As4Config::default())` and run it
+//! like the RA 3.3 node ([`jaus::net::udp::run_on`]).
 
+pub mod component;
+pub mod core;
 pub mod embedded;
+pub mod gateway;
+pub mod mobility;
+pub mod node;
+pub mod service;
 
 /// The generated messages and types of both service sets (group `as4`), the
 /// [`Message`] enum of all of them and the catalogue [`MESSAGES`].

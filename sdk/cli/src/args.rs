@@ -285,8 +285,9 @@ pub(crate) struct NetArgs {
     /// joins that node as one of its components; else it runs a node of its own.
     /// Default: S.1.40.1 with S in 200-253 taken from the process id, so that two
     /// sessions at once are two subsystems (OpenJAUS keeps one address per subsystem).
-    #[arg(long)]
-    pub(crate) me: Option<jaus::Address>,
+    /// With `conform --as4`: the judge's AS-4 id S.N.C (default 42.1.1).
+    #[arg(long, value_parser = me_arg)]
+    pub(crate) me: Option<String>,
     /// Local socket (default: port 3794 on an address of its own, e.g. 127.0.0.2:3794,
     /// because JUDP peers answer port 3794 of the sender's address).
     #[arg(long)]
@@ -312,13 +313,30 @@ impl NetArgs {
             "opc" => jaus::net::Framing::Opc,
             other => return Err(format!("unknown framing `{other}` (judp or opc)")),
         };
+        let me = match &self.me {
+            Some(m) => m
+                .parse::<jaus::Address>()
+                .map_err(|_| format!("--me {m}: expected subsystem.node.component.instance"))?,
+            None => jaus_cli::net::default_me(),
+        };
         Ok(jaus_cli::net::Client {
-            me: self.me.unwrap_or_else(jaus_cli::net::default_me),
+            me,
             bind: self.bind,
             peers: self.peer.clone(),
             framing,
             wait: std::time::Duration::from_secs_f64(self.wait.max(0.0)),
             mode: self.mode,
         })
+    }
+}
+
+/// `--me`: an RA 3.3 address S.N.C.I, or an AS-4 id S.N.C (`conform --as4`).
+fn me_arg(text: &str) -> Result<String, String> {
+    if text.parse::<jaus::Address>().is_ok() || jaus_conform::as4::parse_id(text).is_ok() {
+        Ok(text.to_string())
+    } else {
+        Err(format!(
+            "`{text}`: expected subsystem.node.component.instance (or an AS-4 id subsystem.node.component with conform --as4)"
+        ))
     }
 }

@@ -37,6 +37,22 @@ pub struct ConformArgs {
     /// Milliseconds to wait after a command before reading back what it did.
     #[arg(long, default_value_t = 200)]
     settle_ms: u64,
+    /// Run the IOP challenge scenario on an AS-4 vehicle over AS5669A instead (the
+    /// judge's client at --me, default 42.1.1; the vehicle at the first --peer, found by
+    /// Query Identification unless --as4-target gives its id).
+    #[arg(long, conflicts_with_all = ["target", "subsystem"])]
+    as4: bool,
+    /// With --as4: the vehicle's component (S.N.C) instead of whichever answers Query
+    /// Identification.
+    #[arg(long, value_name = "ID")]
+    as4_target: Option<String>,
+    /// With --as4: run Execute List (the vehicle drives its waypoints, a few metres) and
+    /// the checks that need the list running; without it they are reported as not run.
+    #[arg(long)]
+    allow_motion: bool,
+    /// With --as4: seconds to wait for the waypoint list to be driven to its end.
+    #[arg(long, default_value_t = 60.0)]
+    mission_timeout: f64,
 }
 
 fn write_file(path: &PathBuf, text: &str) -> Result<(), String> {
@@ -77,6 +93,89 @@ fn write_pcap(
     Ok(())
 }
 
+/// Writes the reports asked for.
+fn write_reports(run: &jaus_conform::RunReport, args: &ConformArgs) -> Result<(), String> {
+    if let Some(p) = &args.json {
+        write_file(p, &report::json(run))?;
+    }
+    if let Some(p) = &args.junit {
+        write_file(p, &report::junit(run))?;
+    }
+    if let Some(p) = &args.html {
+        write_file(p, &report::html(run))?;
+    }
+    Ok(())
+}
+
+/// `Err` naming how many required checks failed, if any did.
+fn verdict(run: &jaus_conform::RunReport) -> Result<(), String> {
+    let failed: usize = run.components.iter().map(|c| c.required_failures()).sum();
+    if failed > 0 {
+        Err(format!("{failed} required checks failed"))
+    } else {
+        Ok(())
+    }
+}
+
+/// `jaus conform --as4`: the IOP scenario on the vehicle at the first peer.
+fn conform_as4(
+    net: &super::NetArgs,
+    args: &ConformArgs,
+    out: &mut impl Write,
+) -> Result<(), String> {
+    use jaus_conform::as4::{self, udp::UdpAs4Session, As4Options, As4Session};
+    let me = match &net.me {
+        Some(m) => as4::parse_id(m).map_err(|e| format!("--me {e}"))?,
+        None => As4Options::default().me,
+    };
+    let target = args
+        .as4_target
+        .as_deref()
+        .map(as4::parse_id)
+        .transpose()
+        .map_err(|e| format!("--as4-target {e}"))?;
+    let peer = *net
+        .peer
+        .first()
+        .ok_or("give the vehicle's socket with --peer ADDR")?;
+    if net.peer.len() > 1 {
+        let _ = writeln!(
+            out,
+            "--as4 tests one vehicle: {peer} (the other peers are not used)"
+        );
+    }
+    let socket = jaus_cli::net::bind_socket(net.bind, &[peer])?;
+    let mut session = UdpAs4Session::new(socket, peer)?;
+    if args.pcap.is_some() {
+        session.record();
+    }
+    let opts = As4Options {
+        me,
+        target,
+        vehicle: Some(peer),
+        wait: Duration::from_secs_f64(args.answer_wait.max(0.01)),
+        settle: Duration::from_millis(args.settle_ms),
+        allow_motion: args.allow_motion,
+        mission_timeout: Duration::from_secs_f64(args.mission_timeout.max(0.0)),
+        ..As4Options::default()
+    };
+    let run = as4::run_as4(&mut session, &opts);
+    let _ = write!(out, "{}", report::summary(&run));
+    write_reports(&run, args)?;
+    if let Some(p) = &args.pcap {
+        write_pcap(p, session.take_recording(), out)?;
+    }
+    if !session.heard() {
+        let wait = opts.wait;
+        return Err(jaus_cli::net::silence_hint(
+            &session.local_addr(),
+            &[peer],
+            wait,
+        ));
+    }
+    verdict(&run)
+}
+
 /// Runs the checks and writes the reports; `Err` when a required check failed (exit
 /// status 1) or the run could not start.
 pub fn conform(
@@ -85,6 +184,12 @@ pub fn conform(
     spec_paths: &[PathBuf],
     out: &mut impl Write,
 ) -> Result<(), String> {
+    if args.as4 {
+        return conform_as4(net, args, out);
+    }
+    if args.allow_motion || args.as4_target.is_some() {
+        return Err("--allow-motion and --as4-target go with --as4 (the IOP scenario)".into());
+    }
     let client = net.client()?;
     let spec = if spec_paths.is_empty() {
         jaus_spec::load_sdk()
@@ -142,15 +247,7 @@ pub fn conform(
         .collect::<Vec<_>>()
         .join(", ");
     let _ = write!(out, "{}", report::summary(&run));
-    if let Some(p) = &args.json {
-        write_file(p, &report::json(&run))?;
-    }
-    if let Some(p) = &args.junit {
-        write_file(p, &report::junit(&run))?;
-    }
-    if let Some(p) = &args.html {
-        write_file(p, &report::html(&run))?;
-    }
+    write_reports(&run, args)?;
     if let Some(p) = &args.pcap {
         write_pcap(p, session.take_recording(), out)?;
     }
@@ -164,10 +261,5 @@ pub fn conform(
             client.wait,
         ));
     }
-    let failed: usize = run.components.iter().map(|c| c.required_failures()).sum();
-    if failed > 0 {
-        Err(format!("{failed} required checks failed"))
-    } else {
-        Ok(())
-    }
+    verdict(&run)
 }

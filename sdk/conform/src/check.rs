@@ -100,6 +100,9 @@ pub enum Kind {
         /// The query's name.
         query: String,
     },
+    /// A step of the AS-4 IOP scenario ([`crate::as4`]), run by that module, not by the
+    /// RA 3.3 engine.
+    As4,
 }
 
 /// The core state commands.

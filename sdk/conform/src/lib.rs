@@ -15,7 +15,9 @@
 //!   process on a virtual clock, [`udp`] talks to a real one;
 //! * [`engine`]: runs the checks on one component and leaves it as found;
 //! * [`report`]: the terminal summary, JSON, JUnit XML and an HTML page;
-//! * [`capture`]: the datagrams of a run, for a pcap file.
+//! * [`capture`]: the datagrams of a run, for a pcap file;
+//! * [`as4`]: the judge's side of the AS-4 IOP challenge scenario over AS5669A
+//!   (`jaus conform --as4`), reported the same way.
 //!
 //! ```
 //! use std::time::Instant;
@@ -32,6 +34,7 @@
 //! assert!(run.components.is_empty() && run.passed());
 //! ```
 
+pub mod as4;
 pub mod capture;
 pub mod check;
 pub mod engine;

@@ -83,6 +83,25 @@ pub trait Encode {
         self.clamp_to_range();
         self
     }
+
+    /// Leaves out every optional field whose presence bit is clear in
+    /// `presence_vector` (sets it to `None`; a `flag` field to `false`): what a
+    /// component does when a query's presence vector asks for some fields of its report.
+    /// The derives implement it for messages and records with a presence vector; every
+    /// other type has no optional field and keeps this default, which does nothing.
+    ///
+    /// ```
+    /// use jaus::codec::Encode;
+    /// use jaus::messages::ReportVelocityState;
+    ///
+    /// let mut r = ReportVelocityState { velocity_x: Some(1.0), yaw_rate: Some(0.5), ..Default::default() };
+    /// r.keep_present(1 << 6); // the yaw rate only
+    /// assert_eq!((r.velocity_x, r.yaw_rate), (None, Some(0.5)));
+    /// ```
+    #[inline]
+    fn keep_present(&mut self, presence_vector: u64) {
+        let _ = presence_vector;
+    }
 }
 
 /// A value that can be read back from its JAUS wire encoding.

@@ -68,6 +68,9 @@ pub mod addr {
     pub const VSS: Address = Address::new(1, 1, c::velocity_state_sensor::ID, 1);
     /// Global Waypoint Driver.
     pub const GWD: Address = Address::new(1, 1, c::global_waypoint_driver::ID, 1);
+    /// Local Waypoint Driver (not used by the scripted run; what an AS-4 Local Waypoint
+    /// List Driver of `jaus node`'s `as4:` option drives).
+    pub const LWD: Address = Address::new(1, 1, c::local_waypoint_driver::ID, 1);
     /// Local Path Segment Driver.
     pub const LPSD: Address = Address::new(1, 1, c::local_path_segment_driver::ID, 1);
     /// Global Path Segment Driver (not used by the scripted run; operator stations
@@ -109,6 +112,11 @@ pub struct Options {
     pub progress: Option<Duration>,
     /// Give up after this much simulated time.
     pub timeout: Duration,
+    /// Host the Local Waypoint Driver too (what an AS-4 Local Waypoint List Driver
+    /// drives; [`vehicle_node`] and `jaus node`'s `vehicle` do). Off in the scripted
+    /// run, which does not use it: its pose subscription would shift the seeded noise
+    /// the run's figures come from.
+    pub local_waypoint_driver: bool,
 }
 
 impl Default for Options {
@@ -121,6 +129,7 @@ impl Default for Options {
             realtime: false,
             progress: None,
             timeout: Duration::from_secs(300),
+            local_waypoint_driver: false,
         }
     }
 }

@@ -13,16 +13,17 @@ use jaus::component::Config;
 use jaus::components::system_commander::{self};
 use jaus::components::{
     global_path_segment_driver, global_pose_sensor, global_waypoint_driver,
-    local_path_segment_driver, local_pose_sensor, mission_spooler, primitive_driver, range_sensor,
-    reflexive_driver, subsystem_commander, velocity_state_sensor, visual_sensor,
-    world_model_vector_knowledge_store,
+    local_path_segment_driver, local_pose_sensor, local_waypoint_driver, mission_spooler,
+    primitive_driver, range_sensor, reflexive_driver, subsystem_commander, velocity_state_sensor,
+    visual_sensor, world_model_vector_knowledge_store,
 };
 use jaus::stock::commander::{
     ControlKeeper, KeeperConfig, StockSubsystemCommander, SubsystemConfig,
 };
 use jaus::stock::drivers::{
     PrimitiveConfig, ReflexiveConfig, StockGlobalPathSegmentDriver, StockGlobalWaypointDriver,
-    StockLocalPathSegmentDriver, StockPrimitiveDriver, StockReflexiveDriver,
+    StockLocalPathSegmentDriver, StockLocalWaypointDriver, StockPrimitiveDriver,
+    StockReflexiveDriver,
 };
 use jaus::stock::environment::camera::{StockVisualSensor, VisualConfig};
 use jaus::stock::environment::map_feed::MapFeedConfig;
@@ -72,6 +73,7 @@ pub fn vehicle_at(
         ..VehicleParams::default()
     });
     let cfg = config();
+    let cfg_lwd = cfg.clone();
     let pd = StockPrimitiveDriver::new(vehicle.clone(), PrimitiveConfig::default());
     let rd = StockReflexiveDriver::new(
         (),
@@ -181,11 +183,21 @@ pub fn vehicle_at(
             t0,
         )),
     ];
+    let mut parts = parts;
+    if opts.local_waypoint_driver {
+        parts.push(Box::new(local_waypoint_driver::component(
+            at(addr::LWD),
+            StockLocalWaypointDriver::new(driver_config(at(addr::LPS), ss, node)),
+            cfg_lwd,
+            t0,
+        )));
+    }
     (parts, vehicle)
 }
 
 /// The demo's vehicle on a node of its own (`subsystem.node`, the node's other settings
-/// from `config`), as `jaus node` with `host: [vehicle]` runs it.
+/// from `config`), as `jaus node` with `host: [vehicle]` runs it: with the Local
+/// Waypoint Driver ([`Options::local_waypoint_driver`]).
 pub fn vehicle_node(
     t0: Instant,
     mut config: jaus::net::NodeConfig,
@@ -195,7 +207,11 @@ pub fn vehicle_node(
     config.subsystem = subsystem;
     config.node = node;
     let mut n = jaus::net::Node::new(config, t0);
-    for p in vehicle_at(t0, &Options::default(), subsystem, node).0 {
+    let opts = Options {
+        local_waypoint_driver: true,
+        ..Options::default()
+    };
+    for p in vehicle_at(t0, &opts, subsystem, node).0 {
         n.add_boxed(p)?;
     }
     Ok(n)

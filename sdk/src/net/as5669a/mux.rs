@@ -133,6 +133,10 @@ pub trait As4Endpoint<A: PeerAddr = SocketAddr>: std::fmt::Debug + Send + 'stati
     fn poll_timeout(&self) -> Option<Instant> {
         None
     }
+    /// The wall clock: UTC (since 1970-01-01) is `utc` at `now` (default: ignored).
+    fn wall_clock(&mut self, now: Instant, utc: std::time::Duration) {
+        let _ = (now, utc);
+    }
 }
 
 /// Settings of an [`As4Stack`].
@@ -343,16 +347,61 @@ impl<A: PeerAddr> As4Stack<A> {
 pub struct As4Mux<P, A: PeerAddr = SocketAddr> {
     inner: P,
     stack: As4Stack<A>,
-    endpoint: Box<dyn As4Endpoint<A>>,
+    endpoint: EndpointAt<P, A>,
 }
 
-impl<P: Participant<A>, A: PeerAddr> As4Mux<P, A> {
+/// Finds an AS-4 endpoint that lives inside the host: an RA 3.3 component of a node
+/// that also speaks AS-4 (a gateway between the generations is both at once). The mux
+/// asks for it on every use, so the host keeps owning it.
+pub trait HostedEndpoint<P, A: PeerAddr>: std::fmt::Debug + Send + 'static {
+    /// The endpoint in `host`, if it is there.
+    fn get<'a>(&self, host: &'a P) -> Option<&'a dyn As4Endpoint<A>>;
+    /// The endpoint in `host`, mutable.
+    fn get_mut<'a>(&self, host: &'a mut P) -> Option<&'a mut dyn As4Endpoint<A>>;
+}
+
+/// Where the AS-4 endpoint of an [`As4Mux`] lives.
+#[derive(Debug)]
+enum EndpointAt<P, A: PeerAddr> {
+    Own(Box<dyn As4Endpoint<A>>),
+    Hosted(Box<dyn HostedEndpoint<P, A>>),
+}
+
+impl<P: 'static, A: PeerAddr> As4Mux<P, A> {
+    fn endpoint_ref(&self) -> Option<&dyn As4Endpoint<A>> {
+        match &self.endpoint {
+            EndpointAt::Own(e) => Some(e.as_ref()),
+            EndpointAt::Hosted(h) => h.get(&self.inner),
+        }
+    }
+
+    fn endpoint_mut(&mut self) -> Option<&mut dyn As4Endpoint<A>> {
+        match &mut self.endpoint {
+            EndpointAt::Own(e) => Some(e.as_mut()),
+            EndpointAt::Hosted(h) => h.get_mut(&mut self.inner),
+        }
+    }
+}
+
+impl<P: Participant<A> + 'static, A: PeerAddr> As4Mux<P, A> {
     /// `inner` on the carrier, with `endpoint` answering AS5669A peers.
     pub fn new(inner: P, endpoint: impl As4Endpoint<A>, config: As4Config) -> Self {
         Self {
             inner,
             stack: As4Stack::new(config),
-            endpoint: Box::new(endpoint),
+            endpoint: EndpointAt::Own(Box::new(endpoint)),
+        }
+    }
+
+    /// `inner` on the carrier, with an endpoint that lives inside it (found by
+    /// `hosted` on every use) answering AS5669A peers. After the endpoint has handled
+    /// messages the host is woken at once (its components may have queued RA 3.3
+    /// messages).
+    pub fn hosted(inner: P, hosted: impl HostedEndpoint<P, A>, config: As4Config) -> Self {
+        Self {
+            inner,
+            stack: As4Stack::new(config),
+            endpoint: EndpointAt::Hosted(Box::new(hosted)),
         }
     }
 
@@ -366,6 +415,11 @@ impl<P: Participant<A>, A: PeerAddr> As4Mux<P, A> {
         &mut self.inner
     }
 
+    /// The RA 3.3 host, the mux taken apart.
+    pub fn into_inner(self) -> P {
+        self.inner
+    }
+
     /// The AS5669A side.
     pub fn stack(&self) -> &As4Stack<A> {
         &self.stack
@@ -376,9 +430,10 @@ impl<P: Participant<A>, A: PeerAddr> As4Mux<P, A> {
         &mut self.stack
     }
 
-    /// The endpoint, for a caller that knows its type.
-    pub fn endpoint(&self) -> &dyn As4Endpoint<A> {
-        self.endpoint.as_ref()
+    /// The endpoint, for a caller that knows its type (`None` when a hosted endpoint
+    /// is not in the host).
+    pub fn endpoint(&self) -> Option<&dyn As4Endpoint<A>> {
+        self.endpoint_ref()
     }
 
     /// Whether `datagram` is for the AS5669A side.
@@ -389,8 +444,15 @@ impl<P: Participant<A>, A: PeerAddr> As4Mux<P, A> {
     fn as4(&mut self, now: Instant, from: A, datagram: &[u8]) {
         match self.stack.receive(now, from, datagram) {
             Ok(messages) if !messages.is_empty() => {
-                let replies = self.endpoint.handle(now, from, messages);
+                let Some(endpoint) = self.endpoint_mut() else {
+                    tracing::debug!(%from, "AS5669A messages dropped: no AS-4 endpoint in the host");
+                    return;
+                };
+                let replies = endpoint.handle(now, from, messages);
                 self.stack.send(from, &replies);
+                if matches!(self.endpoint, EndpointAt::Hosted(_)) {
+                    self.inner.handle_timeout(now);
+                }
             }
             Ok(_) => {}
             Err(e) => tracing::debug!(%from, "AS5669A datagram dropped: {e}"),
@@ -398,7 +460,7 @@ impl<P: Participant<A>, A: PeerAddr> As4Mux<P, A> {
     }
 }
 
-impl<P: Participant<A>, A: PeerAddr> Participant<A> for As4Mux<P, A> {
+impl<P: Participant<A> + 'static, A: PeerAddr> Participant<A> for As4Mux<P, A> {
     fn handle_datagram(&mut self, now: Instant, peer: A, datagram: &[u8]) {
         if Self::is_as4(datagram) {
             self.as4(now, peer, datagram);
@@ -418,10 +480,12 @@ impl<P: Participant<A>, A: PeerAddr> Participant<A> for As4Mux<P, A> {
     fn handle_timeout(&mut self, now: Instant) {
         self.inner.handle_timeout(now);
         self.stack.handle_timeout(now);
-        if self.endpoint.poll_timeout().is_some_and(|t| t <= now) {
-            for s in self.endpoint.handle_timeout(now) {
-                self.stack.send(s.to, std::slice::from_ref(&s.message));
-            }
+        let sends = match self.endpoint_mut() {
+            Some(e) if e.poll_timeout().is_some_and(|t| t <= now) => e.handle_timeout(now),
+            _ => Vec::new(),
+        };
+        for s in sends {
+            self.stack.send(s.to, std::slice::from_ref(&s.message));
         }
     }
 
@@ -439,7 +503,7 @@ impl<P: Participant<A>, A: PeerAddr> Participant<A> for As4Mux<P, A> {
         [
             self.inner.poll_timeout(),
             self.stack.poll_timeout(),
-            self.endpoint.poll_timeout(),
+            self.endpoint_ref().and_then(|e| e.poll_timeout()),
         ]
         .into_iter()
         .flatten()
@@ -448,6 +512,10 @@ impl<P: Participant<A>, A: PeerAddr> Participant<A> for As4Mux<P, A> {
 
     fn wall_clock(&mut self, now: Instant, utc: std::time::Duration) {
         self.inner.wall_clock(now, utc);
+        // A hosted endpoint hears it from its host (an RA 3.3 component of the node).
+        if let EndpointAt::Own(e) = &mut self.endpoint {
+            e.wall_clock(now, utc);
+        }
     }
 
     fn as_any(&self) -> &dyn std::any::Any {

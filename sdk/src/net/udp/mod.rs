@@ -175,13 +175,13 @@ pub struct NodeSockets<'a> {
 /// everything happens on the caller's thread as in [`run_tapped`]; with OpenJAUS's
 /// component sockets too, one thread per socket receives (one datagram per read, `io`
 /// unused) into a bounded queue and the caller's thread does the rest.
-pub fn run_node(
-    node: &mut super::Node,
+pub fn run_node<P: Participant>(
+    node: &mut P,
     sockets: NodeSockets<'_>,
     io: &IoOptions,
     stop: &AtomicBool,
     until: Option<Instant>,
-    on_tick: impl FnMut(&mut super::Node),
+    on_tick: impl FnMut(&mut P),
     tap: impl FnMut(Direction, SocketAddr, &[u8]),
 ) -> std::io::Result<()> {
     if sockets.component_control.is_none() && sockets.component_data.is_none() {

@@ -5,6 +5,7 @@ use std::path::Path;
 use std::time::Instant;
 
 use jaus::net::Node;
+use jaus::Address;
 
 use super::super::links_file::{links_at, LinkFile, QuicLinkFile};
 
@@ -283,6 +284,33 @@ impl NodeFile {
         self.store.as_ref().map(|s| dir.join(s))
     }
 
+    /// With `as4:`, the settings of the RA 3.3 ↔ AS-4 gateway on this node
+    /// (`jaus_as4::gateway::DualNode`); `None` without.
+    pub fn as4_config(&self) -> Option<jaus_as4::gateway::GatewayConfig> {
+        let a = self.as4.as_ref()?;
+        let id = jaus::net::as5669a::As4Id::new(
+            a.subsystem.unwrap_or(u16::from(self.subsystem)),
+            a.node.unwrap_or(self.node),
+            a.component.unwrap_or(1),
+        );
+        let at = Address::new(self.subsystem, self.node, a.gateway_id.unwrap_or(60), 1);
+        let name = a
+            .name
+            .clone()
+            .or_else(|| self.subsystem_name.clone())
+            .unwrap_or_else(|| format!("subsystem {}", self.subsystem));
+        let mut config = jaus_as4::gateway::GatewayConfig::new(
+            id,
+            at,
+            a.present.unwrap_or(self.subsystem),
+            &name,
+        );
+        if let Some(x) = a.authority {
+            config.authority = x;
+        }
+        Some(config)
+    }
+
     /// The node this file describes, its `host:` entries built and added, starting at
     /// `t0` (`path`: the file, for the errors).
     pub fn build_node(&self, path: &Path, t0: Instant) -> Result<Node, String> {
@@ -305,7 +333,10 @@ impl NodeFile {
                 Hosted::Vehicle => {
                     jaus_sim::demo::vehicle_at(
                         t0,
-                        &jaus_sim::demo::Options::default(),
+                        &jaus_sim::demo::Options {
+                            local_waypoint_driver: true,
+                            ..jaus_sim::demo::Options::default()
+                        },
                         self.subsystem,
                         self.node,
                     )

@@ -133,6 +133,50 @@ pub struct NodeFile {
     /// the node file's directory); in memory without it.
     #[serde(default)]
     pub store: Option<std::path::PathBuf>,
+    /// AS-4 clients too: an AS-4 component on the same socket (AS5669A) presenting RA
+    /// 3.3 components as AS-4 services (see [`As4File`]).
+    #[serde(default)]
+    pub as4: Option<As4File>,
+}
+
+/// `as4:` of a node file: the node answers AS-4 clients (AS5669A, JUDP version 2, on
+/// the node's own socket) with one AS-4 component presenting RA 3.3 components as the
+/// Core and Mobility services (`jaus_as4::gateway`).
+///
+/// ```yaml
+/// as4:
+///   subsystem: 1        # AS-4 subsystem id; default: the node's subsystem
+///   node: 1             # AS-4 node id; default: the node's id
+///   component: 1        # the AS-4 component's id; default 1
+///   name: demo vehicle  # Report Identification's name; default: the subsystem name
+///   present: 1          # the RA 3.3 subsystem presented; default: this node's subsystem
+///   gateway_id: 60      # the gateway's own RA 3.3 component id on this node; default 60
+///   authority: 200      # its authority when it takes RA 3.3 control; default 200
+/// ```
+#[derive(Debug, Clone, Default, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct As4File {
+    /// AS-4 subsystem id (default: the node's subsystem).
+    #[serde(default)]
+    pub subsystem: Option<u16>,
+    /// AS-4 node id (default: the node's id).
+    #[serde(default)]
+    pub node: Option<u8>,
+    /// The AS-4 component's id (default 1).
+    #[serde(default)]
+    pub component: Option<u8>,
+    /// Its name in Report Identification (default: the subsystem's name).
+    #[serde(default)]
+    pub name: Option<String>,
+    /// The RA 3.3 subsystem whose components it presents (default: this node's).
+    #[serde(default)]
+    pub present: Option<u8>,
+    /// The gateway's RA 3.3 component id on this node (default 60).
+    #[serde(default)]
+    pub gateway_id: Option<u8>,
+    /// Its authority when it requests RA 3.3 control of the drivers (default 200).
+    #[serde(default)]
+    pub authority: Option<u8>,
 }
 
 /// `io:` of a node file: how the node waits for and reads datagrams.

@@ -101,6 +101,14 @@ pub fn node(
             links.join(", ")
         );
     }
+    let as4 = file.as4_config();
+    if let Some(gw) = &as4 {
+        let _ = writeln!(
+            out,
+            "AS-4 (AS5669A) on the same socket: component {} presenting subsystem {} (gateway {})",
+            gw.as4, gw.present, gw.ra33
+        );
+    }
     let _ = out.flush();
     let mut printer = TreePrinter::new(Duration::from_secs(1));
     let socket = std::net::UdpSocket::bind(file.bind).map_err(|e| format!("{}: {e}", file.bind))?;
@@ -161,46 +169,68 @@ pub fn node(
         component_data: oj.as_ref().map(|p| &p.1),
     };
     let io = file.io.clone().unwrap_or_default().options();
-    let result = udp::run_node(
-        &mut node,
-        sockets,
-        &io,
-        stop,
-        duration.map(|d| t0 + d),
-        |n| {
-            let now = Instant::now();
-            if let Some(text) = printer.poll(now, n.tree_version(), n.tree()) {
-                let _ = writeln!(
-                    out,
-                    "--- system tree at {:.1} s\n{text}",
-                    t0.elapsed().as_secs_f64()
-                );
-                let _ = out.flush();
-            }
-        },
-        |direction, peer, datagram| {
-            let Some(w) = writer.as_mut() else {
-                return;
-            };
-            let time = std::time::SystemTime::now()
-                .duration_since(std::time::UNIX_EPOCH)
-                .unwrap_or_default();
-            let (src, dst) = match direction {
-                udp::Direction::Received => (peer, local),
-                udp::Direction::Sent => (local, peer),
-            };
-            let mut written = w.write(time, src, dst, datagram);
-            if written.is_ok() && last_flush.elapsed() >= Duration::from_secs(1) {
-                last_flush = Instant::now();
-                written = w.flush();
-            }
-            if let Err(e) = written {
-                // Stop capturing; the node keeps running.
-                capture_error.get_or_insert(e.to_string());
-                writer = None;
-            }
-        },
-    )
+    let until = duration.map(|d| t0 + d);
+    let mut show_tree = |n: &jaus::net::Node| {
+        let now = Instant::now();
+        if let Some(text) = printer.poll(now, n.tree_version(), n.tree()) {
+            let _ = writeln!(
+                out,
+                "--- system tree at {:.1} s\n{text}",
+                t0.elapsed().as_secs_f64()
+            );
+            let _ = out.flush();
+        }
+    };
+    let mut tap = |direction: udp::Direction, peer: SocketAddr, datagram: &[u8]| {
+        let Some(w) = writer.as_mut() else {
+            return;
+        };
+        let time = std::time::SystemTime::now()
+            .duration_since(std::time::UNIX_EPOCH)
+            .unwrap_or_default();
+        let (src, dst) = match direction {
+            udp::Direction::Received => (peer, local),
+            udp::Direction::Sent => (local, peer),
+        };
+        let mut written = w.write(time, src, dst, datagram);
+        if written.is_ok() && last_flush.elapsed() >= Duration::from_secs(1) {
+            last_flush = Instant::now();
+            written = w.flush();
+        }
+        if let Err(e) = written {
+            // Stop capturing; the node keeps running.
+            capture_error.get_or_insert(e.to_string());
+            writer = None;
+        }
+    };
+    let result = match as4 {
+        None => udp::run_node(
+            &mut node,
+            sockets,
+            &io,
+            stop,
+            until,
+            |n| show_tree(n),
+            &mut tap,
+        ),
+        Some(gw) => {
+            // AS-4 clients on the same socket: version-2 datagrams go to the gateway
+            // the node hosts, which finds the presented components in the tree.
+            let mut dual = jaus_as4::gateway::DualNode::new(node, gw)
+                .map_err(|e| format!("{}: as4: {e}", config.display()))?;
+            let r = udp::run_node(
+                &mut dual,
+                sockets,
+                &io,
+                stop,
+                until,
+                |d| show_tree(d.node()),
+                &mut tap,
+            );
+            node = dual.into_node();
+            r
+        }
+    }
     .map_err(|e| format!("{}: {e}", file.bind));
     // What the node counted, for whoever watched it run (one line, `key value` pairs).
     let st = node.stats();

@@ -1,0 +1,469 @@
+//! An AS-4 component, sans-IO: the Core services ([`Core`]) and the component's other
+//! services ([`Service`]), behind one id.
+//!
+//! [`As4Component::handle`] takes a decoded message with its sender and the time, and
+//! returns what to send ([`Outgoing`]: answers to the sender, and messages to others
+//! such as the Reject Control of a preempted controller and Events). Dispatch:
+//!
+//! 1. Create and Update Event: their query is run through this dispatch as if the
+//!    subscriber had sent it; the event is confirmed only when something answers it.
+//! 2. Other Core messages go to the [`Core`] (the table of what needs control is in
+//!    [`crate::core`]).
+//! 3. Everything else goes to the services, in the order they were added, to each whose
+//!    [`Service::receives`] says yes until one does not answer [`Handled::NotMine`]. A
+//!    command (code below 0x2000) reaches a service only from the controlling client,
+//!    and only while the component is Ready unless [`Service::needs_ready`] says
+//!    otherwise.
+//!
+//! What is refused is counted ([`ComponentStats`]) and logged (`tracing`, debug level)
+//! with the message, its sender and the reason. A message ID this crate does not define
+//! ([`Message::Raw`]) is counted and ignored. Services are told when the state or the
+//! controller changes ([`Service::state_changed`], [`Service::controller_changed`]).
+//!
+//! Time: call [`handle_timeout`](As4Component::handle_timeout) when
+//! [`poll_timeout`](As4Component::poll_timeout) is due (control and event lapses,
+//! periodic and every-change events, the services' timers), and
+//! [`tick`](As4Component::tick) after changing the environment `E` (every service's
+//! [`Service::tick`] runs, then the events due).
+
+use std::time::{Duration, Instant};
+
+use jaus::net::as5669a::As4Id;
+
+use crate::core::discovery::{service_info, Identification};
+use crate::core::events::{self, Setup};
+use crate::core::{core_services, Core, CoreConfig, Refusal};
+use crate::messages::{
+    ComponentState, EventRejection, EventType, Message, RejectEventRequest, ServiceInfo,
+};
+use crate::service::{Cx, Handled, Request, Service, ServiceId};
+
+/// A message to send: its destination and the message.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Outgoing {
+    /// The destination.
+    pub to: As4Id,
+    /// The message.
+    pub message: Message,
+}
+
+impl Outgoing {
+    /// `message` for `to`.
+    pub fn new(to: As4Id, message: impl Into<Message>) -> Self {
+        Self {
+            to,
+            message: message.into(),
+        }
+    }
+}
+
+/// Counters of a component.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct ComponentStats {
+    /// Messages handed to [`As4Component::handle`].
+    pub received: u64,
+    /// Messages returned to send (answers, events, messages to others).
+    pub sent: u64,
+    /// Refused: needs control, and the sender does not hold it.
+    pub not_controller: u64,
+    /// Refused: the component's state does not allow it (not Ready, an emergency).
+    pub not_ready: u64,
+    /// Ignored: a message ID this crate does not define.
+    pub unknown: u64,
+    /// Ignored: a known message that neither the Core nor a service receives.
+    pub unhandled: u64,
+    /// Refused: a bound was reached (events, registrations, emergencies).
+    pub bounds: u64,
+    /// Refused otherwise (invalid content, a service's refusal, nothing to answer).
+    pub refused: u64,
+    /// Events sent.
+    pub events_sent: u64,
+    /// Event queries nobody answered when due (nothing sent for them).
+    pub events_unanswered: u64,
+}
+
+/// What the services did with a message.
+enum Dispatch {
+    /// No service takes it.
+    Unhandled,
+    /// Taken, perhaps with an answer.
+    Answered(Option<Message>),
+    /// Refused.
+    Refused(Refusal),
+}
+
+/// One AS-4 component: id, Core services, other services.
+#[derive(Debug)]
+pub struct As4Component<E> {
+    id: As4Id,
+    core: Core,
+    services: Vec<Box<dyn Service<E>>>,
+    stats: ComponentStats,
+}
+
+impl<E: 'static> As4Component<E> {
+    /// Component `id` with the Core services set up by `config` and no other service.
+    ///
+    /// ```
+    /// use jaus::net::as5669a::As4Id;
+    /// use jaus_as4::component::As4Component;
+    /// use jaus_as4::core::CoreConfig;
+    ///
+    /// let c: As4Component<()> = As4Component::new(As4Id::new(7, 1, 1), CoreConfig::named("rover"));
+    /// assert_eq!(c.state(), jaus_as4::ComponentState::Standby);
+    /// ```
+    pub fn new(id: As4Id, config: CoreConfig) -> Self {
+        Self {
+            id,
+            core: Core::new(id, config),
+            services: Vec::new(),
+            stats: ComponentStats::default(),
+        }
+    }
+
+    /// With `service` added after the ones already there.
+    pub fn with_service(mut self, service: impl Service<E>) -> Self {
+        self.add_service(Box::new(service));
+        self
+    }
+
+    /// Adds `service` after the ones already there (Discovery reports it from now on).
+    pub fn add_service(&mut self, service: Box<dyn Service<E>>) {
+        self.services.push(service);
+        let own = self.service_infos();
+        self.core.discovery_mut().set_own(own);
+    }
+
+    /// Its id.
+    pub fn id(&self) -> As4Id {
+        self.id
+    }
+
+    /// Its names (Discovery).
+    pub fn identification(&self) -> &Identification {
+        self.core.discovery().identification()
+    }
+
+    /// The Core services.
+    pub fn core(&self) -> &Core {
+        &self.core
+    }
+
+    /// The Core services, mutably.
+    pub fn core_mut(&mut self) -> &mut Core {
+        &mut self.core
+    }
+
+    /// The component's state.
+    pub fn state(&self) -> ComponentState {
+        self.core.state()
+    }
+
+    /// The controlling client.
+    pub fn controller(&self) -> Option<As4Id> {
+        self.core.controller()
+    }
+
+    /// Counters.
+    pub fn stats(&self) -> ComponentStats {
+        self.stats
+    }
+
+    /// Every service it offers: the Core's, then the others in order.
+    pub fn service_ids(&self) -> Vec<ServiceId> {
+        let mut v = core_services(self.core.config().list_manager);
+        v.extend(self.services.iter().map(|s| s.id()));
+        v
+    }
+
+    /// [`service_ids`](Self::service_ids) as Discovery's records.
+    pub fn service_infos(&self) -> Vec<ServiceInfo> {
+        self.service_ids().iter().map(service_info).collect()
+    }
+
+    /// The services other than the Core's.
+    pub fn services(&self) -> impl Iterator<Item = &dyn Service<E>> + '_ {
+        self.services.iter().map(|s| s.as_ref())
+    }
+
+    /// The wall clock: UTC (since 1970-01-01) is `utc` at `now` (Time's Report Time).
+    pub fn set_utc(&mut self, now: Instant, utc: Duration) {
+        self.core.time_mut().set_utc(now, utc);
+    }
+
+    /// `msg` from `from` at `now`: what to send.
+    pub fn handle(
+        &mut self,
+        now: Instant,
+        from: As4Id,
+        msg: &Message,
+        env: &mut E,
+    ) -> Vec<Outgoing> {
+        self.stats.received += 1;
+        let before = (self.core.state(), self.core.controller());
+        let mut out = match msg {
+            Message::Raw(r) => {
+                self.stats.unknown += 1;
+                tracing::debug!(id = %format_args!("{:#06X}", r.code.0), %from, "unknown AS-4 message ignored");
+                Vec::new()
+            }
+            Message::CreateEvent(c) => {
+                let setup = (c.request_id, c.event_type, c.requested_periodic_rate);
+                self.event_setup(now, from, setup, &c.query_message, None, env)
+            }
+            Message::UpdateEvent(u) => {
+                let setup = (u.request_id, u.event_type, u.requested_periodic_rate);
+                self.event_setup(now, from, setup, &u.query_message, Some(u.event_id), env)
+            }
+            _ if self.core.handles(msg.code()) => match self.core.handle(now, from, msg) {
+                Ok(out) => out,
+                Err(r) => {
+                    self.refuse(from, msg, r);
+                    Vec::new()
+                }
+            },
+            _ => self.offer(now, from, msg, env),
+        };
+        self.notify(now, before, env);
+        out.extend(self.fire_events(now, env));
+        self.stats.sent += out.len() as u64;
+        out
+    }
+
+    /// Time passed: control and event lapses, events due, services' timers due.
+    pub fn handle_timeout(&mut self, now: Instant, env: &mut E) -> Vec<Outgoing> {
+        let before = (self.core.state(), self.core.controller());
+        let mut out = self.core.handle_timeout(now);
+        self.with_services(now, env, |s, cx| {
+            if s.poll_timeout().is_some_and(|t| t <= now) {
+                s.tick(cx);
+            }
+        });
+        self.notify(now, before, env);
+        out.extend(self.fire_events(now, env));
+        self.stats.sent += out.len() as u64;
+        out
+    }
+
+    /// The environment changed: every service's [`Service::tick`], then the events due
+    /// (every-change events notice the change at their next tick).
+    pub fn tick(&mut self, now: Instant, env: &mut E) -> Vec<Outgoing> {
+        let before = (self.core.state(), self.core.controller());
+        self.with_services(now, env, |s, cx| s.tick(cx));
+        self.notify(now, before, env);
+        let out = self.fire_events(now, env);
+        self.stats.sent += out.len() as u64;
+        out
+    }
+
+    /// When [`handle_timeout`](Self::handle_timeout) is next due.
+    pub fn poll_timeout(&self) -> Option<Instant> {
+        self.services
+            .iter()
+            .filter_map(|s| s.poll_timeout())
+            .chain(self.core.poll_timeout())
+            .min()
+    }
+
+    /// The owner declares a failure (Management's Failure state; control ends).
+    pub fn fail(&mut self, now: Instant, env: &mut E) -> Vec<Outgoing> {
+        let before = (self.core.state(), self.core.controller());
+        let out = self.core.fail();
+        self.notify(now, before, env);
+        self.stats.sent += out.len() as u64;
+        out
+    }
+
+    fn refuse(&mut self, from: As4Id, msg: &Message, r: Refusal) {
+        let (counter, reason) = match r {
+            Refusal::NotController(s) => (&mut self.stats.not_controller, s),
+            Refusal::NotReady(s) => (&mut self.stats.not_ready, s),
+            Refusal::Bounds(s) => (&mut self.stats.bounds, s),
+            Refusal::Ignored(s) => (&mut self.stats.refused, s),
+        };
+        *counter += 1;
+        tracing::debug!(message = msg.name(), %from, component = %self.id, "refused: {reason}");
+    }
+
+    fn with_services(
+        &mut self,
+        now: Instant,
+        env: &mut E,
+        mut f: impl FnMut(&mut dyn Service<E>, &mut Cx<'_, E>),
+    ) {
+        let (me, state, controller) = (self.id, self.core.state(), self.core.controller());
+        let mut cx = Cx {
+            now,
+            me,
+            state,
+            controller,
+            lists: self.core.lists_mut(),
+            env,
+        };
+        for s in &mut self.services {
+            f(s.as_mut(), &mut cx);
+        }
+    }
+
+    fn notify(
+        &mut self,
+        now: Instant,
+        (state, controller): (ComponentState, Option<As4Id>),
+        env: &mut E,
+    ) {
+        let (now_state, now_controller) = (self.core.state(), self.core.controller());
+        if now_state == state && now_controller == controller {
+            return;
+        }
+        self.with_services(now, env, |s, cx| {
+            if now_state != state {
+                s.state_changed(cx, state, now_state);
+            }
+            if now_controller != controller {
+                s.controller_changed(cx, now_controller);
+            }
+        });
+    }
+
+    /// Offers `msg` to the services that receive it, in order, until one takes it.
+    fn dispatch(&mut self, now: Instant, from: As4Id, msg: &Message, env: &mut E) -> Dispatch {
+        let code = msg.code();
+        let from_controller = self.core.controller() == Some(from);
+        let state = self.core.state();
+        let is_command = code.0 < 0x2000;
+        let mut decided: Option<Dispatch> = None;
+        self.with_services(now, env, |s, cx| {
+            if decided.is_some() || !s.receives(code) {
+                return;
+            }
+            if is_command && !from_controller {
+                let why = format!("{} needs control", s.id().uri);
+                decided = Some(Dispatch::Refused(Refusal::NotController(why)));
+                return;
+            }
+            if is_command && s.needs_ready(code) && state != ComponentState::Ready {
+                let why = format!("{} needs Ready, state {state:?}", s.id().uri);
+                decided = Some(Dispatch::Refused(Refusal::NotReady(why)));
+                return;
+            }
+            let request = Request {
+                now,
+                from,
+                message: msg,
+                from_controller,
+                state,
+            };
+            decided = match s.handle(cx, &request) {
+                Handled::NotMine => None,
+                Handled::Done => Some(Dispatch::Answered(None)),
+                Handled::Reply(m) => Some(Dispatch::Answered(Some(m))),
+                Handled::Refused(r) => Some(Dispatch::Refused(Refusal::Ignored(format!(
+                    "{}: {r}",
+                    s.id().uri
+                )))),
+            };
+        });
+        decided.unwrap_or(Dispatch::Unhandled)
+    }
+
+    fn offer(&mut self, now: Instant, from: As4Id, msg: &Message, env: &mut E) -> Vec<Outgoing> {
+        match self.dispatch(now, from, msg, env) {
+            Dispatch::Answered(reply) => {
+                reply.map(|m| Outgoing::new(from, m)).into_iter().collect()
+            }
+            Dispatch::Unhandled => {
+                self.stats.unhandled += 1;
+                tracing::debug!(message = msg.name(), %from, component = %self.id, "no service takes it");
+                Vec::new()
+            }
+            Dispatch::Refused(r) => {
+                self.refuse(from, msg, r);
+                Vec::new()
+            }
+        }
+    }
+
+    /// The answer of query `q` as if `from` sent it (Core or service).
+    fn query(&mut self, now: Instant, q: &Message, from: As4Id, env: &mut E) -> Option<Message> {
+        if self.core.handles(q.code()) {
+            return self.core.answer_query(now, q);
+        }
+        match self.dispatch(now, from, q, env) {
+            Dispatch::Answered(m) => m,
+            _ => None,
+        }
+    }
+
+    fn event_setup(
+        &mut self,
+        now: Instant,
+        from: As4Id,
+        (request_id, kind, rate): (u8, EventType, f64),
+        query_bytes: &[u8],
+        update: Option<u8>,
+        env: &mut E,
+    ) -> Vec<Outgoing> {
+        let query = match events::query_of(query_bytes) {
+            Ok(q) => q,
+            Err(r) => return vec![events::reject(from, request_id, r)],
+        };
+        if self.query(now, &query, from, env).is_none() {
+            let why = format!("nothing answers {}", query.name());
+            return vec![events::reject(
+                from,
+                request_id,
+                (EventRejection::MessageNotSupported, why),
+            )];
+        }
+        let setup = Setup {
+            request_id,
+            kind,
+            rate,
+            query_bytes,
+            query,
+        };
+        let out = match update {
+            None => self.core.events_mut().create(now, from, setup),
+            Some(id) => self.core.events_mut().update(now, from, id, setup),
+        };
+        if let Message::RejectEventRequest(RejectEventRequest {
+            response_code: Some(code),
+            error_message,
+            ..
+        }) = &out.message
+        {
+            let reason = error_message.clone().unwrap_or_default();
+            let refusal = if *code == EventRejection::ConnectionRefused {
+                Refusal::Bounds(reason)
+            } else {
+                Refusal::Ignored(reason)
+            };
+            let msg_name = if update.is_some() {
+                "UpdateEvent"
+            } else {
+                "CreateEvent"
+            };
+            tracing::debug!(message = msg_name, %from, "event refused: {refusal:?}");
+            match refusal {
+                Refusal::Bounds(_) => self.stats.bounds += 1,
+                _ => self.stats.refused += 1,
+            }
+        }
+        vec![out]
+    }
+
+    fn fire_events(&mut self, now: Instant, env: &mut E) -> Vec<Outgoing> {
+        let mut out = Vec::new();
+        for (id, subscriber, q) in self.core.events().due(now) {
+            let report = self.query(now, &q, subscriber, env);
+            if report.is_none() {
+                self.stats.events_unanswered += 1;
+            }
+            if let Some(o) = self.core.events_mut().fire(now, id, report.as_ref()) {
+                self.stats.events_sent += 1;
+                out.push(o);
+            }
+        }
+        out
+    }
+}

@@ -1,0 +1,386 @@
+//! Events (`urn:jaus:jss:core:Events` 1.1): subscriptions to the reports of any query
+//! the component answers, sent periodically or on every change.
+//!
+//! * Create Event names a query (message ID and body). The component runs it as if the
+//!   subscriber had sent it; a query nobody answers is refused (Reject Event Request
+//!   `MessageNotSupported`), as is a body that does not decode or a message that is not
+//!   a query (`InvalidEventSetup`, `MessageNotSupported`). A Create Event matching an
+//!   event of the same subscriber (same type and query) updates that event.
+//! * Periodic events are confirmed at the requested rate rounded to 0.01 Hz and
+//!   clamped to [[`MIN_RATE`], [`MAX_RATE`]] Hz (a requested rate of 0 is
+//!   `InvalidEventSetup`);
+//!   reports are not queued: a late tick sends one report and the schedule moves on.
+//! * Every-change events are confirmed at rate 0; the component runs their query every
+//!   [`CoreConfig::change_period`](super::CoreConfig::change_period) (default
+//!   [`DEFAULT_CHANGE_PERIOD`], 20 Hz) and sends the report when its bytes differ from
+//!   the last one sent.
+//! * Both kinds send their first report as soon as they are created. Each Event carries
+//!   a sequence number per event, from 0, wrapping after 255.
+//! * Update Event and Cancel Event name an event id that must exist and belong to the
+//!   sender (`InvalidEventIdForUpdate` otherwise).
+//! * With an event timeout (minutes, as Report Event Timeout gives it; 0 = none), an
+//!   event not renewed by a Create or Update Event within it lapses and its subscriber
+//!   gets a Confirm Event Request for it, as for a cancel.
+//! * At most [`CoreConfig::max_events`](super::CoreConfig::max_events) events (and 255):
+//!   more are refused with `ConnectionRefused` and counted.
+//! * Create Command Event is refused (`MessageNotSupported`): no service of this runtime
+//!   runs commands as events.
+
+use std::collections::BTreeMap;
+use std::time::{Duration, Instant};
+
+use jaus::net::as5669a::As4Id;
+
+use crate::component::Outgoing;
+use crate::embedded;
+use crate::messages::{
+    ConfirmEventRequest, Event, EventInfo, EventRejection, EventType, EventsFilter, Message,
+    RejectEventRequest, ReportEventTimeout, ReportEvents,
+};
+
+/// Lowest periodic rate confirmed, Hz.
+pub const MIN_RATE: f64 = 0.1;
+/// Highest periodic rate confirmed, Hz.
+pub const MAX_RATE: f64 = 50.0;
+/// How often every-change events run their query (20 Hz).
+pub const DEFAULT_CHANGE_PERIOD: Duration = Duration::from_millis(50);
+
+/// A refusal: the reason code and a text for the log and the error message field.
+pub type Rejection = (EventRejection, String);
+
+/// The query of a Create or Update Event, decoded and checked to be a query.
+pub fn query_of(bytes: &[u8]) -> Result<Message, Rejection> {
+    let m = embedded::decode(bytes).map_err(|e| {
+        (
+            EventRejection::InvalidEventSetup,
+            format!("query does not decode: {e}"),
+        )
+    })?;
+    let code = m.code().0;
+    if !(0x2000..0x4000).contains(&code) {
+        return Err((
+            EventRejection::MessageNotSupported,
+            format!("message {code:#06X} is not a query"),
+        ));
+    }
+    Ok(m)
+}
+
+/// Reject Event Request for `request_id` to `to`.
+pub fn reject(to: As4Id, request_id: u8, (code, text): Rejection) -> Outgoing {
+    let mut text = text;
+    text.truncate(80);
+    Outgoing::new(
+        to,
+        RejectEventRequest {
+            request_id,
+            response_code: Some(code),
+            error_message: Some(text),
+        },
+    )
+}
+
+#[derive(Debug, Clone)]
+struct Subscription {
+    subscriber: As4Id,
+    kind: EventType,
+    rate: f64,
+    query_bytes: Vec<u8>,
+    query: Message,
+    sequence: u8,
+    next_due: Instant,
+    last_report: Option<Vec<u8>>,
+    renewed: Instant,
+    request_id: u8,
+}
+
+/// The events a component maintains.
+#[derive(Debug, Clone)]
+pub struct Events {
+    subs: BTreeMap<u8, Subscription>,
+    max: usize,
+    timeout_minutes: u8,
+    change_period: Duration,
+}
+
+/// What a Create or Update Event asks for.
+#[derive(Debug, Clone)]
+pub struct Setup<'a> {
+    /// The client's request id.
+    pub request_id: u8,
+    /// Periodic or every change.
+    pub kind: EventType,
+    /// Requested rate, Hz.
+    pub rate: f64,
+    /// The query as sent.
+    pub query_bytes: &'a [u8],
+    /// The query decoded.
+    pub query: Message,
+}
+
+impl Events {
+    /// No events; at most `max` of them, lapsing after `timeout_minutes` (0 = never),
+    /// every-change queries run every `change_period`.
+    pub fn new(max: usize, timeout_minutes: u8, change_period: Duration) -> Self {
+        Self {
+            subs: BTreeMap::new(),
+            max: max.min(255),
+            timeout_minutes,
+            change_period: change_period.max(Duration::from_millis(1)),
+        }
+    }
+
+    /// Number of events.
+    pub fn len(&self) -> usize {
+        self.subs.len()
+    }
+
+    /// Whether there are none.
+    pub fn is_empty(&self) -> bool {
+        self.subs.is_empty()
+    }
+
+    fn confirmed_rate(setup: &Setup<'_>) -> Result<f64, Rejection> {
+        match setup.kind {
+            EventType::EveryChange => Ok(0.0),
+            // The wire carries rates in steps of 1092/65535 Hz: 10 Hz arrives as
+            // 9.9997 Hz. Rounded to 0.01 Hz, the rate is the one the client meant.
+            EventType::Periodic if setup.rate > 0.0 => {
+                Ok(((setup.rate * 100.0).round() / 100.0).clamp(MIN_RATE, MAX_RATE))
+            }
+            EventType::Periodic => Err((
+                EventRejection::InvalidEventSetup,
+                "periodic event at rate 0".into(),
+            )),
+            EventType::Unknown(t) => Err((
+                EventRejection::InvalidEventSetup,
+                format!("unknown event type {t}"),
+            )),
+        }
+    }
+
+    /// Create Event from `from` whose query the component answers.
+    pub fn create(&mut self, now: Instant, from: As4Id, setup: Setup<'_>) -> Outgoing {
+        let request_id = setup.request_id;
+        let rate = match Self::confirmed_rate(&setup) {
+            Ok(r) => r,
+            Err(r) => return reject(from, request_id, r),
+        };
+        let existing = self.subs.iter().find_map(|(id, s)| {
+            (s.subscriber == from && s.kind == setup.kind && s.query_bytes == setup.query_bytes)
+                .then_some(*id)
+        });
+        let id = match existing {
+            Some(id) => id,
+            None if self.subs.len() >= self.max => {
+                return reject(
+                    from,
+                    request_id,
+                    (
+                        EventRejection::ConnectionRefused,
+                        format!("at most {} events", self.max),
+                    ),
+                )
+            }
+            None => match (0..=254u8).find(|i| !self.subs.contains_key(i)) {
+                Some(id) => id,
+                None => {
+                    return reject(
+                        from,
+                        request_id,
+                        (EventRejection::ConnectionRefused, "no free event id".into()),
+                    )
+                }
+            },
+        };
+        self.install(now, from, id, rate, setup);
+        Self::confirm(from, request_id, id, rate)
+    }
+
+    /// Update Event from `from` for event `event_id`.
+    pub fn update(
+        &mut self,
+        now: Instant,
+        from: As4Id,
+        event_id: u8,
+        setup: Setup<'_>,
+    ) -> Outgoing {
+        let request_id = setup.request_id;
+        if self
+            .subs
+            .get(&event_id)
+            .is_none_or(|s| s.subscriber != from)
+        {
+            return reject(from, request_id, no_event(event_id));
+        }
+        let rate = match Self::confirmed_rate(&setup) {
+            Ok(r) => r,
+            Err(r) => return reject(from, request_id, r),
+        };
+        self.install(now, from, event_id, rate, setup);
+        Self::confirm(from, request_id, event_id, rate)
+    }
+
+    fn install(&mut self, now: Instant, from: As4Id, id: u8, rate: f64, setup: Setup<'_>) {
+        let sequence = self.subs.get(&id).map_or(0, |s| s.sequence);
+        self.subs.insert(
+            id,
+            Subscription {
+                subscriber: from,
+                kind: setup.kind,
+                rate,
+                query_bytes: setup.query_bytes.to_vec(),
+                query: setup.query,
+                sequence,
+                next_due: now,
+                last_report: None,
+                renewed: now,
+                request_id: setup.request_id,
+            },
+        );
+    }
+
+    /// Cancel Event from `from`.
+    pub fn cancel(&mut self, from: As4Id, request_id: u8, event_id: u8) -> Outgoing {
+        match self.subs.get(&event_id) {
+            Some(s) if s.subscriber == from => {
+                let rate = s.rate;
+                self.subs.remove(&event_id);
+                Self::confirm(from, request_id, event_id, rate)
+            }
+            _ => reject(from, request_id, no_event(event_id)),
+        }
+    }
+
+    fn confirm(to: As4Id, request_id: u8, event_id: u8, rate: f64) -> Outgoing {
+        Outgoing::new(
+            to,
+            ConfirmEventRequest {
+                request_id,
+                event_id,
+                confirmed_periodic_rate: rate,
+            },
+        )
+    }
+
+    /// The events whose query is due at `now`: (event id, subscriber, query).
+    pub fn due(&self, now: Instant) -> Vec<(u8, As4Id, Message)> {
+        self.subs
+            .iter()
+            .filter(|(_, s)| s.next_due <= now)
+            .map(|(id, s)| (*id, s.subscriber, s.query.clone()))
+            .collect()
+    }
+
+    /// Event `id`'s query was run at `now` and gave `report` (`None`: nobody answered
+    /// it this time). The Event to send, if any; the schedule moves on either way.
+    pub fn fire(&mut self, now: Instant, id: u8, report: Option<&Message>) -> Option<Outgoing> {
+        let period = self.change_period;
+        let s = self.subs.get_mut(&id)?;
+        let step = match s.kind {
+            EventType::Periodic => Duration::from_secs_f64(1.0 / s.rate.max(MIN_RATE)),
+            _ => period,
+        };
+        s.next_due += step;
+        if s.next_due <= now {
+            s.next_due = now + step;
+        }
+        let bytes = match report.map(embedded::encode) {
+            Some(Ok(b)) => b,
+            Some(Err(e)) => {
+                tracing::warn!(event = id, "event report not encoded: {e}");
+                return None;
+            }
+            None => return None,
+        };
+        if s.kind == EventType::EveryChange && s.last_report.as_deref() == Some(&bytes[..]) {
+            return None;
+        }
+        let sequence_number = s.sequence;
+        s.sequence = s.sequence.wrapping_add(1);
+        s.last_report = Some(bytes.clone());
+        Some(Outgoing::new(
+            s.subscriber,
+            Event {
+                event_id: id,
+                sequence_number,
+                report_message: bytes,
+            },
+        ))
+    }
+
+    /// Events not renewed within the timeout lapse: a Confirm Event Request to each
+    /// subscriber.
+    pub fn expire(&mut self, now: Instant) -> Vec<Outgoing> {
+        let Some(limit) = self.lifetime() else {
+            return Vec::new();
+        };
+        let gone: Vec<u8> = self
+            .subs
+            .iter()
+            .filter(|(_, s)| s.renewed + limit <= now)
+            .map(|(id, _)| *id)
+            .collect();
+        gone.into_iter()
+            .filter_map(|id| {
+                let s = self.subs.remove(&id)?;
+                tracing::debug!(event = id, subscriber = %s.subscriber, "event lapsed");
+                Some(Self::confirm(s.subscriber, s.request_id, id, s.rate))
+            })
+            .collect()
+    }
+
+    fn lifetime(&self) -> Option<Duration> {
+        (self.timeout_minutes > 0)
+            .then(|| Duration::from_secs(60 * u64::from(self.timeout_minutes)))
+    }
+
+    /// When [`due`](Self::due) or [`expire`](Self::expire) next has something.
+    pub fn next_timeout(&self) -> Option<Instant> {
+        let lifetime = self.lifetime();
+        self.subs
+            .values()
+            .flat_map(|s| [Some(s.next_due), lifetime.map(|l| s.renewed + l)])
+            .flatten()
+            .min()
+    }
+
+    /// Removes every event of `subscriber`.
+    pub fn forget(&mut self, subscriber: As4Id) {
+        self.subs.retain(|_, s| s.subscriber != subscriber);
+    }
+
+    /// Report Events for `filter`.
+    pub fn report(&self, filter: &EventsFilter) -> ReportEvents {
+        let events = self
+            .subs
+            .iter()
+            .filter(|(id, s)| match filter {
+                EventsFilter::MessageCode(c) => s.query.code().0 == *c,
+                EventsFilter::EventType(t) => s.kind == *t,
+                EventsFilter::EventId(e) => *id == e,
+                EventsFilter::AllEvents(_) => true,
+            })
+            .map(|(id, s)| EventInfo {
+                event_type: s.kind,
+                event_id: *id,
+                query_message: s.query_bytes.clone(),
+            })
+            .collect();
+        ReportEvents { events }
+    }
+
+    /// Report Event Timeout (minutes).
+    pub fn report_timeout(&self) -> ReportEventTimeout {
+        ReportEventTimeout {
+            timeout: self.timeout_minutes,
+        }
+    }
+}
+
+fn no_event(event_id: u8) -> Rejection {
+    (
+        EventRejection::InvalidEventIdForUpdate,
+        format!("no event {event_id} of the sender"),
+    )
+}

@@ -1,0 +1,458 @@
+//! The Core services of one AS-4 component (Core Service Set v1.1, SAE AS5710A),
+//! sans-IO: Transport, Events, Access Control, Management, Time, Liveness, Discovery and
+//! List Manager. [`Core`] takes each Core message with its sender and the time, and
+//! decides the answers (and messages to others, such as the Reject Control of a
+//! preempted controller) as values ([`Outgoing`]).
+//!
+//! Each service's behaviour is documented in its module: [`access`], [`management`],
+//! [`events`], [`time`], [`liveness`], [`discovery`], [`lists`]. What needs control:
+//!
+//! | message | from | in state |
+//! |---|---|---|
+//! | Request Control, Release Control, Set/Clear Emergency, Create/Update/Cancel Event, Register Services, every query | anyone | any |
+//! | Set Authority, Set Time, Set Element, Delete Element, Shutdown, Reset, Standby, Resume | the controller | any (Management's own rules apply) |
+//! | a service's command (code below 0x2000) | the controller | Ready, unless the service says otherwise ([`Service::needs_ready`](crate::service::Service::needs_ready)) |
+//!
+//! Create and Update Event need the component's other services (their query may be a
+//! service's), so [`As4Component`](crate::component::As4Component) handles them with
+//! [`Core::events_mut`]; everything else of the Core is [`Core::handle`].
+
+pub mod access;
+pub mod discovery;
+pub mod events;
+pub mod lists;
+pub mod liveness;
+pub mod management;
+pub mod time;
+
+use std::time::{Duration, Instant};
+
+use jaus::net::as5669a::As4Id;
+use jaus::{CommandCode, JausMessage};
+
+use crate::component::Outgoing;
+use crate::messages::{self as m, ComponentState, EventRejection, Message};
+use crate::service::ServiceId;
+
+use access::Access;
+use discovery::{service_info, Discovery, Identification};
+use events::Events;
+use lists::Lists;
+use management::Management;
+use time::Time;
+
+/// Transport 1.1.
+pub const TRANSPORT: ServiceId = ServiceId::new("urn:jaus:jss:core:Transport", 1, 1);
+/// Events 1.1.
+pub const EVENTS: ServiceId = ServiceId::new("urn:jaus:jss:core:Events", 1, 1);
+/// Access Control 1.1.
+pub const ACCESS_CONTROL: ServiceId = ServiceId::new("urn:jaus:jss:core:AccessControl", 1, 1);
+/// Management 1.1.
+pub const MANAGEMENT: ServiceId = ServiceId::new("urn:jaus:jss:core:Management", 1, 1);
+/// Time 1.1.
+pub const TIME: ServiceId = ServiceId::new("urn:jaus:jss:core:Time", 1, 1);
+/// Liveness 1.1.
+pub const LIVENESS: ServiceId = ServiceId::new("urn:jaus:jss:core:Liveness", 1, 1);
+/// Discovery 1.1.
+pub const DISCOVERY: ServiceId = ServiceId::new("urn:jaus:jss:core:Discovery", 1, 1);
+/// List Manager 1.1.
+pub const LIST_MANAGER: ServiceId = ServiceId::new("urn:jaus:jss:core:ListManager", 1, 1);
+
+/// Settings of the Core services of a component.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CoreConfig {
+    /// Names for Report Identification.
+    pub identification: Identification,
+    /// Default authority of Access Control: a client needs at least this much to take
+    /// control. Default 0.
+    pub authority: u8,
+    /// Control timeout, seconds (0: control never lapses). The controller must send
+    /// Request Control again within it. Default 0: clients that never renew (the IOP
+    /// judge's) keep control.
+    pub control_timeout: u8,
+    /// Event timeout, minutes (0: events never lapse). Default 0.
+    pub event_timeout: u8,
+    /// Most events at once (at most 255). Default 64.
+    pub max_events: usize,
+    /// Most list elements. Default 1024.
+    pub max_elements: usize,
+    /// Most other components in Discovery's registry. Default 64.
+    pub max_registrations: usize,
+    /// Whether the component offers the List Manager. Default true.
+    pub list_manager: bool,
+    /// How often every-change events run their query. Default 50 ms (20 Hz).
+    pub change_period: Duration,
+}
+
+impl CoreConfig {
+    /// The defaults, with `name` for the subsystem, node and component.
+    pub fn named(name: &str) -> Self {
+        Self {
+            identification: Identification::named(name),
+            authority: 0,
+            control_timeout: 0,
+            event_timeout: 0,
+            max_events: 64,
+            max_elements: lists::DEFAULT_MAX_ELEMENTS,
+            max_registrations: 64,
+            list_manager: true,
+            change_period: events::DEFAULT_CHANGE_PERIOD,
+        }
+    }
+}
+
+impl Default for CoreConfig {
+    fn default() -> Self {
+        Self::named("jaus-as4")
+    }
+}
+
+/// Why a message was not acted upon (the component logs and counts it).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Refusal {
+    /// A message needing control from a client that does not hold it.
+    NotController(String),
+    /// A command the component's state does not allow.
+    NotReady(String),
+    /// A bound was reached (events, registrations, emergencies).
+    Bounds(String),
+    /// Otherwise ignored (nothing to answer, invalid content).
+    Ignored(String),
+}
+
+/// The Core services of one component.
+#[derive(Debug, Clone)]
+pub struct Core {
+    me: As4Id,
+    config: CoreConfig,
+    access: Access,
+    management: Management,
+    events: Events,
+    time: Time,
+    discovery: Discovery,
+    lists: Lists,
+}
+
+impl Core {
+    /// The Core services of component `me`.
+    pub fn new(me: As4Id, config: CoreConfig) -> Self {
+        let own = core_services(config.list_manager)
+            .iter()
+            .map(service_info)
+            .collect();
+        Self {
+            me,
+            access: Access::new(config.authority, config.control_timeout),
+            management: Management::new(),
+            events: Events::new(
+                config.max_events,
+                config.event_timeout,
+                config.change_period,
+            ),
+            time: Time::default(),
+            discovery: Discovery::new(
+                me,
+                config.identification.clone(),
+                own,
+                config.max_registrations,
+            ),
+            lists: Lists::new(config.max_elements),
+            config,
+        }
+    }
+
+    /// The settings.
+    pub fn config(&self) -> &CoreConfig {
+        &self.config
+    }
+
+    /// The component's state.
+    pub fn state(&self) -> ComponentState {
+        self.management.state()
+    }
+
+    /// The controlling client.
+    pub fn controller(&self) -> Option<As4Id> {
+        self.access.controller()
+    }
+
+    /// Access Control.
+    pub fn access(&self) -> &Access {
+        &self.access
+    }
+
+    /// Management.
+    pub fn management(&self) -> &Management {
+        &self.management
+    }
+
+    /// Events.
+    pub fn events(&self) -> &Events {
+        &self.events
+    }
+
+    /// Events, mutably (Create and Update Event, firing).
+    pub fn events_mut(&mut self) -> &mut Events {
+        &mut self.events
+    }
+
+    /// Time.
+    pub fn time(&self) -> &Time {
+        &self.time
+    }
+
+    /// Time, mutably ([`Time::set_utc`]).
+    pub fn time_mut(&mut self) -> &mut Time {
+        &mut self.time
+    }
+
+    /// Discovery.
+    pub fn discovery(&self) -> &Discovery {
+        &self.discovery
+    }
+
+    /// Discovery, mutably (registrations, own services).
+    pub fn discovery_mut(&mut self) -> &mut Discovery {
+        &mut self.discovery
+    }
+
+    /// The list manager.
+    pub fn lists(&self) -> &Lists {
+        &self.lists
+    }
+
+    /// The list manager, mutably.
+    pub fn lists_mut(&mut self) -> &mut Lists {
+        &mut self.lists
+    }
+
+    /// Whether message `code` is one the Core services receive.
+    pub fn handles(&self, code: CommandCode) -> bool {
+        CORE_INPUTS.contains(&code) || (self.config.list_manager && Lists::handles(code))
+    }
+
+    /// The answer of a Core query, as if `from` asked (`None`: not a Core query, or
+    /// one the Core does not answer, such as Query Element of an unknown UID).
+    pub fn answer_query(&mut self, now: Instant, msg: &Message) -> Option<Message> {
+        Some(match msg {
+            Message::QueryAuthority(_) => self.access.report_authority().into(),
+            Message::QueryTimeout(_) => self.access.report_timeout().into(),
+            Message::QueryControl(_) => self.access.report_control().into(),
+            Message::QueryStatus(_) => self.management.report().into(),
+            Message::QueryTime(q) => self.time.report(now, q).into(),
+            Message::QueryEvents(q) => self.events.report(&q.filter).into(),
+            Message::QueryEventTimeout(_) => self.events.report_timeout().into(),
+            Message::QueryHeartbeatPulse(_) => liveness::heartbeat(),
+            Message::QueryIdentification(q) => self.discovery.identify(q.query_type)?.into(),
+            Message::QueryConfiguration(q) => self.discovery.configuration(q.query_type)?.into(),
+            Message::QuerySubsystemList(_) => self.discovery.subsystems().into(),
+            Message::QueryServices(q) => self.discovery.services(q).into(),
+            Message::QueryServiceList(q) => self.discovery.service_list(q).into(),
+            Message::QueryElement(_)
+            | Message::QueryElementList(_)
+            | Message::QueryElementCount(_)
+                if self.config.list_manager =>
+            {
+                self.lists.handle(msg)?
+            }
+            _ => return None,
+        })
+    }
+
+    /// A Core message from `from` (not Create or Update Event): the messages to send,
+    /// or why nothing was done.
+    pub fn handle(
+        &mut self,
+        now: Instant,
+        from: As4Id,
+        msg: &Message,
+    ) -> Result<Vec<Outgoing>, Refusal> {
+        let is_controller = self.access.controller() == Some(from);
+        let available = self.management.available();
+        let need_control = |what: &str| -> Result<(), Refusal> {
+            if is_controller {
+                Ok(())
+            } else {
+                Err(Refusal::NotController(format!("{what} needs control")))
+            }
+        };
+        let out = match msg {
+            Message::RequestControl(r) => {
+                let out = self.access.request(now, from, r.authority_code, available);
+                self.after_access();
+                out
+            }
+            Message::ReleaseControl(_) => {
+                let out = self
+                    .access
+                    .release(from, available)
+                    .map_err(Refusal::Ignored)?;
+                self.after_access();
+                out
+            }
+            Message::SetAuthority(s) => {
+                need_control("Set Authority")?;
+                if !available {
+                    return Err(Refusal::NotReady(
+                        "Set Authority while not available".into(),
+                    ));
+                }
+                self.access
+                    .set_authority(s.authority_code)
+                    .map_err(Refusal::Ignored)?;
+                Vec::new()
+            }
+            Message::Resume(_) | Message::Standby(_) => {
+                need_control(msg.name())?;
+                let r = if matches!(msg, Message::Resume(_)) {
+                    self.management.resume()
+                } else {
+                    self.management.standby()
+                };
+                r.map_err(Refusal::NotReady)?;
+                Vec::new()
+            }
+            Message::Shutdown(_) | Message::Reset(_) => {
+                need_control(msg.name())?;
+                self.management
+                    .shutdown(matches!(msg, Message::Reset(_)))
+                    .map_err(Refusal::NotReady)?;
+                self.access.revoke().into_iter().collect()
+            }
+            Message::SetEmergency(e) => {
+                self.management
+                    .set_emergency(from, e.emergency_code)
+                    .map_err(Refusal::Bounds)?;
+                Vec::new()
+            }
+            Message::ClearEmergency(e) => {
+                self.management
+                    .clear_emergency(from, e.emergency_code)
+                    .map_err(Refusal::Ignored)?;
+                Vec::new()
+            }
+            Message::SetTime(t) => {
+                need_control("Set Time")?;
+                self.time.set(now, t).map_err(Refusal::Ignored)?;
+                Vec::new()
+            }
+            Message::CancelEvent(c) => vec![self.events.cancel(from, c.request_id, c.event_id)],
+            Message::CreateCommandEvent(c) => vec![events::reject(
+                from,
+                c.request_id,
+                (
+                    EventRejection::MessageNotSupported,
+                    "command events are not supported".into(),
+                ),
+            )],
+            Message::SetElement(_) | Message::DeleteElement(_) if self.config.list_manager => {
+                need_control(msg.name())?;
+                self.lists
+                    .handle(msg)
+                    .map(|a| Outgoing::new(from, a))
+                    .into_iter()
+                    .collect()
+            }
+            Message::RegisterServices(r) => {
+                self.discovery
+                    .register(from, r.services.clone())
+                    .map_err(Refusal::Bounds)?;
+                Vec::new()
+            }
+            _ => match self.answer_query(now, msg) {
+                Some(a) => vec![Outgoing::new(from, a)],
+                None => return Err(Refusal::Ignored("nothing to answer".into())),
+            },
+        };
+        Ok(out)
+    }
+
+    fn after_access(&mut self) {
+        if self.access.controller().is_none() {
+            self.management.control_lost();
+        }
+    }
+
+    /// The owner declares a failure: state Failure, control ends.
+    pub fn fail(&mut self) -> Vec<Outgoing> {
+        self.management.fail();
+        let out = self.access.revoke().into_iter().collect();
+        self.after_access();
+        out
+    }
+
+    /// Time passed: control lapses, events lapse (the events' reports are the
+    /// component's job: [`Events::due`]).
+    pub fn handle_timeout(&mut self, now: Instant) -> Vec<Outgoing> {
+        let mut out: Vec<Outgoing> = self
+            .access
+            .handle_timeout(now, self.management.available())
+            .into_iter()
+            .collect();
+        self.after_access();
+        out.extend(self.events.expire(now));
+        out
+    }
+
+    /// When [`handle_timeout`](Self::handle_timeout) or an event is next due.
+    pub fn poll_timeout(&self) -> Option<Instant> {
+        [self.access.deadline(), self.events.next_timeout()]
+            .into_iter()
+            .flatten()
+            .min()
+    }
+
+    /// This component's id.
+    pub fn id(&self) -> As4Id {
+        self.me
+    }
+}
+
+/// The Core services a component offers (the List Manager when `list_manager`).
+pub fn core_services(list_manager: bool) -> Vec<ServiceId> {
+    let mut v = vec![
+        TRANSPORT,
+        EVENTS,
+        ACCESS_CONTROL,
+        MANAGEMENT,
+        TIME,
+        LIVENESS,
+        DISCOVERY,
+    ];
+    if list_manager {
+        v.push(LIST_MANAGER);
+    }
+    v
+}
+
+/// The Core messages [`Core::handle`] takes (besides the List Manager's).
+const CORE_INPUTS: &[CommandCode] = &[
+    m::SetAuthority::CODE,
+    m::Shutdown::CODE,
+    m::Standby::CODE,
+    m::Resume::CODE,
+    m::Reset::CODE,
+    m::SetEmergency::CODE,
+    m::ClearEmergency::CODE,
+    m::RequestControl::CODE,
+    m::ReleaseControl::CODE,
+    m::SetTime::CODE,
+    m::CreateEvent::CODE,
+    m::UpdateEvent::CODE,
+    m::CancelEvent::CODE,
+    m::CreateCommandEvent::CODE,
+    m::RegisterServices::CODE,
+    m::QueryAuthority::CODE,
+    m::QueryStatus::CODE,
+    m::QueryTimeout::CODE,
+    m::QueryControl::CODE,
+    m::QueryTime::CODE,
+    m::QueryEvents::CODE,
+    m::QueryEventTimeout::CODE,
+    m::QueryHeartbeatPulse::CODE,
+    m::QueryIdentification::CODE,
+    m::QueryConfiguration::CODE,
+    m::QuerySubsystemList::CODE,
+    m::QueryServices::CODE,
+    m::QueryServiceList::CODE,
+];

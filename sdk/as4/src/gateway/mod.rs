@@ -1,0 +1,333 @@
+//! An RA 3.3 ↔ AS-4 gateway: one AS-4 component whose Mobility services are RA 3.3
+//! components, on a node that speaks both generations on one socket.
+//!
+//! [`Gateway`] is at once an RA 3.3 component of the node (a
+//! [`jaus::component::Endpoint`]: it sends queries and commands to the RA 3.3 components
+//! it presents and receives their reports) and the AS-4 side of the node's socket (an
+//! [`As4Endpoint`] behind [`jaus::net::as5669a::As4Mux::hosted`], found in the node by
+//! [`InNode`]). It hosts one [`As4Component`] with the Core services and, for each RA 3.3
+//! component found in the presented subsystem, the matching Mobility service
+//! ([`crate::mobility`]).
+//!
+//! The control and status semantics cross over: while an AS-4 client holds control of
+//! the AS-4 component, the gateway holds RA 3.3 control of the drivers (with its own
+//! authority); when the AS-4 component goes Ready the drivers are resumed, when it
+//! leaves Ready (Standby, Emergency, Shutdown, control lost) they are put in standby and
+//! control is released. The presented components may be this node's own (the demo's
+//! vehicle: one node answers RA 3.3 and AS-4 clients at once) or another subsystem's
+//! (OpenJAUS 3.3's vehicle simulator): the gateway finds them in the node's system
+//! tree ([`Gateway::refresh`]).
+
+use std::collections::HashSet;
+use std::net::SocketAddr;
+use std::time::{Duration, Instant};
+
+use jaus::codec::Encode;
+use jaus::component::{Endpoint, Outgoing as Ra33Outgoing};
+use jaus::net::as5669a::{As4Endpoint, As4Id, As4Message, As4Send, HostedEndpoint};
+use jaus::net::{Node, PeerAddr, SystemTree};
+use jaus::wire::Header;
+use jaus::{Address, JausMessage};
+
+use crate::component::As4Component;
+use crate::core::CoreConfig;
+use crate::messages::{SetGlobalWaypoint, SetLocalWaypoint};
+use crate::mobility::{
+    GlobalPoseSensor, GlobalWaypointListDriver, LocalPoseSensor, LocalWaypointListDriver,
+    PrimitiveDriver, VelocityStateSensor,
+};
+use crate::node::As4Node;
+use crate::ComponentState;
+
+pub mod dual;
+pub mod ra33;
+
+pub use dual::DualNode;
+pub use ra33::{Ra33Side, Targets};
+
+/// Settings of a [`Gateway`].
+#[derive(Debug, Clone)]
+pub struct GatewayConfig {
+    /// The AS-4 component's id.
+    pub as4: As4Id,
+    /// Its Core settings (names for Report Identification, authority, timeouts).
+    pub core: CoreConfig,
+    /// The gateway's RA 3.3 address (a component of the node hosting it).
+    pub ra33: Address,
+    /// The RA 3.3 subsystem presented.
+    pub present: u8,
+    /// The authority with which it requests RA 3.3 control of the drivers.
+    pub authority: u8,
+    /// How often it queries the RA 3.3 sensors. Default 100 ms.
+    pub poll_period: Duration,
+}
+
+impl GatewayConfig {
+    /// AS-4 component `as4` presenting RA 3.3 subsystem `present` from RA 3.3 address
+    /// `ra33`, the other settings default.
+    pub fn new(as4: As4Id, ra33: Address, present: u8, name: &str) -> Self {
+        Self {
+            as4,
+            core: CoreConfig::named(name),
+            ra33,
+            present,
+            authority: 200,
+            poll_period: Duration::from_millis(100),
+        }
+    }
+}
+
+/// One AS-4 component presenting RA 3.3 components (see the module's documentation).
+#[derive(Debug)]
+pub struct Gateway<A: PeerAddr = SocketAddr> {
+    node: As4Node<Ra33Side, A>,
+    as4: As4Id,
+    present: u8,
+    offered: HashSet<Address>,
+    pending: Vec<As4Send<A>>,
+    pending_since: Option<Instant>,
+    seen: (ComponentState, bool),
+    tree_seen: Option<u64>,
+}
+
+impl<A: PeerAddr> Gateway<A> {
+    /// A gateway with `config`; its services come as [`refresh`](Self::refresh) finds
+    /// the RA 3.3 components.
+    pub fn new(config: GatewayConfig) -> Self {
+        let side = Ra33Side::new(
+            config.ra33,
+            Targets::default(),
+            config.authority,
+            config.poll_period,
+        );
+        let component = As4Component::new(config.as4, config.core);
+        let seen = (component.state(), component.controller().is_some());
+        Self {
+            node: As4Node::new(side).with_component(component),
+            as4: config.as4,
+            present: config.present,
+            offered: HashSet::new(),
+            pending: Vec::new(),
+            pending_since: None,
+            seen,
+            tree_seen: None,
+        }
+    }
+
+    /// The AS-4 side (its component, peers, counters) and the RA 3.3 side
+    /// ([`As4Node::env`]).
+    pub fn node(&self) -> &As4Node<Ra33Side, A> {
+        &self.node
+    }
+
+    /// The AS-4 component.
+    pub fn component(&self) -> Option<&As4Component<Ra33Side>> {
+        self.node.component(self.as4)
+    }
+
+    /// Looks for the presented subsystem's components in `tree` and offers the service
+    /// of each one found for the first time (Report Services lists it from then on).
+    pub fn refresh(&mut self, now: Instant, tree: &SystemTree) {
+        let found = Targets::of_tree(tree, self.present);
+        let mut targets = *self.node.env().targets();
+        let add = |slot: &mut Option<Address>, new: Option<Address>| match (*slot, new) {
+            (None, Some(a)) => {
+                *slot = Some(a);
+                Some(a)
+            }
+            _ => None,
+        };
+        let vss = add(
+            &mut targets.velocity_state_sensor,
+            found.velocity_state_sensor,
+        );
+        let lps = add(&mut targets.local_pose_sensor, found.local_pose_sensor);
+        let gps = add(&mut targets.global_pose_sensor, found.global_pose_sensor);
+        let pd = add(&mut targets.primitive_driver, found.primitive_driver);
+        let lwd = add(
+            &mut targets.local_waypoint_driver,
+            found.local_waypoint_driver,
+        );
+        let gwd = add(
+            &mut targets.global_waypoint_driver,
+            found.global_waypoint_driver,
+        );
+        if [vss, lps, gps, pd, lwd, gwd].iter().all(Option::is_none) {
+            return;
+        }
+        let env = self.node.env_mut();
+        env.set_targets(targets);
+        let mut services: Vec<Box<dyn crate::service::Service<Ra33Side>>> = Vec::new();
+        if let Some(a) = vss {
+            services.push(Box::new(VelocityStateSensor::new(env, now, a)));
+        }
+        if let Some(a) = lps {
+            services.push(Box::new(LocalPoseSensor::new(env, now, a)));
+        }
+        if let Some(a) = gps {
+            services.push(Box::new(GlobalPoseSensor::new(env, now, a)));
+        }
+        if let Some(a) = pd {
+            services.push(Box::new(PrimitiveDriver::new(env, now, a)));
+        }
+        if let Some(a) = lwd {
+            services.push(Box::new(LocalWaypointListDriver::new(a)));
+        }
+        if let Some(a) = gwd {
+            services.push(Box::new(GlobalWaypointListDriver::new(a)));
+        }
+        let Some(c) = self.node.component_mut(self.as4) else {
+            return;
+        };
+        if lwd.is_some() {
+            c.core_mut().lists_mut().support(SetLocalWaypoint::CODE);
+        }
+        if gwd.is_some() {
+            c.core_mut().lists_mut().support(SetGlobalWaypoint::CODE);
+        }
+        for s in services {
+            tracing::info!(service = %s.id(), as4 = %self.as4, "AS-4 service offered");
+            c.add_service(s);
+        }
+        self.offered
+            .extend([vss, lps, gps, pd, lwd, gwd].into_iter().flatten());
+    }
+
+    /// [`refresh`](Self::refresh) of the gateway at `at` in `node`, from the node's own
+    /// system tree, when that tree changed since the last call: what the owner of the
+    /// node calls on each turn of its loop.
+    pub fn refresh_in(node: &mut Node<A>, at: Address, now: Instant) {
+        let version = node.tree_version();
+        if node
+            .get::<Gateway<A>>(at)
+            .is_none_or(|g| g.tree_seen == Some(version))
+        {
+            return;
+        }
+        let tree = node.tree().clone();
+        if let Some(g) = node.get_mut::<Gateway<A>>(at) {
+            g.tree_seen = Some(version);
+            g.refresh(now, &tree);
+        }
+    }
+
+    /// Carries changes of the AS-4 component's controller and state over to the RA 3.3
+    /// drivers.
+    fn sync(&mut self) {
+        let Some(c) = self.node.component(self.as4) else {
+            return;
+        };
+        let now = (c.state(), c.controller().is_some());
+        if now == self.seen {
+            return;
+        }
+        self.seen = now;
+        let env = self.node.env_mut();
+        env.set_controlled(now.1);
+        env.set_ready(now.1 && now.0 == ComponentState::Ready);
+    }
+
+    fn queue(&mut self, now: Instant, sends: Vec<As4Send<A>>) {
+        if !sends.is_empty() {
+            self.pending.extend(sends);
+            self.pending_since.get_or_insert(now);
+        }
+    }
+}
+
+impl<A: PeerAddr> As4Endpoint<A> for Gateway<A> {
+    fn handle(&mut self, now: Instant, from: A, messages: Vec<As4Message>) -> Vec<As4Message> {
+        let replies = self.node.handle(now, from, messages);
+        self.sync();
+        replies
+    }
+
+    fn handle_timeout(&mut self, now: Instant) -> Vec<As4Send<A>> {
+        let mut out = std::mem::take(&mut self.pending);
+        self.pending_since = None;
+        if self.node.poll_timeout().is_some_and(|t| t <= now) {
+            out.extend(self.node.handle_timeout(now));
+        }
+        self.sync();
+        out
+    }
+
+    fn poll_timeout(&self) -> Option<Instant> {
+        [self.node.poll_timeout(), self.pending_since]
+            .into_iter()
+            .flatten()
+            .min()
+    }
+
+    fn wall_clock(&mut self, now: Instant, utc: Duration) {
+        self.node.set_utc(now, utc);
+    }
+}
+
+impl<A: PeerAddr> Endpoint for Gateway<A> {
+    fn address(&self) -> Address {
+        self.node.env().address()
+    }
+
+    fn handle(&mut self, now: Instant, header: &Header, body: &[u8]) {
+        match jaus::messages::Message::decode(header.command_code, body) {
+            Ok(m) => self.node.env_mut().on_message(now, header.source, m),
+            Err(e) => {
+                tracing::debug!(from = %header.source, "RA 3.3 message to the gateway does not decode: {e}");
+                return;
+            }
+        }
+        // The services notice the new report (a list driver's progress, events on
+        // change).
+        let sends = self.node.poll(now);
+        self.queue(now, sends);
+        self.sync();
+    }
+
+    fn handle_timeout(&mut self, now: Instant) {
+        self.node.env_mut().handle_timeout(now);
+    }
+
+    fn poll_transmit(&mut self) -> Option<Ra33Outgoing> {
+        let (to, m) = self.node.env_mut().poll_transmit()?;
+        let me = self.node.env().address();
+        Some(Ra33Outgoing {
+            header: Header::new(m.code(), to, me),
+            name: m.name(),
+            body: m.to_bytes(),
+        })
+    }
+
+    fn poll_timeout(&self) -> Option<Instant> {
+        self.node.env().poll_timeout()
+    }
+
+    fn wall_clock(&mut self, now: Instant, utc: Duration) {
+        self.node.set_utc(now, utc);
+    }
+
+    fn as_any(&self) -> &dyn std::any::Any {
+        self
+    }
+
+    fn as_any_mut(&mut self) -> &mut dyn std::any::Any {
+        self
+    }
+}
+
+/// Finds a [`Gateway`] hosted by a [`Node`] at its RA 3.3 address: what
+/// [`As4Mux::hosted`](jaus::net::as5669a::As4Mux::hosted) needs.
+#[derive(Debug, Clone, Copy)]
+pub struct InNode(pub Address);
+
+impl<A: PeerAddr> HostedEndpoint<Node<A>, A> for InNode {
+    fn get<'a>(&self, host: &'a Node<A>) -> Option<&'a dyn As4Endpoint<A>> {
+        host.get::<Gateway<A>>(self.0)
+            .map(|g| g as &dyn As4Endpoint<A>)
+    }
+
+    fn get_mut<'a>(&self, host: &'a mut Node<A>) -> Option<&'a mut dyn As4Endpoint<A>> {
+        host.get_mut::<Gateway<A>>(self.0)
+            .map(|g| g as &mut dyn As4Endpoint<A>)
+    }
+}

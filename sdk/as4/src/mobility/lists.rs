@@ -1,0 +1,388 @@
+//! The Local and Global Waypoint List Drivers over RA 3.3 waypoint drivers.
+//!
+//! The list lives in the AS-4 component's List Manager ([`crate::core::lists::Lists`]),
+//! its elements holding Set Local (or Global) Waypoint messages. Execute List sends the
+//! elements from the start UID on to the RA 3.3 driver as numbered waypoints (element 0
+//! starts a new RA 3.3 list; local waypoints are moved from the AS-4 local frame into
+//! the RA 3.3 one), then the travel speed. RA 3.3 has no active-element query: the
+//! driver counts an element reached when the RA 3.3 pose comes within the element's
+//! waypoint tolerance (default [`DEFAULT_TOLERANCE`]) or has passed it along the leg to
+//! the next element (by [`PAST_MARGIN`]), in order; the list is done (no element
+//! active, UID 0) when the RA 3.3 driver reports an empty list after the execution,
+//! which it does at the final point, or the last element is within tolerance.
+
+use jaus::messages as ra;
+use jaus::{Address, CommandCode, JausMessage};
+
+use super::{is, ServiceIds};
+use crate::gateway::ra33::Ra33Side;
+use crate::messages::{
+    ExecuteList, QueryActiveElement, QueryGlobalWaypoint, QueryLocalWaypoint, QueryTravelSpeed,
+    ReportActiveElement, ReportGlobalWaypoint, ReportLocalWaypoint, ReportTravelSpeed,
+    SetGlobalWaypoint, SetLocalWaypoint,
+};
+use crate::service::{Cx, Handled, Request, Service, ServiceId};
+use crate::{ComponentState, Message};
+
+/// How close counts as reached when an element gives no waypoint tolerance, metres.
+pub const DEFAULT_TOLERANCE: f64 = 1.0;
+
+/// How far along the leg to the next element the vehicle must be to have passed an
+/// element it did not come within tolerance of, metres.
+pub const PAST_MARGIN: f64 = 0.25;
+
+/// Local or global waypoints: what differs between the two list drivers (implemented by
+/// [`Local`] and [`Global`] only).
+pub trait Kind: std::fmt::Debug + Send + 'static {
+    /// The Set message of one waypoint.
+    type Waypoint: Clone + std::fmt::Debug + Send + 'static;
+    /// The service.
+    const ID: ServiceId;
+    /// The query of the active waypoint.
+    const QUERY: CommandCode;
+    /// The waypoint an element's message is, if it is one of this kind.
+    fn waypoint(m: &Message) -> Option<Self::Waypoint>;
+    /// The RA 3.3 message setting waypoint `number`, and the waypoint's position in
+    /// the RA 3.3 frame (local x, y; or latitude, longitude) and tolerance.
+    fn to_ra33(w: &Self::Waypoint, number: u16, side: &Ra33Side) -> (ra::Message, [f64; 2], f64);
+    /// The vehicle's position from the RA 3.3 reports, in the same terms as `to_ra33`.
+    fn position(side: &Ra33Side) -> Option<[f64; 2]>;
+    /// `b` relative to `a`, metres (east/north or local x/y).
+    fn offset(a: [f64; 2], b: [f64; 2]) -> [f64; 2];
+    /// The report of the waypoint (masked by the query).
+    fn report(w: &Self::Waypoint, query: &Message) -> Message;
+}
+
+/// Waypoints in the local frame.
+#[derive(Debug)]
+pub struct Local;
+
+/// Waypoints as latitude and longitude.
+#[derive(Debug)]
+pub struct Global;
+
+impl Kind for Local {
+    type Waypoint = SetLocalWaypoint;
+    const ID: ServiceId = ServiceIds::LOCAL_WAYPOINT_LIST_DRIVER;
+    const QUERY: CommandCode = QueryLocalWaypoint::CODE;
+
+    fn waypoint(m: &Message) -> Option<SetLocalWaypoint> {
+        match m {
+            Message::SetLocalWaypoint(w) => Some(w.clone()),
+            _ => None,
+        }
+    }
+
+    fn to_ra33(w: &SetLocalWaypoint, number: u16, side: &Ra33Side) -> (ra::Message, [f64; 2], f64) {
+        let (x, y) = side.frame.to_ra33(w.x, w.y);
+        let m = ra::SetLocalWaypoint {
+            waypoint_number: number,
+            x,
+            y,
+            z: w.z,
+            roll: w.roll,
+            pitch: w.pitch,
+            yaw: w.yaw.map(|a| side.frame.yaw_to_ra33(a)),
+        };
+        (
+            m.into(),
+            [x, y],
+            w.waypoint_tolerance.unwrap_or(DEFAULT_TOLERANCE),
+        )
+    }
+
+    fn position(side: &Ra33Side) -> Option<[f64; 2]> {
+        let lps = side.targets().local_pose_sensor?;
+        match side.latest(lps, ra::ReportLocalPose::CODE) {
+            Some((_, ra::Message::ReportLocalPose(p))) => Some([p.x?, p.y?]),
+            _ => None,
+        }
+    }
+
+    fn offset(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
+        [b[0] - a[0], b[1] - a[1]]
+    }
+
+    fn report(w: &SetLocalWaypoint, query: &Message) -> Message {
+        let mut r = ReportLocalWaypoint {
+            x: w.x,
+            y: w.y,
+            z: w.z,
+            roll: w.roll,
+            pitch: w.pitch,
+            yaw: w.yaw,
+            waypoint_tolerance: w.waypoint_tolerance,
+            path_tolerance: w.path_tolerance,
+        };
+        if let Message::QueryLocalWaypoint(q) = query {
+            jaus::codec::Encode::keep_present(&mut r, u64::from(q.presence_vector));
+        }
+        r.into()
+    }
+}
+
+impl Kind for Global {
+    type Waypoint = SetGlobalWaypoint;
+    const ID: ServiceId = ServiceIds::GLOBAL_WAYPOINT_LIST_DRIVER;
+    const QUERY: CommandCode = QueryGlobalWaypoint::CODE;
+
+    fn waypoint(m: &Message) -> Option<SetGlobalWaypoint> {
+        match m {
+            Message::SetGlobalWaypoint(w) => Some(w.clone()),
+            _ => None,
+        }
+    }
+
+    fn to_ra33(
+        w: &SetGlobalWaypoint,
+        number: u16,
+        _side: &Ra33Side,
+    ) -> (ra::Message, [f64; 2], f64) {
+        let m = ra::SetGlobalWaypoint {
+            waypoint_number: number,
+            latitude: w.latitude,
+            longitude: w.longitude,
+            elevation: w.altitude,
+            roll: w.roll,
+            pitch: w.pitch,
+            yaw: w.yaw,
+        };
+        (
+            m.into(),
+            [w.latitude, w.longitude],
+            w.waypoint_tolerance.unwrap_or(DEFAULT_TOLERANCE),
+        )
+    }
+
+    fn position(side: &Ra33Side) -> Option<[f64; 2]> {
+        let gps = side.targets().global_pose_sensor?;
+        match side.latest(gps, ra::ReportGlobalPose::CODE) {
+            Some((_, ra::Message::ReportGlobalPose(p))) => Some([p.latitude?, p.longitude?]),
+            _ => None,
+        }
+    }
+
+    fn offset(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
+        // An equirectangular approximation: exact enough between waypoints.
+        const R: f64 = 6_371_000.0;
+        let lat = (a[0] + b[0]).to_radians() / 2.0;
+        let north = (b[0] - a[0]).to_radians() * R;
+        let east = (b[1] - a[1]).to_radians() * R * lat.cos();
+        [east, north]
+    }
+
+    fn report(w: &SetGlobalWaypoint, query: &Message) -> Message {
+        let mut r = ReportGlobalWaypoint {
+            latitude: w.latitude,
+            longitude: w.longitude,
+            altitude: w.altitude,
+            roll: w.roll,
+            pitch: w.pitch,
+            yaw: w.yaw,
+            waypoint_tolerance: w.waypoint_tolerance,
+            path_tolerance: w.path_tolerance,
+        };
+        if let Message::QueryGlobalWaypoint(q) = query {
+            jaus::codec::Encode::keep_present(&mut r, u64::from(q.presence_vector));
+        }
+        r.into()
+    }
+}
+
+/// The list being executed.
+#[derive(Debug, Clone)]
+struct Run<W> {
+    /// UIDs and waypoints, in list order from the start element.
+    elements: Vec<(u16, W)>,
+    /// Positions (RA 3.3 terms) and tolerances, as `elements`.
+    targets: Vec<([f64; 2], f64)>,
+    /// Index of the element being driven to (`elements.len()` when done).
+    active: usize,
+    speed: f64,
+    /// When it was executed (a waypoint count of 0 reported after it: the driver
+    /// finished the list).
+    started: std::time::Instant,
+}
+
+/// A waypoint list driver of kind `K` over the RA 3.3 waypoint driver at an address.
+#[derive(Debug)]
+pub struct ListDriver<K: Kind> {
+    driver: Address,
+    run: Option<Run<K::Waypoint>>,
+}
+
+/// The Local Waypoint List Driver.
+pub type LocalWaypointListDriver = ListDriver<Local>;
+/// The Global Waypoint List Driver.
+pub type GlobalWaypointListDriver = ListDriver<Global>;
+
+impl<K: Kind> ListDriver<K> {
+    /// The service over the RA 3.3 waypoint driver at `driver`.
+    pub fn new(driver: Address) -> Self {
+        Self { driver, run: None }
+    }
+
+    /// The UID of the element being driven to (0 when none).
+    pub fn active_uid(&self) -> u16 {
+        self.run
+            .as_ref()
+            .and_then(|r| r.elements.get(r.active).map(|e| e.0))
+            .unwrap_or(0)
+    }
+
+    fn execute(&mut self, cx: &mut Cx<'_, Ra33Side>, e: &ExecuteList) -> Handled {
+        let start = match e.element_uid {
+            Some(uid) => uid,
+            None => match cx.lists.head() {
+                Some(h) => h,
+                None => return Handled::Refused("Execute List with an empty list".into()),
+            },
+        };
+        let mut elements = Vec::new();
+        for el in cx.lists.iter_from(start) {
+            let Some(Ok(m)) = el.message() else {
+                return Handled::NotMine;
+            };
+            match K::waypoint(&m) {
+                Some(w) => elements.push((el.uid, w)),
+                // A list of the other kind: the other list driver's.
+                None => return Handled::NotMine,
+            }
+        }
+        if elements.is_empty() {
+            return Handled::Refused(format!("Execute List: no element with UID {start}"));
+        }
+        if elements.len() > usize::from(u16::MAX) {
+            return Handled::Refused("Execute List: too many elements".into());
+        }
+        // This driver moves the vehicle now; the others (the other waypoint driver, the
+        // Primitive Driver efforts the AS-4 client commanded) give way. The waypoint
+        // driver reaches the Primitive Driver through the Reflexive Driver.
+        if let Some(pd) = cx.env.targets().primitive_driver {
+            cx.env.release(pd);
+        }
+        cx.env.activate(self.driver);
+        let mut targets = Vec::with_capacity(elements.len());
+        for (n, (_, w)) in elements.iter().enumerate() {
+            let (m, at, tol) = K::to_ra33(w, n as u16, cx.env);
+            cx.env.send(self.driver, m);
+            targets.push((at, tol));
+        }
+        cx.env
+            .send(self.driver, ra::SetTravelSpeed { speed: e.speed });
+        tracing::info!(
+            service = %K::ID, elements = elements.len(), speed = e.speed, "list executed"
+        );
+        cx.env
+            .keep_polling(cx.now, self.driver, ra::QueryWaypointCount {});
+        self.run = Some(Run {
+            elements,
+            targets,
+            active: 0,
+            speed: e.speed,
+            started: cx.now,
+        });
+        Handled::Done
+    }
+}
+
+impl<K: Kind> Service<Ra33Side> for ListDriver<K> {
+    fn id(&self) -> ServiceId {
+        K::ID
+    }
+
+    fn receives(&self, code: CommandCode) -> bool {
+        is(
+            code,
+            &[
+                ExecuteList::CODE,
+                QueryActiveElement::CODE,
+                QueryTravelSpeed::CODE,
+                K::QUERY,
+            ],
+        )
+    }
+
+    fn handle(&mut self, cx: &mut Cx<'_, Ra33Side>, request: &Request<'_>) -> Handled {
+        match request.message {
+            Message::ExecuteList(e) => {
+                if !request.from_controller || request.state != ComponentState::Ready {
+                    return Handled::Refused("Execute List needs control and Ready".into());
+                }
+                self.execute(cx, e)
+            }
+            Message::QueryActiveElement(_) => Handled::Reply(
+                ReportActiveElement {
+                    element_uid: self.active_uid(),
+                }
+                .into(),
+            ),
+            Message::QueryTravelSpeed(_) => Handled::Reply(
+                ReportTravelSpeed {
+                    speed: self.run.as_ref().map_or(0.0, |r| r.speed),
+                }
+                .into(),
+            ),
+            m if m.code() == K::QUERY => {
+                let Some(w) = self
+                    .run
+                    .as_ref()
+                    .and_then(|r| r.elements.get(r.active).map(|e| e.1.clone()))
+                else {
+                    return Handled::Refused("no active waypoint".into());
+                };
+                Handled::Reply(K::report(&w, m))
+            }
+            _ => Handled::NotMine,
+        }
+    }
+
+    fn state_changed(
+        &mut self,
+        _cx: &mut Cx<'_, Ra33Side>,
+        _from: ComponentState,
+        to: ComponentState,
+    ) {
+        // The RA 3.3 driver stops on standby and forgets its path: so does the run.
+        if to != ComponentState::Ready {
+            if let Some(r) = self.run.as_mut() {
+                r.active = r.elements.len();
+                r.speed = 0.0;
+            }
+        }
+    }
+
+    fn tick(&mut self, cx: &mut Cx<'_, Ra33Side>) {
+        let Some(run) = self.run.as_mut() else { return };
+        let n = run.elements.len();
+        // The RA 3.3 driver empties its list at the final point.
+        if let Some((at, ra::Message::ReportWaypointCount(c))) =
+            cx.env.latest(self.driver, ra::ReportWaypointCount::CODE)
+        {
+            if at > run.started && c.waypoint_count == 0 && run.active < n {
+                tracing::info!(service = %K::ID, "list finished");
+                run.active = n;
+            }
+        }
+        let Some(here) = K::position(cx.env) else {
+            return;
+        };
+        while let Some((at, tol)) = run.targets.get(run.active) {
+            let d = K::offset(*at, here);
+            let reached = d[0].hypot(d[1]) <= *tol
+                || run.targets.get(run.active + 1).is_some_and(|(next, _)| {
+                    // Past the waypoint along the leg to the next one (by
+                    // PAST_MARGIN): a pursuit controller turns before it reaches a
+                    // waypoint.
+                    let leg = K::offset(*at, *next);
+                    let len = leg[0].hypot(leg[1]);
+                    len > 0.0 && (leg[0] * d[0] + leg[1] * d[1]) / len > PAST_MARGIN
+                });
+            if !reached {
+                break;
+            }
+            tracing::info!(service = %K::ID, uid = run.elements[run.active].0, "element reached");
+            run.active += 1;
+        }
+    }
+}

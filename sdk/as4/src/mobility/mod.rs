@@ -1,0 +1,71 @@
+//! The Mobility services (AS6009, `urn:jaus:jss:mobility`) over RA 3.3 components: what
+//! a gateway ([`crate::gateway`]) presents of an RA 3.3 subsystem, be it the stock
+//! components of this SDK on the same node or OpenJAUS 3.3's vehicle across the network.
+//!
+//! Each is a [`Service`](crate::service::Service) over the gateway's RA 3.3 side
+//! ([`Ra33Side`](crate::gateway::ra33::Ra33Side)): sensors answer from the latest RA 3.3
+//! report (kept fresh by polling), drivers pass commands on to the RA 3.3 driver the
+//! gateway controls while an AS-4 client controls it.
+//!
+//! | AS-4 service | RA 3.3 component | messages |
+//! |---|---|---|
+//! | Velocity State Sensor | Velocity State Sensor | Query/Report Velocity State (same fields and units) |
+//! | Local Pose Sensor | Local Pose Sensor | Query/Report Local Pose; Set Local Pose places the AS-4 local frame (RA 3.3 cannot set a pose) |
+//! | Global Pose Sensor | Global Pose Sensor | Query/Report Global Pose (elevation → altitude) |
+//! | Primitive Driver | Primitive Driver | Set/Query/Report Wrench Effort |
+//! | Local Waypoint List Driver | Local Waypoint Driver | Execute List → numbered Set Local Waypoint + Set Travel Speed; Query Active Element / Travel Speed / Local Waypoint |
+//! | Global Waypoint List Driver | Global Waypoint Driver | the same with Set Global Waypoint |
+
+use jaus::CommandCode;
+
+use crate::service::ServiceId;
+
+pub mod lists;
+pub mod primitive;
+pub mod sensors;
+
+pub use lists::{GlobalWaypointListDriver, ListDriver, LocalWaypointListDriver};
+pub use primitive::PrimitiveDriver;
+pub use sensors::{GlobalPoseSensor, LocalPoseSensor, VelocityStateSensor};
+
+/// The URIs and versions of the Mobility services (Mobility v1.0).
+#[derive(Debug)]
+pub struct ServiceIds;
+
+impl ServiceIds {
+    /// `urn:jaus:jss:mobility:PrimitiveDriver` 1.0.
+    pub const PRIMITIVE_DRIVER: ServiceId =
+        ServiceId::new("urn:jaus:jss:mobility:PrimitiveDriver", 1, 0);
+    /// `urn:jaus:jss:mobility:VelocityStateSensor` 1.0.
+    pub const VELOCITY_STATE_SENSOR: ServiceId =
+        ServiceId::new("urn:jaus:jss:mobility:VelocityStateSensor", 1, 0);
+    /// `urn:jaus:jss:mobility:LocalPoseSensor` 1.0.
+    pub const LOCAL_POSE_SENSOR: ServiceId =
+        ServiceId::new("urn:jaus:jss:mobility:LocalPoseSensor", 1, 0);
+    /// `urn:jaus:jss:mobility:GlobalPoseSensor` 1.0.
+    pub const GLOBAL_POSE_SENSOR: ServiceId =
+        ServiceId::new("urn:jaus:jss:mobility:GlobalPoseSensor", 1, 0);
+    /// `urn:jaus:jss:mobility:LocalWaypointListDriver` 1.0.
+    pub const LOCAL_WAYPOINT_LIST_DRIVER: ServiceId =
+        ServiceId::new("urn:jaus:jss:mobility:LocalWaypointListDriver", 1, 0);
+    /// `urn:jaus:jss:mobility:GlobalWaypointListDriver` 1.0.
+    pub const GLOBAL_WAYPOINT_LIST_DRIVER: ServiceId =
+        ServiceId::new("urn:jaus:jss:mobility:GlobalWaypointListDriver", 1, 0);
+}
+
+/// Whether `code` is one of `codes`.
+fn is(code: CommandCode, codes: &[CommandCode]) -> bool {
+    codes.contains(&code)
+}
+
+/// An RA 3.3 time stamp as AS-4's (the same bits).
+fn time_stamp(t: &jaus::messages::TimeStamp) -> crate::messages::TimeStamp {
+    crate::messages::TimeStamp {
+        millisecond: t.millisecond,
+        second: t.second,
+        minute: t.minute,
+        hour: t.hour,
+        day: t.day,
+        ..Default::default()
+    }
+}

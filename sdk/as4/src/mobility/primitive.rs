@@ -1,0 +1,110 @@
+//! The Primitive Driver over an RA 3.3 Primitive Driver: Set Wrench Effort passes
+//! through (the same twelve efforts in percent), Query Wrench Effort answers from the
+//! RA 3.3 driver's latest report.
+
+use jaus::codec::Encode;
+use jaus::messages as ra;
+use jaus::{Address, CommandCode, JausMessage};
+
+use super::{is, ServiceIds};
+use crate::gateway::ra33::Ra33Side;
+use crate::messages::{QueryWrenchEffort, ReportWrenchEffort, SetWrenchEffort};
+use crate::service::{Cx, Handled, Request, Service, ServiceId};
+use crate::Message;
+
+/// Copies the same-named efforts of one wrench-effort message into another type.
+macro_rules! efforts {
+    ($src:expr => $dst:ident) => {{
+        let s = $src;
+        $dst {
+            propulsive_linear_effort_x: s.propulsive_linear_effort_x,
+            propulsive_linear_effort_y: s.propulsive_linear_effort_y,
+            propulsive_linear_effort_z: s.propulsive_linear_effort_z,
+            propulsive_rotational_effort_x: s.propulsive_rotational_effort_x,
+            propulsive_rotational_effort_y: s.propulsive_rotational_effort_y,
+            propulsive_rotational_effort_z: s.propulsive_rotational_effort_z,
+            resistive_linear_effort_x: s.resistive_linear_effort_x,
+            resistive_linear_effort_y: s.resistive_linear_effort_y,
+            resistive_linear_effort_z: s.resistive_linear_effort_z,
+            resistive_rotational_effort_x: s.resistive_rotational_effort_x,
+            resistive_rotational_effort_y: s.resistive_rotational_effort_y,
+            resistive_rotational_effort_z: s.resistive_rotational_effort_z,
+        }
+    }};
+}
+
+/// The Primitive Driver over the RA 3.3 one at an address.
+#[derive(Debug)]
+pub struct PrimitiveDriver {
+    driver: Address,
+}
+
+impl PrimitiveDriver {
+    /// The service over the RA 3.3 Primitive Driver at `driver`; `side` keeps its
+    /// report fresh.
+    pub fn new(side: &mut Ra33Side, now: std::time::Instant, driver: Address) -> Self {
+        side.keep_polling(
+            now,
+            driver,
+            ra::QueryWrenchEffort {
+                presence_vector: 0x0FFF,
+            },
+        );
+        Self { driver }
+    }
+}
+
+impl Service<Ra33Side> for PrimitiveDriver {
+    fn id(&self) -> ServiceId {
+        ServiceIds::PRIMITIVE_DRIVER
+    }
+
+    fn receives(&self, code: CommandCode) -> bool {
+        is(code, &[SetWrenchEffort::CODE, QueryWrenchEffort::CODE])
+    }
+
+    fn handle(&mut self, cx: &mut Cx<'_, Ra33Side>, request: &Request<'_>) -> Handled {
+        match request.message {
+            Message::SetWrenchEffort(s) => {
+                // Efforts from the AS-4 client: the gateway takes the RA 3.3 driver
+                // (a waypoint list executed later gives it back to the drivers).
+                cx.env.activate(self.driver);
+                cx.env.send(self.driver, efforts!(s => RaSetWrenchEffort));
+                Handled::Done
+            }
+            Message::QueryWrenchEffort(q) => {
+                let mut report = match cx.env.latest(self.driver, ra::ReportWrenchEffort::CODE) {
+                    Some((_, ra::Message::ReportWrenchEffort(r))) => {
+                        efforts!(r => ReportWrenchEffort)
+                    }
+                    _ => ReportWrenchEffort::default(),
+                };
+                report.keep_present(u64::from(q.presence_vector));
+                Handled::Reply(report.into())
+            }
+            _ => Handled::NotMine,
+        }
+    }
+
+    fn state_changed(
+        &mut self,
+        cx: &mut Cx<'_, Ra33Side>,
+        from: crate::ComponentState,
+        to: crate::ComponentState,
+    ) {
+        // Leaving Ready stops the efforts at once (the RA 3.3 driver's own standby
+        // follows from the gateway's control of it).
+        if from == crate::ComponentState::Ready && to != crate::ComponentState::Ready {
+            cx.env.send(
+                self.driver,
+                RaSetWrenchEffort {
+                    propulsive_linear_effort_x: Some(0.0),
+                    propulsive_rotational_effort_z: Some(0.0),
+                    ..Default::default()
+                },
+            );
+        }
+    }
+}
+
+use ra::SetWrenchEffort as RaSetWrenchEffort;

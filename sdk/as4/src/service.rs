@@ -1,0 +1,152 @@
+//! The seam between the Core services and the other services of an AS-4 component
+//! (Mobility, a vendor's): the [`Service`] trait, what a service is handed
+//! ([`Request`], [`Cx`]) and what it answers.
+//!
+//! A component ([`crate::component::As4Component`]) runs the Core services itself
+//! (Transport, Events, Access Control, Management, Time, Liveness, Discovery, List
+//! Manager) and offers every other message to its services in turn. The Core decides
+//! what a service never sees: a command from a client that does not hold control, a
+//! command while the component is not Ready (Standby, Emergency, Shutdown, ...). A
+//! service answers queries from its state and carries out commands; it is told when the
+//! component's state or its controller changes, and when its timer is due.
+//!
+//! Services are generic over an environment `E` that the component's owner supplies and
+//! hands to every call through [`Cx::env`]: nothing for a standalone AS-4 component
+//! (`()`), the RA 3.3 side of a gateway (its outbox and the reports it keeps) for the
+//! Mobility services over RA 3.3 components. The trait stays sans-IO: no socket, thread
+//! or clock; time is the `now` of each call.
+
+use std::fmt;
+use std::time::Instant;
+
+use jaus::net::as5669a::As4Id;
+use jaus::CommandCode;
+
+use crate::messages::{ComponentState, Message};
+
+/// A service's identity as Discovery reports it: its URI and version.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct ServiceId {
+    /// The service's URI (`urn:jaus:jss:mobility:LocalPoseSensor`).
+    pub uri: &'static str,
+    /// Major version.
+    pub major: u8,
+    /// Minor version.
+    pub minor: u8,
+}
+
+impl ServiceId {
+    /// The service `uri` at version `major.minor`.
+    pub const fn new(uri: &'static str, major: u8, minor: u8) -> Self {
+        Self { uri, major, minor }
+    }
+}
+
+impl fmt::Display for ServiceId {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{} v{}.{}", self.uri, self.major, self.minor)
+    }
+}
+
+/// A message handed to a service.
+#[derive(Debug, Clone, Copy)]
+pub struct Request<'a> {
+    /// When it arrived.
+    pub now: Instant,
+    /// Its sender.
+    pub from: As4Id,
+    /// The message.
+    pub message: &'a Message,
+    /// Whether the sender holds control of the component (Access Control).
+    pub from_controller: bool,
+    /// The component's state (Management) when it arrived.
+    pub state: ComponentState,
+}
+
+/// What a service does with a message.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Handled {
+    /// Not one of the service's messages: offer it to the next service.
+    NotMine,
+    /// Done; nothing to answer (a command carried out).
+    Done,
+    /// Done; this goes back to the sender (a query's report, a confirmation).
+    Reply(Message),
+    /// Refused: the reason is logged with the message and its sender, and counted; no
+    /// answer goes back (AS-4 has no general refusal; a service with a typed refusal,
+    /// such as the List Manager's Reject Element Request, replies with it instead).
+    Refused(String),
+}
+
+/// What a service may use besides its own state during a call.
+pub struct Cx<'a, E> {
+    /// The time of the call.
+    pub now: Instant,
+    /// This component's id.
+    pub me: As4Id,
+    /// The component's state (Management).
+    pub state: ComponentState,
+    /// The client holding control of the component, if any.
+    pub controller: Option<As4Id>,
+    /// The component's list manager (element lists kept by UID).
+    pub lists: &'a mut crate::core::lists::Lists,
+    /// The owner's environment (`()` for a standalone component; the RA 3.3 side of a
+    /// gateway).
+    pub env: &'a mut E,
+}
+
+impl<E> fmt::Debug for Cx<'_, E> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("Cx")
+            .field("me", &self.me)
+            .field("state", &self.state)
+            .field("controller", &self.controller)
+            .finish_non_exhaustive()
+    }
+}
+
+/// A service of an AS-4 component other than the Core services.
+pub trait Service<E>: fmt::Debug + Send + 'static {
+    /// Its URI and version (Discovery's Report Services).
+    fn id(&self) -> ServiceId;
+
+    /// Whether `code` is one of the messages this service receives (its input set).
+    fn receives(&self, code: CommandCode) -> bool;
+
+    /// Whether command `code` also needs the component Ready (besides control). Default:
+    /// every command does, as for the services that inherit Management (the drivers).
+    /// A service that inherits only Access Control answers false for its commands (the
+    /// pose sensors' Set Local/Global Pose are obeyed from the controller in Standby).
+    fn needs_ready(&self, code: CommandCode) -> bool {
+        let _ = code;
+        true
+    }
+
+    /// A message of its input set. Commands (codes below 0x2000) reach it only from the
+    /// controlling client, and only while the component is Ready when
+    /// [`needs_ready`](Self::needs_ready) says so (the component checks); queries reach
+    /// it from anyone.
+    fn handle(&mut self, cx: &mut Cx<'_, E>, request: &Request<'_>) -> Handled;
+
+    /// The component's state changed (`from` → `to`); leaving Ready must stop any
+    /// motion the service commands.
+    fn state_changed(&mut self, cx: &mut Cx<'_, E>, from: ComponentState, to: ComponentState) {
+        let _ = (cx, from, to);
+    }
+
+    /// The component's controller changed (`None`: no client holds control).
+    fn controller_changed(&mut self, cx: &mut Cx<'_, E>, controller: Option<As4Id>) {
+        let _ = (cx, controller);
+    }
+
+    /// Its timer is due ([`poll_timeout`](Self::poll_timeout)), or the environment
+    /// changed (the owner calls this after handing the environment new data).
+    fn tick(&mut self, cx: &mut Cx<'_, E>) {
+        let _ = cx;
+    }
+
+    /// When [`tick`](Self::tick) is next due (default: never on its own).
+    fn poll_timeout(&self) -> Option<Instant> {
+        None
+    }
+}

@@ -1,0 +1,345 @@
+//! `jaus conform --as4`: the judge's side of the IOP challenge scenario (the public
+//! IGVC JAUS / IOP rules) as conformance checks on an SAE AS-4 vehicle, over AS5669A.
+//!
+//! The judge's client (42.1.1 by default) finds the vehicle by Query Identification,
+//! reads its services, takes control, drives its Management states, reads its velocity
+//! state and local pose, loads a short list of local waypoints, has it driven (only
+//! with [`As4Options::allow_motion`]) and shuts it down, asking Query Identification
+//! every 5 s all along. Each step is a [`Check`] with an id, the rule it cites and its
+//! evidence (every message sent and received), reported through the same summary,
+//! JSON, JUnit and HTML as the RA 3.3 checks ([`crate::report`]).
+//!
+//! * [`session`]: the seam ([`As4Session`]); [`MemoryAs4Session`] runs a vehicle in
+//!   the same process on a virtual clock, [`udp::UdpAs4Session`] talks to a real one;
+//! * [`run_as4`]: runs the scenario and returns a [`RunReport`].
+//!
+//! ```
+//! use std::time::Instant;
+//! use jaus_conform::as4::{run_as4, As4Options, MemoryAs4Session};
+//! use jaus::net::Node;
+//!
+//! // An RA 3.3 node has no AS-4 side: nothing answers the judge.
+//! let t0 = Instant::now();
+//! let node = Node::new(Default::default(), t0);
+//! let mut session = MemoryAs4Session::new(node, t0);
+//! let run = run_as4(&mut session, &As4Options::default());
+//! assert!(!run.passed());
+//! ```
+
+mod checks;
+mod mission;
+mod sensors;
+pub mod session;
+mod talk;
+pub mod udp;
+
+use std::net::SocketAddr;
+use std::time::Duration;
+
+use jaus::net::as5669a::As4Id;
+
+pub use session::{Arrival, As4Host, As4Session, MemoryAs4Session};
+
+use crate::check::{Check, Kind, Level, Outcome, Rule, Verdict};
+use crate::{ComponentReport, RunReport};
+use talk::Judge;
+
+/// How the scenario runs.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct As4Options {
+    /// The judge's id (the IOP challenge's 42.1.1).
+    pub me: As4Id,
+    /// The component under test; `None`: whichever answers Query Identification (sent
+    /// as a broadcast), then the one whose Report Services lists the Local Waypoint
+    /// List Driver.
+    pub target: Option<As4Id>,
+    /// The vehicle's socket, for the report (and the IOP rule that a team's subsystem
+    /// id is the last octet of its IP address, noted when it does not hold).
+    pub vehicle: Option<SocketAddr>,
+    /// The wait for each answer.
+    pub wait: Duration,
+    /// The wait after a command before its effect is read.
+    pub settle: Duration,
+    /// Run Execute List (the vehicle moves) and the checks that need it running.
+    pub allow_motion: bool,
+    /// The longest wait for the list to be driven to its end.
+    pub mission_timeout: Duration,
+    /// The interval of the background Query Identification.
+    pub periodic: Duration,
+    /// Background Query Identifications sent at least (the run waits for them).
+    pub periodic_min: u32,
+    /// The authority of the judge's Request Control.
+    pub authority: u8,
+    /// The speed of Execute List, m/s.
+    pub speed: f64,
+    /// The pose Set Local Pose gives the vehicle: x, y (m), yaw (rad).
+    pub pose: (f64, f64, f64),
+    /// How far the reported position may be from the one set (m).
+    pub pose_tolerance: f64,
+    /// Send Shutdown at the end (the scenario's last step).
+    pub shutdown: bool,
+}
+
+impl Default for As4Options {
+    /// The IOP challenge's: judge 42.1.1, Query Identification every 5 s, 1 s for
+    /// answers, 200 ms to settle, 1 m/s, a minute for the list, no motion unless asked.
+    fn default() -> Self {
+        As4Options {
+            me: As4Id::new(42, 1, 1),
+            target: None,
+            vehicle: None,
+            wait: Duration::from_secs(1),
+            settle: Duration::from_millis(200),
+            allow_motion: false,
+            mission_timeout: Duration::from_secs(60),
+            periodic: Duration::from_secs(5),
+            periodic_min: 2,
+            authority: 255,
+            speed: 1.0,
+            pose: (3.0, -2.0, 0.5),
+            pose_tolerance: 0.5,
+            shutdown: true,
+        }
+    }
+}
+
+/// An AS-4 id from `S.N.C` (subsystem 0-65535, node and component 0-255).
+pub fn parse_id(text: &str) -> Result<As4Id, String> {
+    let parts: Vec<&str> = text.trim().split('.').collect();
+    let bad = || format!("`{text}`: expected an AS-4 id subsystem.node.component, e.g. 42.1.1");
+    let [s, n, c] = parts.as_slice() else {
+        return Err(bad());
+    };
+    Ok(As4Id::new(
+        s.parse().map_err(|_| bad())?,
+        n.parse().map_err(|_| bad())?,
+        c.parse().map_err(|_| bad())?,
+    ))
+}
+
+/// The rules the AS-4 checks cite, in this tool's words.
+pub mod rules {
+    use crate::check::Rule;
+
+    /// Discovery by Query Identification.
+    pub const IDENTIFICATION: Rule = Rule {
+        id: "as4.identification",
+        source: "AS5710A Discovery; IOP challenge (Discovery)",
+        text: "A component answers Query Identification with Report Identification; the judge takes the id that answers as the vehicle's.",
+    };
+    /// The periodic Query Identification.
+    pub const PERIODIC: Rule = Rule {
+        id: "as4.periodic",
+        source: "IOP challenge (Discovery)",
+        text: "The judge sends Query Identification every 5 s through the run; the vehicle answers every one within the answer wait.",
+    };
+    /// Services listed.
+    pub const SERVICES: Rule = Rule {
+        id: "as4.services",
+        source: "AS5710A Discovery; IOP challenge (Capabilities)",
+        text: "Report Services lists the services the scenario uses: Discovery, Access Control, Management, Velocity State Sensor, Local Pose Sensor, Local Waypoint List Driver and List Manager (core or mobility URI), on one component.",
+    };
+    /// Access Control.
+    pub const ACCESS: Rule = Rule {
+        id: "as4.access-control",
+        source: "AS5710A Access Control",
+        text: "Query Control is answered; Request Control while nobody else holds control is confirmed with Control Accepted, Report Control then names the requester, and control stays with it while it renews the request.",
+    };
+    /// Management.
+    pub const MANAGEMENT: Rule = Rule {
+        id: "as4.management",
+        source: "AS5710A Management",
+        text: "Query Status is answered; from the client in control, Resume takes the component to Ready, Standby to Standby and Shutdown to Shutdown (after which it may stop answering).",
+    };
+    /// Velocity State Sensor.
+    pub const VELOCITY: Rule = Rule {
+        id: "as4.velocity",
+        source: "AS6009 Velocity State Sensor; IOP challenge (Velocity)",
+        text: "Report Velocity State carries exactly the fields the query's presence vector asks for (0x0140: yaw rate and time stamp).",
+    };
+    /// Local Pose Sensor.
+    pub const POSE: Rule = Rule {
+        id: "as4.pose",
+        source: "AS6009 Local Pose Sensor; IOP challenge (Position)",
+        text: "Set Local Pose (presence vector 0x43: x, y, yaw) from the client in control sets the local pose; Report Local Pose carries exactly the fields asked for (0x0103: x, y, time stamp) and reports the position set.",
+    };
+    /// List Manager.
+    pub const LIST: Rule = Rule {
+        id: "as4.list-manager",
+        source: "AS5710A List Manager; IOP challenge (Waypoints)",
+        text: "Set Element is confirmed with its request id; Query Element List gives the elements' UIDs in list order and Query Element Count their number.",
+    };
+    /// Local Waypoint List Driver.
+    pub const DRIVER: Rule = Rule {
+        id: "as4.waypoint-list-driver",
+        source: "AS6009 Local Waypoint List Driver; IOP challenge (Waypoints)",
+        text: "Execute List from the client in control, the component Ready, drives the list from the element given at the speed given: Query Active Element names the element being driven (0 once the list is done), Query Travel Speed the speed, Query Local Waypoint the active element's waypoint.",
+    };
+}
+
+/// The scenario's checks in order: id, title, rule, level.
+#[rustfmt::skip]
+const CHECKS: &[(&str, &str, Rule, Level)] = {
+    use rules::*;
+    use Level::{Advisory, Required};
+    &[
+        ("as4.discovery.identification", "Query Identification finds the vehicle", IDENTIFICATION, Required),
+        ("as4.discovery.services", "Report Services lists the scenario's services", SERVICES, Required),
+        ("as4.control.query", "Query Control is answered", ACCESS, Required),
+        ("as4.control.request", "Request Control is confirmed; Report Control names the judge", ACCESS, Required),
+        ("as4.management.status", "Query Status is answered", MANAGEMENT, Required),
+        ("as4.management.resume", "Resume takes the component to Ready", MANAGEMENT, Required),
+        ("as4.management.standby", "Standby takes the component to Standby", MANAGEMENT, Required),
+        ("as4.velocity.pv0140", "Report Velocity State carries exactly yaw rate and time stamp (0x0140)", VELOCITY, Required),
+        ("as4.pose.set_local", "Set Local Pose (0x43) is read back", POSE, Required),
+        ("as4.pose.report_local", "Report Local Pose (0x0103) reports the position set", POSE, Required),
+        ("as4.waypoints.set_element", "Set Element of local waypoints is confirmed with its request id", LIST, Required),
+        ("as4.waypoints.element_list", "Query Element List gives the UIDs in order", LIST, Required),
+        ("as4.waypoints.element_count", "Query Element Count gives their number", LIST, Required),
+        ("as4.waypoints.execute", "Execute List starts the list at its first element", DRIVER, Required),
+        ("as4.waypoints.active_element", "Query Active Element follows the list to its end", DRIVER, Required),
+        ("as4.waypoints.travel_speed", "Query Travel Speed gives the speed executed", DRIVER, Required),
+        ("as4.waypoints.local_waypoint", "Query Local Waypoint gives the active waypoint", DRIVER, Required),
+        ("as4.discovery.periodic", "Query Identification every 5 s is answered each time", PERIODIC, Required),
+        ("as4.control.kept", "Control stays with the judge while it renews its request", ACCESS, Advisory),
+        ("as4.management.shutdown", "Shutdown takes the component to Shutdown", MANAGEMENT, Required),
+    ]
+};
+
+/// The check with id `id` (ids not in [`CHECKS`] are advisory, citing the scenario).
+fn check(id: &str) -> Check {
+    let (title, rule, level) = CHECKS
+        .iter()
+        .find(|c| c.0 == id)
+        .map_or((id, rules::IDENTIFICATION, Level::Advisory), |c| {
+            (c.1, c.2, c.3)
+        });
+    Check {
+        id: id.to_string(),
+        title: title.to_string(),
+        rule,
+        level,
+        kind: Kind::As4,
+    }
+}
+
+/// The ids of the scenario's checks, in the order they are reported.
+pub fn check_ids() -> Vec<&'static str> {
+    CHECKS.iter().map(|c| c.0).collect()
+}
+
+/// A verdict and why.
+type Found = (Verdict, String);
+
+/// The scenario's state between its checks.
+pub(super) struct Scenario<'a> {
+    j: Judge<'a>,
+    outcomes: Vec<Outcome>,
+    /// Whom Query Identification reached (the periodic queries ask it).
+    discovered: Option<As4Id>,
+    identification: Option<String>,
+    /// Whether the component under test is known (discovered or given).
+    known: bool,
+    /// Whether the judge holds control.
+    controlled: bool,
+    /// The position set by Set Local Pose, once read back.
+    pose_set: bool,
+    /// The waypoints loaded: UID, x, y.
+    waypoints: Vec<(u16, f64, f64)>,
+    /// Whether Set Element was confirmed.
+    listed: bool,
+    /// How many UIDs Report Element List gave.
+    list_len: Option<usize>,
+}
+
+impl<'a> Scenario<'a> {
+    /// Runs check `id` by `f` unless the component under test is unknown, and keeps its
+    /// outcome.
+    fn step(&mut self, id: &str, f: impl FnOnce(&mut Self) -> Found) {
+        let outcome = self.run_step(id, f);
+        self.outcomes.push(outcome);
+    }
+
+    /// Runs check `id` by `f` and returns its outcome.
+    fn run_step(&mut self, id: &str, f: impl FnOnce(&mut Self) -> Found) -> Outcome {
+        self.j.begin();
+        let (verdict, detail) = if self.known || id == "as4.discovery.identification" {
+            f(self)
+        } else {
+            (
+                Verdict::Inconclusive,
+                "not run: no AS-4 component answered Query Identification (give the vehicle's id to test it anyway)".into(),
+            )
+        };
+        Outcome {
+            check: check(id),
+            verdict,
+            detail,
+            evidence: self.j.take_evidence(),
+        }
+    }
+
+    /// An outcome for a check not run, saying why.
+    fn not_run(&self, id: &str, why: &str) -> Outcome {
+        Outcome {
+            check: check(id),
+            verdict: Verdict::Inconclusive,
+            detail: format!("not run: {why}"),
+            evidence: Vec::new(),
+        }
+    }
+}
+
+/// Runs the IOP scenario through `session` and reports it as one component's checks
+/// (the component under test; its address is its AS-4 id).
+pub fn run_as4(session: &mut dyn As4Session, opts: &As4Options) -> RunReport {
+    let placeholder = opts.target.unwrap_or(talk::BROADCAST);
+    let mut s = Scenario {
+        j: Judge::new(session, *opts, placeholder),
+        outcomes: Vec::new(),
+        discovered: None,
+        identification: None,
+        known: opts.target.is_some(),
+        controlled: false,
+        pose_set: false,
+        waypoints: Vec::new(),
+        listed: false,
+        list_len: None,
+    };
+    s.step("as4.discovery.identification", Scenario::identification);
+    s.step("as4.discovery.services", Scenario::services);
+    s.step("as4.control.query", Scenario::control_query);
+    s.step("as4.control.request", Scenario::control_request);
+    s.step("as4.management.status", Scenario::status_check);
+    s.step("as4.management.resume", Scenario::resume);
+    s.step("as4.management.standby", Scenario::standby);
+    s.step("as4.velocity.pv0140", Scenario::velocity);
+    s.step("as4.pose.set_local", Scenario::set_local_pose);
+    s.step("as4.pose.report_local", Scenario::report_local_pose);
+    s.step("as4.waypoints.set_element", Scenario::set_element);
+    s.step("as4.waypoints.element_list", Scenario::element_list);
+    s.step("as4.waypoints.element_count", Scenario::element_count);
+    s.mission();
+    s.step("as4.discovery.periodic", Scenario::periodic);
+    s.step("as4.control.kept", Scenario::control_kept);
+    s.step("as4.management.shutdown", Scenario::shutdown);
+    let peer = s.j.peer;
+    let component = ComponentReport {
+        address: if s.known {
+            peer.to_string()
+        } else {
+            "(not found)".into()
+        },
+        component_id: peer.component,
+        component_type: Some("AS-4 vehicle (IOP scenario)".into()),
+        identification: s.identification.clone(),
+        outcomes: std::mem::take(&mut s.outcomes),
+    };
+    let dropped = s.j.dropped();
+    RunReport {
+        tool: format!("jaus conform --as4 {}", env!("CARGO_PKG_VERSION")),
+        peer: opts.vehicle.map(|v| v.to_string()).unwrap_or_default(),
+        components: vec![component],
+        tester_dropped: dropped,
+    }
+}

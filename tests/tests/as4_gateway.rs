@@ -1,0 +1,291 @@
+//! The RA 3.3 ↔ AS-4 gateway over the simulated network: an AS-4 client (ours: an
+//! `As4Stack` on SimNet) drives the demo's RA 3.3 vehicle, hosted by a node that answers
+//! both generations on one socket (`jaus_as4::gateway::DualNode`), to its waypoints
+//! through the AS-4 Local Waypoint List Driver, and the vehicle must actually arrive
+//! (its pose from the simulated vehicle, not from the gateway).
+
+use std::collections::VecDeque;
+use std::net::SocketAddr;
+use std::time::{Duration, Instant};
+
+use jaus::net::as5669a::{As4Config, As4Id, As4Message, As4Stack};
+use jaus::net::{Datagram, NodeConfig, Participant};
+use jaus::{Address, JausMessage};
+use jaus_as4::gateway::{DualNode, GatewayConfig};
+use jaus_as4::{
+    ComponentState, ControlConfirmation, Element, ExecuteList, Message, NodeServicesQuery,
+    QueryActiveElement, QueryControl, QueryLocalPose, QueryServices, QueryStatus,
+    QueryVelocityState, RequestControl, Resume, SetElement, SetLocalPose, SetLocalWaypoint,
+    Standby,
+};
+use jaus_sim::network::{LinkModel, SimNet};
+
+/// The AS-4 client: an `As4Stack` as a SimNet participant, what it received kept.
+#[derive(Debug)]
+struct Client {
+    stack: As4Stack<SocketAddr>,
+    inbox: VecDeque<As4Message>,
+}
+
+impl Participant for Client {
+    fn handle_datagram(&mut self, now: Instant, peer: SocketAddr, datagram: &[u8]) {
+        if let Ok(ms) = self.stack.receive(now, peer, datagram) {
+            self.inbox.extend(ms);
+        }
+    }
+    fn handle_timeout(&mut self, now: Instant) {
+        self.stack.handle_timeout(now);
+    }
+    fn poll_transmit(&mut self) -> Option<Datagram<SocketAddr>> {
+        self.stack.poll_transmit()
+    }
+    fn poll_timeout(&self) -> Option<Instant> {
+        self.stack.poll_timeout()
+    }
+    fn as_any(&self) -> &dyn std::any::Any {
+        self
+    }
+    fn as_any_mut(&mut self) -> &mut dyn std::any::Any {
+        self
+    }
+}
+
+const ME: As4Id = As4Id::new(42, 1, 1);
+const VEHICLE: As4Id = As4Id::new(1, 1, 1);
+
+struct Judge {
+    net: SimNet,
+    client: usize,
+    vehicle: usize,
+}
+
+impl Judge {
+    fn new() -> Self {
+        let t0 = Instant::now();
+        let mut net = SimNet::new(t0, LinkModel::default(), 7);
+        let node = jaus_sim::demo::vehicle_node(t0, NodeConfig::default(), 1, 1).unwrap();
+        let config = GatewayConfig::new(VEHICLE, Address::new(1, 1, 60, 1), 1, "demo vehicle");
+        let vehicle = net.add(DualNode::new(node, config).unwrap());
+        let client = net.add(Client {
+            stack: As4Stack::new(As4Config::default()),
+            inbox: VecDeque::new(),
+        });
+        // The vehicle's node settles (its components come up, the gateway finds them).
+        net.run_for(Duration::from_secs(2));
+        Judge {
+            net,
+            client,
+            vehicle,
+        }
+    }
+
+    fn send(&mut self, m: impl Into<Message>) {
+        let m: Message = m.into();
+        let body = jaus::codec::Encode::to_bytes(m.body()).unwrap();
+        let to = SimNet::addr(self.vehicle);
+        let c = self.net.get_mut::<Client>(self.client).unwrap();
+        c.stack
+            .send(to, &[As4Message::new(m.code().0, VEHICLE, ME, body)]);
+    }
+
+    /// Sends `m`, runs the network for `wait`, returns what came back (decoded).
+    fn ask(&mut self, m: impl Into<Message>, wait: Duration) -> Vec<Message> {
+        self.send(m);
+        self.net.run_for(wait);
+        let c = self.net.get_mut::<Client>(self.client).unwrap();
+        c.inbox
+            .drain(..)
+            .map(|a| Message::decode(jaus::CommandCode(a.message_id), &a.body).unwrap())
+            .collect()
+    }
+
+    fn one(&mut self, m: impl Into<Message>) -> Message {
+        let got = self.ask(m, Duration::from_millis(300));
+        assert_eq!(got.len(), 1, "one answer expected, got {got:?}");
+        got.into_iter().next().unwrap()
+    }
+
+    /// The vehicle's speed as the RA 3.3 velocity state sensor last reported it to the
+    /// gateway.
+    fn true_speed(&self) -> f64 {
+        let dual = self.net.get::<DualNode>(self.vehicle).unwrap();
+        let g = dual.gateway().unwrap();
+        let vss = g.node().env().targets().velocity_state_sensor.unwrap();
+        match g
+            .node()
+            .env()
+            .latest(vss, jaus::messages::ReportVelocityState::CODE)
+        {
+            Some((_, jaus::messages::Message::ReportVelocityState(r))) => r
+                .velocity_x
+                .unwrap_or(0.0)
+                .hypot(r.velocity_y.unwrap_or(0.0)),
+            _ => 0.0,
+        }
+    }
+}
+
+fn waypoint(x: f64, y: f64) -> Message {
+    SetLocalWaypoint {
+        x,
+        y,
+        waypoint_tolerance: Some(0.5),
+        ..Default::default()
+    }
+    .into()
+}
+
+#[test]
+fn an_as4_client_drives_the_ra33_vehicle_through_the_gateway_to_its_waypoints() {
+    let mut j = Judge::new();
+
+    // Discovery: the Mobility services of the RA 3.3 components the node hosts.
+    let Message::ReportServices(r) = j.one(QueryServices {
+        nodes: vec![NodeServicesQuery {
+            node_id: 255,
+            component_ids: vec![255],
+        }],
+    }) else {
+        panic!("Report Services expected")
+    };
+    let uris: Vec<&str> = r
+        .nodes
+        .iter()
+        .flat_map(|n| &n.components)
+        .flat_map(|c| &c.services)
+        .map(|s| s.uri.as_str())
+        .collect();
+    for want in [
+        "urn:jaus:jss:core:AccessControl",
+        "urn:jaus:jss:core:Management",
+        "urn:jaus:jss:core:ListManager",
+        "urn:jaus:jss:mobility:VelocityStateSensor",
+        "urn:jaus:jss:mobility:LocalPoseSensor",
+        "urn:jaus:jss:mobility:GlobalPoseSensor",
+        "urn:jaus:jss:mobility:PrimitiveDriver",
+        "urn:jaus:jss:mobility:LocalWaypointListDriver",
+        "urn:jaus:jss:mobility:GlobalWaypointListDriver",
+    ] {
+        assert!(uris.contains(&want), "{want} not in {uris:?}");
+    }
+
+    // Control, then Ready.
+    let Message::ConfirmControl(c) = j.one(RequestControl { authority_code: 10 }) else {
+        panic!("Confirm Control expected")
+    };
+    assert_eq!(c.response_code, ControlConfirmation::ControlAccepted);
+    let Message::ReportControl(rc) = j.one(QueryControl {}) else {
+        panic!("Report Control expected")
+    };
+    assert_eq!(
+        (
+            rc.controller.subsystem_id,
+            rc.controller.node_id,
+            rc.controller.component_id
+        ),
+        (42, 1, 1)
+    );
+    assert!(j.ask(Resume {}, Duration::from_millis(500)).is_empty());
+    let Message::ReportStatus(s) = j.one(QueryStatus {}) else {
+        panic!("Report Status expected")
+    };
+    assert_eq!(s.status, ComponentState::Ready);
+
+    // The AS-4 local frame: the vehicle is at (10, 20) facing +X.
+    assert!(j
+        .ask(
+            SetLocalPose {
+                x: Some(10.0),
+                y: Some(20.0),
+                yaw: Some(0.0),
+                ..Default::default()
+            },
+            Duration::from_millis(300)
+        )
+        .is_empty());
+    let Message::ReportLocalPose(p) = j.one(QueryLocalPose {
+        presence_vector: 0x0043,
+    }) else {
+        panic!("Report Local Pose expected")
+    };
+    assert!(
+        (p.x.unwrap() - 10.0).abs() < 0.05 && (p.y.unwrap() - 20.0).abs() < 0.05,
+        "{p:?}"
+    );
+    assert!(
+        p.z.is_none() && p.time_stamp.is_none(),
+        "only x, y, yaw asked for: {p:?}"
+    );
+
+    // Two waypoints in the AS-4 frame, 4 m ahead then 3 m to the left of that.
+    let elements = vec![
+        Element::holding(1, 0, 2, &waypoint(14.0, 20.0)).unwrap(),
+        Element::holding(2, 1, 0, &waypoint(14.0, 23.0)).unwrap(),
+    ];
+    let Message::ConfirmElementRequest(ok) = j.one(SetElement {
+        request_id: 5,
+        elements,
+    }) else {
+        panic!("Confirm Element Request expected")
+    };
+    assert_eq!(ok.request_id, 5);
+    // Nothing moves before Execute List.
+    j.net.run_for(Duration::from_secs(1));
+    assert!(j.true_speed() < 0.01, "moving before Execute List");
+
+    assert!(j
+        .ask(
+            ExecuteList {
+                speed: 1.0,
+                element_uid: Some(1),
+            },
+            Duration::from_millis(300)
+        )
+        .is_empty());
+    let mut active = Vec::new();
+    for _ in 0..120 {
+        let Message::ReportActiveElement(a) = j.one(QueryActiveElement {}) else {
+            panic!("Report Active Element expected")
+        };
+        active.push(a.element_uid);
+        if a.element_uid == 0 {
+            break;
+        }
+        j.net.run_for(Duration::from_millis(500));
+    }
+    assert_eq!(active.first(), Some(&1), "{active:?}");
+    assert!(
+        active.contains(&2),
+        "the second element was never active: {active:?}"
+    );
+    assert_eq!(
+        active.last(),
+        Some(&0),
+        "the list did not finish: {active:?}"
+    );
+
+    // Where the vehicle really is, in the AS-4 frame.
+    let Message::ReportLocalPose(p) = j.one(QueryLocalPose {
+        presence_vector: 0x0003,
+    }) else {
+        panic!("Report Local Pose expected")
+    };
+    let (x, y) = (p.x.unwrap(), p.y.unwrap());
+    assert!(
+        (x - 14.0).hypot(y - 23.0) < 1.0,
+        "ended at ({x:.2}, {y:.2})"
+    );
+    let Message::ReportVelocityState(v) = j.one(QueryVelocityState {
+        presence_vector: 0x0140,
+    }) else {
+        panic!("Report Velocity State expected")
+    };
+    assert!(v.yaw_rate.is_some() && v.velocity_x.is_none(), "{v:?}");
+
+    // Standby stops the RA 3.3 drivers too.
+    assert!(j.ask(Standby {}, Duration::from_millis(500)).is_empty());
+    let Message::ReportStatus(s) = j.one(QueryStatus {}) else {
+        panic!("Report Status expected")
+    };
+    assert_eq!(s.status, ComponentState::Standby);
+}
