@@ -153,3 +153,56 @@ fn a_commander_keeps_control_loses_it_to_a_higher_authority_and_takes_it_back() 
         "{e:?}"
     );
 }
+
+/// A driver that restarts (a new process: no controller, Standby) without the
+/// commander's node seeing it leave: the driver reports no controller, so the runtime
+/// drops the control held, the keeper asks again and resumes it (issue 35).
+#[test]
+fn a_kept_component_that_restarts_is_controlled_again() {
+    let t0 = std::time::Instant::now();
+    let mut bus = LocalBus::new(t0);
+    let driver = |t| {
+        primitive_driver::component(
+            PD,
+            StockPrimitiveDriver::new(
+                SimVehicle::new(VehicleParams::default()),
+                PrimitiveConfig::default(),
+            ),
+            Config::default(),
+            t,
+        )
+    };
+    bus.add(driver(t0));
+    let mut keeper = ControlKeeper::new(KeeperConfig::default());
+    keeper.keep(PD);
+    bus.add(system_commander::component(
+        OCU,
+        Operator {
+            keeper,
+            events: Vec::new(),
+        },
+        Config {
+            authority: 200,
+            ..Config::default()
+        },
+        t0,
+    ));
+    bus.run_for(Duration::from_secs(1));
+    assert_eq!(bus.get::<Pd>(PD).unwrap().controller(), Some((OCU, 200)));
+    events(&mut bus);
+
+    // The new process: same address, nobody in control.
+    bus.remove(PD);
+    let now = bus.now();
+    bus.add(driver(now));
+    bus.run_for(Duration::from_secs(2));
+    let pd = bus.get::<Pd>(PD).unwrap();
+    assert_eq!(pd.controller(), Some((OCU, 200)));
+    assert_eq!(pd.state(), CoreState::Ready);
+    let e = events(&mut bus);
+    let lost = e.iter().position(|x| *x == ControlEvent::Lost(PD));
+    let gained = e.iter().position(|x| *x == ControlEvent::Gained(PD));
+    assert!(lost.is_some() && gained > lost, "{e:?}");
+    let keeper = &bus.get::<Ocu>(OCU).unwrap().behaviour().0.keeper;
+    assert_eq!(keeper.counts(PD), Some((2, 1)));
+}

@@ -7,14 +7,12 @@
 mod common;
 
 use std::collections::BTreeMap;
-use std::io::{BufRead, BufReader};
 use std::net::{SocketAddr, UdpSocket};
-use std::path::Path;
-use std::process::{Child, Command, Stdio};
-use std::sync::mpsc;
+use std::process::Command;
 use std::time::{Duration, Instant};
 
 use common::jaus_bin;
+use common::process::NodeProcess as Node;
 use jaus::codec::Encode;
 use jaus::messages::*;
 use jaus::net::Framing;
@@ -26,48 +24,6 @@ const WM: Address = Address::new(1, 1, 61, 1);
 const SPOOLER: Address = Address::new(1, 1, 36, 1);
 const ME: Address = Address::new(1, 2, 40, 1);
 const N: usize = 200;
-
-struct Node {
-    child: Child,
-    lines: mpsc::Receiver<String>,
-}
-
-impl Node {
-    fn start(config: &Path) -> Node {
-        let mut child = Command::new(jaus_bin())
-            .args(["node", "--config"])
-            .arg(config)
-            .stdout(Stdio::piped())
-            .stderr(Stdio::inherit())
-            .spawn()
-            .expect("start jaus node");
-        let out = child.stdout.take().expect("stdout");
-        let (tx, lines) = mpsc::channel();
-        std::thread::spawn(move || {
-            for l in BufReader::new(out).lines().map_while(Result::ok) {
-                let _ = tx.send(l);
-            }
-        });
-        Node { child, lines }
-    }
-
-    /// SIGKILL, and wait for the process to be gone.
-    fn kill(mut self) {
-        self.child.kill().expect("kill -9");
-        self.child.wait().expect("reap");
-    }
-
-    fn output(&self) -> String {
-        self.lines.try_iter().collect::<Vec<_>>().join("\n")
-    }
-}
-
-impl Drop for Node {
-    fn drop(&mut self) {
-        let _ = self.child.kill();
-        let _ = self.child.wait();
-    }
-}
 
 struct Client {
     sock: UdpSocket,

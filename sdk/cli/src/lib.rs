@@ -12,6 +12,7 @@
 //! * [`capture`]: pcap/pcapng captures of JAUS traffic, written and read;
 //! * [`traffic`]: captures decoded to JSON lines and replayed to a node;
 //! * [`keygen`]: a node's key and certificate for authenticated QUIC data links.
+//! * [`series`]: time series as stacked SVG panels (the soak test's plot).
 //!
 //! The SDK (`jaus`) carries none of this: a vendor's build pulls no clap, serde_yaml or
 //! tracing-subscriber.
@@ -26,4 +27,5 @@ pub mod net;
 pub mod ocu;
 mod plot;
 pub mod report;
+pub mod series;
 pub mod traffic;

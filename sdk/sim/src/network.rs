@@ -11,6 +11,9 @@ use rand::{Rng, SeedableRng};
 
 use jaus::net::{Node, Participant};
 
+/// Links whose order of arrival is followed (for [`SimStats::reordered`]).
+const MAX_LINKS: usize = 4096;
+
 /// How the links misbehave.
 #[derive(Debug, Clone, Copy)]
 pub struct LinkModel {
@@ -46,6 +49,9 @@ pub struct SimStats {
     pub dropped: u64,
     /// Extra copies delivered.
     pub duplicated: u64,
+    /// Datagrams (copies included) due before one sent earlier on the same link (from,
+    /// to): they overtake it, so the receiver sees the two out of order.
+    pub reordered: u64,
     /// Datagrams to an address with no node.
     pub unreachable: u64,
 }
@@ -57,6 +63,8 @@ pub struct SimNet {
     nodes: Vec<Option<Box<dyn Participant>>>,
     addrs: Vec<SocketAddr>,
     in_flight: BTreeMap<(Instant, u64), (SocketAddr, SocketAddr, Vec<u8>)>,
+    /// The latest arrival time given to a datagram of each link (from, to).
+    latest: BTreeMap<(SocketAddr, SocketAddr), Instant>,
     seq: u64,
     rng: StdRng,
     model: LinkModel,
@@ -71,6 +79,7 @@ impl SimNet {
             nodes: Vec::new(),
             addrs: Vec::new(),
             in_flight: BTreeMap::new(),
+            latest: BTreeMap::new(),
             seq: 0,
             rng: StdRng::seed_from_u64(seed),
             model,
@@ -136,6 +145,7 @@ impl SimNet {
             .and_then(|p| p.as_any_mut().downcast_mut())
     }
 
+    /// Changes how the links misbehave, for the datagrams sent from now on.
     pub fn set_model(&mut self, model: LinkModel) {
         self.model = model;
     }
@@ -185,10 +195,19 @@ impl SimNet {
                 for _ in 0..copies {
                     let span = self.model.max_delay.saturating_sub(self.model.min_delay);
                     let delay = self.model.min_delay + span.mul_f64(self.random());
-                    self.in_flight.insert(
-                        (self.now + delay, self.seq),
-                        (self.addrs[i], d.to, d.bytes.clone()),
-                    );
+                    let at = self.now + delay;
+                    let link = (self.addrs[i], d.to);
+                    match self.latest.get_mut(&link) {
+                        Some(latest) if at < *latest => self.stats.reordered += 1,
+                        Some(latest) => *latest = at,
+                        None => {
+                            if self.latest.len() < MAX_LINKS {
+                                self.latest.insert(link, at);
+                            }
+                        }
+                    }
+                    self.in_flight
+                        .insert((at, self.seq), (link.0, link.1, d.bytes.clone()));
                     self.seq += 1;
                 }
             }

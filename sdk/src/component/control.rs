@@ -96,6 +96,19 @@ impl<B: Behaviour> Component<B> {
                 }
                 return Some(self.pass_on(header, original));
             }
+            Message::ReportComponentControl(m) => {
+                // A component this one controls that names another controller, or none,
+                // is no longer controlled by it: it restarted (a new process knows
+                // nothing of the old grant) or let control go without a word. Control
+                // is then asked for again (`ControlKeeper`). The behaviour sees the
+                // report as before.
+                let controller =
+                    Address::new(m.subsystem_id, m.node_id, m.component_id, m.instance_id);
+                if controller != self.rt.address {
+                    self.rt.held_control.retain(|(a, _)| *a != source);
+                }
+                return None;
+            }
             Message::CreateServiceConnection(m) => {
                 self.create_sc(source, m);
                 Ok(())

@@ -6,6 +6,12 @@
 //! which is a quick no-op when the binary is up to date and keeps it from going stale.
 //! `JAUS_BIN` overrides the path (and skips the build).
 
+// Killed and restarted `jaus node` processes, and an operator station in the test.
+#[allow(dead_code)]
+pub mod process;
+#[allow(dead_code)]
+pub mod station;
+
 use std::net::UdpSocket;
 use std::path::{Path, PathBuf};
 use std::process::Command;

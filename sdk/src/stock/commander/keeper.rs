@@ -1,7 +1,8 @@
 //! Control of components, taken and kept: [`ControlKeeper`] takes and keeps control of a set of components with the
 //! commander's authority, asks them to Resume when it gains control, watches their core
-//! state, and says what changed ([`ControlEvent`]): control gained, lost (a higher
-//! authority took it, the component let it go) and taken back, a component entering
+//! state and their controller, and says what changed ([`ControlEvent`]): control gained,
+//! lost (a higher authority took it, the component let it go, or it restarted and no
+//! longer names this component as its controller) and taken back, a component entering
 //! Emergency or Failure. It is sans-IO like the runtime: call
 //! [`tick`](ControlKeeper::tick) from the component's `tick` and
 //! [`on_status`](ControlKeeper::on_status) with each Report Component Status.
@@ -9,7 +10,7 @@
 use std::time::{Duration, Instant};
 
 use crate::component::{Context, CoreState, Interface};
-use crate::messages::{QueryComponentStatus, ReportComponentStatus, Resume};
+use crate::messages::{QueryComponentControl, QueryComponentStatus, ReportComponentStatus, Resume};
 use crate::Address;
 
 /// Settings of a [`ControlKeeper`].
@@ -17,7 +18,8 @@ use crate::Address;
 pub struct KeeperConfig {
     /// How long to wait before asking again for control not (or no longer) held.
     pub retry: Duration,
-    /// How often each kept component's status is queried.
+    /// How often each kept component's status is queried (and, while control is held,
+    /// its controller: a component that restarted names another one, or none).
     pub status_period: Duration,
     /// Send Resume to a component when control of it is gained (it then leaves
     /// Standby for Ready).
@@ -191,6 +193,12 @@ impl ControlKeeper {
             if k.next_status.is_none_or(|t| now >= t) {
                 k.next_status = Some(now + self.config.status_period);
                 ctx.send_core(k.address, QueryComponentStatus {});
+                if k.held {
+                    // A component that restarted (a new process) no longer names this
+                    // one as its controller: the runtime then drops the control held
+                    // and the next tick asks for it again.
+                    ctx.send_core(k.address, QueryComponentControl {});
+                }
             }
         }
         events
