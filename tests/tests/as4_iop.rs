@@ -55,11 +55,19 @@ fn the_iop_scenario_passes_in_memory_against_the_vehicle_through_the_gateway() {
     all_pass(&run_as4(&mut session, &judge()));
 }
 
-#[test]
-fn the_iop_scenario_passes_over_udp_against_jaus_node() {
-    let dir = std::env::temp_dir().join(format!("jaus-as4-iop-{}", std::process::id()));
+/// `jaus node` (the CLI's node function) hosting the vehicle with `as4: {}` on a free
+/// loopback port, in a thread: its port, the stop flag and the thread (the node's result
+/// and what it printed).
+#[allow(clippy::type_complexity)]
+fn jaus_node(
+    tag: &str,
+) -> (
+    u16,
+    Arc<AtomicBool>,
+    std::thread::JoinHandle<(Result<(), String>, String)>,
+) {
+    let dir = std::env::temp_dir().join(format!("jaus-as4-{tag}-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    // A free loopback port for the node.
     let port = UdpSocket::bind("127.0.0.1:0")
         .unwrap()
         .local_addr()
@@ -75,19 +83,25 @@ fn the_iop_scenario_passes_over_udp_against_jaus_node() {
     .unwrap();
     let stop = Arc::new(AtomicBool::new(false));
     let s = stop.clone();
-    let f = file.clone();
     let node = std::thread::spawn(move || {
         let mut out = Vec::new();
         let r = jaus_cli::net::node(
-            Path::new(&f),
+            Path::new(&file),
             Some(Duration::from_secs(120)),
             None,
             &s,
             &mut out,
         );
+        let _ = std::fs::remove_dir_all(&dir);
         (r, String::from_utf8_lossy(&out).into_owned())
     });
     std::thread::sleep(Duration::from_millis(500));
+    (port, stop, node)
+}
+
+#[test]
+fn the_iop_scenario_passes_over_udp_against_jaus_node() {
+    let (port, stop, node) = jaus_node("iop");
     let socket = UdpSocket::bind("127.0.0.1:0").unwrap();
     let mut session =
         UdpAs4Session::new(socket, format!("127.0.0.1:{port}").parse().unwrap()).unwrap();
@@ -97,5 +111,48 @@ fn the_iop_scenario_passes_over_udp_against_jaus_node() {
     assert!(r.is_ok(), "{r:?}\n{out}");
     assert!(out.contains("AS-4 (AS5669A) on the same socket"), "{out}");
     all_pass(&run);
-    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn jaus_as4_drive_drives_the_vehicle_through_jaus_node() {
+    let (port, stop, node) = jaus_node("drive");
+    let args = jaus_cli::as4_drive::As4DriveArgs {
+        peer: format!("127.0.0.1:{port}").parse().unwrap(),
+        bind: "127.0.0.1:0".parse().unwrap(),
+        me: "42.1.1".into(),
+        target: None,
+        local: vec!["3,0".into(), "3,2".into()],
+        global: Vec::new(),
+        speed: 1.0,
+        authority: 255,
+        timeout: 60,
+    };
+    let mut out = Vec::new();
+    let r = jaus_cli::as4_drive::as4_drive(&args, &mut out);
+    stop.store(true, Ordering::Relaxed);
+    let _ = node.join();
+    let out = String::from_utf8_lossy(&out);
+    assert!(r.is_ok(), "{r:?}\n{out}");
+    for step in [
+        "found 1.1.1",
+        "control granted",
+        "2 waypoint(s) stored",
+        "list done",
+    ] {
+        assert!(out.contains(step), "no `{step}` in:\n{out}");
+    }
+    // The last pose printed is near the last waypoint.
+    let last = out
+        .lines()
+        .filter_map(|l| l.split_once("x ").map(|(_, xy)| xy.to_string()))
+        .next_back()
+        .expect("a pose");
+    let v: Vec<f64> = last
+        .split(" y ")
+        .map(|t| t.trim().parse().unwrap())
+        .collect();
+    assert!(
+        (v[0] - 3.0).hypot(v[1] - 2.0) < 1.2,
+        "ended at {last}\n{out}"
+    );
 }

@@ -182,6 +182,13 @@ pub(crate) enum Cmd {
         #[command(flatten)]
         args: crate::conform::ConformArgs,
     },
+    /// Drive an AS-4 vehicle (AS5669A): find its component, take control, load a
+    /// waypoint list and execute it with its Local or Global Waypoint List Driver,
+    /// following the active element and the pose until done; then standby and release.
+    As4Drive {
+        #[command(flatten)]
+        args: jaus_cli::as4_drive::As4DriveArgs,
+    },
     /// Listen for a while and print the system tree seen on the network.
     Discover {
         #[command(flatten)]

@@ -11,6 +11,7 @@
 //! * [`arm_report`]: the arm demo's table and SVG plot;
 //! * [`capture`]: pcap/pcapng captures of JAUS traffic, written and read;
 //! * [`traffic`]: captures decoded to JSON lines and replayed to a node;
+//! * [`as4_drive`]: `jaus as4-drive`, an AS-4 operator driving a waypoint list;
 //! * [`keygen`]: a node's key and certificate for authenticated QUIC data links.
 //! * [`series`]: time series as stacked SVG panels (the soak test's plot).
 //!
@@ -18,6 +19,7 @@
 //! tracing-subscriber.
 
 pub mod arm_report;
+pub mod as4_drive;
 pub mod capture;
 pub mod catalogue;
 pub mod commands;

@@ -334,6 +334,7 @@ fn main() -> ExitCode {
         Cmd::Conform { net, args } => {
             report(&mut err, conform::conform(&net, &args, &cli.spec, &mut out))
         }
+        Cmd::As4Drive { args } => report(&mut err, jaus_cli::as4_drive::as4_drive(&args, &mut out)),
         Cmd::Discover { net, json } => report(
             &mut err,
             net.client().and_then(|c| {

@@ -10,10 +10,13 @@ use std::collections::{HashMap, VecDeque};
 use std::time::{Duration, Instant};
 
 use jaus::messages::{
-    ConfirmComponentControl, ControlResponse, Message as Ra33Message, ReleaseComponentControl,
-    RequestComponentControl, Resume, Standby,
+    ConfirmComponentControl, ControlResponse, Message as Ra33Message, QueryLevel,
+    ReleaseComponentControl, ReportIdentification, RequestComponentControl, Resume, Standby,
 };
 use jaus::{Address, CommandCode};
+
+/// The gateway's name in RA 3.3 Report Identification.
+pub const IDENTIFICATION: &str = "AS-4 gateway";
 
 /// Most RA 3.3 messages waiting to leave (more are dropped and counted).
 pub const MAX_OUTBOX: usize = 1024;
@@ -302,6 +305,18 @@ impl Ra33Side {
             Ra33Message::RejectComponentControl(_) => {
                 tracing::info!(gateway = %self.me, driver = %from, "RA 3.3 control taken away");
                 self.control.insert(from, Ra33Control::None);
+            }
+            Ra33Message::QueryIdentification(q) if q.query_field == QueryLevel::Component => {
+                // Who this component is, for the node managers' system trees.
+                self.send(
+                    from,
+                    ReportIdentification {
+                        query_type: QueryLevel::Component,
+                        authority: self.authority,
+                        identification_type: 0,
+                        identification: IDENTIFICATION.to_string(),
+                    },
+                );
             }
             m if m.code().class() == jaus::wire::MessageClass::Inform => {
                 self.stats.reports += 1;

@@ -1,0 +1,362 @@
+//! `jaus as4-drive`: an AS-4 operator in one command. It finds an AS-4 vehicle's
+//! component (Query Identification, Query Services), takes control, resumes it, loads a
+//! waypoint list into its List Manager (Set Element), executes it with the Local or
+//! Global Waypoint List Driver, follows the active element and the pose until the list
+//! is done, then puts the vehicle in standby and gives control back. Over AS5669A on
+//! UDP; prints one line per step and per second of progress.
+
+use std::io::Write;
+use std::net::{SocketAddr, UdpSocket};
+use std::time::{Duration, Instant};
+
+use jaus::net::as5669a::{As4Config, As4Id, As4Message, As4Stack};
+use jaus::CommandCode;
+use jaus_as4::{
+    ComponentState, ControlConfirmation, Element, ExecuteList, Message, NodeServicesQuery,
+    QueryActiveElement, QueryGlobalPose, QueryIdentification, QueryLocalPose, QueryServices,
+    QueryStatus, ReleaseControl, RequestControl, Resume, SetElement, SetGlobalWaypoint,
+    SetLocalWaypoint, Standby,
+};
+
+/// Options of `jaus as4-drive`.
+#[derive(Debug, clap::Args)]
+pub struct As4DriveArgs {
+    /// The AS-4 vehicle's address (its node's AS5669A socket).
+    #[arg(long)]
+    pub peer: SocketAddr,
+    /// Local address to send from.
+    #[arg(long, default_value = "0.0.0.0:0")]
+    pub bind: SocketAddr,
+    /// This operator's AS-4 id.
+    #[arg(long, default_value = "42.1.1")]
+    pub me: String,
+    /// The vehicle component's AS-4 id (default: whichever answers Query
+    /// Identification).
+    #[arg(long)]
+    pub target: Option<String>,
+    /// Waypoints in the local frame, `X,Y` metres (Local Waypoint List Driver).
+    #[arg(long = "local", value_name = "X,Y", conflicts_with = "global")]
+    pub local: Vec<String>,
+    /// Waypoints in WGS 84, `LAT,LON` degrees (Global Waypoint List Driver).
+    #[arg(long = "global", value_name = "LAT,LON")]
+    pub global: Vec<String>,
+    /// Speed along the list, m/s.
+    #[arg(long, default_value_t = 1.0)]
+    pub speed: f64,
+    /// Authority of the request for control.
+    #[arg(long, default_value_t = 255)]
+    pub authority: u8,
+    /// Longest wait for the list to be driven, seconds.
+    #[arg(long, default_value_t = 120)]
+    pub timeout: u64,
+}
+
+/// The operator's socket and transport.
+struct Link {
+    socket: UdpSocket,
+    stack: As4Stack<SocketAddr>,
+    peer: SocketAddr,
+    me: As4Id,
+    target: As4Id,
+}
+
+impl Link {
+    fn send(&mut self, m: impl Into<Message>) -> Result<(), String> {
+        let m: Message = m.into();
+        let body = m
+            .body()
+            .to_bytes()
+            .map_err(|e| format!("{}: {e}", m.name()))?;
+        self.stack.send(
+            self.peer,
+            &[As4Message::new(m.code().0, self.target, self.me, body)],
+        );
+        while let Some(d) = self.stack.poll_transmit() {
+            self.socket
+                .send_to(&d.bytes, d.to)
+                .map_err(|e| format!("{}: {e}", self.peer))?;
+        }
+        Ok(())
+    }
+
+    /// The next message from the target within `wait` for which `want` says yes.
+    fn wait_for<T>(
+        &mut self,
+        wait: Duration,
+        mut want: impl FnMut(&Message) -> Option<T>,
+    ) -> Option<T> {
+        let until = Instant::now() + wait;
+        let mut buf = [0u8; 65536];
+        while Instant::now() < until {
+            let left = until.saturating_duration_since(Instant::now());
+            let _ = self
+                .socket
+                .set_read_timeout(Some(left.max(Duration::from_millis(1))));
+            let Ok((n, from)) = self.socket.recv_from(&mut buf) else {
+                continue;
+            };
+            let Ok(ms) = self.stack.receive(Instant::now(), from, &buf[..n]) else {
+                continue;
+            };
+            for m in ms {
+                if self.target != As4Id::new(0xFFFF, 0xFF, 0xFF) && m.source != self.target {
+                    continue;
+                }
+                let Ok(msg) = Message::decode(CommandCode(m.message_id), &m.body) else {
+                    continue;
+                };
+                if self.target == As4Id::new(0xFFFF, 0xFF, 0xFF) {
+                    self.target = m.source;
+                }
+                if let Some(t) = want(&msg) {
+                    return Some(t);
+                }
+            }
+        }
+        None
+    }
+
+    fn ask<T>(
+        &mut self,
+        q: impl Into<Message>,
+        mut want: impl FnMut(&Message) -> Option<T>,
+    ) -> Result<T, String> {
+        let q: Message = q.into();
+        let name = q.name();
+        for _ in 0..3 {
+            self.send(q.clone())?;
+            if let Some(t) = self.wait_for(Duration::from_secs(1), &mut want) {
+                return Ok(t);
+            }
+        }
+        Err(format!(
+            "{name} to {} at {}: no answer in 3 s",
+            self.target, self.peer
+        ))
+    }
+}
+
+fn pair(text: &str, what: &str) -> Result<(f64, f64), String> {
+    let (a, b) = text
+        .split_once(',')
+        .ok_or_else(|| format!("{what} `{text}`: two numbers separated by a comma"))?;
+    let p = |s: &str| {
+        s.trim()
+            .parse::<f64>()
+            .map_err(|e| format!("{what} `{text}`: {e}"))
+    };
+    Ok((p(a)?, p(b)?))
+}
+
+/// Runs `jaus as4-drive`.
+pub fn as4_drive(args: &As4DriveArgs, out: &mut impl Write) -> Result<(), String> {
+    let global = !args.global.is_empty();
+    let points: Vec<(f64, f64)> = if global {
+        args.global
+            .iter()
+            .map(|t| pair(t, "--global"))
+            .collect::<Result<_, _>>()?
+    } else {
+        args.local
+            .iter()
+            .map(|t| pair(t, "--local"))
+            .collect::<Result<_, _>>()?
+    };
+    if points.is_empty() {
+        return Err("give the waypoints: --local X,Y ... or --global LAT,LON ...".into());
+    }
+    if points.len() > 200 {
+        return Err(format!("{} waypoints: at most 200", points.len()));
+    }
+    let me = jaus_conform::as4::parse_id(&args.me)?;
+    let target = match &args.target {
+        Some(t) => jaus_conform::as4::parse_id(t)?,
+        None => As4Id::new(0xFFFF, 0xFF, 0xFF),
+    };
+    let socket = UdpSocket::bind(args.bind).map_err(|e| format!("{}: {e}", args.bind))?;
+    let mut link = Link {
+        socket,
+        stack: As4Stack::new(As4Config::default()),
+        peer: args.peer,
+        me,
+        target,
+    };
+    let t0 = Instant::now();
+    let mut say = |text: String| {
+        let _ = writeln!(out, "{:6.1} s  {text}", t0.elapsed().as_secs_f64());
+        let _ = out.flush();
+    };
+
+    let name = link.ask(
+        QueryIdentification {
+            query_type: jaus_as4::IdentificationType::Component,
+        },
+        |m| match m {
+            Message::ReportIdentification(r) => Some(r.identification.clone()),
+            _ => None,
+        },
+    )?;
+    say(format!("found {} \"{name}\" at {}", link.target, link.peer));
+    let services = link.ask(
+        QueryServices {
+            nodes: vec![NodeServicesQuery {
+                node_id: 255,
+                component_ids: vec![255],
+            }],
+        },
+        |m| match m {
+            Message::ReportServices(r) => Some(
+                r.nodes
+                    .iter()
+                    .flat_map(|n| &n.components)
+                    .flat_map(|c| &c.services)
+                    .map(|s| s.uri.clone())
+                    .collect::<Vec<_>>(),
+            ),
+            _ => None,
+        },
+    )?;
+    let driver = if global {
+        "urn:jaus:jss:mobility:GlobalWaypointListDriver"
+    } else {
+        "urn:jaus:jss:mobility:LocalWaypointListDriver"
+    };
+    if !services.iter().any(|s| s == driver) {
+        return Err(format!(
+            "{} offers no {driver}; its services: {}",
+            link.target,
+            services.join(", ")
+        ));
+    }
+    say(format!("{} services, {driver} among them", services.len()));
+
+    let granted = link.ask(
+        RequestControl {
+            authority_code: args.authority,
+        },
+        |m| match m {
+            Message::ConfirmControl(c) => Some(c.response_code),
+            _ => None,
+        },
+    )?;
+    if granted != ControlConfirmation::ControlAccepted {
+        return Err(format!("control of {} refused: {granted:?}", link.target));
+    }
+    say("control granted".into());
+    let result = drive(&mut link, args, global, &points, &mut say);
+    // Whatever happened: standby and control given back.
+    let _ = link.send(Standby {});
+    let _ = link.send(ReleaseControl {});
+    say("standby, control released".into());
+    result
+}
+
+fn drive(
+    link: &mut Link,
+    args: &As4DriveArgs,
+    global: bool,
+    points: &[(f64, f64)],
+    say: &mut impl FnMut(String),
+) -> Result<(), String> {
+    link.send(Resume {})?;
+    let status = link.ask(QueryStatus {}, |m| match m {
+        Message::ReportStatus(s) => Some(s.status),
+        _ => None,
+    })?;
+    if status != ComponentState::Ready {
+        return Err(format!("{} is {status:?} after Resume", link.target));
+    }
+    say("ready".into());
+    let n = points.len() as u16;
+    let mut elements = Vec::with_capacity(points.len());
+    for (i, (a, b)) in points.iter().enumerate() {
+        let uid = i as u16 + 1;
+        let m: Message = if global {
+            SetGlobalWaypoint {
+                latitude: *a,
+                longitude: *b,
+                waypoint_tolerance: Some(1.0),
+                ..Default::default()
+            }
+            .into()
+        } else {
+            SetLocalWaypoint {
+                x: *a,
+                y: *b,
+                waypoint_tolerance: Some(1.0),
+                ..Default::default()
+            }
+            .into()
+        };
+        let next = if uid == n { 0 } else { uid + 1 };
+        elements.push(Element::holding(uid, uid - 1, next, &m).map_err(|e| e.to_string())?);
+    }
+    let answer = link.ask(
+        SetElement {
+            request_id: 1,
+            elements,
+        },
+        |m| match m {
+            Message::ConfirmElementRequest(_) => Some(Ok(())),
+            Message::RejectElementRequest(r) => Some(Err(format!("{:?}", r.response_code))),
+            _ => None,
+        },
+    )?;
+    answer.map_err(|code| format!("Set Element refused: {code}"))?;
+    say(format!("{n} waypoint(s) stored"));
+    link.send(ExecuteList {
+        speed: args.speed,
+        element_uid: Some(1),
+    })?;
+    say(format!("executing at {} m/s", args.speed));
+    let until = Instant::now() + Duration::from_secs(args.timeout);
+    let mut started = false;
+    loop {
+        let active = link.ask(QueryActiveElement {}, |m| match m {
+            Message::ReportActiveElement(a) => Some(a.element_uid),
+            _ => None,
+        })?;
+        let at = if global {
+            link.ask(
+                QueryGlobalPose {
+                    presence_vector: 0x3,
+                },
+                |m| match m {
+                    Message::ReportGlobalPose(p) => Some(format!(
+                        "lat {:.7} lon {:.7}",
+                        p.latitude.unwrap_or(f64::NAN),
+                        p.longitude.unwrap_or(f64::NAN)
+                    )),
+                    _ => None,
+                },
+            )?
+        } else {
+            link.ask(
+                QueryLocalPose {
+                    presence_vector: 0x3,
+                },
+                |m| match m {
+                    Message::ReportLocalPose(p) => Some(format!(
+                        "x {:.2} y {:.2}",
+                        p.x.unwrap_or(f64::NAN),
+                        p.y.unwrap_or(f64::NAN)
+                    )),
+                    _ => None,
+                },
+            )?
+        };
+        say(format!("active element {active}, {at}"));
+        started |= active != 0;
+        if started && active == 0 {
+            say("list done".into());
+            return Ok(());
+        }
+        if Instant::now() >= until {
+            return Err(format!(
+                "the list was not done within {} s (active element {active})",
+                args.timeout
+            ));
+        }
+        std::thread::sleep(Duration::from_secs(1));
+    }
+}
