@@ -126,6 +126,8 @@ fn jaus_as4_drive_drives_the_vehicle_through_jaus_node() {
         speed: 1.0,
         authority: 255,
         timeout: 60,
+        effort: None,
+        effort_for: 0.0,
     };
     let mut out = Vec::new();
     let r = jaus_cli::as4_drive::as4_drive(&args, &mut out);

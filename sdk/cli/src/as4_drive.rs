@@ -2,7 +2,8 @@
 //! component (Query Identification, Query Services), takes control, resumes it, loads a
 //! waypoint list into its List Manager (Set Element), executes it with the Local or
 //! Global Waypoint List Driver, follows the active element and the pose until the list
-//! is done, then puts the vehicle in standby and gives control back. Over AS5669A on
+//! is done, then puts the vehicle in standby and gives control back. With `--effort` it
+//! drives with Primitive Driver efforts for a while instead, printing the velocity. Over AS5669A on
 //! UDP; prints one line per step and per second of progress.
 
 use std::io::Write;
@@ -14,8 +15,8 @@ use jaus::CommandCode;
 use jaus_as4::{
     ComponentState, ControlConfirmation, Element, ExecuteList, Message, NodeServicesQuery,
     QueryActiveElement, QueryGlobalPose, QueryIdentification, QueryLocalPose, QueryServices,
-    QueryStatus, ReleaseControl, RequestControl, Resume, SetElement, SetGlobalWaypoint,
-    SetLocalWaypoint, Standby,
+    QueryStatus, QueryVelocityState, ReleaseControl, RequestControl, Resume, SetElement,
+    SetGlobalWaypoint, SetLocalWaypoint, SetWrenchEffort, Standby,
 };
 
 /// Options of `jaus as4-drive`.
@@ -49,6 +50,14 @@ pub struct As4DriveArgs {
     /// Longest wait for the list to be driven, seconds.
     #[arg(long, default_value_t = 120)]
     pub timeout: u64,
+    /// Instead of waypoints: drive with efforts through the Primitive Driver,
+    /// `LINEAR,ROTATIONAL` percent (propulsive linear X, rotational Z), sent every 0.2 s
+    /// for `--for` seconds while the velocity state is printed, then zero.
+    #[arg(long, value_name = "LINEAR,ROTATIONAL", conflicts_with_all = ["local", "global"])]
+    pub effort: Option<String>,
+    /// How long to drive with `--effort`, seconds.
+    #[arg(long = "for", default_value_t = 5.0)]
+    pub effort_for: f64,
 }
 
 /// The operator's socket and transport.
@@ -151,6 +160,11 @@ fn pair(text: &str, what: &str) -> Result<(f64, f64), String> {
 /// Runs `jaus as4-drive`.
 pub fn as4_drive(args: &As4DriveArgs, out: &mut impl Write) -> Result<(), String> {
     let global = !args.global.is_empty();
+    let effort = args
+        .effort
+        .as_deref()
+        .map(|e| pair(e, "--effort"))
+        .transpose()?;
     let points: Vec<(f64, f64)> = if global {
         args.global
             .iter()
@@ -162,8 +176,10 @@ pub fn as4_drive(args: &As4DriveArgs, out: &mut impl Write) -> Result<(), String
             .map(|t| pair(t, "--local"))
             .collect::<Result<_, _>>()?
     };
-    if points.is_empty() {
-        return Err("give the waypoints: --local X,Y ... or --global LAT,LON ...".into());
+    if points.is_empty() && effort.is_none() {
+        return Err(
+            "give the waypoints (--local X,Y ... or --global LAT,LON ...) or --effort".into(),
+        );
     }
     if points.len() > 200 {
         return Err(format!("{} waypoints: at most 200", points.len()));
@@ -216,7 +232,9 @@ pub fn as4_drive(args: &As4DriveArgs, out: &mut impl Write) -> Result<(), String
             _ => None,
         },
     )?;
-    let driver = if global {
+    let driver = if effort.is_some() {
+        "urn:jaus:jss:mobility:PrimitiveDriver"
+    } else if global {
         "urn:jaus:jss:mobility:GlobalWaypointListDriver"
     } else {
         "urn:jaus:jss:mobility:LocalWaypointListDriver"
@@ -243,11 +261,75 @@ pub fn as4_drive(args: &As4DriveArgs, out: &mut impl Write) -> Result<(), String
         return Err(format!("control of {} refused: {granted:?}", link.target));
     }
     say("control granted".into());
-    let result = drive(&mut link, args, global, &points, &mut say);
+    let result = match effort {
+        Some(e) => teleoperate(&mut link, args, e, &mut say),
+        None => drive(&mut link, args, global, &points, &mut say),
+    };
     // Whatever happened: standby and control given back.
     let _ = link.send(Standby {});
     let _ = link.send(ReleaseControl {});
     say("standby, control released".into());
+    result
+}
+
+fn resume(link: &mut Link, say: &mut impl FnMut(String)) -> Result<(), String> {
+    link.send(Resume {})?;
+    let status = link.ask(QueryStatus {}, |m| match m {
+        Message::ReportStatus(s) => Some(s.status),
+        _ => None,
+    })?;
+    if status != ComponentState::Ready {
+        return Err(format!("{} is {status:?} after Resume", link.target));
+    }
+    say("ready".into());
+    Ok(())
+}
+
+fn teleoperate(
+    link: &mut Link,
+    args: &As4DriveArgs,
+    (linear, rotational): (f64, f64),
+    say: &mut impl FnMut(String),
+) -> Result<(), String> {
+    resume(link, say)?;
+    let until = Instant::now() + Duration::from_secs_f64(args.effort_for.clamp(0.0, 600.0));
+    let mut next_print = Instant::now();
+    let result = loop {
+        if Instant::now() >= until {
+            break Ok(());
+        }
+        link.send(SetWrenchEffort {
+            propulsive_linear_effort_x: Some(linear),
+            propulsive_rotational_effort_z: Some(rotational),
+            ..Default::default()
+        })?;
+        if Instant::now() >= next_print {
+            next_print += Duration::from_secs(1);
+            match link.ask(
+                QueryVelocityState {
+                    presence_vector: 0x41,
+                },
+                |m| match m {
+                    Message::ReportVelocityState(v) => Some((v.velocity_x, v.yaw_rate)),
+                    _ => None,
+                },
+            ) {
+                Ok((vx, wz)) => say(format!(
+                    "effort {linear}/{rotational} %: velocity x {:.2} m/s, yaw rate {:.2} rad/s",
+                    vx.unwrap_or(f64::NAN),
+                    wz.unwrap_or(f64::NAN)
+                )),
+                Err(e) => break Err(e),
+            }
+        }
+        std::thread::sleep(Duration::from_millis(200));
+    };
+    link.send(SetWrenchEffort {
+        propulsive_linear_effort_x: Some(0.0),
+        propulsive_rotational_effort_z: Some(0.0),
+        ..Default::default()
+    })?;
+    say("efforts zero".into());
     result
 }
 
@@ -258,15 +340,7 @@ fn drive(
     points: &[(f64, f64)],
     say: &mut impl FnMut(String),
 ) -> Result<(), String> {
-    link.send(Resume {})?;
-    let status = link.ask(QueryStatus {}, |m| match m {
-        Message::ReportStatus(s) => Some(s.status),
-        _ => None,
-    })?;
-    if status != ComponentState::Ready {
-        return Err(format!("{} is {status:?} after Resume", link.target));
-    }
-    say("ready".into());
+    resume(link, say)?;
     let n = points.len() as u16;
     let mut elements = Vec::with_capacity(points.len());
     for (i, (a, b)) in points.iter().enumerate() {
