@@ -71,6 +71,7 @@
 
 extern crate self as jaus;
 
+pub mod calendar;
 pub mod codec;
 #[cfg(feature = "component")]
 pub mod component;

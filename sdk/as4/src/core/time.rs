@@ -9,9 +9,9 @@
 
 use std::time::{Duration, Instant};
 
-use crate::messages::{DateStamp, QueryTime, ReportTime, SetTime, TimeStamp};
+use jaus::calendar::Civil;
 
-const DAY_MS: u64 = 86_400_000;
+use crate::messages::{DateStamp, QueryTime, ReportTime, SetTime, TimeStamp};
 
 /// The UTC clock of a component.
 #[derive(Debug, Clone, Copy, Default)]
@@ -38,21 +38,19 @@ impl Time {
 
     /// The time and date stamps at `now`.
     pub fn stamps(&self, now: Instant) -> Option<(TimeStamp, DateStamp)> {
-        let ms = u64::try_from(self.utc(now)?.as_millis()).ok()?;
-        let (y, m, d) = civil_from_days((ms / DAY_MS) as i64);
-        let tod = ms % DAY_MS;
+        let c = Civil::from_utc(self.utc(now)?);
         let time = TimeStamp {
-            millisecond: (tod % 1000) as u16,
-            second: (tod / 1000 % 60) as u8,
-            minute: (tod / 60_000 % 60) as u8,
-            hour: (tod / 3_600_000) as u8,
-            day: d as u8,
+            millisecond: c.millisecond as u16,
+            second: c.second as u8,
+            minute: c.minute as u8,
+            hour: c.hour as u8,
+            day: c.day as u8,
             reserved: 0,
         };
         let date = DateStamp {
-            day: d as u8,
-            month: m as u8,
-            year: (y - 2000).clamp(0, 127) as u8,
+            day: c.day as u8,
+            month: c.month as u8,
+            year: (c.year - 2000).clamp(0, 127) as u8,
             reserved: 0,
         };
         Some((time, date))
@@ -73,95 +71,21 @@ impl Time {
 
     /// Set Time: `Err` names an impossible time or date (nothing changes then).
     pub fn set(&mut self, now: Instant, msg: &SetTime) -> Result<(), String> {
-        let current = self
-            .utc(now)
-            .map_or(0, |u| u64::try_from(u.as_millis()).unwrap_or(0));
-        let (mut y, mut m, mut d) = civil_from_days((current / DAY_MS) as i64);
-        let mut tod = current % DAY_MS;
+        let mut c = Civil::from_utc(self.utc(now).unwrap_or_default());
         if let Some(ds) = &msg.date_stamp {
-            (y, m, d) = (
-                2000 + i64::from(ds.year),
-                u32::from(ds.month),
-                u32::from(ds.day),
-            );
+            c.year = 2000 + i64::from(ds.year);
+            c.month = u32::from(ds.month);
+            c.day = u32::from(ds.day);
         }
         if let Some(ts) = &msg.time_stamp {
-            if ts.hour > 23 || ts.minute > 59 || ts.second > 59 || ts.millisecond > 999 {
-                return Err(format!(
-                    "impossible time {:02}:{:02}:{:02}.{:03}",
-                    ts.hour, ts.minute, ts.second, ts.millisecond
-                ));
-            }
-            d = u32::from(ts.day);
-            tod = ((u64::from(ts.hour) * 60 + u64::from(ts.minute)) * 60 + u64::from(ts.second))
-                * 1000
-                + u64::from(ts.millisecond);
+            c.day = u32::from(ts.day);
+            c.hour = u32::from(ts.hour);
+            c.minute = u32::from(ts.minute);
+            c.second = u32::from(ts.second);
+            c.millisecond = u32::from(ts.millisecond);
         }
-        if !(1..=12).contains(&m) || d == 0 || d > days_in_month(y, m) {
-            return Err(format!("impossible date {y}-{m:02}-{d:02}"));
-        }
-        let days = days_from_civil(y, m, d);
-        let ms = u64::try_from(days).map_err(|_| "date before 1970".to_string())? * DAY_MS + tod;
-        self.set_utc(now, Duration::from_millis(ms));
+        let utc = c.to_utc()?;
+        self.set_utc(now, utc);
         Ok(())
-    }
-}
-
-fn is_leap(y: i64) -> bool {
-    y % 4 == 0 && (y % 100 != 0 || y % 400 == 0)
-}
-
-fn days_in_month(y: i64, m: u32) -> u32 {
-    const DAYS: [u32; 12] = [31, 28, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31];
-    if m == 2 && is_leap(y) {
-        29
-    } else {
-        DAYS[(m.clamp(1, 12) - 1) as usize]
-    }
-}
-
-/// Days since 1970-01-01 of a Gregorian date. Counts from 1 March of year 0 so that
-/// the leap day falls at the end of each counted year, in 400-year cycles.
-fn days_from_civil(y: i64, m: u32, d: u32) -> i64 {
-    let (y, m) = if m <= 2 {
-        (y - 1, i64::from(m) + 9)
-    } else {
-        (y, i64::from(m) - 3)
-    };
-    let cycle = y.div_euclid(400);
-    let year_of_cycle = y - cycle * 400;
-    let day_of_year = (153 * m + 2) / 5 + i64::from(d) - 1;
-    let day_of_cycle = year_of_cycle * 365 + year_of_cycle / 4 - year_of_cycle / 100 + day_of_year;
-    cycle * 146_097 + day_of_cycle - 719_468
-}
-
-/// The date of a day count since 1970-01-01 (inverse of [`days_from_civil`]).
-fn civil_from_days(days: i64) -> (i64, u32, u32) {
-    let z = days + 719_468;
-    let cycle = z.div_euclid(146_097);
-    let day_of_cycle = z - cycle * 146_097;
-    let year_of_cycle =
-        (day_of_cycle - day_of_cycle / 1460 + day_of_cycle / 36_524 - day_of_cycle / 146_096) / 365;
-    let day_of_year =
-        day_of_cycle - (365 * year_of_cycle + year_of_cycle / 4 - year_of_cycle / 100);
-    let mp = (5 * day_of_year + 2) / 153;
-    let d = (day_of_year - (153 * mp + 2) / 5 + 1) as u32;
-    let m = if mp < 10 { mp + 3 } else { mp - 9 } as u32;
-    (year_of_cycle + cycle * 400 + i64::from(m <= 2), m, d)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn calendar_round_trip() {
-        assert_eq!(days_from_civil(1970, 1, 1), 0);
-        assert_eq!(days_from_civil(2000, 3, 1), 11_017);
-        assert_eq!(civil_from_days(11_016), (2000, 2, 29));
-        for z in [0, 59, 60, 11_016, 20_779, 47_541] {
-            let (y, m, d) = civil_from_days(z);
-            assert_eq!(days_from_civil(y, m, d), z);
-        }
     }
 }
