@@ -114,6 +114,14 @@
 //!
 //! On a real socket: `As4Mux::new(ra33_node, as4_node, As4Config::default())` and run it
 //! like the RA 3.3 node ([`jaus::net::udp::run_on`]).
+//!
+//! ## Between the generations
+//!
+//! [`gateway`] presents RA 3.3 components as one AS-4 component (AS-4 clients drive an
+//! RA 3.3 vehicle); [`proxy`] presents an AS-4 vehicle as RA 3.3 components (RA 3.3
+//! clients, the console, drive an AS-4 vehicle). Both may share a node's socket: the
+//! [`As4Mux`](jaus::net::as5669a::As4Mux) gives each AS-4 endpoint the messages for its
+//! ids.
 
 pub mod component;
 pub mod core;
@@ -121,6 +129,7 @@ pub mod embedded;
 pub mod gateway;
 pub mod mobility;
 pub mod node;
+pub mod proxy;
 pub mod service;
 
 /// The generated messages and types of both service sets (group `as4`), the

@@ -235,7 +235,9 @@ impl<E: std::fmt::Debug + Send + 'static, A: PeerAddr> As4Node<E, A> {
     }
 }
 
-fn addressed(dest: As4Id, id: As4Id) -> bool {
+/// Whether a message for `dest` is for component `id` (equal, or a broadcast id that
+/// covers it: 0xFFFF subsystem, 0xFF node or component).
+pub(crate) fn addressed(dest: As4Id, id: As4Id) -> bool {
     (dest.subsystem == 0xFFFF || dest.subsystem == id.subsystem)
         && (dest.node == 0xFF || dest.node == id.node)
         && (dest.component == 0xFF || dest.component == id.component)

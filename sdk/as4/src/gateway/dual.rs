@@ -4,7 +4,7 @@
 use std::net::SocketAddr;
 use std::time::{Duration, Instant};
 
-use jaus::net::as5669a::{As4Config, As4Mux};
+use jaus::net::as5669a::{As4Config, As4Endpoint, As4Mux};
 use jaus::net::{Datagram, NetError, Node, Participant, PeerAddr, Via};
 use jaus::Address;
 
@@ -32,6 +32,14 @@ impl<A: PeerAddr> DualNode<A> {
         let now = dual.mux.inner().now();
         dual.refresh(now);
         Ok(dual)
+    }
+
+    /// With another AS-4 endpoint on the same socket (an
+    /// [`As4Proxy`](crate::proxy::As4Proxy): this node is also an AS-4 client of a
+    /// vehicle), served the messages for its own id ([`As4Mux`]'s routing).
+    pub fn with_endpoint(mut self, endpoint: impl As4Endpoint<A>) -> Self {
+        self.mux.add_endpoint(endpoint);
+        self
     }
 
     /// The RA 3.3 node.

@@ -262,6 +262,13 @@ impl<A: PeerAddr> As4Endpoint<A> for Gateway<A> {
     fn wall_clock(&mut self, now: Instant, utc: Duration) {
         self.node.set_utc(now, utc);
     }
+
+    /// Messages for its AS-4 component (or a broadcast covering it): on a socket shared
+    /// with an [`As4Proxy`](crate::proxy::As4Proxy), the proxy's answers are not the
+    /// gateway's.
+    fn serves(&self, destination: As4Id) -> bool {
+        crate::node::addressed(destination, self.as4)
+    }
 }
 
 impl<A: PeerAddr> Endpoint for Gateway<A> {

@@ -286,6 +286,17 @@ impl<K: Kind> ListDriver<K> {
     }
 }
 
+/// Whether the component's list starts with an element that is not a waypoint of kind
+/// `K` (the other list driver's list).
+fn holds_other_kind<K: Kind>(cx: &Cx<'_, Ra33Side>) -> bool {
+    cx.lists
+        .head()
+        .and_then(|h| cx.lists.get(h))
+        .and_then(|e| e.message())
+        .and_then(Result::ok)
+        .is_some_and(|m| K::waypoint(&m).is_none())
+}
+
 impl<K: Kind> Service<Ra33Side> for ListDriver<K> {
     fn id(&self) -> ServiceId {
         K::ID
@@ -310,6 +321,13 @@ impl<K: Kind> Service<Ra33Side> for ListDriver<K> {
                     return Handled::Refused("Execute List needs control and Ready".into());
                 }
                 self.execute(cx, e)
+            }
+            // One component, one list: while it holds the other kind's waypoints, the
+            // other list driver answers for it.
+            Message::QueryActiveElement(_) | Message::QueryTravelSpeed(_)
+                if holds_other_kind::<K>(cx) =>
+            {
+                Handled::NotMine
             }
             Message::QueryActiveElement(_) => Handled::Reply(
                 ReportActiveElement {

@@ -92,9 +92,12 @@ impl Service<Ra33Side> for PrimitiveDriver {
         from: crate::ComponentState,
         to: crate::ComponentState,
     ) {
-        // Leaving Ready stops the efforts at once (the RA 3.3 driver's own standby
-        // follows from the gateway's control of it).
-        if from == crate::ComponentState::Ready && to != crate::ComponentState::Ready {
+        // Leaving Ready stops the efforts at once, when the gateway drives the RA 3.3
+        // Primitive Driver itself (its standby follows from the gateway's control).
+        if from == crate::ComponentState::Ready
+            && to != crate::ComponentState::Ready
+            && cx.env.control_of(self.driver) == crate::gateway::ra33::Ra33Control::Granted
+        {
             cx.env.send(
                 self.driver,
                 RaSetWrenchEffort {

@@ -137,6 +137,13 @@ pub trait As4Endpoint<A: PeerAddr = SocketAddr>: std::fmt::Debug + Send + 'stati
     fn wall_clock(&mut self, now: Instant, utc: std::time::Duration) {
         let _ = (now, utc);
     }
+    /// Whether messages for `destination` are this endpoint's: an [`As4Mux`] with
+    /// several endpoints hands each one the messages it serves (default: every
+    /// message, for a mux with one endpoint).
+    fn serves(&self, destination: As4Id) -> bool {
+        let _ = destination;
+        true
+    }
 }
 
 /// Settings of an [`As4Stack`].
@@ -339,15 +346,25 @@ impl<A: PeerAddr> As4Stack<A> {
     }
 }
 
-/// A host of RA 3.3 (`P`, e.g. a [`Node`](crate::net::Node)) and an AS-4 endpoint on
-/// one carrier: version-2 datagrams go to the endpoint through an [`As4Stack`], all
-/// others to the host. Run it like the host ([`shell::run`](crate::net::shell::run),
+/// A host of RA 3.3 (`P`, e.g. a [`Node`](crate::net::Node)) and AS-4 endpoints on one
+/// carrier: version-2 datagrams go to the endpoints through an [`As4Stack`], all others
+/// to the host. Run it like the host ([`shell::run`](crate::net::shell::run),
 /// [`udp::run_on`](crate::net::udp::run_on)); [`inner`](Self::inner) reaches the host.
+///
+/// **Several endpoints on one socket.** A node may answer AS-4 clients (a gateway
+/// presenting its RA 3.3 components) and be an AS-4 client of other vehicles (a proxy
+/// presenting them as RA 3.3 components) at once. Each endpoint added
+/// ([`with_endpoint`](Self::with_endpoint), [`with_hosted`](Self::with_hosted)) gets
+/// the received messages whose destination it [serves](As4Endpoint::serves), in order
+/// (a broadcast destination may be served by several); their answers go back to the
+/// sender. A message no endpoint serves is dropped and counted
+/// ([`unrouted`](Self::unrouted)). Every endpoint's timer is run.
 #[derive(Debug)]
 pub struct As4Mux<P, A: PeerAddr = SocketAddr> {
     inner: P,
     stack: As4Stack<A>,
-    endpoint: EndpointAt<P, A>,
+    endpoints: Vec<EndpointAt<P, A>>,
+    unrouted: u64,
 }
 
 /// Finds an AS-4 endpoint that lives inside the host: an RA 3.3 component of a node
@@ -368,15 +385,15 @@ enum EndpointAt<P, A: PeerAddr> {
 }
 
 impl<P: 'static, A: PeerAddr> As4Mux<P, A> {
-    fn endpoint_ref(&self) -> Option<&dyn As4Endpoint<A>> {
-        match &self.endpoint {
+    fn endpoint_ref(&self, i: usize) -> Option<&dyn As4Endpoint<A>> {
+        match self.endpoints.get(i)? {
             EndpointAt::Own(e) => Some(e.as_ref()),
             EndpointAt::Hosted(h) => h.get(&self.inner),
         }
     }
 
-    fn endpoint_mut(&mut self) -> Option<&mut dyn As4Endpoint<A>> {
-        match &mut self.endpoint {
+    fn endpoint_mut(&mut self, i: usize) -> Option<&mut dyn As4Endpoint<A>> {
+        match self.endpoints.get_mut(i)? {
             EndpointAt::Own(e) => Some(e.as_mut()),
             EndpointAt::Hosted(h) => h.get_mut(&mut self.inner),
         }
@@ -389,7 +406,8 @@ impl<P: Participant<A> + 'static, A: PeerAddr> As4Mux<P, A> {
         Self {
             inner,
             stack: As4Stack::new(config),
-            endpoint: EndpointAt::Own(Box::new(endpoint)),
+            endpoints: vec![EndpointAt::Own(Box::new(endpoint))],
+            unrouted: 0,
         }
     }
 
@@ -401,8 +419,32 @@ impl<P: Participant<A> + 'static, A: PeerAddr> As4Mux<P, A> {
         Self {
             inner,
             stack: As4Stack::new(config),
-            endpoint: EndpointAt::Hosted(Box::new(hosted)),
+            endpoints: vec![EndpointAt::Hosted(Box::new(hosted))],
+            unrouted: 0,
         }
+    }
+
+    /// With another endpoint, owned by the mux, after those already there (see the
+    /// type's documentation for how messages are shared out).
+    pub fn with_endpoint(mut self, endpoint: impl As4Endpoint<A>) -> Self {
+        self.endpoints.push(EndpointAt::Own(Box::new(endpoint)));
+        self
+    }
+
+    /// With another endpoint that lives inside the host, after those already there.
+    pub fn with_hosted(mut self, hosted: impl HostedEndpoint<P, A>) -> Self {
+        self.endpoints.push(EndpointAt::Hosted(Box::new(hosted)));
+        self
+    }
+
+    /// Adds an endpoint owned by the mux (as [`with_endpoint`](Self::with_endpoint)).
+    pub fn add_endpoint(&mut self, endpoint: impl As4Endpoint<A>) {
+        self.endpoints.push(EndpointAt::Own(Box::new(endpoint)));
+    }
+
+    /// Messages received that no endpoint serves (dropped).
+    pub fn unrouted(&self) -> u64 {
+        self.unrouted
     }
 
     /// The RA 3.3 host.
@@ -430,10 +472,16 @@ impl<P: Participant<A> + 'static, A: PeerAddr> As4Mux<P, A> {
         &mut self.stack
     }
 
-    /// The endpoint, for a caller that knows its type (`None` when a hosted endpoint
-    /// is not in the host).
+    /// The first endpoint, for a caller that knows its type (`None` when a hosted
+    /// endpoint is not in the host).
     pub fn endpoint(&self) -> Option<&dyn As4Endpoint<A>> {
-        self.endpoint_ref()
+        self.endpoint_ref(0)
+    }
+
+    /// Endpoint `i` in the order they were added (`None` past the end, or when a
+    /// hosted endpoint is not in the host).
+    pub fn endpoint_at(&self, i: usize) -> Option<&dyn As4Endpoint<A>> {
+        self.endpoint_ref(i)
     }
 
     /// Whether `datagram` is for the AS5669A side.
@@ -442,20 +490,47 @@ impl<P: Participant<A> + 'static, A: PeerAddr> As4Mux<P, A> {
     }
 
     fn as4(&mut self, now: Instant, from: A, datagram: &[u8]) {
-        match self.stack.receive(now, from, datagram) {
-            Ok(messages) if !messages.is_empty() => {
-                let Some(endpoint) = self.endpoint_mut() else {
-                    tracing::debug!(%from, "AS5669A messages dropped: no AS-4 endpoint in the host");
-                    return;
-                };
-                let replies = endpoint.handle(now, from, messages);
-                self.stack.send(from, &replies);
-                if matches!(self.endpoint, EndpointAt::Hosted(_)) {
-                    self.inner.handle_timeout(now);
-                }
+        let messages = match self.stack.receive(now, from, datagram) {
+            Ok(m) => m,
+            Err(e) => {
+                tracing::debug!(%from, "AS5669A datagram dropped: {e}");
+                return;
             }
-            Ok(_) => {}
-            Err(e) => tracing::debug!(%from, "AS5669A datagram dropped: {e}"),
+        };
+        if messages.is_empty() {
+            return;
+        }
+        let mut routed = vec![false; messages.len()];
+        let mut replies = Vec::new();
+        let mut hosted = false;
+        for i in 0..self.endpoints.len() {
+            let is_hosted = matches!(self.endpoints[i], EndpointAt::Hosted(_));
+            let Some(endpoint) = self.endpoint_mut(i) else {
+                continue;
+            };
+            let batch: Vec<As4Message> = messages
+                .iter()
+                .zip(routed.iter_mut())
+                .filter(|(m, _)| endpoint.serves(m.destination))
+                .map(|(m, r)| {
+                    *r = true;
+                    m.clone()
+                })
+                .collect();
+            if batch.is_empty() {
+                continue;
+            }
+            replies.extend(endpoint.handle(now, from, batch));
+            hosted |= is_hosted;
+        }
+        let lost = routed.iter().filter(|r| !**r).count() as u64;
+        if lost > 0 {
+            self.unrouted += lost;
+            tracing::debug!(%from, lost, "AS5669A messages dropped: no AS-4 endpoint serves their destination");
+        }
+        self.stack.send(from, &replies);
+        if hosted {
+            self.inner.handle_timeout(now);
         }
     }
 }
@@ -480,12 +555,14 @@ impl<P: Participant<A> + 'static, A: PeerAddr> Participant<A> for As4Mux<P, A> {
     fn handle_timeout(&mut self, now: Instant) {
         self.inner.handle_timeout(now);
         self.stack.handle_timeout(now);
-        let sends = match self.endpoint_mut() {
-            Some(e) if e.poll_timeout().is_some_and(|t| t <= now) => e.handle_timeout(now),
-            _ => Vec::new(),
-        };
-        for s in sends {
-            self.stack.send(s.to, std::slice::from_ref(&s.message));
+        for i in 0..self.endpoints.len() {
+            let sends = match self.endpoint_mut(i) {
+                Some(e) if e.poll_timeout().is_some_and(|t| t <= now) => e.handle_timeout(now),
+                _ => Vec::new(),
+            };
+            for s in sends {
+                self.stack.send(s.to, std::slice::from_ref(&s.message));
+            }
         }
     }
 
@@ -500,21 +577,23 @@ impl<P: Participant<A> + 'static, A: PeerAddr> Participant<A> for As4Mux<P, A> {
     }
 
     fn poll_timeout(&self) -> Option<Instant> {
-        [
-            self.inner.poll_timeout(),
-            self.stack.poll_timeout(),
-            self.endpoint_ref().and_then(|e| e.poll_timeout()),
-        ]
-        .into_iter()
-        .flatten()
-        .min()
+        [self.inner.poll_timeout(), self.stack.poll_timeout()]
+            .into_iter()
+            .chain(
+                (0..self.endpoints.len())
+                    .map(|i| self.endpoint_ref(i).and_then(|e| e.poll_timeout())),
+            )
+            .flatten()
+            .min()
     }
 
     fn wall_clock(&mut self, now: Instant, utc: std::time::Duration) {
         self.inner.wall_clock(now, utc);
         // A hosted endpoint hears it from its host (an RA 3.3 component of the node).
-        if let EndpointAt::Own(e) = &mut self.endpoint {
-            e.wall_clock(now, utc);
+        for e in &mut self.endpoints {
+            if let EndpointAt::Own(e) = e {
+                e.wall_clock(now, utc);
+            }
         }
     }
 

@@ -311,6 +311,65 @@ impl NodeFile {
         Some(config)
     }
 
+    /// The proxies of `as4_vehicles:`: each one's settings and the vehicle's address
+    /// (`path`: the file, for the errors).
+    pub fn as4_vehicles(
+        &self,
+        path: &Path,
+    ) -> Result<Vec<(jaus_as4::proxy::ProxyConfig, std::net::SocketAddr)>, String> {
+        use jaus_as4::proxy::{ProxyConfig, Role};
+        let mut out = Vec::new();
+        for (i, v) in self.as4_vehicles.iter().enumerate() {
+            let at = |what: &str, e: String| {
+                format!("{}: as4_vehicles[{i}].{what}: {e}", path.display())
+            };
+            let vehicle =
+                v.id.as_deref()
+                    .map(parse_as4_id)
+                    .transpose()
+                    .map_err(|e| at("id", e))?;
+            let me = match &v.proxy_id {
+                Some(t) => parse_as4_id(t).map_err(|e| at("proxy_id", e))?,
+                None => jaus::net::as5669a::As4Id::new(
+                    u16::from(self.subsystem),
+                    self.node,
+                    200u8.saturating_add(i as u8),
+                ),
+            };
+            let mut config = ProxyConfig::new(me, vehicle);
+            config.instance = v.instance.unwrap_or(i as u8 + 1);
+            if let Some(a) = v.authority {
+                config.authority = a;
+            }
+            if let Some(names) = &v.services {
+                config.roles = names
+                    .iter()
+                    .map(|n| {
+                        Role::ALL
+                            .into_iter()
+                            .find(|r| role_name(*r) == n)
+                            .ok_or_else(|| {
+                                let all: Vec<&str> = Role::ALL.into_iter().map(role_name).collect();
+                                at(
+                                    "services",
+                                    format!("`{n}` is not one of {}", all.join(", ")),
+                                )
+                            })
+                    })
+                    .collect::<Result<_, _>>()?;
+            }
+            if let Some(f) = v.frame {
+                config.frame = jaus_as4::gateway::ra33::Frame {
+                    x: f.x,
+                    y: f.y,
+                    yaw: f.yaw,
+                };
+            }
+            out.push((config, v.peer));
+        }
+        Ok(out)
+    }
+
     /// The node this file describes, its `host:` entries built and added, starting at
     /// `t0` (`path`: the file, for the errors).
     pub fn build_node(&self, path: &Path, t0: Instant) -> Result<Node, String> {
@@ -363,5 +422,88 @@ impl NodeFile {
             }
         }
         Ok(node)
+    }
+}
+
+/// The name of a proxy role in `as4_vehicles:` (`services:`).
+fn role_name(r: jaus_as4::proxy::Role) -> &'static str {
+    use jaus_as4::proxy::Role;
+    match r {
+        Role::VelocityStateSensor => "velocity_state_sensor",
+        Role::LocalPoseSensor => "local_pose_sensor",
+        Role::GlobalPoseSensor => "global_pose_sensor",
+        Role::PrimitiveDriver => "primitive_driver",
+        Role::LocalWaypointDriver => "local_waypoint_driver",
+        Role::GlobalWaypointDriver => "global_waypoint_driver",
+    }
+}
+
+/// An AS-4 id written `subsystem.node.component` (65535 and 255 for every one).
+pub fn parse_as4_id(text: &str) -> Result<jaus::net::as5669a::As4Id, String> {
+    let parts: Vec<&str> = text.trim().split('.').collect();
+    let [s, n, c] = parts.as_slice() else {
+        return Err(format!("`{text}`: an AS-4 id is subsystem.node.component"));
+    };
+    let bad = |what: &str, e: std::num::ParseIntError| format!("`{text}`: {what}: {e}");
+    Ok(jaus::net::as5669a::As4Id::new(
+        s.parse().map_err(|e| bad("subsystem", e))?,
+        n.parse().map_err(|e| bad("node", e))?,
+        c.parse().map_err(|e| bad("component", e))?,
+    ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn file(yaml: &str) -> NodeFile {
+        serde_yaml::from_str(yaml).unwrap()
+    }
+
+    #[test]
+    fn as4_vehicles_are_read_with_their_defaults_and_errors_name_the_field() {
+        let f = file(
+            "subsystem: 2\nnode: 3\nbind: 127.0.0.1:0\nas4_vehicles:\n  - { peer: 127.0.0.1:3794, id: 1.1.1 }\n  - { peer: 127.0.0.1:3795, proxy_id: 9.9.9, instance: 7, authority: 10, services: [global_pose_sensor, global_waypoint_driver], frame: { x: 1, yaw: 0.5 } }\n",
+        );
+        let v = f.as4_vehicles(Path::new("n.yaml")).unwrap();
+        assert_eq!(v.len(), 2);
+        let (a, peer) = &v[0];
+        assert_eq!(peer.port(), 3794);
+        assert_eq!(a.vehicle, Some(jaus::net::as5669a::As4Id::new(1, 1, 1)));
+        assert_eq!(
+            (a.me, a.instance, a.authority, a.roles.len()),
+            (jaus::net::as5669a::As4Id::new(2, 3, 200), 1, 200, 6)
+        );
+        let (b, _) = &v[1];
+        assert_eq!(b.vehicle, None);
+        assert_eq!(
+            (b.me, b.instance, b.authority),
+            (jaus::net::as5669a::As4Id::new(9, 9, 9), 7, 10)
+        );
+        assert_eq!(
+            b.roles,
+            vec![
+                jaus_as4::proxy::Role::GlobalPoseSensor,
+                jaus_as4::proxy::Role::GlobalWaypointDriver
+            ]
+        );
+        assert_eq!((b.frame.x, b.frame.y, b.frame.yaw), (1.0, 0.0, 0.5));
+
+        let bad = file(
+            "subsystem: 2\nnode: 1\nbind: 127.0.0.1:0\nas4_vehicles: [{ peer: 127.0.0.1:1, services: [sonar] }]\n",
+        );
+        let e = bad.as4_vehicles(Path::new("n.yaml")).unwrap_err();
+        assert!(
+            e.contains("as4_vehicles[0].services") && e.contains("`sonar`"),
+            "{e}"
+        );
+        let bad = file(
+            "subsystem: 2\nnode: 1\nbind: 127.0.0.1:0\nas4_vehicles: [{ peer: 127.0.0.1:1, id: 1.x.1 }]\n",
+        );
+        let e = bad.as4_vehicles(Path::new("n.yaml")).unwrap_err();
+        assert!(
+            e.contains("as4_vehicles[0].id") && e.contains("node"),
+            "{e}"
+        );
     }
 }

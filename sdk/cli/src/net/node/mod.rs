@@ -137,6 +137,83 @@ pub struct NodeFile {
     /// 3.3 components as AS-4 services (see [`As4File`]).
     #[serde(default)]
     pub as4: Option<As4File>,
+    /// AS-4 vehicles this node presents as RA 3.3 components (an AS-4 client of each,
+    /// on the node's own socket; see [`As4VehicleFile`]).
+    #[serde(default)]
+    pub as4_vehicles: Vec<As4VehicleFile>,
+}
+
+/// One entry of `as4_vehicles:` of a node file: an AS-4 vehicle presented as RA 3.3
+/// components of this node (`jaus_as4::proxy`), so that RA 3.3 clients (`jaus ocu
+/// --peer` this node) see and drive it. The node is an AS-4 client of the vehicle on
+/// its own socket (AS5669A beside RA 3.3; with `as4:` too, the socket serves both
+/// directions: each AS-4 message goes to the side its destination id names). The
+/// components take the standard ids of Part 1 on this node: Velocity State Sensor 42,
+/// Local Pose Sensor 41, Global Pose Sensor 38, Primitive Driver 33, Local Waypoint
+/// Driver 46, Global Waypoint Driver 45 (at `instance`), over the vehicle's AS-4
+/// Mobility services found by Discovery. An RA 3.3 client's control of a driver is
+/// granted once the node holds AS-4 control of the vehicle; Resume, Standby and
+/// emergencies cross over; waypoints and a travel speed become an AS-4 list executed
+/// at that speed. The console expects one vehicle per RA 3.3 subsystem: present each
+/// vehicle on a node of its own subsystem.
+///
+/// ```yaml
+/// subsystem: 2
+/// node: 1
+/// bind: 0.0.0.0:3794
+/// as4_vehicles:
+///   - peer: 192.168.1.20:3794   # the vehicle's AS5669A address (required)
+///     id: 1.1.1                 # its AS-4 component (S.N.C), or S.255.255; default:
+///                               #   every component at that address (Discovery finds them)
+///     proxy_id: 2.1.200         # this node's AS-4 id as the vehicle's client; default
+///                               #   subsystem.node.200 (201, … for the next entries)
+///     instance: 1               # RA 3.3 instance of the components; default 1, 2, …
+///     authority: 200            # with which AS-4 control is requested; default 200
+///     services: [global_pose_sensor, velocity_state_sensor, global_waypoint_driver]
+///                               # default: all six (names as above, snake case)
+///     frame: { x: 0, y: 0, yaw: 0 }  # the AS-4 local frame in the RA 3.3 one
+///                               #   (m, m, rad); default identity
+/// ```
+#[derive(Debug, Clone, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct As4VehicleFile {
+    /// The vehicle's AS5669A address.
+    pub peer: SocketAddr,
+    /// The vehicle's AS-4 id (`S.N.C`; `S.255.255` for a subsystem); default: every
+    /// component at `peer`.
+    #[serde(default)]
+    pub id: Option<String>,
+    /// This node's AS-4 id as the vehicle's client (`S.N.C`).
+    #[serde(default)]
+    pub proxy_id: Option<String>,
+    /// RA 3.3 instance of the presented components.
+    #[serde(default)]
+    pub instance: Option<u8>,
+    /// Authority of the AS-4 control requests (default 200).
+    #[serde(default)]
+    pub authority: Option<u8>,
+    /// The presented services (default all six).
+    #[serde(default)]
+    pub services: Option<Vec<String>>,
+    /// The AS-4 local frame relative to the RA 3.3 one (default identity).
+    #[serde(default)]
+    pub frame: Option<FrameFile>,
+}
+
+/// `frame:` of an `as4_vehicles:` entry: AS-4 local = rotate(yaw) · RA 3.3 local +
+/// (x, y).
+#[derive(Debug, Clone, Copy, Default, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FrameFile {
+    /// Metres.
+    #[serde(default)]
+    pub x: f64,
+    /// Metres.
+    #[serde(default)]
+    pub y: f64,
+    /// Radians.
+    #[serde(default)]
+    pub yaw: f64,
 }
 
 /// `as4:` of a node file: the node answers AS-4 clients (AS5669A, JUDP version 2, on

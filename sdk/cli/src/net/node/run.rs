@@ -109,6 +109,19 @@ pub fn node(
             gw.as4, gw.present, gw.ra33
         );
     }
+    let vehicles = file.as4_vehicles(config)?;
+    let mut proxies = Vec::new();
+    for (v, peer) in vehicles {
+        let (me, instance) = (v.me, v.instance);
+        let p = jaus_as4::proxy::install(&mut node, v, peer, t0)
+            .map_err(|e| format!("{}: as4_vehicles: {e}", config.display()))?;
+        let _ = writeln!(
+            out,
+            "AS-4 vehicle at {peer} presented as RA 3.3 components {}.{}.*.{instance} (AS-4 client {me})",
+            file.subsystem, file.node
+        );
+        proxies.push(p);
+    }
     let _ = out.flush();
     let mut printer = TreePrinter::new(Duration::from_secs(1));
     let socket = std::net::UdpSocket::bind(file.bind).map_err(|e| format!("{}: {e}", file.bind))?;
@@ -203,8 +216,10 @@ pub fn node(
             writer = None;
         }
     };
-    let result = match as4 {
-        None => udp::run_node(
+    let mut proxies = proxies.into_iter();
+    let first_proxy = if as4.is_none() { proxies.next() } else { None };
+    let result = match (as4, first_proxy) {
+        (None, None) => udp::run_node(
             &mut node,
             sockets,
             &io,
@@ -213,11 +228,38 @@ pub fn node(
             |n| show_tree(n),
             &mut tap,
         ),
-        Some(gw) => {
+        (None, Some(first)) => {
+            // AS-4 vehicles only: the node is their client on its own socket, each
+            // proxy served the messages for its own AS-4 id.
+            let mut mux = jaus::net::as5669a::As4Mux::new(
+                node,
+                first,
+                jaus::net::as5669a::As4Config::default(),
+            );
+            for p in proxies {
+                mux.add_endpoint(p);
+            }
+            let r = udp::run_node(
+                &mut mux,
+                sockets,
+                &io,
+                stop,
+                until,
+                |m| show_tree(m.inner()),
+                &mut tap,
+            );
+            node = mux.into_inner();
+            r
+        }
+        (Some(gw), _) => {
             // AS-4 clients on the same socket: version-2 datagrams go to the gateway
-            // the node hosts, which finds the presented components in the tree.
+            // the node hosts, which finds the presented components in the tree (and
+            // to the proxies of `as4_vehicles:`, those for their ids).
             let mut dual = jaus_as4::gateway::DualNode::new(node, gw)
                 .map_err(|e| format!("{}: as4: {e}", config.display()))?;
+            for p in proxies {
+                dual = dual.with_endpoint(p);
+            }
             let r = udp::run_node(
                 &mut dual,
                 sockets,

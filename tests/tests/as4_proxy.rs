@@ -1,0 +1,339 @@
+//! The other direction of the gateway over the simulated network: an AS-4 vehicle (the
+//! demo's vehicle behind our gateway, `DualNode`, RA 3.3 subsystem 1) reached only over
+//! AS5669A by a node of RA 3.3 subsystem 2 hosting `jaus_as4::proxy` (its RA 3.3
+//! components presenting the vehicle's Mobility services); an RA 3.3 operator (the
+//! console's logic, `jaus::stock::commander::Station`, subsystem 200, peered with the
+//! proxy node only) takes control of the proxy's Global Waypoint Driver, sends two
+//! waypoints with Resume and a speed, and the simulated vehicle must arrive (its pose
+//! read on the vehicle's own node). Then an AS-4 client of higher authority takes the
+//! vehicle: the operator gets Reject Component Control, and its next request is refused.
+
+use std::collections::VecDeque;
+use std::net::SocketAddr;
+use std::time::{Duration, Instant};
+
+use jaus::component::Component;
+use jaus::component::Config;
+use jaus::components::system_commander;
+use jaus::net::as5669a::{As4Config, As4Id, As4Message, As4Mux, As4Stack};
+use jaus::net::{Datagram, Node, NodeConfig, Participant, SystemTree};
+use jaus::stock::commander::view::{ComponentView, SystemView};
+use jaus::stock::commander::{Command, GeoPoint, Station, StationConfig, TreeInput};
+use jaus::{Address, JausMessage};
+use jaus_as4::gateway::{DualNode, GatewayConfig};
+use jaus_as4::proxy::{install, ProxyConfig};
+use jaus_sim::network::{LinkModel, SimNet};
+
+const VEHICLE: As4Id = As4Id::new(1, 1, 1);
+const PROXY: As4Id = As4Id::new(2, 1, 200);
+const RIVAL: As4Id = As4Id::new(42, 1, 1);
+const STATION: Address = Address::new(200, 1, 40, 1);
+const GWD: Address = Address::new(2, 1, 45, 1);
+
+type Hosted = Component<system_commander::Dispatch<Station>>;
+
+/// An AS-4 client of its own (the rival that takes the vehicle away).
+#[derive(Debug)]
+struct Client {
+    stack: As4Stack<SocketAddr>,
+    inbox: VecDeque<As4Message>,
+}
+
+impl Participant for Client {
+    fn handle_datagram(&mut self, now: Instant, peer: SocketAddr, datagram: &[u8]) {
+        if let Ok(ms) = self.stack.receive(now, peer, datagram) {
+            self.inbox.extend(ms);
+        }
+    }
+    fn handle_timeout(&mut self, now: Instant) {
+        self.stack.handle_timeout(now);
+    }
+    fn poll_transmit(&mut self) -> Option<Datagram<SocketAddr>> {
+        self.stack.poll_transmit()
+    }
+    fn poll_timeout(&self) -> Option<Instant> {
+        self.stack.poll_timeout()
+    }
+    fn as_any(&self) -> &dyn std::any::Any {
+        self
+    }
+    fn as_any_mut(&mut self) -> &mut dyn std::any::Any {
+        self
+    }
+}
+
+fn tree_input(tree: &SystemTree) -> TreeInput {
+    let mut t = TreeInput::default();
+    for (ss, s) in &tree.subsystems {
+        t.subsystems.insert(*ss, s.name.clone());
+        for (n, node) in &s.nodes {
+            t.nodes.insert((*ss, *n), node.name.clone());
+            for ((c, i), info) in &node.components {
+                t.components
+                    .insert(Address::new(*ss, *n, *c, *i), info.name.clone());
+            }
+        }
+    }
+    t
+}
+
+struct Rig {
+    net: SimNet,
+    vehicle: usize,
+    operator: usize,
+    rival: usize,
+}
+
+impl Rig {
+    fn new() -> Self {
+        let t0 = Instant::now();
+        let mut net = SimNet::new(t0, LinkModel::default(), 11);
+        let node = jaus_sim::demo::vehicle_node(t0, NodeConfig::default(), 1, 1).unwrap();
+        let config = GatewayConfig::new(VEHICLE, Address::new(1, 1, 60, 1), 1, "demo vehicle");
+        let vehicle = net.add(DualNode::new(node, config).unwrap());
+        let mut pnode: Node = Node::new(
+            NodeConfig {
+                subsystem: 2,
+                node: 1,
+                ..NodeConfig::default()
+            },
+            t0,
+        );
+        let proxy = install(
+            &mut pnode,
+            ProxyConfig::new(PROXY, None),
+            SimNet::addr(vehicle),
+            t0,
+        )
+        .unwrap();
+        let p = net.add(As4Mux::new(pnode, proxy, As4Config::default()));
+        let mut onode: Node = Node::new(
+            NodeConfig {
+                subsystem: 200,
+                node: 1,
+                peers: vec![SimNet::addr(p)],
+                ..NodeConfig::default()
+            },
+            t0,
+        );
+        onode
+            .add(system_commander::component(
+                STATION,
+                Station::new(StationConfig::default()),
+                Config::default(),
+                t0,
+            ))
+            .unwrap();
+        let operator = net.add(onode);
+        let rival = net.add(Client {
+            stack: As4Stack::new(As4Config::default()),
+            inbox: VecDeque::new(),
+        });
+        Rig {
+            net,
+            vehicle,
+            operator,
+            rival,
+        }
+    }
+
+    fn station(&mut self) -> &mut Station {
+        let node = self.net.node_mut(self.operator).unwrap();
+        let tree = tree_input(node.tree());
+        let s = &mut node.get_mut::<Hosted>(STATION).unwrap().behaviour_mut().0;
+        s.set_tree(tree);
+        s
+    }
+
+    /// Runs in steps of 100 ms, the station's tree kept up to date, until `f` of its
+    /// view says yes (or `limit` passes).
+    fn until<T>(
+        &mut self,
+        what: &str,
+        limit: Duration,
+        mut f: impl FnMut(&SystemView, &mut Self) -> Option<T>,
+    ) -> T {
+        let start = self.net.now();
+        loop {
+            self.net.run_for(Duration::from_millis(100));
+            let now = self.net.now();
+            let view = self.station().view(now, Duration::ZERO, false);
+            if let Some(t) = f(&view, self) {
+                return t;
+            }
+            assert!(
+                now.duration_since(start) < limit,
+                "{what}: not within {limit:?}; the driver: {:#?}; notices: {:#?}",
+                component(&view, GWD),
+                view.notices
+            );
+        }
+    }
+
+    /// The vehicle's true position: its own Global Pose Sensor's latest report, as the
+    /// gateway on the vehicle's node received it.
+    fn true_position(&self) -> Option<(f64, f64)> {
+        let dual = self.net.get::<DualNode>(self.vehicle)?;
+        let side = dual.gateway()?.node().env();
+        let gps = side.targets().global_pose_sensor?;
+        match side.latest(gps, jaus::messages::ReportGlobalPose::CODE) {
+            Some((_, jaus::messages::Message::ReportGlobalPose(p))) => {
+                Some((p.latitude?, p.longitude?))
+            }
+            _ => None,
+        }
+    }
+
+    fn rival_send(&mut self, m: impl Into<jaus_as4::Message>) {
+        let m: jaus_as4::Message = m.into();
+        let body = jaus::codec::Encode::to_bytes(m.body()).unwrap();
+        let to = SimNet::addr(self.vehicle);
+        let c = self.net.get_mut::<Client>(self.rival).unwrap();
+        c.stack
+            .send(to, &[As4Message::new(m.code().0, VEHICLE, RIVAL, body)]);
+    }
+}
+
+fn component(view: &SystemView, a: Address) -> Option<&ComponentView> {
+    let text = a.to_string();
+    view.subsystems
+        .iter()
+        .flat_map(|s| &s.nodes)
+        .flat_map(|n| &n.components)
+        .find(|c| c.address == text)
+}
+
+/// Metres between two positions (equirectangular; exact enough over metres).
+fn metres(a: (f64, f64), b: (f64, f64)) -> f64 {
+    let r = 6_371_000.0_f64;
+    let north = (b.0 - a.0).to_radians() * r;
+    let east = (b.1 - a.1).to_radians() * r * ((a.0 + b.0) / 2.0).to_radians().cos();
+    north.hypot(east)
+}
+
+/// `from` moved `north` and `east` metres.
+fn offset(from: (f64, f64), north: f64, east: f64) -> GeoPoint {
+    let r = 6_371_000.0_f64;
+    GeoPoint {
+        latitude: from.0 + (north / r).to_degrees(),
+        longitude: from.1 + (east / (r * from.0.to_radians().cos())).to_degrees(),
+    }
+}
+
+#[test]
+fn an_ra33_operator_drives_an_as4_vehicle_through_the_proxy() {
+    // RUST_LOG=jaus_as4=debug shows what crosses.
+    let _ = tracing_subscriber::fmt()
+        .with_env_filter(tracing_subscriber::EnvFilter::from_default_env())
+        .with_test_writer()
+        .try_init();
+    let mut rig = Rig::new();
+
+    // The operator sees the vehicle's services as RA 3.3 components of subsystem 2, and
+    // nothing of the vehicle's own RA 3.3 subsystem: only AS5669A crosses.
+    let start = rig.until(
+        "the proxy's pose at the operator",
+        Duration::from_secs(20),
+        |v, _| {
+            let s = v.subsystems.iter().find(|s| s.id == 2)?;
+            let p = s.pose.as_ref()?;
+            Some((p.latitude, p.longitude))
+        },
+    );
+    let tree = tree_input(rig.net.node(rig.operator).unwrap().tree());
+    for id in [33, 38, 41, 42, 45, 46] {
+        assert!(
+            tree.components.contains_key(&Address::new(2, 1, id, 1)),
+            "2.1.{id}.1 not in {:?}",
+            tree.components.keys().collect::<Vec<_>>()
+        );
+    }
+    assert!(
+        tree.components.keys().all(|a| a.subsystem != 1),
+        "the vehicle's RA 3.3 components are visible: {:?}",
+        tree.components.keys().collect::<Vec<_>>()
+    );
+    let truth = rig.true_position().expect("the vehicle's own pose");
+    assert!(
+        metres(start, truth) < 0.5,
+        "the proxy says {start:?}, the vehicle is at {truth:?}"
+    );
+
+    // Control of the proxy's waypoint driver: granted once the proxy holds AS-4 control.
+    rig.station()
+        .submit(Command::TakeControl {
+            target: GWD,
+            authority: 5,
+        })
+        .unwrap();
+    rig.until("control of 2.1.45.1", Duration::from_secs(10), |v, _| {
+        component(v, GWD).filter(|c| c.held).map(|_| ())
+    });
+
+    // Two waypoints, 8 m north then 6 m east of that, at 2 m/s.
+    let points = vec![offset(start, 8.0, 0.0), offset(start, 8.0, 6.0)];
+    let last = (points[1].latitude, points[1].longitude);
+    rig.net.run_for(Duration::from_secs(1));
+    let before = rig.true_position().unwrap();
+    assert!(metres(start, before) < 0.1, "moving before the route");
+    rig.station()
+        .submit(Command::Waypoints {
+            driver: GWD,
+            points: points.clone(),
+            speed: 2.0,
+        })
+        .unwrap();
+    let t0 = rig.net.now();
+    let mut closest_first = f64::INFINITY;
+    rig.until(
+        "the vehicle at the last waypoint",
+        Duration::from_secs(60),
+        |_, r| {
+            let here = r.true_position()?;
+            closest_first =
+                closest_first.min(metres(here, (points[0].latitude, points[0].longitude)));
+            (metres(here, last) < 1.0).then_some(())
+        },
+    );
+    let took = rig.net.now().duration_since(t0);
+    assert!(
+        closest_first < 1.5,
+        "passed {closest_first:.2} m from waypoint 1"
+    );
+    // The list done, the proxy's driver returns to Standby (Part 1).
+    rig.until(
+        "the proxy's driver in Standby",
+        Duration::from_secs(10),
+        |v, _| {
+            component(v, GWD)
+                .and_then(|c| c.state.clone())
+                .filter(|s| s == "Standby")
+        },
+    );
+    eprintln!("arrived {took:?} after the route was sent");
+
+    // An AS-4 client of higher authority takes the vehicle: the RA 3.3 operator loses
+    // control, and its request again is refused (the proxy cannot get AS-4 control).
+    rig.rival_send(jaus_as4::RequestControl {
+        authority_code: 250,
+    });
+    rig.until("control lost", Duration::from_secs(10), |v, _| {
+        v.notices
+            .iter()
+            .any(|n| n.text.contains("2.1.45.1: control taken away"))
+            .then_some(())
+    });
+    rig.until("control refused", Duration::from_secs(15), |v, _| {
+        v.notices
+            .iter()
+            .any(|n| n.text.contains("2.1.45.1: control refused"))
+            .then_some(())
+    });
+    let c = rig.net.get::<Client>(rig.rival).unwrap();
+    assert!(
+        c.inbox
+            .iter()
+            .any(|m| m.message_id == jaus_as4::ConfirmControl::CODE.0),
+        "the rival got no answer"
+    );
+}
