@@ -140,7 +140,11 @@ fn an_as4_client_drives_the_ra33_vehicle_through_the_gateway_to_its_waypoints() 
     let mut j = Judge::new();
     // The gateway is an RA 3.3 component of the node too, named in the system tree.
     let dual = j.net.get::<DualNode>(j.vehicle).unwrap();
-    let info = dual.node().tree().component(Address::new(1, 1, 60, 1)).cloned();
+    let info = dual
+        .node()
+        .tree()
+        .component(Address::new(1, 1, 60, 1))
+        .cloned();
     assert_eq!(
         info.and_then(|c| c.name).as_deref(),
         Some(jaus_as4::gateway::ra33::IDENTIFICATION)
