@@ -36,26 +36,8 @@ use crate::core::{core_services, Core, CoreConfig, Refusal};
 use crate::messages::{
     ComponentState, EventRejection, EventType, Message, RejectEventRequest, ServiceInfo,
 };
+pub use crate::service::Outgoing;
 use crate::service::{Cx, Handled, Request, Service, ServiceId};
-
-/// A message to send: its destination and the message.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Outgoing {
-    /// The destination.
-    pub to: As4Id,
-    /// The message.
-    pub message: Message,
-}
-
-impl Outgoing {
-    /// `message` for `to`.
-    pub fn new(to: As4Id, message: impl Into<Message>) -> Self {
-        Self {
-            to,
-            message: message.into(),
-        }
-    }
-}
 
 /// Counters of a component.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]

@@ -48,6 +48,25 @@ impl fmt::Display for ServiceId {
     }
 }
 
+/// A message to send: its destination and the message.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Outgoing {
+    /// The destination.
+    pub to: As4Id,
+    /// The message.
+    pub message: Message,
+}
+
+impl Outgoing {
+    /// `message` for `to`.
+    pub fn new(to: As4Id, message: impl Into<Message>) -> Self {
+        Self {
+            to,
+            message: message.into(),
+        }
+    }
+}
+
 /// A message handed to a service.
 #[derive(Debug, Clone, Copy)]
 pub struct Request<'a> {

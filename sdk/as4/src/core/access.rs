@@ -27,11 +27,11 @@ use std::time::{Duration, Instant};
 
 use jaus::net::as5669a::As4Id;
 
-use crate::component::Outgoing;
 use crate::messages::{
     ComponentAddress, ConfirmControl, ControlConfirmation, ControlRejection, RejectControl,
     ReportAuthority, ReportControl, ReportTimeout,
 };
+use crate::service::Outgoing;
 
 /// The state of Access Control.
 #[derive(Debug, Clone)]

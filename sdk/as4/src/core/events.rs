@@ -31,12 +31,12 @@ use std::time::{Duration, Instant};
 
 use jaus::net::as5669a::As4Id;
 
-use crate::component::Outgoing;
 use crate::embedded;
 use crate::messages::{
     ConfirmEventRequest, Event, EventInfo, EventRejection, EventType, EventsFilter, Message,
     RejectEventRequest, ReportEventTimeout, ReportEvents,
 };
+use crate::service::Outgoing;
 
 /// Lowest periodic rate confirmed, Hz.
 pub const MIN_RATE: f64 = 0.1;

@@ -30,8 +30,8 @@ use std::time::{Duration, Instant};
 use jaus::net::as5669a::As4Id;
 use jaus::{CommandCode, JausMessage};
 
-use crate::component::Outgoing;
 use crate::messages::{self as m, ComponentState, EventRejection, Message};
+use crate::service::Outgoing;
 use crate::service::ServiceId;
 
 use access::Access;
