@@ -1,15 +1,14 @@
 //! The RA 3.3 ↔ AS-4 gateway over the simulated network: an AS-4 client (ours: an
-//! `As4Stack` on SimNet) drives the demo's RA 3.3 vehicle, hosted by a node that answers
+//! `As4Client` on SimNet) drives the demo's RA 3.3 vehicle, hosted by a node that answers
 //! both generations on one socket (`jaus_as4::gateway::DualNode`), to its waypoints
 //! through the AS-4 Local Waypoint List Driver, and the vehicle must actually arrive
 //! (its pose from the simulated vehicle, not from the gateway).
 
-use std::collections::VecDeque;
 use std::net::SocketAddr;
 use std::time::{Duration, Instant};
 
-use jaus::net::as5669a::{As4Config, As4Id, As4Message, As4Stack};
-use jaus::net::{Datagram, NodeConfig, Participant};
+use jaus::net::as5669a::{As4Client, As4Id, As4Message};
+use jaus::net::NodeConfig;
 use jaus::{Address, JausMessage};
 use jaus_as4::gateway::{DualNode, GatewayConfig};
 use jaus_as4::{
@@ -19,36 +18,6 @@ use jaus_as4::{
     Standby,
 };
 use jaus_sim::network::{LinkModel, SimNet};
-
-/// The AS-4 client: an `As4Stack` as a SimNet participant, what it received kept.
-#[derive(Debug)]
-struct Client {
-    stack: As4Stack<SocketAddr>,
-    inbox: VecDeque<As4Message>,
-}
-
-impl Participant for Client {
-    fn handle_datagram(&mut self, now: Instant, peer: SocketAddr, datagram: &[u8]) {
-        if let Ok(ms) = self.stack.receive(now, peer, datagram) {
-            self.inbox.extend(ms);
-        }
-    }
-    fn handle_timeout(&mut self, now: Instant) {
-        self.stack.handle_timeout(now);
-    }
-    fn poll_transmit(&mut self) -> Option<Datagram<SocketAddr>> {
-        self.stack.poll_transmit()
-    }
-    fn poll_timeout(&self) -> Option<Instant> {
-        self.stack.poll_timeout()
-    }
-    fn as_any(&self) -> &dyn std::any::Any {
-        self
-    }
-    fn as_any_mut(&mut self) -> &mut dyn std::any::Any {
-        self
-    }
-}
 
 const ME: As4Id = As4Id::new(42, 1, 1);
 const VEHICLE: As4Id = As4Id::new(1, 1, 1);
@@ -66,10 +35,7 @@ impl Judge {
         let node = jaus_sim::demo::vehicle_node(t0, NodeConfig::default(), 1, 1).unwrap();
         let config = GatewayConfig::new(VEHICLE, Address::new(1, 1, 60, 1), 1, "demo vehicle");
         let vehicle = net.add(DualNode::new(node, config).unwrap());
-        let client = net.add(Client {
-            stack: As4Stack::new(As4Config::default()),
-            inbox: VecDeque::new(),
-        });
+        let client = net.add(As4Client::<SocketAddr>::default());
         // The vehicle's node settles (its components come up, the gateway finds them).
         net.run_for(Duration::from_secs(2));
         Judge {
@@ -83,19 +49,18 @@ impl Judge {
         let m: Message = m.into();
         let body = jaus::codec::Encode::to_bytes(m.body()).unwrap();
         let to = SimNet::addr(self.vehicle);
-        let c = self.net.get_mut::<Client>(self.client).unwrap();
-        c.stack
-            .send(to, &[As4Message::new(m.code().0, VEHICLE, ME, body)]);
+        let c = self.net.get_mut::<As4Client>(self.client).unwrap();
+        c.send(to, &[As4Message::new(m.code().0, VEHICLE, ME, body)]);
     }
 
     /// Sends `m`, runs the network for `wait`, returns what came back (decoded).
     fn ask(&mut self, m: impl Into<Message>, wait: Duration) -> Vec<Message> {
         self.send(m);
         self.net.run_for(wait);
-        let c = self.net.get_mut::<Client>(self.client).unwrap();
-        c.inbox
-            .drain(..)
-            .map(|a| Message::decode(jaus::CommandCode(a.message_id), &a.body).unwrap())
+        let c = self.net.get_mut::<As4Client>(self.client).unwrap();
+        c.take()
+            .into_iter()
+            .map(|(_, a)| Message::decode(jaus::CommandCode(a.message_id), &a.body).unwrap())
             .collect()
     }
 

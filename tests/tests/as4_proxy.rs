@@ -8,15 +8,14 @@
 //! read on the vehicle's own node). Then an AS-4 client of higher authority takes the
 //! vehicle: the operator gets Reject Component Control, and its next request is refused.
 
-use std::collections::VecDeque;
 use std::net::SocketAddr;
 use std::time::{Duration, Instant};
 
 use jaus::component::Component;
 use jaus::component::Config;
 use jaus::components::system_commander;
-use jaus::net::as5669a::{As4Config, As4Id, As4Message, As4Mux, As4Stack};
-use jaus::net::{Datagram, Node, NodeConfig, Participant, SystemTree};
+use jaus::net::as5669a::{As4Client, As4Config, As4Id, As4Message, As4Mux};
+use jaus::net::{Node, NodeConfig, SystemTree};
 use jaus::stock::commander::view::{ComponentView, SystemView};
 use jaus::stock::commander::{Command, GeoPoint, Station, StationConfig, TreeInput};
 use jaus::{Address, JausMessage};
@@ -31,36 +30,6 @@ const STATION: Address = Address::new(200, 1, 40, 1);
 const GWD: Address = Address::new(2, 1, 45, 1);
 
 type Hosted = Component<system_commander::Dispatch<Station>>;
-
-/// An AS-4 client of its own (the rival that takes the vehicle away).
-#[derive(Debug)]
-struct Client {
-    stack: As4Stack<SocketAddr>,
-    inbox: VecDeque<As4Message>,
-}
-
-impl Participant for Client {
-    fn handle_datagram(&mut self, now: Instant, peer: SocketAddr, datagram: &[u8]) {
-        if let Ok(ms) = self.stack.receive(now, peer, datagram) {
-            self.inbox.extend(ms);
-        }
-    }
-    fn handle_timeout(&mut self, now: Instant) {
-        self.stack.handle_timeout(now);
-    }
-    fn poll_transmit(&mut self) -> Option<Datagram<SocketAddr>> {
-        self.stack.poll_transmit()
-    }
-    fn poll_timeout(&self) -> Option<Instant> {
-        self.stack.poll_timeout()
-    }
-    fn as_any(&self) -> &dyn std::any::Any {
-        self
-    }
-    fn as_any_mut(&mut self) -> &mut dyn std::any::Any {
-        self
-    }
-}
 
 fn tree_input(tree: &SystemTree) -> TreeInput {
     let mut t = TreeInput::default();
@@ -125,10 +94,7 @@ impl Rig {
             ))
             .unwrap();
         let operator = net.add(onode);
-        let rival = net.add(Client {
-            stack: As4Stack::new(As4Config::default()),
-            inbox: VecDeque::new(),
-        });
+        let rival = net.add(As4Client::<SocketAddr>::default());
         Rig {
             net,
             vehicle,
@@ -188,9 +154,8 @@ impl Rig {
         let m: jaus_as4::Message = m.into();
         let body = jaus::codec::Encode::to_bytes(m.body()).unwrap();
         let to = SimNet::addr(self.vehicle);
-        let c = self.net.get_mut::<Client>(self.rival).unwrap();
-        c.stack
-            .send(to, &[As4Message::new(m.code().0, VEHICLE, RIVAL, body)]);
+        let c = self.net.get_mut::<As4Client>(self.rival).unwrap();
+        c.send(to, &[As4Message::new(m.code().0, VEHICLE, RIVAL, body)]);
     }
 }
 
@@ -329,11 +294,11 @@ fn an_ra33_operator_drives_an_as4_vehicle_through_the_proxy() {
             .any(|n| n.text.contains("2.1.45.1: control refused"))
             .then_some(())
     });
-    let c = rig.net.get::<Client>(rig.rival).unwrap();
+    let c = rig.net.get_mut::<As4Client>(rig.rival).unwrap();
     assert!(
-        c.inbox
+        c.take()
             .iter()
-            .any(|m| m.message_id == jaus_as4::ConfirmControl::CODE.0),
+            .any(|(_, m)| m.message_id == jaus_as4::ConfirmControl::CODE.0),
         "the rival got no answer"
     );
 }

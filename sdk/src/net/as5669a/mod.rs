@@ -13,6 +13,7 @@
 //!   acknowledgement of a packet is a pure function ([`ack`], [`nak`]).
 //! * [`reassembly`]: the bounded [`As4Reassembler`] (the byte and time bounds of the RA
 //!   3.3 [`Reassembler`](super::Reassembler), one rule for both).
+//! * [`client`]: an AS-4 client as a participant ([`As4Client`]), for tools and tests.
 //! * [`mux`]: one socket, both generations: [`As4Mux`] wraps a host (a
 //!   [`Node`](super::Node)) and hands version-2 datagrams to an [`As4Endpoint`] the host
 //!   supplies, framing its replies as AS5669A to the sender from the same socket.
@@ -21,6 +22,7 @@
 //! and its JUDP length are the other way round). Nothing here panics on any bytes:
 //! every malformed input is an [`As4Error`].
 
+pub mod client;
 pub mod datagram;
 pub mod error;
 pub mod header;
@@ -31,6 +33,7 @@ pub mod split;
 #[cfg(test)]
 mod proptests;
 
+pub use client::As4Client;
 pub use datagram::{parse_datagram, write_datagrams, Generation};
 pub use error::As4Error;
 pub use header::{
