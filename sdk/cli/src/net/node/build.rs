@@ -461,6 +461,24 @@ mod tests {
     }
 
     #[test]
+    fn as4_beside_an_access_policy_is_refused_with_where() {
+        let dir = std::env::temp_dir().join(format!("jaus-as4-policy-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("n.yaml");
+        let base = "subsystem: 1\nnode: 1\nbind: 127.0.0.1:0\nas4: {}\n";
+        std::fs::write(&path, format!("{base}policy: {{ default: query }}\n")).unwrap();
+        let e = NodeFile::load(&path).unwrap_err();
+        assert!(
+            e.contains("n.yaml:4:1: as4: the access policy does not cover AS-4"),
+            "{e}"
+        );
+        // Without a policy (open, as announced when the node starts) it loads.
+        std::fs::write(&path, base).unwrap();
+        assert!(NodeFile::load(&path).unwrap().as4.is_some());
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    #[test]
     fn as4_vehicles_are_read_with_their_defaults_and_errors_name_the_field() {
         let f = file(
             "subsystem: 2\nnode: 3\nbind: 127.0.0.1:0\nas4_vehicles:\n  - { peer: 127.0.0.1:3794, id: 1.1.1 }\n  - { peer: 127.0.0.1:3795, proxy_id: 9.9.9, instance: 7, authority: 10, services: [global_pose_sensor, global_waypoint_driver], frame: { x: 1, yaw: 0.5 } }\n",

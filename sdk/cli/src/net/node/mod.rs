@@ -402,7 +402,16 @@ impl NodeFile {
         f.communicator_at(&hosted, &at)?;
         f.check_quic_links(path, &at)?;
         if let Some(p) = &f.policy {
-            p.policy(&at)?;
+            let policy = p.policy(&at)?;
+            // AS5669A datagrams reach the gateway, not the RA 3.3 policy, and the gateway
+            // commands the RA 3.3 components as a local component: an AS-4 sender would
+            // get around what the policy guards.
+            if f.as4.is_some() && !policy.is_open() {
+                return Err(format!(
+                    "{}: as4: the access policy does not cover AS-4 clients: a node with a `policy:` cannot serve `as4:` (any AS-4 sender could command what the policy guards); serve AS-4 from a node without a policy that only trusted networks reach",
+                    at("as4")
+                ));
+            }
         }
         Ok(f)
     }
