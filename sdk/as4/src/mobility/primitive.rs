@@ -6,32 +6,11 @@ use jaus::codec::Encode;
 use jaus::messages as ra;
 use jaus::{Address, CommandCode, JausMessage};
 
-use super::{is, ServiceIds};
+use super::{efforts, is, ServiceIds};
 use crate::gateway::ra33::Ra33Side;
 use crate::messages::{QueryWrenchEffort, ReportWrenchEffort, SetWrenchEffort};
 use crate::service::{Cx, Handled, Request, Service, ServiceId};
 use crate::Message;
-
-/// Copies the same-named efforts of one wrench-effort message into another type.
-macro_rules! efforts {
-    ($src:expr => $dst:ident) => {{
-        let s = $src;
-        $dst {
-            propulsive_linear_effort_x: s.propulsive_linear_effort_x,
-            propulsive_linear_effort_y: s.propulsive_linear_effort_y,
-            propulsive_linear_effort_z: s.propulsive_linear_effort_z,
-            propulsive_rotational_effort_x: s.propulsive_rotational_effort_x,
-            propulsive_rotational_effort_y: s.propulsive_rotational_effort_y,
-            propulsive_rotational_effort_z: s.propulsive_rotational_effort_z,
-            resistive_linear_effort_x: s.resistive_linear_effort_x,
-            resistive_linear_effort_y: s.resistive_linear_effort_y,
-            resistive_linear_effort_z: s.resistive_linear_effort_z,
-            resistive_rotational_effort_x: s.resistive_rotational_effort_x,
-            resistive_rotational_effort_y: s.resistive_rotational_effort_y,
-            resistive_rotational_effort_z: s.resistive_rotational_effort_z,
-        }
-    }};
-}
 
 /// The Primitive Driver over the RA 3.3 one at an address.
 #[derive(Debug)]

@@ -15,27 +15,7 @@ use jaus::JausMessage;
 use super::shared::{lock, Shared, SharedRef};
 use super::Role;
 use crate::messages::{self as as4, ComponentState, EmergencyCode, Message};
-
-/// Copies the twelve same-named efforts of one wrench-effort message into another type.
-macro_rules! efforts {
-    ($src:expr => $dst:path) => {{
-        let s = $src;
-        $dst {
-            propulsive_linear_effort_x: s.propulsive_linear_effort_x,
-            propulsive_linear_effort_y: s.propulsive_linear_effort_y,
-            propulsive_linear_effort_z: s.propulsive_linear_effort_z,
-            propulsive_rotational_effort_x: s.propulsive_rotational_effort_x,
-            propulsive_rotational_effort_y: s.propulsive_rotational_effort_y,
-            propulsive_rotational_effort_z: s.propulsive_rotational_effort_z,
-            resistive_linear_effort_x: s.resistive_linear_effort_x,
-            resistive_linear_effort_y: s.resistive_linear_effort_y,
-            resistive_linear_effort_z: s.resistive_linear_effort_z,
-            resistive_rotational_effort_x: s.resistive_rotational_effort_x,
-            resistive_rotational_effort_y: s.resistive_rotational_effort_y,
-            resistive_rotational_effort_z: s.resistive_rotational_effort_z,
-        }
-    }};
-}
+use crate::mobility::efforts;
 
 /// An AS-4 time stamp as RA 3.3's (the same bits).
 fn time_stamp(t: &as4::TimeStamp) -> ra::TimeStamp {
