@@ -489,6 +489,9 @@ function drawSide() {
   }
   const c = component(s, sel.value);
   $("driver-control").textContent = !c ? "—" : c.held ? "held" : (c.keeping !== null && c.keeping !== undefined) ? "asking…" : c.controller ? `held by ${c.controller}` : "not held";
+  // Which component the line speaks of: a script (or a test) reading it knows it is not
+  // the previous selection's.
+  $("driver-control").dataset.address = c ? sel.value : "";
   $("mission-status").textContent = s.mission ? `mission ${s.mission.id}: ${s.mission.status || "sent"} (${s.mission.tasks} moves)` : "—";
   const list = $("draft-list");
   list.replaceChildren(...ocu.draft.map((p) => el("li", {}, `${p.x.toFixed(1)} m E, ${p.y.toFixed(1)} m N`)));
@@ -553,6 +556,8 @@ $("map").addEventListener("click", (ev) => {
   drawMap(); drawSide();
 });
 
+// Another component chosen: its control line at once, not at the next update.
+$("driver").addEventListener("change", () => drawSide());
 $("fit").onclick = () => { ocu.mapView.auto = true; drawMap(); };
 $("clear-draft").onclick = () => { ocu.draft = []; drawMap(); drawSide(); };
 $("take").onclick = () => {

@@ -182,7 +182,7 @@ async fn take(c: &Client, address: &str, authority: &str) {
         .unwrap_or_else(|e| panic!("select {address}: {e}"));
     set_input(c, "authority", authority).await;
     click(c, "take").await;
-    held(c).await;
+    held(c, address).await;
 }
 
 /// The text of the element `id`, if it is there.
@@ -190,12 +190,22 @@ async fn text(c: &Client, id: &str) -> Option<String> {
     c.find(Locator::Id(id)).await.ok()?.text().await.ok()
 }
 
-/// Waits until the page says the selected component's control is held.
-async fn held(c: &Client) {
+/// Waits until the page says control of `address`, the selected component, is held. The
+/// line names the component it speaks of: until the page has drawn the new selection it
+/// still shows the previous one's control (a "held" that is not this one's).
+async fn held(c: &Client, address: &str) {
     wait_for(
         "control of the selected component",
         Duration::from_secs(10),
-        async || (text(c, "driver-control").await? == "held").then_some(()),
+        async || {
+            let line = js(
+                c,
+                "const e = document.getElementById('driver-control'); \
+                 return [e.dataset.address || '', e.textContent];",
+            )
+            .await;
+            (line[0] == address && line[1] == "held").then_some(())
+        },
     )
     .await;
 }
@@ -263,7 +273,7 @@ async fn the_page_drives_the_simulated_vehicle_and_stops_it() {
 
     // Take control.
     click(&c, "take").await;
-    held(&c).await;
+    held(&c, "1.1.45.1").await;
 
     // A malformed speed: refused, visibly, naming the field.
     set_speed(&c, "fast").await;
