@@ -12,9 +12,10 @@ use jaus_conform::{report, Options};
 /// `jaus conform`'s own options (the network ones are [`super::NetArgs`]).
 #[derive(clap::Args)]
 pub struct ConformArgs {
-    /// The component to test (subsystem.node.component.instance).
+    /// The component to test (subsystem.node.component.instance); repeat it to test
+    /// several, in the order given.
     #[arg(long, conflicts_with = "subsystem")]
-    target: Option<jaus::Address>,
+    target: Vec<jaus::Address>,
     /// Test every component discovery finds in this subsystem (node managers aside).
     #[arg(long)]
     subsystem: Option<u8>,
@@ -203,19 +204,22 @@ pub fn conform(
     if args.pcap.is_some() {
         session.record();
     }
-    let targets = match (args.target, args.subsystem) {
-        (Some(t), _) if (t.subsystem, t.node) == (client.me.subsystem, client.me.node) => {
-            return Err(format!(
-                "--target {t} is on the tester's own node ({}.{}, from --me): give --me a node of its own (the tester runs one)",
-                t.subsystem, t.node
-            ));
-        }
-        (Some(t), _) => {
+    let targets = match (args.target.as_slice(), args.subsystem) {
+        (given @ [_, ..], _) => {
+            if let Some(t) = given
+                .iter()
+                .find(|t| (t.subsystem, t.node) == (client.me.subsystem, client.me.node))
+            {
+                return Err(format!(
+                    "--target {t} is on the tester's own node ({}.{}, from --me): give --me a node of its own (the tester runs one)",
+                    t.subsystem, t.node
+                ));
+            }
             // A moment for the nodes to meet.
             session.discover(client.wait.min(Duration::from_millis(500)));
-            vec![t]
+            given.to_vec()
         }
-        (None, Some(s)) => {
+        ([], Some(s)) => {
             let found = session.discover(client.wait);
             let t = jaus_conform::targets_in(&found, s, &voices);
             if t.is_empty() {
@@ -233,7 +237,7 @@ pub fn conform(
             }
             t
         }
-        (None, None) => return Err("give --target S.N.C.I or --subsystem S".into()),
+        ([], None) => return Err("give --target S.N.C.I or --subsystem S".into()),
     };
     let opts = Options {
         wait: Duration::from_secs_f64(args.answer_wait.max(0.01)),
