@@ -124,6 +124,7 @@ fn jaus_as4_drive_drives_the_vehicle_through_jaus_node() {
         local: vec!["3,0".into(), "3,2".into()],
         global: Vec::new(),
         speed: 1.0,
+        tolerance: 1.0,
         authority: 255,
         timeout: 60,
         effort: None,

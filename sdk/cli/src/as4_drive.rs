@@ -44,6 +44,11 @@ pub struct As4DriveArgs {
     /// Speed along the list, m/s.
     #[arg(long, default_value_t = 1.0)]
     pub speed: f64,
+    /// How close counts as reaching each waypoint, metres (the elements' waypoint
+    /// tolerance, 0–100). A vehicle whose own driver stops short of that (OpenJAUS 3.3's
+    /// waypoint driver moves on 3 m before a waypoint) needs a wider one.
+    #[arg(long, default_value_t = 1.0, value_parser = tolerance)]
+    pub tolerance: f64,
     /// Authority of the request for control.
     #[arg(long, default_value_t = 255)]
     pub authority: u8,
@@ -349,7 +354,7 @@ fn drive(
             SetGlobalWaypoint {
                 latitude: *a,
                 longitude: *b,
-                waypoint_tolerance: Some(1.0),
+                waypoint_tolerance: Some(args.tolerance),
                 ..Default::default()
             }
             .into()
@@ -357,7 +362,7 @@ fn drive(
             SetLocalWaypoint {
                 x: *a,
                 y: *b,
-                waypoint_tolerance: Some(1.0),
+                waypoint_tolerance: Some(args.tolerance),
                 ..Default::default()
             }
             .into()
@@ -432,5 +437,15 @@ fn drive(
             ));
         }
         std::thread::sleep(Duration::from_secs(1));
+    }
+}
+
+/// A waypoint tolerance within the field's range (0–100 m).
+fn tolerance(text: &str) -> Result<f64, String> {
+    let v: f64 = text.parse().map_err(|e| format!("{e}"))?;
+    if (0.0..=100.0).contains(&v) {
+        Ok(v)
+    } else {
+        Err(format!("{v} m is outside the waypoint tolerance's 0–100 m"))
     }
 }
