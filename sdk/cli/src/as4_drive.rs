@@ -56,8 +56,9 @@ pub struct As4DriveArgs {
     #[arg(long, default_value_t = 120)]
     pub timeout: u64,
     /// Instead of waypoints: drive with efforts through the Primitive Driver,
-    /// `LINEAR,ROTATIONAL` percent (propulsive linear X, rotational Z), sent every 0.2 s
-    /// for `--for` seconds while the velocity state is printed, then zero.
+    /// `LINEAR,ROTATIONAL` percent (propulsive linear X, rotational Z; the brake, the
+    /// resistive linear effort, at 0), sent every 0.2 s for `--for` seconds while the
+    /// velocity state is printed, then zero with the brake on.
     #[arg(long, value_name = "LINEAR,ROTATIONAL", conflicts_with_all = ["local", "global"])]
     pub effort: Option<String>,
     /// How long to drive with `--effort`, seconds.
@@ -306,6 +307,9 @@ fn teleoperate(
         link.send(SetWrenchEffort {
             propulsive_linear_effort_x: Some(linear),
             propulsive_rotational_effort_z: Some(rotational),
+            // The brake off: a Primitive Driver keeps the efforts a message leaves out
+            // (OpenJAUS's kept its waypoint driver's braking and the vehicle never moved).
+            resistive_linear_effort_x: Some(0.0),
             ..Default::default()
         })?;
         if Instant::now() >= next_print {
@@ -332,9 +336,10 @@ fn teleoperate(
     link.send(SetWrenchEffort {
         propulsive_linear_effort_x: Some(0.0),
         propulsive_rotational_effort_z: Some(0.0),
+        resistive_linear_effort_x: Some(100.0),
         ..Default::default()
     })?;
-    say("efforts zero".into());
+    say("efforts zero, brake on".into());
     result
 }
 
