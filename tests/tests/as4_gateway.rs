@@ -12,10 +12,11 @@ use jaus::net::NodeConfig;
 use jaus::{Address, JausMessage};
 use jaus_as4::gateway::{DualNode, GatewayConfig};
 use jaus_as4::{
-    ComponentState, ControlConfirmation, Element, ExecuteList, Message, NodeServicesQuery,
-    QueryActiveElement, QueryControl, QueryLocalPose, QueryServices, QueryStatus,
-    QueryVelocityState, RequestControl, Resume, SetElement, SetLocalPose, SetLocalWaypoint,
-    Standby,
+    ComponentState, ControlConfirmation, DeleteElement, Element, ExecuteList, Message,
+    NodeServicesQuery, QueryActiveElement, QueryControl, QueryGlobalPathSegment, QueryGlobalPose,
+    QueryLocalPathSegment, QueryLocalPose, QueryServices, QueryStatus, QueryVelocityState,
+    RequestControl, Resume, SetElement, SetGlobalPathSegment, SetLocalPathSegment, SetLocalPose,
+    SetLocalWaypoint, Standby,
 };
 use jaus_sim::network::{LinkModel, SimNet};
 
@@ -264,4 +265,218 @@ fn an_as4_client_drives_the_ra33_vehicle_through_the_gateway_to_its_waypoints() 
         panic!("Report Status expected")
     };
     assert_eq!(s.status, ComponentState::Standby);
+}
+
+impl Judge {
+    /// Control, Resume: the AS-4 component Ready.
+    fn take_and_resume(&mut self) {
+        let Message::ConfirmControl(c) = self.one(RequestControl { authority_code: 10 }) else {
+            panic!("Confirm Control expected")
+        };
+        assert_eq!(c.response_code, ControlConfirmation::ControlAccepted);
+        assert!(self.ask(Resume {}, Duration::from_millis(500)).is_empty());
+    }
+
+    /// Executes the list from UID 1 at `speed` and follows Query Active Element every
+    /// 500 ms until it is 0; `each` sees each element as it becomes active (and may ask
+    /// more: the element has just begun, it is still active).
+    fn drive(&mut self, speed: f64, mut each: impl FnMut(&mut Self, u16)) -> Vec<u16> {
+        assert!(self
+            .ask(
+                ExecuteList {
+                    speed,
+                    element_uid: Some(1),
+                },
+                Duration::from_millis(300)
+            )
+            .is_empty());
+        let mut active = Vec::new();
+        for _ in 0..120 {
+            let Message::ReportActiveElement(a) = self.one(QueryActiveElement {}) else {
+                panic!("Report Active Element expected")
+            };
+            active.push(a.element_uid);
+            if a.element_uid == 0 {
+                break;
+            }
+            if active.len() < 2 || active[active.len() - 2] != a.element_uid {
+                each(self, a.element_uid);
+            }
+            self.net.run_for(Duration::from_millis(500));
+        }
+        active
+    }
+}
+
+fn local_segment(p1: (f64, f64), p2: (f64, f64), w1: f64) -> SetLocalPathSegment {
+    SetLocalPathSegment {
+        p1_x: p1.0,
+        p1_y: p1.1,
+        p2_x: p2.0,
+        p2_y: p2.1,
+        weighting_factor: w1,
+        path_tolerance: Some(0.5),
+        ..Default::default()
+    }
+}
+
+#[test]
+fn an_as4_client_drives_the_ra33_vehicle_along_path_segments_through_the_gateway() {
+    // RUST_LOG=jaus_as4=debug shows what crosses.
+    let _ = tracing_subscriber::fmt()
+        .with_env_filter(tracing_subscriber::EnvFilter::from_default_env())
+        .with_test_writer()
+        .try_init();
+    let mut j = Judge::new();
+    let Message::ReportServices(r) = j.one(QueryServices {
+        nodes: vec![NodeServicesQuery {
+            node_id: 255,
+            component_ids: vec![255],
+        }],
+    }) else {
+        panic!("Report Services expected")
+    };
+    let uris: Vec<&str> = r
+        .nodes
+        .iter()
+        .flat_map(|n| &n.components)
+        .flat_map(|c| &c.services)
+        .map(|s| s.uri.as_str())
+        .collect();
+    for want in [
+        "urn:jaus:jss:mobility:LocalPathSegmentDriver",
+        "urn:jaus:jss:mobility:GlobalPathSegmentDriver",
+    ] {
+        assert!(uris.contains(&want), "{want} not in {uris:?}");
+    }
+    j.take_and_resume();
+
+    // The AS-4 local frame: the vehicle (facing RA 3.3 +X) at (10, 20) facing +Y, so
+    // that every point crosses a rotation on its way to the RA 3.3 driver.
+    let quarter = std::f64::consts::FRAC_PI_2;
+    assert!(j
+        .ask(
+            SetLocalPose {
+                x: Some(10.0),
+                y: Some(20.0),
+                yaw: Some(quarter),
+                ..Default::default()
+            },
+            Duration::from_millis(300)
+        )
+        .is_empty());
+
+    // 4 m straight ahead, then a left curve through (10, 27) to (7, 27).
+    let segments = [
+        local_segment((10.0, 22.0), (10.0, 24.0), 0.0),
+        local_segment((10.0, 27.0), (7.0, 27.0), 1.0),
+    ];
+    let elements = vec![
+        Element::holding(1, 0, 2, &segments[0].clone().into()).unwrap(),
+        Element::holding(2, 1, 0, &segments[1].clone().into()).unwrap(),
+    ];
+    let Message::ConfirmElementRequest(ok) = j.one(SetElement {
+        request_id: 7,
+        elements,
+    }) else {
+        panic!("Confirm Element Request expected")
+    };
+    assert_eq!(ok.request_id, 7);
+    j.net.run_for(Duration::from_secs(1));
+    assert!(j.true_speed() < 0.01, "moving before Execute List");
+
+    let mut answered = Vec::new();
+    let active = j.drive(1.0, |j, uid| {
+        // The active element's segment, as the client set it (AS-4 frame).
+        let Message::ReportLocalPathSegment(r) = j.one(QueryLocalPathSegment {
+            presence_vector: 0x07,
+        }) else {
+            panic!("Report Local Path Segment expected")
+        };
+        let want = &segments[usize::from(uid) - 1];
+        assert!(
+            (r.p2_x - want.p2_x).abs() < 1e-3
+                && (r.p2_y - want.p2_y).abs() < 1e-3
+                && (r.p1_x - want.p1_x).abs() < 1e-3
+                && (r.weighting_factor - want.weighting_factor).abs() < 1e-2
+                && r.path_tolerance.is_some(),
+            "element {uid}: {r:?}"
+        );
+        answered.push(uid);
+    });
+    assert_eq!(active.first(), Some(&1), "{active:?}");
+    assert!(
+        active.contains(&2),
+        "the second element was never active: {active:?}"
+    );
+    assert_eq!(
+        active.last(),
+        Some(&0),
+        "the list did not finish: {active:?}"
+    );
+    assert!(
+        answered.contains(&1) && answered.contains(&2),
+        "{answered:?}"
+    );
+    let Message::ReportLocalPose(p) = j.one(QueryLocalPose {
+        presence_vector: 0x0003,
+    }) else {
+        panic!("Report Local Pose expected")
+    };
+    let (x, y) = (p.x.unwrap(), p.y.unwrap());
+    assert!((x - 7.0).hypot(y - 27.0) < 1.0, "ended at ({x:.2}, {y:.2})");
+    eprintln!("local segments: active {active:?}, ended at ({x:.2}, {y:.2})");
+
+    // One global segment, 6 m north of where the vehicle is now, straight.
+    let Message::ReportGlobalPose(g) = j.one(QueryGlobalPose {
+        presence_vector: 0x0003,
+    }) else {
+        panic!("Report Global Pose expected")
+    };
+    let (lat, lon) = (g.latitude.unwrap(), g.longitude.unwrap());
+    let north = (6.0 / 6_371_000.0_f64).to_degrees();
+    let segment: Message = SetGlobalPathSegment {
+        p1_latitude: lat + north / 2.0,
+        p1_longitude: lon,
+        p2_latitude: lat + north,
+        p2_longitude: lon,
+        weighting_factor: 0.0,
+        ..Default::default()
+    }
+    .into();
+    assert!(matches!(
+        j.one(DeleteElement {
+            request_id: 8,
+            element_uids: vec![jaus_as4::core::lists::DELETE_ALL],
+        }),
+        Message::ConfirmElementRequest(_)
+    ));
+    assert!(matches!(
+        j.one(SetElement {
+            request_id: 9,
+            elements: vec![Element::holding(1, 0, 0, &segment).unwrap()],
+        }),
+        Message::ConfirmElementRequest(_)
+    ));
+    let active = j.drive(1.0, |j, _| {
+        let Message::ReportGlobalPathSegment(r) =
+            j.one(QueryGlobalPathSegment { presence_vector: 0 })
+        else {
+            panic!("Report Global Path Segment expected")
+        };
+        assert!((r.p2_latitude - (lat + north)).abs() < 1e-6, "{r:?}");
+    });
+    assert_eq!(active.first(), Some(&1), "{active:?}");
+    assert_eq!(active.last(), Some(&0), "{active:?}");
+    let Message::ReportGlobalPose(g) = j.one(QueryGlobalPose {
+        presence_vector: 0x0003,
+    }) else {
+        panic!("Report Global Pose expected")
+    };
+    let off = (g.latitude.unwrap() - (lat + north)).to_radians() * 6_371_000.0;
+    let east = (g.longitude.unwrap() - lon).to_radians() * 6_371_000.0 * lat.to_radians().cos();
+    assert!(
+        off.hypot(east) < 1.0,
+        "ended {off:.2} m north, {east:.2} m east of P2"
+    );
 }

@@ -302,3 +302,83 @@ fn an_ra33_operator_drives_an_as4_vehicle_through_the_proxy() {
         "the rival got no answer"
     );
 }
+
+/// The proxy's Global Path Segment Driver.
+const GPSD: Address = Address::new(2, 1, 47, 1);
+
+#[test]
+fn an_ra33_operator_drives_an_as4_vehicle_along_path_segments_through_the_proxy() {
+    let mut rig = Rig::new();
+    let start = rig.until(
+        "the proxy's pose at the operator",
+        Duration::from_secs(20),
+        |v, _| {
+            let s = v.subsystems.iter().find(|s| s.id == 2)?;
+            let p = s.pose.as_ref()?;
+            Some((p.latitude, p.longitude))
+        },
+    );
+    let tree = tree_input(rig.net.node(rig.operator).unwrap().tree());
+    for id in [47, 48] {
+        assert!(
+            tree.components.contains_key(&Address::new(2, 1, id, 1)),
+            "2.1.{id}.1 not in {:?}",
+            tree.components.keys().collect::<Vec<_>>()
+        );
+    }
+
+    // Control of the proxy's path segment driver: granted once the proxy found the
+    // vehicle's AS-4 Global Path Segment Driver and holds AS-4 control.
+    rig.station()
+        .submit(Command::TakeControl {
+            target: GPSD,
+            authority: 5,
+        })
+        .unwrap();
+    rig.until("control of 2.1.47.1", Duration::from_secs(10), |v, _| {
+        component(v, GPSD).filter(|c| c.held).map(|_| ())
+    });
+
+    // Two straight segments, 8 m north then 6 m east of that, at 2 m/s.
+    let points = vec![offset(start, 8.0, 0.0), offset(start, 8.0, 6.0)];
+    let last = (points[1].latitude, points[1].longitude);
+    rig.station()
+        .submit(Command::PathSegments {
+            driver: GPSD,
+            points: points.clone(),
+            speed: 2.0,
+        })
+        .unwrap();
+    let t0 = rig.net.now();
+    let mut closest_first = f64::INFINITY;
+    rig.until(
+        "the vehicle at the end of the last segment",
+        Duration::from_secs(60),
+        |_, r| {
+            let here = r.true_position()?;
+            closest_first =
+                closest_first.min(metres(here, (points[0].latitude, points[0].longitude)));
+            (metres(here, last) < 1.0).then_some(())
+        },
+    );
+    let took = rig.net.now().duration_since(t0);
+    assert!(
+        closest_first < 1.5,
+        "passed {closest_first:.2} m from the end of segment 1"
+    );
+    // The list done, the proxy's driver returns to Standby (Part 1).
+    rig.until(
+        "the proxy's path segment driver in Standby",
+        Duration::from_secs(10),
+        |v, _| {
+            component(v, GPSD)
+                .and_then(|c| c.state.clone())
+                .filter(|s| s == "Standby")
+        },
+    );
+    let end = rig.true_position().unwrap();
+    eprintln!(
+        "path segments: arrived {took:?} after the route was sent, {:.2} m from the end",
+        metres(end, last)
+    );
+}

@@ -31,10 +31,12 @@ use jaus::{Address, JausMessage};
 
 use crate::component::As4Component;
 use crate::core::CoreConfig;
-use crate::messages::{SetGlobalWaypoint, SetLocalWaypoint};
+use crate::messages::{
+    SetGlobalPathSegment, SetGlobalWaypoint, SetLocalPathSegment, SetLocalWaypoint,
+};
 use crate::mobility::{
-    GlobalPoseSensor, GlobalWaypointListDriver, LocalPoseSensor, LocalWaypointListDriver,
-    PrimitiveDriver, VelocityStateSensor,
+    GlobalPathSegmentDriver, GlobalPoseSensor, GlobalWaypointListDriver, LocalPathSegmentDriver,
+    LocalPoseSensor, LocalWaypointListDriver, PrimitiveDriver, VelocityStateSensor,
 };
 use crate::node::As4Node;
 use crate::ComponentState;
@@ -152,7 +154,16 @@ impl<A: PeerAddr> Gateway<A> {
             &mut targets.global_waypoint_driver,
             found.global_waypoint_driver,
         );
-        if [vss, lps, gps, pd, lwd, gwd].iter().all(Option::is_none) {
+        let lpsd = add(
+            &mut targets.local_path_segment_driver,
+            found.local_path_segment_driver,
+        );
+        let gpsd = add(
+            &mut targets.global_path_segment_driver,
+            found.global_path_segment_driver,
+        );
+        let new = [vss, lps, gps, pd, lwd, gwd, lpsd, gpsd];
+        if new.iter().all(Option::is_none) {
             return;
         }
         let env = self.node.env_mut();
@@ -176,6 +187,12 @@ impl<A: PeerAddr> Gateway<A> {
         if let Some(a) = gwd {
             services.push(Box::new(GlobalWaypointListDriver::new(a)));
         }
+        if let Some(a) = lpsd {
+            services.push(Box::new(LocalPathSegmentDriver::new(a)));
+        }
+        if let Some(a) = gpsd {
+            services.push(Box::new(GlobalPathSegmentDriver::new(a)));
+        }
         let Some(c) = self.node.component_mut(self.as4) else {
             return;
         };
@@ -185,12 +202,17 @@ impl<A: PeerAddr> Gateway<A> {
         if gwd.is_some() {
             c.core_mut().lists_mut().support(SetGlobalWaypoint::CODE);
         }
+        if lpsd.is_some() {
+            c.core_mut().lists_mut().support(SetLocalPathSegment::CODE);
+        }
+        if gpsd.is_some() {
+            c.core_mut().lists_mut().support(SetGlobalPathSegment::CODE);
+        }
         for s in services {
             tracing::info!(service = %s.id(), as4 = %self.as4, "AS-4 service offered");
             c.add_service(s);
         }
-        self.offered
-            .extend([vss, lps, gps, pd, lwd, gwd].into_iter().flatten());
+        self.offered.extend(new.into_iter().flatten());
     }
 
     /// [`refresh`](Self::refresh) of the gateway at `at` in `node`, from the node's own

@@ -37,17 +37,26 @@ pub struct Targets {
     pub local_waypoint_driver: Option<Address>,
     /// Global Waypoint Driver.
     pub global_waypoint_driver: Option<Address>,
+    /// Local Path Segment Driver.
+    pub local_path_segment_driver: Option<Address>,
+    /// Global Path Segment Driver.
+    pub global_path_segment_driver: Option<Address>,
 }
 
 impl Targets {
     /// The drivers the gateway takes RA 3.3 control of as soon as an AS-4 client
-    /// controls it: the waypoint drivers. The Primitive Driver is taken only when the
-    /// AS-4 client commands efforts ([`Ra33Side::ensure_control`]): the waypoint
-    /// drivers reach it through the Reflexive Driver, which must hold it.
+    /// controls it: the waypoint and path segment drivers. The Primitive Driver is
+    /// taken only when the AS-4 client commands efforts ([`Ra33Side::ensure_control`]):
+    /// the other drivers reach it through the Reflexive Driver, which must hold it.
     pub fn drivers(&self) -> impl Iterator<Item = Address> {
-        [self.local_waypoint_driver, self.global_waypoint_driver]
-            .into_iter()
-            .flatten()
+        [
+            self.local_waypoint_driver,
+            self.global_waypoint_driver,
+            self.local_path_segment_driver,
+            self.global_path_segment_driver,
+        ]
+        .into_iter()
+        .flatten()
     }
 
     /// The components of subsystem `ss` with the standard component ids of Part 1
@@ -68,6 +77,8 @@ impl Targets {
             primitive_driver: find(c::primitive_driver::ID),
             local_waypoint_driver: find(c::local_waypoint_driver::ID),
             global_waypoint_driver: find(c::global_waypoint_driver::ID),
+            local_path_segment_driver: find(c::local_path_segment_driver::ID),
+            global_path_segment_driver: find(c::global_path_segment_driver::ID),
         }
     }
 }

@@ -1,15 +1,18 @@
-//! The Local and Global Waypoint List Drivers over RA 3.3 waypoint drivers.
+//! The Local and Global Waypoint List Drivers over RA 3.3 waypoint drivers, and the
+//! machinery the Path Segment Drivers share with them ([`super::segments`]).
 //!
 //! The list lives in the AS-4 component's List Manager ([`crate::core::lists::Lists`]),
-//! its elements holding Set Local (or Global) Waypoint messages. Execute List sends the
-//! elements from the start UID on to the RA 3.3 driver as numbered waypoints (element 0
-//! starts a new RA 3.3 list; local waypoints are moved from the AS-4 local frame into
-//! the RA 3.3 one), then the travel speed. RA 3.3 has no active-element query: the
-//! driver counts an element reached when the RA 3.3 pose comes within the element's
-//! waypoint tolerance (default [`DEFAULT_TOLERANCE`]) or has passed it along the leg to
-//! the next element (by [`PAST_MARGIN`]), in order; the list is done (no element
-//! active, UID 0) when the RA 3.3 driver reports an empty list after the execution,
-//! which it does at the final point, or the last element is within tolerance.
+//! its elements holding Set Local (or Global) Waypoint messages (or Path Segment ones).
+//! Execute List sends the elements from the start UID on to the RA 3.3 driver as
+//! numbered waypoints or segments (element 0 starts a new RA 3.3 list; local ones are
+//! moved from the AS-4 local frame into the RA 3.3 one), then the travel speed. RA 3.3
+//! has no active-element query: the driver counts an element reached when the RA 3.3
+//! pose comes within the element's tolerance (default [`DEFAULT_TOLERANCE`]) of its
+//! position (a waypoint, a segment's P2) or has passed it along the path to the next
+//! element (by [`PAST_MARGIN`]), in order; the list is done (no element active, UID 0)
+//! when the RA 3.3 driver reports an empty list (Report Waypoint Count or Report Path
+//! Segment Count, polled) after the execution, which it does at the final point, or the
+//! last element is within tolerance.
 
 use jaus::messages as ra;
 use jaus::{Address, CommandCode, JausMessage};
@@ -31,26 +34,55 @@ pub const DEFAULT_TOLERANCE: f64 = 1.0;
 /// element it did not come within tolerance of, metres.
 pub const PAST_MARGIN: f64 = 0.25;
 
-/// Local or global waypoints: what differs between the two list drivers (implemented by
-/// [`Local`] and [`Global`] only).
+/// Where an element takes the vehicle, in the terms of [`Kind::position`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Goal {
+    /// The element's position (a waypoint; a path segment's P2).
+    pub at: [f64; 2],
+    /// The point the path heads for as it leaves the previous element toward this one
+    /// (a waypoint itself; a curved segment's P1): "passed" is judged along it.
+    pub toward: [f64; 2],
+    /// How close counts as reached, metres.
+    pub tolerance: f64,
+}
+
+impl Goal {
+    /// A goal reached at `at` within `tolerance`, the path heading straight to it.
+    pub fn point(at: [f64; 2], tolerance: f64) -> Self {
+        Self {
+            at,
+            toward: at,
+            tolerance,
+        }
+    }
+}
+
+/// What differs between the list drivers (implemented by [`Local`] and [`Global`]
+/// waypoints and by the path segment kinds of [`super::segments`] only).
 pub trait Kind: std::fmt::Debug + Send + 'static {
-    /// The Set message of one waypoint.
-    type Waypoint: Clone + std::fmt::Debug + Send + 'static;
+    /// The Set message of one element (a waypoint, a path segment).
+    type Element: Clone + std::fmt::Debug + Send + 'static;
     /// The service.
     const ID: ServiceId;
-    /// The query of the active waypoint.
+    /// The query of the active element.
     const QUERY: CommandCode;
-    /// The waypoint an element's message is, if it is one of this kind.
-    fn waypoint(m: &Message) -> Option<Self::Waypoint>;
-    /// The RA 3.3 message setting waypoint `number`, and the waypoint's position in
-    /// the RA 3.3 frame (local x, y; or latitude, longitude) and tolerance.
-    fn to_ra33(w: &Self::Waypoint, number: u16, side: &Ra33Side) -> (ra::Message, [f64; 2], f64);
+    /// The RA 3.3 report of how many elements the driver holds.
+    const COUNT: CommandCode;
+    /// The element a List Manager element's message is, if it is one of this kind.
+    fn element(m: &Message) -> Option<Self::Element>;
+    /// The RA 3.3 message setting element `number`, and where it takes the vehicle in
+    /// the RA 3.3 frame (local x, y; or latitude, longitude).
+    fn to_ra33(e: &Self::Element, number: u16, side: &Ra33Side) -> (ra::Message, Goal);
+    /// The RA 3.3 query of how many elements the driver holds (answered with `COUNT`).
+    fn count_query() -> ra::Message;
+    /// The count in an RA 3.3 `COUNT` report.
+    fn count(report: &ra::Message) -> Option<u16>;
     /// The vehicle's position from the RA 3.3 reports, in the same terms as `to_ra33`.
     fn position(side: &Ra33Side) -> Option<[f64; 2]>;
     /// `b` relative to `a`, metres (east/north or local x/y).
     fn offset(a: [f64; 2], b: [f64; 2]) -> [f64; 2];
-    /// The report of the waypoint (masked by the query).
-    fn report(w: &Self::Waypoint, query: &Message) -> Message;
+    /// The report of the element (masked by the query).
+    fn report(e: &Self::Element, query: &Message) -> Message;
 }
 
 /// Waypoints in the local frame.
@@ -62,18 +94,19 @@ pub struct Local;
 pub struct Global;
 
 impl Kind for Local {
-    type Waypoint = SetLocalWaypoint;
+    type Element = SetLocalWaypoint;
     const ID: ServiceId = ServiceIds::LOCAL_WAYPOINT_LIST_DRIVER;
     const QUERY: CommandCode = QueryLocalWaypoint::CODE;
+    const COUNT: CommandCode = ra::ReportWaypointCount::CODE;
 
-    fn waypoint(m: &Message) -> Option<SetLocalWaypoint> {
+    fn element(m: &Message) -> Option<SetLocalWaypoint> {
         match m {
             Message::SetLocalWaypoint(w) => Some(w.clone()),
             _ => None,
         }
     }
 
-    fn to_ra33(w: &SetLocalWaypoint, number: u16, side: &Ra33Side) -> (ra::Message, [f64; 2], f64) {
+    fn to_ra33(w: &SetLocalWaypoint, number: u16, side: &Ra33Side) -> (ra::Message, Goal) {
         let (x, y) = side.frame.to_ra33(w.x, w.y);
         let m = ra::SetLocalWaypoint {
             waypoint_number: number,
@@ -86,9 +119,16 @@ impl Kind for Local {
         };
         (
             m.into(),
-            [x, y],
-            w.waypoint_tolerance.unwrap_or(DEFAULT_TOLERANCE),
+            Goal::point([x, y], w.waypoint_tolerance.unwrap_or(DEFAULT_TOLERANCE)),
         )
+    }
+
+    fn count_query() -> ra::Message {
+        ra::QueryWaypointCount {}.into()
+    }
+
+    fn count(report: &ra::Message) -> Option<u16> {
+        waypoint_count(report)
     }
 
     fn position(side: &Ra33Side) -> Option<[f64; 2]> {
@@ -122,22 +162,19 @@ impl Kind for Local {
 }
 
 impl Kind for Global {
-    type Waypoint = SetGlobalWaypoint;
+    type Element = SetGlobalWaypoint;
     const ID: ServiceId = ServiceIds::GLOBAL_WAYPOINT_LIST_DRIVER;
     const QUERY: CommandCode = QueryGlobalWaypoint::CODE;
+    const COUNT: CommandCode = ra::ReportWaypointCount::CODE;
 
-    fn waypoint(m: &Message) -> Option<SetGlobalWaypoint> {
+    fn element(m: &Message) -> Option<SetGlobalWaypoint> {
         match m {
             Message::SetGlobalWaypoint(w) => Some(w.clone()),
             _ => None,
         }
     }
 
-    fn to_ra33(
-        w: &SetGlobalWaypoint,
-        number: u16,
-        _side: &Ra33Side,
-    ) -> (ra::Message, [f64; 2], f64) {
+    fn to_ra33(w: &SetGlobalWaypoint, number: u16, _side: &Ra33Side) -> (ra::Message, Goal) {
         let m = ra::SetGlobalWaypoint {
             waypoint_number: number,
             latitude: w.latitude,
@@ -149,9 +186,19 @@ impl Kind for Global {
         };
         (
             m.into(),
-            [w.latitude, w.longitude],
-            w.waypoint_tolerance.unwrap_or(DEFAULT_TOLERANCE),
+            Goal::point(
+                [w.latitude, w.longitude],
+                w.waypoint_tolerance.unwrap_or(DEFAULT_TOLERANCE),
+            ),
         )
+    }
+
+    fn count_query() -> ra::Message {
+        ra::QueryWaypointCount {}.into()
+    }
+
+    fn count(report: &ra::Message) -> Option<u16> {
+        waypoint_count(report)
     }
 
     fn position(side: &Ra33Side) -> Option<[f64; 2]> {
@@ -189,26 +236,35 @@ impl Kind for Global {
     }
 }
 
+/// The count of an RA 3.3 Report Waypoint Count.
+fn waypoint_count(report: &ra::Message) -> Option<u16> {
+    match report {
+        ra::Message::ReportWaypointCount(c) => Some(c.waypoint_count),
+        _ => None,
+    }
+}
+
 /// The list being executed.
 #[derive(Debug, Clone)]
 struct Run<W> {
-    /// UIDs and waypoints, in list order from the start element.
+    /// UIDs and elements, in list order from the start element.
     elements: Vec<(u16, W)>,
-    /// Positions (RA 3.3 terms) and tolerances, as `elements`.
-    targets: Vec<([f64; 2], f64)>,
+    /// Where each takes the vehicle (RA 3.3 terms), as `elements`.
+    targets: Vec<Goal>,
     /// Index of the element being driven to (`elements.len()` when done).
     active: usize,
     speed: f64,
-    /// When it was executed (a waypoint count of 0 reported after it: the driver
-    /// finished the list).
+    /// When it was executed (a count of 0 reported after it: the driver finished the
+    /// list).
     started: std::time::Instant,
 }
 
-/// A waypoint list driver of kind `K` over the RA 3.3 waypoint driver at an address.
+/// A list driver of kind `K` over the RA 3.3 waypoint or path segment driver at an
+/// address.
 #[derive(Debug)]
 pub struct ListDriver<K: Kind> {
     driver: Address,
-    run: Option<Run<K::Waypoint>>,
+    run: Option<Run<K::Element>>,
 }
 
 /// The Local Waypoint List Driver.
@@ -217,7 +273,7 @@ pub type LocalWaypointListDriver = ListDriver<Local>;
 pub type GlobalWaypointListDriver = ListDriver<Global>;
 
 impl<K: Kind> ListDriver<K> {
-    /// The service over the RA 3.3 waypoint driver at `driver`.
+    /// The service over the RA 3.3 driver at `driver`.
     pub fn new(driver: Address) -> Self {
         Self { driver, run: None }
     }
@@ -243,7 +299,7 @@ impl<K: Kind> ListDriver<K> {
             let Some(Ok(m)) = el.message() else {
                 return Handled::NotMine;
             };
-            match K::waypoint(&m) {
+            match K::element(&m) {
                 Some(w) => elements.push((el.uid, w)),
                 // A list of the other kind: the other list driver's.
                 None => return Handled::NotMine,
@@ -255,8 +311,8 @@ impl<K: Kind> ListDriver<K> {
         if elements.len() > usize::from(u16::MAX) {
             return Handled::Refused("Execute List: too many elements".into());
         }
-        // This driver moves the vehicle now; the others (the other waypoint driver, the
-        // Primitive Driver efforts the AS-4 client commanded) give way. The waypoint
+        // This driver moves the vehicle now; the others (the other list drivers, the
+        // Primitive Driver efforts the AS-4 client commanded) give way. The RA 3.3
         // driver reaches the Primitive Driver through the Reflexive Driver.
         if let Some(pd) = cx.env.targets().primitive_driver {
             cx.env.release(pd);
@@ -264,17 +320,16 @@ impl<K: Kind> ListDriver<K> {
         cx.env.activate(self.driver);
         let mut targets = Vec::with_capacity(elements.len());
         for (n, (_, w)) in elements.iter().enumerate() {
-            let (m, at, tol) = K::to_ra33(w, n as u16, cx.env);
+            let (m, goal) = K::to_ra33(w, n as u16, cx.env);
             cx.env.send(self.driver, m);
-            targets.push((at, tol));
+            targets.push(goal);
         }
         cx.env
             .send(self.driver, ra::SetTravelSpeed { speed: e.speed });
         tracing::info!(
             service = %K::ID, elements = elements.len(), speed = e.speed, "list executed"
         );
-        cx.env
-            .keep_polling(cx.now, self.driver, ra::QueryWaypointCount {});
+        cx.env.keep_polling(cx.now, self.driver, K::count_query());
         self.run = Some(Run {
             elements,
             targets,
@@ -294,7 +349,7 @@ fn holds_other_kind<K: Kind>(cx: &Cx<'_, Ra33Side>) -> bool {
         .and_then(|h| cx.lists.get(h))
         .and_then(|e| e.message())
         .and_then(Result::ok)
-        .is_some_and(|m| K::waypoint(&m).is_none())
+        .is_some_and(|m| K::element(&m).is_none())
 }
 
 impl<K: Kind> Service<Ra33Side> for ListDriver<K> {
@@ -322,7 +377,7 @@ impl<K: Kind> Service<Ra33Side> for ListDriver<K> {
                 }
                 self.execute(cx, e)
             }
-            // One component, one list: while it holds the other kind's waypoints, the
+            // One component, one list: while it holds another kind's elements, that
             // other list driver answers for it.
             Message::QueryActiveElement(_) | Message::QueryTravelSpeed(_)
                 if holds_other_kind::<K>(cx) =>
@@ -347,7 +402,7 @@ impl<K: Kind> Service<Ra33Side> for ListDriver<K> {
                     .as_ref()
                     .and_then(|r| r.elements.get(r.active).map(|e| e.1.clone()))
                 else {
-                    return Handled::Refused("no active waypoint".into());
+                    return Handled::Refused("no active element".into());
                 };
                 Handled::Reply(K::report(&w, m))
             }
@@ -374,10 +429,8 @@ impl<K: Kind> Service<Ra33Side> for ListDriver<K> {
         let Some(run) = self.run.as_mut() else { return };
         let n = run.elements.len();
         // The RA 3.3 driver empties its list at the final point.
-        if let Some((at, ra::Message::ReportWaypointCount(c))) =
-            cx.env.latest(self.driver, ra::ReportWaypointCount::CODE)
-        {
-            if at > run.started && c.waypoint_count == 0 && run.active < n {
+        if let Some((at, count)) = cx.env.latest(self.driver, K::COUNT) {
+            if at > run.started && K::count(count) == Some(0) && run.active < n {
                 tracing::info!(service = %K::ID, "list finished");
                 run.active = n;
             }
@@ -385,21 +438,25 @@ impl<K: Kind> Service<Ra33Side> for ListDriver<K> {
         let Some(here) = K::position(cx.env) else {
             return;
         };
-        while let Some((at, tol)) = run.targets.get(run.active) {
-            let d = K::offset(*at, here);
-            let reached = d[0].hypot(d[1]) <= *tol
-                || run.targets.get(run.active + 1).is_some_and(|(next, _)| {
-                    // Past the waypoint along the leg to the next one (by
-                    // PAST_MARGIN): a pursuit controller turns before it reaches a
-                    // waypoint.
-                    let leg = K::offset(*at, *next);
+        while let Some(goal) = run.targets.get(run.active) {
+            let d = K::offset(goal.at, here);
+            let reached = d[0].hypot(d[1]) <= goal.tolerance
+                || run.targets.get(run.active + 1).is_some_and(|next| {
+                    // Past the element along the way to the next one (by PAST_MARGIN):
+                    // a pursuit controller turns before it reaches a waypoint.
+                    let leg = K::offset(goal.at, next.toward);
                     let len = leg[0].hypot(leg[1]);
                     len > 0.0 && (leg[0] * d[0] + leg[1] * d[1]) / len > PAST_MARGIN
                 });
             if !reached {
                 break;
             }
-            tracing::info!(service = %K::ID, uid = run.elements[run.active].0, "element reached");
+            tracing::info!(
+                service = %K::ID,
+                uid = run.elements[run.active].0,
+                distance = d[0].hypot(d[1]),
+                "element reached"
+            );
             run.active += 1;
         }
     }

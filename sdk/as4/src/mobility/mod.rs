@@ -15,6 +15,8 @@
 //! | Primitive Driver | Primitive Driver | Set/Query/Report Wrench Effort |
 //! | Local Waypoint List Driver | Local Waypoint Driver | Execute List → numbered Set Local Waypoint + Set Travel Speed; Query Active Element / Travel Speed / Local Waypoint |
 //! | Global Waypoint List Driver | Global Waypoint Driver | the same with Set Global Waypoint |
+//! | Local Path Segment Driver | Local Path Segment Driver | Execute List → numbered Set Local Path Segment (P1, P2 into the RA 3.3 frame) + Set Travel Speed, Query Path Segment Count polled; Query Active Element / Travel Speed / Local Path Segment |
+//! | Global Path Segment Driver | Global Path Segment Driver | the same with Set Global Path Segment |
 
 use jaus::CommandCode;
 
@@ -22,10 +24,12 @@ use crate::service::ServiceId;
 
 pub mod lists;
 pub mod primitive;
+pub mod segments;
 pub mod sensors;
 
 pub use lists::{GlobalWaypointListDriver, ListDriver, LocalWaypointListDriver};
 pub use primitive::PrimitiveDriver;
+pub use segments::{GlobalPathSegmentDriver, LocalPathSegmentDriver};
 pub use sensors::{GlobalPoseSensor, LocalPoseSensor, VelocityStateSensor};
 
 /// The URIs and versions of the Mobility services (Mobility v1.0).
@@ -51,6 +55,12 @@ impl ServiceIds {
     /// `urn:jaus:jss:mobility:GlobalWaypointListDriver` 1.0.
     pub const GLOBAL_WAYPOINT_LIST_DRIVER: ServiceId =
         ServiceId::new("urn:jaus:jss:mobility:GlobalWaypointListDriver", 1, 0);
+    /// `urn:jaus:jss:mobility:LocalPathSegmentDriver` 1.0.
+    pub const LOCAL_PATH_SEGMENT_DRIVER: ServiceId =
+        ServiceId::new("urn:jaus:jss:mobility:LocalPathSegmentDriver", 1, 0);
+    /// `urn:jaus:jss:mobility:GlobalPathSegmentDriver` 1.0.
+    pub const GLOBAL_PATH_SEGMENT_DRIVER: ServiceId =
+        ServiceId::new("urn:jaus:jss:mobility:GlobalPathSegmentDriver", 1, 0);
 }
 
 /// Copies the twelve same-named efforts of one wrench-effort message into another type

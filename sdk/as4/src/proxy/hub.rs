@@ -20,6 +20,11 @@ use crate::messages::{
 /// How long a Request Control may go unanswered before it is sent again.
 const CONTROL_RETRY: Duration = Duration::from_secs(2);
 
+/// Once the vehicle has listed its services, how often it is asked again for the
+/// presented services it did not list (a vehicle may register them later); until then
+/// it is asked every status period.
+const REDISCOVER: Duration = Duration::from_secs(5);
+
 /// Every component of every node and subsystem (Discovery without a known id).
 const EVERYONE: As4Id = As4Id::new(0xFFFF, 0xFF, 0xFF);
 
@@ -31,6 +36,8 @@ pub struct As4Proxy<A: PeerAddr> {
     shared: SharedRef,
     next_poll: Instant,
     next_status: Instant,
+    /// When Discovery is next due (see [`REDISCOVER`]).
+    next_discovery: Instant,
     /// The latest time it was given (what it answers `poll_timeout` with when it has
     /// something to send at once).
     last_now: Instant,
@@ -46,6 +53,7 @@ impl<A: PeerAddr> As4Proxy<A> {
             shared,
             next_poll: now,
             next_status: now,
+            next_discovery: now,
             last_now: now,
         }
     }
@@ -85,6 +93,7 @@ impl<A: PeerAddr> As4Proxy<A> {
         let mut s = lock(&self.shared);
         match msg {
             Message::ReportServices(r) => {
+                self.next_discovery = now + REDISCOVER;
                 for n in &r.nodes {
                     for c in &n.components {
                         let at = As4Id::new(from.subsystem, n.node_id, c.component_id);
@@ -192,7 +201,8 @@ impl<A: PeerAddr> As4Proxy<A> {
         }
         if now >= self.next_status {
             self.next_status = now + self.config.status_period;
-            if roles.iter().any(|r| s.service(*r).is_none()) {
+            if now >= self.next_discovery && roles.iter().any(|r| s.service(*r).is_none()) {
+                self.next_discovery = now + self.config.status_period;
                 let to = self.config.vehicle.unwrap_or(EVERYONE);
                 let (node_id, component_ids) = if to.node == 0xFF || to.component == 0xFF {
                     (255, vec![255])

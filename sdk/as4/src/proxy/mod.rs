@@ -20,6 +20,8 @@
 //! | Primitive Driver (33) | Primitive Driver | Set Wrench Effort → Set Wrench Effort; Query Wrench Effort from the latest AS-4 report |
 //! | Global Waypoint Driver (45) | Global Waypoint List Driver | numbered Set Global Waypoint + Set Travel Speed, in Ready → Delete Element (all), Set Element (UIDs 1…n, linked), Execute List at that speed; Query Waypoint Count → the elements not yet passed (Query Active Element); Query Global Waypoint / Travel Speed from what was set; the list done → Standby, as Part 1 asks |
 //! | Local Waypoint Driver (46) | Local Waypoint List Driver | the same with Set Local Waypoint |
+//! | Global Path Segment Driver (47) | Global Path Segment Driver | the same with numbered Set Global Path Segment (P1, P2, weighting factor) as AS-4 Set Global Path Segment elements; Query Path Segment Count → the elements not yet passed |
+//! | Local Path Segment Driver (48) | Local Path Segment Driver | the same with Set Local Path Segment (P1, P2 into the AS-4 frame) |
 //!
 //! The RA 3.3 components run on the SDK's component runtime
 //! ([`jaus::component::Component`]): service connections, events, heartbeats, status
@@ -60,6 +62,7 @@ use crate::service::ServiceId;
 pub mod behaviours;
 pub mod endpoint;
 pub mod hub;
+pub mod segments;
 pub mod shared;
 pub mod waypoints;
 
@@ -82,17 +85,23 @@ pub enum Role {
     LocalWaypointDriver,
     /// Global Waypoint Driver (45) over the Global Waypoint List Driver.
     GlobalWaypointDriver,
+    /// Global Path Segment Driver (47) over the Global Path Segment Driver.
+    GlobalPathSegmentDriver,
+    /// Local Path Segment Driver (48) over the Local Path Segment Driver.
+    LocalPathSegmentDriver,
 }
 
 impl Role {
     /// Every role, in this order.
-    pub const ALL: [Role; 6] = [
+    pub const ALL: [Role; 8] = [
         Role::VelocityStateSensor,
         Role::LocalPoseSensor,
         Role::GlobalPoseSensor,
         Role::PrimitiveDriver,
         Role::LocalWaypointDriver,
         Role::GlobalWaypointDriver,
+        Role::GlobalPathSegmentDriver,
+        Role::LocalPathSegmentDriver,
     ];
 
     /// The RA 3.3 component id (Part 1).
@@ -104,6 +113,8 @@ impl Role {
             Role::PrimitiveDriver => c::primitive_driver::ID,
             Role::LocalWaypointDriver => c::local_waypoint_driver::ID,
             Role::GlobalWaypointDriver => c::global_waypoint_driver::ID,
+            Role::GlobalPathSegmentDriver => c::global_path_segment_driver::ID,
+            Role::LocalPathSegmentDriver => c::local_path_segment_driver::ID,
         }
     }
 
@@ -116,6 +127,8 @@ impl Role {
             Role::PrimitiveDriver => ServiceIds::PRIMITIVE_DRIVER,
             Role::LocalWaypointDriver => ServiceIds::LOCAL_WAYPOINT_LIST_DRIVER,
             Role::GlobalWaypointDriver => ServiceIds::GLOBAL_WAYPOINT_LIST_DRIVER,
+            Role::GlobalPathSegmentDriver => ServiceIds::GLOBAL_PATH_SEGMENT_DRIVER,
+            Role::LocalPathSegmentDriver => ServiceIds::LOCAL_PATH_SEGMENT_DRIVER,
         }
     }
 
@@ -123,7 +136,11 @@ impl Role {
     pub fn is_driver(self) -> bool {
         matches!(
             self,
-            Role::PrimitiveDriver | Role::LocalWaypointDriver | Role::GlobalWaypointDriver
+            Role::PrimitiveDriver
+                | Role::LocalWaypointDriver
+                | Role::GlobalWaypointDriver
+                | Role::GlobalPathSegmentDriver
+                | Role::LocalPathSegmentDriver
         )
     }
 
@@ -142,7 +159,7 @@ pub struct ProxyConfig {
     /// broadcast node and component (`S.255.255`), or `None` to ask every component at
     /// the vehicle's address (`65535.255.255`).
     pub vehicle: Option<As4Id>,
-    /// The presented services (default all six).
+    /// The presented services (default all eight).
     pub roles: Vec<Role>,
     /// The RA 3.3 instance of the presented components (default 1).
     pub instance: u8,
@@ -260,6 +277,28 @@ pub fn install<A: PeerAddr>(
                 Component::new(
                     address,
                     waypoints::WaypointDriver::<waypoints::Global>::new(s.clone()),
+                    settings,
+                    now,
+                ),
+                *role,
+                s,
+                now,
+            )),
+            Role::GlobalPathSegmentDriver => node.add(ProxyEndpoint::new(
+                Component::new(
+                    address,
+                    segments::PathSegmentDriver::<segments::GlobalSegments>::new(s.clone()),
+                    settings,
+                    now,
+                ),
+                *role,
+                s,
+                now,
+            )),
+            Role::LocalPathSegmentDriver => node.add(ProxyEndpoint::new(
+                Component::new(
+                    address,
+                    segments::PathSegmentDriver::<segments::LocalSegments>::new(s.clone()),
                     settings,
                     now,
                 ),

@@ -1,5 +1,6 @@
 //! The proxy's Global and Local Waypoint Drivers over the vehicle's AS-4 Global and
-//! Local Waypoint List Drivers.
+//! Local Waypoint List Drivers; the Path Segment Drivers ([`super::segments`]) are the
+//! same machinery over other kinds ([`Kind`]).
 //!
 //! RA 3.3 gives a waypoint driver numbered waypoints (number 0 starts a new list) and a
 //! travel speed, and it drives in Ready while the speed is not zero. The proxy keeps
@@ -31,20 +32,25 @@ use crate::messages::{self as as4, Element, Message};
 /// the list was done before the first answer.
 const DONE_WITHOUT_PROGRESS: Duration = Duration::from_secs(1);
 
-/// Global or local waypoints: what differs between the two drivers (implemented by
-/// [`Global`] and [`Local`] only).
+/// Global or local waypoints or path segments: what differs between the drivers
+/// (implemented by [`Global`] and [`Local`] and the kinds of [`super::segments`] only).
 pub trait Kind: Send + 'static {
     /// The RA 3.3 interface.
     type Iface: Interface<Messages = Ra33Message>;
     /// The role presented.
     const ROLE: Role;
-    /// The waypoint number of a Set Waypoint of this kind.
+    /// What one element is called in refusals ("waypoint", "path segment").
+    const ELEMENT: &'static str;
+    /// The element number of a Set Waypoint (or Path Segment) of this kind.
     fn set_number(m: &Ra33Message) -> Option<u16>;
-    /// The waypoint number a Query Waypoint of this kind asks for.
+    /// The element number a Query Waypoint (or Path Segment) of this kind asks for.
     fn query_number(m: &Ra33Message) -> Option<u16>;
-    /// The report of a stored Set Waypoint.
-    fn report(set: &Ra33Message) -> Option<Ra33Message>;
-    /// The AS-4 Set Waypoint of a stored RA 3.3 one (local: into the AS-4 frame).
+    /// The report of a stored Set message, answering `query`.
+    fn report(set: &Ra33Message, query: &Ra33Message) -> Option<Ra33Message>;
+    /// The answer to `m` if it is this kind's count query (Query Waypoint Count, Query
+    /// Path Segment Count): `remaining` elements.
+    fn count(m: &Ra33Message, remaining: u16) -> Option<Ra33Message>;
+    /// The AS-4 Set message of a stored RA 3.3 one (local: into the AS-4 frame).
     fn as4(set: &Ra33Message, s: &Shared) -> Option<Message>;
     /// The mode change to Navigating.
     fn start(ctx: &mut Context<'_, Self::Iface>);
@@ -60,9 +66,23 @@ pub struct Global;
 #[derive(Debug)]
 pub struct Local;
 
+/// Report Waypoint Count with `remaining` if `m` is Query Waypoint Count.
+fn waypoint_count(m: &Ra33Message, remaining: u16) -> Option<Ra33Message> {
+    match m {
+        Ra33Message::QueryWaypointCount(_) => Some(
+            ra::ReportWaypointCount {
+                waypoint_count: remaining,
+            }
+            .into(),
+        ),
+        _ => None,
+    }
+}
+
 impl Kind for Global {
     type Iface = gwd::Interface;
     const ROLE: Role = Role::GlobalWaypointDriver;
+    const ELEMENT: &'static str = "waypoint";
 
     fn set_number(m: &Ra33Message) -> Option<u16> {
         match m {
@@ -78,7 +98,7 @@ impl Kind for Global {
         }
     }
 
-    fn report(set: &Ra33Message) -> Option<Ra33Message> {
+    fn report(set: &Ra33Message, _query: &Ra33Message) -> Option<Ra33Message> {
         let Ra33Message::SetGlobalWaypoint(w) = set else {
             return None;
         };
@@ -94,6 +114,10 @@ impl Kind for Global {
             }
             .into(),
         )
+    }
+
+    fn count(m: &Ra33Message, remaining: u16) -> Option<Ra33Message> {
+        waypoint_count(m, remaining)
     }
 
     fn as4(set: &Ra33Message, _s: &Shared) -> Option<Message> {
@@ -126,6 +150,7 @@ impl Kind for Global {
 impl Kind for Local {
     type Iface = lwd::Interface;
     const ROLE: Role = Role::LocalWaypointDriver;
+    const ELEMENT: &'static str = "waypoint";
 
     fn set_number(m: &Ra33Message) -> Option<u16> {
         match m {
@@ -141,7 +166,7 @@ impl Kind for Local {
         }
     }
 
-    fn report(set: &Ra33Message) -> Option<Ra33Message> {
+    fn report(set: &Ra33Message, _query: &Ra33Message) -> Option<Ra33Message> {
         let Ra33Message::SetLocalWaypoint(w) = set else {
             return None;
         };
@@ -157,6 +182,10 @@ impl Kind for Local {
             }
             .into(),
         )
+    }
+
+    fn count(m: &Ra33Message, remaining: u16) -> Option<Ra33Message> {
+        waypoint_count(m, remaining)
     }
 
     fn as4(set: &Ra33Message, s: &Shared) -> Option<Message> {
@@ -200,7 +229,8 @@ struct Run {
     active: u16,
 }
 
-/// A proxy waypoint driver of kind `K` (see the module's documentation).
+/// A proxy waypoint (or path segment) driver of kind `K` (see the module's
+/// documentation).
 pub struct WaypointDriver<K: Kind> {
     shared: SharedRef,
     points: Vec<Ra33Message>,
@@ -238,7 +268,7 @@ impl<K: Kind> WaypointDriver<K> {
         }
     }
 
-    /// Waypoints not yet passed.
+    /// Elements not yet passed.
     fn remaining(&self) -> u16 {
         match &self.run {
             Some(r) if r.active == 0 => {
@@ -264,7 +294,8 @@ impl<K: Kind> WaypointDriver<K> {
             self.points.push(m.clone());
         } else {
             return Err(Refused::Invalid(format!(
-                "waypoint_number {n}: the next waypoint is {} (at most {MAX_WAYPOINTS})",
+                "{} number {n}: the next one is {} (at most {MAX_WAYPOINTS})",
+                K::ELEMENT,
                 self.points.len()
             )));
         }
@@ -291,7 +322,7 @@ impl<K: Kind> WaypointDriver<K> {
             match held {
                 Some(Ok(e)) => elements.push(e),
                 Some(Err(e)) => {
-                    tracing::warn!(role = ?K::ROLE, uid, "waypoint not encoded: {e}");
+                    tracing::warn!(role = ?K::ROLE, uid, "{} not encoded: {e}", K::ELEMENT);
                     return false;
                 }
                 None => return false,
@@ -320,7 +351,7 @@ impl<K: Kind> WaypointDriver<K> {
             },
         );
         s.set_executing(at, true);
-        tracing::info!(role = ?K::ROLE, %at, waypoints = n, speed = self.speed, "list sent to the AS-4 vehicle");
+        tracing::info!(role = ?K::ROLE, %at, elements = n, speed = self.speed, "list sent to the AS-4 vehicle");
         self.run = Some(Run {
             n: n as u16,
             sent: now,
@@ -362,7 +393,7 @@ impl<K: Kind> WaypointDriver<K> {
     }
 }
 
-/// Most waypoints of one list.
+/// Most waypoints (or path segments) of one list.
 pub const MAX_WAYPOINTS: usize = 1000;
 
 impl<K: Kind> Behaviour for WaypointDriver<K> {
@@ -381,9 +412,15 @@ impl<K: Kind> Behaviour for WaypointDriver<K> {
             return self
                 .points
                 .get(usize::from(n))
-                .and_then(K::report)
+                .and_then(|p| K::report(p, msg))
                 .map(Some)
-                .ok_or_else(|| Refused::Invalid(format!("waypoint_number {n}: no such waypoint")));
+                .ok_or_else(|| {
+                    let what = K::ELEMENT;
+                    Refused::Invalid(format!("{what} number {n}: no such {what}"))
+                });
+        }
+        if let Some(r) = K::count(msg, self.remaining()) {
+            return Ok(Some(r));
         }
         match msg {
             Ra33Message::SetTravelSpeed(t) => {
@@ -394,16 +431,10 @@ impl<K: Kind> Behaviour for WaypointDriver<K> {
                 self.speed_dirty = true;
                 Ok(None)
             }
-            Ra33Message::QueryWaypointCount(_) => Ok(Some(
-                ra::ReportWaypointCount {
-                    waypoint_count: self.remaining(),
-                }
-                .into(),
-            )),
             Ra33Message::QueryTravelSpeed(_) => {
                 Ok(Some(ra::ReportTravelSpeed { speed: self.speed }.into()))
             }
-            // Reports a waypoint driver listens to: the vehicle drives itself.
+            // Reports a navigation driver listens to: the vehicle drives itself.
             Ra33Message::ReportGlobalPose(_)
             | Ra33Message::ReportLocalPose(_)
             | Ra33Message::ReportVelocityState(_) => Ok(None),
@@ -425,7 +456,7 @@ impl<K: Kind> Behaviour for WaypointDriver<K> {
             done
         };
         if done {
-            // Part 1: back to Standby at the final waypoint (which tells the vehicle).
+            // Part 1: back to Standby at the final point (which tells the vehicle).
             K::arrive(ctx);
             return;
         }
@@ -475,14 +506,14 @@ impl<K: Kind> Behaviour for WaypointDriver<K> {
         }
         if from == CoreState::Ready && to != CoreState::Ready {
             self.end_run(&mut s);
-            // Driven again from the first waypoint after the next Resume and speed.
+            // Driven again from the first element after the next Resume and speed.
             self.points_dirty = !self.points.is_empty();
         }
         state_to_as4(&mut s, K::ROLE, from, to);
     }
 
     fn stop(&mut self, _ctx: &mut Context<'_, K::Iface>, reason: StopReason) {
-        tracing::debug!(role = ?K::ROLE, %reason, "proxy waypoint driver stops");
+        tracing::debug!(role = ?K::ROLE, %reason, "proxy list driver stops");
         let shared = self.shared.clone();
         self.end_run(&mut lock(&shared));
     }

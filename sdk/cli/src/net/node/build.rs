@@ -435,6 +435,8 @@ fn role_name(r: jaus_as4::proxy::Role) -> &'static str {
         Role::PrimitiveDriver => "primitive_driver",
         Role::LocalWaypointDriver => "local_waypoint_driver",
         Role::GlobalWaypointDriver => "global_waypoint_driver",
+        Role::GlobalPathSegmentDriver => "global_path_segment_driver",
+        Role::LocalPathSegmentDriver => "local_path_segment_driver",
     }
 }
 
@@ -490,7 +492,7 @@ mod tests {
         assert_eq!(a.vehicle, Some(jaus::net::as5669a::As4Id::new(1, 1, 1)));
         assert_eq!(
             (a.me, a.instance, a.authority, a.roles.len()),
-            (jaus::net::as5669a::As4Id::new(2, 3, 200), 1, 200, 6)
+            (jaus::net::as5669a::As4Id::new(2, 3, 200), 1, 200, 8)
         );
         let (b, _) = &v[1];
         assert_eq!(b.vehicle, None);

@@ -150,11 +150,11 @@ pub struct NodeFile {
 /// directions: each AS-4 message goes to the side its destination id names). The
 /// components take the standard ids of Part 1 on this node: Velocity State Sensor 42,
 /// Local Pose Sensor 41, Global Pose Sensor 38, Primitive Driver 33, Local Waypoint
-/// Driver 46, Global Waypoint Driver 45 (at `instance`), over the vehicle's AS-4
-/// Mobility services found by Discovery. An RA 3.3 client's control of a driver is
-/// granted once the node holds AS-4 control of the vehicle; Resume, Standby and
-/// emergencies cross over; waypoints and a travel speed become an AS-4 list executed
-/// at that speed. The console expects one vehicle per RA 3.3 subsystem: present each
+/// Driver 46, Global Waypoint Driver 45, Global Path Segment Driver 47, Local Path
+/// Segment Driver 48 (at `instance`), over the vehicle's AS-4 Mobility services found
+/// by Discovery. An RA 3.3 client's control of a driver is granted once the node holds
+/// AS-4 control of the vehicle; Resume, Standby and emergencies cross over; waypoints
+/// (or path segments) and a travel speed become an AS-4 list executed at that speed. The console expects one vehicle per RA 3.3 subsystem: present each
 /// vehicle on a node of its own subsystem.
 ///
 /// ```yaml
@@ -170,7 +170,7 @@ pub struct NodeFile {
 ///     instance: 1               # RA 3.3 instance of the components; default 1, 2, …
 ///     authority: 200            # with which AS-4 control is requested; default 200
 ///     services: [global_pose_sensor, velocity_state_sensor, global_waypoint_driver]
-///                               # default: all six (names as above, snake case)
+///                               # default: all eight (names as above, snake case)
 ///     frame: { x: 0, y: 0, yaw: 0 }  # the AS-4 local frame in the RA 3.3 one
 ///                               #   (m, m, rad); default identity
 /// ```
@@ -192,7 +192,7 @@ pub struct As4VehicleFile {
     /// Authority of the AS-4 control requests (default 200).
     #[serde(default)]
     pub authority: Option<u8>,
-    /// The presented services (default all six).
+    /// The presented services (default all eight).
     #[serde(default)]
     pub services: Option<Vec<String>>,
     /// The AS-4 local frame relative to the RA 3.3 one (default identity).
