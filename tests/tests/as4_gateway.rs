@@ -32,8 +32,13 @@ struct Judge {
 impl Judge {
     fn new() -> Self {
         let t0 = Instant::now();
-        let mut net = SimNet::new(t0, LinkModel::default(), 7);
         let node = jaus_sim::demo::vehicle_node(t0, NodeConfig::default(), 1, 1).unwrap();
+        Self::with_node(t0, node)
+    }
+
+    /// The gateway in front of `node` (subsystem 1, node 1), as the node's component 60.
+    fn with_node(t0: Instant, node: jaus::net::Node) -> Self {
+        let mut net = SimNet::new(t0, LinkModel::default(), 7);
         let config = GatewayConfig::new(VEHICLE, Address::new(1, 1, 60, 1), 1, "demo vehicle");
         let vehicle = net.add(DualNode::new(node, config).unwrap());
         let client = net.add(As4Client::<SocketAddr>::default());
@@ -478,5 +483,129 @@ fn an_as4_client_drives_the_ra33_vehicle_along_path_segments_through_the_gateway
     assert!(
         off.hypot(east) < 1.0,
         "ended {off:.2} m north, {east:.2} m east of P2"
+    );
+}
+
+/// The services listed by Report Services.
+fn service_uris(j: &mut Judge) -> Vec<String> {
+    let Message::ReportServices(r) = j.one(QueryServices {
+        nodes: vec![NodeServicesQuery {
+            node_id: 255,
+            component_ids: vec![255],
+        }],
+    }) else {
+        panic!("Report Services expected")
+    };
+    r.nodes
+        .iter()
+        .flat_map(|n| &n.components)
+        .flat_map(|c| &c.services)
+        .map(|s| s.uri.clone())
+        .collect()
+}
+
+#[test]
+fn a_subsystem_with_only_global_services_gets_local_ones_over_them() {
+    // As OpenJAUS 3.3's vehicle simulator: a Global Pose Sensor and a Global Waypoint
+    // Driver, no Local Pose Sensor, no Local Waypoint Driver.
+    let t0 = Instant::now();
+    let mut node = jaus::net::Node::new(
+        NodeConfig {
+            subsystem: 1,
+            node: 1,
+            ..NodeConfig::default()
+        },
+        t0,
+    );
+    let mut host = jaus_sim::host::Host::new(1, 1, t0);
+    for name in [
+        "primitive_driver",
+        "global_pose_sensor",
+        "velocity_state_sensor",
+        "global_waypoint_driver",
+    ] {
+        let stock = jaus_sim::host::Stock::by_name(name).unwrap();
+        node.add_boxed(host.build(&jaus_sim::host::Host::entry(stock)).unwrap())
+            .unwrap();
+    }
+    let mut j = Judge::with_node(t0, node);
+    let uris = service_uris(&mut j);
+    for want in [
+        "urn:jaus:jss:mobility:LocalPoseSensor",
+        "urn:jaus:jss:mobility:LocalWaypointListDriver",
+        "urn:jaus:jss:mobility:GlobalPoseSensor",
+        "urn:jaus:jss:mobility:GlobalWaypointListDriver",
+    ] {
+        assert_eq!(
+            uris.iter().filter(|u| *u == want).count(),
+            1,
+            "{want} once in {uris:?}"
+        );
+    }
+    j.take_and_resume();
+    // The local frame is placed: the vehicle at (10, 20) facing +X.
+    assert!(j
+        .ask(
+            SetLocalPose {
+                x: Some(10.0),
+                y: Some(20.0),
+                yaw: Some(0.0),
+                ..Default::default()
+            },
+            Duration::from_millis(300)
+        )
+        .is_empty());
+    let Message::ReportLocalPose(p) = j.one(QueryLocalPose {
+        presence_vector: 0x0043,
+    }) else {
+        panic!("Report Local Pose expected")
+    };
+    assert!(
+        (p.x.unwrap() - 10.0).abs() < 0.05 && (p.y.unwrap() - 20.0).abs() < 0.05,
+        "{p:?}"
+    );
+    let Message::ReportGlobalPose(g0) = j.one(QueryGlobalPose {
+        presence_vector: 0x0003,
+    }) else {
+        panic!("Report Global Pose expected")
+    };
+    // Two local waypoints: 6 m ahead, then 4 m to the left of that.
+    let elements = vec![
+        Element::holding(1, 0, 2, &waypoint(16.0, 20.0)).unwrap(),
+        Element::holding(2, 1, 0, &waypoint(16.0, 24.0)).unwrap(),
+    ];
+    let Message::ConfirmElementRequest(ok) = j.one(SetElement {
+        request_id: 9,
+        elements,
+    }) else {
+        panic!("Confirm Element Request expected")
+    };
+    assert_eq!(ok.request_id, 9);
+    let active = j.drive(1.5, |_, _| {});
+    assert_eq!(active.first(), Some(&1), "{active:?}");
+    assert!(active.contains(&2), "{active:?}");
+    assert_eq!(active.last(), Some(&0), "{active:?}");
+    // Where the vehicle is, in the AS-4 frame and in degrees: 6 m and 4 m from where it
+    // started, which the global pose shows as well (the frame is not just a relabelling).
+    let Message::ReportLocalPose(p) = j.one(QueryLocalPose {
+        presence_vector: 0x0003,
+    }) else {
+        panic!("Report Local Pose expected")
+    };
+    let (x, y) = (p.x.unwrap(), p.y.unwrap());
+    assert!(
+        (x - 16.0).hypot(y - 24.0) < 1.0,
+        "ended at ({x:.2}, {y:.2})"
+    );
+    let Message::ReportGlobalPose(g1) = j.one(QueryGlobalPose {
+        presence_vector: 0x0003,
+    }) else {
+        panic!("Report Global Pose expected")
+    };
+    let frame = jaus::stock::geo::LocalFrame::new(g0.latitude.unwrap(), g0.longitude.unwrap(), 0.0);
+    let moved = frame.to_local(g1.latitude.unwrap(), g1.longitude.unwrap());
+    assert!(
+        (moved.norm() - 6f64.hypot(4.0)).abs() < 1.0,
+        "moved {moved:?} on the globe"
     );
 }

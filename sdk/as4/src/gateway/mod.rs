@@ -36,7 +36,8 @@ use crate::messages::{
 };
 use crate::mobility::{
     GlobalPathSegmentDriver, GlobalPoseSensor, GlobalWaypointListDriver, LocalPathSegmentDriver,
-    LocalPoseSensor, LocalWaypointListDriver, PrimitiveDriver, VelocityStateSensor,
+    LocalPoseSensor, LocalWaypointListDriver, LocalWaypointListDriverOnGlobal, PrimitiveDriver,
+    VelocityStateSensor,
 };
 use crate::node::As4Node;
 use crate::ComponentState;
@@ -90,6 +91,17 @@ pub struct Gateway<A: PeerAddr = SocketAddr> {
     pending_since: Option<Instant>,
     seen: (ComponentState, bool),
     tree_seen: Option<u64>,
+    /// The local services offered over the global ones (the subsystem had no Local Pose
+    /// Sensor, no Local Waypoint Driver when its global ones were found): a local one
+    /// found later is not offered beside them.
+    derived: Derived,
+}
+
+/// Which local services a [`Gateway`] derived from global ones.
+#[derive(Debug, Default, Clone, Copy)]
+struct Derived {
+    pose: bool,
+    waypoints: bool,
 }
 
 impl<A: PeerAddr> Gateway<A> {
@@ -113,6 +125,7 @@ impl<A: PeerAddr> Gateway<A> {
             pending_since: None,
             seen,
             tree_seen: None,
+            derived: Derived::default(),
         }
     }
 
@@ -162,6 +175,16 @@ impl<A: PeerAddr> Gateway<A> {
             &mut targets.global_path_segment_driver,
             found.global_path_segment_driver,
         );
+        // Local services over the global ones where the subsystem has no local ones; a
+        // local one found after that is not offered beside them.
+        let lps = lps.filter(|_| !self.derived.pose);
+        let lwd = lwd.filter(|_| !self.derived.waypoints);
+        let derive_pose = gps.filter(|_| targets.local_pose_sensor.is_none());
+        let derive_waypoints = gwd.filter(|_| {
+            targets.local_waypoint_driver.is_none() && targets.global_pose_sensor.is_some()
+        });
+        self.derived.pose |= derive_pose.is_some();
+        self.derived.waypoints |= derive_waypoints.is_some();
         let new = [vss, lps, gps, pd, lwd, gwd, lpsd, gpsd];
         if new.iter().all(Option::is_none) {
             return;
@@ -177,6 +200,14 @@ impl<A: PeerAddr> Gateway<A> {
         }
         if let Some(a) = gps {
             services.push(Box::new(GlobalPoseSensor::new(env, now, a)));
+        }
+        if let Some(a) = derive_pose {
+            tracing::info!(global_pose_sensor = %a, "no RA 3.3 Local Pose Sensor: the AS-4 one is derived from the global one");
+            services.push(Box::new(LocalPoseSensor::over_global(env, now, a)));
+        }
+        if let Some(a) = derive_waypoints {
+            tracing::info!(global_waypoint_driver = %a, "no RA 3.3 Local Waypoint Driver: the AS-4 Local Waypoint List Driver drives the global one");
+            services.push(Box::new(LocalWaypointListDriverOnGlobal::new(a)));
         }
         if let Some(a) = pd {
             services.push(Box::new(PrimitiveDriver::new(env, now, a)));
@@ -196,7 +227,7 @@ impl<A: PeerAddr> Gateway<A> {
         let Some(c) = self.node.component_mut(self.as4) else {
             return;
         };
-        if lwd.is_some() {
+        if lwd.is_some() || derive_waypoints.is_some() {
             c.core_mut().lists_mut().support(SetLocalWaypoint::CODE);
         }
         if gwd.is_some() {

@@ -13,6 +13,7 @@ use jaus::messages::{
     ConfirmComponentControl, ControlResponse, Message as Ra33Message, QueryLevel,
     ReleaseComponentControl, ReportIdentification, RequestComponentControl, Resume, Standby,
 };
+use jaus::stock::geo::LocalFrame;
 use jaus::{Address, CommandCode};
 
 /// The gateway's name in RA 3.3 Report Identification.
@@ -193,6 +194,10 @@ pub struct Ra33Side {
     active: Option<Address>,
     /// The AS-4 local frame relative to the RA 3.3 one (Set Local Pose moves it).
     pub frame: Frame,
+    /// A local frame (x north, y east) at the first global position the Global Pose
+    /// Sensor reported: the RA 3.3 local frame of a subsystem without a Local Pose
+    /// Sensor ([`crate::mobility::derived`]).
+    tangent: Option<LocalFrame>,
     stats: Ra33Stats,
 }
 
@@ -213,6 +218,7 @@ impl Ra33Side {
             ready: false,
             active: None,
             frame: Frame::default(),
+            tangent: None,
             stats: Ra33Stats::default(),
         }
     }
@@ -290,6 +296,12 @@ impl Ra33Side {
         self.latest.get(&(from, code)).map(|(t, m)| (*t, m))
     }
 
+    /// The local frame placed at the first global position reported (`None` until the
+    /// Global Pose Sensor has reported one).
+    pub fn tangent(&self) -> Option<&LocalFrame> {
+        self.tangent.as_ref()
+    }
+
     /// RA 3.3 control of `driver`.
     pub fn control_of(&self, driver: Address) -> Ra33Control {
         self.control
@@ -330,6 +342,14 @@ impl Ra33Side {
                 );
             }
             m if m.code().class() == jaus::wire::MessageClass::Inform => {
+                if let (None, Ra33Message::ReportGlobalPose(g)) = (&self.tangent, m) {
+                    if let (Some(lat), Some(lon)) = (g.latitude, g.longitude) {
+                        if Some(from) == self.targets.global_pose_sensor {
+                            tracing::info!(gateway = %self.me, latitude = lat, longitude = lon, "local frame placed at the first global position");
+                            self.tangent = Some(LocalFrame::new(lat, lon, 0.0));
+                        }
+                    }
+                }
                 self.stats.reports += 1;
                 self.latest.insert((from, m.code()), (now, message));
             }

@@ -71,8 +71,13 @@ pub trait Kind: std::fmt::Debug + Send + 'static {
     /// The element a List Manager element's message is, if it is one of this kind.
     fn element(m: &Message) -> Option<Self::Element>;
     /// The RA 3.3 message setting element `number`, and where it takes the vehicle in
-    /// the RA 3.3 frame (local x, y; or latitude, longitude).
-    fn to_ra33(e: &Self::Element, number: u16, side: &Ra33Side) -> (ra::Message, Goal);
+    /// the RA 3.3 frame (local x, y; or latitude, longitude); why not, when the element
+    /// cannot be moved into RA 3.3 terms yet (Execute List is then refused with it).
+    fn to_ra33(
+        e: &Self::Element,
+        number: u16,
+        side: &Ra33Side,
+    ) -> Result<(ra::Message, Goal), String>;
     /// The RA 3.3 query of how many elements the driver holds (answered with `COUNT`).
     fn count_query() -> ra::Message;
     /// The count in an RA 3.3 `COUNT` report.
@@ -106,7 +111,11 @@ impl Kind for Local {
         }
     }
 
-    fn to_ra33(w: &SetLocalWaypoint, number: u16, side: &Ra33Side) -> (ra::Message, Goal) {
+    fn to_ra33(
+        w: &SetLocalWaypoint,
+        number: u16,
+        side: &Ra33Side,
+    ) -> Result<(ra::Message, Goal), String> {
         let (x, y) = side.frame.to_ra33(w.x, w.y);
         let m = ra::SetLocalWaypoint {
             waypoint_number: number,
@@ -117,10 +126,10 @@ impl Kind for Local {
             pitch: w.pitch,
             yaw: w.yaw.map(|a| side.frame.yaw_to_ra33(a)),
         };
-        (
+        Ok((
             m.into(),
             Goal::point([x, y], w.waypoint_tolerance.unwrap_or(DEFAULT_TOLERANCE)),
-        )
+        ))
     }
 
     fn count_query() -> ra::Message {
@@ -174,7 +183,11 @@ impl Kind for Global {
         }
     }
 
-    fn to_ra33(w: &SetGlobalWaypoint, number: u16, _side: &Ra33Side) -> (ra::Message, Goal) {
+    fn to_ra33(
+        w: &SetGlobalWaypoint,
+        number: u16,
+        _side: &Ra33Side,
+    ) -> Result<(ra::Message, Goal), String> {
         let m = ra::SetGlobalWaypoint {
             waypoint_number: number,
             latitude: w.latitude,
@@ -184,13 +197,13 @@ impl Kind for Global {
             pitch: w.pitch,
             yaw: w.yaw,
         };
-        (
+        Ok((
             m.into(),
             Goal::point(
                 [w.latitude, w.longitude],
                 w.waypoint_tolerance.unwrap_or(DEFAULT_TOLERANCE),
             ),
-        )
+        ))
     }
 
     fn count_query() -> ra::Message {
@@ -311,6 +324,17 @@ impl<K: Kind> ListDriver<K> {
         if elements.len() > usize::from(u16::MAX) {
             return Handled::Refused("Execute List: too many elements".into());
         }
+        let mut messages = Vec::with_capacity(elements.len());
+        let mut targets = Vec::with_capacity(elements.len());
+        for (n, (uid, w)) in elements.iter().enumerate() {
+            match K::to_ra33(w, n as u16, cx.env) {
+                Ok((m, goal)) => {
+                    messages.push(m);
+                    targets.push(goal);
+                }
+                Err(why) => return Handled::Refused(format!("Execute List: element {uid}: {why}")),
+            }
+        }
         // This driver moves the vehicle now; the others (the other list drivers, the
         // Primitive Driver efforts the AS-4 client commanded) give way. The RA 3.3
         // driver reaches the Primitive Driver through the Reflexive Driver.
@@ -318,11 +342,8 @@ impl<K: Kind> ListDriver<K> {
             cx.env.release(pd);
         }
         cx.env.activate(self.driver);
-        let mut targets = Vec::with_capacity(elements.len());
-        for (n, (_, w)) in elements.iter().enumerate() {
-            let (m, goal) = K::to_ra33(w, n as u16, cx.env);
+        for m in messages {
             cx.env.send(self.driver, m);
-            targets.push(goal);
         }
         cx.env
             .send(self.driver, ra::SetTravelSpeed { speed: e.speed });

@@ -17,16 +17,23 @@
 //! | Global Waypoint List Driver | Global Waypoint Driver | the same with Set Global Waypoint |
 //! | Local Path Segment Driver | Local Path Segment Driver | Execute List → numbered Set Local Path Segment (P1, P2 into the RA 3.3 frame) + Set Travel Speed, Query Path Segment Count polled; Query Active Element / Travel Speed / Local Path Segment |
 //! | Global Path Segment Driver | Global Path Segment Driver | the same with Set Global Path Segment |
+//!
+//! A subsystem with a Global Pose Sensor and no Local Pose Sensor gets a Local Pose
+//! Sensor over the global one, and with a Global Waypoint Driver and no Local Waypoint
+//! Driver a Local Waypoint List Driver over the global one, in a local frame placed at
+//! its first global position ([`derived`]).
 
 use jaus::CommandCode;
 
 use crate::service::ServiceId;
 
+pub mod derived;
 pub mod lists;
 pub mod primitive;
 pub mod segments;
 pub mod sensors;
 
+pub use derived::LocalWaypointListDriverOnGlobal;
 pub use lists::{GlobalWaypointListDriver, ListDriver, LocalWaypointListDriver};
 pub use primitive::PrimitiveDriver;
 pub use segments::{GlobalPathSegmentDriver, LocalPathSegmentDriver};

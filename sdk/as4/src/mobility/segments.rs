@@ -76,7 +76,11 @@ impl Kind for LocalSegments {
         }
     }
 
-    fn to_ra33(s: &SetLocalPathSegment, number: u16, side: &Ra33Side) -> (ra::Message, Goal) {
+    fn to_ra33(
+        s: &SetLocalPathSegment,
+        number: u16,
+        side: &Ra33Side,
+    ) -> Result<(ra::Message, Goal), String> {
         let (p1_x, p1_y) = side.frame.to_ra33(s.p1_x, s.p1_y);
         let (p2_x, p2_y) = side.frame.to_ra33(s.p2_x, s.p2_y);
         let m = ra::SetLocalPathSegment {
@@ -95,7 +99,7 @@ impl Kind for LocalSegments {
             s.weighting_factor,
             s.path_tolerance,
         );
-        (m.into(), g)
+        Ok((m.into(), g))
     }
 
     fn count_query() -> ra::Message {
@@ -145,7 +149,11 @@ impl Kind for GlobalSegments {
         }
     }
 
-    fn to_ra33(s: &SetGlobalPathSegment, number: u16, _side: &Ra33Side) -> (ra::Message, Goal) {
+    fn to_ra33(
+        s: &SetGlobalPathSegment,
+        number: u16,
+        _side: &Ra33Side,
+    ) -> Result<(ra::Message, Goal), String> {
         let m = ra::SetGlobalPathSegment {
             path_segment_number: number,
             p1_latitude: s.p1_latitude,
@@ -162,7 +170,7 @@ impl Kind for GlobalSegments {
             s.weighting_factor,
             s.path_tolerance,
         );
-        (m.into(), g)
+        Ok((m.into(), g))
     }
 
     fn count_query() -> ra::Message {
@@ -237,7 +245,7 @@ mod tests {
             weighting_factor: 0.5,
             path_tolerance: Some(0.3),
         };
-        let (m, g) = LocalSegments::to_ra33(&s, 3, &side(frame));
+        let (m, g) = LocalSegments::to_ra33(&s, 3, &side(frame)).expect("a local segment");
         let ra::Message::SetLocalPathSegment(r) = m else {
             panic!("Set Local Path Segment expected, got {m:?}")
         };
@@ -267,7 +275,8 @@ mod tests {
             path_tolerance: Some(0.0),
             ..Default::default()
         };
-        let (_, g) = LocalSegments::to_ra33(&s, 0, &side(Frame::default()));
+        let (_, g) =
+            LocalSegments::to_ra33(&s, 0, &side(Frame::default())).expect("a local segment");
         assert_eq!(g.toward, g.at);
         assert!(close(g.at[0], 4.0) && close(g.at[1], 0.0));
         assert!(close(g.tolerance, DEFAULT_TOLERANCE));
@@ -280,6 +289,7 @@ mod tests {
             0,
             &side(Frame::default()),
         )
+        .expect("a global segment")
         .1;
         assert!(close(g.at[0], 29.6) && close(g.at[1], -82.3));
         assert!(close(g.tolerance, DEFAULT_TOLERANCE));

@@ -71,11 +71,13 @@ impl Service<Ra33Side> for VelocityStateSensor {
     }
 }
 
-/// The Local Pose Sensor over an RA 3.3 Local Pose Sensor, in the AS-4 local frame that
+/// The Local Pose Sensor over an RA 3.3 Local Pose Sensor (or, for a subsystem without
+/// one, over its Global Pose Sensor: [`super::derived`]), in the AS-4 local frame that
 /// Set Local Pose places ([`Ra33Side::frame`]).
 #[derive(Debug)]
 pub struct LocalPoseSensor {
-    sensor: Address,
+    /// The RA 3.3 Local Pose Sensor; `None`: the pose comes from the global one.
+    sensor: Option<Address>,
 }
 
 impl LocalPoseSensor {
@@ -88,11 +90,30 @@ impl LocalPoseSensor {
                 presence_vector: 0x01FF,
             },
         );
-        Self { sensor }
+        Self {
+            sensor: Some(sensor),
+        }
+    }
+
+    /// The service over the RA 3.3 Global Pose Sensor at `sensor`, in the local frame
+    /// placed at its first global position ([`super::derived::local_pose`]); `side`
+    /// starts polling it.
+    pub fn over_global(side: &mut Ra33Side, now: std::time::Instant, sensor: Address) -> Self {
+        side.keep_polling(
+            now,
+            sensor,
+            ra::QueryGlobalPose {
+                presence_vector: 0x01FF,
+            },
+        );
+        Self { sensor: None }
     }
 
     fn current(&self, side: &Ra33Side) -> Option<ra::ReportLocalPose> {
-        match side.latest(self.sensor, ra::ReportLocalPose::CODE) {
+        let Some(sensor) = self.sensor else {
+            return super::derived::local_pose(side);
+        };
+        match side.latest(sensor, ra::ReportLocalPose::CODE) {
             Some((_, ra::Message::ReportLocalPose(r))) => Some(r.clone()),
             _ => None,
         }
@@ -147,9 +168,11 @@ impl Service<Ra33Side> for LocalPoseSensor {
             }
             Message::SetLocalPose(s) => {
                 let Some(now) = self.current(cx.env) else {
-                    return Handled::Refused(
-                        "no pose from the RA 3.3 local pose sensor yet".into(),
-                    );
+                    return Handled::Refused(if self.sensor.is_some() {
+                        "no pose from the RA 3.3 local pose sensor yet".into()
+                    } else {
+                        "no global position from the RA 3.3 global pose sensor yet".into()
+                    });
                 };
                 let (Some(x), Some(y), Some(yaw)) = (now.x, now.y, now.yaw) else {
                     return Handled::Refused(
