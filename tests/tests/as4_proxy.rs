@@ -20,7 +20,8 @@ use jaus::stock::commander::view::{ComponentView, SystemView};
 use jaus::stock::commander::{Command, GeoPoint, Station, StationConfig, TreeInput};
 use jaus::{Address, JausMessage};
 use jaus_as4::gateway::{DualNode, GatewayConfig};
-use jaus_as4::proxy::{install, ProxyConfig};
+use jaus_as4::proxy::shared::{lock, SharedRef};
+use jaus_as4::proxy::{install, ProxyConfig, ProxyStats, Role};
 use jaus_sim::network::{LinkModel, SimNet};
 
 const VEHICLE: As4Id = As4Id::new(1, 1, 1);
@@ -51,15 +52,15 @@ struct Rig {
     vehicle: usize,
     operator: usize,
     rival: usize,
+    /// The proxy's shared state (its counters, the latest reports).
+    proxy: SharedRef,
 }
 
 impl Rig {
     fn new() -> Self {
         let t0 = Instant::now();
         let mut net = SimNet::new(t0, LinkModel::default(), 11);
-        let node = jaus_sim::demo::vehicle_node(t0, NodeConfig::default(), 1, 1).unwrap();
-        let config = GatewayConfig::new(VEHICLE, Address::new(1, 1, 60, 1), 1, "demo vehicle");
-        let vehicle = net.add(DualNode::new(node, config).unwrap());
+        let vehicle = net.add(Self::vehicle_node(t0));
         let mut pnode: Node = Node::new(
             NodeConfig {
                 subsystem: 2,
@@ -75,6 +76,7 @@ impl Rig {
             t0,
         )
         .unwrap();
+        let shared = proxy.shared();
         let p = net.add(As4Mux::new(pnode, proxy, As4Config::default()));
         let mut onode: Node = Node::new(
             NodeConfig {
@@ -100,6 +102,56 @@ impl Rig {
             vehicle,
             operator,
             rival,
+            proxy: shared,
+        }
+    }
+
+    /// The vehicle's node: the demo vehicle with its gateway (AS-4 component
+    /// `VEHICLE`).
+    fn vehicle_node(t0: Instant) -> DualNode {
+        let node = jaus_sim::demo::vehicle_node(t0, NodeConfig::default(), 1, 1).unwrap();
+        let config = GatewayConfig::new(VEHICLE, Address::new(1, 1, 60, 1), 1, "demo vehicle");
+        DualNode::new(node, config).unwrap()
+    }
+
+    /// The proxy's counters.
+    fn proxy_stats(&self) -> ProxyStats {
+        lock(&self.proxy).stats
+    }
+
+    /// The vehicle gateway's AS-4 component's counters (events sent, messages received).
+    fn vehicle_stats(&self) -> jaus_as4::component::ComponentStats {
+        let dual = self.net.get::<DualNode>(self.vehicle).unwrap();
+        dual.gateway().unwrap().component().unwrap().stats()
+    }
+
+    /// How old the proxy's latest Report Velocity State is.
+    fn velocity_age(&self) -> Option<Duration> {
+        let s = lock(&self.proxy);
+        let (t, _) = s.report(
+            Role::VelocityStateSensor,
+            jaus_as4::messages::ReportVelocityState::CODE,
+        )?;
+        Some(self.net.now().saturating_duration_since(t))
+    }
+
+    /// Runs until the proxy's three sensor events are confirmed and flowing (no sensor
+    /// query sent for a second).
+    fn until_events_flow(&mut self, limit: Duration) {
+        let start = self.net.now();
+        loop {
+            let before = self.proxy_stats();
+            self.net.run_for(Duration::from_secs(1));
+            let after = self.proxy_stats();
+            if after.sensor_queries == before.sensor_queries
+                && after.events_received > before.events_received + 20
+            {
+                return;
+            }
+            assert!(
+                self.net.now().duration_since(start) < limit,
+                "events not flowing within {limit:?}: {after:#?}"
+            );
         }
     }
 
@@ -380,5 +432,71 @@ fn an_ra33_operator_drives_an_as4_vehicle_along_path_segments_through_the_proxy(
     eprintln!(
         "path segments: arrived {took:?} after the route was sent, {:.2} m from the end",
         metres(end, last)
+    );
+}
+
+#[test]
+fn the_proxy_gets_the_sensor_reports_by_as4_events_not_by_polling() {
+    let mut rig = Rig::new();
+    rig.until_events_flow(Duration::from_secs(10));
+    let (p0, v0) = (rig.proxy_stats(), rig.vehicle_stats());
+    rig.net.run_for(Duration::from_secs(5));
+    let (p1, v1) = (rig.proxy_stats(), rig.vehicle_stats());
+    let received = p1.events_received - p0.events_received;
+    let queries = p1.sensor_queries - p0.sensor_queries;
+    let sent = v1.events_sent - v0.events_sent;
+    let messages_in = v1.received - v0.received;
+    println!(
+        "over 5 s: {received} events received, {sent} sent by the vehicle, {queries} sensor \
+         queries, {messages_in} messages to the vehicle's component"
+    );
+    // Three sensors at 10 Hz for 5 s: about 150 Events.
+    assert!(received >= 140, "{received} events in 5 s: {p1:#?}");
+    assert_eq!(queries, 0, "sensor queries polled while the events run");
+    assert!(sent >= received);
+    // The proxy's messages to the vehicle are now its status and controller queries
+    // (every 500 ms) and the Query Wrench Effort: far fewer than the 150 sensor queries.
+    assert!(
+        messages_in < 60,
+        "{messages_in} messages to the vehicle in 5 s"
+    );
+    assert_eq!(p1.events_refused, 0);
+    assert_eq!(p1.events_malformed, 0);
+    assert_eq!(p1.events_lapsed, 0);
+    assert!(rig.velocity_age().unwrap() < Duration::from_millis(300));
+}
+
+#[test]
+fn the_proxy_notices_a_restarted_vehicle_lost_its_events_and_recovers() {
+    let mut rig = Rig::new();
+    rig.until_events_flow(Duration::from_secs(10));
+    let before = rig.proxy_stats();
+
+    // The vehicle restarts (its node replaced in place, same address): its new AS-4
+    // component has no events.
+    let t = rig.net.now();
+    *rig.net.get_mut::<DualNode>(rig.vehicle).unwrap() = Rig::vehicle_node(t);
+    assert_eq!(rig.vehicle_stats().events_sent, 0);
+
+    // Silent for 3 periods + 0.5 s: the proxy polls again and the reports flow.
+    rig.net.run_for(Duration::from_millis(1500));
+    let lapsed = rig.proxy_stats();
+    assert_eq!(
+        lapsed.events_lapsed - before.events_lapsed,
+        3,
+        "{lapsed:#?}"
+    );
+    assert!(rig.velocity_age().unwrap() < Duration::from_millis(500));
+
+    // It creates the events again on the new component: events flow, polling stops.
+    rig.until_events_flow(Duration::from_secs(15));
+    let after = rig.proxy_stats();
+    assert!(rig.vehicle_stats().events_sent > 20);
+    assert!(after.events_received > lapsed.events_received);
+    assert!(rig.velocity_age().unwrap() < Duration::from_millis(300));
+    println!(
+        "after the restart: {} sensor queries polled, {} Create Events refused or unanswered",
+        after.sensor_queries - before.sensor_queries,
+        after.events_refused - before.events_refused
     );
 }

@@ -1,5 +1,5 @@
 //! The behaviours of the proxy's sensors and Primitive Driver: RA 3.3 queries answered
-//! from the latest AS-4 report ([`Shared`](super::Shared)), Set Wrench Effort passed
+//! from the latest AS-4 report ([`Shared`]), Set Wrench Effort passed
 //! on; and what every proxy driver does when its core state changes
 //! ([`state_to_as4`]).
 

@@ -1,7 +1,10 @@
 //! [`As4Proxy`]: the AS-4 side of a proxy, an AS-4 client of one vehicle on the node's
-//! socket. It finds the vehicle's services (Discovery), polls its sensors, status,
-//! controller and active list element, asks for and gives up AS-4 control as the RA 3.3
-//! side wants, and sends what the RA 3.3 components queue ([`Shared`]).
+//! socket. It finds the vehicle's services (Discovery), subscribes to its sensors'
+//! reports with AS-4 periodic events ([`SensorEvents`]: Create Event once a sensor is
+//! found; a sensor whose event is refused, unanswered or gone silent is polled every
+//! poll period instead), polls the drivers' status and controller and the active list
+//! element while a list runs, asks for and gives up AS-4 control as the RA 3.3 side
+//! wants, and sends what the RA 3.3 components queue ([`Shared`](super::Shared)).
 
 use std::time::{Duration, Instant};
 
@@ -9,12 +12,13 @@ use jaus::net::as5669a::{As4Endpoint, As4Id, As4Message, As4Send};
 use jaus::net::PeerAddr;
 use jaus::CommandCode;
 
+use super::events::{sensor_query, SensorEvents, SENSORS};
 use super::shared::{lock, As4Control, ProxyStats, SharedRef};
 use super::{ProxyConfig, Role};
 use crate::messages::{
     ControlConfirmation, IdentificationType, Message, NodeServicesQuery, QueryActiveElement,
-    QueryControl, QueryGlobalPose, QueryIdentification, QueryLocalPose, QueryServices, QueryStatus,
-    QueryVelocityState, QueryWrenchEffort, ReleaseControl, RequestControl,
+    QueryControl, QueryIdentification, QueryServices, QueryStatus, QueryWrenchEffort,
+    ReleaseControl, RequestControl,
 };
 
 /// How long a Request Control may go unanswered before it is sent again.
@@ -38,6 +42,8 @@ pub struct As4Proxy<A: PeerAddr> {
     next_status: Instant,
     /// When Discovery is next due (see [`REDISCOVER`]).
     next_discovery: Instant,
+    /// The sensors' events.
+    events: SensorEvents,
     /// The latest time it was given (what it answers `poll_timeout` with when it has
     /// something to send at once).
     last_now: Instant,
@@ -48,13 +54,14 @@ impl<A: PeerAddr> As4Proxy<A> {
     /// components ([`install`](super::install) builds both).
     pub fn new(config: ProxyConfig, peer: A, shared: SharedRef, now: Instant) -> Self {
         Self {
-            config,
             peer,
             shared,
             next_poll: now,
             next_status: now,
             next_discovery: now,
+            events: SensorEvents::new(config.poll_period),
             last_now: now,
+            config,
         }
     }
 
@@ -87,6 +94,17 @@ impl<A: PeerAddr> As4Proxy<A> {
     /// The vehicle's name (Report Identification), once known.
     pub fn name(&self) -> Option<String> {
         lock(&self.shared).name.clone()
+    }
+
+    /// The sensors' events (where each stands).
+    pub fn events(&self) -> &SensorEvents {
+        &self.events
+    }
+
+    /// The state it shares with the RA 3.3 components (a handle to it: e.g. to read the
+    /// counters once the proxy is on a socket).
+    pub fn shared(&self) -> SharedRef {
+        self.shared.clone()
     }
 
     fn take(&mut self, now: Instant, from: As4Id, msg: Message) {
@@ -156,6 +174,16 @@ impl<A: PeerAddr> As4Proxy<A> {
             | Message::ReportWrenchEffort(_)
             | Message::ReportActiveElement(_)) => s.keep(now, from, m),
             Message::ConfirmElementRequest(_) => {}
+            Message::Event(e) => self.events.event(now, from, &e, &mut s),
+            Message::ConfirmEventRequest(c) => {
+                // A confirmation of a Cancel Event (or of nothing asked) needs nothing.
+                self.events.confirmed(now, from, &c);
+            }
+            Message::RejectEventRequest(r) => {
+                if !self.events.rejected(now, from, &r, &mut s) {
+                    tracing::debug!(component = %from, code = ?r.response_code, "event request refused (not a Create Event pending)");
+                }
+            }
             _ => s.stats.ignored += 1,
         }
     }
@@ -164,34 +192,17 @@ impl<A: PeerAddr> As4Proxy<A> {
     fn due(&mut self, now: Instant) {
         let mut s = lock(&self.shared);
         let roles = &self.config.roles;
+        self.events.due(now, roles, &mut s);
         if now >= self.next_poll {
             self.next_poll = now + self.config.poll_period;
-            let queries: [(Role, Message); 3] = [
-                (
-                    Role::VelocityStateSensor,
-                    QueryVelocityState {
-                        presence_vector: u16::MAX,
+            for role in SENSORS {
+                if !roles.contains(&role) || !self.events.polls(role) {
+                    continue;
+                }
+                if let Some(q) = sensor_query(role) {
+                    if s.send_to(role, q) {
+                        s.stats.sensor_queries += 1;
                     }
-                    .into(),
-                ),
-                (
-                    Role::GlobalPoseSensor,
-                    QueryGlobalPose {
-                        presence_vector: u16::MAX,
-                    }
-                    .into(),
-                ),
-                (
-                    Role::LocalPoseSensor,
-                    QueryLocalPose {
-                        presence_vector: u16::MAX,
-                    }
-                    .into(),
-                ),
-            ];
-            for (role, q) in queries {
-                if roles.contains(&role) {
-                    s.send_to(role, q);
                 }
             }
             let running: Vec<As4Id> = s.executing().collect();
@@ -351,7 +362,8 @@ impl<A: PeerAddr> As4Endpoint<A> for As4Proxy<A> {
             // At once: an RA 3.3 client waits for what follows.
             return Some(self.last_now);
         }
-        Some(self.next_poll.min(self.next_status))
+        let next = self.next_poll.min(self.next_status);
+        Some(self.events.next_timeout().map_or(next, |e| e.min(next)))
     }
 
     /// Messages for its own AS-4 id only.

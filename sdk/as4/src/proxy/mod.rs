@@ -9,12 +9,14 @@
 //! proxy the messages for its id, and a gateway on the same socket the messages for its
 //! own). The proxy finds the vehicle's services with AS-4 Discovery (Query
 //! Identification and Query Services, to the configured address: to the configured id,
-//! or to every component), keeps its sensors' reports fresh by querying them every
-//! poll period, and carries the RA 3.3 components' commands over.
+//! or to every component), keeps its sensors' reports fresh with AS-4 periodic events at
+//! the poll period's rate ([`events`]: Create Event once a sensor is found; a sensor
+//! whose event is refused, unanswered or gone silent is queried every poll period
+//! instead), and carries the RA 3.3 components' commands over.
 //!
 //! | RA 3.3 component (id) | AS-4 service | what crosses |
 //! |---|---|---|
-//! | Velocity State Sensor (42) | Velocity State Sensor | Query → Report Velocity State, from the latest AS-4 report |
+//! | Velocity State Sensor (42) | Velocity State Sensor | Query → Report Velocity State, from the latest AS-4 report (by event, or polled) |
 //! | Local Pose Sensor (41) | Local Pose Sensor | Query → Report Local Pose (the AS-4 local frame moved by [`ProxyConfig::frame`]; identity by default) |
 //! | Global Pose Sensor (38) | Global Pose Sensor | Query → Report Global Pose (altitude → elevation) |
 //! | Primitive Driver (33) | Primitive Driver | Set Wrench Effort → Set Wrench Effort; Query Wrench Effort from the latest AS-4 report |
@@ -61,12 +63,14 @@ use crate::service::ServiceId;
 
 pub mod behaviours;
 pub mod endpoint;
+pub mod events;
 pub mod hub;
 pub mod segments;
 pub mod shared;
 pub mod waypoints;
 
 pub use endpoint::ProxyEndpoint;
+pub use events::{EventState, SensorEvents};
 pub use hub::As4Proxy;
 pub use shared::{As4Control, ProxyStats, Shared};
 
@@ -165,8 +169,9 @@ pub struct ProxyConfig {
     pub instance: u8,
     /// The authority with which it requests AS-4 control (default 200).
     pub authority: u8,
-    /// How often the sensors are queried, and the active element while a list runs
-    /// (default 100 ms).
+    /// The sensors' event period (Create Event at `1 / poll_period` Hz) and how often
+    /// they are queried when their event is refused or silent; how often the active
+    /// element is queried while a list runs (default 100 ms).
     pub poll_period: Duration,
     /// How often the drivers' components are asked for their status and controller,
     /// and Query Services is repeated while services are missing (default 500 ms).

@@ -52,6 +52,19 @@ pub struct ProxyStats {
     pub ignored: u64,
     /// Elements the vehicle's List Manager refused (Reject Element Request).
     pub elements_refused: u64,
+    /// Sensor queries polled (sent because their event is not confirmed).
+    pub sensor_queries: u64,
+    /// Events received whose sensor report was kept.
+    pub events_received: u64,
+    /// Events whose embedded report did not decode or was not a sensor report
+    /// (dropped).
+    pub events_malformed: u64,
+    /// Create Events refused (Reject Event Request) or unanswered within 1 s: the query
+    /// is polled instead.
+    pub events_refused: u64,
+    /// Confirmed events that went silent (the query polled again, the event created
+    /// again).
+    pub events_lapsed: u64,
 }
 
 /// The state both sides share (see the module's documentation).
