@@ -59,6 +59,9 @@ impl MemorySession {
             wall0: wall_now(),
             tap: Tap::default(),
         };
+        // The target's components know the time of day on the virtual clock's scale,
+        // as a node's shell gives it from the host's clock.
+        jaus::net::Participant::wall_clock(&mut s.target, t0, s.wall0);
         s.run_until(t0 + Duration::from_secs(1), false);
         if let Ok(mut q) = s.inbox.lock() {
             q.clear();
@@ -127,6 +130,9 @@ impl MemorySession {
 impl Session for MemorySession {
     fn now(&self) -> Instant {
         self.now
+    }
+    fn utc(&self) -> Duration {
+        self.wall0 + self.now.saturating_duration_since(self.t0)
     }
     fn send(&mut self, header: Header, body: Vec<u8>) {
         self.tester.send(self.now, header, body);

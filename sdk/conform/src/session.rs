@@ -12,7 +12,7 @@
 
 use std::collections::VecDeque;
 use std::sync::{Arc, Mutex};
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 use jaus::component::{Endpoint, Outgoing};
 use jaus::{Address, Header};
@@ -32,6 +32,9 @@ pub struct Incoming {
 pub trait Session {
     /// The session's clock (virtual for [`crate::memory::MemorySession`]).
     fn now(&self) -> Instant;
+    /// UTC (since 1970-01-01) now on the session's clock: what the target's clock is
+    /// compared with (`core.time`).
+    fn utc(&self) -> Duration;
     /// Sends `body` under `header` (its data size is set from the body) from the voice
     /// named by `header.source`.
     fn send(&mut self, header: Header, body: Vec<u8>);

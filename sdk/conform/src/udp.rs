@@ -143,6 +143,9 @@ impl Session for UdpSession {
     fn now(&self) -> Instant {
         Instant::now()
     }
+    fn utc(&self) -> Duration {
+        wall_now()
+    }
     fn send(&mut self, header: Header, body: Vec<u8>) {
         self.node.send(Instant::now(), header, body);
         while let Some(d) = self.node.poll_transmit() {

@@ -100,6 +100,18 @@ fn every_stock_component_conforms() {
         );
     }
     assert!(run.checks() > 400, "{} checks", run.checks());
+    // The target's clock runs on the session's virtual one, so the time of day is
+    // compared, not left inconclusive.
+    let times: Vec<_> = run
+        .components
+        .iter()
+        .flat_map(|c| c.outcomes.iter().map(move |o| (&c.address, o)))
+        .filter(|(_, o)| o.check.id == "core.time")
+        .collect();
+    assert_eq!(times.len(), run.components.len());
+    for (a, o) in times {
+        assert_eq!(o.verdict, Verdict::Pass, "{a}: {}", o.detail);
+    }
 }
 
 /// The ids of the checks `component` failed, and of the checks of its plan citing rule

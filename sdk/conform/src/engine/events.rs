@@ -285,7 +285,7 @@ impl Engine<'_> {
                 "Report Time has no time stamp: the component does not know the time of day (nothing to compare)".into(),
             );
         };
-        let mine = crate::capture::wall_now().as_secs() % 86_400;
+        let mine = self.session.utc().as_secs() % 86_400;
         let theirs = u64::from(t.hour) * 3600 + u64::from(t.minute) * 60 + u64::from(t.second);
         let off = mine.abs_diff(theirs).min(86_400 - mine.abs_diff(theirs));
         let text = format!(
