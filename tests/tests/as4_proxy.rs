@@ -109,8 +109,14 @@ impl Rig {
     /// The vehicle's node: the demo vehicle with its gateway (AS-4 component
     /// `VEHICLE`).
     fn vehicle_node(t0: Instant) -> DualNode {
+        Self::vehicle_node_with(t0, |_| {})
+    }
+
+    /// [`vehicle_node`](Self::vehicle_node) with its gateway's settings changed by `f`.
+    fn vehicle_node_with(t0: Instant, f: impl FnOnce(&mut GatewayConfig)) -> DualNode {
         let node = jaus_sim::demo::vehicle_node(t0, NodeConfig::default(), 1, 1).unwrap();
-        let config = GatewayConfig::new(VEHICLE, Address::new(1, 1, 60, 1), 1, "demo vehicle");
+        let mut config = GatewayConfig::new(VEHICLE, Address::new(1, 1, 60, 1), 1, "demo vehicle");
+        f(&mut config);
         DualNode::new(node, config).unwrap()
     }
 
@@ -499,4 +505,30 @@ fn the_proxy_notices_a_restarted_vehicle_lost_its_events_and_recovers() {
         after.sensor_queries - before.sensor_queries,
         after.events_refused - before.events_refused
     );
+}
+
+#[test]
+fn a_vehicle_that_refuses_events_is_polled_instead() {
+    let mut rig = Rig::new();
+    // Before the proxy has met it, the vehicle becomes one whose AS-4 component takes
+    // no events (every Create Event is refused).
+    let t = rig.net.now();
+    *rig.net.get_mut::<DualNode>(rig.vehicle).unwrap() =
+        Rig::vehicle_node_with(t, |c| c.core.max_events = 0);
+    rig.net.run_for(Duration::from_secs(4));
+    let p0 = rig.proxy_stats();
+    rig.net.run_for(Duration::from_secs(5));
+    let p1 = rig.proxy_stats();
+    let queries = p1.sensor_queries - p0.sensor_queries;
+    println!(
+        "refusing vehicle: {} Create Events refused, {queries} sensor queries in 5 s",
+        p1.events_refused
+    );
+    // Each of the three sensors refused (and asked again every 5 s), never received.
+    assert!(p1.events_refused >= 3, "{p1:#?}");
+    assert_eq!(p1.events_received, 0, "{p1:#?}");
+    // Polled instead: three sensors at 10 Hz for 5 s, about 150 queries; the reports
+    // are fresh.
+    assert!(queries >= 140, "{queries} sensor queries in 5 s: {p1:#?}");
+    assert!(rig.velocity_age().unwrap() < Duration::from_millis(300));
 }
