@@ -19,9 +19,9 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{mpsc, Arc, Mutex};
 use std::time::{Duration, Instant};
 
-use common::browser::{get, js, wait_for, Browser};
-use fantoccini::actions::{InputSource, MouseActions, PointerAction, MOUSE_BUTTON_LEFT};
-use fantoccini::{Client, Locator};
+use common::browser::{
+    click, click_map, get, js, set_input, speed, text, vehicle_xy_of, wait_for, Browser,
+};
 use jaus::net::as5669a::{As4Config, As4Id, As4Mux};
 use jaus::net::{udp, Node, NodeConfig};
 use jaus::{Address, JausMessage};
@@ -149,63 +149,6 @@ fn metres(a: (f64, f64), b: (f64, f64)) -> f64 {
     north.hypot(east)
 }
 
-async fn click(c: &Client, id: &str) {
-    c.find(Locator::Id(id))
-        .await
-        .unwrap_or_else(|e| panic!("#{id}: {e}"))
-        .click()
-        .await
-        .unwrap_or_else(|e| panic!("click #{id}: {e}"));
-}
-
-async fn set_input(c: &Client, id: &str, text: &str) {
-    let e = c.find(Locator::Id(id)).await.expect(id);
-    e.clear().await.expect("clear");
-    e.send_keys(text).await.expect("type");
-}
-
-/// Clicks the map at (x m east, y m north) with a real pointer.
-async fn click_map(c: &Client, x: f64, y: f64) {
-    let p = js(c, &format!("return ocu.worldToClient({x}, {y});")).await;
-    let (px, py) = (p["x"].as_f64().unwrap(), p["y"].as_f64().unwrap());
-    let actions = MouseActions::new("mouse".into())
-        .then(PointerAction::MoveTo {
-            duration: None,
-            x: px.round() as _,
-            y: py.round() as _,
-        })
-        .then(PointerAction::Down {
-            button: MOUSE_BUTTON_LEFT,
-        })
-        .then(PointerAction::Up {
-            button: MOUSE_BUTTON_LEFT,
-        });
-    c.perform_actions(actions).await.expect("pointer actions");
-}
-
-/// The AS-4 vehicle's marker (subsystem 2) on the map.
-async fn vehicle_xy(c: &Client) -> Option<(f64, f64)> {
-    let v = js(
-        c,
-        "const g = document.getElementById('vehicle-2'); return g ? [Number(g.dataset.x), Number(g.dataset.y)] : null;",
-    )
-    .await;
-    Some((v[0].as_f64()?, v[1].as_f64()?))
-}
-
-async fn speed(c: &Client) -> Option<f64> {
-    js(
-        c,
-        "return Number(document.getElementById('veh-speed').dataset.speed);",
-    )
-    .await
-    .as_f64()
-}
-
-async fn text(c: &Client, id: &str) -> Option<String> {
-    c.find(Locator::Id(id)).await.ok()?.text().await.ok()
-}
-
 /// The view's subsystem 2 (the proxy's).
 fn subsystem(view: &Value, id: u64) -> Option<&Value> {
     view["subsystems"]
@@ -229,7 +172,7 @@ async fn the_page_drives_an_as4_vehicle_through_the_proxy() {
     let start = wait_for(
         "the AS-4 vehicle on the map",
         Duration::from_secs(30),
-        async || vehicle_xy(&c).await,
+        async || vehicle_xy_of(&c, 2).await,
     )
     .await;
     wait_for(
@@ -285,7 +228,7 @@ async fn the_page_drives_an_as4_vehicle_through_the_proxy() {
         "the vehicle's arrival",
         Duration::from_secs(60),
         async || {
-            let (x, y) = vehicle_xy(&c).await?;
+            let (x, y) = vehicle_xy_of(&c, 2).await?;
             let still = speed(&c).await.is_some_and(|s| s < 0.1);
             ((x - target.0).hypot(y - target.1) < 1.0 && still).then_some((x, y))
         },

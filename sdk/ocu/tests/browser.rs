@@ -17,8 +17,9 @@ mod common;
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
-use common::browser::{get, js, vehicle_xy, wait_for, Browser, Rig};
-use fantoccini::actions::{InputSource, MouseActions, PointerAction, MOUSE_BUTTON_LEFT};
+use common::browser::{
+    click, click_map, get, js, set_input, speed, text, vehicle_xy, wait_for, Browser, Rig,
+};
 use fantoccini::{Client, Locator};
 use jaus_ocu::{Bound, ConsoleOptions};
 use serde_json::{json, Value};
@@ -110,34 +111,6 @@ fn stats(bound: &Bound) -> Value {
     get(bound, "/api/stats")
 }
 
-async fn click(c: &Client, id: &str) {
-    c.find(Locator::Id(id))
-        .await
-        .unwrap_or_else(|e| panic!("#{id}: {e}"))
-        .click()
-        .await
-        .unwrap_or_else(|e| panic!("click #{id}: {e}"));
-}
-
-/// Clicks the map at (x m east, y m north) with a real pointer.
-async fn click_map(c: &Client, x: f64, y: f64) {
-    let p = js(c, &format!("return ocu.worldToClient({x}, {y});")).await;
-    let (px, py) = (p["x"].as_f64().unwrap(), p["y"].as_f64().unwrap());
-    let actions = MouseActions::new("mouse".into())
-        .then(PointerAction::MoveTo {
-            duration: None,
-            x: px.round() as _,
-            y: py.round() as _,
-        })
-        .then(PointerAction::Down {
-            button: MOUSE_BUTTON_LEFT,
-        })
-        .then(PointerAction::Up {
-            button: MOUSE_BUTTON_LEFT,
-        });
-    c.perform_actions(actions).await.expect("pointer actions");
-}
-
 async fn notices(c: &Client) -> Vec<String> {
     let v = js(
         c,
@@ -153,23 +126,8 @@ async fn notices(c: &Client) -> Vec<String> {
         .unwrap_or_default()
 }
 
-async fn speed(c: &Client) -> Option<f64> {
-    js(
-        c,
-        "return Number(document.getElementById('veh-speed').dataset.speed);",
-    )
-    .await
-    .as_f64()
-}
-
 async fn set_speed(c: &Client, text: &str) {
     set_input(c, "speed", text).await;
-}
-
-async fn set_input(c: &Client, id: &str, text: &str) {
-    let e = c.find(Locator::Id(id)).await.expect(id);
-    e.clear().await.expect("clear");
-    e.send_keys(text).await.expect("type");
 }
 
 /// Selects `address` in the driver list and takes control of it with `authority`.
@@ -183,11 +141,6 @@ async fn take(c: &Client, address: &str, authority: &str) {
     set_input(c, "authority", authority).await;
     click(c, "take").await;
     held(c, address).await;
-}
-
-/// The text of the element `id`, if it is there.
-async fn text(c: &Client, id: &str) -> Option<String> {
-    c.find(Locator::Id(id)).await.ok()?.text().await.ok()
 }
 
 /// Waits until the page says control of `address`, the selected component, is held. The

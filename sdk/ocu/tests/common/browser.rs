@@ -7,7 +7,8 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{mpsc, Arc};
 use std::time::{Duration, Instant};
 
-use fantoccini::Client;
+use fantoccini::actions::{InputSource, MouseActions, PointerAction, MOUSE_BUTTON_LEFT};
+use fantoccini::{Client, Locator};
 use jaus::net::{udp, NodeConfig};
 use jaus_ocu::{Bound, ConsoleOptions};
 use serde_json::Value;
@@ -99,10 +100,66 @@ pub fn get(bound: &Bound, path: &str) -> Value {
 }
 
 pub async fn vehicle_xy(c: &Client) -> Option<(f64, f64)> {
+    vehicle_xy_of(c, 1).await
+}
+
+/// Where the page draws subsystem `subsystem`'s vehicle (x m east, y m north).
+pub async fn vehicle_xy_of(c: &Client, subsystem: u8) -> Option<(f64, f64)> {
     let v = js(
         c,
-        "const g = document.getElementById('vehicle-1'); return g ? [Number(g.dataset.x), Number(g.dataset.y)] : null;",
+        &format!("const g = document.getElementById('vehicle-{subsystem}'); return g ? [Number(g.dataset.x), Number(g.dataset.y)] : null;"),
     )
     .await;
     Some((v[0].as_f64()?, v[1].as_f64()?))
+}
+
+/// Clicks the element `id` (the test fails when it is not there).
+pub async fn click(c: &Client, id: &str) {
+    c.find(Locator::Id(id))
+        .await
+        .unwrap_or_else(|e| panic!("#{id}: {e}"))
+        .click()
+        .await
+        .unwrap_or_else(|e| panic!("click #{id}: {e}"));
+}
+
+/// Types `text` into the input `id`, replacing what it held.
+pub async fn set_input(c: &Client, id: &str, text: &str) {
+    let e = c.find(Locator::Id(id)).await.expect(id);
+    e.clear().await.expect("clear");
+    e.send_keys(text).await.expect("type");
+}
+
+/// Clicks the map at (x m east, y m north) with a real pointer.
+pub async fn click_map(c: &Client, x: f64, y: f64) {
+    let p = js(c, &format!("return ocu.worldToClient({x}, {y});")).await;
+    let (px, py) = (p["x"].as_f64().unwrap(), p["y"].as_f64().unwrap());
+    let actions = MouseActions::new("mouse".into())
+        .then(PointerAction::MoveTo {
+            duration: None,
+            x: px.round() as _,
+            y: py.round() as _,
+        })
+        .then(PointerAction::Down {
+            button: MOUSE_BUTTON_LEFT,
+        })
+        .then(PointerAction::Up {
+            button: MOUSE_BUTTON_LEFT,
+        });
+    c.perform_actions(actions).await.expect("pointer actions");
+}
+
+/// The vehicle's speed as the page shows it, m/s.
+pub async fn speed(c: &Client) -> Option<f64> {
+    js(
+        c,
+        "return Number(document.getElementById('veh-speed').dataset.speed);",
+    )
+    .await
+    .as_f64()
+}
+
+/// The text of the element `id`, if it is there.
+pub async fn text(c: &Client, id: &str) -> Option<String> {
+    c.find(Locator::Id(id)).await.ok()?.text().await.ok()
 }
