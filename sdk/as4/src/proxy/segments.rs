@@ -12,6 +12,7 @@
 use jaus::component::Context;
 use jaus::components::{global_path_segment_driver as gpsd, local_path_segment_driver as lpsd};
 use jaus::messages::{self as ra, Message as Ra33Message};
+use jaus::stock::drivers::elements;
 
 use super::shared::Shared;
 use super::waypoints::{Kind, WaypointDriver};
@@ -71,19 +72,7 @@ impl Kind for GlobalSegments {
             Ra33Message::QueryGlobalPathSegment(q) => q.presence_vector,
             _ => u8::MAX,
         };
-        Some(
-            ra::ReportGlobalPathSegment {
-                path_segment_number: s.path_segment_number,
-                p1_latitude: s.p1_latitude,
-                p1_longitude: s.p1_longitude,
-                p1_altitude: s.p1_altitude.filter(|_| pv & 1 != 0),
-                p2_latitude: s.p2_latitude,
-                p2_longitude: s.p2_longitude,
-                p2_altitude: s.p2_altitude.filter(|_| pv & 2 != 0),
-                weighting_factor: s.weighting_factor,
-            }
-            .into(),
-        )
+        Some(elements::global_path_segment_report(s, pv).into())
     }
 
     fn count(m: &Ra33Message, remaining: u16) -> Option<Ra33Message> {
@@ -145,19 +134,7 @@ impl Kind for LocalSegments {
             Ra33Message::QueryLocalPathSegment(q) => q.presence_vector,
             _ => u8::MAX,
         };
-        Some(
-            ra::ReportLocalPathSegment {
-                path_segment_number: s.path_segment_number,
-                p1_x: s.p1_x,
-                p1_y: s.p1_y,
-                p1_z: s.p1_z.filter(|_| pv & 1 != 0),
-                p2_x: s.p2_x,
-                p2_y: s.p2_y,
-                p2_z: s.p2_z.filter(|_| pv & 2 != 0),
-                weighting_factor: s.weighting_factor,
-            }
-            .into(),
-        )
+        Some(elements::local_path_segment_report(s, pv).into())
     }
 
     fn count(m: &Ra33Message, remaining: u16) -> Option<Ra33Message> {

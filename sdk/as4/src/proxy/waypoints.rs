@@ -20,6 +20,7 @@ use std::time::{Duration, Instant};
 use jaus::component::{Behaviour, Context, CoreState, Interface, Refused, StopReason};
 use jaus::components::{global_waypoint_driver as gwd, local_waypoint_driver as lwd};
 use jaus::messages::{self as ra, Message as Ra33Message};
+use jaus::stock::drivers::elements;
 use jaus::JausMessage;
 
 use super::behaviours::state_to_as4;
@@ -102,18 +103,7 @@ impl Kind for Global {
         let Ra33Message::SetGlobalWaypoint(w) = set else {
             return None;
         };
-        Some(
-            ra::ReportGlobalWaypoint {
-                waypoint_number: w.waypoint_number,
-                latitude: w.latitude,
-                longitude: w.longitude,
-                elevation: w.elevation,
-                roll: w.roll,
-                pitch: w.pitch,
-                yaw: w.yaw,
-            }
-            .into(),
-        )
+        Some(elements::global_waypoint_report(w).into())
     }
 
     fn count(m: &Ra33Message, remaining: u16) -> Option<Ra33Message> {
@@ -170,18 +160,7 @@ impl Kind for Local {
         let Ra33Message::SetLocalWaypoint(w) = set else {
             return None;
         };
-        Some(
-            ra::ReportLocalWaypoint {
-                waypoint_number: w.waypoint_number,
-                x: w.x,
-                y: w.y,
-                z: w.z,
-                roll: w.roll,
-                pitch: w.pitch,
-                yaw: w.yaw,
-            }
-            .into(),
-        )
+        Some(elements::local_waypoint_report(w).into())
     }
 
     fn count(m: &Ra33Message, remaining: u16) -> Option<Ra33Message> {

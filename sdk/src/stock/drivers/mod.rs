@@ -7,6 +7,7 @@
 //! one was asked for); the vehicle stops on leaving Ready (Standby, Emergency, ...), when
 //! pose feedback goes stale, and when a vector or wrench command is not refreshed.
 
+pub mod elements;
 mod navigator;
 mod primitive;
 mod reflexive;

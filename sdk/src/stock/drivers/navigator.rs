@@ -630,15 +630,7 @@ impl gwd::GlobalWaypointDriver for StockGlobalWaypointDriver {
             .elements
             .get(usize::from(q.waypoint_number))
             .ok_or_else(|| Refused::Invalid(format!("no waypoint {}", q.waypoint_number)))?;
-        Ok(ReportGlobalWaypoint {
-            waypoint_number: w.waypoint_number,
-            latitude: w.latitude,
-            longitude: w.longitude,
-            elevation: w.elevation,
-            roll: w.roll,
-            pitch: w.pitch,
-            yaw: w.yaw,
-        })
+        Ok(super::elements::global_waypoint_report(w))
     }
 }
 
@@ -665,15 +657,7 @@ impl lwd::LocalWaypointDriver for StockLocalWaypointDriver {
             .elements
             .get(usize::from(q.waypoint_number))
             .ok_or_else(|| Refused::Invalid(format!("no waypoint {}", q.waypoint_number)))?;
-        Ok(ReportLocalWaypoint {
-            waypoint_number: w.waypoint_number,
-            x: w.x,
-            y: w.y,
-            z: w.z,
-            roll: w.roll,
-            pitch: w.pitch,
-            yaw: w.yaw,
-        })
+        Ok(super::elements::local_waypoint_report(w))
     }
 }
 
@@ -702,16 +686,10 @@ impl gpsd::GlobalPathSegmentDriver for StockGlobalPathSegmentDriver {
             .ok_or_else(|| {
                 Refused::Invalid(format!("no path segment {}", q.path_segment_number))
             })?;
-        Ok(ReportGlobalPathSegment {
-            path_segment_number: s.path_segment_number,
-            p1_latitude: s.p1_latitude,
-            p1_longitude: s.p1_longitude,
-            p1_altitude: s.p1_altitude.filter(|_| q.presence_vector & 1 != 0),
-            p2_latitude: s.p2_latitude,
-            p2_longitude: s.p2_longitude,
-            p2_altitude: s.p2_altitude.filter(|_| q.presence_vector & 2 != 0),
-            weighting_factor: s.weighting_factor,
-        })
+        Ok(super::elements::global_path_segment_report(
+            s,
+            q.presence_vector,
+        ))
     }
 }
 
@@ -740,16 +718,10 @@ impl lpsd::LocalPathSegmentDriver for StockLocalPathSegmentDriver {
             .ok_or_else(|| {
                 Refused::Invalid(format!("no path segment {}", q.path_segment_number))
             })?;
-        Ok(ReportLocalPathSegment {
-            path_segment_number: s.path_segment_number,
-            p1_x: s.p1_x,
-            p1_y: s.p1_y,
-            p1_z: s.p1_z.filter(|_| q.presence_vector & 1 != 0),
-            p2_x: s.p2_x,
-            p2_y: s.p2_y,
-            p2_z: s.p2_z.filter(|_| q.presence_vector & 2 != 0),
-            weighting_factor: s.weighting_factor,
-        })
+        Ok(super::elements::local_path_segment_report(
+            s,
+            q.presence_vector,
+        ))
     }
 }
 
