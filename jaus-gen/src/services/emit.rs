@@ -3,8 +3,8 @@
 
 use super::model::{chain, ident, origin, parents, Arg, Call, Conv, Mach, St, Trans, G};
 use super::{
-    ArgVariantCtx, EventCtx, FieldCtx, MachineCtx, MethodCtx, ServiceCtx, ServicesCtx, SiteCtx,
-    StateCtx, TransCtx, TriggerCtx,
+    ArgVariantCtx, EventCtx, FieldCtx, MachineCtx, MethodCtx, ReceivedArm, ReceivedCtx, ServiceCtx,
+    ServicesCtx, SiteCtx, StateCtx, TransCtx, TriggerCtx,
 };
 use crate::components::wrap;
 use jaus_spec::model::{FieldDef, TransitionKind};
@@ -538,6 +538,7 @@ fn service(
         }
     }
     let borrows = triggers.iter().any(|t| !t.fields.is_empty());
+    let received = received(spec, &triggers);
     let mut out_machines = Vec::new();
     let (mut state_count, mut transition_count) = (0, 0);
     for m in machines {
@@ -709,7 +710,56 @@ fn service(
         guards: e.guards,
         actions: e.actions,
         machines: out_machines,
+        received,
         state_count,
         transition_count,
+    })
+}
+
+/// The dispatch of received messages: every trigger with one parameter of a message type
+/// gets an arm, when all of them have the same other parameters (names and types, in
+/// order); `None` when no trigger carries a message or their other parameters differ
+/// (the trait and tables are generated all the same; the owner builds triggers itself).
+fn received(spec: &Spec, triggers: &[TriggerCtx]) -> Option<ReceivedCtx> {
+    let is_message = |ty: &str| {
+        let name = ty.trim_start_matches("&'a ");
+        spec.message(name).is_some()
+    };
+    let mut params: Option<Vec<(String, String)>> = None;
+    let mut arms = Vec::new();
+    for t in triggers {
+        let mut carried = t.fields.iter().filter(|f| is_message(&f.ty));
+        let Some(m) = carried.next() else { continue };
+        if carried.next().is_some() || m.ty.trim_start_matches("&'a ") != t.variant {
+            return None;
+        }
+        let rest: Vec<(String, String)> = t
+            .fields
+            .iter()
+            .filter(|f| f.name != m.name)
+            .map(|f| (f.name.clone(), f.ty.trim_start_matches("&'a ").to_string()))
+            .collect();
+        match &params {
+            Some(p) if *p != rest => return None,
+            Some(_) => {}
+            None => params = Some(rest),
+        }
+        arms.push(ReceivedArm {
+            message: t.variant.clone(),
+            field: m.name.clone(),
+        });
+    }
+    let params = params?;
+    arms.sort_by(|a, b| a.message.cmp(&b.message));
+    Some(ReceivedCtx {
+        params: params
+            .into_iter()
+            .map(|(name, ty)| FieldCtx {
+                name,
+                ty,
+                doc: Vec::new(),
+            })
+            .collect(),
+        arms,
     })
 }

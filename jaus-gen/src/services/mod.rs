@@ -65,6 +65,10 @@ pub struct ServiceCtx {
     /// Action call sites, by number.
     pub actions: Vec<SiteCtx>,
     /// Its machines (merged with the inherited ones).
+    /// How a received message becomes its trigger, when every trigger carrying a
+    /// message has the same other parameters (the JSIDL convention: the message and
+    /// Transport's `Receive` data).
+    pub received: Option<ReceivedCtx>,
     pub machines: Vec<MachineCtx>,
     /// Number of states over its machines.
     pub state_count: usize,
@@ -101,6 +105,24 @@ pub struct MethodCtx {
     pub sig: String,
     /// Documentation lines.
     pub doc: Vec<String>,
+}
+
+/// The generated dispatch of received messages: `Trigger::received(message, ...)`.
+#[derive(Debug, Clone, Serialize)]
+pub struct ReceivedCtx {
+    /// The parameters besides the message (name, type without the borrow).
+    pub params: Vec<FieldCtx>,
+    /// One arm per message trigger.
+    pub arms: Vec<ReceivedArm>,
+}
+
+/// One arm of the dispatch.
+#[derive(Debug, Clone, Serialize)]
+pub struct ReceivedArm {
+    /// The message's variant of the `Message` enum (and the trigger's).
+    pub message: String,
+    /// The trigger field that carries the message.
+    pub field: String,
 }
 
 /// A variant of `Trigger`.

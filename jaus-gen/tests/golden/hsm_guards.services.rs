@@ -62,6 +62,25 @@ pub mod throttle {
             }
         }
     }
+    impl<'a> Trigger<'a> {
+        /// The trigger a received `message` raises in the machines of Throttle, with
+        /// the trigger's other parameters; `None` for a message none of them takes.
+        pub fn received(
+            message: &'a Message,
+            from: &'a super::throttle::event::Received,
+        ) -> Option<Self> {
+            Some(
+                match message {
+                    Message::SetSpeed(msg) => Trigger::SetSpeed { msg, from },
+                    _ => return None,
+                },
+            )
+        }
+    }
+    /// The messages the machines of Throttle take, by command code (ascending).
+    pub const RECEIVES: &[::jaus::CommandCode] = &[
+        <SetSpeed as ::jaus::JausMessage>::CODE,
+    ];
     /// State machine `Main` of [`Throttle`].
     pub static MAIN: hsm::MachineDef = hsm::MachineDef {
         service: "Throttle",
@@ -180,6 +199,18 @@ pub mod throttle {
         /// The current state's path in machine `machine`.
         pub fn state(&self, machine: &str) -> Option<&'static str> {
             self.0.state(machine)
+        }
+        /// Offers a received `message` to every machine as its trigger
+        /// ([`Trigger::received`]): `None` when none of them takes the message, else
+        /// whether one took a transition.
+        pub fn receive<S: Throttle + ?Sized>(
+            &mut self,
+            service: &mut S,
+            message: &Message,
+            from: &super::throttle::event::Received,
+        ) -> Option<bool> {
+            let trigger = Trigger::received(message, from)?;
+            Some(self.handle(service, &trigger))
         }
     }
 }

@@ -97,6 +97,37 @@ pub mod access {
             }
         }
     }
+    impl<'a> Trigger<'a> {
+        /// The trigger a received `message` raises in the machines of Access, with
+        /// the trigger's other parameters; `None` for a message none of them takes.
+        pub fn received(
+            message: &'a Message,
+            from: &'a super::link::event::Delivered,
+        ) -> Option<Self> {
+            Some(
+                match message {
+                    Message::AskForControl(msg) => {
+                        Trigger::AskForControl {
+                            msg,
+                            from,
+                        }
+                    }
+                    Message::GiveUpControl(msg) => {
+                        Trigger::GiveUpControl {
+                            msg,
+                            from,
+                        }
+                    }
+                    _ => return None,
+                },
+            )
+        }
+    }
+    /// The messages the machines of Access take, by command code (ascending).
+    pub const RECEIVES: &[::jaus::CommandCode] = &[
+        <AskForControl as ::jaus::JausMessage>::CODE,
+        <GiveUpControl as ::jaus::JausMessage>::CODE,
+    ];
     /// State machine `InFSM` of [`Access`] (with what it inherits).
     ///
     /// extending InFSM of link: adds control
@@ -363,6 +394,18 @@ pub mod access {
         /// The current state's path in machine `machine`.
         pub fn state(&self, machine: &str) -> Option<&'static str> {
             self.0.state(machine)
+        }
+        /// Offers a received `message` to every machine as its trigger
+        /// ([`Trigger::received`]): `None` when none of them takes the message, else
+        /// whether one took a transition.
+        pub fn receive<S: Access + ?Sized>(
+            &mut self,
+            service: &mut S,
+            message: &Message,
+            from: &super::link::event::Delivered,
+        ) -> Option<bool> {
+            let trigger = Trigger::received(message, from)?;
+            Some(self.handle(service, &trigger))
         }
     }
 }

@@ -31,11 +31,9 @@ use std::time::{Duration, Instant};
 use jaus::net::as5669a::As4Id;
 
 use crate::core::discovery::{service_info, Identification};
-use crate::core::events::{self, Setup};
+use crate::core::events;
 use crate::core::{core_services, Core, CoreConfig, Refusal};
-use crate::messages::{
-    ComponentState, EventRejection, EventType, Message, RejectEventRequest, ServiceInfo,
-};
+use crate::messages::{ComponentState, EventRejection, Message, RejectEventRequest, ServiceInfo};
 pub use crate::service::Outgoing;
 use crate::service::{Cx, Handled, Request, Service, ServiceId};
 
@@ -189,21 +187,27 @@ impl<E: 'static> As4Component<E> {
                 tracing::debug!(id = %format_args!("{:#06X}", r.code.0), %from, "unknown AS-4 message ignored");
                 Vec::new()
             }
-            Message::CreateEvent(c) => {
-                let setup = (c.request_id, c.event_type, c.requested_periodic_rate);
-                self.event_setup(now, from, setup, &c.query_message, None, env)
-            }
-            Message::UpdateEvent(u) => {
-                let setup = (u.request_id, u.event_type, u.requested_periodic_rate);
-                self.event_setup(now, from, setup, &u.query_message, Some(u.event_id), env)
-            }
-            _ if self.core.handles(msg.code()) => match self.core.handle(now, from, msg) {
-                Ok(out) => out,
-                Err(r) => {
-                    self.refuse(from, msg, r);
-                    Vec::new()
+            _ if self.core.handles(msg.code()) => {
+                let lookahead = match msg {
+                    Message::CreateEvent(c) => {
+                        Some(self.lookahead(now, from, &c.query_message, env))
+                    }
+                    Message::UpdateEvent(u) => {
+                        Some(self.lookahead(now, from, &u.query_message, env))
+                    }
+                    _ => None,
+                };
+                match self.core.handle(now, from, msg, lookahead) {
+                    Ok(out) => {
+                        self.count_event_refusals(from, msg, &out);
+                        out
+                    }
+                    Err(r) => {
+                        self.refuse(from, msg, r);
+                        Vec::new()
+                    }
                 }
-            },
+            }
             _ => self.offer(now, from, msg, env),
         };
         self.notify(now, before, env);
@@ -250,7 +254,7 @@ impl<E: 'static> As4Component<E> {
     /// The owner declares a failure (Management's Failure state; control ends).
     pub fn fail(&mut self, now: Instant, env: &mut E) -> Vec<Outgoing> {
         let before = (self.core.state(), self.core.controller());
-        let out = self.core.fail();
+        let out = self.core.fail(now);
         self.notify(now, before, env);
         self.stats.sent += out.len() as u64;
         out
@@ -376,62 +380,42 @@ impl<E: 'static> As4Component<E> {
         }
     }
 
-    fn event_setup(
+    /// The query of a Create or Update Event from `from`, decoded and answered as if
+    /// `from` sent it (by the Core or a service), or why it is not supported.
+    fn lookahead(
         &mut self,
         now: Instant,
         from: As4Id,
-        (request_id, kind, rate): (u8, EventType, f64),
         query_bytes: &[u8],
-        update: Option<u8>,
         env: &mut E,
-    ) -> Vec<Outgoing> {
-        let query = match events::query_of(query_bytes) {
-            Ok(q) => q,
-            Err(r) => return vec![events::reject(from, request_id, r)],
-        };
+    ) -> Result<Message, events::Rejection> {
+        let query = events::query_of(query_bytes)?;
         if self.query(now, &query, from, env).is_none() {
             let why = format!("nothing answers {}", query.name());
-            return vec![events::reject(
-                from,
-                request_id,
-                (EventRejection::MessageNotSupported, why),
-            )];
+            return Err((EventRejection::MessageNotSupported, why));
         }
-        let setup = Setup {
-            request_id,
-            kind,
-            rate,
-            query_bytes,
-            query,
-        };
-        let out = match update {
-            None => self.core.events_mut().create(now, from, setup),
-            Some(id) => self.core.events_mut().update(now, from, id, setup),
-        };
-        if let Message::RejectEventRequest(RejectEventRequest {
-            response_code: Some(code),
-            error_message,
-            ..
-        }) = &out.message
-        {
-            let reason = error_message.clone().unwrap_or_default();
-            let refusal = if *code == EventRejection::ConnectionRefused {
-                Refusal::Bounds(reason)
-            } else {
-                Refusal::Ignored(reason)
-            };
-            let msg_name = if update.is_some() {
-                "UpdateEvent"
-            } else {
-                "CreateEvent"
-            };
-            tracing::debug!(message = msg_name, %from, "event refused: {refusal:?}");
-            match refusal {
-                Refusal::Bounds(_) => self.stats.bounds += 1,
-                _ => self.stats.refused += 1,
+        Ok(query)
+    }
+
+    /// Counts the Reject Event Requests the Core answered `msg` with (a bound reached,
+    /// or otherwise refused) and logs them.
+    fn count_event_refusals(&mut self, from: As4Id, msg: &Message, out: &[Outgoing]) {
+        for o in out {
+            if let Message::RejectEventRequest(RejectEventRequest {
+                response_code: Some(code),
+                error_message,
+                ..
+            }) = &o.message
+            {
+                let reason = error_message.as_deref().unwrap_or_default();
+                if *code == EventRejection::ConnectionRefused {
+                    self.stats.bounds += 1;
+                } else {
+                    self.stats.refused += 1;
+                }
+                tracing::debug!(message = msg.name(), %from, component = %self.id, "event refused: {code:?}: {reason}");
             }
         }
-        vec![out]
     }
 
     fn fire_events(&mut self, now: Instant, env: &mut E) -> Vec<Outgoing> {

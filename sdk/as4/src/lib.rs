@@ -137,6 +137,15 @@ pub mod service;
 #[allow(clippy::all)]
 pub mod messages {
     include!(concat!(env!("OUT_DIR"), "/messages.rs"));
+
+    /// The generated services of `defs/core_services.yaml` (Transport, Events, Access
+    /// Control, Management): per service a trait of its guards and actions, its
+    /// `Trigger`s (with [`received`](services::management::Trigger::received), the
+    /// dispatch of a received message) and the tables of its merged state machine, run
+    /// by `jaus::hsm`. [`crate::core::machine`] implements the traits.
+    pub mod services {
+        include!(concat!(env!("OUT_DIR"), "/services.rs"));
+    }
 }
 
 pub use messages::*;

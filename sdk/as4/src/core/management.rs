@@ -1,23 +1,18 @@
 //! Management (`urn:jaus:jss:core:Management` 1.1): the component's life-cycle state.
 //!
-//! States ([`ComponentState`]): Initialize, Ready, Standby, Shutdown, Failure,
-//! Emergency. The behaviour, from the public JSIDL of the service:
+//! The life cycle is the state machine of `defs/core_services.yaml` (run by
+//! [`super::machine`]); the component's state ([`ComponentState`]) is read off the
+//! machine's current state ([`state_of`]). This module keeps what its guards read and its
+//! actions change: the emergencies in effect, as (client, code) pairs.
 //!
-//! * A component starts in Initialize and goes to **Standby** once initialised; this
-//!   runtime has nothing to wait for, so a new component is in Standby.
-//! * Resume (Standby → Ready) and Standby (Ready → Standby) are obeyed from the
-//!   controlling client only.
-//! * Shutdown from the controller: state Shutdown and control ends (the controller gets
-//!   Reject Control `ControlReleased`); nothing but an emergency leaves Shutdown.
-//! * Reset from the controller: control ends the same way and the component
-//!   initialises again, ending in Standby.
-//! * Losing control (release, timeout) takes a Ready component to Standby.
-//! * Set Emergency from any client enters Emergency and remembers (client, code);
-//!   Clear Emergency from a client that set one removes its pair; the component leaves
-//!   Emergency for the state it was in when the last pair is cleared. Control is kept
-//!   through an emergency; Shutdown and Reset are ignored during one.
-//! * The owner may declare a failure ([`Core::fail`](super::Core::fail)): state
-//!   Failure, control ends; only an emergency leaves Failure (and returns to it).
+//! What the machine says, in short: a component starts in Standby; only the controller
+//! resumes (Standby → Ready), stands by, shuts down or resets it (control ends with
+//! Reject Control `ControlReleased`; Reset passes through Initialize to Standby); losing
+//! control takes Ready to Standby; any client may declare an emergency and the component
+//! returns to the state it left when the last declaring client clears its own; control is
+//! kept through an emergency, Shutdown and Reset are ignored during one; a failure
+//! declared by the owner ends control and leaves the component in Failure (after the
+//! emergency, if one is in effect).
 
 use std::collections::BTreeSet;
 
@@ -28,27 +23,33 @@ use crate::messages::{ComponentState, EmergencyCode, ReportStatus};
 /// Most (client, code) pairs of emergencies kept.
 pub const MAX_EMERGENCIES: usize = 64;
 
-/// The state of Management.
-#[derive(Debug, Clone)]
-pub struct Management {
-    state: ComponentState,
-    before_emergency: ComponentState,
-    emergencies: BTreeSet<(As4Id, u16)>,
-}
-
-impl Default for Management {
-    fn default() -> Self {
-        Self::new()
+/// The component's state when the Management machine is in the state at `path`
+/// (`Receiving.Ready.Controlled.Available.Ready` is Ready): the innermost state names it.
+pub fn state_of(path: &str) -> ComponentState {
+    match path.rsplit('.').next().unwrap_or(path) {
+        "Ready" => ComponentState::Ready,
+        "Init" => ComponentState::Initialize,
+        "Shutdown" => ComponentState::Shutdown,
+        "Failure" => ComponentState::Failure,
+        "Emergency" => ComponentState::Emergency,
+        _ => ComponentState::Standby,
     }
 }
 
+/// The data of Management.
+#[derive(Debug, Clone, Default)]
+pub struct Management {
+    state: ComponentState,
+    emergencies: BTreeSet<(As4Id, u16)>,
+    failed_in_emergency: bool,
+}
+
 impl Management {
-    /// A component that has initialised: Standby.
+    /// A component that has initialised: Standby, no emergency.
     pub fn new() -> Self {
         Self {
             state: ComponentState::Standby,
-            before_emergency: ComponentState::Standby,
-            emergencies: BTreeSet::new(),
+            ..Self::default()
         }
     }
 
@@ -57,8 +58,13 @@ impl Management {
         self.state
     }
 
+    /// The machine moved: its state's path.
+    pub(crate) fn moved(&mut self, path: &str) {
+        self.state = state_of(path);
+    }
+
     /// Whether Access Control is available (Standby or Ready): not in Emergency,
-    /// Shutdown or Failure.
+    /// Shutdown, Failure or Initialize.
     pub fn available(&self) -> bool {
         matches!(self.state, ComponentState::Standby | ComponentState::Ready)
     }
@@ -68,83 +74,44 @@ impl Management {
         self.emergencies.iter().map(|&(id, c)| (id, code_of(c)))
     }
 
-    /// Resume from the controller: Standby → Ready. `Err` names why nothing changed.
-    pub fn resume(&mut self) -> Result<(), String> {
-        match self.state {
-            ComponentState::Standby => {
-                self.state = ComponentState::Ready;
-                Ok(())
-            }
-            ComponentState::Ready => Ok(()),
-            s => Err(format!("cannot resume from {s:?}")),
-        }
-    }
-
-    /// Standby from the controller: Ready → Standby.
-    pub fn standby(&mut self) -> Result<(), String> {
-        match self.state {
-            ComponentState::Ready | ComponentState::Standby => {
-                self.state = ComponentState::Standby;
-                Ok(())
-            }
-            s => Err(format!("cannot go to standby from {s:?}")),
-        }
-    }
-
-    /// Shutdown or Reset from the controller: `Err` during an emergency (ignored).
-    /// Reset passes through Initialize and ends in Standby.
-    pub fn shutdown(&mut self, reset: bool) -> Result<(), String> {
-        if self.state == ComponentState::Emergency {
-            return Err("ignored during an emergency".into());
-        }
-        self.state = if reset {
-            ComponentState::Standby
-        } else {
-            ComponentState::Shutdown
-        };
-        Ok(())
-    }
-
-    /// Control ended: Ready becomes Standby.
-    pub fn control_lost(&mut self) {
-        if self.state == ComponentState::Ready {
-            self.state = ComponentState::Standby;
-        }
-    }
-
-    /// The owner declares a failure.
-    pub fn fail(&mut self) {
-        if self.state == ComponentState::Emergency {
-            self.before_emergency = ComponentState::Failure;
-        } else {
-            self.state = ComponentState::Failure;
-        }
-    }
-
-    /// Set Emergency from `from`. `Err` when the bound on pairs is reached (the state
-    /// is Emergency all the same).
-    pub fn set_emergency(&mut self, from: As4Id, code: EmergencyCode) -> Result<(), String> {
-        if self.state != ComponentState::Emergency {
-            self.before_emergency = self.state;
-            self.state = ComponentState::Emergency;
-        }
+    /// Records `from`'s emergency `code`: `false` when the bound on pairs is reached
+    /// (the component is in Emergency all the same).
+    pub(crate) fn store(&mut self, from: As4Id, code: EmergencyCode) -> bool {
         let key = (from, code_value(code));
         if self.emergencies.len() >= MAX_EMERGENCIES && !self.emergencies.contains(&key) {
-            return Err(format!("more than {MAX_EMERGENCIES} emergencies"));
+            return false;
         }
         self.emergencies.insert(key);
-        Ok(())
+        true
     }
 
-    /// Clear Emergency from `from`: `Err` when it set no such emergency.
-    pub fn clear_emergency(&mut self, from: As4Id, code: EmergencyCode) -> Result<(), String> {
-        if !self.emergencies.remove(&(from, code_value(code))) {
-            return Err(format!("{from} set no emergency {code:?}"));
+    /// Whether `from` declared emergency `code`.
+    pub fn is_stored(&self, from: As4Id, code: EmergencyCode) -> bool {
+        self.emergencies.contains(&(from, code_value(code)))
+    }
+
+    /// Whether `from`'s `code` is the only emergency in effect.
+    pub fn is_last(&self, from: As4Id, code: EmergencyCode) -> bool {
+        self.emergencies.len() == 1 && self.is_stored(from, code)
+    }
+
+    /// Forgets `from`'s emergency `code`.
+    pub(crate) fn delete(&mut self, from: As4Id, code: EmergencyCode) {
+        self.emergencies.remove(&(from, code_value(code)));
+    }
+
+    /// A failure declared during an emergency: Failure once it is cleared.
+    pub(crate) fn fail_after_emergency(&mut self) {
+        self.failed_in_emergency = true;
+    }
+
+    /// Takes the failure declared during an emergency, once no emergency is in effect.
+    pub(crate) fn take_pending_failure(&mut self) -> bool {
+        if self.emergencies.is_empty() && self.state != ComponentState::Emergency {
+            std::mem::take(&mut self.failed_in_emergency)
+        } else {
+            false
         }
-        if self.emergencies.is_empty() && self.state == ComponentState::Emergency {
-            self.state = self.before_emergency;
-        }
-        Ok(())
     }
 
     /// Report Status.

@@ -22,6 +22,7 @@ pub mod discovery;
 pub mod events;
 pub mod lists;
 pub mod liveness;
+pub(crate) mod machine;
 pub mod management;
 pub mod time;
 
@@ -30,14 +31,16 @@ use std::time::{Duration, Instant};
 use jaus::net::as5669a::As4Id;
 use jaus::{CommandCode, JausMessage};
 
-use crate::messages::{self as m, ComponentState, EventRejection, Message};
+use crate::messages::services::management::{Machines, Trigger};
+use crate::messages::{self as m, ComponentState, Message};
 use crate::service::Outgoing;
 use crate::service::ServiceId;
 
 use access::Access;
 use discovery::{service_info, Discovery, Identification};
-use events::Events;
+use events::{Events, Rejection};
 use lists::Lists;
+use machine::Host;
 use management::Management;
 use time::Time;
 
@@ -131,6 +134,7 @@ pub struct Core {
     time: Time,
     discovery: Discovery,
     lists: Lists,
+    machines: Machines,
 }
 
 impl Core {
@@ -157,8 +161,55 @@ impl Core {
                 config.max_registrations,
             ),
             lists: Lists::new(config.max_elements),
+            machines: Machines::new(),
             config,
         }
+    }
+
+    /// The state of the Core's generated machine (Transport, Events, Access Control and
+    /// Management merged), by path: `Receiving.Ready.Controlled.Available.Ready`.
+    pub fn machine_state(&self) -> &'static str {
+        self.machines
+            .0
+            .iter()
+            .next()
+            .map_or("", jaus::hsm::Machine::path)
+    }
+
+    /// Runs `f` with the machines and a host over the services' data; then settles what
+    /// the owner does at once (initialisation done, a failure pending after an emergency)
+    /// and notes the component's state. What the actions sent, and a bound reached.
+    fn run<R>(
+        &mut self,
+        now: Instant,
+        event_query: Option<Result<Message, Rejection>>,
+        f: impl FnOnce(&mut Machines, &mut Host<'_>) -> R,
+    ) -> (R, Vec<Outgoing>, Option<String>) {
+        let mut out = Vec::new();
+        let mut host = Host {
+            now,
+            access: &mut self.access,
+            management: &mut self.management,
+            events: &mut self.events,
+            out: &mut out,
+            event_query,
+            bound: None,
+        };
+        let r = f(&mut self.machines, &mut host);
+        // Bounded: each raise moves the machine out of Init or out of the pending failure.
+        for _ in 0..4 {
+            let path = self.machines.0.iter().next().map_or("", |m| m.path());
+            host.management.moved(path);
+            if host.management.state() == ComponentState::Initialize {
+                self.machines.handle(&mut host, &Trigger::Initialized {});
+            } else if host.management.take_pending_failure() {
+                self.machines.handle(&mut host, &Trigger::Failure {});
+            } else {
+                break;
+            }
+        }
+        let bound = host.bound.take();
+        (r, out, bound)
     }
 
     /// The settings.
@@ -259,16 +310,30 @@ impl Core {
         })
     }
 
-    /// A Core message from `from` (not Create or Update Event): the messages to send,
-    /// or why nothing was done.
+    /// A Core message from `from`: the messages to send, or why nothing was done.
+    /// `event_query` is, for Create and Update Event, the event's query decoded and
+    /// answered by the component, or why it is not supported (the query may be any
+    /// service's, so the component looks ahead; `None`: decoded here, as unanswered).
     pub fn handle(
         &mut self,
         now: Instant,
         from: As4Id,
         msg: &Message,
+        event_query: Option<Result<Message, Rejection>>,
     ) -> Result<Vec<Outgoing>, Refusal> {
+        let transport = machine::receive_of(from);
+        let (taken, out, bound) = self.run(now, event_query, |machines, host| {
+            machines.receive(host, msg, &transport)
+        });
+        if let Some(b) = bound {
+            return Err(Refusal::Bounds(b));
+        }
+        match taken {
+            Some(true) => return Ok(out),
+            Some(false) => return Err(self.refusal(from, msg)),
+            None => {}
+        }
         let is_controller = self.access.controller() == Some(from);
-        let available = self.management.available();
         let need_control = |what: &str| -> Result<(), Refusal> {
             if is_controller {
                 Ok(())
@@ -277,74 +342,11 @@ impl Core {
             }
         };
         let out = match msg {
-            Message::RequestControl(r) => {
-                let out = self.access.request(now, from, r.authority_code, available);
-                self.after_access();
-                out
-            }
-            Message::ReleaseControl(_) => {
-                let out = self
-                    .access
-                    .release(from, available)
-                    .map_err(Refusal::Ignored)?;
-                self.after_access();
-                out
-            }
-            Message::SetAuthority(s) => {
-                need_control("Set Authority")?;
-                if !available {
-                    return Err(Refusal::NotReady(
-                        "Set Authority while not available".into(),
-                    ));
-                }
-                self.access
-                    .set_authority(s.authority_code)
-                    .map_err(Refusal::Ignored)?;
-                Vec::new()
-            }
-            Message::Resume(_) | Message::Standby(_) => {
-                need_control(msg.name())?;
-                let r = if matches!(msg, Message::Resume(_)) {
-                    self.management.resume()
-                } else {
-                    self.management.standby()
-                };
-                r.map_err(Refusal::NotReady)?;
-                Vec::new()
-            }
-            Message::Shutdown(_) | Message::Reset(_) => {
-                need_control(msg.name())?;
-                self.management
-                    .shutdown(matches!(msg, Message::Reset(_)))
-                    .map_err(Refusal::NotReady)?;
-                self.access.revoke().into_iter().collect()
-            }
-            Message::SetEmergency(e) => {
-                self.management
-                    .set_emergency(from, e.emergency_code)
-                    .map_err(Refusal::Bounds)?;
-                Vec::new()
-            }
-            Message::ClearEmergency(e) => {
-                self.management
-                    .clear_emergency(from, e.emergency_code)
-                    .map_err(Refusal::Ignored)?;
-                Vec::new()
-            }
             Message::SetTime(t) => {
                 need_control("Set Time")?;
                 self.time.set(now, t).map_err(Refusal::Ignored)?;
                 Vec::new()
             }
-            Message::CancelEvent(c) => vec![self.events.cancel(from, c.request_id, c.event_id)],
-            Message::CreateCommandEvent(c) => vec![events::reject(
-                from,
-                c.request_id,
-                (
-                    EventRejection::MessageNotSupported,
-                    "command events are not supported".into(),
-                ),
-            )],
             Message::SetElement(_) | Message::DeleteElement(_) if self.config.list_manager => {
                 need_control(msg.name())?;
                 self.lists
@@ -367,29 +369,48 @@ impl Core {
         Ok(out)
     }
 
-    fn after_access(&mut self) {
-        if self.access.controller().is_none() {
-            self.management.control_lost();
+    /// Why the machine took no transition for `msg` from `from`, as the component counts
+    /// it.
+    fn refusal(&self, from: As4Id, msg: &Message) -> Refusal {
+        let state = self.management.state();
+        let controller = self.access.controller();
+        if !self.management.available() {
+            Refusal::NotReady(format!("{} in state {state:?}", msg.name()))
+        } else if controller != Some(from) {
+            Refusal::NotController(format!(
+                "{} from {from}, not the controller ({})",
+                msg.name(),
+                controller.map_or_else(|| "none".to_string(), |c| c.to_string())
+            ))
+        } else {
+            Refusal::Ignored(format!(
+                "{} refused in machine state {}",
+                msg.name(),
+                self.machine_state()
+            ))
         }
     }
 
-    /// The owner declares a failure: state Failure, control ends.
-    pub fn fail(&mut self) -> Vec<Outgoing> {
-        self.management.fail();
-        let out = self.access.revoke().into_iter().collect();
-        self.after_access();
+    /// The owner declares a failure: the machine's `Failure` (control ends; during an
+    /// emergency, Failure once it is cleared).
+    pub fn fail(&mut self, now: Instant) -> Vec<Outgoing> {
+        let (_, out, _) = self.run(now, None, |machines, host| {
+            machines.handle(host, &Trigger::Failure {})
+        });
         out
     }
 
-    /// Time passed: control lapses, events lapse (the events' reports are the
-    /// component's job: [`Events::due`]).
+    /// Time passed: control lapses (the machine's `Timedout` once the controller's
+    /// deadline is past), events lapse (the events' reports are the component's job:
+    /// [`Events::due`]).
     pub fn handle_timeout(&mut self, now: Instant) -> Vec<Outgoing> {
-        let mut out: Vec<Outgoing> = self
-            .access
-            .handle_timeout(now, self.management.available())
-            .into_iter()
-            .collect();
-        self.after_access();
+        let mut out = Vec::new();
+        if self.access.deadline().is_some_and(|d| d <= now) {
+            let (_, o, _) = self.run(now, None, |machines, host| {
+                machines.handle(host, &Trigger::Timedout {})
+            });
+            out = o;
+        }
         out.extend(self.events.expire(now));
         out
     }
