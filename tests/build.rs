@@ -3,15 +3,65 @@
 //! pins their wire layout in `vendor/acme.lock`: a change of the YAML that changes the
 //! layout fails the build with the list of changes until `JAUS_UPDATE_LOCK=1 cargo
 //! build` rewrites the lock file (to be reviewed and committed).
+//!
+//! It also regenerates the AS-4 Core's state machine from jaus-as4's definitions with one
+//! transition edited (`regenerate_core`), as a vendor would when the standard revises;
+//! `tests/as4_regenerate.rs` runs a component on it.
 
 fn main() {
     let out = std::env::var("OUT_DIR").expect("cargo sets OUT_DIR");
+    regenerate_core(&out);
     if let Err(e) = jaus_gen::Builder::new()
         .overlay("vendor/acme.yaml")
         .lock("vendor/acme.lock")
         .runtime_path("::jaus")
         .serde_cfg("all()")
         .out_dir(out)
+        .generate()
+    {
+        eprintln!("{e}");
+        std::process::exit(1);
+    }
+}
+
+/// The edit: in Management, the initial sub-state of Controlled.Available becomes Ready
+/// instead of Standby: a client granted control finds the component Ready (it no longer
+/// needs to send Resume).
+const EDIT_FROM: &str = "                          initial: Standby\n                          states:\n                            - name: Standby\n                              transitions:\n";
+const EDIT_TO: &str = "                          initial: Ready\n                          states:\n                            - name: Standby\n                              transitions:\n";
+
+/// Copies jaus-as4's definitions to `OUT_DIR/as4-edited/defs` with [`EDIT_FROM`] replaced
+/// by [`EDIT_TO`] in `core_services.yaml`, and generates them into `OUT_DIR/as4-edited`.
+fn regenerate_core(out: &str) {
+    let defs = std::path::Path::new("../sdk/as4/defs");
+    println!("cargo:rerun-if-changed={}", defs.display());
+    let dir = std::path::Path::new(out).join("as4-edited");
+    let copy = dir.join("defs");
+    std::fs::create_dir_all(&copy).expect("create OUT_DIR/as4-edited/defs");
+    for entry in std::fs::read_dir(defs).expect("read sdk/as4/defs") {
+        let path = entry.expect("a definition file").path();
+        let Some(name) = path.file_name() else {
+            continue;
+        };
+        let mut text = std::fs::read_to_string(&path).expect("read a definition file");
+        if name == "core_services.yaml" {
+            assert!(
+                text.contains(EDIT_FROM),
+                "sdk/as4/defs/core_services.yaml no longer has the transition tests/build.rs edits (the initial sub-state of Management's Controlled.Available): update EDIT_FROM"
+            );
+            text = text.replace(EDIT_FROM, EDIT_TO);
+        }
+        let target = copy.join(name);
+        if std::fs::read_to_string(&target).ok().as_deref() != Some(text.as_str()) {
+            std::fs::write(target, text).expect("write a definition file");
+        }
+    }
+    // The copy is this script's output, not an input: watch the originals (above).
+    if let Err(e) = jaus_gen::Builder::new()
+        .emit_rerun_if_changed(false)
+        .spec_dir(&copy)
+        .runtime_path("::jaus")
+        .out_dir(&dir)
         .generate()
     {
         eprintln!("{e}");

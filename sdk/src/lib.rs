@@ -190,6 +190,10 @@ pub struct MessageInfo {
     /// definitions: subscriptions, event set-up, giving up control): an access policy
     /// treats it as a query.
     pub read_only: bool,
+    /// Whether only the controlling client may send it: AS-4's `is_command` where the
+    /// definition gives it, else whether its class is Command. The AS-4 runtime enforces
+    /// control by this, whatever the code.
+    pub needs_control: bool,
 }
 
 impl MessageInfo {

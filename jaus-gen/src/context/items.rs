@@ -81,6 +81,8 @@ pub struct MessageCtx {
     pub class: String,
     /// `access: read`: a command that changes nothing a controller owns.
     pub read_only: bool,
+    /// Whether it needs control (`is_command`, else a command by class).
+    pub needs_control: bool,
 }
 
 /// A struct field.

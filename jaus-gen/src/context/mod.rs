@@ -264,6 +264,9 @@ pub fn build_context(spec: &Spec, gates: bool, rt: &str) -> Context {
             experimental: d.experimental,
             class: class_variant(d).into(),
             read_only: d.access == Some(jaus_spec::Access::Read),
+            needs_control: d
+                .is_command
+                .unwrap_or(d.class() == jaus_spec::MessageClass::Command),
         };
         if let Some(g) = groups.iter_mut().find(|g| g.name == m.group) {
             g.messages.push(mc.clone());

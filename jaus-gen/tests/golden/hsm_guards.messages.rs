@@ -136,5 +136,6 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         experimental: false,
         class: ::jaus::wire::MessageClass::Command,
         read_only: false,
+        needs_control: true,
     },
 ];

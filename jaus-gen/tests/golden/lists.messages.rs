@@ -215,6 +215,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         experimental: false,
         class: ::jaus::wire::MessageClass::Experimental,
         read_only: false,
+        needs_control: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0xD041),
@@ -225,5 +226,6 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         experimental: false,
         class: ::jaus::wire::MessageClass::Experimental,
         read_only: false,
+        needs_control: false,
     },
 ];

@@ -157,5 +157,6 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         experimental: false,
         class: ::jaus::wire::MessageClass::Experimental,
         read_only: false,
+        needs_control: false,
     },
 ];

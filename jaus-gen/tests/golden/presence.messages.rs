@@ -268,6 +268,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         experimental: false,
         class: ::jaus::wire::MessageClass::Experimental,
         read_only: false,
+        needs_control: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0xD031),
@@ -278,6 +279,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         experimental: false,
         class: ::jaus::wire::MessageClass::Experimental,
         read_only: false,
+        needs_control: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0xD032),
@@ -288,5 +290,6 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         experimental: false,
         class: ::jaus::wire::MessageClass::Experimental,
         read_only: false,
+        needs_control: false,
     },
 ];

@@ -220,6 +220,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         experimental: false,
         class: ::jaus::wire::MessageClass::Inform,
         read_only: false,
+        needs_control: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x2B00),
@@ -230,6 +231,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         experimental: false,
         class: ::jaus::wire::MessageClass::Query,
         read_only: false,
+        needs_control: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x000D),
@@ -240,6 +242,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         experimental: false,
         class: ::jaus::wire::MessageClass::Command,
         read_only: false,
+        needs_control: true,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x0003),
@@ -250,6 +253,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         experimental: false,
         class: ::jaus::wire::MessageClass::Command,
         read_only: false,
+        needs_control: true,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0x0402),
@@ -260,6 +264,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         experimental: false,
         class: ::jaus::wire::MessageClass::Command,
         read_only: false,
+        needs_control: true,
     },
 ];
 /// The messages the component runtime takes for every component (`runtime: [handles]`

@@ -201,6 +201,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         experimental: false,
         class: ::jaus::wire::MessageClass::Experimental,
         read_only: false,
+        needs_control: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0xD071),
@@ -211,5 +212,6 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         experimental: false,
         class: ::jaus::wire::MessageClass::Experimental,
         read_only: false,
+        needs_control: false,
     },
 ];

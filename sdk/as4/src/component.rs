@@ -5,19 +5,22 @@
 //! returns what to send ([`Outgoing`]: answers to the sender, and messages to others
 //! such as the Reject Control of a preempted controller and Events). Dispatch:
 //!
-//! 1. Create and Update Event: their query is run through this dispatch as if the
-//!    subscriber had sent it; the event is confirmed only when something answers it.
-//! 2. Other Core messages go to the [`Core`] (the table of what needs control is in
-//!    [`crate::core`]).
-//! 3. Everything else goes to the services, in the order they were added, to each whose
+//! 1. Core messages go to the [`Core`], whose generated state machine decides
+//!    Transport, Events, Access Control and Management (`defs/core_services.yaml`).
+//!    For Create and Update Event the component first runs the event's query through
+//!    this dispatch as if the subscriber had sent it: the event is confirmed only when
+//!    something answers it.
+//! 2. Everything else goes to the services, in the order they were added, to each whose
 //!    [`Service::receives`] says yes until one does not answer [`Handled::NotMine`]. A
-//!    command (code below 0x2000) reaches a service only from the controlling client,
+//!    message that needs control ([`Service::needs_control`]: `is_command` of the
+//!    definitions, whatever the code) reaches a service only from the controlling client,
 //!    and only while the component is Ready unless [`Service::needs_ready`] says
 //!    otherwise.
 //!
 //! What is refused is counted ([`ComponentStats`]) and logged (`tracing`, debug level)
-//! with the message, its sender and the reason. A message ID this crate does not define
-//! ([`Message::Raw`]) is counted and ignored. Services are told when the state or the
+//! with the message, its sender and the reason. A message ID outside this crate's
+//! definitions ([`Message::Raw`], a vendor's) reaches the services whose
+//! [`Service::receives`] declares it, and is counted and ignored when none does. Services are told when the state or the
 //! controller changes ([`Service::state_changed`], [`Service::controller_changed`]).
 //!
 //! Time: call [`handle_timeout`](As4Component::handle_timeout) when
@@ -96,6 +99,21 @@ impl<E: 'static> As4Component<E> {
         Self {
             id,
             core: Core::new(id, config),
+            services: Vec::new(),
+            stats: ComponentStats::default(),
+        }
+    }
+
+    /// Component `id` whose Core runs `machine`: the Core generated from a revised
+    /// definition of its services ([`core_machine!`](crate::core_machine)).
+    pub fn with_machine(
+        id: As4Id,
+        config: CoreConfig,
+        machine: Box<dyn crate::core::machine::CoreMachine>,
+    ) -> Self {
+        Self {
+            id,
+            core: Core::with_machine(id, config, machine),
             services: Vec::new(),
             stats: ComponentStats::default(),
         }
@@ -182,11 +200,6 @@ impl<E: 'static> As4Component<E> {
         self.stats.received += 1;
         let before = (self.core.state(), self.core.controller());
         let mut out = match msg {
-            Message::Raw(r) => {
-                self.stats.unknown += 1;
-                tracing::debug!(id = %format_args!("{:#06X}", r.code.0), %from, "unknown AS-4 message ignored");
-                Vec::new()
-            }
             _ if self.core.handles(msg.code()) => {
                 let lookahead = match msg {
                     Message::CreateEvent(c) => {
@@ -316,12 +329,13 @@ impl<E: 'static> As4Component<E> {
         let code = msg.code();
         let from_controller = self.core.controller() == Some(from);
         let state = self.core.state();
-        let is_command = code.0 < 0x2000;
+
         let mut decided: Option<Dispatch> = None;
         self.with_services(now, env, |s, cx| {
             if decided.is_some() || !s.receives(code) {
                 return;
             }
+            let is_command = s.needs_control(code);
             if is_command && !from_controller {
                 let why = format!("{} needs control", s.id().uri);
                 decided = Some(Dispatch::Refused(Refusal::NotController(why)));
@@ -356,6 +370,11 @@ impl<E: 'static> As4Component<E> {
         match self.dispatch(now, from, msg, env) {
             Dispatch::Answered(reply) => {
                 reply.map(|m| Outgoing::new(from, m)).into_iter().collect()
+            }
+            Dispatch::Unhandled if matches!(msg, Message::Raw(_)) => {
+                self.stats.unknown += 1;
+                tracing::debug!(id = %format_args!("{:#06X}", msg.code().0), %from, component = %self.id, "a message ID outside the definitions that no service declares: ignored");
+                Vec::new()
             }
             Dispatch::Unhandled => {
                 self.stats.unhandled += 1;

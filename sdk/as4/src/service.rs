@@ -48,6 +48,16 @@ impl fmt::Display for ServiceId {
     }
 }
 
+/// Whether message `code` needs control: the catalogue's `needs_control` (AS-4's
+/// `is_command` of the definitions), and true for a code outside them (safe: a vendor's
+/// command at 0xF012 is protected until its service says otherwise).
+pub fn needs_control(code: CommandCode) -> bool {
+    crate::messages::MESSAGES
+        .iter()
+        .find(|m| m.code == code)
+        .is_none_or(|m| m.needs_control)
+}
+
 /// A message to send: its destination and the message.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Outgoing {
@@ -132,6 +142,13 @@ pub trait Service<E>: fmt::Debug + Send + 'static {
     /// Whether `code` is one of the messages this service receives (its input set).
     fn receives(&self, code: CommandCode) -> bool;
 
+    /// Whether message `code` needs control. Default: what the definitions say
+    /// ([`needs_control`]); a vendor's message outside jaus-as4's definitions (it arrives
+    /// undecoded, as [`Message::Raw`]) needs control unless the service says otherwise.
+    fn needs_control(&self, code: CommandCode) -> bool {
+        needs_control(code)
+    }
+
     /// Whether command `code` also needs the component Ready (besides control). Default:
     /// every command does, as for the services that inherit Management (the drivers).
     /// A service that inherits only Access Control answers false for its commands (the
@@ -141,8 +158,8 @@ pub trait Service<E>: fmt::Debug + Send + 'static {
         true
     }
 
-    /// A message of its input set. Commands (codes below 0x2000) reach it only from the
-    /// controlling client, and only while the component is Ready when
+    /// A message of its input set. Messages that need control
+    /// ([`needs_control`](Self::needs_control)) reach it only from the controlling client, and only while the component is Ready when
     /// [`needs_ready`](Self::needs_ready) says so (the component checks); queries reach
     /// it from anyone.
     fn handle(&mut self, cx: &mut Cx<'_, E>, request: &Request<'_>) -> Handled;

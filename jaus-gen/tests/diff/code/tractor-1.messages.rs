@@ -285,6 +285,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         experimental: false,
         class: ::jaus::wire::MessageClass::Command,
         read_only: false,
+        needs_control: true,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0xD201),
@@ -295,6 +296,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         experimental: false,
         class: ::jaus::wire::MessageClass::Inform,
         read_only: false,
+        needs_control: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0xD202),
@@ -305,5 +307,6 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         experimental: false,
         class: ::jaus::wire::MessageClass::Command,
         read_only: false,
+        needs_control: true,
     },
 ];

@@ -389,6 +389,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         experimental: false,
         class: ::jaus::wire::MessageClass::Command,
         read_only: false,
+        needs_control: true,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0xD201),
@@ -399,6 +400,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         experimental: false,
         class: ::jaus::wire::MessageClass::Inform,
         read_only: false,
+        needs_control: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0xD202),
@@ -409,6 +411,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         experimental: false,
         class: ::jaus::wire::MessageClass::Command,
         read_only: false,
+        needs_control: true,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0xD203),
@@ -419,6 +422,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         experimental: false,
         class: ::jaus::wire::MessageClass::Query,
         read_only: false,
+        needs_control: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0xD204),
@@ -429,6 +433,7 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         experimental: false,
         class: ::jaus::wire::MessageClass::Inform,
         read_only: false,
+        needs_control: false,
     },
     ::jaus::MessageInfo {
         code: CommandCode(0xD205),
@@ -439,5 +444,6 @@ pub static MESSAGES: &[::jaus::MessageInfo] = &[
         experimental: false,
         class: ::jaus::wire::MessageClass::Command,
         read_only: false,
+        needs_control: true,
     },
 ];

@@ -56,11 +56,15 @@ pub fn query_of(bytes: &[u8]) -> Result<Message, Rejection> {
             format!("query does not decode: {e}"),
         )
     })?;
-    let code = m.code().0;
-    if !(0x2000..0x4000).contains(&code) {
+    // A query by the definitions: a message that names its report, or of the query
+    // class. A message outside them (a vendor's, undecoded) may be anything: whether
+    // something answers it decides.
+    let code = m.code();
+    let info = crate::messages::MESSAGES.iter().find(|i| i.code == code);
+    if info.is_some_and(|i| i.report.is_none() && i.class != jaus::wire::MessageClass::Query) {
         return Err((
             EventRejection::MessageNotSupported,
-            format!("message {code:#06X} is not a query"),
+            format!("{} ({:#06X}) is not a query", m.name(), code.0),
         ));
     }
     Ok(m)

@@ -1,76 +1,131 @@
 //! The generated state machine of the Core's Transport, Events, Access Control and
 //! Management (`defs/core_services.yaml`, generated into
-//! [`crate::messages::services`]) at work: [`Host`] implements the guards and actions of
-//! the four generated traits over the services' data ([`Access`], [`Management`],
-//! [`Events`]), and the messages they decide go out as [`Outgoing`] values.
+//! [`crate::messages::services`]) at work.
 //!
-//! A host lives for one trigger: [`super::Core`] builds it over its data, offers the
-//! trigger to the machines ([`Machines::receive`](crate::messages::services::management::Machines::receive)
-//! for a received message, `handle` for an internal event such as `Timedout`) and takes
-//! what it sent.
+//! [`Host`] holds, for one trigger, the services' data ([`Access`], [`Management`],
+//! [`Events`]) and what the actions send; [`core_machine!`](crate::core_machine)
+//! implements the guards and actions of the four generated traits on it, and makes the
+//! generated `Machines` a [`CoreMachine`], what [`Core`](super::Core) runs. The stock
+//! Core is the machine of jaus-as4's own definitions ([`stock`]); a Core regenerated from
+//! a revised definition (a `core_services.yaml` edited, or a later revision of the
+//! standard with the same guards and actions) is run the same way:
+//!
+//! ```ignore
+//! mod revised {
+//!     pub use jaus_as4::messages::*;
+//!     pub mod services { include!(concat!(env!("OUT_DIR"), "/services.rs")); }
+//! }
+//! jaus_as4::core_machine!(revised::services);
+//! let core = Core::with_machine(me, config, Box::new(revised::services::management::Machines::new()));
+//! ```
 
+use std::fmt;
 use std::time::Instant;
 
 use jaus::net::as5669a::As4Id;
 
 use super::access::Access;
 use super::events::{self, Events, Rejection, Setup};
-use super::management::Management;
-use crate::messages::services::{access_control, events as ev, management, transport, Arg};
+use super::management::{Management, MAX_EMERGENCIES};
 use crate::messages::{
-    CancelEvent, ClearEmergency, ComponentAddress, ConfirmControl, ControlConfirmation,
-    ControlRejection, CreateCommandEvent, CreateEvent, EventRejection, EventType, Message,
-    QueryEvents, RejectControl, RequestControl, SetAuthority, SetEmergency, UpdateEvent,
+    ConfirmControl, ControlConfirmation, ControlRejection, EmergencyCode, EventRejection,
+    EventType, EventsFilter, Message, RejectControl,
 };
 use crate::service::Outgoing;
 
-/// The data of a `Receive` event: the sender as the machine sees it.
-pub fn receive_of(from: As4Id) -> transport::event::Receive {
-    transport::event::Receive {
-        source: ComponentAddress {
-            subsystem_id: from.subsystem,
-            node_id: from.node,
-            component_id: from.component,
-        },
+/// The internal events the Core's owner raises.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CoreEvent {
+    /// The controller's deadline passed (Access Control).
+    Timedout,
+    /// Initialisation is done (Management, in `Init`).
+    Initialized,
+    /// The owner declares a failure (Management).
+    Failure,
+}
+
+/// A generated machine of the Core's services (the Management service's `Machines`, with
+/// what it inherits), as [`Core`](super::Core) runs it. Implemented by
+/// [`core_machine!`](crate::core_machine).
+pub trait CoreMachine: fmt::Debug + Send {
+    /// Offers a message received from `from`: `None` when the machine does not take
+    /// it, else whether a transition was taken.
+    fn receive(&mut self, host: &mut Host<'_>, msg: &Message, from: As4Id) -> Option<bool>;
+    /// Raises an internal event; whether a transition was taken.
+    fn raise(&mut self, host: &mut Host<'_>, event: CoreEvent) -> bool;
+    /// The current state's path (`Receiving.Ready.Controlled.Available.Ready`).
+    fn path(&self) -> &'static str;
+    /// A copy.
+    fn boxed_clone(&self) -> Box<dyn CoreMachine>;
+}
+
+impl Clone for Box<dyn CoreMachine> {
+    fn clone(&self) -> Self {
+        self.boxed_clone()
     }
 }
 
-fn sender(t: &transport::event::Receive) -> As4Id {
-    As4Id::new(
-        t.source.subsystem_id,
-        t.source.node_id,
-        t.source.component_id,
-    )
-}
-
 /// The guards and actions of the Core's machine, over the services' data, for one
-/// trigger.
-pub(crate) struct Host<'a> {
-    /// The time of the trigger.
-    pub now: Instant,
-    /// Access Control's data.
-    pub access: &'a mut Access,
-    /// Management's data.
-    pub management: &'a mut Management,
-    /// Events' subscriptions.
-    pub events: &'a mut Events,
-    /// What the actions send.
-    pub out: &'a mut Vec<Outgoing>,
-    /// For a Create or Update Event: its query, decoded and answered by the component,
-    /// or why it is not supported (the component looks ahead: the query may be any
-    /// service's).
-    pub event_query: Option<Result<Message, Rejection>>,
-    /// A bound an action reached (the component counts it).
-    pub bound: Option<String>,
+/// trigger. Its methods are what the generated guards and actions call
+/// ([`core_machine!`](crate::core_machine)); the sender is an [`As4Id`].
+pub struct Host<'a> {
+    now: Instant,
+    access: &'a mut Access,
+    management: &'a mut Management,
+    events: &'a mut Events,
+    out: &'a mut Vec<Outgoing>,
+    event_query: Option<Result<Message, Rejection>>,
+    bound: Option<String>,
 }
 
-impl Host<'_> {
+impl fmt::Debug for Host<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("Host")
+            .field("access", &self.access)
+            .field("management", &self.management)
+            .finish_non_exhaustive()
+    }
+}
+
+impl<'a> Host<'a> {
+    /// A host at `now` over the services' data, sending into `out`; `event_query` is,
+    /// for Create and Update Event, the event's query decoded and answered by the
+    /// component, or why it is not supported.
+    pub(crate) fn new(
+        now: Instant,
+        access: &'a mut Access,
+        management: &'a mut Management,
+        events: &'a mut Events,
+        out: &'a mut Vec<Outgoing>,
+        event_query: Option<Result<Message, Rejection>>,
+    ) -> Self {
+        Self {
+            now,
+            access,
+            management,
+            events,
+            out,
+            event_query,
+            bound: None,
+        }
+    }
+
+    /// Management's data (the component's state is noted there).
+    pub(crate) fn management(&mut self) -> &mut Management {
+        self.management
+    }
+
+    /// A bound an action reached, taken.
+    pub(crate) fn take_bound(&mut self) -> Option<String> {
+        self.bound.take()
+    }
+
     fn send(&mut self, to: As4Id, message: impl Into<Message>) {
         self.out.push(Outgoing::new(to, message));
     }
 
-    fn confirm(&mut self, t: &transport::event::Receive, response_code: ControlConfirmation) {
-        self.send(sender(t), ConfirmControl { response_code });
+    fn confirm(&mut self, to: As4Id, response_code: ControlConfirmation) {
+        self.send(to, ConfirmControl { response_code });
     }
 
     fn reject(&mut self, to: As4Id, response_code: ControlRejection) {
@@ -107,191 +162,362 @@ impl Host<'_> {
             ),
         }
     }
-}
 
-impl transport::Transport for Host<'_> {}
+    // Events.
 
-impl ev::Events for Host<'_> {
-    fn is_supported(&self, _: &[Arg<'_>]) -> bool {
+    /// Guard `isSupported`: the event's query is answered.
+    pub fn is_supported(&self) -> bool {
         matches!(self.event_query, Some(Ok(_)))
     }
 
-    fn cancel_event(&mut self, msg: &CancelEvent, t: &transport::event::Receive) {
-        let o = self.events.cancel(sender(t), msg.request_id, msg.event_id);
-        self.out.push(o);
-    }
-
-    fn create_event(&mut self, msg: &CreateEvent, t: &transport::event::Receive) {
-        let from = sender(t);
-        let o = match self.setup(
-            msg.request_id,
-            msg.event_type,
-            msg.requested_periodic_rate,
-            &msg.query_message,
-        ) {
+    /// Create Event from `from` (the query answered): create or update, confirm or
+    /// refuse past the bounds.
+    pub fn create_event(
+        &mut self,
+        from: As4Id,
+        request_id: u8,
+        kind: EventType,
+        rate: f64,
+        query: &[u8],
+    ) {
+        let o = match self.setup(request_id, kind, rate, query) {
             Ok(setup) => self.events.create(self.now, from, setup),
-            Err(r) => events::reject(from, msg.request_id, r),
+            Err(r) => events::reject(from, request_id, r),
         };
         self.out.push(o);
     }
 
-    fn update_event(&mut self, msg: &UpdateEvent, t: &transport::event::Receive) {
-        let from = sender(t);
-        let o = match self.setup(
-            msg.request_id,
-            msg.event_type,
-            msg.requested_periodic_rate,
-            &msg.query_message,
-        ) {
-            Ok(setup) => self.events.update(self.now, from, msg.event_id, setup),
-            Err(r) => events::reject(from, msg.request_id, r),
+    /// Update Event from `from` of its event `event_id`.
+    pub fn update_event(
+        &mut self,
+        from: As4Id,
+        (request_id, event_id): (u8, u8),
+        kind: EventType,
+        rate: f64,
+        query: &[u8],
+    ) {
+        let o = match self.setup(request_id, kind, rate, query) {
+            Ok(setup) => self.events.update(self.now, from, event_id, setup),
+            Err(r) => events::reject(from, request_id, r),
         };
         self.out.push(o);
     }
 
-    fn refuse_create_event(&mut self, msg: &CreateEvent, t: &transport::event::Receive) {
+    /// Reject Event Request: the query is not supported (or does not decode).
+    pub fn refuse_event(&mut self, from: As4Id, request_id: u8) {
         let r = self.not_supported();
-        self.out.push(events::reject(sender(t), msg.request_id, r));
+        self.out.push(events::reject(from, request_id, r));
     }
 
-    fn refuse_update_event(&mut self, msg: &UpdateEvent, t: &transport::event::Receive) {
-        let r = self.not_supported();
-        self.out.push(events::reject(sender(t), msg.request_id, r));
-    }
-
-    fn refuse_command_event(&mut self, msg: &CreateCommandEvent, t: &transport::event::Receive) {
+    /// Reject Event Request for a Create Command Event: not offered.
+    pub fn refuse_command_event(&mut self, from: As4Id, request_id: u8) {
         let r = (
             EventRejection::MessageNotSupported,
             "command events are not supported".into(),
         );
-        self.out.push(events::reject(sender(t), msg.request_id, r));
+        self.out.push(events::reject(from, request_id, r));
     }
 
-    fn send_report_events(&mut self, msg: &QueryEvents, t: &transport::event::Receive) {
-        let report = self.events.report(&msg.filter);
-        self.send(sender(t), report);
+    /// Cancel Event from `from`: confirm, or refuse an event it does not hold.
+    pub fn cancel_event(&mut self, from: As4Id, request_id: u8, event_id: u8) {
+        let o = self.events.cancel(from, request_id, event_id);
+        self.out.push(o);
     }
 
-    fn send_report_event_timeout(&mut self, t: &transport::event::Receive) {
-        let report = self.events.report_timeout();
-        self.send(sender(t), report);
-    }
-}
-
-impl access_control::AccessControl for Host<'_> {
-    fn is_authority_valid(&self, msg: &SetAuthority) -> bool {
-        self.access.is_valid(msg.authority_code)
+    /// Report Events to `to`.
+    pub fn send_report_events(&mut self, to: As4Id, filter: &EventsFilter) {
+        let r = self.events.report(filter);
+        self.send(to, r);
     }
 
-    fn is_controlling_client(&self, t: &transport::event::Receive) -> bool {
-        self.access.controller() == Some(sender(t))
+    /// Report Event Timeout to `to`.
+    pub fn send_report_event_timeout(&mut self, to: As4Id) {
+        let r = self.events.report_timeout();
+        self.send(to, r);
     }
 
-    fn is_current_authority_less(&self, msg: &RequestControl) -> bool {
-        self.access.authority() < msg.authority_code
+    // Access Control.
+
+    /// Guard `isAuthorityValid`: within [default, current].
+    pub fn is_authority_valid(&self, authority: u8) -> bool {
+        self.access.is_valid(authority)
     }
 
-    fn is_default_authority_greater(&self, msg: &RequestControl) -> bool {
-        self.access.default_authority() > msg.authority_code
+    /// Guard `isControllingClient`.
+    pub fn is_controlling_client(&self, from: As4Id) -> bool {
+        self.access.controller() == Some(from)
     }
 
-    fn init(&mut self) {
+    /// Guard `isCurrentAuthorityLess`: the request's authority exceeds the current one.
+    pub fn is_current_authority_less(&self, authority: u8) -> bool {
+        self.access.authority() < authority
+    }
+
+    /// Guard `isDefaultAuthorityGreater`: the request's authority is below the default.
+    pub fn is_default_authority_greater(&self, authority: u8) -> bool {
+        self.access.default_authority() > authority
+    }
+
+    /// Action `init`: nobody controls, the default authority.
+    pub fn init(&mut self) {
         self.access.reset();
     }
 
-    fn store_address(&mut self, t: &transport::event::Receive) {
-        self.access.store(sender(t));
+    /// Action `storeAddress`: `from` controls.
+    pub fn store_address(&mut self, from: As4Id) {
+        self.access.store(from);
     }
 
-    fn set_authority(&mut self, args: &[Arg<'_>]) {
-        for a in args {
-            match a {
-                Arg::RequestControl(m) => self.access.set_authority(m.authority_code),
-                Arg::SetAuthority(m) => self.access.set_authority(m.authority_code),
-                _ => {}
-            }
-        }
+    /// Action `setAuthority`.
+    pub fn set_authority(&mut self, authority: u8) {
+        self.access.set_authority(authority);
     }
 
-    fn reset_timer(&mut self) {
+    /// Action `resetTimer`: control lapses a timeout from now.
+    pub fn reset_timer(&mut self) {
         self.access.rearm(self.now);
     }
 
-    fn grant_control(&mut self, t: &transport::event::Receive) {
-        self.confirm(t, ControlConfirmation::ControlAccepted);
+    /// Confirm Control with `code` to `to`.
+    pub fn confirm_control(&mut self, to: As4Id, code: ControlConfirmation) {
+        self.confirm(to, code);
     }
 
-    fn refuse_authority(&mut self, t: &transport::event::Receive) {
-        self.confirm(t, ControlConfirmation::InsufficientAuthority);
+    /// Reject Control with `code` to `to`.
+    pub fn reject_control(&mut self, to: As4Id, code: ControlRejection) {
+        self.reject(to, code);
     }
 
-    fn refuse_not_available(&mut self, t: &transport::event::Receive) {
-        self.confirm(t, ControlConfirmation::NotAvailable);
-    }
-
-    fn confirm_release(&mut self, t: &transport::event::Receive) {
-        self.reject(sender(t), ControlRejection::ControlReleased);
-    }
-
-    fn reject_not_available(&mut self, t: &transport::event::Receive) {
-        self.reject(sender(t), ControlRejection::NotAvailable);
-    }
-
-    fn release_controller(&mut self) {
+    /// Action `releaseController`: Reject Control (Control Released) to the controller.
+    pub fn release_controller(&mut self) {
         if let Some(c) = self.access.controller() {
             self.reject(c, ControlRejection::ControlReleased);
         }
     }
 
-    fn send_report_authority(&mut self, t: &transport::event::Receive) {
+    /// Report Authority to `to`.
+    pub fn send_report_authority(&mut self, to: As4Id) {
         let r = self.access.report_authority();
-        self.send(sender(t), r);
+        self.send(to, r);
     }
 
-    fn send_report_control(&mut self, t: &transport::event::Receive) {
+    /// Report Control to `to`.
+    pub fn send_report_control(&mut self, to: As4Id) {
         let r = self.access.report_control();
-        self.send(sender(t), r);
+        self.send(to, r);
     }
 
-    fn send_report_timeout(&mut self, t: &transport::event::Receive) {
+    /// Report Timeout to `to`.
+    pub fn send_report_timeout(&mut self, to: As4Id) {
         let r = self.access.report_timeout();
-        self.send(sender(t), r);
-    }
-}
-
-impl management::Management for Host<'_> {
-    fn is_id_stored(&self, msg: &ClearEmergency, t: &transport::event::Receive) -> bool {
-        self.management.is_stored(sender(t), msg.emergency_code)
+        self.send(to, r);
     }
 
-    fn is_last_emergency(&self, msg: &ClearEmergency, t: &transport::event::Receive) -> bool {
-        self.management.is_last(sender(t), msg.emergency_code)
+    // Management.
+
+    /// Guard `isIdStored`: `from` declared emergency `code`.
+    pub fn is_id_stored(&self, from: As4Id, code: EmergencyCode) -> bool {
+        self.management.is_stored(from, code)
     }
 
-    fn delete_id(&mut self, msg: &ClearEmergency, t: &transport::event::Receive) {
-        self.management.delete(sender(t), msg.emergency_code);
+    /// Guard `isLastEmergency`: `from`'s `code` is the only emergency in effect.
+    pub fn is_last_emergency(&self, from: As4Id, code: EmergencyCode) -> bool {
+        self.management.is_last(from, code)
     }
 
-    fn store_id(&mut self, msg: &SetEmergency, t: &transport::event::Receive) {
-        if !self.management.store(sender(t), msg.emergency_code) {
-            self.bound = Some(format!(
-                "more than {} emergencies",
-                super::management::MAX_EMERGENCIES
-            ));
+    /// Action `deleteId`.
+    pub fn delete_id(&mut self, from: As4Id, code: EmergencyCode) {
+        self.management.delete(from, code);
+    }
+
+    /// Action `storeId` (a bound reached is counted by the component).
+    pub fn store_id(&mut self, from: As4Id, code: EmergencyCode) {
+        if !self.management.store(from, code) {
+            self.bound = Some(format!("more than {MAX_EMERGENCIES} emergencies"));
         }
     }
 
-    fn fail_after_emergency(&mut self) {
+    /// Action `failAfterEmergency`.
+    pub fn fail_after_emergency(&mut self) {
         self.management.fail_after_emergency();
     }
 
-    fn initialize(&mut self) {
-        // Nothing to wait for: the Core raises Initialized as soon as the machine is in
-        // Init (`Core::settle`).
-    }
-
-    fn send_report_status(&mut self, t: &transport::event::Receive) {
+    /// Report Status to `to`.
+    pub fn send_report_status(&mut self, to: As4Id) {
         let r = self.management.report();
-        self.send(sender(t), r);
+        self.send(to, r);
     }
 }
+
+/// Implements the guards and actions of a generated Core (the `services` module of a
+/// definition of Transport, Events, Access Control and Management with the guards and
+/// actions of `defs/core_services.yaml`) on [`Host`], and [`CoreMachine`] for its
+/// Management `Machines`. `$svc` is the path of the generated `services` module, whose
+/// parent includes (or re-exports) jaus-as4's messages.
+#[macro_export]
+macro_rules! core_machine {
+    ($($svc:ident)::+) => {
+        const _: () = {
+            use $crate::core::machine::{CoreEvent, CoreMachine, Host};
+            use $crate::messages::*;
+            use $($svc)::+ as svc;
+            use ::jaus::net::as5669a::As4Id;
+            type Receive = svc::transport::event::Receive;
+
+            fn sender(t: &Receive) -> As4Id {
+                As4Id::new(t.source.subsystem_id, t.source.node_id, t.source.component_id)
+            }
+
+            impl svc::transport::Transport for Host<'_> {}
+
+            impl svc::events::Events for Host<'_> {
+                fn is_supported(&self, _: &[svc::Arg<'_>]) -> bool {
+                    Host::is_supported(self)
+                }
+                fn cancel_event(&mut self, m: &CancelEvent, t: &Receive) {
+                    Host::cancel_event(self, sender(t), m.request_id, m.event_id)
+                }
+                fn create_event(&mut self, m: &CreateEvent, t: &Receive) {
+                    Host::create_event(self, sender(t), m.request_id, m.event_type, m.requested_periodic_rate, &m.query_message)
+                }
+                fn update_event(&mut self, m: &UpdateEvent, t: &Receive) {
+                    Host::update_event(self, sender(t), (m.request_id, m.event_id), m.event_type, m.requested_periodic_rate, &m.query_message)
+                }
+                fn refuse_create_event(&mut self, m: &CreateEvent, t: &Receive) {
+                    Host::refuse_event(self, sender(t), m.request_id)
+                }
+                fn refuse_update_event(&mut self, m: &UpdateEvent, t: &Receive) {
+                    Host::refuse_event(self, sender(t), m.request_id)
+                }
+                fn refuse_command_event(&mut self, m: &CreateCommandEvent, t: &Receive) {
+                    Host::refuse_command_event(self, sender(t), m.request_id)
+                }
+                fn send_report_events(&mut self, m: &QueryEvents, t: &Receive) {
+                    Host::send_report_events(self, sender(t), &m.filter)
+                }
+                fn send_report_event_timeout(&mut self, t: &Receive) {
+                    Host::send_report_event_timeout(self, sender(t))
+                }
+            }
+
+            impl svc::access_control::AccessControl for Host<'_> {
+                fn is_authority_valid(&self, m: &SetAuthority) -> bool {
+                    Host::is_authority_valid(self, m.authority_code)
+                }
+                fn is_controlling_client(&self, t: &Receive) -> bool {
+                    Host::is_controlling_client(self, sender(t))
+                }
+                fn is_current_authority_less(&self, m: &RequestControl) -> bool {
+                    Host::is_current_authority_less(self, m.authority_code)
+                }
+                fn is_default_authority_greater(&self, m: &RequestControl) -> bool {
+                    Host::is_default_authority_greater(self, m.authority_code)
+                }
+                fn init(&mut self) {
+                    Host::init(self)
+                }
+                fn store_address(&mut self, t: &Receive) {
+                    Host::store_address(self, sender(t))
+                }
+                fn set_authority(&mut self, args: &[svc::Arg<'_>]) {
+                    for a in args {
+                        match a {
+                            svc::Arg::RequestControl(m) => Host::set_authority(self, m.authority_code),
+                            svc::Arg::SetAuthority(m) => Host::set_authority(self, m.authority_code),
+                            _ => {}
+                        }
+                    }
+                }
+                fn reset_timer(&mut self) {
+                    Host::reset_timer(self)
+                }
+                fn grant_control(&mut self, t: &Receive) {
+                    Host::confirm_control(self, sender(t), ControlConfirmation::ControlAccepted)
+                }
+                fn refuse_authority(&mut self, t: &Receive) {
+                    Host::confirm_control(self, sender(t), ControlConfirmation::InsufficientAuthority)
+                }
+                fn refuse_not_available(&mut self, t: &Receive) {
+                    Host::confirm_control(self, sender(t), ControlConfirmation::NotAvailable)
+                }
+                fn confirm_release(&mut self, t: &Receive) {
+                    Host::reject_control(self, sender(t), ControlRejection::ControlReleased)
+                }
+                fn reject_not_available(&mut self, t: &Receive) {
+                    Host::reject_control(self, sender(t), ControlRejection::NotAvailable)
+                }
+                fn release_controller(&mut self) {
+                    Host::release_controller(self)
+                }
+                fn send_report_authority(&mut self, t: &Receive) {
+                    Host::send_report_authority(self, sender(t))
+                }
+                fn send_report_control(&mut self, t: &Receive) {
+                    Host::send_report_control(self, sender(t))
+                }
+                fn send_report_timeout(&mut self, t: &Receive) {
+                    Host::send_report_timeout(self, sender(t))
+                }
+            }
+
+            impl svc::management::Management for Host<'_> {
+                fn is_id_stored(&self, m: &ClearEmergency, t: &Receive) -> bool {
+                    Host::is_id_stored(self, sender(t), m.emergency_code)
+                }
+                fn is_last_emergency(&self, m: &ClearEmergency, t: &Receive) -> bool {
+                    Host::is_last_emergency(self, sender(t), m.emergency_code)
+                }
+                fn delete_id(&mut self, m: &ClearEmergency, t: &Receive) {
+                    Host::delete_id(self, sender(t), m.emergency_code)
+                }
+                fn store_id(&mut self, m: &SetEmergency, t: &Receive) {
+                    Host::store_id(self, sender(t), m.emergency_code)
+                }
+                fn fail_after_emergency(&mut self) {
+                    Host::fail_after_emergency(self)
+                }
+                fn initialize(&mut self) {
+                    // Nothing to wait for: the Core raises Initialized as soon as the
+                    // machine is in Init.
+                }
+                fn send_report_status(&mut self, t: &Receive) {
+                    Host::send_report_status(self, sender(t))
+                }
+            }
+
+            impl CoreMachine for svc::management::Machines {
+                fn receive(&mut self, host: &mut Host<'_>, msg: &Message, from: As4Id) -> Option<bool> {
+                    let transport = Receive {
+                        source: ComponentAddress {
+                            subsystem_id: from.subsystem,
+                            node_id: from.node,
+                            component_id: from.component,
+                        },
+                    };
+                    svc::management::Machines::receive(self, host, msg, &transport)
+                }
+                fn raise(&mut self, host: &mut Host<'_>, event: CoreEvent) -> bool {
+                    let trigger = match event {
+                        CoreEvent::Timedout => svc::management::Trigger::Timedout {},
+                        CoreEvent::Initialized => svc::management::Trigger::Initialized {},
+                        CoreEvent::Failure => svc::management::Trigger::Failure {},
+                    };
+                    self.handle(host, &trigger)
+                }
+                fn path(&self) -> &'static str {
+                    self.0.iter().next().map_or("", |m| m.path())
+                }
+                fn boxed_clone(&self) -> Box<dyn CoreMachine> {
+                    Box::new(self.clone())
+                }
+            }
+        };
+    };
+}
+
+/// The stock Core's machine: jaus-as4's own `defs/core_services.yaml`.
+pub fn stock() -> Box<dyn CoreMachine> {
+    Box::new(crate::messages::services::management::Machines::new())
+}
+
+crate::core_machine!(crate::messages::services);

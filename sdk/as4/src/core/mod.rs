@@ -22,7 +22,7 @@ pub mod discovery;
 pub mod events;
 pub mod lists;
 pub mod liveness;
-pub(crate) mod machine;
+pub mod machine;
 pub mod management;
 pub mod time;
 
@@ -31,7 +31,6 @@ use std::time::{Duration, Instant};
 use jaus::net::as5669a::As4Id;
 use jaus::{CommandCode, JausMessage};
 
-use crate::messages::services::management::{Machines, Trigger};
 use crate::messages::{self as m, ComponentState, Message};
 use crate::service::Outgoing;
 use crate::service::ServiceId;
@@ -40,7 +39,7 @@ use access::Access;
 use discovery::{service_info, Discovery, Identification};
 use events::{Events, Rejection};
 use lists::Lists;
-use machine::Host;
+use machine::{CoreEvent, CoreMachine, Host};
 use management::Management;
 use time::Time;
 
@@ -134,12 +133,19 @@ pub struct Core {
     time: Time,
     discovery: Discovery,
     lists: Lists,
-    machines: Machines,
+    machine: Box<dyn CoreMachine>,
 }
 
 impl Core {
-    /// The Core services of component `me`.
+    /// The Core services of component `me`, run by the stock machine
+    /// (`defs/core_services.yaml`).
     pub fn new(me: As4Id, config: CoreConfig) -> Self {
+        Self::with_machine(me, config, machine::stock())
+    }
+
+    /// The Core services of component `me`, run by `machine`: a Core generated from a
+    /// revised definition ([`core_machine!`](crate::core_machine)).
+    pub fn with_machine(me: As4Id, config: CoreConfig, machine: Box<dyn CoreMachine>) -> Self {
         let own = core_services(config.list_manager)
             .iter()
             .map(service_info)
@@ -161,7 +167,7 @@ impl Core {
                 config.max_registrations,
             ),
             lists: Lists::new(config.max_elements),
-            machines: Machines::new(),
+            machine,
             config,
         }
     }
@@ -169,11 +175,7 @@ impl Core {
     /// The state of the Core's generated machine (Transport, Events, Access Control and
     /// Management merged), by path: `Receiving.Ready.Controlled.Available.Ready`.
     pub fn machine_state(&self) -> &'static str {
-        self.machines
-            .0
-            .iter()
-            .next()
-            .map_or("", jaus::hsm::Machine::path)
+        self.machine.path()
     }
 
     /// Runs `f` with the machines and a host over the services' data; then settles what
@@ -183,32 +185,30 @@ impl Core {
         &mut self,
         now: Instant,
         event_query: Option<Result<Message, Rejection>>,
-        f: impl FnOnce(&mut Machines, &mut Host<'_>) -> R,
+        f: impl FnOnce(&mut dyn CoreMachine, &mut Host<'_>) -> R,
     ) -> (R, Vec<Outgoing>, Option<String>) {
         let mut out = Vec::new();
-        let mut host = Host {
+        let mut host = Host::new(
             now,
-            access: &mut self.access,
-            management: &mut self.management,
-            events: &mut self.events,
-            out: &mut out,
+            &mut self.access,
+            &mut self.management,
+            &mut self.events,
+            &mut out,
             event_query,
-            bound: None,
-        };
-        let r = f(&mut self.machines, &mut host);
+        );
+        let r = f(self.machine.as_mut(), &mut host);
         // Bounded: each raise moves the machine out of Init or out of the pending failure.
         for _ in 0..4 {
-            let path = self.machines.0.iter().next().map_or("", |m| m.path());
-            host.management.moved(path);
-            if host.management.state() == ComponentState::Initialize {
-                self.machines.handle(&mut host, &Trigger::Initialized {});
-            } else if host.management.take_pending_failure() {
-                self.machines.handle(&mut host, &Trigger::Failure {});
+            host.management().moved(self.machine.path());
+            if host.management().state() == ComponentState::Initialize {
+                self.machine.raise(&mut host, CoreEvent::Initialized);
+            } else if host.management().take_pending_failure() {
+                self.machine.raise(&mut host, CoreEvent::Failure);
             } else {
                 break;
             }
         }
-        let bound = host.bound.take();
+        let bound = host.take_bound();
         (r, out, bound)
     }
 
@@ -321,9 +321,8 @@ impl Core {
         msg: &Message,
         event_query: Option<Result<Message, Rejection>>,
     ) -> Result<Vec<Outgoing>, Refusal> {
-        let transport = machine::receive_of(from);
-        let (taken, out, bound) = self.run(now, event_query, |machines, host| {
-            machines.receive(host, msg, &transport)
+        let (taken, out, bound) = self.run(now, event_query, |machine, host| {
+            machine.receive(host, msg, from)
         });
         if let Some(b) = bound {
             return Err(Refusal::Bounds(b));
@@ -394,8 +393,8 @@ impl Core {
     /// The owner declares a failure: the machine's `Failure` (control ends; during an
     /// emergency, Failure once it is cleared).
     pub fn fail(&mut self, now: Instant) -> Vec<Outgoing> {
-        let (_, out, _) = self.run(now, None, |machines, host| {
-            machines.handle(host, &Trigger::Failure {})
+        let (_, out, _) = self.run(now, None, |machine, host| {
+            machine.raise(host, CoreEvent::Failure)
         });
         out
     }
@@ -406,8 +405,8 @@ impl Core {
     pub fn handle_timeout(&mut self, now: Instant) -> Vec<Outgoing> {
         let mut out = Vec::new();
         if self.access.deadline().is_some_and(|d| d <= now) {
-            let (_, o, _) = self.run(now, None, |machines, host| {
-                machines.handle(host, &Trigger::Timedout {})
+            let (_, o, _) = self.run(now, None, |machine, host| {
+                machine.raise(host, CoreEvent::Timedout)
             });
             out = o;
         }

@@ -1,0 +1,282 @@
+//! The protocol behaviour of our Core services (`defs/core_services.yaml`) against the
+//! public JSIDL of Core v1.1, service by service: the same states, and per state the same
+//! triggers with the same guards and the same kind and target; differences are listed,
+//! and only the refinements that `core_services.yaml` declares at its top may remain.
+//!
+//! Runs only when `JAUS_JSIDL_DIR` names the `GUI/resources/xml` directory of the JAUS
+//! Tool Set repository; otherwise it says that it skipped and passes:
+//!
+//! ```sh
+//! JAUS_JSIDL_DIR=/path/to/jaustoolset/GUI/resources/xml \
+//!     cargo test -p jaus-as4 --test public_jsidl_behaviour -- --nocapture
+//! ```
+//!
+//! Actions are not compared: ours are typed, one per answer (`grantControl`), where the
+//! JSIDL sends by name (`Send('ConfirmControl', 'CONTROL_ACCEPTED', ...)`). Guards are
+//! compared by the names of the calls, case-insensitively, without their arguments.
+
+use jaus_spec::model::{
+    DefaultStateDef, ServiceDef, ServiceTransitionDef, StateDef, TransitionKind,
+};
+use jaus_spec::Spec;
+use std::collections::BTreeSet;
+use std::path::{Path, PathBuf};
+
+/// One transition reduced to what is compared.
+#[derive(Debug, Clone, PartialEq, Eq, PartialOrd, Ord)]
+struct Row {
+    state: String,
+    trigger: String,
+    guard: String,
+    kind: String,
+    to: String,
+}
+
+impl std::fmt::Display for Row {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "in {} on {} [{}] {}{}",
+            self.state,
+            self.trigger,
+            self.guard,
+            self.kind,
+            if self.to.is_empty() {
+                String::new()
+            } else {
+                format!(" -> {}", self.to)
+            }
+        )
+    }
+}
+
+/// `isAuthorityValid(msg) && ! isControllingClient( transportData )` →
+/// `isauthorityvalid && !iscontrollingclient`.
+fn guard(condition: &str) -> String {
+    let mut out = String::new();
+    let mut depth = 0;
+    for c in condition.chars() {
+        match c {
+            '(' if out.ends_with(|c: char| c.is_alphanumeric() || c == '_') || depth > 0 => {
+                depth += 1
+            }
+            ')' if depth > 0 => depth -= 1,
+            _ if depth > 0 => {}
+            c if c.is_whitespace() => {}
+            c => out.extend(c.to_lowercase()),
+        }
+    }
+    out.replace("&&", " && ").replace("||", " || ")
+}
+
+fn trigger(spec: &Spec, t: &ServiceTransitionDef) -> String {
+    t.parameters
+        .iter()
+        .find(|p| spec.message(&p.ty).is_some())
+        .map(|p| p.ty.clone())
+        .or_else(|| {
+            t.on.as_deref()
+                .map(|on| on.rsplit('.').next().unwrap_or(on).to_string())
+        })
+        .unwrap_or_else(|| "(any)".into())
+}
+
+fn rows_of(spec: &Spec, state: &str, ts: &[ServiceTransitionDef], out: &mut BTreeSet<Row>) {
+    for t in ts {
+        out.insert(Row {
+            state: state.to_string(),
+            trigger: trigger(spec, t),
+            guard: t
+                .guard
+                .as_ref()
+                .map(|g| guard(&g.condition))
+                .unwrap_or_default(),
+            kind: match t.kind {
+                TransitionKind::Internal => "internal",
+                TransitionKind::Simple => "simple",
+                TransitionKind::Push => "push",
+                TransitionKind::Pop => "pop",
+            }
+            .into(),
+            to: t.to.clone().unwrap_or_default(),
+        });
+    }
+}
+
+fn default_rows(spec: &Spec, state: &str, d: Option<&DefaultStateDef>, out: &mut BTreeSet<Row>) {
+    if let Some(d) = d {
+        rows_of(spec, state, &d.transitions, out);
+        rows_of(spec, state, &d.default_transitions, out);
+    }
+}
+
+fn walk(
+    spec: &Spec,
+    prefix: &str,
+    states: &[StateDef],
+    names: &mut BTreeSet<String>,
+    out: &mut BTreeSet<Row>,
+) {
+    for s in states {
+        let path = if prefix.is_empty() {
+            s.name.clone()
+        } else {
+            format!("{prefix}.{}", s.name)
+        };
+        names.insert(path.clone());
+        rows_of(spec, &path, &s.transitions, out);
+        rows_of(spec, &path, &s.default_transitions, out);
+        default_rows(spec, &path, s.default.as_ref(), out);
+        walk(spec, &path, &s.states, names, out);
+    }
+}
+
+/// The states (paths) and transitions a service's own definition adds.
+fn behaviour(spec: &Spec, s: &ServiceDef) -> (BTreeSet<String>, BTreeSet<Row>) {
+    let (mut names, mut rows) = (BTreeSet::new(), BTreeSet::new());
+    for m in s.behaviour.iter().flat_map(|b| &b.machines) {
+        walk(spec, "", &m.states, &mut names, &mut rows);
+        default_rows(spec, "(machine)", m.default.as_ref(), &mut rows);
+    }
+    (names, rows)
+}
+
+fn service<'s>(spec: &'s Spec, id: &str) -> Option<&'s ServiceDef> {
+    spec.services.iter().map(|s| &s.def).find(|d| d.id == id)
+}
+
+/// The differences `core_services.yaml` declares (its header), row by row: `OURS` only
+/// in our definitions, `THEIRS` only in the JSIDL's, `STATES` states only in the JSIDL's.
+const OURS: &[&str] = &[
+    // Events: one transition per message, eventExists folded into the actions.
+    "in Receiving.Ready on CancelEvent [] internal",
+    "in Receiving.Ready on CreateCommandEvent [] internal",
+    "in Receiving.Ready on CreateEvent [issupported] internal",
+    "in Receiving.Ready on UpdateEvent [!issupported] internal",
+    "in Receiving.Ready on UpdateEvent [issupported] internal",
+    // Access Control: a release while not available only from the controller.
+    "in Receiving.Ready.Controlled.NotAvailable on ReleaseControl [iscontrollingclient] internal",
+    // Management: Query Status once, in Ready.
+    "in Receiving.Ready on QueryStatus [] internal",
+    // Resume while Ready and Standby while in Standby are accepted.
+    "in Receiving.Ready.Controlled.Available.Ready on Resume [iscontrollingclient] internal",
+    "in Receiving.Ready.Controlled.Available.Standby on Standby [iscontrollingclient] internal",
+    // Several clients may declare an emergency.
+    "in Receiving.Ready.Controlled.NotAvailable.Emergency on ClearEmergency [isidstored && !islastemergency] internal",
+    "in Receiving.Ready.Controlled.NotAvailable.Emergency on ClearEmergency [isidstored && islastemergency] pop",
+    "in Receiving.Ready.Controlled.NotAvailable.Emergency on SetEmergency [] internal",
+    "in Receiving.Ready.NotControlled.NotAvailable.Emergency on ClearEmergency [isidstored && !islastemergency] internal",
+    "in Receiving.Ready.NotControlled.NotAvailable.Emergency on ClearEmergency [isidstored && islastemergency] pop",
+    "in Receiving.Ready.NotControlled.NotAvailable.Emergency on SetEmergency [] internal",
+];
+const THEIRS: &[&str] = &[
+    // Transport's SendFSM and its bare Receive.
+    "in Receiving on Receive [] internal",
+    "in Sending on BroadcastGlobal [] internal",
+    "in Sending on BroadcastLocal [] internal",
+    "in Sending on Send [] internal",
+    // Events: eventExists branches, command events, the owner's triggers.
+    "in Receiving.Ready on CancelEvent [!eventexists] internal",
+    "in Receiving.Ready on CancelEvent [eventexists] internal",
+    "in Receiving.Ready on CommandCompleted [eventexists] internal",
+    "in Receiving.Ready on CommandExpired [] internal",
+    "in Receiving.Ready on CreateCommandEvent [!iscommandsupported] internal",
+    "in Receiving.Ready on CreateCommandEvent [iscommandsupported && !eventexists] internal",
+    "in Receiving.Ready on CreateCommandEvent [iscommandsupported && eventexists] internal",
+    "in Receiving.Ready on CreateEvent [issupported && !eventexists] internal",
+    "in Receiving.Ready on CreateEvent [issupported && eventexists] internal",
+    "in Receiving.Ready on EventError [eventexists] internal",
+    "in Receiving.Ready on EventOccurred [eventexists] internal",
+    "in Receiving.Ready on Timeout [] internal",
+    "in Receiving.Ready on UpdateEvent [!issupported || !eventexists] internal",
+    "in Receiving.Ready on UpdateEvent [issupported && eventexists] internal",
+    // Access Control: a release while not available from anyone.
+    "in Receiving.Ready.Controlled.NotAvailable on ReleaseControl [] internal",
+    // Management: Query Status in Controlled and NotControlled; Request and Release
+    // Control repeated in Emergency (Access Control's NotAvailable answers them the same).
+    "in Receiving.Ready.Controlled on QueryStatus [] internal",
+    "in Receiving.Ready.NotControlled on QueryStatus [] internal",
+    "in Receiving.Ready.Controlled.NotAvailable.Emergency on ReleaseControl [] internal",
+    "in Receiving.Ready.Controlled.NotAvailable.Emergency on RequestControl [] internal",
+    // One emergency at a time.
+    "in Receiving.Ready.Controlled.NotAvailable.Emergency on ClearEmergency [isidstored] pop",
+    "in Receiving.Ready.NotControlled.NotAvailable.Emergency on ClearEmergency [isidstored] pop",
+];
+const STATES: &[&str] = &["Transport: Sending"];
+
+fn declared(row: &str, list: &[&str]) -> bool {
+    list.contains(&row)
+}
+
+#[test]
+fn our_core_machines_have_the_behaviour_of_the_public_jsidl() {
+    let Some(root) = std::env::var_os("JAUS_JSIDL_DIR").map(PathBuf::from) else {
+        println!(
+            "skipped: set JAUS_JSIDL_DIR to the JAUS Tool Set's GUI/resources/xml directory \
+             to compare our Core machines with the public JSIDL"
+        );
+        return;
+    };
+    let defs = Path::new(env!("CARGO_MANIFEST_DIR")).join("defs");
+    let ours = jaus_spec::load_dirs(&[&defs]).expect("our definitions validate");
+    let theirs = jaus_jsidl::import(&[root.join("urn.jaus.jss.core-v1.1")])
+        .and_then(|i| i.load())
+        .unwrap_or_else(|e| panic!("importing Core v1.1: {e}"));
+    let mut unexplained = Vec::new();
+    let mut compared = 0;
+    for name in ["Transport", "Events", "AccessControl", "Management"] {
+        let id = format!("urn:jaus:jss:core:{name}");
+        let (Some(o), Some(t)) = (service(&ours, &id), service(&theirs, &id)) else {
+            panic!("service {id} missing: ours or the JSIDL's");
+        };
+        let (o_states, o_rows) = behaviour(&ours, o);
+        let (t_states, t_rows) = behaviour(&theirs, t);
+        println!(
+            "{name}: {} states, {} transitions in the JSIDL; {} states, {} transitions here",
+            t_states.len(),
+            t_rows.len(),
+            o_states.len(),
+            o_rows.len()
+        );
+        for s in t_states.difference(&o_states) {
+            if !STATES.contains(&format!("{name}: {s}").as_str()) {
+                unexplained.push(format!("{name}: state {s} of the JSIDL is not ours"));
+            }
+        }
+        for s in o_states.difference(&t_states) {
+            unexplained.push(format!("{name}: state {s} is ours only"));
+        }
+        compared += t_rows.intersection(&o_rows).count();
+        for r in t_rows.difference(&o_rows) {
+            let text = r.to_string();
+            let mark = if declared(&text, THEIRS) {
+                "declared"
+            } else {
+                "UNEXPLAINED"
+            };
+            println!("  {mark}: only in the JSIDL: {text}");
+            if mark == "UNEXPLAINED" {
+                unexplained.push(format!("{name}: only in the JSIDL: {text}"));
+            }
+        }
+        for r in o_rows.difference(&t_rows) {
+            let text = r.to_string();
+            let mark = if declared(&text, OURS) {
+                "declared"
+            } else {
+                "UNEXPLAINED"
+            };
+            println!("  {mark}: only ours: {text}");
+            if mark == "UNEXPLAINED" {
+                unexplained.push(format!("{name}: only ours: {text}"));
+            }
+        }
+    }
+    println!("{compared} transitions identical");
+    assert!(compared > 0, "nothing compared");
+    assert!(
+        unexplained.is_empty(),
+        "differences not declared in core_services.yaml:\n{}",
+        unexplained.join("\n")
+    );
+}
