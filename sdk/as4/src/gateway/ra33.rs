@@ -10,10 +10,12 @@ use std::collections::{HashMap, VecDeque};
 use std::time::{Duration, Instant};
 
 use jaus::messages::{
-    ConfirmComponentControl, ControlResponse, Message as Ra33Message, QueryLevel,
-    ReleaseComponentControl, ReportIdentification, RequestComponentControl, Resume, Standby,
+    ConfirmComponentControl, ControlResponse, JausService, Message as Ra33Message, QueryLevel,
+    ReleaseComponentControl, ReportIdentification, ReportServices, RequestComponentControl, Resume,
+    ServiceCommand, Standby,
 };
 use jaus::stock::geo::LocalFrame;
+use jaus::JausMessage;
 use jaus::{Address, CommandCode};
 
 /// The gateway's name in RA 3.3 Report Identification.
@@ -21,6 +23,18 @@ pub const IDENTIFICATION: &str = "AS-4 gateway";
 
 /// Most RA 3.3 messages waiting to leave (more are dropped and counted).
 pub const MAX_OUTBOX: usize = 1024;
+
+/// A poll left unanswered this many times in a row starts backing off: each further
+/// unanswered poll doubles its period, up to [`MAX_POLL_PERIOD`].
+pub const BACKOFF_AFTER: u32 = 3;
+
+/// The longest period a backed-off poll waits.
+pub const MAX_POLL_PERIOD: Duration = Duration::from_secs(30);
+
+/// A poll left unanswered this many times in a row stops (counted, logged): the
+/// component never answers that query (OpenJAUS 3.3's primitive driver and Query Wrench
+/// Effort). A report of its kind from the component starts it again.
+pub const GIVE_UP_AFTER: u32 = 10;
 
 /// The RA 3.3 components a gateway presents as AS-4 services (any may be missing: the
 /// service that needs it is then not offered).
@@ -162,6 +176,10 @@ struct Poll {
     query: Ra33Message,
     every: Duration,
     due: Instant,
+    /// Polls sent since the last report of the query's kind from `to`.
+    unanswered: u32,
+    /// Stopped after [`GIVE_UP_AFTER`] unanswered polls.
+    given_up: bool,
 }
 
 /// Counters of the RA 3.3 side.
@@ -175,6 +193,10 @@ pub struct Ra33Stats {
     pub reports: u64,
     /// Messages received that the gateway has no use for.
     pub ignored: u64,
+    /// Polls sent while the previous one of the same query was still unanswered.
+    pub polls_unanswered: u64,
+    /// Polls stopped: the component left [`GIVE_UP_AFTER`] of them unanswered in a row.
+    pub polls_given_up: u64,
 }
 
 /// The RA 3.3 side of a gateway: its own address, the components it presents, their
@@ -288,6 +310,8 @@ impl Ra33Side {
             query,
             every: self.poll_period,
             due: now,
+            unanswered: 0,
+            given_up: false,
         });
     }
 
@@ -329,6 +353,11 @@ impl Ra33Side {
                 tracing::info!(gateway = %self.me, driver = %from, "RA 3.3 control taken away");
                 self.control.insert(from, Ra33Control::None);
             }
+            Ra33Message::QueryServices(_) => {
+                // An RA 3.3 component answers Query Services (OpenJAUS's node manager
+                // asks every component it finds): what this side takes and sends.
+                self.send(from, services());
+            }
             Ra33Message::QueryIdentification(q) if q.query_field == QueryLevel::Component => {
                 // Who this component is, for the node managers' system trees.
                 self.send(
@@ -351,6 +380,7 @@ impl Ra33Side {
                     }
                 }
                 self.stats.reports += 1;
+                self.answered(now, from, m.code());
                 self.latest.insert((from, m.code()), (now, message));
             }
             _ => self.stats.ignored += 1,
@@ -469,14 +499,44 @@ impl Ra33Side {
         }
     }
 
-    /// Sends the polls that are due.
+    /// A report with code `report` came from `from`: the polls it answers start again
+    /// at the poll period.
+    fn answered(&mut self, now: Instant, from: Address, report: CommandCode) {
+        for p in &mut self.polls {
+            if p.to == from && p.query.code().complement() == Some(report) {
+                if p.given_up {
+                    tracing::info!(gateway = %self.me, to = %p.to, query = p.query.name(), "answered again: polling resumes");
+                    p.due = now + self.poll_period;
+                }
+                p.unanswered = 0;
+                p.given_up = false;
+                p.every = self.poll_period;
+            }
+        }
+    }
+
+    /// Sends the polls that are due; a poll left unanswered backs off, then stops.
     pub fn handle_timeout(&mut self, now: Instant) {
         let mut due = Vec::new();
-        for p in &mut self.polls {
-            if p.due <= now {
-                due.push((p.to, p.query.clone()));
-                p.due = now + p.every;
+        for p in self.polls.iter_mut().filter(|p| !p.given_up) {
+            if p.due > now {
+                continue;
             }
+            if p.unanswered > 0 {
+                self.stats.polls_unanswered += 1;
+            }
+            if p.unanswered >= GIVE_UP_AFTER {
+                p.given_up = true;
+                self.stats.polls_given_up += 1;
+                tracing::warn!(gateway = %self.me, to = %p.to, query = p.query.name(), unanswered = p.unanswered, "the component never answers this query: polling stopped");
+                continue;
+            }
+            if p.unanswered >= BACKOFF_AFTER {
+                p.every = (p.every * 2).min(MAX_POLL_PERIOD);
+            }
+            p.unanswered += 1;
+            p.due = now + p.every;
+            due.push((p.to, p.query.clone()));
         }
         for (to, q) in due {
             self.send(to, q);
@@ -485,7 +545,43 @@ impl Ra33Side {
 
     /// When the next poll is due.
     pub fn poll_timeout(&self) -> Option<Instant> {
-        self.polls.iter().map(|p| p.due).min()
+        self.polls
+            .iter()
+            .filter(|p| !p.given_up)
+            .map(|p| p.due)
+            .min()
+    }
+}
+
+/// Report Services of the gateway's RA 3.3 side: the core service (type 0) with what it
+/// answers and handles, and what it sends.
+fn services() -> ReportServices {
+    let entry = |code: CommandCode| ServiceCommand {
+        command_code: code.0,
+        presence_vector: 0,
+    };
+    ReportServices {
+        services: vec![JausService {
+            service_type: 0,
+            input_commands: [
+                jaus::messages::QueryIdentification::CODE,
+                jaus::messages::QueryServices::CODE,
+                ConfirmComponentControl::CODE,
+                jaus::messages::RejectComponentControl::CODE,
+            ]
+            .into_iter()
+            .map(entry)
+            .collect(),
+            output_commands: [
+                ReportIdentification::CODE,
+                ReportServices::CODE,
+                RequestComponentControl::CODE,
+                ReleaseComponentControl::CODE,
+            ]
+            .into_iter()
+            .map(entry)
+            .collect(),
+        }],
     }
 }
 
@@ -503,6 +599,67 @@ mod tests {
         let (bx, by) = f.to_as4(x, y);
         assert!((bx - 10.0).abs() < 1e-9 && (by + 7.0).abs() < 1e-9);
         assert!((f.yaw_to_ra33(f.yaw_to_as4(3.0)) - 3.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn an_unanswered_poll_backs_off_then_stops_and_an_answer_restarts_it() {
+        use jaus::messages::{QueryWrenchEffort, ReportWrenchEffort};
+        let me = Address::new(1, 1, 200, 1);
+        let driver = Address::new(1, 1, 33, 1);
+        let period = Duration::from_millis(100);
+        let mut s = Ra33Side::new(me, Targets::default(), 200, period);
+        let t0 = Instant::now();
+        s.keep_polling(t0, driver, QueryWrenchEffort::default());
+        // Run 60 s of virtual time, waking when due; count what was sent.
+        let mut now = t0;
+        let mut sent = Vec::new();
+        while let Some(due) = s.poll_timeout() {
+            if due > t0 + Duration::from_secs(60) {
+                break;
+            }
+            now = due;
+            s.handle_timeout(now);
+            while s.poll_transmit().is_some() {
+                sent.push(now - t0);
+            }
+        }
+        assert_eq!(sent.len(), GIVE_UP_AFTER as usize, "{sent:?}");
+        // At the period until BACKOFF_AFTER polls are unanswered, then doubling.
+        assert_eq!(sent[1] - sent[0], period);
+        assert_eq!(sent[3] - sent[2], period);
+        assert_eq!(sent[4] - sent[3], period * 2);
+        assert_eq!(sent[5] - sent[4], period * 4);
+        assert_eq!(s.stats().polls_given_up, 1);
+        assert_eq!(s.stats().polls_unanswered, GIVE_UP_AFTER as u64);
+        assert_eq!(s.poll_timeout(), None);
+        // A report of its kind (an event, or an answer after all) restarts it.
+        s.on_message(now, driver, ReportWrenchEffort::default().into());
+        assert_eq!(s.poll_timeout(), Some(now + period));
+        s.handle_timeout(now + period);
+        assert!(s.poll_transmit().is_some());
+    }
+
+    #[test]
+    fn query_services_is_answered() {
+        let me = Address::new(1, 1, 200, 1);
+        let asker = Address::new(1, 1, 1, 1);
+        let mut s = Ra33Side::new(me, Targets::default(), 200, Duration::from_millis(100));
+        s.on_message(
+            Instant::now(),
+            asker,
+            jaus::messages::QueryServices {}.into(),
+        );
+        match s.poll_transmit() {
+            Some((to, Ra33Message::ReportServices(r))) => {
+                assert_eq!(to, asker);
+                assert_eq!(r.services.len(), 1);
+                assert!(r.services[0]
+                    .input_commands
+                    .iter()
+                    .any(|c| c.command_code == jaus::messages::QueryServices::CODE.0));
+            }
+            other => panic!("expected Report Services, got {other:?}"),
+        }
     }
 
     #[test]
