@@ -22,6 +22,7 @@ pub const SDK_DEFS: &[(&str, &str)] = &[
         include_str!("../defs/communications.yaml"),
     ),
     ("core.yaml", include_str!("../defs/core.yaml")),
+    ("core_states.yaml", include_str!("../defs/core_states.yaml")),
     (
         "dynamic_configuration.yaml",
         include_str!("../defs/dynamic_configuration.yaml"),

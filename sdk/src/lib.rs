@@ -215,6 +215,14 @@ pub mod components {
 /// [`messages::Message`] enum over all of them.
 pub mod messages {
     include!(concat!(env!("OUT_DIR"), "/messages.rs"));
+
+    /// The generated state machines of the definitions' `services:`: the RA 3.3 core
+    /// states (`jaus-spec/defs/core_states.yaml`), whose table
+    /// [`CoreState::apply`](crate::component::CoreState::apply) runs with [`crate::hsm`].
+    #[allow(clippy::all)]
+    pub mod services {
+        include!(concat!(env!("OUT_DIR"), "/services.rs"));
+    }
 }
 
 /// The Rust examples of the workspace's README.md, compiled and run as doctests

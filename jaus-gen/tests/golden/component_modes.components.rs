@@ -130,6 +130,100 @@ pub mod waypoint_follower {
         /// The component also enters Failure.
         LosePose,
     }
+    /// Every [`Mode`], in the order of [`MODES`]' states.
+    const MODE_LIST: [Mode; 3] = [Mode::Idle, Mode::Driving, Mode::Holding];
+    /// The modes as a state machine, run by `::jaus::hsm` ([`Modes::next`]): a state per
+    /// mode, a transition per mode it may be taken from.
+    pub static MODES: ::jaus::hsm::MachineDef = ::jaus::hsm::MachineDef {
+        service: "WaypointFollower",
+        name: "modes",
+        states: &[
+            ::jaus::hsm::State {
+                name: "Idle",
+                path: "Idle",
+                parent: None,
+                initial: None,
+                entry: &[],
+                exit: &[],
+                transitions: &[
+                    ::jaus::hsm::Transition {
+                        trigger: Some("start"),
+                        guard: None,
+                        kind: ::jaus::hsm::Kind::Simple,
+                        target: Some(1),
+                        actions: &[],
+                        raise: None,
+                    },
+                ],
+                defaults: &[],
+            },
+            ::jaus::hsm::State {
+                name: "Driving",
+                path: "Driving",
+                parent: None,
+                initial: None,
+                entry: &[],
+                exit: &[],
+                transitions: &[
+                    ::jaus::hsm::Transition {
+                        trigger: Some("hold"),
+                        guard: None,
+                        kind: ::jaus::hsm::Kind::Simple,
+                        target: Some(2),
+                        actions: &[],
+                        raise: None,
+                    },
+                    ::jaus::hsm::Transition {
+                        trigger: Some("arrive"),
+                        guard: None,
+                        kind: ::jaus::hsm::Kind::Simple,
+                        target: Some(0),
+                        actions: &[],
+                        raise: None,
+                    },
+                    ::jaus::hsm::Transition {
+                        trigger: Some("lose_pose"),
+                        guard: None,
+                        kind: ::jaus::hsm::Kind::Simple,
+                        target: Some(0),
+                        actions: &[],
+                        raise: None,
+                    },
+                ],
+                defaults: &[],
+            },
+            ::jaus::hsm::State {
+                name: "Holding",
+                path: "Holding",
+                parent: None,
+                initial: None,
+                entry: &[],
+                exit: &[],
+                transitions: &[
+                    ::jaus::hsm::Transition {
+                        trigger: Some("start"),
+                        guard: None,
+                        kind: ::jaus::hsm::Kind::Simple,
+                        target: Some(1),
+                        actions: &[],
+                        raise: None,
+                    },
+                    ::jaus::hsm::Transition {
+                        trigger: Some("lose_pose"),
+                        guard: None,
+                        kind: ::jaus::hsm::Kind::Simple,
+                        target: Some(0),
+                        actions: &[],
+                        raise: None,
+                    },
+                ],
+                defaults: &[],
+            },
+        ],
+        start: 0,
+        transitions: &[],
+        defaults: &[],
+    };
     impl Modes for Mode {
         type Transition = Transition;
         const INITIAL: Self = Mode::Idle;
@@ -142,14 +236,12 @@ pub mod waypoint_follower {
             }
         }
         fn next(self, t: Transition) -> Option<Self> {
-            match (self, t) {
-                (Mode::Idle | Mode::Holding, Transition::Start) => Some(Mode::Driving),
-                (Mode::Driving, Transition::Hold) => Some(Mode::Holding),
-                (Mode::Driving, Transition::Arrive) => Some(Mode::Idle),
-                (Mode::Driving | Mode::Holding, Transition::LosePose) => Some(Mode::Idle),
-                #[allow(unreachable_patterns)]
-                _ => None,
-            }
+            let to = ::jaus::hsm::next_state(
+                &MODES,
+                self as u16,
+                Self::transition_name(t),
+            )?;
+            MODE_LIST.get(usize::from(to)).copied()
         }
         fn transition_name(t: Transition) -> &'static str {
             match t {
@@ -294,6 +386,27 @@ pub mod recorder {
     /// The legal changes of [`Mode`] (pass them to `Ctx::transition`).
     #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
     pub enum Transition {}
+    /// The modes as a state machine, run by `::jaus::hsm` ([`Modes::next`]): a state per
+    /// mode, a transition per mode it may be taken from.
+    pub static MODES: ::jaus::hsm::MachineDef = ::jaus::hsm::MachineDef {
+        service: "Recorder",
+        name: "modes",
+        states: &[
+            ::jaus::hsm::State {
+                name: "Recording",
+                path: "Recording",
+                parent: None,
+                initial: None,
+                entry: &[],
+                exit: &[],
+                transitions: &[],
+                defaults: &[],
+            },
+        ],
+        start: 0,
+        transitions: &[],
+        defaults: &[],
+    };
     impl Modes for Mode {
         type Transition = Transition;
         const INITIAL: Self = Mode::Recording;

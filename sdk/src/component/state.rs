@@ -47,29 +47,45 @@ impl CoreState {
     ///
     /// Transitions that leave the state unchanged (Resume while Ready) are allowed.
     /// Emergency is left only by clearing it (or by Shutdown): Reset, Resume and
-    /// Standby do not end an emergency.
+    /// Standby do not end an emergency. The rules are the generated table of
+    /// `jaus-spec/defs/core_states.yaml`, run by [`crate::hsm`].
     pub fn apply(self, t: CoreTransition) -> Result<CoreState, TransitionError> {
-        use CoreState::*;
-        use CoreTransition as T;
-        let next = match (self, t) {
-            (Shutdown, T::Shutdown) => Some(Shutdown),
-            (Shutdown, _) => None,
-            (_, T::Shutdown) => Some(Shutdown),
-            (_, T::SetEmergency) => Some(Emergency),
-            (Emergency, T::ClearEmergency) => Some(Standby),
-            (Emergency, _) => None,
-            (Initialize, T::Initialized) => Some(Standby),
-            (Ready | Standby, T::Standby) => Some(Standby),
-            (Ready | Standby, T::Resume) => Some(Ready),
-            (Initialize | Ready | Standby | Failure, T::Reset) => Some(Initialize),
-            (Initialize | Ready | Standby, T::Fail) => Some(Failure),
-            _ => None,
-        };
-        next.ok_or(TransitionError {
-            machine: "core state",
-            from: self.name(),
-            transition: t.name(),
-        })
+        let def = &crate::messages::services::core_states::CORE_STATE_FSM;
+        crate::hsm::state_id(def, self.path())
+            .and_then(|from| crate::hsm::next_state(def, from, t.key()))
+            .and_then(|to| def.states.get(usize::from(to)))
+            .and_then(|s| CoreState::from_name(s.name))
+            .ok_or(TransitionError {
+                machine: "core state",
+                from: self.name(),
+                transition: t.name(),
+            })
+    }
+
+    /// Its path in the core states' machine (`Live.Ready`; `Shutdown`).
+    fn path(self) -> &'static str {
+        match self {
+            CoreState::Initialize => "Live.Initialize",
+            CoreState::Ready => "Live.Ready",
+            CoreState::Standby => "Live.Standby",
+            CoreState::Shutdown => "Shutdown",
+            CoreState::Failure => "Live.Failure",
+            CoreState::Emergency => "Live.Emergency",
+        }
+    }
+
+    /// The state named `name` (as Part 1 writes it).
+    pub fn from_name(name: &str) -> Option<CoreState> {
+        [
+            CoreState::Initialize,
+            CoreState::Ready,
+            CoreState::Standby,
+            CoreState::Shutdown,
+            CoreState::Failure,
+            CoreState::Emergency,
+        ]
+        .into_iter()
+        .find(|s| s.name() == name)
     }
 
     /// The name as Part 1 writes it.
@@ -117,6 +133,20 @@ impl fmt::Display for CoreState {
 }
 
 impl CoreTransition {
+    /// The trigger of the core states' machine (`jaus-spec/defs/core_states.yaml`).
+    pub fn key(self) -> &'static str {
+        match self {
+            CoreTransition::Initialized => "Initialized",
+            CoreTransition::Standby => "Standby",
+            CoreTransition::Resume => "Resume",
+            CoreTransition::Shutdown => "Shutdown",
+            CoreTransition::Reset => "Reset",
+            CoreTransition::Fail => "Fail",
+            CoreTransition::SetEmergency => "SetEmergency",
+            CoreTransition::ClearEmergency => "ClearEmergency",
+        }
+    }
+
     /// The name of the transition.
     pub fn name(self) -> &'static str {
         match self {

@@ -198,6 +198,17 @@ impl Machine {
         }
     }
 
+    /// A machine of `def` already in state `state` (a leaf), started, without running
+    /// any entry action: to go on from a state kept elsewhere.
+    pub fn resume_at(def: &'static MachineDef, state: StateId) -> Self {
+        Self {
+            def,
+            current: state,
+            pushed: Vec::new(),
+            started: true,
+        }
+    }
+
     /// Its definition.
     pub fn def(&self) -> &'static MachineDef {
         self.def
@@ -446,6 +457,37 @@ impl Machine {
             host.action(*a, payload);
         }
     }
+}
+
+/// A [`Host`] for tables without guards or actions (RA 3.3 core states, a component's
+/// modes): every guard fails, no action runs.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct NoHost;
+
+impl<T: ?Sized> Host<T> for NoHost {
+    fn guard(&self, _: u16, _: Option<&T>) -> bool {
+        false
+    }
+    fn action(&mut self, _: u16, _: Option<&T>) {}
+}
+
+/// The state a machine of `def` without guards or actions reaches from state `from` on
+/// trigger `key`: `None` when no transition answers `key` there. The state's id in
+/// `def.states`.
+pub fn next_state(def: &'static MachineDef, from: StateId, key: &'static str) -> Option<StateId> {
+    let mut m = Machine::resume_at(def, from);
+    match m.handle(&mut NoHost, key, &()) {
+        Step::Taken { .. } => Some(m.current()),
+        Step::Ignored => None,
+    }
+}
+
+/// The id of the state at `path` in `def` (`Live.Ready`).
+pub fn state_id(def: &MachineDef, path: &str) -> Option<StateId> {
+    def.states
+        .iter()
+        .position(|s| s.path == path)
+        .and_then(|i| StateId::try_from(i).ok())
 }
 
 /// The state machines of one service: every trigger is offered to each of them.
