@@ -124,6 +124,19 @@
 //! ids.
 
 pub mod component;
+
+/// This crate's definitions (`defs/`, file name and text, in name order), built in: a
+/// client that loads a vendor's AS-4 definitions at run time (`jaus as4-query --spec`)
+/// loads them on these.
+pub const DEFS: &[(&str, &str)] = &[
+    ("core.yaml", include_str!("../defs/core.yaml")),
+    (
+        "core_services.yaml",
+        include_str!("../defs/core_services.yaml"),
+    ),
+    ("mobility.yaml", include_str!("../defs/mobility.yaml")),
+];
+
 pub mod core;
 pub mod embedded;
 pub mod gateway;
@@ -149,3 +162,22 @@ pub mod messages {
 }
 
 pub use messages::*;
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn the_built_in_definitions_are_the_files_of_the_directory() {
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("defs");
+        let mut files: Vec<String> = std::fs::read_dir(&dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .filter(|n| n.ends_with(".yaml"))
+            .collect();
+        files.sort();
+        let built_in: Vec<&str> = super::DEFS.iter().map(|(n, _)| *n).collect();
+        assert_eq!(files, built_in, "update jaus_as4::DEFS");
+        for (name, text) in super::DEFS {
+            assert_eq!(std::fs::read_to_string(dir.join(name)).unwrap(), *text);
+        }
+    }
+}

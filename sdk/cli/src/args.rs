@@ -189,6 +189,21 @@ pub(crate) enum Cmd {
         #[command(flatten)]
         args: jaus_cli::as4_drive::As4DriveArgs,
     },
+    /// Query an AS-4 component (AS5669A) by message name, for any definitions:
+    /// jaus-as4's, a vendor's YAML on them (--spec) or imported JSIDL (--jsidl); each
+    /// message is sent after the previous one was answered; prints every message the
+    /// component sends back as a JSON line; exits 1 when one is not answered.
+    As4Query {
+        #[command(flatten)]
+        args: jaus_cli::as4_talk::As4TalkArgs,
+    },
+    /// Send messages to an AS-4 component by name (as for `as4-query`), optionally under
+    /// control (--control AUTHORITY, given back at the end), and print what it sends
+    /// back for --wait seconds.
+    As4Send {
+        #[command(flatten)]
+        args: jaus_cli::as4_talk::As4TalkArgs,
+    },
     /// Listen for a while and print the system tree seen on the network.
     Discover {
         #[command(flatten)]

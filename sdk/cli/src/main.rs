@@ -335,6 +335,14 @@ fn main() -> ExitCode {
             report(&mut err, conform::conform(&net, &args, &cli.spec, &mut out))
         }
         Cmd::As4Drive { args } => report(&mut err, jaus_cli::as4_drive::as4_drive(&args, &mut out)),
+        Cmd::As4Query { args } => report(
+            &mut err,
+            jaus_cli::as4_talk::as4_talk(&args, true, &mut out),
+        ),
+        Cmd::As4Send { args } => report(
+            &mut err,
+            jaus_cli::as4_talk::as4_talk(&args, false, &mut out),
+        ),
         Cmd::Discover { net, json } => report(
             &mut err,
             net.client().and_then(|c| {
