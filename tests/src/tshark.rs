@@ -38,6 +38,32 @@ pub fn available() -> bool {
     ok
 }
 
+/// Whether capinfos (Wireshark's, in the same Debian package set as tshark) runs here;
+/// without it, a note (and a failure when `JAUS_REQUIRE_TSHARK=1`).
+pub fn capinfos_available() -> bool {
+    let ok = Command::new("capinfos")
+        .arg("-v")
+        .output()
+        .is_ok_and(|o| o.status.success());
+    if !ok {
+        assert!(
+            std::env::var("JAUS_REQUIRE_TSHARK").as_deref() != Ok("1"),
+            "capinfos is required (JAUS_REQUIRE_TSHARK=1) but not installed"
+        );
+        eprintln!("skipping: capinfos is not installed (apt-get install tshark)");
+    }
+    ok
+}
+
+/// A time tshark or capinfos prints as seconds since the epoch (`1704164645.123456789`,
+/// as many fraction digits as the tool gives).
+pub fn epoch_time(text: &str) -> Option<std::time::Duration> {
+    let (secs, frac) = text.trim().split_once('.').unwrap_or((text.trim(), ""));
+    let digits: String = frac.chars().take(9).collect();
+    let nanos: u32 = format!("{digits:0<9}").parse().ok()?;
+    Some(std::time::Duration::new(secs.parse().ok()?, nanos))
+}
+
 fn attr(tag: &str, name: &str) -> String {
     let key = format!(" {name}=\"");
     let Some(i) = tag.find(&key) else {

@@ -15,7 +15,7 @@ use jaus::net::NodeConfig;
 use jaus::Address;
 use jaus_as4::gateway::{DualNode, GatewayConfig};
 use jaus_conform::as4::udp::UdpAs4Session;
-use jaus_conform::as4::{run_as4, As4Options, MemoryAs4Session};
+use jaus_conform::as4::{run_as4, As4Options, As4Session, MemoryAs4Session};
 use jaus_conform::{RunReport, Verdict};
 
 fn judge() -> As4Options {
@@ -52,7 +52,70 @@ fn the_iop_scenario_passes_in_memory_against_the_vehicle_through_the_gateway() {
         "demo vehicle",
     );
     let mut session = MemoryAs4Session::new(DualNode::new(node, config).unwrap(), t0);
+    session.record();
     all_pass(&run_as4(&mut session, &judge()));
+
+    // What `jaus conform --as4 --pcap` writes, `jaus decode --pcap` reads: every message
+    // by its AS-4 name, none refused (issue 47 item 2), and the discovery's Query
+    // Identification to every component marked a global broadcast (item 4).
+    let dir = std::env::temp_dir().join(format!("jaus-as4-iop-pcap-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("iop.pcapng");
+    let rec = session.take_recording();
+    let mut w = jaus_cli::capture::CaptureWriter::create(&path).unwrap();
+    for d in &rec.datagrams {
+        w.write(d.time, d.from, d.to, &d.bytes).unwrap();
+    }
+    w.flush().unwrap();
+    drop(w);
+    let (mut out, mut err) = (Vec::new(), Vec::new());
+    let (messages, errors) = jaus_cli::traffic::decode_capture(
+        &path,
+        &jaus_cli::catalogue::Catalogue::sdk(),
+        &mut out,
+        &mut err,
+    )
+    .unwrap();
+    assert_eq!(errors, 0, "{}", String::from_utf8_lossy(&err));
+    assert!(messages > 50, "{messages} messages");
+    let lines: Vec<serde_json::Value> = String::from_utf8(out)
+        .unwrap()
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert!(lines.iter().all(|l| l["as4"].is_object()));
+    for name in [
+        "QueryIdentification",
+        "ReportIdentification",
+        "ReportServices",
+        "RequestControl",
+        "ConfirmControl",
+        "SetElement",
+        "ExecuteList",
+        "ReportLocalPose",
+        "ReportActiveElement",
+    ] {
+        assert!(
+            lines.iter().any(|l| l["message"] == name),
+            "{name} not decoded from the capture"
+        );
+    }
+    let everyone = serde_json::json!([65535, 255, 255]);
+    let to_everyone: Vec<&serde_json::Value> = lines
+        .iter()
+        .filter(|l| l["as4"]["destination"] == everyone)
+        .collect();
+    assert!(to_everyone
+        .iter()
+        .any(|l| l["message"] == "QueryIdentification"));
+    assert!(to_everyone
+        .iter()
+        .all(|l| l["as4"]["broadcast"] == "global"));
+    assert!(lines
+        .iter()
+        .filter(|l| l["as4"]["destination"] != everyone)
+        .all(|l| l["as4"]["broadcast"] == "none"));
+    std::fs::remove_dir_all(&dir).ok();
 }
 
 /// `jaus node` (the CLI's node function) hosting the vehicle with `as4: {}` on a free

@@ -2,7 +2,8 @@
 //! every OpenJAUS reference vector wrapped in JUDP (and some in "JAUS01.0"), and a
 //! multi-packet message. Every packet must dissect without a malformed-packet or Lua
 //! error, and every scalar field of the message's top level must show the value
-//! `jaus decode` gives (`jaus_tests::tshark`).
+//! `jaus decode` gives (`jaus_tests::tshark`). And the times of a capture we write, as
+//! tshark and capinfos read them (issue 47 item 2).
 
 use std::net::SocketAddr;
 use std::path::Path;
@@ -107,6 +108,95 @@ fn the_generated_dissector_shows_every_reference_vector_as_jaus_decode_does() {
         compared.len() >= 100,
         "{} message types compared",
         compared.len()
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// A capture we write (`jaus node --capture`, `jaus conform --pcap`) has the times it was
+/// given for tshark, capinfos and our reader alike: its interface declares nanoseconds.
+/// Without the declaration both tools took them for microseconds (a 12.3 s run lasted
+/// 12,277 s and began in the year 58877).
+#[test]
+fn tshark_capinfos_and_our_reader_agree_on_the_times_of_a_capture() {
+    if !tshark::available() || !tshark::capinfos_available() {
+        return;
+    }
+    let dir = std::env::temp_dir().join(format!("jaus-capture-times-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("times.pcapng");
+    // 2024-01-02 03:04:05.123456789 UTC, then 12.3 s later.
+    let t0 = Duration::new(1_704_164_645, 123_456_789);
+    let last = t0 + Duration::from_millis(12_300);
+    let a: SocketAddr = "127.0.0.1:3794".parse().unwrap();
+    let b: SocketAddr = "127.0.0.2:3794".parse().unwrap();
+    let mut w = CaptureWriter::create(&path).unwrap();
+    w.write(t0, a, b, &judp(&[0; 16])).unwrap();
+    w.write(t0 + Duration::from_millis(5_000), b, a, &judp(&[0; 16]))
+        .unwrap();
+    w.write(last, a, b, &judp(&[0; 16])).unwrap();
+    w.flush().unwrap();
+    drop(w);
+
+    // Ours.
+    let (ours, _) = jaus_cli::capture::read(&path).unwrap();
+    assert_eq!(
+        (ours[0].time, ours[2].time),
+        (t0, last),
+        "our reader's first and last times"
+    );
+    let close = |got: Duration, want: Duration, what: &str| {
+        let diff = got.abs_diff(want);
+        assert!(
+            diff <= Duration::from_micros(1),
+            "{what}: {got:?}, expected {want:?}"
+        );
+    };
+    // tshark: every packet's time since the epoch.
+    let out = std::process::Command::new("tshark")
+        .arg("-r")
+        .arg(&path)
+        .args(["-T", "fields", "-e", "frame.time_epoch"])
+        .output()
+        .expect("run tshark");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let times: Vec<Duration> = String::from_utf8_lossy(&out.stdout)
+        .lines()
+        .map(|l| tshark::epoch_time(l).unwrap_or_else(|| panic!("tshark printed `{l}`")))
+        .collect();
+    assert_eq!(times.len(), 3);
+    close(times[0], t0, "tshark's first packet");
+    close(times[2], last, "tshark's last packet");
+    // capinfos: the first packet's time and the duration, as seconds (`-S`), in a
+    // table of one row without its header (`-T -r`): file name, then the value.
+    let capinfos = |flag: &str| {
+        let out = std::process::Command::new("capinfos")
+            .args(["-T", "-r", "-S", flag])
+            .arg(&path)
+            .output()
+            .expect("run capinfos");
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let text = String::from_utf8_lossy(&out.stdout).to_string();
+        let value = text
+            .trim_end()
+            .rsplit('\t')
+            .next()
+            .unwrap_or("")
+            .to_string();
+        tshark::epoch_time(&value).unwrap_or_else(|| panic!("capinfos {flag} printed `{text}`"))
+    };
+    close(capinfos("-a"), t0, "capinfos' first packet time");
+    close(capinfos("-u"), last - t0, "capinfos' capture duration");
+    println!(
+        "tshark, capinfos and our reader: first packet {t0:?} after the epoch, {:?} long",
+        last - t0
     );
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -454,3 +454,25 @@ fn tolerance(text: &str) -> Result<f64, String> {
         Err(format!("{v} m is outside the waypoint tolerance's 0–100 m"))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::Parser;
+
+    #[derive(Debug, clap::Parser)]
+    struct Cli {
+        #[command(flatten)]
+        args: As4DriveArgs,
+    }
+
+    /// The JAUS Tool Set reads an id byte of 0 as "every": the operator's default id has
+    /// no 0 part (nor a broadcast one).
+    #[test]
+    fn the_default_operator_id_has_no_zero_or_broadcast_part() {
+        let cli = Cli::try_parse_from(["as4-drive", "--peer", "127.0.0.1:3794"]).unwrap();
+        let me = jaus_conform::as4::parse_id(&cli.args.me).unwrap();
+        assert_eq!(me, As4Id::new(42, 1, 1));
+        assert!(me.subsystem != 0 && me.node != 0 && me.component != 0 && !me.is_broadcast());
+    }
+}

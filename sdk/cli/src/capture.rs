@@ -4,7 +4,11 @@
 //! `jaus decode --pcap` and `jaus replay`.
 //!
 //! A written capture holds each datagram as a raw IPv4/UDP packet (link type IPv4), so
-//! Wireshark and tshark show it like one taken on the wire.
+//! Wireshark and tshark show it like one taken on the wire. Its times are in
+//! nanoseconds, which its interface description declares (`if_tsresol` 9): without
+//! that option a pcapng reader takes them for microseconds. Reading honours each
+//! interface's `if_tsresol` (microseconds when absent, as the format says) and
+//! `if_tsoffset`.
 
 use std::fs::File;
 use std::io::{BufReader, BufWriter, Read, Write};
@@ -14,7 +18,9 @@ use std::time::Duration;
 
 use pcap_file::pcap::PcapReader;
 use pcap_file::pcapng::blocks::enhanced_packet::EnhancedPacketBlock;
-use pcap_file::pcapng::blocks::interface_description::InterfaceDescriptionBlock;
+use pcap_file::pcapng::blocks::interface_description::{
+    InterfaceDescriptionBlock, InterfaceDescriptionOption,
+};
 use pcap_file::pcapng::{Block, PcapNgReader, PcapNgWriter};
 use pcap_file::DataLink;
 
@@ -32,7 +38,26 @@ pub struct Datagram {
 }
 
 impl Datagram {
-    /// The JAUS packet it carries, whichever framing it uses: JUDP, the OPC
+    /// Whether it crossed OpenJAUS's local component control socket (port 24627,
+    /// docs/wire.md §8.5): 8-byte control datagrams (check-in, lookups), not JAUS
+    /// messages.
+    pub fn is_openjaus_control(&self) -> bool {
+        let control = jaus::net::oj::CONTROL_PORT;
+        self.src.port() == control || self.dst.port() == control
+    }
+
+    /// Whether it is an AS5669A datagram (JUDP version 2, AS-4 messages): its first
+    /// byte is 2, and it did not cross OpenJAUS's local data socket (port 24629, raw RA
+    /// 3.3 packets whose first byte may be anything).
+    pub fn is_as5669a(&self) -> bool {
+        let data = jaus::net::oj::DATA_PORT;
+        self.src.port() != data
+            && self.dst.port() != data
+            && jaus::net::as5669a::Generation::of(&self.payload)
+                == jaus::net::as5669a::Generation::As5669a
+    }
+
+    /// The RA 3.3 JAUS packet it carries, whichever framing it uses: JUDP, the OPC
     /// "JAUS01.0" prefix, or none on OpenJAUS's local data socket (port 24629).
     pub fn jaus_packet(&self) -> Result<&[u8], String> {
         let payload = &self.payload[..];
@@ -63,6 +88,44 @@ pub enum CaptureError {
     Format([u8; 4]),
 }
 
+/// The `if_tsresol` of nanoseconds (10^-9 s): the unit the pcapng library writes an
+/// Enhanced Packet Block's time in.
+const NANOSECONDS: u8 = 9;
+
+/// The `if_tsresol` a pcapng interface without the option has: microseconds.
+const DEFAULT_TSRESOL: u8 = 6;
+
+/// The time of a packet: `units` of the interface's resolution `tsresol` (bit 7 clear:
+/// 10^-n s; set: 2^-n s) plus `offset` seconds (`if_tsoffset`, signed), since the Unix
+/// epoch. Saturates instead of overflowing (the values come from the file); a time
+/// before the epoch is zero.
+fn packet_time(units: u64, tsresol: u8, offset: i64) -> Duration {
+    let n = u32::from(tsresol & 0x7F);
+    let nanos: u128 = if tsresol & 0x80 == 0 {
+        match n.checked_sub(9) {
+            // Coarser than a nanosecond: scale up (at most 10^9 per unit).
+            None => u128::from(units) * 10u128.pow(9 - n),
+            Some(finer) => 10u128
+                .checked_pow(finer)
+                .map_or(0, |div| u128::from(units) / div),
+        }
+    } else {
+        // 2^-n s: units * 10^9 / 2^n (n at most 127).
+        (u128::from(units) * 1_000_000_000) >> n
+    };
+    let secs = u64::try_from(nanos / 1_000_000_000).unwrap_or(u64::MAX);
+    let sub = (nanos % 1_000_000_000) as u32;
+    let secs = if offset >= 0 {
+        secs.saturating_add(offset.unsigned_abs())
+    } else {
+        match secs.checked_sub(offset.unsigned_abs()) {
+            Some(s) => s,
+            None => return Duration::ZERO,
+        }
+    };
+    Duration::new(secs, sub)
+}
+
 /// Writes datagrams to a pcapng file.
 pub struct CaptureWriter<W: Write> {
     out: PcapNgWriter<W>,
@@ -88,13 +151,14 @@ impl CaptureWriter<BufWriter<File>> {
 }
 
 impl<W: Write> CaptureWriter<W> {
-    /// A capture on `w`: the section header and one raw-IPv4 interface.
+    /// A capture on `w`: the section header and one raw-IPv4 interface whose times
+    /// are in nanoseconds (`if_tsresol` 9, as the packets are written).
     pub fn new(w: W) -> Result<Self, CaptureError> {
         let mut out = PcapNgWriter::new(w)?;
         out.write_pcapng_block(InterfaceDescriptionBlock {
             linktype: DataLink::IPV4,
             snaplen: 0,
-            options: Vec::new(),
+            options: vec![InterfaceDescriptionOption::IfTsResol(NANOSECONDS)],
         })?;
         Ok(Self {
             out,
@@ -197,8 +261,9 @@ pub fn read(path: &Path) -> Result<(Vec<Datagram>, ReadStats), CaptureError> {
     match magic {
         [0x0a, 0x0d, 0x0d, 0x0a] => {
             let mut r = PcapNgReader::new(f)?;
-            // Link types of the interfaces, in the order they were described.
-            let mut links: Vec<DataLink> = Vec::new();
+            // The interfaces of the current section, in the order they were described:
+            // link type, time resolution, time offset.
+            let mut links: Vec<(DataLink, u8, i64)> = Vec::new();
             while let Some(block) = r.next_block() {
                 let block = match block {
                     Ok(b) => b,
@@ -209,13 +274,34 @@ pub fn read(path: &Path) -> Result<(Vec<Datagram>, ReadStats), CaptureError> {
                     Err(e) => return Err(e.into()),
                 };
                 match block {
-                    Block::InterfaceDescription(i) => links.push(i.linktype),
+                    // A new section describes its interfaces anew.
+                    Block::SectionHeader(_) => links.clear(),
+                    Block::InterfaceDescription(i) => {
+                        let mut tsresol = DEFAULT_TSRESOL;
+                        let mut offset = 0;
+                        for o in &i.options {
+                            match o {
+                                InterfaceDescriptionOption::IfTsResol(r) => tsresol = *r,
+                                // A signed count of seconds (the library reads it
+                                // unsigned).
+                                InterfaceDescriptionOption::IfTsOffset(s) => offset = *s as i64,
+                                _ => {}
+                            }
+                        }
+                        links.push((i.linktype, tsresol, offset));
+                    }
                     Block::EnhancedPacket(p) => {
-                        let link = links.get(p.interface_id as usize).copied();
-                        push(p.timestamp, link.unwrap_or(DataLink::IPV4), &p.data);
+                        let (link, tsresol, offset) = links
+                            .get(p.interface_id as usize)
+                            .copied()
+                            .unwrap_or((DataLink::IPV4, DEFAULT_TSRESOL, 0));
+                        // The library gives the block's raw 64-bit count of units as
+                        // nanoseconds, whatever the interface's resolution.
+                        let units = u64::try_from(p.timestamp.as_nanos()).unwrap_or(u64::MAX);
+                        push(packet_time(units, tsresol, offset), link, &p.data);
                     }
                     Block::SimplePacket(p) => {
-                        let link = links.first().copied().unwrap_or(DataLink::IPV4);
+                        let link = links.first().map_or(DataLink::IPV4, |l| l.0);
                         push(Duration::ZERO, link, &p.data);
                     }
                     _ => {}
@@ -334,6 +420,120 @@ mod tests {
         assert!(stats.truncated);
         assert_eq!(cut.len(), 1);
         std::fs::remove_dir_all(&dir).ok();
+    }
+
+    /// 2024-01-02 03:04:05.123456789 UTC, and 12.3 s later (docs: a 12 s run read as
+    /// microseconds lasted 12,277 s and began in the year 58877).
+    const T0: Duration = Duration::new(1_704_164_645, 123_456_789);
+    const RUN: Duration = Duration::from_millis(12_300);
+
+    fn temp(name: &str) -> std::path::PathBuf {
+        let dir = std::env::temp_dir().join(format!("jaus-capture-{name}-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        dir
+    }
+
+    #[test]
+    fn times_are_nanoseconds_and_the_interface_says_so() {
+        let dir = temp("tsresol");
+        let path = dir.join("t.pcapng");
+        let a: SocketAddr = "127.0.0.1:3794".parse().unwrap();
+        let mut w = CaptureWriter::create(&path).unwrap();
+        w.write(T0, a, a, b"first").unwrap();
+        w.write(T0 + RUN, a, a, b"last").unwrap();
+        w.flush().unwrap();
+        drop(w);
+        // The interface description declares nanoseconds.
+        let mut r = PcapNgReader::new(File::open(&path).unwrap()).unwrap();
+        match r.next_block().unwrap().unwrap() {
+            Block::InterfaceDescription(i) => assert_eq!(
+                i.options,
+                [InterfaceDescriptionOption::IfTsResol(9)],
+                "{i:?}"
+            ),
+            other => panic!("{other:?}"),
+        }
+        let (got, _) = read(&path).unwrap();
+        let times: Vec<Duration> = got.iter().map(|d| d.time).collect();
+        assert_eq!(times, [T0, T0 + RUN]);
+        std::fs::remove_dir_all(&dir).ok();
+    }
+
+    #[test]
+    fn each_interface_is_read_at_its_own_resolution_and_offset() {
+        use pcap_file::pcapng::blocks::section_header::SectionHeaderBlock;
+        let dir = temp("interfaces");
+        let path = dir.join("t.pcapng");
+        let packet = ipv4_udp(
+            "10.0.0.1:3794".parse().unwrap(),
+            "10.0.0.2:3794".parse().unwrap(),
+            b"x",
+            1,
+        );
+        let mut w = PcapNgWriter::new(File::create(&path).unwrap()).unwrap();
+        let interface = |options| InterfaceDescriptionBlock {
+            linktype: DataLink::IPV4,
+            snaplen: 0,
+            options,
+        };
+        // The library writes a block's raw count of units from a Duration's nanoseconds.
+        let epb = |interface_id, units: u64| EnhancedPacketBlock {
+            interface_id,
+            timestamp: Duration::from_nanos(units),
+            original_len: packet.len() as u32,
+            data: packet.clone().into(),
+            options: Vec::new(),
+        };
+        // 0: no if_tsresol (microseconds); 1: 2^-10 s; 2: milliseconds, 100 s later.
+        w.write_pcapng_block(interface(Vec::new())).unwrap();
+        w.write_pcapng_block(interface(vec![InterfaceDescriptionOption::IfTsResol(
+            0x80 | 10,
+        )]))
+        .unwrap();
+        w.write_pcapng_block(interface(vec![
+            InterfaceDescriptionOption::IfTsResol(3),
+            InterfaceDescriptionOption::IfTsOffset(100),
+        ]))
+        .unwrap();
+        w.write_pcapng_block(epb(0, 1_704_164_645_123_456)).unwrap();
+        w.write_pcapng_block(epb(1, 3 * 1024 + 512)).unwrap();
+        w.write_pcapng_block(epb(2, 1_500)).unwrap();
+        // A second section describes its interfaces anew: its interface 0 is in
+        // nanoseconds.
+        w.write_pcapng_block(SectionHeaderBlock::default()).unwrap();
+        w.write_pcapng_block(interface(vec![InterfaceDescriptionOption::IfTsResol(9)]))
+            .unwrap();
+        w.write_pcapng_block(epb(0, 7)).unwrap();
+        drop(w);
+        let (got, stats) = read(&path).unwrap();
+        assert_eq!(stats, ReadStats::default());
+        let times: Vec<Duration> = got.iter().map(|d| d.time).collect();
+        assert_eq!(
+            times,
+            [
+                Duration::new(1_704_164_645, 123_456_000),
+                Duration::from_millis(3_500),
+                Duration::from_millis(101_500),
+                Duration::from_nanos(7),
+            ]
+        );
+        std::fs::remove_dir_all(&dir).ok();
+    }
+
+    #[test]
+    fn any_resolution_and_offset_gives_a_time_without_panicking() {
+        assert_eq!(packet_time(5, 0, 0), Duration::from_secs(5));
+        assert_eq!(packet_time(5_000, 12, 0), Duration::from_nanos(5));
+        assert_eq!(packet_time(1, 0x80, -1), Duration::ZERO);
+        assert_eq!(packet_time(10, 0, -3), Duration::from_secs(7));
+        for tsresol in [0, 6, 9, 19, 38, 39, 127, 0x80, 0x80 | 63, 0x80 | 127, 0xFF] {
+            for units in [0, 1, u64::MAX] {
+                for offset in [i64::MIN, -1, 0, 1, i64::MAX] {
+                    let _ = packet_time(units, tsresol, offset);
+                }
+            }
+        }
+        assert_eq!(packet_time(u64::MAX, 0, i64::MAX).as_secs(), u64::MAX);
     }
 
     fn sock(a: SocketAddr) -> SocketAddrV4 {

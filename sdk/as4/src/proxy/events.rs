@@ -33,6 +33,7 @@ use std::time::{Duration, Instant};
 
 use jaus::net::as5669a::As4Id;
 
+use super::presence;
 use super::shared::Shared;
 use super::Role;
 use crate::core::events::{MAX_RATE, MIN_RATE};
@@ -65,25 +66,25 @@ pub const SENSORS: [Role; 3] = [
     Role::LocalPoseSensor,
 ];
 
-/// The query of sensor `role` (every field asked for), or `None` for a role that is not
-/// one of [`SENSORS`].
+/// The query of sensor `role` (every field its report defines asked for:
+/// [`presence`]), or `None` for a role that is not one of [`SENSORS`].
 pub fn sensor_query(role: Role) -> Option<Message> {
     match role {
         Role::VelocityStateSensor => Some(
             QueryVelocityState {
-                presence_vector: u16::MAX,
+                presence_vector: presence::velocity_state(),
             }
             .into(),
         ),
         Role::GlobalPoseSensor => Some(
             QueryGlobalPose {
-                presence_vector: u16::MAX,
+                presence_vector: presence::global_pose(),
             }
             .into(),
         ),
         Role::LocalPoseSensor => Some(
             QueryLocalPose {
-                presence_vector: u16::MAX,
+                presence_vector: presence::local_pose(),
             }
             .into(),
         ),
@@ -391,6 +392,21 @@ mod tests {
                 _ => None,
             })
             .collect()
+    }
+
+    /// Query Local Pose asks for bits 0-8 (what Report Local Pose defines), not 0xFFFF.
+    #[test]
+    fn the_sensor_queries_ask_for_the_defined_bits_only() {
+        let asked = |role| match sensor_query(role) {
+            Some(Message::QueryVelocityState(q)) => q.presence_vector,
+            Some(Message::QueryGlobalPose(q)) => q.presence_vector,
+            Some(Message::QueryLocalPose(q)) => q.presence_vector,
+            other => panic!("{other:?}"),
+        };
+        for role in SENSORS {
+            assert_eq!(asked(role), 0x01FF, "{role:?}");
+        }
+        assert_eq!(sensor_query(Role::PrimitiveDriver), None);
     }
 
     #[test]

@@ -13,6 +13,7 @@ use jaus::net::PeerAddr;
 use jaus::CommandCode;
 
 use super::events::{sensor_query, SensorEvents, SENSORS};
+use super::presence;
 use super::shared::{lock, As4Control, ProxyStats, SharedRef};
 use super::{ProxyConfig, Role};
 use crate::messages::{
@@ -253,7 +254,7 @@ impl<A: PeerAddr> As4Proxy<A> {
                 s.send_to(
                     Role::PrimitiveDriver,
                     QueryWrenchEffort {
-                        presence_vector: u16::MAX,
+                        presence_vector: presence::wrench_effort(),
                     },
                 );
             }

@@ -12,7 +12,9 @@
 //! or to every component), keeps its sensors' reports fresh with AS-4 periodic events at
 //! the poll period's rate ([`events`]: Create Event once a sensor is found; a sensor
 //! whose event is refused, unanswered or gone silent is queried every poll period
-//! instead), and carries the RA 3.3 components' commands over.
+//! instead), and carries the RA 3.3 components' commands over. Its sensor and wrench
+//! effort queries ask for every field the reports' definitions have and for no other
+//! presence bit ([`presence`]).
 //!
 //! | RA 3.3 component (id) | AS-4 service | what crosses |
 //! |---|---|---|
@@ -65,6 +67,7 @@ pub mod behaviours;
 pub mod endpoint;
 pub mod events;
 pub mod hub;
+pub mod presence;
 pub mod segments;
 pub mod shared;
 pub mod waypoints;

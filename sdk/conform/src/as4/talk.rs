@@ -9,7 +9,7 @@ use std::collections::VecDeque;
 use std::time::{Duration, Instant};
 
 use jaus::codec::Encode;
-use jaus::net::as5669a::{As4Id, As4Message, Broadcast};
+use jaus::net::as5669a::{As4Id, As4Message};
 use jaus::CommandCode;
 use jaus_as4::messages::{
     ComponentState, IdentificationType, Message, QueryIdentification, QueryStatus, RequestControl,
@@ -271,16 +271,14 @@ impl<'a> Judge<'a> {
         Self::keep(&mut self.evidence, e);
     }
 
-    /// Sends `msg` to `to` (a broadcast id goes out as a global broadcast).
+    /// Sends `msg` to `to` (a broadcast id goes out as a global broadcast:
+    /// [`As4Message::new`] marks it).
     pub fn send_to(&mut self, to: As4Id, msg: &Message) {
         let Ok(body) = msg.to_bytes() else {
             tracing::warn!(message = msg.name(), "jaus conform --as4: cannot encode");
             return;
         };
-        let mut m = As4Message::new(msg.code().0, to, self.me, body);
-        if to == BROADCAST {
-            m.broadcast = Broadcast::Global;
-        }
+        let m = As4Message::new(msg.code().0, to, self.me, body);
         self.record("sent", &m);
         self.session.send(m);
     }

@@ -67,6 +67,20 @@ impl As4Id {
     pub const fn from_bytes(b: [u8; 4]) -> Self {
         Self::from_u32(u32::from_le_bytes(b))
     }
+
+    /// Whether the id names more than one component: a subsystem of 0xFFFF, a node or
+    /// a component of 0xFF (every one). A message to such an id is sent as a global
+    /// broadcast ([`As4Message::new`](super::As4Message::new)).
+    ///
+    /// ```
+    /// use jaus::net::as5669a::As4Id;
+    /// assert!(As4Id::new(0xFFFF, 0xFF, 0xFF).is_broadcast());
+    /// assert!(As4Id::new(7, 1, 0xFF).is_broadcast());
+    /// assert!(!As4Id::new(7, 1, 1).is_broadcast());
+    /// ```
+    pub const fn is_broadcast(self) -> bool {
+        self.subsystem == 0xFFFF || self.node == 0xFF || self.component == 0xFF
+    }
 }
 
 impl std::fmt::Display for As4Id {
@@ -104,6 +118,17 @@ impl Priority {
     pub const fn bits(self) -> u8 {
         self as u8
     }
+
+    /// Its name in lower case (`low`, `standard`, `high`, `safety_critical`), as
+    /// `jaus decode --pcap` prints it.
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::Low => "low",
+            Self::Standard => "standard",
+            Self::High => "high",
+            Self::SafetyCritical => "safety_critical",
+        }
+    }
 }
 
 /// The 2-bit broadcast field (3 is reserved and refused).
@@ -132,6 +157,16 @@ impl Broadcast {
     /// The 2-bit value.
     pub const fn bits(self) -> u8 {
         self as u8
+    }
+
+    /// Its name in lower case (`none`, `local`, `global`), as `jaus decode --pcap`
+    /// prints it.
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::None => "none",
+            Self::Local => "local",
+            Self::Global => "global",
+        }
     }
 }
 

@@ -32,7 +32,8 @@ pub struct As4Message {
     pub source: As4Id,
     /// Priority.
     pub priority: Priority,
-    /// Broadcast.
+    /// Broadcast: [`Broadcast::Global`] when [`new`](Self::new) is given a destination
+    /// that [names several components](As4Id::is_broadcast), else none.
     pub broadcast: Broadcast,
     /// Whether the sender asks for an acknowledgement of every packet.
     pub ack_requested: bool,
@@ -44,13 +45,30 @@ pub struct As4Message {
 
 impl As4Message {
     /// Message `message_id` with `body` from `source` to `destination`, standard
-    /// priority, no broadcast, no acknowledgement asked.
+    /// priority, no acknowledgement asked. A destination that names several
+    /// components (0xFFFF subsystem, 0xFF node or component:
+    /// [`As4Id::is_broadcast`]) makes it a global broadcast, as every sender of such a
+    /// message must mark it; any other destination, no broadcast. This is the one
+    /// place the field is chosen: senders do not set it themselves.
+    ///
+    /// ```
+    /// use jaus::net::as5669a::{As4Id, As4Message, Broadcast};
+    /// let me = As4Id::new(42, 1, 1);
+    /// let all = As4Message::new(0x2B00, As4Id::new(0xFFFF, 0xFF, 0xFF), me, vec![2]);
+    /// assert_eq!(all.broadcast, Broadcast::Global);
+    /// let one = As4Message::new(0x2B00, As4Id::new(7, 1, 1), me, vec![2]);
+    /// assert_eq!(one.broadcast, Broadcast::None);
+    /// ```
     pub fn new(message_id: u16, destination: As4Id, source: As4Id, body: Vec<u8>) -> Self {
         Self {
             destination,
             source,
             priority: Priority::Standard,
-            broadcast: Broadcast::None,
+            broadcast: if destination.is_broadcast() {
+                Broadcast::Global
+            } else {
+                Broadcast::None
+            },
             ack_requested: false,
             message_id,
             body,
@@ -603,5 +621,61 @@ impl<P: Participant<A> + 'static, A: PeerAddr> Participant<A> for As4Mux<P, A> {
 
     fn as_any_mut(&mut self) -> &mut dyn std::any::Any {
         self
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The properties byte of every message of the datagrams `stack` queued.
+    fn broadcast_fields(stack: &mut As4Stack<SocketAddr>) -> Vec<(As4Id, Broadcast)> {
+        std::iter::from_fn(|| stack.poll_transmit())
+            .flat_map(|d| parse_datagram(&d.bytes).expect("the stack writes datagrams it reads"))
+            .map(|p| (p.header.destination, p.header.broadcast))
+            .collect()
+    }
+
+    #[test]
+    fn a_message_to_a_wildcard_id_goes_out_as_a_global_broadcast() {
+        let peer: SocketAddr = "127.0.0.1:3794".parse().unwrap();
+        let me = As4Id::new(42, 1, 1);
+        let wildcards = [
+            As4Id::new(0xFFFF, 0xFF, 0xFF),
+            As4Id::new(0xFFFF, 1, 1),
+            As4Id::new(7, 0xFF, 1),
+            As4Id::new(7, 1, 0xFF),
+        ];
+        let unicast = As4Id::new(7, 1, 1);
+        let mut stack = As4Stack::new(As4Config::default());
+        let mut messages: Vec<As4Message> = wildcards
+            .iter()
+            .map(|to| As4Message::new(0x2B00, *to, me, vec![2]))
+            .collect();
+        messages.push(As4Message::new(0x2B00, unicast, me, vec![2]));
+        // A large message to every component: each of its packets is marked.
+        messages.push(As4Message::new(0x4002, wildcards[0], me, vec![0xAB; 9000]));
+        stack.send(peer, &messages);
+        let got = broadcast_fields(&mut stack);
+        assert_eq!(got.len(), 5 + 3, "{got:?}");
+        for (to, broadcast) in &got {
+            let want = if *to == unicast {
+                Broadcast::None
+            } else {
+                Broadcast::Global
+            };
+            assert_eq!(*broadcast, want, "to {to}");
+        }
+        // On the wire: bits 3-2 of the properties byte (the byte after the data size).
+        let mut stack = As4Stack::new(As4Config::default());
+        stack.send(peer, &messages[..1]);
+        let d = stack.poll_transmit().unwrap();
+        assert_eq!((d.bytes[4] >> 2) & 3, 2);
+        stack.send(peer, &messages[4..5]);
+        let d = stack.poll_transmit().unwrap();
+        assert_eq!((d.bytes[4] >> 2) & 3, 0);
+        // A reply to a broadcast goes back to its sender alone.
+        let reply = messages[0].reply(0x4B00, vec![]);
+        assert_eq!((reply.destination, reply.broadcast), (me, Broadcast::None));
     }
 }

@@ -330,11 +330,19 @@ impl NodeFile {
                     .map_err(|e| at("id", e))?;
             let me = match &v.proxy_id {
                 Some(t) => parse_as4_id(t).map_err(|e| at("proxy_id", e))?,
-                None => jaus::net::as5669a::As4Id::new(
-                    u16::from(self.subsystem),
-                    self.node,
-                    200u8.saturating_add(i as u8),
-                ),
+                None => {
+                    let component = default_proxy_component(i).ok_or_else(|| {
+                        at(
+                            "proxy_id",
+                            format!(
+                                "no default left (the first {} entries take components {}-254 of this node): give this entry a proxy_id",
+                                254 - FIRST_PROXY_COMPONENT + 1,
+                                FIRST_PROXY_COMPONENT
+                            ),
+                        )
+                    })?;
+                    jaus::net::as5669a::As4Id::new(u16::from(self.subsystem), self.node, component)
+                }
             };
             let mut config = ProxyConfig::new(me, vehicle);
             config.instance = v.instance.unwrap_or(i as u8 + 1);
@@ -425,6 +433,19 @@ impl NodeFile {
     }
 }
 
+/// The first AS-4 component id of the proxies' default ids (`proxy_id`).
+const FIRST_PROXY_COMPONENT: u8 = 200;
+
+/// The component of the default AS-4 id of the proxy of `as4_vehicles[i]`
+/// (`subsystem.node.component` of this node): 200 + i, within 200-254, so that no part
+/// is 0 (the JAUS Tool Set reads a 0 byte as "every") or 255 (every component); `None`
+/// past the last one.
+fn default_proxy_component(i: usize) -> Option<u8> {
+    u8::try_from(usize::from(FIRST_PROXY_COMPONENT) + i)
+        .ok()
+        .filter(|c| *c < u8::MAX)
+}
+
 /// The name of a proxy role in `as4_vehicles:` (`services:`).
 fn role_name(r: jaus_as4::proxy::Role) -> &'static str {
     use jaus_as4::proxy::Role;
@@ -478,6 +499,42 @@ mod tests {
         std::fs::write(&path, base).unwrap();
         assert!(NodeFile::load(&path).unwrap().as4.is_some());
         let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    /// The JAUS Tool Set reads an id byte of 0 as "every": no default AS-4 id of a node
+    /// file has a 0 part (nor a 255 or 65535 one, which are broadcasts).
+    #[test]
+    fn default_as4_ids_have_no_zero_or_broadcast_part() {
+        let specific = |id: jaus::net::as5669a::As4Id| {
+            id.subsystem != 0 && id.node != 0 && id.component != 0 && !id.is_broadcast()
+        };
+        let vehicles: String = (0..55)
+            .map(|i| format!("  - {{ peer: 127.0.0.1:{} }}\n", 4000 + i))
+            .collect();
+        for (s, n) in [(1, 1), (254, 254), (7, 200)] {
+            let f = file(&format!(
+                "subsystem: {s}\nnode: {n}\nbind: 127.0.0.1:0\nas4: {{}}\nas4_vehicles:\n{vehicles}"
+            ));
+            let gateway = f.as4_config().unwrap().as4;
+            assert!(specific(gateway), "gateway {gateway}");
+            let proxies = f.as4_vehicles(Path::new("n.yaml")).unwrap();
+            assert_eq!(proxies.len(), 55);
+            for (p, _) in &proxies {
+                assert!(specific(p.me), "proxy {}", p.me);
+            }
+            assert_eq!(proxies[54].0.me.component, 254);
+        }
+        // A 56th entry has no default left: it must give its own.
+        let f = file(&format!(
+            "subsystem: 1\nnode: 1\nbind: 127.0.0.1:0\nas4_vehicles:\n{vehicles}  - {{ peer: 127.0.0.1:5000 }}\n"
+        ));
+        let e = f.as4_vehicles(Path::new("n.yaml")).unwrap_err();
+        assert!(
+            e.contains("as4_vehicles[55].proxy_id") && e.contains("components 200-254"),
+            "{e}"
+        );
+        // The AS-4 judge of `jaus conform --as4` (and of `jaus as4-drive`, same default).
+        assert!(specific(jaus_conform::as4::As4Options::default().me));
     }
 
     #[test]

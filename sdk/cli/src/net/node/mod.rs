@@ -166,7 +166,8 @@ pub struct NodeFile {
 ///     id: 1.1.1                 # its AS-4 component (S.N.C), or S.255.255; default:
 ///                               #   every component at that address (Discovery finds them)
 ///     proxy_id: 2.1.200         # this node's AS-4 id as the vehicle's client; default
-///                               #   subsystem.node.200 (201, … for the next entries)
+///                               #   subsystem.node.200 (201, … 254 for the next
+///                               #   entries: no part 0 or 255)
 ///     instance: 1               # RA 3.3 instance of the components; default 1, 2, …
 ///     authority: 200            # with which AS-4 control is requested; default 200
 ///     services: [global_pose_sensor, velocity_state_sensor, global_waypoint_driver]
