@@ -496,9 +496,14 @@ fn service(
         let at = match triggers.iter().position(|x| x.variant == *k) {
             Some(at) => at,
             None => {
+                let carries_message = t
+                    .params
+                    .iter()
+                    .any(|(_, ty)| spec.message(&ty.rust).is_some());
                 let mut doc = vec![match &t.on {
-                    Some(on) if on != k => format!("`{on}` carrying [`{k}`]."),
-                    _ => format!("`{k}`."),
+                    Some(on) if on != k && carries_message => format!("`{on}` carrying [`{k}`]."),
+                    Some(on) => format!("`{on}`."),
+                    None => format!("`{k}`."),
                 }];
                 let more = match d.events.iter().find(|ev| ev.name == *k) {
                     Some(ev) => doc_lines(ev.description.as_deref()),
@@ -656,10 +661,7 @@ fn service(
         .map(|ev| EventCtx {
             name: ev.name.clone(),
             doc: {
-                let mut v = vec![format!(
-                    "Internal event `{}` of [`{}`](super::{}).",
-                    ev.name, d.name, d.name
-                )];
+                let mut v = vec![format!("Internal event `{}` of [`{}`].", ev.name, d.name)];
                 let more = doc_lines(ev.description.as_deref());
                 if !more.is_empty() {
                     v.push(String::new());

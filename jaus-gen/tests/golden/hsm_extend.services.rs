@@ -2,7 +2,7 @@
 use super::*;
 #[allow(unused_imports)]
 use ::jaus::hsm;
-/// Counter: trait [`Counter`], its triggers and state machines (hsm_extend.yaml:7).
+/// Counter: trait [`Counter`](counter::Counter), its triggers and state machines (hsm_extend.yaml:7).
 #[allow(clippy::module_inception)]
 pub mod counter {
     #[allow(unused_imports)]
@@ -14,10 +14,10 @@ pub mod counter {
     pub mod event {
         #[allow(unused_imports)]
         use super::*;
-        /// Internal event `Bump` of [`Counter`](super::Counter).
+        /// Internal event `Bump` of [`Counter`].
         #[derive(Debug, Clone, PartialEq)]
         pub struct Bump {}
-        /// Internal event `Reset` of [`Counter`](super::Counter).
+        /// Internal event `Reset` of [`Counter`].
         #[derive(Debug, Clone, PartialEq)]
         pub struct Reset {}
     }
@@ -128,7 +128,7 @@ pub mod counter {
         }
     }
 }
-/// Limited: trait [`Limited`], its triggers and state machines (hsm_extend.yaml:22).
+/// Limited: trait [`Limited`](limited::Limited), its triggers and state machines (hsm_extend.yaml:22).
 #[allow(clippy::module_inception)]
 pub mod limited {
     #[allow(unused_imports)]
@@ -140,7 +140,7 @@ pub mod limited {
     pub mod event {
         #[allow(unused_imports)]
         use super::*;
-        /// Internal event `Full` of [`Limited`](super::Limited).
+        /// Internal event `Full` of [`Limited`].
         #[derive(Debug, Clone, PartialEq)]
         pub struct Full {}
     }
@@ -162,7 +162,7 @@ pub mod limited {
         Bump {},
         /// `Full`.
         Full {},
-        /// `counter.Reset` carrying [`Reset`].
+        /// `counter.Reset`.
         Reset {},
     }
     impl Trigger {

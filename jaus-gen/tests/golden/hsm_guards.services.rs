@@ -2,7 +2,7 @@
 use super::*;
 #[allow(unused_imports)]
 use ::jaus::hsm;
-/// Throttle: trait [`Throttle`], its triggers and state machines (hsm_guards.yaml:10).
+/// Throttle: trait [`Throttle`](throttle::Throttle), its triggers and state machines (hsm_guards.yaml:10).
 #[allow(clippy::module_inception)]
 pub mod throttle {
     #[allow(unused_imports)]
@@ -14,7 +14,7 @@ pub mod throttle {
     pub mod event {
         #[allow(unused_imports)]
         use super::*;
-        /// Internal event `Received` of [`Throttle`](super::Throttle).
+        /// Internal event `Received` of [`Throttle`].
         #[derive(Debug, Clone, PartialEq)]
         pub struct Received {
             pub source: u32,

@@ -11,7 +11,7 @@ pub enum Arg<'a> {
     /// A parameter of type [`base::event::Receive`].
     BaseReceive(&'a base::event::Receive),
 }
-/// Base: trait [`Base`], its triggers and state machines (hsm_inherit.yaml:7).
+/// Base: trait [`Base`](base::Base), its triggers and state machines (hsm_inherit.yaml:7).
 #[allow(clippy::module_inception)]
 pub mod base {
     #[allow(unused_imports)]
@@ -23,7 +23,7 @@ pub mod base {
     pub mod event {
         #[allow(unused_imports)]
         use super::*;
-        /// Internal event `Receive` of [`Base`](super::Base).
+        /// Internal event `Receive` of [`Base`].
         #[derive(Debug, Clone, PartialEq)]
         pub struct Receive {
             pub source: u32,
@@ -140,7 +140,7 @@ pub mod base {
         }
     }
 }
-/// Lower: trait [`Lower`], its triggers and state machines (hsm_inherit.yaml:20).
+/// Lower: trait [`Lower`](lower::Lower), its triggers and state machines (hsm_inherit.yaml:20).
 #[allow(clippy::module_inception)]
 pub mod lower {
     #[allow(unused_imports)]
@@ -253,7 +253,7 @@ pub mod lower {
         }
     }
 }
-/// Upper: trait [`Upper`], its triggers and state machines (hsm_inherit.yaml:24).
+/// Upper: trait [`Upper`](upper::Upper), its triggers and state machines (hsm_inherit.yaml:24).
 #[allow(clippy::module_inception)]
 pub mod upper {
     #[allow(unused_imports)]
@@ -265,7 +265,7 @@ pub mod upper {
     pub mod event {
         #[allow(unused_imports)]
         use super::*;
-        /// Internal event `Tick` of [`Upper`](super::Upper).
+        /// Internal event `Tick` of [`Upper`].
         #[derive(Debug, Clone, PartialEq)]
         pub struct Tick {}
     }
@@ -412,7 +412,7 @@ pub mod upper {
         }
     }
 }
-/// Top: trait [`Top`], its triggers and state machines (hsm_inherit.yaml:38).
+/// Top: trait [`Top`](top::Top), its triggers and state machines (hsm_inherit.yaml:38).
 #[allow(clippy::module_inception)]
 pub mod top {
     #[allow(unused_imports)]

@@ -2,7 +2,7 @@
 use super::*;
 #[allow(unused_imports)]
 use ::jaus::hsm;
-/// Player: trait [`Player`], its triggers and state machines (hsm_kinds.yaml:6).
+/// Player: trait [`Player`](player::Player), its triggers and state machines (hsm_kinds.yaml:6).
 #[allow(clippy::module_inception)]
 pub mod player {
     #[allow(unused_imports)]
@@ -14,22 +14,22 @@ pub mod player {
     pub mod event {
         #[allow(unused_imports)]
         use super::*;
-        /// Internal event `Play` of [`Player`](super::Player).
+        /// Internal event `Play` of [`Player`].
         #[derive(Debug, Clone, PartialEq)]
         pub struct Play {}
-        /// Internal event `Pause` of [`Player`](super::Player).
+        /// Internal event `Pause` of [`Player`].
         #[derive(Debug, Clone, PartialEq)]
         pub struct Pause {}
-        /// Internal event `Resume` of [`Player`](super::Player).
+        /// Internal event `Resume` of [`Player`].
         #[derive(Debug, Clone, PartialEq)]
         pub struct Resume {}
-        /// Internal event `Resumed` of [`Player`](super::Player).
+        /// Internal event `Resumed` of [`Player`].
         #[derive(Debug, Clone, PartialEq)]
         pub struct Resumed {}
-        /// Internal event `Volume` of [`Player`](super::Player).
+        /// Internal event `Volume` of [`Player`].
         #[derive(Debug, Clone, PartialEq)]
         pub struct Volume {}
-        /// Internal event `Eject` of [`Player`](super::Player).
+        /// Internal event `Eject` of [`Player`].
         #[derive(Debug, Clone, PartialEq)]
         pub struct Eject {}
     }

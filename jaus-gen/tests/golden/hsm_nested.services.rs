@@ -2,7 +2,7 @@
 use super::*;
 #[allow(unused_imports)]
 use ::jaus::hsm;
-/// Door: trait [`Door`], its triggers and state machines (hsm_nested.yaml:5).
+/// Door: trait [`Door`](door::Door), its triggers and state machines (hsm_nested.yaml:5).
 #[allow(clippy::module_inception)]
 pub mod door {
     #[allow(unused_imports)]
@@ -14,12 +14,12 @@ pub mod door {
     pub mod event {
         #[allow(unused_imports)]
         use super::*;
-        /// Internal event `Push` of [`Door`](super::Door).
+        /// Internal event `Push` of [`Door`].
         ///
         /// Someone pushes the door.
         #[derive(Debug, Clone, PartialEq)]
         pub struct Push {}
-        /// Internal event `Turn` of [`Door`](super::Door).
+        /// Internal event `Turn` of [`Door`].
         ///
         /// Someone turns the key.
         #[derive(Debug, Clone, PartialEq)]

@@ -11,7 +11,7 @@ pub enum Arg<'a> {
     /// A parameter of type [`link::event::Delivered`].
     LinkDelivered(&'a link::event::Delivered),
 }
-/// Access: trait [`Access`], its triggers and state machines (access.yaml:5).
+/// Access: trait [`Access`](access::Access), its triggers and state machines (access.yaml:5).
 #[allow(clippy::module_inception)]
 pub mod access {
     #[allow(unused_imports)]
@@ -23,7 +23,7 @@ pub mod access {
     pub mod event {
         #[allow(unused_imports)]
         use super::*;
-        /// Internal event `Lapsed` of [`Access`](super::Access).
+        /// Internal event `Lapsed` of [`Access`].
         ///
         /// The controller did not renew its request in time.
         #[derive(Debug, Clone, PartialEq)]
@@ -409,7 +409,7 @@ pub mod access {
         }
     }
 }
-/// Link: trait [`Link`], its triggers and state machines (link.yaml:5).
+/// Link: trait [`Link`](link::Link), its triggers and state machines (link.yaml:5).
 #[allow(clippy::module_inception)]
 pub mod link {
     #[allow(unused_imports)]
@@ -421,7 +421,7 @@ pub mod link {
     pub mod event {
         #[allow(unused_imports)]
         use super::*;
-        /// Internal event `Delivered` of [`Link`](super::Link).
+        /// Internal event `Delivered` of [`Link`].
         ///
         /// A message came in.
         #[derive(Debug, Clone, PartialEq)]
