@@ -51,6 +51,11 @@ pub struct ConformArgs {
     /// the checks that need the list running; without it they are reported as not run.
     #[arg(long)]
     allow_motion: bool,
+    /// With --as4: end with the scenario's Shutdown (`as4.management.shutdown`), which
+    /// leaves the component shut down; without it the judge gives the component back
+    /// as it found it (`as4.control.release`).
+    #[arg(long)]
+    allow_shutdown: bool,
     /// With --as4: seconds to wait for the waypoint list to be driven to its end.
     #[arg(long, default_value_t = 60.0)]
     mission_timeout: f64,
@@ -157,6 +162,7 @@ fn conform_as4(
         wait: Duration::from_secs_f64(args.answer_wait.max(0.01)),
         settle: Duration::from_millis(args.settle_ms),
         allow_motion: args.allow_motion,
+        shutdown: args.allow_shutdown,
         mission_timeout: Duration::from_secs_f64(args.mission_timeout.max(0.0)),
         ..As4Options::default()
     };

@@ -58,6 +58,8 @@ pub enum Kind {
     ControlReport,
     /// A second requester at the same authority is not given control.
     ControlEqual,
+    /// A request below the component's own authority is refused.
+    ControlBelow,
     /// A requester at a higher authority takes control; the old controller is told.
     ControlPreempt,
     /// Release Component Control frees the component.

@@ -59,6 +59,12 @@ pub mod rules {
         source: "core rule (component control)",
         text: "While a component holds control, another requester at an authority no higher than the controller's is not given control.",
     };
+    /// Below the component's authority.
+    pub const CONTROL_BELOW: Rule = Rule {
+        id: "control.authority",
+        source: "Part 1 §4.3, core rule (component control)",
+        text: "A component hands control only to a requester whose authority is at least its own; a request at a lower authority is refused (Confirm Component Control, insufficient authority).",
+    };
     /// Preemption.
     pub const CONTROL_PREEMPT: Rule = Rule {
         id: "control.preempt",
@@ -230,6 +236,13 @@ pub fn plan(spec: &Spec, component: u8) -> Vec<Check> {
             CONTROL_EQUAL,
             Required,
             Kind::ControlEqual,
+        ),
+        check(
+            "control.authority_below",
+            "A request below the component's own authority is refused",
+            CONTROL_BELOW,
+            Required,
+            Kind::ControlBelow,
         ),
     ]);
     for s in [StateCommand::Standby, StateCommand::Resume] {
@@ -419,6 +432,7 @@ mod tests {
         let ids = ids(&gwd);
         for id in [
             "core.identification",
+            "control.authority_below",
             "control.preempt",
             "readback.SetComponentAuthority",
             "readback.SetTravelSpeed",

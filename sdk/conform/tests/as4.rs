@@ -59,7 +59,11 @@ fn the_whole_scenario_passes_against_a_vehicle_that_does_it_right() {
     assert_eq!(c.address, VEHICLE.to_string());
     assert_eq!(c.identification.as_deref(), Some("fake vehicle"));
     let ids: Vec<&str> = c.outcomes.iter().map(|o| o.check.id.as_str()).collect();
-    assert_eq!(ids, check_ids(), "every check, in the scenario's order");
+    assert_eq!(
+        ids,
+        check_ids(&with_motion()),
+        "every check, in the scenario's order"
+    );
     let not_passed: Vec<_> = c
         .outcomes
         .iter()
@@ -76,10 +80,11 @@ fn the_whole_scenario_passes_against_a_vehicle_that_does_it_right() {
     let (_, detail) = verdict(&run, "as4.discovery.periodic");
     let sent: u32 = detail.split(' ').next().unwrap().parse().unwrap();
     assert!(sent >= 2, "{detail}");
-    // Each check keeps its messages; Shutdown was last and obeyed.
+    // Each check keeps its messages; the judge gave control back last, leaving the
+    // vehicle in Standby as it found it (no Shutdown unless asked).
     assert!(c.outcomes.iter().all(|o| !o.evidence.is_empty()));
     let v = fake(&mut session);
-    assert_eq!(v.state(), jaus_as4::ComponentState::Shutdown);
+    assert_eq!(v.state(), jaus_as4::ComponentState::Standby);
     assert_eq!(v.seen.last().map(String::as_str), Some("QueryStatus"));
     let (x, y) = v.position();
     assert!((x - 3.0).abs() < 0.1 && (y - 0.0).abs() < 0.1, "{x}, {y}");

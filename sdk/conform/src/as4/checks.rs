@@ -1,6 +1,6 @@
 //! The scenario's checks before and after the sensors and the waypoints: discovery,
 //! services, access control, management, the periodic Query Identification, control
-//! kept, and Shutdown last.
+//! kept, and last the component given back as found (or Shutdown, when asked).
 
 use std::time::Duration;
 
@@ -186,6 +186,9 @@ impl Scenario<'_> {
             Ok(Message::ReportControl(r)) => {
                 let c = &r.controller;
                 let id = As4Id::new(c.subsystem_id, c.node_id, c.component_id);
+                if id != As4Id::default() && id != self.j.me {
+                    self.found_controller = Some(id);
+                }
                 if id == As4Id::default() {
                     pass("nobody in control")
                 } else {
@@ -263,7 +266,10 @@ impl Scenario<'_> {
     /// `as4.management.status`.
     pub(super) fn status_check(&mut self) -> Found {
         match self.j.status() {
-            Ok(s) => pass(format!("{s:?}")),
+            Ok(s) => {
+                self.found_state = Some(s);
+                pass(format!("{s:?}"))
+            }
             Err(e) => fail(e),
         }
     }
@@ -385,11 +391,9 @@ impl Scenario<'_> {
         found
     }
 
-    /// `as4.management.shutdown`, last: Report Status Shutdown, or silence.
+    /// `as4.management.shutdown`, last, run only when [`super::As4Options::shutdown`]
+    /// asks for it: Report Status Shutdown, or silence.
     pub(super) fn shutdown(&mut self) -> Found {
-        if !self.j.opts.shutdown {
-            return self.release("not run: Shutdown left out by the options");
-        }
         if let Some(f) = self.needs_control() {
             return f;
         }
@@ -408,7 +412,91 @@ impl Scenario<'_> {
         }
     }
 
-    /// Gives control back (the run ends without Shutdown); `why` is the detail.
+    /// `as4.control.release`, last unless Shutdown is asked for: the component is put
+    /// back in the state it was found in (Standby, when it was found in Standby and is
+    /// Ready now), then Release Control must end the judge's control (Reject Control,
+    /// Control Released; Report Control no longer naming the judge). The detail says
+    /// what the judge could not restore.
+    pub(super) fn release_control(&mut self) -> Found {
+        self.j.keep_control(None);
+        if let Some(f) = self.needs_control() {
+            return f;
+        }
+        let mut unrestored = Vec::new();
+        match (self.found_state, self.j.status()) {
+            (Some(ComponentState::Standby), Ok(ComponentState::Ready)) => {
+                self.j.command(Standby {}.into());
+            }
+            (Some(found), Ok(now)) if found != now => unrestored.push(format!(
+                "found in {found:?}, {now:?} before the release (only Ready → Standby is restored)"
+            )),
+            (_, Err(e)) => unrestored.push(format!("the state before the release: {e}")),
+            _ => {}
+        }
+        self.j.send(&ReleaseControl {}.into());
+        let peer = self.j.peer;
+        let answer = self.j.wait_for(self.j.opts.wait, Some(peer), &[0x0010]);
+        self.controlled = false;
+        let answer = match answer.map(|a| {
+            jaus_as4::Message::decode(jaus::CommandCode(a.message.message_id), &a.message.body)
+        }) {
+            Some(Ok(Message::RejectControl(r))) => format!("Reject Control {:?}", r.response_code),
+            Some(Ok(m)) => format!("answered by {}", m.name()),
+            Some(Err(e)) => format!("the answer does not decode: {e}"),
+            None => format!(
+                "no Reject Control within {:.1} s",
+                self.j.opts.wait.as_secs_f64()
+            ),
+        };
+        let holder = match self.j.ask(QueryControl {}.into()) {
+            Ok(Message::ReportControl(r)) => {
+                let c = &r.controller;
+                Some(As4Id::new(c.subsystem_id, c.node_id, c.component_id))
+            }
+            _ => None,
+        };
+        match (self.found_state, self.j.status()) {
+            (Some(found), Ok(now)) if found != now => {
+                unrestored.push(format!("found in {found:?}, left in {now:?}"));
+            }
+            (_, Err(e)) => unrestored.push(format!("the state left in: {e}")),
+            _ => {}
+        }
+        if let Some(other) = self.found_controller {
+            unrestored.push(format!(
+                "{other} held control when the judge came: control cannot be handed back"
+            ));
+        }
+        if self.pose_set {
+            unrestored.push("the local pose set by Set Local Pose".into());
+        }
+        if self.listed {
+            unrestored.push("the waypoints loaded by Set Element".into());
+        }
+        let restored = if unrestored.is_empty() {
+            "left as found".to_string()
+        } else {
+            format!("not restored: {}", unrestored.join("; "))
+        };
+        let me = self.j.me;
+        match holder {
+            Some(id) if id == me => fail(format!(
+                "Release Control: {answer}, but Report Control still names the judge {me}; {restored}"
+            )),
+            Some(id) if id == As4Id::default() => pass(format!(
+                "Release Control: {answer}; Report Control names nobody; {restored}"
+            )),
+            Some(id) => pass(format!(
+                "Release Control: {answer}; Report Control names {id}, not the judge; {restored}"
+            )),
+            None => inconclusive(format!(
+                "Release Control: {answer}; Query Control not answered: the release cannot be seen; {restored}"
+            )),
+        }
+    }
+
+    /// Gives control back after a Shutdown that was not carried out; `why` is the
+    /// detail.
     fn release(&mut self, why: &str) -> Found {
         self.j.keep_control(None);
         if self.controlled {

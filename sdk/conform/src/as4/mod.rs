@@ -4,8 +4,11 @@
 //! The judge's client (42.1.1 by default) finds the vehicle by Query Identification,
 //! reads its services, takes control, drives its Management states, reads its velocity
 //! state and local pose, loads a short list of local waypoints, has it driven (only
-//! with [`As4Options::allow_motion`]) and shuts it down, asking Query Identification
-//! every 5 s all along. Each step is a [`Check`] with an id, the rule it cites and its
+//! with [`As4Options::allow_motion`]) and, last, gives it back as it found it
+//! (Standby, then Release Control), asking Query Identification every 5 s all along.
+//! It shuts the component down instead only when asked ([`As4Options::shutdown`]):
+//! Shutdown cannot be undone, the component then refuses control until its node
+//! restarts. Each step is a [`Check`] with an id, the rule it cites and its
 //! evidence (every message sent and received), reported through the same summary,
 //! JSON, JUnit and HTML as the RA 3.3 checks ([`crate::report`]).
 //!
@@ -76,13 +79,16 @@ pub struct As4Options {
     pub pose: (f64, f64, f64),
     /// How far the reported position may be from the one set (m).
     pub pose_tolerance: f64,
-    /// Send Shutdown at the end (the scenario's last step).
+    /// Send Shutdown at the end (the scenario's last step, `as4.management.shutdown`).
+    /// Off by default: Shutdown cannot be undone, so the run ends with
+    /// `as4.control.release` instead, leaving the component as it was found.
     pub shutdown: bool,
 }
 
 impl Default for As4Options {
     /// The IOP challenge's: judge 42.1.1, Query Identification every 5 s, 1 s for
-    /// answers, 200 ms to settle, 1 m/s, a minute for the list, no motion unless asked.
+    /// answers, 200 ms to settle, 1 m/s, a minute for the list, no motion and no
+    /// Shutdown unless asked.
     fn default() -> Self {
         As4Options {
             me: As4Id::new(42, 1, 1),
@@ -98,7 +104,7 @@ impl Default for As4Options {
             speed: 1.0,
             pose: (3.0, -2.0, 0.5),
             pose_tolerance: 0.5,
-            shutdown: true,
+            shutdown: false,
         }
     }
 }
@@ -144,6 +150,12 @@ pub mod rules {
         id: "as4.access-control",
         source: "AS5710A Access Control",
         text: "Query Control is answered; Request Control while nobody else holds control is confirmed with Control Accepted, Report Control then names the requester, and control stays with it while it renews the request.",
+    };
+    /// Release of control, and the judge leaving the component as found.
+    pub const RELEASE: Rule = Rule {
+        id: "as4.release",
+        source: "AS5710A Access Control; jaus conform (leave the target as found)",
+        text: "Release Control from the client in control ends its control: the component answers with Reject Control (Control Released) and Report Control no longer names that client. The judge first puts the component back in the state it found it in, and says what it could not restore.",
     };
     /// Management.
     pub const MANAGEMENT: Rule = Rule {
@@ -203,6 +215,7 @@ const CHECKS: &[(&str, &str, Rule, Level)] = {
         ("as4.discovery.periodic", "Query Identification every 5 s is answered each time", PERIODIC, Required),
         ("as4.control.kept", "Control stays with the judge while it renews its request", ACCESS, Advisory),
         ("as4.management.shutdown", "Shutdown takes the component to Shutdown", MANAGEMENT, Required),
+        ("as4.control.release", "Release Control ends the judge's control; the component is left as found", RELEASE, Required),
     ]
 };
 
@@ -223,9 +236,20 @@ fn check(id: &str) -> Check {
     }
 }
 
-/// The ids of the scenario's checks, in the order they are reported.
-pub fn check_ids() -> Vec<&'static str> {
-    CHECKS.iter().map(|c| c.0).collect()
+/// The ids of the checks a run with `opts` reports, in order: the last is
+/// `as4.management.shutdown` when [`As4Options::shutdown`] asks for it, else
+/// `as4.control.release`.
+pub fn check_ids(opts: &As4Options) -> Vec<&'static str> {
+    let left_out = if opts.shutdown {
+        "as4.control.release"
+    } else {
+        "as4.management.shutdown"
+    };
+    CHECKS
+        .iter()
+        .map(|c| c.0)
+        .filter(|id| *id != left_out)
+        .collect()
 }
 
 /// A verdict and why.
@@ -242,6 +266,10 @@ pub(super) struct Scenario<'a> {
     known: bool,
     /// Whether the judge holds control.
     controlled: bool,
+    /// Who held control when the judge first asked (`as4.control.query`), if anybody.
+    found_controller: Option<As4Id>,
+    /// The state first read (`as4.management.status`): the one the run restores.
+    found_state: Option<jaus_as4::messages::ComponentState>,
     /// The position set by Set Local Pose, once read back.
     pose_set: bool,
     /// The waypoints loaded: UID, x, y.
@@ -301,6 +329,8 @@ pub fn run_as4(session: &mut dyn As4Session, opts: &As4Options) -> RunReport {
         identification: None,
         known: opts.target.is_some(),
         controlled: false,
+        found_controller: None,
+        found_state: None,
         pose_set: false,
         waypoints: Vec::new(),
         listed: false,
@@ -322,7 +352,11 @@ pub fn run_as4(session: &mut dyn As4Session, opts: &As4Options) -> RunReport {
     s.mission();
     s.step("as4.discovery.periodic", Scenario::periodic);
     s.step("as4.control.kept", Scenario::control_kept);
-    s.step("as4.management.shutdown", Scenario::shutdown);
+    if opts.shutdown {
+        s.step("as4.management.shutdown", Scenario::shutdown);
+    } else {
+        s.step("as4.control.release", Scenario::release_control);
+    }
     let peer = s.j.peer;
     let component = ComponentReport {
         address: if s.known {

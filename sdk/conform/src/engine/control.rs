@@ -1,6 +1,7 @@
-//! Component control: grant, report, equal authority, preemption, release.
+//! Component control: grant, report, equal authority, a request below the component's
+//! authority, preemption, release.
 
-use jaus::messages::{Message, ReleaseComponentControl};
+use jaus::messages::{Message, QueryComponentAuthority, ReleaseComponentControl};
 use jaus::Address;
 
 use super::talk::ControlAnswer;
@@ -175,5 +176,75 @@ impl Engine<'_> {
                 "Query Component Control not answered: the release cannot be seen".into(),
             ),
         }
+    }
+
+    /// Asks for control below the component's own authority (read afresh with Query
+    /// Component Authority) while nobody holds it: the request must be refused.
+    pub(super) fn control_below(&mut self) -> Found {
+        let own = match self.ask(self.voices.outsider, QueryComponentAuthority {}.into()) {
+            Some(Message::ReportComponentAuthority(r)) => r.authority_code,
+            _ => {
+                return (
+                    Verdict::Inconclusive,
+                    format!(
+                        "no answer to Query Component Authority within {:?}: the component's authority is unknown",
+                        self.opts.wait
+                    ),
+                )
+            }
+        };
+        if own == 0 {
+            return (
+                Verdict::Inconclusive,
+                "the component's authority is 0: no lower authority exists".into(),
+            );
+        }
+        // Nobody in control, so that only the authority decides (the tester's
+        // controller may still hold control from an earlier check).
+        let c = self.voices.controller;
+        self.send(c, &ReleaseComponentControl {}.into(), false);
+        self.drain(self.opts.settle);
+        if let Some(held) = self.held_by_another() {
+            return (Verdict::Inconclusive, held);
+        }
+        let r = self.voices.rival;
+        let below = own - 1;
+        let answer = self.acquire(r, below);
+        let holder = self.controller();
+        let found = match (answer, holder) {
+            (Some(ControlAnswer::Accepted), _) => (
+                Verdict::Fail,
+                format!(
+                    "{r} at authority {below}, below the component's own {own}, was given control (Control Accepted)"
+                ),
+            ),
+            (_, Some(Some((a, auth)))) if a == r => (
+                Verdict::Fail,
+                format!(
+                    "{r} at authority {below}, below the component's own {own}, is named in control (authority {auth})"
+                ),
+            ),
+            (Some(ControlAnswer::Refused(why)), _) => (
+                Verdict::Pass,
+                format!("{r} at authority {below} (the component's is {own}) refused: {why}"),
+            ),
+            (None, Some(_)) => (
+                Verdict::Pass,
+                format!(
+                    "{r} at authority {below} (the component's is {own}) got no answer and is not named in control"
+                ),
+            ),
+            (None, None) => (
+                Verdict::Inconclusive,
+                format!(
+                    "no answer to {r}'s Request Component Control at authority {below} nor to Query Component Control: whether it was refused cannot be seen"
+                ),
+            ),
+        };
+        if found.0 == Verdict::Fail {
+            self.send(r, &ReleaseComponentControl {}.into(), false);
+            self.drain(self.opts.settle);
+        }
+        found
     }
 }

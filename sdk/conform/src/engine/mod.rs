@@ -164,6 +164,7 @@ impl<'a> Engine<'a> {
             Kind::ControlGrant => self.control_grant(),
             Kind::ControlReport => self.control_report(),
             Kind::ControlEqual => self.control_equal(),
+            Kind::ControlBelow => self.control_below(),
             Kind::ControlPreempt => self.control_preempt(),
             Kind::ControlRelease => self.control_release(),
             Kind::StateFromController(s) => self.state_from_controller(*s),

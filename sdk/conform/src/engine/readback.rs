@@ -250,37 +250,29 @@ impl Engine<'_> {
 
     /// What both read-back checks start with: the component in Ready under the
     /// tester's control, the query, and the trial command built from what it reads now.
-    /// `Err` is the verdict when that fails; `silent` is the verdict when the query is
-    /// not answered.
-    fn setup(
-        &mut self,
-        command: &str,
-        query: &str,
-        silent: Verdict,
-    ) -> Result<(DynMessage, Trial), Found> {
+    /// `Err` is the verdict when that fails: inconclusive, the query not answered
+    /// included (the read-back query is advisory: without its answer nothing can be
+    /// compared, which `query.<name>` reports on its own).
+    fn setup(&mut self, command: &str, query: &str) -> Result<(DynMessage, Trial), Found> {
         // Commands are carried out in Ready (a driver in Standby may refuse them).
         self.prepare(Some(ComponentState::Ready))
             .map_err(|e| (Verdict::Inconclusive, e))?;
         let q = self.query(query).map_err(|e| (Verdict::Inconclusive, e))?;
         match self.trial(command, &q) {
             Ok(Some(t)) => Ok((q, t)),
-            Ok(None) if silent == Verdict::Fail => Err((
-                silent,
+            Ok(None) => Err((
+                Verdict::Inconclusive,
                 format!(
-                    "no answer to {query} within {:?}: nothing is read back",
+                    "the read-back query {query} was not answered (within {:?}): {command} was not sent, nothing can be read back",
                     self.opts.wait
                 ),
-            )),
-            Ok(None) => Err((
-                silent,
-                format!("no answer to {query}: the value cannot be read back"),
             )),
             Err(e) => Err((Verdict::Inconclusive, e)),
         }
     }
 
     pub(super) fn readback(&mut self, command: &str, query: &str) -> Found {
-        let (q, t) = match self.setup(command, query, Verdict::Fail) {
+        let (q, t) = match self.setup(command, query) {
             Ok(x) => x,
             Err(found) => return found,
         };
@@ -325,43 +317,80 @@ impl Engine<'_> {
         found
     }
 
+    /// The command from the outsider must leave the value as it was; that counts only
+    /// when the same command from the controller then changes it (a component that
+    /// ignores the command from everyone proves nothing: inconclusive).
     pub(super) fn outsider_command(&mut self, command: &str, query: &str) -> Found {
-        let (q, t) = match self.setup(command, query, Verdict::Inconclusive) {
+        let (q, t) = match self.setup(command, query) {
             Ok(x) => x,
             Err(found) => return found,
         };
-        let o = self.voices.outsider;
+        let (o, c) = (self.voices.outsider, self.voices.controller);
         let ack = self.command_def(o, &t.moved);
         self.drain(self.opts.settle);
+        let after = match self.read(&q, &t.field) {
+            None => {
+                return (
+                    Verdict::Inconclusive,
+                    format!("no answer to {query} after {command} from {o}"),
+                )
+            }
+            Some(Some(v)) if (v - t.sent).abs() <= t.count * 1.01 + 1e-12 => {
+                if let Some(r) = &t.restore {
+                    self.command_def(c, r);
+                }
+                return (
+                    Verdict::Fail,
+                    format!(
+                        "{} changed to {v} (was {}) by {command} from {o}, which is not in control ({})",
+                        t.field,
+                        shown(t.before),
+                        ack_text(ack)
+                    ),
+                );
+            }
+            Some(v) => v,
+        };
+        // The same command from the controller: the comparison the refusal needs.
+        let own = self.command_def(c, &t.moved);
+        self.drain(self.opts.settle);
         let found = match self.read(&q, &t.field) {
-            None => (
-                Verdict::Inconclusive,
-                format!("no answer to {query} after {command} from {o}"),
-            ),
             Some(Some(v)) if (v - t.sent).abs() <= t.count * 1.01 + 1e-12 => (
-                Verdict::Fail,
+                Verdict::Pass,
                 format!(
-                    "{} changed to {v} (was {}) by {command} from {o}, which is not in control ({})",
+                    "{} = {} after {command} from {o} ({} sent; {}); the same from the controller {c} set it to {v} ({})",
                     t.field,
-                    shown(t.before),
-                    ack_text(ack)
+                    shown(after),
+                    t.sent,
+                    ack_text(ack),
+                    ack_text(own)
                 ),
             ),
             Some(v) => (
-                Verdict::Pass,
+                Verdict::Inconclusive,
                 format!(
-                    "{} = {} after {command} from {o} ({} sent; {})",
+                    "{} = {} after {command} from {o} ({}); the controller's own {command} had no effect either: nothing to compare ({} = {} after it, {} sent; {})",
+                    t.field,
+                    shown(after),
+                    ack_text(ack),
                     t.field,
                     shown(v),
                     t.sent,
+                    ack_text(own)
+                ),
+            ),
+            None => (
+                Verdict::Inconclusive,
+                format!(
+                    "{} = {} after {command} from {o} ({}); no answer to {query} after the controller's own {command}: nothing to compare",
+                    t.field,
+                    shown(after),
                     ack_text(ack)
                 ),
             ),
         };
-        if found.0 == Verdict::Fail {
-            if let Some(r) = &t.restore {
-                self.command_def(self.voices.controller, r);
-            }
+        if let Some(r) = &t.restore {
+            self.command_def(c, r);
         }
         found
     }

@@ -63,6 +63,12 @@ impl Engine<'_> {
         }
     }
 
+    /// The command from the outsider must leave the state as it was; that counts only
+    /// when the same command from the controller then changes it (a component that
+    /// ignores the command from everyone proves nothing: inconclusive). Shutdown is
+    /// not sent by the controller (it cannot be undone): Standby from the controller
+    /// stands in for it, showing that the component obeys its controller's state
+    /// commands, and Resume brings it back.
     pub(super) fn state_from_outsider(&mut self, s: StateCommand) -> Found {
         let before = match s {
             StateCommand::Resume => ComponentState::Standby,
@@ -75,14 +81,14 @@ impl Engine<'_> {
         let ack = self.command(o, &message(s));
         self.drain(self.opts.settle);
         match self.status() {
-            Some(now) if now == before => (
-                Verdict::Pass,
-                format!(
+            Some(now) if now == before => {
+                let refused = format!(
                     "still {now:?} after {} from {o}; {}",
                     s.name(),
                     ack_text(ack)
-                ),
-            ),
+                );
+                self.compare_with_controller(s, before, refused)
+            }
             Some(now) => (
                 Verdict::Fail,
                 format!(
@@ -94,6 +100,61 @@ impl Engine<'_> {
             None => (
                 Verdict::Fail,
                 format!("no status after {} from {o}", s.name()),
+            ),
+        }
+    }
+
+    /// After the outsider's `s` was refused in state `before` (`refused` says how),
+    /// sends the same command from the controller (Standby for Shutdown): a pass when it
+    /// changes the state, inconclusive when it does not.
+    fn compare_with_controller(
+        &mut self,
+        s: StateCommand,
+        before: ComponentState,
+        refused: String,
+    ) -> Found {
+        let c = self.voices.controller;
+        let sent = match s {
+            StateCommand::Shutdown => StateCommand::Standby,
+            other => other,
+        };
+        let ack = self.command(c, &message(sent));
+        self.drain(self.opts.settle);
+        let now = self.status();
+        if s == StateCommand::Shutdown {
+            // Back to Ready for the checks after this one (and the teardown).
+            self.set_state(c, ComponentState::Ready);
+        }
+        match now {
+            Some(now) if now != before => {
+                let stand_in = if s == StateCommand::Shutdown {
+                    " (Shutdown itself is not sent: it cannot be undone)"
+                } else {
+                    ""
+                };
+                (
+                    Verdict::Pass,
+                    format!(
+                        "{refused}; {} from the controller {c} took it {before:?} → {now:?}{stand_in} ({})",
+                        sent.name(),
+                        ack_text(ack)
+                    ),
+                )
+            }
+            Some(now) => (
+                Verdict::Inconclusive,
+                format!(
+                    "{refused}; the controller's own {} had no effect either: nothing to compare (still {now:?}; {})",
+                    sent.name(),
+                    ack_text(ack)
+                ),
+            ),
+            None => (
+                Verdict::Inconclusive,
+                format!(
+                    "{refused}; no status after the controller's own {}: nothing to compare",
+                    sent.name()
+                ),
             ),
         }
     }
