@@ -4,18 +4,23 @@
 //! decides the answers (and messages to others, such as the Reject Control of a
 //! preempted controller) as values ([`Outgoing`]).
 //!
-//! Each service's behaviour is documented in its module: [`access`], [`management`],
-//! [`events`], [`time`], [`liveness`], [`discovery`], [`lists`]. What needs control:
+//! Transport, Events, Access Control and Management are decided by their generated state
+//! machine (`defs/core_services.yaml`, run through [`machine`]): who gets control, what
+//! Resume, Shutdown, Reset or an emergency do in each state, what an event request gets.
+//! Time, Liveness, Discovery and the List Manager answer from their modules ([`time`],
+//! [`liveness`], [`discovery`], [`lists`]); [`access`], [`management`] and [`events`]
+//! keep the data the machine's guards read and its actions change. What needs control:
 //!
 //! | message | from | in state |
 //! |---|---|---|
-//! | Request Control, Release Control, Set/Clear Emergency, Create/Update/Cancel Event, Register Services, every query | anyone | any |
-//! | Set Authority, Set Time, Set Element, Delete Element, Shutdown, Reset, Standby, Resume | the controller | any (Management's own rules apply) |
-//! | a service's command (code below 0x2000) | the controller | Ready, unless the service says otherwise ([`Service::needs_ready`](crate::service::Service::needs_ready)) |
+//! | Request Control, Release Control, Set/Clear Emergency, Create/Update/Cancel Event, Register Services, every query | anyone | any (the machine's rules apply) |
+//! | Set Authority, Shutdown, Reset, Standby, Resume | the controller | as the machine says |
+//! | Set Time, Set Element, Delete Element | the controller | any |
+//! | a message of another service that needs control by the definitions ([`Service::needs_control`](crate::service::Service::needs_control): `is_command`, whatever the code) | the controller | Ready, unless the service says otherwise ([`Service::needs_ready`](crate::service::Service::needs_ready)) |
 //!
 //! Create and Update Event need the component's other services (their query may be a
-//! service's), so [`As4Component`](crate::component::As4Component) handles them with
-//! [`Core::events_mut`]; everything else of the Core is [`Core::handle`].
+//! service's): [`As4Component`](crate::component::As4Component) answers the query first and
+//! hands [`Core::handle`] the outcome.
 
 pub mod access;
 pub mod discovery;
