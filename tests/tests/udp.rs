@@ -954,3 +954,103 @@ fn nodes_on_two_hosts_discover_each_other_by_multicast() {
     .unwrap();
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// AS-4 first contact as the JAUS Tool Set's runtime makes it (issue 47 item 1): a
+/// Request Control for an id it has not heard from, sent only to its group
+/// 239.255.0.1:3794 with an acknowledgement asked and broadcast 2, byte for byte as
+/// Junior sends it. A node with `as4: { multicast: 239.255.0.1 }` on another host hears
+/// it and answers the sender directly (Confirm Control), and sends nothing to the group.
+#[test]
+fn as4_first_contact_on_the_junior_group_is_answered_directly() {
+    let tag = format!("ja{}", std::process::id() % 100_000);
+    let Some(hosts) = Hosts::pair(&tag) else {
+        eprintln!("skipping: network namespaces need root and iproute2 (`ip netns add`)");
+        return;
+    };
+    if Command::new("python3").arg("--version").output().is_err() {
+        eprintln!("skipping: python3 sends the datagram from the other host");
+        return;
+    }
+    let dir = std::env::temp_dir().join(format!("jaus-udp-as4mc-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let cfg = dir.join("node.yaml");
+    std::fs::write(
+        &cfg,
+        "subsystem: 1\nnode: 1\nbind: 0.0.0.0:3794\nhost: [vehicle]\nas4: { subsystem: 126, node: 1, component: 11, multicast: 239.255.0.1 }\n",
+    )
+    .unwrap();
+    let mut child = Command::new("ip")
+        .args(["netns", "exec", &hosts.names[0]])
+        .arg(jaus_bin())
+        .args(["node", "--config"])
+        .arg(&cfg)
+        .args(["--seconds", "15"])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::null())
+        .spawn()
+        .expect("start jaus node in a namespace");
+    let out = child.stdout.take().unwrap();
+    let _node = Running(child);
+    let (tx, rx) = mpsc::channel();
+    std::thread::spawn(move || {
+        for line in BufReader::new(out).lines().map_while(Result::ok) {
+            if tx.send(line).is_err() {
+                break;
+            }
+        }
+    });
+    wait_for(
+        &rx,
+        &["AS-4 first contact: listening on group 239.255.0.1"],
+        Duration::from_secs(30),
+    )
+    .unwrap();
+    // From the other host: the datagram to the group, then what comes back (to the
+    // sender, and to the group, which a second socket listens to).
+    let script = r#"
+import socket, struct, time
+g = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
+g.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+g.bind(("239.255.0.1", 3794))
+g.setsockopt(socket.IPPROTO_IP, socket.IP_ADD_MEMBERSHIP, struct.pack("4s4s", socket.inet_aton("239.255.0.1"), socket.inet_aton("0.0.0.0")))
+g.settimeout(0.05)
+s = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
+s.bind(("10.79.0.2", 0))
+s.settimeout(0.05)
+s.sendto(bytes.fromhex("02001100190b017e0014017e000d00c80100"), ("239.255.0.1", 3794))
+end = time.time() + 3
+while time.time() < end:
+    for sock, what in ((s, "reply"), (g, "group")):
+        try:
+            data, addr = sock.recvfrom(65536)
+            if what == "group" and addr[0] == "10.79.0.2":
+                continue
+            print(what, addr[0], data.hex(), flush=True)
+        except socket.timeout:
+            pass
+"#;
+    let py = Command::new("ip")
+        .args(["netns", "exec", &hosts.names[1], "python3", "-c", script])
+        .output()
+        .expect("run python3 in the other namespace");
+    let text = String::from_utf8_lossy(&py.stdout);
+    assert!(
+        py.status.success(),
+        "{}",
+        String::from_utf8_lossy(&py.stderr)
+    );
+    let replies: Vec<&str> = text
+        .lines()
+        .filter(|l| l.starts_with("reply 10.79.0.1 "))
+        .collect();
+    // Confirm Control (0x000F) with Control Accepted (0) to 126.1.20, from 126.1.11.
+    assert!(
+        replies.iter().any(|l| l.contains("0f0000")),
+        "no Confirm Control among the answers: {text}"
+    );
+    assert!(
+        !text.lines().any(|l| l.starts_with("group ")),
+        "the node sent to the group: {text}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -230,6 +230,8 @@ pub struct FrameFile {
 ///   present: 1          # the RA 3.3 subsystem presented; default: this node's subsystem
 ///   gateway_id: 60      # the gateway's own RA 3.3 component id on this node; default 60
 ///   authority: 200      # its authority when it takes RA 3.3 control; default 200
+///   multicast: 239.255.0.1  # hear AS-4 first contact on this group (the JAUS Tool Set's);
+///                           # needs bind 0.0.0.0; nothing is ever sent to it
 /// ```
 #[derive(Debug, Clone, Default, serde::Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -255,6 +257,13 @@ pub struct As4File {
     /// Its authority when it requests RA 3.3 control of the drivers (default 200).
     #[serde(default)]
     pub authority: Option<u8>,
+    /// A multicast group to hear AS-4 first contact on: the JAUS Tool Set's runtime
+    /// sends a message for an id it has not heard from only to its group, 239.255.0.1 on
+    /// its port. The node joins it on its socket (which must be bound to 0.0.0.0 to hear
+    /// a group) and answers the sender directly; it never sends to the group, RA 3.3
+    /// traffic included.
+    #[serde(default)]
+    pub multicast: Option<std::net::Ipv4Addr>,
 }
 
 /// `io:` of a node file: how the node waits for and reads datagrams.

@@ -150,6 +150,15 @@ pub fn node(
             m.ttl.unwrap_or(32)
         );
     }
+    if let Some(group) = file.as4.as_ref().and_then(|a| a.multicast) {
+        join_as4_group(&socket, local, group)
+            .map_err(|e| format!("{}: as4.multicast: {e}", config.display()))?;
+        let _ = writeln!(
+            out,
+            "AS-4 first contact: listening on group {group}:{} (nothing is sent to it)",
+            local.port()
+        );
+    }
     let mut writer = match capture {
         Some(p) => Some(
             crate::capture::CaptureWriter::create(p)
@@ -342,4 +351,48 @@ pub fn tree_json(tree: &SystemTree) -> serde_json::Value {
         })
         .collect();
     serde_json::json!({ "subsystems": subsystems })
+}
+
+/// Joins the AS-4 first-contact `group` on the node's socket bound at `local`: only a
+/// socket bound to 0.0.0.0 hears a group's datagrams, so any other bind is an error
+/// naming the fix. Multicast loop off: the node never sends to the group.
+fn join_as4_group(
+    socket: &std::net::UdpSocket,
+    local: SocketAddr,
+    group: std::net::Ipv4Addr,
+) -> Result<(), String> {
+    if !group.is_multicast() {
+        return Err(format!(
+            "{group} is not a multicast address (the JAUS Tool Set's group is 239.255.0.1)"
+        ));
+    }
+    if !local.ip().is_unspecified() {
+        return Err(format!(
+            "the node is bound to {local}, which does not receive datagrams sent to {group}: bind 0.0.0.0:{} to hear the group",
+            local.port()
+        ));
+    }
+    socket
+        .join_multicast_v4(&group, &std::net::Ipv4Addr::UNSPECIFIED)
+        .map_err(|e| format!("joining {group}: {e}"))?;
+    socket
+        .set_multicast_loop_v4(false)
+        .map_err(|e| format!("{group}: {e}"))
+}
+
+#[cfg(test)]
+mod as4_group_tests {
+    use super::join_as4_group;
+    use std::net::{Ipv4Addr, SocketAddr, UdpSocket};
+
+    #[test]
+    fn a_node_bound_to_one_address_is_told_to_bind_all_and_a_unicast_group_is_refused() {
+        let s = UdpSocket::bind("127.0.0.1:0").unwrap();
+        let local = s.local_addr().unwrap();
+        let e = join_as4_group(&s, local, Ipv4Addr::new(239, 255, 0, 1)).unwrap_err();
+        assert!(e.contains("bind 0.0.0.0:"), "{e}");
+        let any: SocketAddr = "0.0.0.0:0".parse().unwrap();
+        let e = join_as4_group(&s, any, Ipv4Addr::new(10, 0, 0, 1)).unwrap_err();
+        assert!(e.contains("not a multicast address"), "{e}");
+    }
 }
