@@ -1054,3 +1054,73 @@ while time.time() < end:
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// What the AS-4 side of a node received is counted where an operator looks (issue 47
+/// item 6): at the end of `jaus node` with `as4:`, an `as4 stats:` line beside the RA 3.3
+/// one, here after one malformed AS5669A datagram and one good query.
+#[test]
+fn the_as4_side_s_counters_are_printed_when_the_node_stops() {
+    let port = std::net::UdpSocket::bind("127.0.0.1:0")
+        .unwrap()
+        .local_addr()
+        .unwrap()
+        .port();
+    let dir = std::env::temp_dir().join(format!("jaus-udp-as4stats-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let cfg = dir.join("node.yaml");
+    std::fs::write(
+        &cfg,
+        format!("subsystem: 3\nnode: 1\nbind: 127.0.0.1:{port}\nhost: [vehicle]\nas4: {{ component: 7 }}\n"),
+    )
+    .unwrap();
+    let child = Command::new(jaus_bin())
+        .args(["node", "--config"])
+        .arg(&cfg)
+        .args(["--seconds", "3"])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::null())
+        .spawn()
+        .expect("start jaus node");
+    std::thread::sleep(Duration::from_millis(800));
+    let s = std::net::UdpSocket::bind("127.0.0.1:0").unwrap();
+    let to = ("127.0.0.1", port);
+    // Version 2 (AS5669A), then a header cut short.
+    s.send_to(&[0x02, 0x00, 0x11], to).unwrap();
+    // Query Status (0x2002) from 42.1.1 to 3.1.7.
+    let mut stack = jaus::net::as5669a::As4Stack::new(jaus::net::as5669a::As4Config::default());
+    let peer: std::net::SocketAddr = format!("127.0.0.1:{port}").parse().unwrap();
+    stack.send(
+        peer,
+        &[jaus::net::as5669a::As4Message::new(
+            0x2002,
+            jaus::net::as5669a::As4Id::new(3, 1, 7),
+            jaus::net::as5669a::As4Id::new(42, 1, 1),
+            Vec::new(),
+        )],
+    );
+    while let Some(d) = stack.poll_transmit() {
+        s.send_to(&d.bytes, d.to).unwrap();
+    }
+    let out = child
+        .wait_with_output()
+        .expect("the node exits at its seconds");
+    let text = String::from_utf8_lossy(&out.stdout);
+    let line = text
+        .lines()
+        .find(|l| l.starts_with("as4 stats:"))
+        .unwrap_or_else(|| panic!("no `as4 stats:` line in {text}"));
+    let value = |key: &str| -> u64 {
+        let mut it = line.split_whitespace();
+        while let Some(k) = it.next() {
+            if k == key {
+                return it.next().and_then(|v| v.parse().ok()).unwrap_or(0);
+            }
+        }
+        panic!("no {key} in {line}")
+    };
+    assert!(value("datagrams_received") >= 2, "{line}");
+    assert_eq!(value("bad_datagrams"), 1, "{line}");
+    assert!(value("messages_received") >= 1, "{line}");
+    assert!(value("messages_sent") >= 1, "Report Status sent: {line}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

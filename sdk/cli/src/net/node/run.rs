@@ -227,6 +227,8 @@ pub fn node(
     };
     let mut proxies = proxies.into_iter();
     let first_proxy = if as4.is_none() { proxies.next() } else { None };
+    // The AS-4 side's counters, taken from the mux before it is unwrapped.
+    let mut as4_line: Option<String> = None;
     let result = match (as4, first_proxy) {
         (None, None) => udp::run_node(
             &mut node,
@@ -257,6 +259,7 @@ pub fn node(
                 |m| show_tree(m.inner()),
                 &mut tap,
             );
+            as4_line = Some(as4_stats_line(&mux));
             node = mux.into_inner();
             r
         }
@@ -278,6 +281,7 @@ pub fn node(
                 |d| show_tree(d.node()),
                 &mut tap,
             );
+            as4_line = Some(as4_stats_line(dual.mux()));
             node = dual.into_node();
             r
         }
@@ -311,6 +315,9 @@ pub fn node(
         st.not_via_communicator,
         st.policy_refused,
     );
+    if let Some(line) = &as4_line {
+        let _ = writeln!(out, "{line}");
+    }
     let _ = out.flush();
     if let (Some(w), Some(p)) = (writer.as_mut(), capture) {
         w.flush().map_err(|e| format!("{}: {e}", p.display()))?;
@@ -351,6 +358,33 @@ pub fn tree_json(tree: &SystemTree) -> serde_json::Value {
         })
         .collect();
     serde_json::json!({ "subsystems": subsystems })
+}
+
+/// The AS-4 side's counters as one `as4 stats:` line of `key value` pairs: datagrams,
+/// malformed ones, messages, acknowledgements, reassembly drops, messages no endpoint
+/// serves, sends dropped.
+fn as4_stats_line<P: jaus::net::Participant<A> + 'static, A: jaus::net::PeerAddr>(
+    mux: &jaus::net::as5669a::As4Mux<P, A>,
+) -> String {
+    let st = mux.stack().stats();
+    let (r, buffered) = mux.stack().reassembly();
+    format!(
+        "as4 stats: datagrams_received {} bad_datagrams {} packets_received {} messages_received {} messages_sent {} acks_sent {} acks_received {} naks_received {} reassembly_timed_out {} reassembly_over_limit {} reassembly_orphans {} reassembly_buffered {buffered} unrouted {} outbox_full {} encode_errors {}",
+        st.datagrams_received,
+        st.bad_datagrams,
+        st.packets_received,
+        st.messages_received,
+        st.messages_sent,
+        st.acks_sent,
+        st.acks_received,
+        st.naks_received,
+        r.timed_out,
+        r.over_limit,
+        r.orphans,
+        mux.unrouted(),
+        st.outbox_full,
+        st.encode_errors,
+    )
 }
 
 /// Joins the AS-4 first-contact `group` on the node's socket bound at `local`: only a
