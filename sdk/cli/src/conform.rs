@@ -56,6 +56,12 @@ pub struct ConformArgs {
     /// as it found it (`as4.control.release`).
     #[arg(long)]
     allow_shutdown: bool,
+    /// Print every check this tester can run (RA 3.3 per component type of the
+    /// definitions, a vendor's overlay included, and the AS-4 judge's) and exit: id,
+    /// level, rule and its source, what it tests, what it applies to; `--list json`
+    /// prints them as one JSON array.
+    #[arg(long, value_name = "FORMAT", num_args = 0..=1, default_missing_value = "text")]
+    list: Option<ListFormat>,
     /// With --as4: seconds to wait for the waypoint list to be driven to its end.
     #[arg(long, default_value_t = 60.0)]
     mission_timeout: f64,
@@ -183,6 +189,31 @@ fn conform_as4(
     verdict(&run)
 }
 
+/// How `--list` prints the checks.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum ListFormat {
+    /// Lines for a reader.
+    Text,
+    /// One JSON array.
+    Json,
+}
+
+/// `jaus conform --list`: the catalogue of checks of `spec_paths` (or the SDK's).
+fn list(format: ListFormat, spec_paths: &[PathBuf], out: &mut impl Write) -> Result<(), String> {
+    let spec = if spec_paths.is_empty() {
+        jaus_spec::load_sdk()
+    } else {
+        jaus_spec::load_overlays(spec_paths)
+    }
+    .map_err(|e| e.to_string())?;
+    let all = jaus_conform::catalogue::catalogue(&spec);
+    let text = match format {
+        ListFormat::Text => jaus_conform::catalogue::text(&all),
+        ListFormat::Json => serde_json::to_string_pretty(&all).map_err(|e| e.to_string())? + "\n",
+    };
+    write!(out, "{text}").map_err(|e| e.to_string())
+}
+
 /// Runs the checks and writes the reports; `Err` when a required check failed (exit
 /// status 1) or the run could not start.
 pub fn conform(
@@ -191,6 +222,9 @@ pub fn conform(
     spec_paths: &[PathBuf],
     out: &mut impl Write,
 ) -> Result<(), String> {
+    if let Some(format) = args.list {
+        return list(format, spec_paths, out);
+    }
     if args.as4 {
         return conform_as4(net, args, out);
     }

@@ -16,6 +16,7 @@
 //! * [`engine`]: runs the checks on one component and leaves it as found;
 //! * [`report`]: the terminal summary, JSON, JUnit XML and an HTML page;
 //! * [`capture`]: the datagrams of a run, for a pcap file;
+//! * [`catalogue`]: every check as data (`jaus conform --list`);
 //! * [`as4`]: the judge's side of the AS-4 IOP challenge scenario over AS5669A
 //!   (`jaus conform --as4`), reported the same way.
 //!
@@ -36,6 +37,7 @@
 
 pub mod as4;
 pub mod capture;
+pub mod catalogue;
 pub mod check;
 pub mod engine;
 pub mod memory;

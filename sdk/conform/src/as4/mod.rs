@@ -191,7 +191,7 @@ pub mod rules {
 
 /// The scenario's checks in order: id, title, rule, level.
 #[rustfmt::skip]
-const CHECKS: &[(&str, &str, Rule, Level)] = {
+pub(crate) const CHECKS: &[(&str, &str, Rule, Level)] = {
     use rules::*;
     use Level::{Advisory, Required};
     &[
