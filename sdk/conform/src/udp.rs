@@ -7,11 +7,41 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
 use jaus::net::udp::{IoOptions, UdpTransport};
-use jaus::net::{shell, Framing, Node, NodeConfig};
+use jaus::net::{shell, Datagram, Framing, Node, NodeConfig, Transport, Via};
 use jaus::{Address, Header};
 
 use crate::capture::{wall_now, Tap};
 use crate::session::{dropped, pop, tester_node, Inbox, Incoming, Session, Voices};
+
+/// A transport whose waits end by `until`: the shell waits until the node's next timer,
+/// which may be later than the session's deadline (a watch polling every few
+/// milliseconds needs its waits to end on time).
+struct Until<T> {
+    inner: T,
+    until: Instant,
+}
+
+impl<T: Transport> Transport for Until<T> {
+    type Addr = T::Addr;
+
+    fn recv<F: FnMut(Via, Self::Addr, &[u8])>(
+        &mut self,
+        wait: Duration,
+        on: F,
+    ) -> std::io::Result<()> {
+        let left = self.until.saturating_duration_since(Instant::now());
+        self.inner
+            .recv(wait.min(left.max(Duration::from_micros(100))), on)
+    }
+
+    fn send(&mut self, d: &Datagram<Self::Addr>) -> std::io::Result<()> {
+        self.inner.send(d)
+    }
+
+    fn describe(&self) -> String {
+        self.inner.describe()
+    }
+}
 
 /// The tester on a UDP socket.
 #[derive(Debug)]
@@ -98,7 +128,10 @@ impl UdpSession {
         let peers = self.peers.clone();
         let mut heard = false;
         let (tap, local) = (&mut self.tap, self.local);
-        let mut transport = UdpTransport::new(&self.socket, &self.io);
+        let mut transport = Until {
+            inner: UdpTransport::new(&self.socket, &self.io),
+            until: deadline,
+        };
         let r = shell::run(
             &mut self.node,
             &mut transport,

@@ -10,6 +10,7 @@ mod readback;
 mod robust;
 mod state;
 mod talk;
+mod watch;
 
 use std::time::Duration;
 

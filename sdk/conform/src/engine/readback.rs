@@ -16,6 +16,7 @@ use jaus_spec::{Int, Wire};
 use serde_json::{Map, Value};
 
 use super::core::ack_text;
+use super::watch::{changes, Poll};
 use super::Engine;
 use crate::check::Verdict;
 
@@ -242,6 +243,16 @@ impl Engine<'_> {
         }))
     }
 
+    /// The read-back query `q` as a [`Poll`] for a watch.
+    fn poll_of(&self, q: &DynMessage) -> Option<Poll> {
+        let r = self.spec.report_of(&self.spec.message(q.name)?.def)?;
+        Some(Poll {
+            code: q.code,
+            body: self.schema.encode(q).ok()?,
+            report: jaus::CommandCode(r.def.code.0),
+        })
+    }
+
     /// The field's value in a fresh read-back.
     fn read(&mut self, query: &DynMessage, field: &str) -> Option<Option<f64>> {
         let (_, r) = self.ask_def(self.voices.outsider, query)?;
@@ -326,30 +337,42 @@ impl Engine<'_> {
             Err(found) => return found,
         };
         let (o, c) = (self.voices.outsider, self.voices.controller);
-        let ack = self.command_def(o, &t.moved);
-        self.drain(self.opts.settle);
-        let after = match self.read(&q, &t.field) {
+        let (Some(poll), Ok(body)) = (self.poll_of(&q), self.schema.encode(&t.moved)) else {
+            return (
+                Verdict::Inconclusive,
+                format!("{command} or {query} does not encode"),
+            );
+        };
+        let (report, field) = (poll.report, t.field.clone());
+        let w = self.watch(o, t.moved.code, body, &poll, |e, body| {
+            Some(e.fields(report, body)?.get(&field).and_then(Value::as_f64))
+        });
+        let how = w.how(query);
+        let ack = w.ack;
+        let (sent, count) = (t.sent, t.count);
+        let moved = |v: &Option<f64>| v.is_some_and(|v| (v - sent).abs() <= count * 1.01 + 1e-12);
+        if let Some(change) = changes(&w.seen, |v| format!("{} = {}", t.field, shown(*v)), moved) {
+            if let Some(r) = &t.restore {
+                self.command_def(c, r);
+            }
+            return (
+                Verdict::Fail,
+                format!(
+                    "{command} from {o} (not in control), {} was {}: the component {change}; {} ({how})",
+                    t.field,
+                    shown(t.before),
+                    ack_text(ack)
+                ),
+            );
+        }
+        let after = match w.seen.last() {
             None => {
                 return (
                     Verdict::Inconclusive,
-                    format!("no answer to {query} after {command} from {o}"),
+                    format!("no answer to {query} after {command} from {o} ({how})"),
                 )
             }
-            Some(Some(v)) if (v - t.sent).abs() <= t.count * 1.01 + 1e-12 => {
-                if let Some(r) = &t.restore {
-                    self.command_def(c, r);
-                }
-                return (
-                    Verdict::Fail,
-                    format!(
-                        "{} changed to {v} (was {}) by {command} from {o}, which is not in control ({})",
-                        t.field,
-                        shown(t.before),
-                        ack_text(ack)
-                    ),
-                );
-            }
-            Some(v) => v,
+            Some((_, v)) => *v,
         };
         // The same command from the controller: the comparison the refusal needs.
         let own = self.command_def(c, &t.moved);
@@ -358,7 +381,7 @@ impl Engine<'_> {
             Some(Some(v)) if (v - t.sent).abs() <= t.count * 1.01 + 1e-12 => (
                 Verdict::Pass,
                 format!(
-                    "{} = {} after {command} from {o} ({} sent; {}); the same from the controller {c} set it to {v} ({})",
+                    "{} = {} after {command} from {o}, in every answer ({how}; {} sent; {}); the same from the controller {c} set it to {v} ({})",
                     t.field,
                     shown(after),
                     t.sent,

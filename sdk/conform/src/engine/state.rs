@@ -1,11 +1,17 @@
 //! Core state commands: from the controller they are carried out, from anyone else
 //! refused; Set/Clear Emergency from anyone.
 
-use jaus::messages::{ComponentState, Message, Reset, Resume, Shutdown, Standby};
+use jaus::messages::{
+    ComponentState, Message, QueryComponentStatus, ReportComponentStatus, Reset, Resume, Shutdown,
+    Standby,
+};
 
 use super::core::ack_text;
+use super::watch::{changes, Poll};
 use super::Engine;
 use crate::check::{StateCommand, Verdict};
+use jaus::codec::Encode;
+use jaus::JausMessage;
 
 type Found = (Verdict, String);
 
@@ -78,28 +84,56 @@ impl Engine<'_> {
             return (Verdict::Inconclusive, e);
         }
         let o = self.voices.outsider;
-        let ack = self.command(o, &message(s));
-        self.drain(self.opts.settle);
-        match self.status() {
-            Some(now) if now == before => {
-                let refused = format!(
-                    "still {now:?} after {} from {o}; {}",
+        let m = message(s);
+        let Ok(body) = m.to_bytes() else {
+            return (
+                Verdict::Inconclusive,
+                format!("{} does not encode", s.name()),
+            );
+        };
+        let poll = Poll {
+            code: QueryComponentStatus::CODE,
+            body: Vec::new(),
+            report: ReportComponentStatus::CODE,
+        };
+        let w = self.watch(
+            o,
+            m.code(),
+            body,
+            &poll,
+            |_, body| match Message::decode_known(ReportComponentStatus::CODE, body) {
+                Ok(Message::ReportComponentStatus(r)) => Some(r.primary_status_code),
+                _ => None,
+            },
+        );
+        let how = w.how("Query Component Status");
+        if let Some(change) = changes(&w.seen, |v| format!("{v:?}"), |v| *v != before) {
+            let now = w.seen.last().map(|(_, v)| *v);
+            if now != Some(before) {
+                // Bring it back for the checks after this one, where it can be.
+                self.set_state(self.voices.controller, before);
+            }
+            return (
+                Verdict::Fail,
+                format!(
+                    "{} from {o} (not in control), in {before:?}: the component {change}; {} ({how})",
                     s.name(),
-                    ack_text(ack)
+                    ack_text(w.ack)
+                ),
+            );
+        }
+        match w.seen.last() {
+            Some((_, now)) => {
+                let refused = format!(
+                    "still {now:?} after {} from {o}, in every answer ({how}); {}",
+                    s.name(),
+                    ack_text(w.ack)
                 );
                 self.compare_with_controller(s, before, refused)
             }
-            Some(now) => (
-                Verdict::Fail,
-                format!(
-                    "{before:?} → {now:?} after {} from {o}, which is not in control ({})",
-                    s.name(),
-                    ack_text(ack)
-                ),
-            ),
             None => (
                 Verdict::Fail,
-                format!("no status after {} from {o}", s.name()),
+                format!("no status after {} from {o} ({how})", s.name()),
             ),
         }
     }
