@@ -341,3 +341,84 @@ pub fn runtime(data: &[u8]) {
         }
     }
 }
+
+/// (f) The AS-4 side: the input is a sequence of steps at virtual times, each either a
+/// datagram into an AS5669A stack and an AS-4 node hosting a component (its Core on the
+/// generated state machine), or a message by code and body decoded with the AS-4
+/// definitions and handed to that component from one of three clients (so that the
+/// Core's machine sees well-formed messages in any order: control, emergencies, events,
+/// lists). Nothing panics, the outbox is drained, and the component's state is always
+/// one the machine can be in with the controller it reports.
+pub fn as4(data: &[u8]) {
+    use jaus::net::as5669a::{As4Config, As4Endpoint, As4Id, As4Stack};
+    use jaus_as4::component::As4Component;
+    use jaus_as4::core::CoreConfig;
+    use jaus_as4::node::As4Node;
+    use jaus_as4::ComponentState;
+
+    const ME: As4Id = As4Id::new(7, 1, 1);
+    let clients = [
+        As4Id::new(42, 1, 1),
+        As4Id::new(42, 1, 2),
+        As4Id::new(43, 1, 1),
+    ];
+    let t0 = Instant::now();
+    let mut config = CoreConfig::named("fuzz");
+    config.authority = data.first().map_or(0, |b| b % 4);
+    config.control_timeout = 1;
+    let mut direct: As4Component<()> = As4Component::new(ME, config.clone());
+    let mut node: As4Node<()> = As4Node::new(()).with_component(As4Component::new(ME, config));
+    let mut stack: As4Stack<SocketAddr> = As4Stack::new(As4Config::default());
+    let from = SocketAddr::V4(SocketAddrV4::new(Ipv4Addr::new(10, 0, 0, 2), 3794));
+    let mut now = t0;
+    let mut rest = data.get(1..).unwrap_or_default();
+    let mut steps = 0;
+    while rest.len() >= 3 && steps < 256 {
+        steps += 1;
+        let (kind, len) = (rest[0], usize::from(rest[1]));
+        let take = len.min(rest.len() - 2);
+        let chunk = &rest[2..2 + take];
+        rest = &rest[2 + take..];
+        now += Duration::from_millis(u64::from(kind >> 2) * 20);
+        if kind & 1 == 0 {
+            if let Ok(messages) = stack.receive(now, from, chunk) {
+                let replies = node.handle(now, from, messages);
+                stack.send(from, &replies);
+            }
+        } else if chunk.len() >= 2 {
+            let code = jaus::CommandCode(u16::from_le_bytes([chunk[0], chunk[1]]));
+            if let Ok(m) = jaus_as4::Message::decode(code, &chunk[2..]) {
+                let client = clients[usize::from(kind >> 1) % clients.len()];
+                let _ = direct.handle(now, client, &m, &mut ());
+            }
+        }
+        if node.poll_timeout().is_some_and(|t| t <= now) {
+            for s in node.handle_timeout(now) {
+                stack.send(s.to, &[s.message]);
+            }
+        }
+        if direct.poll_timeout().is_some_and(|t| t <= now) {
+            let _ = direct.handle_timeout(now, &mut ());
+        }
+        while stack.poll_transmit().is_some() {}
+        // Ready only under control; the state is the one the machine's path names.
+        let machine = direct.core().machine_state();
+        assert_eq!(
+            direct.state(),
+            jaus_as4::core::management::state_of(machine),
+            "state and machine disagree at {machine}"
+        );
+        if direct.state() == ComponentState::Ready {
+            assert!(
+                direct.controller().is_some(),
+                "Ready without a controller at {machine}"
+            );
+        }
+        assert_eq!(
+            direct.controller().is_some(),
+            machine.contains(".Controlled"),
+            "controller {:?} in machine state {machine}",
+            direct.controller()
+        );
+    }
+}

@@ -47,3 +47,8 @@ fn spec_yaml_corpus() {
 fn runtime_corpus() {
     assert!(replay("runtime", jaus_tests::fuzz::runtime) >= 5);
 }
+
+#[test]
+fn as4_corpus() {
+    assert!(replay("as4", jaus_tests::fuzz::as4) >= 4);
+}
