@@ -144,6 +144,13 @@ fn doc_fields(spec: &Spec, fields: &[Field], here: &str) -> Vec<DocField> {
                     if f.complement { ", complement" } else { "" }
                 ));
             }
+            if f.embeds.is_some() {
+                description.push_str(" (a message: its 16-bit ID, then its body");
+                if let Some(c) = &f.embeds_if {
+                    description.push_str(&format!(", when `{c}`"));
+                }
+                description.push(')');
+            }
             DocField {
                 name: f.name.clone(),
                 ty,

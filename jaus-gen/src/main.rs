@@ -57,6 +57,11 @@ enum Cmd {
     Wireshark {
         #[command(flatten)]
         defs: SpecArgs,
+        /// Directories of AS-4 definitions (`extends: none`, e.g. sdk/as4/defs, then a
+        /// vendor's AS-4 messages): the dissector then also reads AS5669A (JUDP version
+        /// 2) and every AS-4 message of them.
+        #[arg(long = "as4-spec", value_name = "DIR")]
+        as4_spec: Vec<PathBuf>,
         /// Output file.
         #[arg(long, value_name = "FILE", default_value = "jaus.lua")]
         out: PathBuf,
@@ -306,8 +311,17 @@ fn main() -> ExitCode {
             println!("wrote {} page(s) to {}", files.len(), out.display());
             Ok(())
         }),
-        Cmd::Wireshark { defs, out } => builder(defs).load().and_then(|s| {
-            let lua = jaus_gen::wireshark::dissector(&s);
+        Cmd::Wireshark {
+            defs,
+            as4_spec,
+            out,
+        } => builder(defs).load().and_then(|s| {
+            let as4 = if as4_spec.is_empty() {
+                None
+            } else {
+                Some(jaus_spec::load_dirs(&as4_spec)?)
+            };
+            let lua = jaus_gen::wireshark::dissector_for(&s, as4.as_ref());
             std::fs::write(&out, lua).map_err(|source| jaus_gen::Error::Io {
                 path: out.clone(),
                 source,

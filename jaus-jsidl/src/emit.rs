@@ -2,8 +2,9 @@
 //! order and nothing left to chance: the same JSIDL gives the same bytes.
 
 use jaus_spec::model::{
-    ActionDef, BehaviourDef, DefaultStateDef, EnumValue, EventDef, FieldDef, Length, MessageDef,
-    ServiceDef, ServiceRef, ServiceTransitionDef, StateDef, TransitionKind, TypeDef, TypeKind,
+    ActionDef, BehaviourDef, DefaultStateDef, Embeds, EnumValue, EventDef, FieldDef, Length,
+    MessageDef, ServiceDef, ServiceRef, ServiceTransitionDef, StateDef, TransitionKind, TypeDef,
+    TypeKind,
 };
 use serde_yaml::{Mapping, Value};
 
@@ -84,6 +85,13 @@ fn field_map(m: Map, f: &FieldDef) -> Value {
                 .map(|[lo, hi]| Value::Sequence(vec![lo.into(), hi.into()])),
         )
         .opt("unit", f.unit.as_deref())
+        .opt(
+            "embeds",
+            f.embeds.map(|e| match e {
+                Embeds::Message => "message",
+            }),
+        )
+        .opt("embeds_if", f.embeds_if.as_deref())
         .opt("description", f.description.as_deref())
         .done()
 }

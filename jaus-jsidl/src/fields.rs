@@ -7,7 +7,12 @@ use crate::error::Result;
 use crate::import::{At, Importer};
 use crate::names::{pascal, snake};
 use crate::xml::{child, elements, interpretation, tag};
-use jaus_spec::model::{BitDef, EnumValue, FieldDef, Length, TypeDef, TypeKind, VariantDef};
+use jaus_spec::model::{
+    BitDef, Embeds, EnumValue, FieldDef, Length, TypeDef, TypeKind, VariantDef,
+};
+
+/// The `field_format` of JSIDL data that is a JAUS message (message ID and body).
+const JAUS_MESSAGE: &str = "JAUS MESSAGE";
 
 /// Whether the fields go on the wire (a message or a named type) or are the data of an
 /// internal event (never sent: counts and lengths are left out).
@@ -127,7 +132,11 @@ impl<'a> Importer<'a> {
             }
             "variable_length_field" => {
                 f.ty = "bytes".into();
-                let format = def.node.attribute("field_format").map(|x| format!("Format: {x}."));
+                let format = def.node.attribute("field_format");
+                if format == Some(JAUS_MESSAGE) {
+                    f.embeds = Some(Embeds::Message);
+                }
+                let format = format.map(|x| format!("Format: {x}."));
                 f.description = join(&[f.description.take(), format]);
                 self.count(def, mode, &mut f)?;
             }
@@ -432,10 +441,13 @@ impl<'a> Importer<'a> {
         if f.bit.is_some() {
             return Err(self.err(def, "an optional variable format field (two fields on the wire under one presence bit) is not supported"));
         }
-        let formats: Vec<String> = child(def.node, "format_field")
+        let enums: Vec<_> = child(def.node, "format_field")
             .into_iter()
             .flat_map(elements)
             .filter(|c| tag(*c) == "format_enum")
+            .collect();
+        let formats: Vec<String> = enums
+            .iter()
             .map(|c| {
                 format!(
                     "{} = {}",
@@ -444,6 +456,15 @@ impl<'a> Importer<'a> {
                 )
             })
             .collect();
+        // The data is a message exactly when the format says so.
+        if let Some(index) = enums
+            .iter()
+            .find(|c| c.attribute("field_format") == Some(JAUS_MESSAGE))
+            .and_then(|c| c.attribute("index"))
+        {
+            f.embeds = Some(Embeds::Message);
+            f.embeds_if = Some(format!("{}_format == {index}", f.name));
+        }
         let format = FieldDef {
             name: format!("{}_format", f.name),
             ty: "u8".into(),

@@ -325,6 +325,33 @@ pub struct FieldDef {
     /// of that field's code.
     #[serde(default)]
     pub complement: bool,
+    /// `embeds: message`: the bytes are a whole message as AS-4 carries one inside
+    /// another (a 16-bit little-endian message ID, then the body), e.g. the report of an
+    /// AS-4 Event. Tools (the Wireshark dissector, the reference docs) show the message.
+    #[serde(default)]
+    pub embeds: Option<Embeds>,
+    /// With `embeds`: the bytes hold a message only when this condition on an earlier
+    /// field of the same body holds: `FIELD == VALUE`, VALUE a value name of the
+    /// field's enumeration or an integer (`format == JausMessage`).
+    #[serde(default)]
+    pub embeds_if: Option<String>,
+}
+
+/// What the bytes of a field with `embeds:` hold.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Embeds {
+    /// A 16-bit little-endian message ID followed by the message's body.
+    Message,
+}
+
+/// The condition of an `embeds_if: FIELD == VALUE`: the field's name and the value as
+/// written; `None` when `text` is not of that form.
+pub fn embeds_condition(text: &str) -> Option<(&str, &str)> {
+    let (field, value) = text.split_once("==")?;
+    let (field, value) = (field.trim(), value.trim());
+    let word = |s: &str| !s.is_empty() && s.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
+    (word(field) && word(value)).then_some((field, value))
 }
 
 /// A list element: a type name, or a field definition without a name.

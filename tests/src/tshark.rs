@@ -71,11 +71,42 @@ fn attr(tag: &str, name: &str) -> String {
     };
     let rest = &tag[i + key.len()..];
     let raw = &rest[..rest.find('"').unwrap_or(rest.len())];
-    raw.replace("&quot;", "\"")
-        .replace("&apos;", "'")
-        .replace("&lt;", "<")
-        .replace("&gt;", ">")
-        .replace("&amp;", "&")
+    unescape(raw)
+}
+
+/// XML text with its entities replaced: the five named ones and numeric ones
+/// (`&#x27;`, `&#39;`), as tshark writes them.
+fn unescape(raw: &str) -> String {
+    let mut out = String::with_capacity(raw.len());
+    let mut rest = raw;
+    while let Some(i) = rest.find('&') {
+        out.push_str(&rest[..i]);
+        let tail = &rest[i..];
+        let Some(end) = tail.find(';') else {
+            out.push_str(tail);
+            return out;
+        };
+        let entity = &tail[1..end];
+        let c = match entity {
+            "quot" => Some('"'),
+            "apos" => Some('\''),
+            "lt" => Some('<'),
+            "gt" => Some('>'),
+            "amp" => Some('&'),
+            _ => entity
+                .strip_prefix("#x")
+                .and_then(|h| u32::from_str_radix(h, 16).ok())
+                .or_else(|| entity.strip_prefix('#').and_then(|d| d.parse().ok()))
+                .and_then(char::from_u32),
+        };
+        match c {
+            Some(c) => out.push(c),
+            None => out.push_str(&tail[..=end]),
+        }
+        rest = &tail[end + 1..];
+    }
+    out.push_str(rest);
+    out
 }
 
 /// Runs tshark with the dissector over `pcap`; the fields of each packet.
@@ -158,13 +189,27 @@ pub fn check(
     packets: &[Vec<Shown>],
     decoded: &[Option<Value>],
 ) -> std::collections::BTreeMap<String, usize> {
+    check_as(packets, decoded, "jaus")
+}
+
+/// [`check`] for the messages of the protocol whose fields begin with `prefix`
+/// (`jaus` for RA 3.3, `jaus4` for AS-4).
+pub fn check_as(
+    packets: &[Vec<Shown>],
+    decoded: &[Option<Value>],
+    prefix: &str,
+) -> std::collections::BTreeMap<String, usize> {
     let mut compared = std::collections::BTreeMap::new();
     for (i, fields) in packets.iter().enumerate() {
         for f in fields {
             assert!(
                 !matches!(
                     f.name.as_str(),
-                    "jaus.malformed" | "_ws.malformed" | "_ws.lua.error"
+                    "jaus.malformed"
+                        | "jaus4.malformed"
+                        | "as5669a.malformed"
+                        | "_ws.malformed"
+                        | "_ws.lua.error"
                 ) && !f.showname.contains("Malformed")
                     && !f.showname.contains("Lua Error"),
                 "packet {i}: {f:?}"
@@ -176,7 +221,7 @@ pub fn check(
         let name = json["message"].as_str().unwrap_or_default();
         let message = fields
             .iter()
-            .find(|f| f.name == "jaus.message")
+            .find(|f| f.name == format!("{prefix}.message"))
             .map(|f| f.show.clone());
         assert_eq!(message.as_deref(), Some(name), "packet {i}");
         let Some(obj) = json["fields"].as_object() else {
@@ -186,7 +231,7 @@ pub fn check(
             if value.is_object() || value.is_array() || value.is_null() {
                 continue;
             }
-            let key = format!("jaus.{name}.{field}");
+            let key = format!("{prefix}.{name}.{field}");
             let shown = fields
                 .iter()
                 .find(|f| f.name == key)

@@ -453,3 +453,68 @@ fn the_default_socket_is_port_3794_on_an_address_of_its_own() {
     assert_ne!(local.ip(), peer.ip());
     assert!(local.ip().is_loopback());
 }
+
+/// `jaus wireshark` writes the dissector of the definitions built into the binary, both
+/// generations: every RA 3.3 and every AS-4 message in its table, the embedded messages
+/// marked; a vendor's AS-4 directory adds its messages, and a bad one is an error naming
+/// the option.
+#[test]
+fn jaus_wireshark_writes_the_dissector_of_both_generations() {
+    let dir = std::env::temp_dir().join(format!("jaus-cli-wireshark-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let vendor = dir.join("vendor");
+    std::fs::create_dir_all(&vendor).unwrap();
+    std::fs::write(
+        vendor.join("acme.yaml"),
+        "group: acme\nmessages:\n  - name: ReportAcmeBattery\n    code: 0xD401\n    fields:\n      - { name: percent, type: u8, unit: \"%\", description: \"Charge.\" }\n",
+    )
+    .unwrap();
+    let lua = dir.join("jaus.lua");
+    let out = run(
+        &[
+            "wireshark",
+            "--out",
+            lua.to_str().unwrap(),
+            "--as4-spec",
+            vendor.to_str().unwrap(),
+        ],
+        "",
+    );
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let said = String::from_utf8_lossy(&out.stdout);
+    assert!(said.contains("AS-4 104 messages"), "{said}");
+    let text = std::fs::read_to_string(&lua).unwrap();
+    let as4 = &text[text.find("\nAS4_MESSAGES = {").unwrap()..];
+    assert!(as4.contains("[0xD401] = { name = \"ReportAcmeBattery\""));
+    assert!(as4.contains("name = \"report_message\"") && as4.contains("embeds = true"));
+    assert!(text.contains("\nMESSAGES = {\n  [0x0001] = { name = \"SetComponentAuthority\""));
+
+    let bad = dir.join("bad");
+    std::fs::create_dir_all(&bad).unwrap();
+    std::fs::write(
+        bad.join("bad.yaml"),
+        "group: acme\nmessages:\n  - name: x\n",
+    )
+    .unwrap();
+    let out = run(
+        &[
+            "wireshark",
+            "--out",
+            lua.to_str().unwrap(),
+            "--as4-spec",
+            bad.to_str().unwrap(),
+        ],
+        "",
+    );
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("--as4-spec") && err.contains("bad.yaml"),
+        "{err}"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}

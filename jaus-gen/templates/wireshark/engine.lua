@@ -1,9 +1,15 @@
--- The dissection engine: one interpreter of the layout tables above (MESSAGES, TYPES),
--- written once; the tables are generated from the YAML definitions. Nothing here knows
--- a particular message.
+-- The dissection engine: one interpreter of the layout tables above (MESSAGES and TYPES
+-- of RA 3.3, AS4_MESSAGES and AS4_TYPES of AS-4), written once; the tables are generated
+-- from the YAML definitions. Nothing here knows a particular message.
 
 local jaus = Proto("jaus", "JAUS (RA 3.3)")
+local jaus4 = Proto("jaus4", "JAUS AS-4 (SAE AS5684 message)")
 local judp = Proto("judp", "JAUS UDP transport (AS5669)")
+local as5669a = Proto("as5669a", "JAUS transport AS5669A (JUDP version 2)")
+
+-- The two generations: their tables, the prefix of their field names, their protocol.
+local RA33 = { messages = MESSAGES, types = TYPES, prefix = "jaus", proto = jaus, fields = {} }
+local AS4 = { messages = AS4_MESSAGES, types = AS4_TYPES, prefix = "jaus4", proto = jaus4, fields = {} }
 
 local DATA_FLAGS = { [0] = "single", [1] = "first", [2] = "middle", [4] = "retransmission request", [8] = "last" }
 local ACK_NAK = { [0] = "none", [1] = "request", [2] = "NAK", [3] = "ACK" }
@@ -18,6 +24,8 @@ local hf = {
   reserved = ProtoField.uint16("jaus.reserved", "Reserved", base.DEC, nil, 0xC000),
   code = ProtoField.uint16("jaus.command_code", "Command code", base.HEX),
   message = ProtoField.string("jaus.message", "Message"),
+  message_id = ProtoField.uint16("jaus.embedded_id", "Embedded message ID", base.HEX),
+  embedded_message = ProtoField.string("jaus.embedded_message", "Embedded message"),
   destination = ProtoField.string("jaus.destination", "Destination"),
   source = ProtoField.string("jaus.source", "Source"),
   subsystem = ProtoField.uint8("jaus.address.subsystem", "Subsystem"),
@@ -47,6 +55,47 @@ for k, v in pairs(hf_judp) do hf[k] = v end
 local ef_malformed = ProtoExpert.new("jaus.malformed", "Malformed JAUS message", expert.group.MALFORMED, expert.severity.ERROR)
 local ef_unknown = ProtoExpert.new("jaus.unknown_code", "Command code not in the definitions", expert.group.UNDECODED, expert.severity.NOTE)
 local ef_compressed = ProtoExpert.new("judp.compressed", "JUDP header compression is not decoded", expert.group.UNDECODED, expert.severity.WARN)
+local ef4_malformed = ProtoExpert.new("jaus4.malformed", "Malformed AS-4 message", expert.group.MALFORMED, expert.severity.ERROR)
+local ef4_unknown = ProtoExpert.new("jaus4.unknown_id", "Message ID not in the AS-4 definitions", expert.group.UNDECODED, expert.severity.NOTE)
+local ef_as4_malformed = ProtoExpert.new("as5669a.malformed", "Malformed AS5669A message", expert.group.MALFORMED, expert.severity.ERROR)
+local ef_as4_compressed = ProtoExpert.new("as5669a.compressed", "AS5669A header compression is not decoded", expert.group.UNDECODED, expert.severity.WARN)
+
+local PRIORITY = { [0] = "low", [1] = "standard", [2] = "high", [3] = "safety critical" }
+local BROADCAST = { [0] = "none", [1] = "local", [2] = "global", [3] = "reserved" }
+local DATA_CONTROL = { [0] = "single", [1] = "first", [2] = "normal", [3] = "last" }
+
+-- The AS5669A transport header (little-endian throughout).
+local hf_as4 = {
+  version = ProtoField.uint8("as5669a.version", "Transport version"),
+  message_type = ProtoField.uint8("as5669a.message_type", "Message type", base.DEC, nil, 0xFC),
+  hc_flags = ProtoField.uint8("as5669a.hc_flags", "Header compression flags", base.DEC, nil, 0x03),
+  data_size = ProtoField.uint16("as5669a.data_size", "Data size"),
+  hc_number = ProtoField.uint8("as5669a.hc_number", "Header compression number"),
+  hc_length = ProtoField.uint8("as5669a.hc_length", "Header compression length"),
+  properties = ProtoField.uint8("as5669a.properties", "Properties", base.HEX),
+  priority = ProtoField.uint8("as5669a.priority", "Priority", base.DEC, PRIORITY, 0x03),
+  broadcast = ProtoField.uint8("as5669a.broadcast", "Broadcast", base.DEC, BROADCAST, 0x0C),
+  ack_nak = ProtoField.uint8("as5669a.ack_nak", "ACK/NAK", base.DEC, ACK_NAK, 0x30),
+  data_control = ProtoField.uint8("as5669a.data_control", "Data control", base.DEC, DATA_CONTROL, 0xC0),
+  destination = ProtoField.string("as5669a.destination", "Destination"),
+  source = ProtoField.string("as5669a.source", "Source"),
+  sequence = ProtoField.uint16("as5669a.sequence_number", "Sequence number"),
+  fragment = ProtoField.bytes("as5669a.fragment", "Fragment of a multi-packet message"),
+}
+local hf4 = {
+  message_id = ProtoField.uint16("jaus4.message_id", "Message ID", base.HEX),
+  message = ProtoField.string("jaus4.message", "Message"),
+  embedded_message = ProtoField.string("jaus4.embedded_message", "Embedded message"),
+  presence = ProtoField.uint32("jaus4.presence_vector", "Presence vector", base.HEX),
+  reassembled = ProtoField.uint32("jaus4.reassembled_size", "Reassembled payload size"),
+  trailing = ProtoField.bytes("jaus4.trailing", "Trailing bytes"),
+}
+RA33.hf = hf
+AS4.hf = hf4
+RA33.ef_malformed = ef_malformed
+RA33.ef_unknown = ef_unknown
+AS4.ef_malformed = ef4_malformed
+AS4.ef_unknown = ef4_unknown
 
 -- Per-field ProtoFields, created from the tables.
 local INT = {
@@ -64,87 +113,98 @@ local DIVISOR = {
 }
 local MASKS = { u8 = 0xFF, u16 = 0xFFFF, u32 = 0xFFFFFFFF }
 
-local fields_list = {}
 for k, f in pairs(hf) do
-  if hf_judp[k] == nil then fields_list[#fields_list + 1] = f end
+  if hf_judp[k] == nil then RA33.fields[#RA33.fields + 1] = f end
 end
+for _, f in pairs(hf4) do AS4.fields[#AS4.fields + 1] = f end
 
-local function register(pf)
-  fields_list[#fields_list + 1] = pf
+local function register(d, pf)
+  d.fields[#d.fields + 1] = pf
   return pf
 end
 
-local function enum_strings(tyname)
-  local t = TYPES[tyname]
+local function enum_strings(d, tyname)
+  local t = d.types[tyname]
   local out = {}
   for _, v in ipairs(t.values or {}) do out[v[2]] = v[1] end
   return out
 end
 
--- Creates the ProtoField(s) a field (or list element) is shown with.
-local function make_fields(f, abbrev, label)
+-- Creates the ProtoField(s) a field (or list element) of generation `d` is shown with.
+local function make_fields(d, f, abbrev, label)
   local w = f.w
   if w.k == "int" then
-    f.pf = register(INT[w.int].pf(abbrev, label, base.DEC))
+    f.pf = register(d, INT[w.int].pf(abbrev, label, base.DEC))
   elseif w.k == "scaled" or w.k == "f64" then
-    f.pf = register(ProtoField.double(abbrev, label))
+    f.pf = register(d, ProtoField.double(abbrev, label))
   elseif w.k == "f32" then
-    f.pf = register(ProtoField.float(abbrev, label))
+    f.pf = register(d, ProtoField.float(abbrev, label))
   elseif w.k == "str" then
-    f.pf = register(ProtoField.string(abbrev, label))
+    f.pf = register(d, ProtoField.string(abbrev, label))
   elseif w.k == "bytes" then
-    f.pf = register(ProtoField.bytes(abbrev, label))
+    f.pf = register(d, ProtoField.bytes(abbrev, label))
   elseif w.k == "flag" then
-    f.pf = register(ProtoField.bool(abbrev, label))
+    f.pf = register(d, ProtoField.bool(abbrev, label))
   elseif w.k == "named" then
-    local t = TYPES[w.name]
+    local t = d.types[w.name]
     if t.kind == "enum" then
-      f.pf = register(INT[t.repr].pf(abbrev, label, base.DEC, enum_strings(w.name)))
+      f.pf = register(d, INT[t.repr].pf(abbrev, label, base.DEC, enum_strings(d, w.name)))
     elseif t.kind == "bitfield" then
-      f.pf = register(INT[t.repr].pf(abbrev, label, base.HEX))
+      f.pf = register(d, INT[t.repr].pf(abbrev, label, base.HEX))
     elseif t.kind == "union" and w.tag_field == nil then
       local tags = {}
       for _, v in ipairs(t.variants) do tags[v.tag] = v.name end
-      f.tag_pf = register(INT[t.repr].pf(abbrev .. ".tag", label .. " (variant)", base.DEC, tags))
+      f.tag_pf = register(d, INT[t.repr].pf(abbrev .. ".tag", label .. " (variant)", base.DEC, tags))
     end
   elseif w.k == "list" or w.k == "listf" then
     f.elem = { w = w.elem, name = f.name, unit = f.unit }
-    make_fields(f.elem, abbrev, label)
+    make_fields(d, f.elem, abbrev, label)
   end
 end
 
--- Bit-field members: one ProtoField per member, shown under the value.
-for tname, t in pairs(TYPES) do
-  if t.kind == "bitfield" then
-    for _, m in ipairs(t.bits) do
-      local abbrev = "jaus." .. tname .. "." .. m.name
-      if m.hi == nil then
-        m.pf = register(ProtoField.bool(abbrev, m.name))
-      else
-        m.pf = register(ProtoField.uint32(abbrev, m.name))
+-- The ProtoFields of every type and message of generation `d`; bit-field members get
+-- one each, shown under the value.
+local function make_all_fields(d)
+  for tname, t in pairs(d.types) do
+    if t.kind == "bitfield" then
+      for _, m in ipairs(t.bits) do
+        local abbrev = d.prefix .. "." .. tname .. "." .. m.name
+        if m.hi == nil then
+          m.pf = register(d, ProtoField.bool(abbrev, m.name))
+        else
+          m.pf = register(d, ProtoField.uint32(abbrev, m.name))
+        end
       end
-    end
-  elseif t.kind == "record" then
-    for _, f in ipairs(t.fields) do make_fields(f, "jaus." .. tname .. "." .. f.name, f.name) end
-  elseif t.kind == "union" then
-    for _, v in ipairs(t.variants) do
-      if v.w ~= nil then
-        v.f = { w = v.w, name = v.name }
-        make_fields(v.f, "jaus." .. tname .. "." .. v.name, v.name)
+    elseif t.kind == "record" then
+      for _, f in ipairs(t.fields) do make_fields(d, f, d.prefix .. "." .. tname .. "." .. f.name, f.name) end
+    elseif t.kind == "union" then
+      for _, v in ipairs(t.variants) do
+        if v.w ~= nil then
+          v.f = { w = v.w, name = v.name }
+          make_fields(d, v.f, d.prefix .. "." .. tname .. "." .. v.name, v.name)
+        end
       end
     end
   end
+  for _, m in pairs(d.messages) do
+    for _, f in ipairs(m.fields) do make_fields(d, f, d.prefix .. "." .. m.name .. "." .. f.name, f.name) end
+  end
 end
-for _, m in pairs(MESSAGES) do
-  for _, f in ipairs(m.fields) do make_fields(f, "jaus." .. m.name .. "." .. f.name, f.name) end
-end
+make_all_fields(RA33)
+make_all_fields(AS4)
 
-jaus.fields = fields_list
+jaus.fields = RA33.fields
 jaus.experts = { ef_malformed, ef_unknown }
+jaus4.fields = AS4.fields
+jaus4.experts = { ef4_malformed, ef4_unknown }
 local judp_list = {}
 for _, f in pairs(hf_judp) do judp_list[#judp_list + 1] = f end
 judp.fields = judp_list
 judp.experts = { ef_compressed }
+local as4_list = {}
+for _, f in pairs(hf_as4) do as4_list[#as4_list + 1] = f end
+as5669a.fields = as4_list
+as5669a.experts = { ef_as4_malformed, ef_as4_compressed }
 
 -- Decoding ---------------------------------------------------------------------------
 
@@ -195,7 +255,7 @@ local function sub_tvb(tvb, off, n)
   return tvb:range(off, n):tvb()
 end
 
-local dissect_value, dissect_fields, dissect_body, dissect_packet
+local dissect_value, dissect_fields, dissect_body, dissect_packet, dissect_embedded
 
 -- A string or blob length: returns (start, length on the wire, content length).
 local function length_of(tvb, off, len, limit, what)
@@ -271,9 +331,10 @@ dissect_value = function(tvb, off, limit, tree, f, scope, pinfo)
         if f.complement then
           if code >= 0x4000 then code = code - 0x2000 else code = code + 0x2000 end
         end
-        dissect_body(sub_tvb(tvb, start, n), code, item, pinfo)
+        dissect_body(sub_tvb(tvb, start, n), code, item, pinfo, scope.d)
       end
     end
+    if f.embeds then dissect_embedded(tvb, start, n, item, f, scope, pinfo) end
     return n, off + wire
   elseif w.k == "flag" then
     return false, off
@@ -292,7 +353,7 @@ dissect_value = function(tvb, off, limit, tree, f, scope, pinfo)
     dissect_packet(sub_tvb(tvb, start, n), sub, pinfo, true)
     return nil, start + n
   elseif w.k == "named" then
-    local t = TYPES[w.name]
+    local t = scope.d.types[w.name]
     local vlimit = limit
     if w.size ~= nil then
       local n = number_of((read_int(tvb, off, w.size, limit, what .. " size")))
@@ -318,16 +379,16 @@ dissect_value = function(tvb, off, limit, tree, f, scope, pinfo)
       end
       return v, (w.size and vlimit) or (off + INT[t.repr].size)
     elseif t.kind == "record" then
-      local sub = tree:add(jaus, tvb(off, 0), f.name or w.name)
+      local sub = tree:add(scope.d.proto, tvb(off, 0), f.name or w.name)
       sub:append_text(" (" .. w.name .. ")")
       local start = off
-      local inner = { vars = {}, parent = scope }
+      local inner = { vars = {}, parent = scope, d = scope.d }
       off = dissect_fields(tvb, off, vlimit, sub, t.fields, t.presence, inner, pinfo)
       sub:set_len(off - start)
       return nil, (w.size and vlimit) or off
     else -- union
       local tag
-      local sub = tree:add(jaus, tvb(off, 0), f.name or w.name)
+      local sub = tree:add(scope.d.proto, tvb(off, 0), f.name or w.name)
       local start = off
       if w.tag_field ~= nil then
         tag = lookup(scope, w.tag_field)
@@ -345,7 +406,7 @@ dissect_value = function(tvb, off, limit, tree, f, scope, pinfo)
       end
       sub:append_text(": " .. variant.name)
       if variant.f ~= nil then
-        local _, o = dissect_value(tvb, off, vlimit, sub, variant.f, { vars = {}, parent = scope }, pinfo)
+        local _, o = dissect_value(tvb, off, vlimit, sub, variant.f, { vars = {}, parent = scope, d = scope.d }, pinfo)
         off = o
       end
       sub:set_len(off - start)
@@ -363,7 +424,7 @@ dissect_value = function(tvb, off, limit, tree, f, scope, pinfo)
       count = number_of(c or 0) - (w.minus or 0)
       if count < 0 then count = 0 end
     end
-    local sub = tree:add(jaus, tvb(start, 0), f.name or "list")
+    local sub = tree:add(scope.d.proto, tvb(start, 0), f.name or "list")
     local i = 0
     while (count ~= nil and i < count) or (count == nil and off < limit) do
       local _, o = dissect_value(tvb, off, limit, sub, f.elem, scope, pinfo)
@@ -385,7 +446,7 @@ dissect_fields = function(tvb, off, limit, tree, fields, presence, scope, pinfo)
     local v
     v, pv_range = read_int(tvb, off, presence, limit, "presence vector")
     pv = number_of(v)
-    tree:add_le(hf.presence, pv_range, pv)
+    tree:add_le(scope.d.hf.presence, pv_range, pv)
     off = off + INT[presence].size
   end
   for _, f in ipairs(fields) do
@@ -409,25 +470,44 @@ dissect_fields = function(tvb, off, limit, tree, fields, presence, scope, pinfo)
   return off
 end
 
--- A message body of command code `code` into `tree`.
-dissect_body = function(body, code, tree, pinfo)
-  local m = MESSAGES[code]
+-- A message body of command code (message ID) `code` of generation `d` into `tree`.
+dissect_body = function(body, code, tree, pinfo, d)
+  local m = d.messages[code]
   if m == nil then
-    tree:add_proto_expert_info(ef_unknown)
+    tree:add_proto_expert_info(d.ef_unknown)
     return
   end
   tree:append_text(": " .. m.name)
   local ok, err = pcall(function()
-    local off = dissect_fields(body, 0, body:len(), tree, m.fields, m.presence, { vars = {} }, pinfo)
+    local off = dissect_fields(body, 0, body:len(), tree, m.fields, m.presence, { vars = {}, d = d }, pinfo)
     if off < body:len() then
-      tree:add(hf.trailing, body(off, body:len() - off))
+      tree:add(d.hf.trailing, body(off, body:len() - off))
     end
   end)
   if not ok then
     local text = err
     if type(err) == "table" and err[1] == Malformed then text = err[2] end
-    tree:add_proto_expert_info(ef_malformed, m.name .. ": " .. tostring(text))
+    tree:add_proto_expert_info(d.ef_malformed, m.name .. ": " .. tostring(text))
   end
+end
+
+-- A message carried in the `n` bytes at `start` of field `f` (`embeds: message`): its
+-- 16-bit message ID, then its body; only when the field's `embeds_if` condition holds.
+dissect_embedded = function(tvb, start, n, item, f, scope, pinfo)
+  if f.embeds_if ~= nil then
+    local v = lookup(scope, f.embeds_if.field)
+    if v == nil or number_of(v) ~= f.embeds_if.value then return end
+  end
+  local d = scope.d
+  if n < 2 then
+    error({ Malformed, string.format("%s holds a message but has %d bytes, fewer than its 2-byte message ID", f.name, n) })
+  end
+  local id = tvb(start, 2):le_uint()
+  local sub = item:add(d.proto, tvb(start, n), "Embedded message")
+  sub:add_le(d.hf.message_id, tvb(start, 2))
+  local m = d.messages[id]
+  if m ~= nil then sub:add(d.hf.embedded_message, tvb(start, 2), m.name) end
+  dissect_body(sub_tvb(tvb, start + 2, n - 2), id, sub, pinfo, d)
 end
 
 local function address(tvb, off)
@@ -485,7 +565,7 @@ dissect_packet = function(tvb, tree, pinfo, embedded)
   end
   local body = tree:add(jaus, tvb(16, size), "Body")
   if flag == 0 then
-    dissect_body(sub_tvb(tvb, 16, size), code, body, pinfo)
+    dissect_body(sub_tvb(tvb, 16, size), code, body, pinfo, RA33)
     return
   end
   -- A part of a multi-packet message.
@@ -513,10 +593,146 @@ dissect_packet = function(tvb, tree, pinfo, embedded)
     local t = all:tvb("Reassembled JAUS body")
     local r = tree:add(jaus, t(), "Reassembled body")
     r:add(hf.reassembled, t(), all:len())
-    dissect_body(t, code, r, pinfo)
+    dissect_body(t, code, r, pinfo, RA33)
   else
     body:append_text(string.format(" (part %d of a multi-packet %s)", seq, name))
   end
+end
+
+-- AS5669A (JUDP version 2) ------------------------------------------------------------
+
+-- An AS-4 id: u32 little-endian, subsystem << 16 | node << 8 | component.
+local function as4_id(tvb, off)
+  local v = tvb(off, 4):le_uint()
+  return string.format("%d.%d.%d", math.floor(v / 65536), math.floor(v / 256) % 256, v % 256)
+end
+
+-- Multi-packet AS-4 messages: the packets seen on the first pass, keyed by source and
+-- destination (first, normal and last packets carry consecutive sequence numbers); the
+-- whole payload kept for the frame and message index of the last packet.
+local as4_parts = {}
+local as4_whole = {}
+
+-- One AS-4 payload (message ID, then the body) into `tree`.
+local function dissect_as4_payload(tvb, tree, pinfo, src, dst)
+  if tvb:len() < 2 then
+    tree:add_proto_expert_info(ef4_malformed, string.format("%d bytes: no room for the 2-byte message ID", tvb:len()))
+    return
+  end
+  local id = tvb(0, 2):le_uint()
+  local m = AS4_MESSAGES[id]
+  local t = tree:add(jaus4, tvb(), "AS-4 message")
+  local ii = t:add_le(hf4.message_id, tvb(0, 2))
+  if m ~= nil then
+    ii:append_text(" (" .. m.title .. ")")
+    t:add(hf4.message, tvb(0, 2), m.name)
+  end
+  pinfo.cols.info:append(string.format("%s %s → %s  ", (m and m.name) or string.format("0x%04X", id), src, dst))
+  dissect_body(sub_tvb(tvb, 2, tvb:len() - 2), id, t, pinfo, AS4)
+end
+
+-- One message of an AS5669A datagram at `off` (the `index`-th); returns its end, or nil
+-- when the rest of the datagram cannot be read.
+local function dissect_as4_message(tvb, off, index, pinfo, tree)
+  local avail = tvb:len() - off
+  local t = tree:add(as5669a, tvb(off, avail), string.format("Message %d", index))
+  if avail < 14 then
+    t:add_proto_expert_info(ef_as4_malformed, string.format("%d bytes: shorter than a header and sequence number (14)", avail))
+    return nil
+  end
+  local b0 = tvb(off, 1):uint()
+  t:add(hf_as4.message_type, tvb(off, 1))
+  t:add(hf_as4.hc_flags, tvb(off, 1))
+  local size = tvb(off + 1, 2):le_uint()
+  t:add_le(hf_as4.data_size, tvb(off + 1, 2))
+  if math.floor(b0 / 4) ~= 0 then
+    t:add_proto_expert_info(ef_as4_malformed, string.format("message type %d is not a JAUS message (0)", math.floor(b0 / 4)))
+    return nil
+  end
+  local hc = b0 % 4
+  if hc >= 2 then
+    t:add_proto_expert_info(ef_as4_compressed)
+    return nil
+  end
+  local p = off + 3
+  if hc == 1 then
+    t:add(hf_as4.hc_number, tvb(p, 1))
+    t:add(hf_as4.hc_length, tvb(p + 1, 1))
+    p = p + 2
+  end
+  local header = p + 9 - off
+  if size < header + 2 or size > avail then
+    t:add_proto_expert_info(ef_as4_malformed, string.format("data size %d: the message needs %d to %d bytes", size, header + 2, avail))
+    return nil
+  end
+  t:set_len(size)
+  local props = tvb(p, 1)
+  local pi = t:add(hf_as4.properties, props)
+  for _, k in ipairs({ "priority", "broadcast", "ack_nak", "data_control" }) do pi:add(hf_as4[k], props) end
+  local pv = props:uint()
+  local ack = math.floor(pv / 16) % 4
+  local dc = math.floor(pv / 64)
+  local dst = as4_id(tvb, p + 1)
+  local src = as4_id(tvb, p + 5)
+  t:add(hf_as4.destination, tvb(p + 1, 4), dst)
+  t:add(hf_as4.source, tvb(p + 5, 4), src)
+  local seq = tvb(off + size - 2, 2):le_uint()
+  t:add_le(hf_as4.sequence, tvb(off + size - 2, 2))
+  local plen = size - header - 2
+  local payload = sub_tvb(tvb, off + header, plen)
+  if dc == 0 then
+    if plen == 0 and ack >= 2 then
+      t:append_text(string.format(": %s of sequence number %d", ACK_NAK[ack], seq))
+      pinfo.cols.info:append(string.format("%s %s → %s  ", ACK_NAK[ack], src, dst))
+    else
+      dissect_as4_payload(payload, t, pinfo, src, dst)
+    end
+    return off + size
+  end
+  -- A packet of a multi-packet message.
+  if plen > 0 then t:add(hf_as4.fragment, tvb(off + header, plen)) end
+  local key = src .. ">" .. dst
+  if not pinfo.visited then
+    if dc == 1 then as4_parts[key] = { first = seq, bytes = {} } end
+    local list = as4_parts[key]
+    if list ~= nil then
+      list.bytes[(seq - list.first) % 65536] = payload:bytes()
+      if dc == 3 then
+        local all = ByteArray.new()
+        local ok = true
+        for i = 0, (seq - list.first) % 65536 do
+          if list.bytes[i] == nil then ok = false break end
+          all:append(list.bytes[i])
+        end
+        if ok then as4_whole[pinfo.number .. ":" .. index] = all end
+        as4_parts[key] = nil
+      end
+    end
+  end
+  local all = as4_whole[pinfo.number .. ":" .. index]
+  if all ~= nil then
+    local whole = all:tvb("Reassembled AS-4 payload")
+    local r = t:add(jaus4, whole(), "Reassembled payload")
+    r:add(hf4.reassembled, whole(), all:len())
+    dissect_as4_payload(whole, r, pinfo, src, dst)
+  else
+    t:append_text(string.format(" (%s packet of a multi-packet message, sequence number %d)", DATA_CONTROL[dc], seq))
+  end
+  return off + size
+end
+
+-- An AS5669A datagram: the version byte 2, then one or more messages.
+local function dissect_as5669a(tvb, pinfo, tree)
+  pinfo.cols.protocol = "JAUS AS-4"
+  local t = tree:add(as5669a, tvb())
+  t:add(hf_as4.version, tvb(0, 1))
+  local off, index = 1, 0
+  while off < tvb:len() do
+    off = dissect_as4_message(tvb, off, index, pinfo, t)
+    if off == nil then break end
+    index = index + 1
+  end
+  return tvb:len()
 end
 
 function jaus.dissector(tvb, pinfo, tree)
@@ -528,8 +744,9 @@ end
 
 function judp.dissector(tvb, pinfo, tree)
   if tvb:len() < 1 then return 0 end
-  pinfo.cols.protocol = "JAUS"
   pinfo.cols.info:clear()
+  if tvb(0, 1):uint() == 2 then return dissect_as5669a(tvb, pinfo, tree) end
+  pinfo.cols.protocol = "JAUS"
   local t = tree:add(judp, tvb())
   if tvb:len() >= 8 and tvb(0, 8):string() == "JAUS01.0" then
     t:add(hf.opc_prefix, tvb(0, 8))
@@ -566,6 +783,17 @@ DissectorTable.get("udp.port"):add(JAUS_UDP_PORT, judp)
 -- with "JAUS01.0".
 local function looks_like_jaus(tvb)
   local n = tvb:len()
+  if n >= 15 and tvb(0, 1):uint() == 2 then
+    -- AS5669A: JAUS messages without header compression filling the datagram exactly.
+    local off = 1
+    while off < n do
+      if n - off < 14 or tvb(off, 1):uint() >= 2 then return false end
+      local size = tvb(off + 1, 2):le_uint()
+      if size < 14 + tvb(off, 1):uint() * 2 or off + size > n then return false end
+      off = off + size
+    end
+    return true
+  end
   if n >= 24 and tvb(0, 8):string() == "JAUS01.0" then
     return tvb(8 + 12, 2):le_uint() % 0x1000 + 24 == n
   end

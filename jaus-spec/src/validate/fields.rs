@@ -5,7 +5,7 @@
 use super::names::{is_snake, KEYWORDS};
 use super::wire::resolve;
 use super::{Ctx, Draft};
-use crate::model::FieldDef;
+use crate::model::{FieldDef, TypeKind};
 use crate::{CountRef, Field, Int, Len, Wire};
 use std::collections::HashMap;
 
@@ -98,6 +98,7 @@ pub(super) fn check_fields(
         check_dependencies(cx, &o, &at);
         check_offsets_of(cx, &o, &at);
         check_code_field(cx, &o, &at);
+        check_embeds_if(cx, &o, &at);
     }
     resolved.map(|fields| (pv, fields))
 }
@@ -320,6 +321,46 @@ fn check_code_field(cx: &mut Ctx<'_>, o: &Owner<'_>, at: &At<'_>) {
                 o.name
             ),
         );
+    }
+}
+
+/// `embeds_if: FIELD == VALUE` names an earlier field of this body, an enumeration
+/// with a value of that name or an integer that can hold the value.
+fn check_embeds_if(cx: &mut Ctx<'_>, o: &Owner<'_>, at: &At<'_>) {
+    let Some(cond) = &at.f.embeds_if else { return };
+    let problem = match crate::model::embeds_condition(cond) {
+        None => Some(format!(
+            "`embeds_if: {cond}` is not of the form `FIELD == VALUE` (`format == JausMessage`)"
+        )),
+        Some((field, value)) => match o.fields[..at.i].iter().find(|g| g.name == field) {
+            None => Some(format!(
+                "`embeds_if: {cond}`: `{field}` is no earlier field of `{}`",
+                o.name
+            )),
+            Some(g) => match (
+                Int::parse(&g.ty),
+                cx.spec
+                    .types
+                    .iter()
+                    .map(|t| &t.def)
+                    .find(|t| t.name == g.ty),
+            ) {
+                (Some(_), _) => value.parse::<u64>().is_err().then(|| {
+                    format!("`embeds_if: {cond}`: `{field}` is an integer; `{value}` is not")
+                }),
+                (None, Some(t)) if t.kind == TypeKind::Enum => (!t
+                    .values
+                    .iter()
+                    .any(|v| v.name == value || v.value.to_string() == value))
+                .then(|| format!("`embeds_if: {cond}`: `{}` has no value `{value}`", g.ty)),
+                _ => Some(format!(
+                    "`embeds_if: {cond}`: `{field}` must be an integer or an enumeration"
+                )),
+            },
+        },
+    };
+    if let Some(message) = problem {
+        cx.err(o.source, &at.key("embeds_if"), at.ctx.clone(), message);
     }
 }
 

@@ -43,6 +43,15 @@ pub(super) fn resolve(spec: &Draft, f: &FieldDef) -> Result<Wire, String> {
         !f.accept_short || matches!(f.length, Some(Length::Fixed(_))),
     )?;
     no("code_field", f.code_field.is_none() || ty == "bytes")?;
+    no("embeds", f.embeds.is_none() || ty == "bytes")?;
+    if f.embeds.is_some() && f.code_field.is_some() {
+        return Err(
+            "`embeds` and `code_field` are two forms of an embedded message: give one".into(),
+        );
+    }
+    if f.embeds_if.is_some() && f.embeds.is_none() {
+        return Err("`embeds_if` needs `embeds`".into());
+    }
     no("count_field", f.count_field.is_none() || ty == "list")?;
     no(
         "offsets_of",

@@ -182,6 +182,20 @@ pub(crate) enum Cmd {
         #[command(flatten)]
         args: crate::conform::ConformArgs,
     },
+    /// Write a Wireshark/tshark dissector (Lua) generated from the definitions built
+    /// into this binary, RA 3.3 and AS-4, with a vendor's (--spec overlay files for RA
+    /// 3.3, --as4-spec directories of AS-4 YAML): JUDP, "JAUS01.0" and AS5669A framing,
+    /// every field of every message, messages carried inside others, multi-packet
+    /// messages reassembled. Load it with `tshark -X lua_script:FILE` or from
+    /// Wireshark's plugin folder.
+    Wireshark {
+        /// The file to write.
+        #[arg(long, value_name = "FILE", default_value = "jaus.lua")]
+        out: std::path::PathBuf,
+        /// Directories of a vendor's AS-4 YAML, loaded on jaus-as4's definitions.
+        #[arg(long = "as4-spec", value_name = "DIR")]
+        as4_spec: Vec<std::path::PathBuf>,
+    },
     /// Drive an AS-4 vehicle (AS5669A): find its component, take control, load a
     /// waypoint list and execute it with its Local or Global Waypoint List Driver,
     /// following the active element and the pose until done; then standby and release.

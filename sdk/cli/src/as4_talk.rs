@@ -57,6 +57,12 @@ pub struct As4TalkArgs {
 
 /// The definitions the tool reads messages with: jaus-as4's and `spec`, or `jsidl`.
 pub fn schema(spec: &[PathBuf], jsidl: &[PathBuf]) -> Result<Schema, String> {
+    as4_spec(spec, jsidl).map(|spec| Schema::from_spec(&spec))
+}
+
+/// The AS-4 definitions: jaus-as4's built-in ones with the YAML of the directories
+/// `spec` on them, or the JSIDL of the directories `jsidl` imported instead.
+pub fn as4_spec(spec: &[PathBuf], jsidl: &[PathBuf]) -> Result<jaus_spec::Spec, String> {
     let loaded = if jsidl.is_empty() {
         let base: Vec<(PathBuf, String)> = jaus_as4::DEFS
             .iter()
@@ -81,9 +87,7 @@ pub fn schema(spec: &[PathBuf], jsidl: &[PathBuf]) -> Result<Schema, String> {
         let import = jaus_jsidl::import(jsidl).map_err(|e| e.to_string())?;
         jaus_spec::load_texts(import.texts(Path::new("jsidl")))
     };
-    loaded
-        .map(|spec| Schema::from_spec(&spec))
-        .map_err(|e| e.to_string())
+    loaded.map_err(|e| e.to_string())
 }
 
 /// A message as the command line gives it.

@@ -313,6 +313,26 @@ fn main() -> ExitCode {
                 jaus_cli::net::node(&config, d, capture.as_deref(), &STOP, &mut out),
             )
         }
+        Cmd::Wireshark {
+            out: path,
+            as4_spec,
+        } => report(
+            &mut err,
+            jaus_cli::describe::spec_with(&cli.spec).and_then(|ra33| {
+                let as4 = jaus_cli::as4_talk::as4_spec(&as4_spec, &[])
+                    .map_err(|e| format!("--as4-spec: {e}"))?;
+                let lua = jaus_gen::wireshark::dissector_for(&ra33, Some(&as4));
+                std::fs::write(&path, lua).map_err(|e| format!("{}: {e}", path.display()))?;
+                writeln!(
+                    out,
+                    "wrote {}: RA 3.3 {} messages, AS-4 {} messages",
+                    path.display(),
+                    ra33.messages.len(),
+                    as4.messages.len()
+                )
+                .map_err(|e| e.to_string())
+            }),
+        ),
         Cmd::Keygen { name, dir } => {
             report(&mut err, jaus_cli::keygen::keygen(&name, &dir, &mut out))
         }
