@@ -332,11 +332,14 @@ impl Header {
     }
 
     /// The acknowledgement answering a message with this header: the same command code,
-    /// from `from` (the component it was for) to its source, ACK when `ok`, else NAK; the
-    /// body is empty.
+    /// from `from` (the component it was for) to its source, ACK when `ok`, else NAK,
+    /// with the request's sequence number; the body is empty.
     pub fn acknowledgement(&self, from: Address, ok: bool) -> Header {
         let mut h = Header::new(self.command_code, self.source, from);
         h.ack_nak = if ok { AckNak::Ack } else { AckNak::Nak };
+        // The request's number, so that a sender with several commands of one code
+        // waiting knows which one is answered (`jaus::net::reliable`).
+        h.sequence_number = self.sequence_number;
         h
     }
 

@@ -56,6 +56,18 @@ pub struct NodeConfig<A: PeerAddr = SocketAddr> {
     /// authority ([`Policy`](crate::net::policy::Policy)), checked before a message from
     /// outside the node reaches a component. Default `None`: open, as RA 3.3 is.
     pub policy: Option<crate::net::policy::Policy>,
+    /// Commands that arrive ([`reliable`](crate::net::reliable)): when set, a command
+    /// (a message of the Command class) that a component here sends to one component
+    /// of another node asks for an acknowledgement and is resent with backoff until it
+    /// is acknowledged or refused, or the policy's attempts run out; each ends as a
+    /// [`Delivery`](crate::net::reliable::Delivery) ([`Node::poll_delivery`](super::Node::poll_delivery)).
+    /// A peer that never acknowledges (OpenJAUS 3.3's components) is learnt and then
+    /// sent to once. Messages asking for an acknowledgement themselves (`jaus send`,
+    /// the Python client) are tracked the same way. Meant for nodes that send
+    /// commands (an operator, a spooler), not for streams of set-points, where a newer
+    /// value replaces a lost one. Default `None`: sent once. Whatever this says, a
+    /// retransmitted message that arrives is carried out once and its answer repeated.
+    pub reliable: Option<crate::net::reliable::RetryPolicy>,
 }
 
 /// The defaults the field documentation states:
@@ -69,6 +81,7 @@ pub struct NodeConfig<A: PeerAddr = SocketAddr> {
 /// assert!(n.multicast.is_none());
 /// assert!(n.communicator.is_none());
 /// assert!(n.policy.is_none());
+/// assert!(n.reliable.is_none());
 /// ```
 impl Default for NodeConfig<SocketAddr> {
     fn default() -> Self {
@@ -86,6 +99,7 @@ impl Default for NodeConfig<SocketAddr> {
             multicast: None,
             communicator: None,
             policy: None,
+            reliable: None,
         }
     }
 }
@@ -114,6 +128,7 @@ impl<A: PeerAddr> NodeConfig<A> {
             multicast,
             communicator: self.communicator,
             policy: self.policy,
+            reliable: self.reliable,
         }
     }
 }

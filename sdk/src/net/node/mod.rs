@@ -16,6 +16,7 @@
 //! `oj_server` serves OpenJAUS's component sockets, `queue` holds the buffer pool
 //! and the outbox; this file applies the decisions.
 
+mod acks;
 mod config;
 mod external;
 mod gateway;
@@ -28,11 +29,13 @@ use std::collections::{HashMap, VecDeque};
 use std::net::SocketAddr;
 use std::time::Instant;
 
+pub use acks::AckKey;
 pub use config::{Datagram, NetStats, NodeConfig, Via};
 
 use super::framing::{split, DatagramError, Reassembler, ReassemblyStats, MAX_PACKET_BODY};
 use super::manager::{StockNodeManager, SystemTree};
 use super::policy::{PolicyState, Verdict};
+use super::reliable::{Receiver, Sender};
 use super::{NetError, Participant, PeerAddr};
 use crate::component::{Component, Endpoint, Endpoints, Outgoing};
 use crate::components::node_manager;
@@ -87,6 +90,12 @@ pub struct Node<A: PeerAddr = SocketAddr> {
     transmits: Vec<Outgoing>,
     stats: NetStats,
     policy: Option<PolicyState>,
+    /// Commands waiting for their acknowledgement ([`NodeConfig::reliable`]).
+    sender: Sender<AckKey, Address, acks::Kept>,
+    /// Messages that asked for one, to carry out their retransmissions once.
+    receiver: Receiver<AckKey, Header>,
+    /// The sequence number of the last command tracked.
+    ack_sequence: u16,
 }
 
 impl<A: PeerAddr> std::fmt::Debug for Node<A> {
@@ -116,7 +125,11 @@ impl<A: PeerAddr> Node<A> {
             now,
         ));
         let policy = config.policy.clone().map(PolicyState::new);
+        let retry = config.reliable.unwrap_or_default();
         Self {
+            sender: Sender::new(retry),
+            receiver: Receiver::new(&retry),
+            ack_sequence: 0,
             reassembler: Reassembler::new(config.reassembly),
             scope: Scope {
                 subsystem: config.subsystem,
@@ -264,6 +277,10 @@ impl<A: PeerAddr> Node<A> {
         if !(mine || foreign && self.config.communicator.is_some()) {
             self.peers.learn((src.subsystem, src.node), peer);
         }
+        if !self.incoming(&header) {
+            self.pump();
+            return;
+        }
         // A message of an external component is routed like one of a built-in component.
         let origin = if mine { Origin::Local } else { Origin::Network };
         if header.data_flag == DataFlag::Single {
@@ -331,6 +348,7 @@ impl<A: PeerAddr> Node<A> {
         }
         self.locals.run_due(self.now);
         self.drain_communicator();
+        self.resend_due(self.now);
         self.pump();
     }
 
@@ -348,6 +366,7 @@ impl<A: PeerAddr> Node<A> {
             self.locals.next_timeout(),
             self.reassembler.next_timeout(),
             self.external.next_timeout(),
+            self.sender.next_timeout(),
         ]
         .into_iter()
         .flatten()
@@ -471,9 +490,13 @@ impl<A: PeerAddr> Node<A> {
             from = origin.name(),
             "route"
         );
+        if origin == Origin::Local {
+            self.answer_given(header);
+        }
         let decision = self.scope.decide(header.source, header.destination, origin);
         if let Some(hop) = decision.network {
-            self.send_network(header, body, hop);
+            let header = self.outgoing(header, body, origin);
+            self.send_network(&header, body, hop);
         }
         if let Some(comm) = decision.gateway {
             self.send_gateway(comm, header, body);

@@ -1,0 +1,155 @@
+//! The node's side of commands that arrive ([`crate::net::reliable`]): commands
+//! leaving over the carrier ask for an acknowledgement and are resent until answered
+//! ([`NodeConfig::reliable`](super::NodeConfig::reliable)); retransmissions arriving
+//! are carried out once, their answer repeated.
+//!
+//! A tracked message is keyed by its destination, command code and sequence number;
+//! the node gives every command it tracks a sequence number of its own (1-65535, 0
+//! left to senders that number nothing), and an answer carries the request's number
+//! back ([`Header::acknowledgement`]). An answer from a peer that leaves the number 0
+//! settles the oldest message of that code to that peer.
+
+use std::time::Instant;
+
+use super::route::Origin;
+use super::Node;
+use crate::net::framing::MAX_PACKET_BODY;
+use crate::net::reliable::{Arrival, Delivery, ReliableStats};
+use crate::net::PeerAddr;
+use crate::wire::{AckNak, DataFlag, Header, MessageClass};
+use crate::{Address, CommandCode};
+
+/// A tracked message: its peer (the destination), command code and sequence number.
+pub type AckKey = (Address, CommandCode, u16);
+
+/// What the node keeps of a tracked message to send it again.
+pub(super) type Kept = (Header, Vec<u8>);
+
+fn is_unicast(a: Address) -> bool {
+    a.subsystem != 255 && a.node != 255 && a.component != 255 && a.instance != 255
+}
+
+impl<A: PeerAddr> Node<A> {
+    /// How the tracked messages ended, oldest first ([`NodeConfig::reliable`](super::NodeConfig::reliable)).
+    pub fn poll_delivery(&mut self) -> Option<Delivery<AckKey>> {
+        self.sender.poll_delivery()
+    }
+
+    /// Counters of both sides of commands that arrive.
+    pub fn reliable_stats(&self) -> ReliableStats {
+        let mut s = self.sender.stats();
+        self.receiver.add_stats(&mut s);
+        s
+    }
+
+    /// Whether the component at `a` is asked for acknowledgements (false once it was
+    /// learnt never to answer them).
+    pub fn acknowledges(&self, a: Address) -> bool {
+        self.sender.acknowledges(a)
+    }
+
+    /// A message leaving over the carrier: with reliability on, a unicast
+    /// single-packet command from here asks for an acknowledgement (unless its peer is
+    /// known not to give one), gets a sequence number and is kept to be resent.
+    /// Returns the header to send.
+    pub(super) fn outgoing(&mut self, header: &Header, body: &[u8], origin: Origin) -> Header {
+        let mut h = *header;
+        if self.config.reliable.is_none()
+            || origin != Origin::Local
+            || h.data_flag != DataFlag::Single
+            || body.len() > MAX_PACKET_BODY
+            || !is_unicast(h.destination)
+        {
+            return h;
+        }
+        let command = h.command_code.class() == MessageClass::Command;
+        match h.ack_nak {
+            AckNak::None if command => {
+                if !self.sender.ask(h.destination) {
+                    return h;
+                }
+                h.ack_nak = AckNak::Request;
+            }
+            AckNak::Request => {}
+            _ => return h,
+        }
+        if h.sequence_number == 0 {
+            self.ack_sequence = self.ack_sequence.wrapping_add(1).max(1);
+            h.sequence_number = self.ack_sequence;
+        }
+        let key = (h.destination, h.command_code, h.sequence_number);
+        tracing::trace!(destination = %h.destination, code = %h.command_code, sequence = h.sequence_number, "tracked");
+        self.sender
+            .track(self.now, key, h.destination, (h, body.to_vec()));
+        h
+    }
+
+    /// A message arrived over the carrier: an answer settles what waits for it; a
+    /// retransmission already carried out is dropped (false) and its answer sent
+    /// again. True when the message goes on to its destination.
+    pub(super) fn incoming(&mut self, header: &Header) -> bool {
+        match header.ack_nak {
+            AckNak::Ack | AckNak::Nak => {
+                if self.sender.waiting() > 0 {
+                    let ok = header.ack_nak == AckNak::Ack;
+                    let (peer, code) = (header.source, header.command_code);
+                    let key = (peer, code, header.sequence_number);
+                    let seq0 = header.sequence_number == 0;
+                    self.sender.answered(self.now, key, peer, ok, |k| {
+                        seq0 && k.0 == peer && k.1 == code
+                    });
+                }
+                true
+            }
+            AckNak::Request
+                if header.sequence_number != 0 && header.data_flag == DataFlag::Single =>
+            {
+                let key = (header.source, header.command_code, header.sequence_number);
+                match self.receiver.arrived(self.now, key) {
+                    Arrival::New => true,
+                    Arrival::Duplicate(answer) => {
+                        tracing::debug!(source = %header.source, code = %header.command_code,
+                            sequence = header.sequence_number, "retransmission dropped: carried out once");
+                        if let Some(a) = answer {
+                            // From the component that answered: routed as its own.
+                            if self.route_common(&a, &[], Origin::Local) {
+                                self.enqueue(a, Vec::new());
+                            }
+                        }
+                        false
+                    }
+                }
+            }
+            _ => true,
+        }
+    }
+
+    /// An answer a component here gives: kept for the retransmissions of the message
+    /// it answers.
+    pub(super) fn answer_given(&mut self, header: &Header) {
+        if matches!(header.ack_nak, AckNak::Ack | AckNak::Nak) && header.sequence_number != 0 {
+            let key = (
+                header.destination,
+                header.command_code,
+                header.sequence_number,
+            );
+            self.receiver.answered(key, *header);
+        }
+    }
+
+    /// Sends again what is due, and gives up what is out of attempts.
+    pub(super) fn resend_due(&mut self, now: Instant) {
+        if self.sender.next_timeout().is_none_or(|t| t > now) {
+            return;
+        }
+        let mut due: Vec<Kept> = Vec::new();
+        self.sender
+            .poll(now, |k| k.0, |_, (h, b)| due.push((*h, b.clone())));
+        for (h, b) in due {
+            let decision = self.scope.decide(h.source, h.destination, Origin::Local);
+            if let Some(hop) = decision.network {
+                self.send_network(&h, &b, hop);
+            }
+        }
+    }
+}

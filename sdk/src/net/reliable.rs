@@ -1,0 +1,552 @@
+//! Commands that arrive, sans-IO: one mechanism for RA 3.3 and AS-4 alike.
+//!
+//! * [`Sender`]: a message sent with an acknowledgement requested is kept until its
+//!   ACK or NAK comes back, resent with exponential backoff when it does not, and given
+//!   up after a bounded number of attempts and time. Each ends as a [`Delivery`] value
+//!   ([`Outcome::Acknowledged`], [`Outcome::Refused`], [`Outcome::GaveUp`]) for the
+//!   caller to take. A peer that never acknowledged anything and let
+//!   [`RetryPolicy::learn_after`] messages go unanswered is remembered as one that does
+//!   not acknowledge ([`Sender::acknowledges`]): its later messages go once, untracked,
+//!   as OpenJAUS 3.3's components never send ACK/NAK.
+//! * [`Receiver`]: a retransmitted message (same sender, command code and sequence
+//!   number within [`RetryPolicy::duplicate_window`]) is carried out once: the
+//!   duplicate is dropped and the answer already given to the first copy is given
+//!   again, since it is the answer that was lost.
+//!
+//! Both are bounded (outstanding messages, remembered receptions, outcomes waiting to
+//! be taken) and count everything ([`ReliableStats`]). The keys are the caller's: the
+//! RA 3.3 node keys by JAUS address, command code and sequence number; the AS-4 stack
+//! by AS-4 id and sequence number.
+
+use std::collections::{HashMap, VecDeque};
+use std::hash::Hash;
+use std::time::{Duration, Instant};
+
+/// How hard a [`Sender`] tries, and how long a [`Receiver`] remembers.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct RetryPolicy {
+    /// Wait for the acknowledgement of the first copy. Default 200 ms.
+    pub first_timeout: Duration,
+    /// Longest wait between two copies (the wait doubles up to it). Default 1.6 s.
+    pub max_timeout: Duration,
+    /// Copies sent in all, the first included. Default 6 (within about 5 s).
+    pub max_attempts: u32,
+    /// Most messages waiting for an acknowledgement at once; more are sent once,
+    /// untracked, and counted. Default 1024.
+    pub max_outstanding: usize,
+    /// A peer that never acknowledged and let this many messages go unanswered is not
+    /// asked again (its messages go once). Default 2; 0 never gives up on a peer.
+    pub learn_after: u32,
+    /// How long a receiver remembers a message to drop its retransmissions. Default
+    /// 30 s (longer than a sender keeps trying).
+    pub duplicate_window: Duration,
+    /// Most receptions remembered (the oldest are forgotten first). Default 4096.
+    pub max_remembered: usize,
+}
+
+impl Default for RetryPolicy {
+    fn default() -> Self {
+        Self {
+            first_timeout: Duration::from_millis(200),
+            max_timeout: Duration::from_millis(1600),
+            max_attempts: 6,
+            max_outstanding: 1024,
+            learn_after: 2,
+            duplicate_window: Duration::from_secs(30),
+            max_remembered: 4096,
+        }
+    }
+}
+
+impl RetryPolicy {
+    /// The wait after copy number `attempt` (1 for the first): doubling from
+    /// [`first_timeout`](Self::first_timeout) up to [`max_timeout`](Self::max_timeout).
+    pub fn wait_after(&self, attempt: u32) -> Duration {
+        let doublings = attempt.saturating_sub(1).min(16);
+        self.first_timeout
+            .saturating_mul(1 << doublings)
+            .min(self.max_timeout)
+    }
+}
+
+/// How a message sent with an acknowledgement requested ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Outcome {
+    /// The peer acknowledged it (ACK).
+    Acknowledged,
+    /// The peer refused it (NAK): it arrived and was not carried out.
+    Refused,
+    /// No answer after every attempt: it may or may not have arrived.
+    GaveUp,
+}
+
+/// The end of one tracked message: its key, how it ended, the copies sent and the
+/// time from the first copy to the end.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Delivery<K> {
+    /// The caller's key of the message.
+    pub key: K,
+    /// How it ended.
+    pub outcome: Outcome,
+    /// Copies sent (1 when the first was acknowledged).
+    pub attempts: u32,
+    /// From the first copy to the acknowledgement or the giving up.
+    pub elapsed: Duration,
+}
+
+/// Counters of both sides.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct ReliableStats {
+    /// Messages tracked (sent with an acknowledgement requested).
+    pub tracked: u64,
+    /// Copies resent.
+    pub retried: u64,
+    /// Messages acknowledged.
+    pub acknowledged: u64,
+    /// Messages refused (NAK).
+    pub refused: u64,
+    /// Messages given up on.
+    pub given_up: u64,
+    /// Messages sent once, untracked, because their peer does not acknowledge.
+    pub untracked_peer: u64,
+    /// Messages sent once, untracked, because too many waited already.
+    pub untracked_full: u64,
+    /// Acknowledgements that matched nothing waiting (late, or duplicated).
+    pub stray_answers: u64,
+    /// Retransmitted messages received and dropped (carried out once).
+    pub duplicates_dropped: u64,
+    /// Answers given again to a retransmission.
+    pub answers_repeated: u64,
+    /// Outcomes dropped because nobody took them (the oldest go first).
+    pub outcomes_dropped: u64,
+}
+
+/// What a peer does with acknowledgement requests, as learnt.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+struct Habit {
+    acknowledged: u64,
+    unanswered: u32,
+}
+
+#[derive(Debug)]
+struct Waiting<K, M> {
+    key: K,
+    message: M,
+    first: Instant,
+    next: Instant,
+    attempts: u32,
+}
+
+/// The sending side: messages waiting for their acknowledgement. `K` keys a message,
+/// `P` names its peer (whose habit is learnt), `M` is what is resent.
+#[derive(Debug)]
+pub struct Sender<K, P, M> {
+    policy: RetryPolicy,
+    waiting: Vec<Waiting<K, M>>,
+    habits: HashMap<P, Habit>,
+    outcomes: VecDeque<Delivery<K>>,
+    stats: ReliableStats,
+}
+
+/// Most outcomes kept for the caller to take.
+const MAX_OUTCOMES: usize = 4096;
+
+/// Most peers whose habit is remembered (a peer beyond it is simply asked again).
+const MAX_HABITS: usize = 4096;
+
+impl<K: Copy + Eq + std::fmt::Debug, P: Copy + Eq + Hash, M> Sender<K, P, M> {
+    /// A sender trying as `policy` says.
+    pub fn new(policy: RetryPolicy) -> Self {
+        Self {
+            policy,
+            waiting: Vec::new(),
+            habits: HashMap::new(),
+            outcomes: VecDeque::new(),
+            stats: ReliableStats::default(),
+        }
+    }
+
+    /// The policy.
+    pub fn policy(&self) -> &RetryPolicy {
+        &self.policy
+    }
+
+    /// Whether `peer` is to be asked for acknowledgements: false once it let
+    /// [`RetryPolicy::learn_after`] messages go unanswered without ever acknowledging.
+    pub fn acknowledges(&self, peer: P) -> bool {
+        self.policy.learn_after == 0
+            || self
+                .habits
+                .get(&peer)
+                .is_none_or(|h| h.acknowledged > 0 || h.unanswered < self.policy.learn_after)
+    }
+
+    /// Whether to ask `peer` for an acknowledgement of a message that did not ask for
+    /// one itself: [`acknowledges`](Self::acknowledges), and when not, the message is
+    /// counted as sent once, untracked.
+    pub fn ask(&mut self, peer: P) -> bool {
+        let ask = self.acknowledges(peer);
+        if !ask {
+            self.stats.untracked_peer += 1;
+        }
+        ask
+    }
+
+    /// Tracks `message`, just sent (its first copy) to `peer` at `now`. False (and
+    /// counted) when it is not tracked: the peer does not acknowledge, or too many
+    /// wait already; the caller then sends it once, as it did.
+    pub fn track(&mut self, now: Instant, key: K, peer: P, message: M) -> bool {
+        if !self.acknowledges(peer) {
+            self.stats.untracked_peer += 1;
+            return false;
+        }
+        if self.waiting.len() >= self.policy.max_outstanding {
+            self.stats.untracked_full += 1;
+            return false;
+        }
+        self.stats.tracked += 1;
+        self.waiting.push(Waiting {
+            key,
+            message,
+            first: now,
+            next: now + self.policy.wait_after(1),
+            attempts: 1,
+        });
+        true
+    }
+
+    /// An ACK (`ok`) or NAK from `peer` for the message `key` (or, when the peer's
+    /// answer does not carry the key exactly, the oldest waiting message `matches`
+    /// accepts). True when it settled a waiting message.
+    pub fn answered(
+        &mut self,
+        now: Instant,
+        key: K,
+        peer: P,
+        ok: bool,
+        matches: impl Fn(&K) -> bool,
+    ) -> bool {
+        let i = self
+            .waiting
+            .iter()
+            .position(|w| w.key == key)
+            .or_else(|| self.waiting.iter().position(|w| matches(&w.key)));
+        let Some(i) = i else {
+            self.stats.stray_answers += 1;
+            return false;
+        };
+        let w = self.waiting.remove(i);
+        if self.habits.len() < MAX_HABITS || self.habits.contains_key(&peer) {
+            let h = self.habits.entry(peer).or_default();
+            h.acknowledged += 1;
+            h.unanswered = 0;
+        }
+        let outcome = if ok {
+            self.stats.acknowledged += 1;
+            Outcome::Acknowledged
+        } else {
+            self.stats.refused += 1;
+            Outcome::Refused
+        };
+        self.finish(Delivery {
+            key: w.key,
+            outcome,
+            attempts: w.attempts,
+            elapsed: now.saturating_duration_since(w.first),
+        });
+        true
+    }
+
+    /// The messages due for another copy at `now`, handed to `resend` (which sends it
+    /// again); those out of attempts are given up (an outcome each). `peer_of` names a
+    /// message's peer, for learning its habit.
+    pub fn poll(
+        &mut self,
+        now: Instant,
+        peer_of: impl Fn(&K) -> P,
+        mut resend: impl FnMut(&K, &M),
+    ) {
+        let mut i = 0;
+        while i < self.waiting.len() {
+            if self.waiting[i].next > now {
+                i += 1;
+                continue;
+            }
+            if self.waiting[i].attempts >= self.policy.max_attempts {
+                let w = self.waiting.remove(i);
+                self.stats.given_up += 1;
+                let peer = peer_of(&w.key);
+                if self.habits.len() < MAX_HABITS || self.habits.contains_key(&peer) {
+                    let h = self.habits.entry(peer).or_default();
+                    h.unanswered = h.unanswered.saturating_add(1);
+                }
+                self.finish(Delivery {
+                    key: w.key,
+                    outcome: Outcome::GaveUp,
+                    attempts: w.attempts,
+                    elapsed: now.saturating_duration_since(w.first),
+                });
+                continue;
+            }
+            let w = &mut self.waiting[i];
+            w.attempts += 1;
+            w.next = now + self.policy.wait_after(w.attempts);
+            self.stats.retried += 1;
+            resend(&w.key, &w.message);
+            i += 1;
+        }
+    }
+
+    /// When [`poll`](Self::poll) must next run.
+    pub fn next_timeout(&self) -> Option<Instant> {
+        self.waiting.iter().map(|w| w.next).min()
+    }
+
+    /// Messages waiting for their acknowledgement.
+    pub fn waiting(&self) -> usize {
+        self.waiting.len()
+    }
+
+    /// The next outcome, oldest first.
+    pub fn poll_delivery(&mut self) -> Option<Delivery<K>> {
+        self.outcomes.pop_front()
+    }
+
+    /// The counters.
+    pub fn stats(&self) -> ReliableStats {
+        self.stats
+    }
+
+    fn finish(&mut self, d: Delivery<K>) {
+        tracing::debug!(key = ?d.key, outcome = ?d.outcome, attempts = d.attempts, "delivery");
+        if self.outcomes.len() >= MAX_OUTCOMES {
+            self.outcomes.pop_front();
+            self.stats.outcomes_dropped += 1;
+        }
+        self.outcomes.push_back(d);
+    }
+}
+
+/// What [`Receiver::arrived`] says of a message.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Arrival<A> {
+    /// The first copy: carry it out.
+    New,
+    /// A retransmission: drop it, and send this answer again when there is one (the
+    /// answer to the first copy, lost on its way).
+    Duplicate(Option<A>),
+}
+
+/// The receiving side: messages seen recently, with the answer given to each. `K` keys
+/// a message, `A` is its answer.
+#[derive(Debug)]
+pub struct Receiver<K, A> {
+    window: Duration,
+    max: usize,
+    seen: HashMap<K, (Instant, Option<A>)>,
+    order: VecDeque<(Instant, K)>,
+    duplicates_dropped: u64,
+    answers_repeated: u64,
+}
+
+impl<K: Copy + Eq + Hash, A: Clone> Receiver<K, A> {
+    /// A receiver remembering messages as `policy` says.
+    pub fn new(policy: &RetryPolicy) -> Self {
+        Self {
+            window: policy.duplicate_window,
+            max: policy.max_remembered.max(1),
+            seen: HashMap::new(),
+            order: VecDeque::new(),
+            duplicates_dropped: 0,
+            answers_repeated: 0,
+        }
+    }
+
+    /// A message `key` asking for an acknowledgement arrived at `now`.
+    pub fn arrived(&mut self, now: Instant, key: K) -> Arrival<A> {
+        self.expire(now);
+        if let Some((_, answer)) = self.seen.get(&key) {
+            self.duplicates_dropped += 1;
+            if answer.is_some() {
+                self.answers_repeated += 1;
+            }
+            return Arrival::Duplicate(answer.clone());
+        }
+        if self.order.len() >= self.max {
+            if let Some((_, old)) = self.order.pop_front() {
+                self.seen.remove(&old);
+            }
+        }
+        self.seen.insert(key, (now, None));
+        self.order.push_back((now, key));
+        Arrival::New
+    }
+
+    /// The answer given to message `key` (kept for its retransmissions).
+    pub fn answered(&mut self, key: K, answer: A) {
+        if let Some((_, a)) = self.seen.get_mut(&key) {
+            *a = Some(answer);
+        }
+    }
+
+    /// Whether `key` is remembered (a message seen within the window).
+    pub fn remembers(&self, key: &K) -> bool {
+        self.seen.contains_key(key)
+    }
+
+    /// Adds this side's counters to `stats`.
+    pub fn add_stats(&self, stats: &mut ReliableStats) {
+        stats.duplicates_dropped += self.duplicates_dropped;
+        stats.answers_repeated += self.answers_repeated;
+    }
+
+    fn expire(&mut self, now: Instant) {
+        while let Some(&(t, k)) = self.order.front() {
+            if now.saturating_duration_since(t) < self.window {
+                break;
+            }
+            self.order.pop_front();
+            self.seen.remove(&k);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sender() -> Sender<u16, u8, &'static str> {
+        Sender::new(RetryPolicy::default())
+    }
+
+    #[test]
+    fn the_wait_doubles_up_to_its_bound() {
+        let p = RetryPolicy::default();
+        let waits: Vec<u64> = (1..=6)
+            .map(|a| p.wait_after(a).as_millis() as u64)
+            .collect();
+        assert_eq!(waits, [200, 400, 800, 1600, 1600, 1600]);
+        assert_eq!(p.wait_after(u32::MAX), p.max_timeout);
+    }
+
+    #[test]
+    fn an_unanswered_message_is_resent_with_backoff_then_given_up() {
+        let t0 = Instant::now();
+        let mut s = sender();
+        assert!(s.track(t0, 7, 1, "resume"));
+        let mut copies = Vec::new();
+        let mut t = t0;
+        while let Some(next) = s.next_timeout() {
+            t = next;
+            s.poll(t, |_| 1, |k, m| copies.push((t - t0, *k, *m)));
+        }
+        let at: Vec<u128> = copies.iter().map(|c| c.0.as_millis()).collect();
+        assert_eq!(
+            at,
+            [200, 600, 1400, 3000, 4600],
+            "five copies after the first"
+        );
+        let d = s.poll_delivery().unwrap();
+        assert_eq!((d.key, d.outcome, d.attempts), (7, Outcome::GaveUp, 6));
+        assert_eq!(d.elapsed, t - t0);
+        let st = s.stats();
+        assert_eq!((st.tracked, st.retried, st.given_up), (1, 5, 1));
+    }
+
+    #[test]
+    fn an_acknowledgement_settles_its_message_only() {
+        let t0 = Instant::now();
+        let mut s = sender();
+        assert!(s.track(t0, 1, 9, "a"));
+        assert!(s.track(t0, 2, 9, "b"));
+        let later = t0 + Duration::from_millis(250);
+        s.poll(later, |_| 9, |_, _| {});
+        assert!(s.answered(later, 2, 9, true, |_| false));
+        assert!(
+            !s.answered(later, 2, 9, true, |_| false),
+            "a second ACK is stray"
+        );
+        let d = s.poll_delivery().unwrap();
+        assert_eq!(
+            (d.key, d.outcome, d.attempts),
+            (2, Outcome::Acknowledged, 2)
+        );
+        // A NAK without the key settles the oldest the matcher accepts.
+        assert!(s.answered(later, 99, 9, false, |k| *k == 1));
+        assert_eq!(s.poll_delivery().unwrap().outcome, Outcome::Refused);
+        assert_eq!(s.waiting(), 0);
+        assert_eq!(s.stats().stray_answers, 1);
+    }
+
+    #[test]
+    fn a_peer_that_never_acknowledges_is_no_longer_asked() {
+        let t0 = Instant::now();
+        let mut s = sender();
+        for k in 0..2 {
+            assert!(s.track(t0, k, 5, "x"));
+        }
+        let mut t = t0;
+        while let Some(next) = s.next_timeout() {
+            t = next;
+            s.poll(t, |_| 5, |_, _| {});
+        }
+        assert!(!s.acknowledges(5));
+        assert!(!s.track(t, 3, 5, "y"), "sent once, untracked");
+        assert_eq!(s.stats().untracked_peer, 1);
+        // A peer that acknowledged once stays asked, however many go unanswered.
+        assert!(s.track(t, 10, 6, "z"));
+        assert!(s.answered(t, 10, 6, true, |_| false));
+        for k in 11..15 {
+            assert!(s.track(t, k, 6, "z"));
+        }
+        while let Some(next) = s.next_timeout() {
+            t = next;
+            s.poll(t, |_| 6, |_, _| {});
+        }
+        assert!(s.acknowledges(6));
+    }
+
+    #[test]
+    fn the_waiting_messages_are_bounded() {
+        let t0 = Instant::now();
+        let mut s: Sender<u32, u8, ()> = Sender::new(RetryPolicy {
+            max_outstanding: 3,
+            ..RetryPolicy::default()
+        });
+        let tracked = (0..5).filter(|k| s.track(t0, *k, 1, ())).count();
+        assert_eq!(tracked, 3);
+        assert_eq!(s.stats().untracked_full, 2);
+    }
+
+    #[test]
+    fn a_retransmission_is_carried_out_once_and_answered_again() {
+        let t0 = Instant::now();
+        let mut r: Receiver<(u8, u16), &str> = Receiver::new(&RetryPolicy::default());
+        assert_eq!(r.arrived(t0, (1, 5)), Arrival::New);
+        // Before the answer: dropped, nothing to repeat.
+        assert_eq!(r.arrived(t0, (1, 5)), Arrival::Duplicate(None));
+        r.answered((1, 5), "ack");
+        assert_eq!(r.arrived(t0, (1, 5)), Arrival::Duplicate(Some("ack")));
+        assert_eq!(r.arrived(t0, (2, 5)), Arrival::New, "another sender");
+        // After the window it is new again.
+        let later = t0 + Duration::from_secs(31);
+        assert_eq!(r.arrived(later, (1, 5)), Arrival::New);
+        let mut st = ReliableStats::default();
+        r.add_stats(&mut st);
+        assert_eq!((st.duplicates_dropped, st.answers_repeated), (2, 1));
+    }
+
+    #[test]
+    fn the_remembered_receptions_are_bounded() {
+        let t0 = Instant::now();
+        let mut r: Receiver<u32, ()> = Receiver::new(&RetryPolicy {
+            max_remembered: 10,
+            ..RetryPolicy::default()
+        });
+        for k in 0..100 {
+            assert_eq!(r.arrived(t0, k), Arrival::New);
+        }
+        assert!(!r.remembers(&0) && r.remembers(&99));
+        assert!(r.seen.len() <= 10 && r.order.len() <= 10);
+    }
+}
