@@ -20,6 +20,7 @@ pub mod manager;
 pub mod node;
 pub mod oj;
 pub mod policy;
+pub mod reliable;
 pub mod shell;
 mod transport;
 pub mod udp;
