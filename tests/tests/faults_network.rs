@@ -7,7 +7,9 @@
 //! 10 % loss, one-way delays of 0.2 to 50 ms (datagrams overtake each other) and 5 %
 //! duplication. Checked: no component was handed a message it could not decode (a
 //! partial or corrupt message: every incomplete one is a counted reassembly drop), the
-//! vehicle never moved without a controlling driver, and the mission finished.
+//! vehicle never moved without a controlling driver; and, with the nodes making their
+//! commands arrive (`NodeConfig::reliable`, issue 48), that every phase finished on
+//! seeds 1-5.
 //!
 //! Also, when the test runs as root with `ip netns` and the kernel's `netem` queueing
 //! discipline: the same mission between a `jaus node` process and `jaus demo
@@ -21,6 +23,7 @@ use jaus::component::{Component, CoreState};
 use jaus::components::{
     global_path_segment_driver, global_waypoint_driver, local_path_segment_driver, primitive_driver,
 };
+use jaus::net::reliable::{ReliableStats, RetryPolicy};
 use jaus::net::{Node, NodeConfig};
 use jaus::stock::drivers::{
     StockGlobalPathSegmentDriver, StockGlobalWaypointDriver, StockLocalPathSegmentDriver,
@@ -60,6 +63,8 @@ struct Run {
     finished: [Option<f64>; 3],
     /// The network's counters.
     net: SimStats,
+    /// Commands that arrive: the operator's node, the vehicle's.
+    reliable: (ReliableStats, ReliableStats),
     /// Messages components could not decode (both nodes).
     decode_errors: u64,
     /// Datagrams the nodes refused as bad framing or bad packets.
@@ -104,6 +109,17 @@ fn controlled(node: &Node) -> bool {
 /// The demo mission over SimNet with `model` and `seed`, for at most `limit` of
 /// simulated time.
 fn mission(model: LinkModel, seed: u64, limit: Duration, cut: Option<(f64, f64)>) -> Run {
+    mission_with(model, seed, limit, cut, None)
+}
+
+/// [`mission`] with both nodes' commands made to arrive as `reliable` says.
+fn mission_with(
+    model: LinkModel,
+    seed: u64,
+    limit: Duration,
+    cut: Option<(f64, f64)>,
+    reliable: Option<RetryPolicy>,
+) -> Run {
     let t0 = Instant::now();
     let opts = Options::default();
     let mut net = SimNet::new(t0, model, seed);
@@ -112,6 +128,7 @@ fn mission(model: LinkModel, seed: u64, limit: Duration, cut: Option<(f64, f64)>
             subsystem: 1,
             node,
             peers: vec![SimNet::addr(peer)],
+            reliable,
             ..NodeConfig::default()
         };
         c.manager.node_name = format!("node {node}");
@@ -201,7 +218,12 @@ fn mission(model: LinkModel, seed: u64, limit: Duration, cut: Option<(f64, f64)>
                     r + s.restarted,
                 )
             });
+    let reliable = (
+        net.node(o).unwrap().reliable_stats(),
+        net.node(v).unwrap().reliable_stats(),
+    );
     Run {
+        reliable,
         phase,
         seconds: (net.now() - t0).as_secs_f64(),
         finished,
@@ -281,8 +303,10 @@ fn loss_delay_duplication_and_reordering_deliver_nothing_partial_and_move_nothin
         assert_safe(&run);
         moved += u32::from(run.moving_samples > 100);
     }
-    // The checks saw the vehicle move (the operator sends each command once: where
-    // one is lost or overtaken, a phase stalls, with the vehicle stopped).
+    // The checks saw the vehicle move (without `NodeConfig::reliable` the operator's
+    // node sends each command once: where one is lost or overtaken, a phase stalls,
+    // with the vehicle stopped; with it every phase finishes, see
+    // `with_commands_that_arrive_every_phase_finishes_at_10_percent_loss`).
     assert!(moved >= 1, "the vehicle moved in none of the runs");
 }
 
@@ -307,4 +331,65 @@ fn an_operator_cut_off_mid_move_stops_the_vehicle_until_told_again() {
         run.last_moving
     );
     assert!(run.regained.is_some_and(|t| t > 20.0), "{run:#?}");
+}
+
+/// Issue 48: with the nodes' commands made to arrive (`NodeConfig::reliable`), the
+/// mission finishes at 10 % loss with delay, duplication and reordering, every phase, on
+/// every seed; and stays as safe as without.
+#[test]
+fn with_commands_that_arrive_every_phase_finishes_at_10_percent_loss() {
+    for seed in 1..=5 {
+        let run = mission_with(impaired(), seed, LIMIT, None, Some(RetryPolicy::default()));
+        let (o, v) = run.reliable;
+        println!(
+            "seed {seed}: {} after {:.0} s, finished (waypoints, path, mission) {:?}; datagrams dropped {}; operator's node: tracked {} retried {} acknowledged {} given up {}; vehicle's node: tracked {} retried {} duplicates dropped {} answers repeated {}",
+            run.phase,
+            run.seconds,
+            run.finished,
+            run.net.dropped,
+            o.tracked,
+            o.retried,
+            o.acknowledged,
+            o.given_up,
+            v.tracked,
+            v.retried,
+            v.duplicates_dropped,
+            v.answers_repeated
+        );
+        assert_safe(&run);
+        assert_eq!(run.phase, "done", "seed {seed}: {run:#?}");
+        assert!(run.finished.iter().all(Option::is_some), "{run:#?}");
+        assert!(o.retried > 0 && v.duplicates_dropped > 0, "{run:#?}");
+    }
+}
+
+/// `jaus demo --loss 10 --seed 4` (`jaus_sim::demo::run_over_network`): the demo's own
+/// report, every phase finished, and the counters it prints.
+#[test]
+fn the_demo_over_a_lossy_radio_finishes_and_counts_its_commands() {
+    let opts = jaus_sim::demo::Options {
+        seed: 4,
+        network: Some(jaus_sim::demo::Impairment {
+            loss: 0.10,
+            seed: 4,
+            reliable: true,
+        }),
+        ..jaus_sim::demo::Options::default()
+    };
+    let (report, net) = jaus_sim::demo::run_over_network(&opts, |_| {}).unwrap();
+    let line = jaus_sim::demo::network_summary(&net);
+    println!("{line}");
+    assert!(report.waypoints_done.is_some() && report.path_done.is_some());
+    assert!(report.mission_done.is_some() && report.horn_at.is_some());
+    assert!(
+        report.final_errors.iter().all(|e| *e < 0.5),
+        "{:?}",
+        report.final_errors
+    );
+    assert!(net.net.dropped > 100 && net.net.reordered > 100, "{line}");
+    assert!(
+        net.operator.tracked > 10 && net.operator.given_up == 0,
+        "{line}"
+    );
+    assert_eq!(net.operator.acknowledged, net.operator.tracked, "{line}");
 }

@@ -311,6 +311,15 @@ pub(crate) enum Cmd {
         /// jog, timed poses); prints each move's time and error and plots arm.svg.
         #[arg(long, conflicts_with = "ocu_only")]
         arm: bool,
+        /// Run the vehicle's node and the operator's over a simulated radio that loses
+        /// this percentage of datagrams (and delays them 0.2-50 ms, reordering them, and
+        /// duplicates 5 %), drawn from --seed; the nodes make their commands arrive
+        /// (acknowledged, resent, carried out once) and the counters are printed.
+        #[arg(long, value_name = "PCT", conflicts_with_all = ["ocu_only", "arm"], value_parser = percent)]
+        loss: Option<f64>,
+        /// With --loss: send each command once, as before, to see the difference.
+        #[arg(long, requires = "loss")]
+        no_retry: bool,
     },
 }
 
@@ -374,5 +383,15 @@ fn me_arg(text: &str) -> Result<String, String> {
         Err(format!(
             "`{text}`: expected subsystem.node.component.instance (or an AS-4 id subsystem.node.component with conform --as4)"
         ))
+    }
+}
+
+/// A percentage, 0 to 100.
+fn percent(s: &str) -> Result<f64, String> {
+    let v: f64 = s.parse().map_err(|e| format!("`{s}`: {e}"))?;
+    if (0.0..=100.0).contains(&v) {
+        Ok(v)
+    } else {
+        Err(format!("`{s}`: a percentage is 0 to 100"))
     }
 }

@@ -533,22 +533,52 @@ fn main() -> ExitCode {
             realtime,
             out: dir,
             progress,
+            loss,
+            no_retry,
             ..
         } => {
+            let network = loss.map(|pct| jaus_sim::demo::Impairment {
+                loss: pct / 100.0,
+                seed,
+                reliable: !no_retry,
+            });
             let opts = jaus_sim::demo::Options {
                 seed,
                 position_noise: noise.max(0.0),
                 realtime,
                 progress: (progress > 0.0).then(|| std::time::Duration::from_secs_f64(progress)),
+                network,
                 ..Default::default()
             };
             let _ = writeln!(
                 out,
                 "JAUS demo: subsystem 1 node 1 (primitive and reflexive drivers, pose and velocity sensors, range and visual sensors, global waypoint and local path-segment drivers, mission spooler, world model, over a simulated skid-steer vehicle), operator 1.2.40.1"
             );
-            match jaus_sim::demo::run(&opts, |line| {
+            if let Some(n) = &network {
+                let _ = writeln!(
+                    out,
+                    "over a simulated radio: {:.1} % of datagrams lost, 0.2-50 ms delays (reordering), 5 % duplicated, seed {}; commands {}",
+                    n.loss * 100.0,
+                    n.seed,
+                    if n.reliable {
+                        "acknowledged and resent until they arrive"
+                    } else {
+                        "sent once"
+                    }
+                );
+            }
+            let print = |line: &str| {
                 let _ = writeln!(std::io::stdout(), "{line}");
-            }) {
+            };
+            let result = if network.is_some() {
+                jaus_sim::demo::run_over_network(&opts, print).map(|(run, net)| {
+                    let _ = writeln!(out, "{}", jaus_sim::demo::network_summary(&net));
+                    run
+                })
+            } else {
+                jaus_sim::demo::run(&opts, print)
+            };
+            match result {
                 Ok(run) => {
                     let _ = writeln!(out, "{}", report::summary(&run));
                     match report::write_svg(&run, &dir).and_then(|path| {

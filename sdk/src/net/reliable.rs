@@ -4,7 +4,10 @@
 //!   ACK or NAK comes back, resent with exponential backoff when it does not, and given
 //!   up after a bounded number of attempts and time. Each ends as a [`Delivery`] value
 //!   ([`Outcome::Acknowledged`], [`Outcome::Refused`], [`Outcome::GaveUp`]) for the
-//!   caller to take. A peer that never acknowledged anything and let
+//!   caller to take. Messages to one peer go one at a time, in the order given: a
+//!   later one is held until the one before it is settled, so that a reordering
+//!   network cannot turn "Resume, then Set Travel Speed" into the reverse. A peer that
+//!   never acknowledged anything and let
 //!   [`RetryPolicy::learn_after`] messages go unanswered is remembered as one that does
 //!   not acknowledge ([`Sender::acknowledges`]): its later messages go once, untracked,
 //!   as OpenJAUS 3.3's components never send ACK/NAK.
@@ -129,20 +132,41 @@ struct Habit {
 }
 
 #[derive(Debug)]
-struct Waiting<K, M> {
+struct Waiting<K, P, M> {
     key: K,
+    peer: P,
     message: M,
     first: Instant,
-    next: Instant,
+    /// When the next copy is due; `None` while it waits behind an earlier message to
+    /// the same peer.
+    next: Option<Instant>,
+    /// Copies sent (0 while held).
     attempts: u32,
 }
 
+/// What [`Sender::track`] decided for a message.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Tracked {
+    /// Tracked, and to be sent now (its first copy).
+    Send,
+    /// Tracked, and held: an earlier message to the same peer waits for its answer.
+    /// The sender hands its first copy to [`Sender::poll`]'s `send` once that one is
+    /// settled, so that a peer gets its commands in the order they were given, however
+    /// the network reorders them (a Resume before the Set Travel Speed it would reset,
+    /// a Spool Mission before its Run Mission).
+    Held,
+    /// Not tracked (the peer does not acknowledge, or too many wait): to be sent now,
+    /// once.
+    Untracked,
+}
+
 /// The sending side: messages waiting for their acknowledgement. `K` keys a message,
-/// `P` names its peer (whose habit is learnt), `M` is what is resent.
+/// `P` names its peer (whose habit is learnt and whose messages keep their order), `M`
+/// is what is resent.
 #[derive(Debug)]
 pub struct Sender<K, P, M> {
     policy: RetryPolicy,
-    waiting: Vec<Waiting<K, M>>,
+    waiting: Vec<Waiting<K, P, M>>,
     habits: HashMap<P, Habit>,
     outcomes: VecDeque<Delivery<K>>,
     stats: ReliableStats,
@@ -192,31 +216,38 @@ impl<K: Copy + Eq + std::fmt::Debug, P: Copy + Eq + Hash, M> Sender<K, P, M> {
         ask
     }
 
-    /// Tracks `message`, just sent (its first copy) to `peer` at `now`. False (and
-    /// counted) when it is not tracked: the peer does not acknowledge, or too many
-    /// wait already; the caller then sends it once, as it did.
-    pub fn track(&mut self, now: Instant, key: K, peer: P, message: M) -> bool {
+    /// Tracks `message` to `peer`, given at `now`: whether to send it now, hold it, or
+    /// send it once untracked (counted).
+    pub fn track(&mut self, now: Instant, key: K, peer: P, message: M) -> Tracked {
         if !self.acknowledges(peer) {
             self.stats.untracked_peer += 1;
-            return false;
+            return Tracked::Untracked;
         }
         if self.waiting.len() >= self.policy.max_outstanding {
             self.stats.untracked_full += 1;
-            return false;
+            return Tracked::Untracked;
         }
         self.stats.tracked += 1;
+        // One at a time per peer, in the order given (a peer that never answers costs
+        // each message the whole retry time until it is learnt).
+        let behind = self.waiting.iter().any(|w| w.peer == peer);
         self.waiting.push(Waiting {
             key,
+            peer,
             message,
             first: now,
-            next: now + self.policy.wait_after(1),
-            attempts: 1,
+            next: (!behind).then(|| now + self.policy.wait_after(1)),
+            attempts: u32::from(!behind),
         });
-        true
+        if behind {
+            Tracked::Held
+        } else {
+            Tracked::Send
+        }
     }
 
     /// An ACK (`ok`) or NAK from `peer` for the message `key` (or, when the peer's
-    /// answer does not carry the key exactly, the oldest waiting message `matches`
+    /// answer does not carry the key exactly, the oldest sent message `matches`
     /// accepts). True when it settled a waiting message.
     pub fn answered(
         &mut self,
@@ -226,11 +257,12 @@ impl<K: Copy + Eq + std::fmt::Debug, P: Copy + Eq + Hash, M> Sender<K, P, M> {
         ok: bool,
         matches: impl Fn(&K) -> bool,
     ) -> bool {
+        let sent = |w: &Waiting<K, P, M>| w.attempts > 0;
         let i = self
             .waiting
             .iter()
-            .position(|w| w.key == key)
-            .or_else(|| self.waiting.iter().position(|w| matches(&w.key)));
+            .position(|w| sent(w) && w.key == key)
+            .or_else(|| self.waiting.iter().position(|w| sent(w) && matches(&w.key)));
         let Some(i) = i else {
             self.stats.stray_answers += 1;
             return false;
@@ -248,6 +280,7 @@ impl<K: Copy + Eq + std::fmt::Debug, P: Copy + Eq + Hash, M> Sender<K, P, M> {
             self.stats.refused += 1;
             Outcome::Refused
         };
+        self.release(now, w.peer);
         self.finish(Delivery {
             key: w.key,
             outcome,
@@ -257,52 +290,50 @@ impl<K: Copy + Eq + std::fmt::Debug, P: Copy + Eq + Hash, M> Sender<K, P, M> {
         true
     }
 
-    /// The messages due for another copy at `now`, handed to `resend` (which sends it
-    /// again); those out of attempts are given up (an outcome each). `peer_of` names a
-    /// message's peer, for learning its habit.
-    pub fn poll(
-        &mut self,
-        now: Instant,
-        peer_of: impl Fn(&K) -> P,
-        mut resend: impl FnMut(&K, &M),
-    ) {
+    /// The messages due at `now`, handed to `send` (a held one's first copy, or another
+    /// copy); those out of attempts are given up (an outcome each).
+    pub fn poll(&mut self, now: Instant, mut send: impl FnMut(&K, &M)) {
         let mut i = 0;
         while i < self.waiting.len() {
-            if self.waiting[i].next > now {
+            if self.waiting[i].next.is_none_or(|t| t > now) {
                 i += 1;
                 continue;
             }
             if self.waiting[i].attempts >= self.policy.max_attempts {
                 let w = self.waiting.remove(i);
                 self.stats.given_up += 1;
-                let peer = peer_of(&w.key);
-                if self.habits.len() < MAX_HABITS || self.habits.contains_key(&peer) {
-                    let h = self.habits.entry(peer).or_default();
+                if self.habits.len() < MAX_HABITS || self.habits.contains_key(&w.peer) {
+                    let h = self.habits.entry(w.peer).or_default();
                     h.unanswered = h.unanswered.saturating_add(1);
                 }
+                self.release(now, w.peer);
                 self.finish(Delivery {
                     key: w.key,
                     outcome: Outcome::GaveUp,
                     attempts: w.attempts,
                     elapsed: now.saturating_duration_since(w.first),
                 });
+                // The released message may sit before `i`: look again from the start.
+                i = 0;
                 continue;
             }
             let w = &mut self.waiting[i];
+            if w.attempts > 0 {
+                self.stats.retried += 1;
+            }
             w.attempts += 1;
-            w.next = now + self.policy.wait_after(w.attempts);
-            self.stats.retried += 1;
-            resend(&w.key, &w.message);
+            w.next = Some(now + self.policy.wait_after(w.attempts));
+            send(&w.key, &w.message);
             i += 1;
         }
     }
 
     /// When [`poll`](Self::poll) must next run.
     pub fn next_timeout(&self) -> Option<Instant> {
-        self.waiting.iter().map(|w| w.next).min()
+        self.waiting.iter().filter_map(|w| w.next).min()
     }
 
-    /// Messages waiting for their acknowledgement.
+    /// Messages waiting for their acknowledgement (held ones included).
     pub fn waiting(&self) -> usize {
         self.waiting.len()
     }
@@ -315,6 +346,24 @@ impl<K: Copy + Eq + std::fmt::Debug, P: Copy + Eq + Hash, M> Sender<K, P, M> {
     /// The counters.
     pub fn stats(&self) -> ReliableStats {
         self.stats
+    }
+
+    /// The first message held for `peer` is due now (the one before it settled).
+    fn release(&mut self, now: Instant, peer: P) {
+        if self
+            .waiting
+            .iter()
+            .any(|w| w.peer == peer && w.attempts > 0)
+        {
+            return;
+        }
+        if let Some(w) = self
+            .waiting
+            .iter_mut()
+            .find(|w| w.peer == peer && w.next.is_none())
+        {
+            w.next = Some(now);
+        }
     }
 
     fn finish(&mut self, d: Delivery<K>) {
@@ -433,12 +482,12 @@ mod tests {
     fn an_unanswered_message_is_resent_with_backoff_then_given_up() {
         let t0 = Instant::now();
         let mut s = sender();
-        assert!(s.track(t0, 7, 1, "resume"));
+        assert_eq!(s.track(t0, 7, 1, "resume"), Tracked::Send);
         let mut copies = Vec::new();
         let mut t = t0;
         while let Some(next) = s.next_timeout() {
             t = next;
-            s.poll(t, |_| 1, |k, m| copies.push((t - t0, *k, *m)));
+            s.poll(t, |k, m| copies.push((t - t0, *k, *m)));
         }
         let at: Vec<u128> = copies.iter().map(|c| c.0.as_millis()).collect();
         assert_eq!(
@@ -457,52 +506,64 @@ mod tests {
     fn an_acknowledgement_settles_its_message_only() {
         let t0 = Instant::now();
         let mut s = sender();
-        assert!(s.track(t0, 1, 9, "a"));
-        assert!(s.track(t0, 2, 9, "b"));
-        let later = t0 + Duration::from_millis(250);
-        s.poll(later, |_| 9, |_, _| {});
-        assert!(s.answered(later, 2, 9, true, |_| false));
+        assert_eq!(s.track(t0, 1, 9, "a"), Tracked::Send);
+        assert_eq!(
+            s.track(t0, 2, 9, "b"),
+            Tracked::Held,
+            "one at a time per peer"
+        );
         assert!(
-            !s.answered(later, 2, 9, true, |_| false),
+            !s.answered(t0, 2, 9, true, |_| false),
+            "a held one is not answered"
+        );
+        assert!(s.answered(t0, 1, 9, true, |_| false));
+        assert!(
+            !s.answered(t0, 1, 9, true, |_| false),
             "a second ACK is stray"
         );
+        let later = t0 + Duration::from_millis(250);
+        s.poll(later, |_, _| {});
+        assert!(s.answered(later, 2, 9, true, |_| false));
+        assert_eq!(s.poll_delivery().unwrap().key, 1);
         let d = s.poll_delivery().unwrap();
         assert_eq!(
             (d.key, d.outcome, d.attempts),
-            (2, Outcome::Acknowledged, 2)
+            (2, Outcome::Acknowledged, 1)
         );
         // A NAK without the key settles the oldest the matcher accepts.
-        assert!(s.answered(later, 99, 9, false, |k| *k == 1));
+        assert_eq!(s.track(later, 3, 9, "c"), Tracked::Send);
+        assert!(s.answered(later, 99, 9, false, |k| *k == 3));
         assert_eq!(s.poll_delivery().unwrap().outcome, Outcome::Refused);
         assert_eq!(s.waiting(), 0);
-        assert_eq!(s.stats().stray_answers, 1);
+        assert_eq!(s.stats().stray_answers, 2);
     }
 
     #[test]
     fn a_peer_that_never_acknowledges_is_no_longer_asked() {
         let t0 = Instant::now();
         let mut s = sender();
-        for k in 0..2 {
-            assert!(s.track(t0, k, 5, "x"));
-        }
+        assert_eq!(s.track(t0, 0, 5, "x"), Tracked::Send);
+        assert_eq!(s.track(t0, 1, 5, "x"), Tracked::Held);
         let mut t = t0;
         while let Some(next) = s.next_timeout() {
             t = next;
-            s.poll(t, |_| 5, |_, _| {});
+            s.poll(t, |_, _| {});
         }
+        assert_eq!(s.stats().given_up, 2, "the held one went after the first");
         assert!(!s.acknowledges(5));
-        assert!(!s.track(t, 3, 5, "y"), "sent once, untracked");
+        assert_eq!(s.track(t, 3, 5, "y"), Tracked::Untracked, "sent once");
         assert_eq!(s.stats().untracked_peer, 1);
         // A peer that acknowledged once stays asked, however many go unanswered.
-        assert!(s.track(t, 10, 6, "z"));
+        assert_eq!(s.track(t, 10, 6, "z"), Tracked::Send);
         assert!(s.answered(t, 10, 6, true, |_| false));
         for k in 11..15 {
-            assert!(s.track(t, k, 6, "z"));
+            assert_ne!(s.track(t, k, 6, "z"), Tracked::Untracked);
         }
         while let Some(next) = s.next_timeout() {
             t = next;
-            s.poll(t, |_| 6, |_, _| {});
+            s.poll(t, |_, _| {});
         }
+        assert_eq!(s.stats().given_up, 6);
         assert!(s.acknowledges(6));
     }
 
@@ -513,9 +574,39 @@ mod tests {
             max_outstanding: 3,
             ..RetryPolicy::default()
         });
-        let tracked = (0..5).filter(|k| s.track(t0, *k, 1, ())).count();
+        let tracked = (0..5)
+            .filter(|k| s.track(t0, *k, 1, ()) != Tracked::Untracked)
+            .count();
         assert_eq!(tracked, 3);
         assert_eq!(s.stats().untracked_full, 2);
+    }
+
+    #[test]
+    fn a_peer_known_to_answer_gets_its_messages_in_order() {
+        let t0 = Instant::now();
+        let mut s = sender();
+        assert_eq!(s.track(t0, 1, 4, "control"), Tracked::Send);
+        assert!(s.answered(t0, 1, 4, true, |_| false));
+        // Now known: the second and third wait behind the first.
+        assert_eq!(s.track(t0, 2, 4, "resume"), Tracked::Send);
+        assert_eq!(s.track(t0, 3, 4, "speed"), Tracked::Held);
+        assert_eq!(s.track(t0, 4, 4, "waypoint"), Tracked::Held);
+        assert_eq!(s.track(t0, 5, 8, "other peer"), Tracked::Send);
+        let mut sent = Vec::new();
+        // Resume is lost: only it goes again, the others stay held.
+        let t1 = t0 + Duration::from_millis(200);
+        s.poll(t1, |k, _| sent.push(*k));
+        assert_eq!(sent, [2, 5]);
+        // Its answer releases the next, and that one's the last.
+        assert!(s.answered(t1, 2, 4, true, |_| false));
+        assert_eq!(s.next_timeout(), Some(t1));
+        s.poll(t1, |k, _| sent.push(*k));
+        assert_eq!(sent, [2, 5, 3]);
+        assert!(s.answered(t1, 3, 4, true, |_| false));
+        s.poll(t1, |k, _| sent.push(*k));
+        assert_eq!(sent, [2, 5, 3, 4]);
+        // A held message is not answered by a stray ACK of its key.
+        assert_eq!(s.stats().retried, 2);
     }
 
     #[test]

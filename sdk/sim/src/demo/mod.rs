@@ -117,6 +117,46 @@ pub struct Options {
     /// run, which does not use it: its pose subscription would shift the seeded noise
     /// the run's figures come from.
     pub local_waypoint_driver: bool,
+    /// Run the vehicle's and the operator's nodes over a simulated network impaired as
+    /// this says, instead of on one in-process bus ([`Impairment`]).
+    pub network: Option<Impairment>,
+}
+
+/// A lossy radio between the vehicle's node (1.1) and the operator's (1.2): `loss` of
+/// the datagrams lost, one-way delays of 0.2 to 50 ms (so datagrams overtake each
+/// other), 5 % duplicated; drawn from `seed`. With `reliable`, both nodes make their
+/// commands arrive (`jaus::net::NodeConfig::reliable`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Impairment {
+    /// Fraction of datagrams lost, 0-1.
+    pub loss: f64,
+    /// Seed of the network's draws.
+    pub seed: u64,
+    /// Commands that arrive, on both nodes.
+    pub reliable: bool,
+}
+
+impl Impairment {
+    /// The link model.
+    pub fn model(&self) -> crate::network::LinkModel {
+        crate::network::LinkModel {
+            drop: self.loss.clamp(0.0, 1.0),
+            duplicate: 0.05,
+            min_delay: Duration::from_micros(200),
+            max_delay: Duration::from_millis(50),
+        }
+    }
+}
+
+/// What the network of a run over [`Impairment`] did, and what the nodes' commands did.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct NetworkReport {
+    /// The simulated network's counters.
+    pub net: crate::network::SimStats,
+    /// Commands of the operator's node.
+    pub operator: jaus::net::reliable::ReliableStats,
+    /// Commands of the vehicle's node.
+    pub vehicle: jaus::net::reliable::ReliableStats,
 }
 
 impl Default for Options {
@@ -130,6 +170,7 @@ impl Default for Options {
             progress: None,
             timeout: Duration::from_secs(300),
             local_waypoint_driver: false,
+            network: None,
         }
     }
 }
@@ -299,21 +340,161 @@ fn phase_name(s: Step) -> &'static str {
 /// The operator component.
 pub type Ocu = jaus::component::Component<system_commander::Dispatch<Operator>>;
 
+/// Where a run happens: one in-process bus, or two nodes on a simulated network.
+trait World {
+    fn ocu(&self) -> Option<&Ocu>;
+    fn now(&self) -> Instant;
+    fn run_for(&mut self, d: Duration);
+    fn delivered(&self) -> u64;
+}
+
+impl World for LocalBus {
+    fn ocu(&self) -> Option<&Ocu> {
+        self.get::<Ocu>(addr::OCU)
+    }
+    fn now(&self) -> Instant {
+        LocalBus::now(self)
+    }
+    fn run_for(&mut self, d: Duration) {
+        LocalBus::run_for(self, d);
+    }
+    fn delivered(&self) -> u64 {
+        self.stats().delivered
+    }
+}
+
+/// The vehicle's node and the operator's on a [`SimNet`](crate::network::SimNet).
+struct Network {
+    net: crate::network::SimNet,
+    vehicle: usize,
+    operator: usize,
+}
+
+impl Network {
+    fn build(t0: Instant, opts: &Options, imp: &Impairment) -> Result<(Self, SimVehicle), String> {
+        use crate::network::SimNet;
+        use jaus::net::{Node, NodeConfig};
+        let config = |node: u8, peer: usize| {
+            let mut c = NodeConfig {
+                subsystem: 1,
+                node,
+                peers: vec![SimNet::addr(peer)],
+                reliable: imp.reliable.then(jaus::net::reliable::RetryPolicy::default),
+                ..NodeConfig::default()
+            };
+            c.manager.node_name = format!("demo node {node}");
+            c
+        };
+        let mut net = SimNet::new(t0, imp.model(), imp.seed);
+        let mut vehicle_node = Node::new(config(1, 1), t0);
+        let (parts, vehicle) = vehicle_at(t0, opts, 1, 1);
+        for p in parts {
+            vehicle_node.add_boxed(p).map_err(|e| e.to_string())?;
+        }
+        let mut operator_node = Node::new(config(2, 0), t0);
+        operator_node
+            .add(operator(t0, opts))
+            .map_err(|e| e.to_string())?;
+        let (v, o) = (net.add(vehicle_node), net.add(operator_node));
+        Ok((
+            Self {
+                net,
+                vehicle: v,
+                operator: o,
+            },
+            vehicle,
+        ))
+    }
+
+    fn report(&self) -> NetworkReport {
+        let stats = |i| {
+            self.net
+                .node(i)
+                .map(jaus::net::Node::reliable_stats)
+                .unwrap_or_default()
+        };
+        NetworkReport {
+            net: self.net.stats(),
+            operator: stats(self.operator),
+            vehicle: stats(self.vehicle),
+        }
+    }
+}
+
+impl World for Network {
+    fn ocu(&self) -> Option<&Ocu> {
+        self.net.node(self.operator)?.get::<Ocu>(addr::OCU)
+    }
+    fn now(&self) -> Instant {
+        self.net.now()
+    }
+    fn run_for(&mut self, d: Duration) {
+        self.net.run_for(d);
+    }
+    fn delivered(&self) -> u64 {
+        self.net.stats().delivered
+    }
+}
+
 /// Runs the demo; `print` receives progress lines.
-pub fn run(opts: &Options, mut print: impl FnMut(&str)) -> Result<Report, String> {
+pub fn run(opts: &Options, print: impl FnMut(&str)) -> Result<Report, String> {
     let t0 = Instant::now();
     let (mut bus, vehicle) = build(t0, opts);
+    run_in(&mut bus, t0, &vehicle, opts, print)
+}
+
+/// Runs the demo over a simulated network impaired as `opts.network` says (a clean
+/// one when `None`): the report, and what the network and the nodes' commands did.
+pub fn run_over_network(
+    opts: &Options,
+    print: impl FnMut(&str),
+) -> Result<(Report, NetworkReport), String> {
+    let t0 = Instant::now();
+    let imp = opts.network.unwrap_or(Impairment {
+        loss: 0.0,
+        seed: opts.seed,
+        reliable: true,
+    });
+    let (mut world, vehicle) = Network::build(t0, opts, &imp)?;
+    let report = run_in(&mut world, t0, &vehicle, opts, print);
+    let net = world.report();
+    report
+        .map(|r| (r, net))
+        .map_err(|e| format!("{e}; {}", network_summary(&net)))
+}
+
+/// One line of what the network and the commands did.
+pub fn network_summary(n: &NetworkReport) -> String {
+    format!(
+        "network: {} datagrams, {} lost, {} duplicated, {} reordered; the operator's commands: {} tracked, {} copies resent, {} acknowledged, {} refused, {} given up; the vehicle's node: {} retransmissions carried out once, {} answers repeated",
+        n.net.sent,
+        n.net.dropped,
+        n.net.duplicated,
+        n.net.reordered,
+        n.operator.tracked,
+        n.operator.retried,
+        n.operator.acknowledged,
+        n.operator.refused,
+        n.operator.given_up,
+        n.vehicle.duplicates_dropped,
+        n.vehicle.answers_repeated
+    )
+}
+
+fn run_in(
+    bus: &mut impl World,
+    t0: Instant,
+    vehicle: &SimVehicle,
+    opts: &Options,
+    mut print: impl FnMut(&str),
+) -> Result<Report, String> {
     let slice = Duration::from_millis(100);
     let mut next_progress = Duration::ZERO;
     let wall = Instant::now();
     loop {
         let elapsed = bus.now() - t0;
         let (step, done_at, horn_at) = {
-            let o = &bus
-                .get::<Ocu>(addr::OCU)
-                .ok_or("operator missing")?
-                .behaviour()
-                .0;
+            let o = &bus.ocu().ok_or("operator missing")?.behaviour().0;
             (
                 o.step,
                 [o.waypoints_done, o.path_done, o.mission_done],
@@ -338,7 +519,7 @@ pub fn run(opts: &Options, mut print: impl FnMut(&str)) -> Result<Report, String
         }
         if step == Step::Done {
             let (planned, found, image) = bus
-                .get::<Ocu>(addr::OCU)
+                .ocu()
                 .map(|o| {
                     let o = &o.behaviour().0;
                     (o.planned.clone(), o.objects_found, o.image.clone())
@@ -350,7 +531,7 @@ pub fn run(opts: &Options, mut print: impl FnMut(&str)) -> Result<Report, String
                 .iter()
                 .map(|(d, p)| (d.as_secs_f64(), *p))
                 .collect();
-            let run = ((bus.now() - t0).as_secs_f64(), bus.stats().delivered);
+            let run = ((bus.now() - t0).as_secs_f64(), bus.delivered());
             return Ok(Report {
                 image,
                 ..measure(t0, &trail, done_at, horn_at, (&planned, found), run)

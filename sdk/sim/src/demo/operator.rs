@@ -37,6 +37,10 @@ pub struct Operator {
     pub(super) objects_found: (usize, usize),
     pub(super) path_started: Option<Instant>,
     pub(super) next_query: Option<Instant>,
+    /// When to ask the Subsystem Commander for the mission's status next.
+    pub(super) next_status: Option<Instant>,
+    /// When the world model was first asked what lies along the mission.
+    pub(super) world_asked: Option<Instant>,
     /// The Visual Sensor's image, and how often it was asked for.
     pub(super) image: Option<ReportImage>,
     pub(super) image_queries: u32,
@@ -61,6 +65,37 @@ pub(super) enum Step {
 }
 
 impl Operator {
+    /// Asks the world model what lies along the mission (a line region with the
+    /// clearance as its buffer).
+    fn ask_along_mission(&mut self, ctx: &mut Ctx<'_>, frame: &LocalFrame) {
+        self.world_asked.get_or_insert(ctx.now());
+        self.next_query = Some(ctx.now() + Duration::from_secs(1));
+        let region_points = mission_route()
+            .iter()
+            .map(|p| {
+                let (latitude, longitude) = frame.to_global(*p);
+                VksPoint {
+                    latitude,
+                    longitude,
+                }
+            })
+            .collect();
+        ctx.send(
+            addr::WM,
+            QueryVksObjects {
+                filter_by_class_ids: false,
+                filter_by_attributes: false,
+                response_presence_vector: 1,
+                request_id: 2,
+                object_ids: None,
+                region_type: Some(VksObjectType::Line),
+                region_buffer: Some(CLEARANCE as f32),
+                feature_classes: None,
+                region_points: Some(region_points),
+            },
+        );
+    }
+
     fn watch(&mut self, ctx: &mut Ctx<'_>, driver: Address) {
         let now = ctx.now();
         if self.next_query.is_none_or(|t| now >= t) {
@@ -197,38 +232,36 @@ impl SystemCommander for Operator {
                         }],
                     },
                 );
-                let region_points = mission_route()
-                    .iter()
-                    .map(|p| {
-                        let (latitude, longitude) = frame.to_global(*p);
-                        VksPoint {
-                            latitude,
-                            longitude,
-                        }
-                    })
-                    .collect();
-                ctx.send(
-                    addr::WM,
-                    QueryVksObjects {
-                        filter_by_class_ids: false,
-                        filter_by_attributes: false,
-                        response_presence_vector: 1,
-                        request_id: 2,
-                        object_ids: None,
-                        region_type: Some(VksObjectType::Line),
-                        region_buffer: Some(CLEARANCE as f32),
-                        feature_classes: None,
-                        region_points: Some(region_points),
-                    },
-                );
+                self.ask_along_mission(ctx, &frame);
                 self.step = Step::PlanMission;
             }
-            Step::PlanMission => {}
+            // A query or its report may be lost: asked again every second until
+            // answered.
+            Step::PlanMission => {
+                if self.next_query.is_none_or(|t| now >= t) {
+                    self.ask_along_mission(ctx, &frame);
+                }
+            }
             Step::Mission => {
                 let now = ctx.now();
                 if self.horn_at.is_none() && self.next_query.is_none_or(|t| now >= t) {
                     self.next_query = Some(now + Duration::from_millis(100));
                     ctx.send(addr::PD, QueryDiscreteDevices { presence_vector: 2 });
+                }
+                // The Subsystem Commander reports the mission's end once; asked for it
+                // every second too, in case that report is lost.
+                if self.next_status.is_none_or(|t| now >= t) {
+                    self.next_status = Some(now + Duration::from_secs(1));
+                    ctx.send(
+                        addr::SC,
+                        QueryMissionStatus {
+                            presence_vector: 1,
+                            status_type: MissionStatusType::Mission,
+                            mission_id: 1,
+                            task_id: 0,
+                            task_msg_id: 0,
+                        },
+                    );
                 }
             }
             Step::Done => {}
@@ -263,6 +296,15 @@ impl SystemCommander for Operator {
                         })
                     })
                     .collect();
+                // The query may overtake the obstacle it is to find (a query is not
+                // held behind a command): until 5 s have passed, an answer without the
+                // operator's own obstacle waits for the next one.
+                let asked = *self.world_asked.get_or_insert(ctx.now());
+                if !objects.iter().any(|o| o.operator)
+                    && ctx.now().saturating_duration_since(asked) < Duration::from_secs(5)
+                {
+                    return Ok(None);
+                }
                 let objects = merge_overlapping(objects);
                 self.objects_found = (
                     objects.iter().filter(|o| o.operator).count(),

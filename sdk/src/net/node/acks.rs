@@ -14,7 +14,7 @@ use std::time::Instant;
 use super::route::Origin;
 use super::Node;
 use crate::net::framing::MAX_PACKET_BODY;
-use crate::net::reliable::{Arrival, Delivery, ReliableStats};
+use crate::net::reliable::{Arrival, Delivery, ReliableStats, Tracked};
 use crate::net::PeerAddr;
 use crate::wire::{AckNak, DataFlag, Header, MessageClass};
 use crate::{Address, CommandCode};
@@ -51,8 +51,14 @@ impl<A: PeerAddr> Node<A> {
     /// A message leaving over the carrier: with reliability on, a unicast
     /// single-packet command from here asks for an acknowledgement (unless its peer is
     /// known not to give one), gets a sequence number and is kept to be resent.
-    /// Returns the header to send.
-    pub(super) fn outgoing(&mut self, header: &Header, body: &[u8], origin: Origin) -> Header {
+    /// Returns the header to send now, or `None` when it is held behind an earlier
+    /// command to the same component (sent when that one is answered).
+    pub(super) fn outgoing(
+        &mut self,
+        header: &Header,
+        body: &[u8],
+        origin: Origin,
+    ) -> Option<Header> {
         let mut h = *header;
         if self.config.reliable.is_none()
             || origin != Origin::Local
@@ -60,18 +66,18 @@ impl<A: PeerAddr> Node<A> {
             || body.len() > MAX_PACKET_BODY
             || !is_unicast(h.destination)
         {
-            return h;
+            return Some(h);
         }
         let command = h.command_code.class() == MessageClass::Command;
         match h.ack_nak {
             AckNak::None if command => {
                 if !self.sender.ask(h.destination) {
-                    return h;
+                    return Some(h);
                 }
                 h.ack_nak = AckNak::Request;
             }
             AckNak::Request => {}
-            _ => return h,
+            _ => return Some(h),
         }
         if h.sequence_number == 0 {
             self.ack_sequence = self.ack_sequence.wrapping_add(1).max(1);
@@ -79,9 +85,13 @@ impl<A: PeerAddr> Node<A> {
         }
         let key = (h.destination, h.command_code, h.sequence_number);
         tracing::trace!(destination = %h.destination, code = %h.command_code, sequence = h.sequence_number, "tracked");
-        self.sender
-            .track(self.now, key, h.destination, (h, body.to_vec()));
-        h
+        match self
+            .sender
+            .track(self.now, key, h.destination, (h, body.to_vec()))
+        {
+            Tracked::Send | Tracked::Untracked => Some(h),
+            Tracked::Held => None,
+        }
     }
 
     /// A message arrived over the carrier: an answer settles what waits for it; a
@@ -95,9 +105,13 @@ impl<A: PeerAddr> Node<A> {
                     let (peer, code) = (header.source, header.command_code);
                     let key = (peer, code, header.sequence_number);
                     let seq0 = header.sequence_number == 0;
-                    self.sender.answered(self.now, key, peer, ok, |k| {
+                    let settled = self.sender.answered(self.now, key, peer, ok, |k| {
                         seq0 && k.0 == peer && k.1 == code
                     });
+                    if settled {
+                        // What waited behind it goes now.
+                        self.resend_due(self.now);
+                    }
                 }
                 true
             }
@@ -137,14 +151,14 @@ impl<A: PeerAddr> Node<A> {
         }
     }
 
-    /// Sends again what is due, and gives up what is out of attempts.
+    /// Sends what is due (a held command's first copy, another copy), and gives up what
+    /// is out of attempts.
     pub(super) fn resend_due(&mut self, now: Instant) {
         if self.sender.next_timeout().is_none_or(|t| t > now) {
             return;
         }
         let mut due: Vec<Kept> = Vec::new();
-        self.sender
-            .poll(now, |k| k.0, |_, (h, b)| due.push((*h, b.clone())));
+        self.sender.poll(now, |_, (h, b)| due.push((*h, b.clone())));
         for (h, b) in due {
             let decision = self.scope.decide(h.source, h.destination, Origin::Local);
             if let Some(hop) = decision.network {

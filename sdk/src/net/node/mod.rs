@@ -495,8 +495,9 @@ impl<A: PeerAddr> Node<A> {
         }
         let decision = self.scope.decide(header.source, header.destination, origin);
         if let Some(hop) = decision.network {
-            let header = self.outgoing(header, body, origin);
-            self.send_network(&header, body, hop);
+            if let Some(header) = self.outgoing(header, body, origin) {
+                self.send_network(&header, body, hop);
+            }
         }
         if let Some(comm) = decision.gateway {
             self.send_gateway(comm, header, body);
