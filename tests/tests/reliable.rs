@@ -209,3 +209,53 @@ fn a_peer_that_never_acknowledges_is_given_up_on_then_sent_to_once() {
         .all(|d| header_of(&d.bytes).command_code != RequestComponentControl::CODE));
     assert_eq!(ocu.reliable_stats().untracked_peer, 1);
 }
+
+/// A sender restarted with the same sequence numbers is not taken for a retransmission
+/// when its command differs: the receiver compares the content too.
+#[test]
+fn the_same_number_with_another_command_is_carried_out() {
+    let t0 = Instant::now();
+    let mut vehicle = node(1, 2, false, t0);
+    vehicle
+        .add(global_pose_sensor::component(
+            GPS,
+            Gps,
+            Config::default(),
+            t0,
+        ))
+        .unwrap();
+    let datagram = |authority: u8| {
+        let body = RequestComponentControl {
+            authority_code: authority,
+        }
+        .to_bytes()
+        .unwrap();
+        let mut h = Header::new(RequestComponentControl::CODE, GPS, OCU);
+        h.ack_nak = AckNak::Request;
+        h.sequence_number = 5;
+        let mut p = h.encode_with_size(body.len()).unwrap().to_vec();
+        p.extend_from_slice(&body);
+        jaus::net::Framing::Judp.encode(&p)
+    };
+    let received = |v: &Node| {
+        v.component_stats()
+            .find(|(a, _)| *a == GPS)
+            .unwrap()
+            .1
+            .received
+    };
+    let before = received(&vehicle);
+    vehicle.handle_datagram(t0, addr(2), &datagram(10));
+    vehicle.handle_datagram(t0, addr(2), &datagram(20));
+    assert_eq!(received(&vehicle), before + 2, "two different commands");
+    vehicle.handle_datagram(t0, addr(2), &datagram(20));
+    assert_eq!(
+        received(&vehicle),
+        before + 2,
+        "a retransmission of the second"
+    );
+    assert_eq!(vehicle.reliable_stats().duplicates_dropped, 1);
+    // Past the window (10 s) the same bytes are a new command.
+    vehicle.handle_datagram(t0 + Duration::from_secs(11), addr(2), &datagram(20));
+    assert_eq!(received(&vehicle), before + 3);
+}

@@ -11,15 +11,36 @@
 //!   [`RetryPolicy::learn_after`] messages go unanswered is remembered as one that does
 //!   not acknowledge ([`Sender::acknowledges`]): its later messages go once, untracked,
 //!   as OpenJAUS 3.3's components never send ACK/NAK.
-//! * [`Receiver`]: a retransmitted message (same sender, command code and sequence
-//!   number within [`RetryPolicy::duplicate_window`]) is carried out once: the
+//! * [`Receiver`]: a retransmitted message (same sender, command code, sequence number
+//!   and content within [`RetryPolicy::duplicate_window`]) is carried out once: the
 //!   duplicate is dropped and the answer already given to the first copy is given
 //!   again, since it is the answer that was lost.
 //!
 //! Both are bounded (outstanding messages, remembered receptions, outcomes waiting to
 //! be taken) and count everything ([`ReliableStats`]). The keys are the caller's: the
-//! RA 3.3 node keys by JAUS address, command code and sequence number; the AS-4 stack
-//! by AS-4 id and sequence number.
+//! RA 3.3 node keys by JAUS address, command code and sequence number (a receiver
+//! also by a hash of the body, and a sender starts its numbers at a random point, so
+//! that a restarted sender reusing numbers is not taken for a retransmission); the
+//! AS-4 stack by peer, AS-4 id and sequence number likewise.
+
+/// A hash of message bytes, for the receiver's key: the same in every process (a
+/// restarted sender's retransmission is compared with what the receiver kept).
+pub fn content_hash(bytes: &[u8]) -> u64 {
+    // FNV-1a, 64 bits.
+    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, b| {
+        (h ^ u64::from(*b)).wrapping_mul(0x0100_0000_01b3)
+    })
+}
+
+/// A sequence number to start from, different in every process (std's randomly keyed
+/// hasher; no clock read).
+pub fn random_start() -> u16 {
+    use std::hash::{BuildHasher, Hasher};
+    let h = std::collections::hash_map::RandomState::new()
+        .build_hasher()
+        .finish();
+    (h as u16).max(1)
+}
 
 use std::collections::{HashMap, VecDeque};
 use std::hash::Hash;
@@ -41,7 +62,8 @@ pub struct RetryPolicy {
     /// asked again (its messages go once). Default 2; 0 never gives up on a peer.
     pub learn_after: u32,
     /// How long a receiver remembers a message to drop its retransmissions. Default
-    /// 30 s (longer than a sender keeps trying).
+    /// 10 s: longer than a sender keeps trying (about 6 s), short enough that a sender
+    /// restarted with the same numbers is not taken for itself for long.
     pub duplicate_window: Duration,
     /// Most receptions remembered (the oldest are forgotten first). Default 4096.
     pub max_remembered: usize,
@@ -55,7 +77,7 @@ impl Default for RetryPolicy {
             max_attempts: 6,
             max_outstanding: 1024,
             learn_after: 2,
-            duplicate_window: Duration::from_secs(30),
+            duplicate_window: Duration::from_secs(10),
             max_remembered: 4096,
         }
     }
@@ -438,6 +460,16 @@ impl<K: Copy + Eq + Hash, A: Clone> Receiver<K, A> {
         }
     }
 
+    /// The answer given to the latest remembered message `matches` accepts (for an
+    /// answer that does not carry the whole key, e.g. not the hash of the content).
+    pub fn answered_matching(&mut self, matches: impl Fn(&K) -> bool, answer: A) {
+        if let Some((_, k)) = self.order.iter().rev().find(|(_, k)| matches(k)) {
+            if let Some((_, a)) = self.seen.get_mut(k) {
+                *a = Some(answer);
+            }
+        }
+    }
+
     /// Whether `key` is remembered (a message seen within the window).
     pub fn remembers(&self, key: &K) -> bool {
         self.seen.contains_key(key)
@@ -620,7 +652,7 @@ mod tests {
         assert_eq!(r.arrived(t0, (1, 5)), Arrival::Duplicate(Some("ack")));
         assert_eq!(r.arrived(t0, (2, 5)), Arrival::New, "another sender");
         // After the window it is new again.
-        let later = t0 + Duration::from_secs(31);
+        let later = t0 + Duration::from_secs(11);
         assert_eq!(r.arrived(later, (1, 5)), Arrival::New);
         let mut st = ReliableStats::default();
         r.add_stats(&mut st);

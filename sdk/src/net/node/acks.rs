@@ -14,13 +14,17 @@ use std::time::Instant;
 use super::route::Origin;
 use super::Node;
 use crate::net::framing::MAX_PACKET_BODY;
-use crate::net::reliable::{Arrival, Delivery, ReliableStats, Tracked};
+use crate::net::reliable::{content_hash, Arrival, Delivery, ReliableStats, Tracked};
 use crate::net::PeerAddr;
 use crate::wire::{AckNak, DataFlag, Header, MessageClass};
 use crate::{Address, CommandCode};
 
 /// A tracked message: its peer (the destination), command code and sequence number.
 pub type AckKey = (Address, CommandCode, u16);
+
+/// A received message that asked for an acknowledgement: its source, command code,
+/// sequence number and the hash of its body.
+pub(super) type SeenKey = (Address, CommandCode, u16, u64);
 
 /// What the node keeps of a tracked message to send it again.
 pub(super) type Kept = (Header, Vec<u8>);
@@ -97,7 +101,7 @@ impl<A: PeerAddr> Node<A> {
     /// A message arrived over the carrier: an answer settles what waits for it; a
     /// retransmission already carried out is dropped (false) and its answer sent
     /// again. True when the message goes on to its destination.
-    pub(super) fn incoming(&mut self, header: &Header) -> bool {
+    pub(super) fn incoming(&mut self, header: &Header, body: &[u8]) -> bool {
         match header.ack_nak {
             AckNak::Ack | AckNak::Nak => {
                 if self.sender.waiting() > 0 {
@@ -118,7 +122,12 @@ impl<A: PeerAddr> Node<A> {
             AckNak::Request
                 if header.sequence_number != 0 && header.data_flag == DataFlag::Single =>
             {
-                let key = (header.source, header.command_code, header.sequence_number);
+                let key = (
+                    header.source,
+                    header.command_code,
+                    header.sequence_number,
+                    content_hash(body),
+                );
                 match self.receiver.arrived(self.now, key) {
                     Arrival::New => true,
                     Arrival::Duplicate(answer) => {
@@ -142,12 +151,13 @@ impl<A: PeerAddr> Node<A> {
     /// it answers.
     pub(super) fn answer_given(&mut self, header: &Header) {
         if matches!(header.ack_nak, AckNak::Ack | AckNak::Nak) && header.sequence_number != 0 {
-            let key = (
+            let (to, code, seq) = (
                 header.destination,
                 header.command_code,
                 header.sequence_number,
             );
-            self.receiver.answered(key, *header);
+            self.receiver
+                .answered_matching(|k| k.0 == to && k.1 == code && k.2 == seq, *header);
         }
     }
 

@@ -93,7 +93,7 @@ pub struct Node<A: PeerAddr = SocketAddr> {
     /// Commands waiting for their acknowledgement ([`NodeConfig::reliable`]).
     sender: Sender<AckKey, Address, acks::Kept>,
     /// Messages that asked for one, to carry out their retransmissions once.
-    receiver: Receiver<AckKey, Header>,
+    receiver: Receiver<acks::SeenKey, Header>,
     /// The sequence number of the last command tracked.
     ack_sequence: u16,
 }
@@ -129,7 +129,7 @@ impl<A: PeerAddr> Node<A> {
         Self {
             sender: Sender::new(retry),
             receiver: Receiver::new(&retry),
-            ack_sequence: 0,
+            ack_sequence: super::reliable::random_start(),
             reassembler: Reassembler::new(config.reassembly),
             scope: Scope {
                 subsystem: config.subsystem,
@@ -277,7 +277,7 @@ impl<A: PeerAddr> Node<A> {
         if !(mine || foreign && self.config.communicator.is_some()) {
             self.peers.learn((src.subsystem, src.node), peer);
         }
-        if !self.incoming(&header) {
+        if !self.incoming(&header, body) {
             self.pump();
             return;
         }
