@@ -259,3 +259,62 @@ fn the_same_number_with_another_command_is_carried_out() {
     vehicle.handle_datagram(t0 + Duration::from_secs(11), addr(2), &datagram(20));
     assert_eq!(received(&vehicle), before + 3);
 }
+
+/// The AS-4 side, one mechanism (AS5669A acknowledgements): a reliable stack asks for an
+/// acknowledgement of a command, resends it when the acknowledgement is lost; the
+/// receiving stack hands it on once and acknowledges it again.
+#[test]
+fn an_as4_command_whose_acknowledgement_is_lost_is_resent_and_handed_on_once() {
+    use jaus::net::as5669a::{As4Config, As4Id, As4Message, As4Stack};
+    let t0 = Instant::now();
+    let (client_at, vehicle_at) = (addr(1), addr(2));
+    let mut client: As4Stack<SocketAddr> = As4Stack::new(As4Config {
+        reliable: Some(RetryPolicy::default()),
+        ..As4Config::default()
+    });
+    let mut vehicle: As4Stack<SocketAddr> = As4Stack::new(As4Config::default());
+    let (me, car) = (As4Id::new(200, 1, 1), As4Id::new(126, 1, 11));
+    // Resume (0x0004) is a command: it asks for an acknowledgement.
+    client.send_at(
+        t0,
+        vehicle_at,
+        &[As4Message::new(0x0004, car, me, Vec::new())],
+    );
+    let first = client.poll_transmit().unwrap();
+    let got = vehicle.receive(t0, client_at, &first.bytes).unwrap();
+    assert_eq!(got.len(), 1);
+    assert!(got[0].ack_requested);
+    // The acknowledgement is lost.
+    assert!(vehicle.poll_transmit().is_some());
+    // 200 ms later the packet goes again, byte for byte.
+    let t1 = t0 + Duration::from_millis(200);
+    assert_eq!(client.poll_timeout(), Some(t1));
+    client.handle_timeout(t1);
+    let again = client.poll_transmit().unwrap();
+    assert_eq!(again.bytes, first.bytes);
+    // Handed on once; acknowledged again.
+    assert!(vehicle
+        .receive(t1, client_at, &again.bytes)
+        .unwrap()
+        .is_empty());
+    let ack = vehicle.poll_transmit().expect("acknowledged again");
+    assert!(client
+        .receive(t1, vehicle_at, &ack.bytes)
+        .unwrap()
+        .is_empty());
+    let d = client.poll_delivery().unwrap();
+    assert_eq!((d.outcome, d.attempts), (Outcome::Acknowledged, 2));
+    assert_eq!((d.key.0, d.key.1), (vehicle_at, car));
+    let (c, v) = (client.reliable_stats(), vehicle.reliable_stats());
+    assert_eq!((c.tracked, c.retried, c.acknowledged), (1, 1, 1));
+    assert_eq!(v.duplicates_dropped, 1);
+    // A query (0x2002, Query Status) goes once, unasked.
+    client.send_at(
+        t1,
+        vehicle_at,
+        &[As4Message::new(0x2002, car, me, Vec::new())],
+    );
+    let q = client.poll_transmit().unwrap();
+    assert!(!vehicle.receive(t1, client_at, &q.bytes).unwrap()[0].ack_requested);
+    assert_eq!(client.reliable_stats().tracked, 1);
+}

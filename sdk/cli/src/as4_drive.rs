@@ -82,10 +82,16 @@ impl Link {
             .body()
             .to_bytes()
             .map_err(|e| format!("{}: {e}", m.name()))?;
-        self.stack.send(
+        self.stack.send_at(
+            Instant::now(),
             self.peer,
             &[As4Message::new(m.code().0, self.target, self.me, body)],
         );
+        self.flush()
+    }
+
+    /// Sends what the transport queued: messages, acknowledgements, resent commands.
+    fn flush(&mut self) -> Result<(), String> {
         while let Some(d) = self.stack.poll_transmit() {
             self.socket
                 .send_to(&d.bytes, d.to)
@@ -103,14 +109,23 @@ impl Link {
         let until = Instant::now() + wait;
         let mut buf = [0u8; 65536];
         while Instant::now() < until {
-            let left = until.saturating_duration_since(Instant::now());
+            // Commands not yet acknowledged are resent on the transport's timer.
+            let now = Instant::now();
+            if self.stack.poll_timeout().is_some_and(|t| t <= now) {
+                self.stack.handle_timeout(now);
+            }
+            let _ = self.flush();
+            let wake = self.stack.poll_timeout().map_or(until, |t| t.min(until));
+            let left = wake.saturating_duration_since(Instant::now());
             let _ = self
                 .socket
                 .set_read_timeout(Some(left.max(Duration::from_millis(1))));
             let Ok((n, from)) = self.socket.recv_from(&mut buf) else {
                 continue;
             };
-            let Ok(ms) = self.stack.receive(Instant::now(), from, &buf[..n]) else {
+            let received = self.stack.receive(Instant::now(), from, &buf[..n]);
+            let _ = self.flush();
+            let Ok(ms) = received else {
                 continue;
             };
             for m in ms {
@@ -198,7 +213,11 @@ pub fn as4_drive(args: &As4DriveArgs, out: &mut impl Write) -> Result<(), String
     let socket = UdpSocket::bind(args.bind).map_err(|e| format!("{}: {e}", args.bind))?;
     let mut link = Link {
         socket,
-        stack: As4Stack::new(As4Config::default()),
+        // Commands acknowledged and resent until they arrive (docs/wire.md §1.7).
+        stack: As4Stack::new(As4Config {
+            reliable: Some(jaus::net::reliable::RetryPolicy::default()),
+            ..As4Config::default()
+        }),
         peer: args.peer,
         me,
         target,

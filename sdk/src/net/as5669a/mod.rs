@@ -29,6 +29,7 @@ pub mod header;
 pub mod mux;
 pub mod reassembly;
 pub mod split;
+pub mod stack;
 
 #[cfg(test)]
 mod proptests;
