@@ -15,6 +15,7 @@
 //! Python API is documented in docs/python.md; the tests are the pytest suite in
 //! `tests/`.
 
+mod catalog;
 mod client;
 mod convert;
 mod errors;
@@ -37,7 +38,7 @@ use std::path::PathBuf;
 /// Decodes the body of the message with command code `code` (SDK messages).
 #[pyfunction]
 fn decode(py: Python<'_>, body: &[u8], code: u16) -> PyResult<Message> {
-    let cat = schema::sdk()?;
+    let cat = catalog::sdk()?;
     let m = cat.decode(py, code, body)?;
     Ok(Message::new(cat, m))
 }
@@ -45,13 +46,13 @@ fn decode(py: Python<'_>, body: &[u8], code: u16) -> PyResult<Message> {
 /// Decodes a whole packet: the 16-byte RA 3.3 header and the body.
 #[pyfunction]
 fn decode_packet(py: Python<'_>, packet: &[u8]) -> PyResult<Packet> {
-    schema::decode_packet(py, &schema::sdk()?, packet)
+    schema::decode_packet(py, &catalog::sdk()?, packet)
 }
 
 /// The body of `message` (by the schema it was made with).
 #[pyfunction]
 fn encode<'py>(py: Python<'py>, message: &Message) -> PyResult<Bound<'py, PyBytes>> {
-    schema::encode(py, &schema::sdk()?, message)
+    schema::encode(py, &catalog::sdk()?, message)
 }
 
 /// The packet of `message` from `source` to `destination`.
@@ -76,7 +77,7 @@ fn encode_packet<'py>(
         experimental,
         sequence_number,
     };
-    schema::encode_packet(py, &schema::sdk()?, message, source, destination, &opts)
+    schema::encode_packet(py, &catalog::sdk()?, message, source, destination, &opts)
 }
 
 /// The SDK's message `name` with the fields given as keywords.
@@ -87,7 +88,7 @@ fn make_message(
     name: &str,
     fields: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<Message> {
-    let cat = schema::sdk()?;
+    let cat = catalog::sdk()?;
     let m = cat.build(py, name, fields)?;
     Ok(Message::new(cat, m))
 }
@@ -95,20 +96,20 @@ fn make_message(
 /// The names of the SDK's messages, in definition order.
 #[pyfunction]
 fn messages() -> PyResult<Vec<&'static str>> {
-    Ok(schema::sdk()?.schema.messages().map(|m| m.name).collect())
+    Ok(catalog::sdk()?.schema.messages().map(|m| m.name).collect())
 }
 
 /// The description of the SDK's message `name` (`jaus messages NAME`).
 #[pyfunction]
 fn doc(name: &str) -> PyResult<String> {
-    schema::sdk()?.doc(name)
+    catalog::sdk()?.doc(name)
 }
 
 /// Every JAUS message of a pcap/pcapng capture (SDK messages).
 #[pyfunction]
 #[pyo3(signature = (path, *, strict = true))]
 fn read_pcap(py: Python<'_>, path: PathBuf, strict: bool) -> PyResult<Vec<pcap::Entry>> {
-    pcap::read(py, &schema::sdk()?, &path, strict)
+    pcap::read(py, &catalog::sdk()?, &path, strict)
 }
 
 /// The text of the package's type stubs (`python/jaus/__init__.pyi`), generated from

@@ -2,7 +2,7 @@
 //! `jaus.Record` (a nested record, bit field or union of one, read the same way).
 
 use crate::convert::{entries, entry, object_to_dict, value_to_py, Form};
-use crate::schema::{sdk, Catalog};
+use crate::catalog::{sdk, Catalog};
 use jaus_dynamic::{DynMessage, Value};
 use pyo3::exceptions::{PyAttributeError, PyKeyError};
 use pyo3::prelude::*;

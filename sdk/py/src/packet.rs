@@ -3,7 +3,7 @@
 
 use crate::convert::{json_to_py, object_to_dict};
 use crate::message::Message;
-use crate::schema::Catalog;
+use crate::catalog::Catalog;
 use jaus::{Address, Header};
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;

@@ -5,7 +5,7 @@
 
 use crate::errors::decode_error_text;
 use crate::packet::Packet;
-use crate::schema::Catalog;
+use crate::catalog::Catalog;
 use jaus_cli::capture;
 use jaus_cli::traffic::{as4_json, CaptureDecoder, Captured};
 use pyo3::exceptions::PyOSError;

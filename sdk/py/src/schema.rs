@@ -2,119 +2,15 @@
 //! vendor's overlays loaded at run time), with the codec, the docs and the capture
 //! reader over them. The module's own functions use the SDK's schema.
 
-use crate::convert::py_to_json;
+use crate::catalog::{sdk, Catalog};
 use crate::errors::{decode_error, encode_error, fields_error, JausError, SpecError};
 use crate::message::Message;
 use crate::packet::{address, Packet};
-use jaus::json::JsonError;
 use jaus::{CommandCode, Header};
-use jaus_dynamic::DynMessage;
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict};
-use std::collections::HashMap;
 use std::path::PathBuf;
-use std::sync::{Arc, OnceLock};
-
-/// A definition set compiled for the codec, with what the docs and attribute access
-/// read from its definitions.
-#[derive(Debug)]
-pub(crate) struct Catalog {
-    pub(crate) schema: jaus_dynamic::Schema,
-    spec: jaus_spec::Spec,
-    /// Every field name of each message, in wire order.
-    fields: HashMap<&'static str, Vec<String>>,
-}
-
-impl Catalog {
-    fn from_spec(spec: jaus_spec::Spec) -> Catalog {
-        let schema = jaus_dynamic::Schema::from_spec(&spec);
-        let fields = schema
-            .messages()
-            .map(|m| {
-                let names = spec
-                    .messages
-                    .iter()
-                    .find(|d| d.def.name == m.name)
-                    .map(|d| d.fields.iter().map(|f| f.def.name.clone()).collect())
-                    .unwrap_or_default();
-                (m.name, names)
-            })
-            .collect();
-        Catalog {
-            schema,
-            spec,
-            fields,
-        }
-    }
-
-    /// The field names of message `name`, in wire order.
-    pub(crate) fn field_names(&self, name: &str) -> &[String] {
-        self.fields.get(name).map_or(&[], Vec::as_slice)
-    }
-
-    /// The description of message `name` (`jaus messages NAME`).
-    pub(crate) fn doc(&self, name: &str) -> PyResult<String> {
-        jaus_cli::describe::describe(&self.spec, name).map_err(JausError::new_err)
-    }
-
-    /// Decodes a body of the message with command code `code`.
-    pub(crate) fn decode(&self, py: Python<'_>, code: u16, body: &[u8]) -> PyResult<DynMessage> {
-        self.schema
-            .decode(CommandCode(code), body)
-            .map_err(|e| decode_error(py, &e))
-    }
-
-    /// Encodes a message's body.
-    pub(crate) fn encode(&self, py: Python<'_>, m: &DynMessage) -> PyResult<Vec<u8>> {
-        self.schema
-            .encode(m)
-            .map_err(|e| encode_error(py, Some(m.name), &e))
-    }
-
-    /// The message `name` with `fields` (Python values of the JSON form).
-    pub(crate) fn build(
-        &self,
-        py: Python<'_>,
-        name: &str,
-        fields: Option<&Bound<'_, PyDict>>,
-    ) -> PyResult<DynMessage> {
-        let json = match fields {
-            Some(f) => py_to_json(f.as_any(), name)?,
-            None => serde_json::Value::Object(Default::default()),
-        };
-        self.schema.from_json(name, &json).map_err(|e| match e {
-            JsonError::Fields { message, error } => {
-                // `error` is "Message.field.path: what was wrong".
-                // A path into the body (`Message.field`), not the body itself.
-                let field = error
-                    .split(": ")
-                    .next()
-                    .filter(|p| p.len() > message.len() && p.starts_with(message.as_str()))
-                    .map(str::to_string);
-                fields_error(
-                    py,
-                    format!("{message}: {error}"),
-                    Some(&message),
-                    field.as_deref(),
-                )
-            }
-            other => fields_error(py, other.to_string(), None, None),
-        })
-    }
-}
-
-static SDK: OnceLock<Arc<Catalog>> = OnceLock::new();
-
-/// The SDK's own definitions, compiled once.
-pub(crate) fn sdk() -> PyResult<Arc<Catalog>> {
-    if let Some(c) = SDK.get() {
-        return Ok(c.clone());
-    }
-    let spec = jaus_spec::load_sdk().map_err(|e| SpecError::new_err(e.to_string()))?;
-    Ok(SDK
-        .get_or_init(|| Arc::new(Catalog::from_spec(spec)))
-        .clone())
-}
+use std::sync::Arc;
 
 /// The messages of a definition set: the SDK's (`Schema.sdk()`), or the SDK's with a
 /// vendor's overlay files on them (`Schema.load([...])`). Decodes and encodes every

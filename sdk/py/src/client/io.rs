@@ -18,7 +18,7 @@ use jaus_cli::catalogue::Catalogue;
 use jaus_cli::net::{flush, Link};
 
 use super::feed::{Cmd, Failure, Feed, Reply, Stats};
-use crate::schema::Catalog;
+use crate::catalog::Catalog;
 
 mod tap;
 

@@ -23,7 +23,8 @@ use crate::convert::json_to_py;
 use crate::errors::{client_error, decode_error_text};
 use crate::message::Message;
 use crate::packet::address;
-use crate::schema::{sdk, Catalog, Schema};
+use crate::catalog::{sdk, Catalog};
+use crate::schema::Schema;
 use feed::{Cmd, Failure, Feed, Pop, Reply, Stats};
 use io::{Io, Joined};
 
