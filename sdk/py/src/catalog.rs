@@ -113,4 +113,3 @@ pub(crate) fn sdk() -> PyResult<Arc<Catalog>> {
         .get_or_init(|| Arc::new(Catalog::from_spec(spec)))
         .clone())
 }
-

@@ -1,8 +1,8 @@
 //! `jaus.Message` (a decoded or built message: name, code, fields as attributes) and
 //! `jaus.Record` (a nested record, bit field or union of one, read the same way).
 
-use crate::convert::{entries, entry, object_to_dict, value_to_py, Form};
 use crate::catalog::{sdk, Catalog};
+use crate::convert::{entries, entry, object_to_dict, value_to_py, Form};
 use jaus_dynamic::{DynMessage, Value};
 use pyo3::exceptions::{PyAttributeError, PyKeyError};
 use pyo3::prelude::*;

@@ -1,9 +1,9 @@
 //! `jaus.Packet`: a whole JAUS packet, its RA 3.3 header fields as attributes, its
 //! body and the message it holds.
 
+use crate::catalog::Catalog;
 use crate::convert::{json_to_py, object_to_dict};
 use crate::message::Message;
-use crate::catalog::Catalog;
 use jaus::{Address, Header};
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;

@@ -3,9 +3,9 @@
 //! those of `jaus decode --pcap`). The packets are RA 3.3 ones: an AS-4 message
 //! (AS5669A) is recognised and named, raised in strict mode and skipped otherwise.
 
+use crate::catalog::Catalog;
 use crate::errors::decode_error_text;
 use crate::packet::Packet;
-use crate::catalog::Catalog;
 use jaus_cli::capture;
 use jaus_cli::traffic::{as4_json, CaptureDecoder, Captured};
 use pyo3::exceptions::PyOSError;

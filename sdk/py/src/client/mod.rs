@@ -19,11 +19,11 @@ use pyo3::exceptions::{PyStopIteration, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
+use crate::catalog::{sdk, Catalog};
 use crate::convert::json_to_py;
 use crate::errors::{client_error, decode_error_text};
 use crate::message::Message;
 use crate::packet::address;
-use crate::catalog::{sdk, Catalog};
 use crate::schema::Schema;
 use feed::{Cmd, Failure, Feed, Pop, Reply, Stats};
 use io::{Io, Joined};
