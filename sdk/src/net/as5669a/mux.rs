@@ -422,6 +422,7 @@ impl<P: Participant<A> + 'static, A: PeerAddr> Participant<A> for As4Mux<P, A> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::net::as5669a::parse_datagram;
 
     /// The properties byte of every message of the datagrams `stack` queued.
     fn broadcast_fields(stack: &mut As4Stack<SocketAddr>) -> Vec<(As4Id, Broadcast)> {
