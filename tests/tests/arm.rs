@@ -73,7 +73,15 @@ fn jaus_demo_arm_prints_the_table_and_writes_the_plot() {
     ] {
         assert!(stdout.contains(row), "missing {row:?} in\n{stdout}");
     }
+    // Per move its hand-over and overshoot, in degrees.
+    let measured = stdout
+        .lines()
+        .filter(|l| l.contains("hand-over") && l.contains("overshoot") && l.ends_with('°'))
+        .count();
+    assert_eq!(measured, 6, "{stdout}");
     let svg = std::fs::read_to_string(dir.join("arm.svg")).expect("arm.svg");
+    // Where each move starts: a thin grey mark on the joint panel.
+    assert_eq!(svg.matches(r##"fill="#A0A0A0""##).count(), 6, "move marks");
     let texts = plots::check_document(
         &svg,
         &[

@@ -292,7 +292,7 @@ fn stale_joint_feedback_zeroes_the_efforts_and_the_driver_recovers() {
 }
 
 #[test]
-fn the_primitive_manipulator_applies_checked_efforts_and_zeroes_stale_ones() {
+fn the_primitive_manipulator_applies_checked_efforts_and_holds_the_arm_when_they_go_stale() {
     let (mut bus, arm) = arm_node();
     take(&mut bus, addr::PM);
     bus.send(
@@ -321,11 +321,28 @@ fn the_primitive_manipulator_applies_checked_efforts_and_zeroes_stale_ones() {
     bus.run_for(ms(20));
     assert_eq!(naks_from(&bus, addr::PM), 1);
     assert!((arm.lock().efforts()[0] - 10.0).abs() < 0.01);
-    // Not refreshed for 300 ms: zero.
+    // Not refreshed for 300 ms: the command ends and the holding controller holds the
+    // arm where it is (issue 51; it used to be zero effort, and the arm fell).
     bus.run_for(ms(400));
-    assert!(arm.lock().efforts().iter().all(|e| *e == 0.0));
     let p = bus.get::<Pm>(addr::PM).unwrap();
     assert_eq!(p.behaviour().0.watchdog_trips(), 1);
+    assert!(p.behaviour().0.holding());
+    let held = p.behaviour().0.hold_target().map(<[f64]>::to_vec);
+    let held = held.expect("the positions held");
+    bus.run_for(ms(2000));
+    let q = arm.lock().positions().to_vec();
+    assert!(max_diff(&q, &held) < 2e-3, "{q:?} vs {held:?}");
+    // Zero effort commanded on every joint stands, past the watchdog too.
+    bus.send(
+        OCU,
+        addr::PM,
+        SetJointEfforts {
+            joint_effort: vec![0.0; 6],
+        },
+    );
+    bus.run_for(ms(1000));
+    assert!(arm.lock().efforts().iter().all(|e| *e == 0.0));
+    assert!(!bus.get::<Pm>(addr::PM).unwrap().behaviour().0.holding());
     // The specifications describe the simulated arm.
     bus.send(OCU, addr::PM, QueryManipulatorSpecifications {});
     bus.run_for(ms(20));

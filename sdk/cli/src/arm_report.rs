@@ -11,24 +11,32 @@ use plotters::prelude::*;
 
 use crate::plot::{self, Swatch};
 
-/// The table: per move, the driver, the time from command to settled and the final
-/// error of the true tool pose against the commanded one.
+/// The table: per move, the driver, when it started, the time from command to settled,
+/// the final error of the true tool pose against the commanded one, then how far the
+/// joints left their held positions while the arm passed to the move's driver
+/// (`hand-over`, none when the same driver carried on) and how far they went past where
+/// the move left them (`overshoot`), in degrees.
 pub fn summary(r: &ArmReport) -> String {
     let mut s = String::new();
     let _ = writeln!(
         s,
-        "{:<40} {:>11} {:>8} {:>10} {:>8}",
-        "move", "driver", "time s", "error mm", "error °"
+        "{:<40} {:>11} {:>8} {:>8} {:>10} {:>8}",
+        "move", "driver", "start s", "time s", "error mm", "error °"
     );
     for m in &r.moves {
+        let handover = m
+            .handover_deg
+            .map_or_else(|| "—, same driver".to_string(), |d| format!("{d:.2}°"));
         let _ = writeln!(
             s,
-            "{:<40} {:>11} {:>8.2} {:>10.3} {:>8.3}",
+            "{:<40} {:>11} {:>8.2} {:>8.2} {:>10.3} {:>8.3}   hand-over {handover}, overshoot {:.2}°",
             m.name,
             m.driver.to_string(),
+            m.start,
             m.seconds,
             m.position_error_mm,
-            m.angle_error_deg
+            m.angle_error_deg,
+            m.overshoot_deg
         );
     }
     if let Some((rms, max)) = r.jog_tracking {
@@ -78,6 +86,8 @@ const JOINT_COLOURS: [RGBColor; 6] = [
     RGBColor(0x8c, 0x56, 0x4b),
 ];
 const TOOL_PATH: RGBColor = RGBColor(0x11, 0x7a, 0x8b);
+/// The marks where moves start.
+const MOVE_MARK: RGBColor = RGBColor(0xa0, 0xa0, 0xa0);
 
 /// The joint names of the legend.
 const JOINT_NAMES: [&str; 6] = [
@@ -85,24 +95,21 @@ const JOINT_NAMES: [&str; 6] = [
 ];
 
 /// The SVG plot: on the left the six joint angles (degrees) over time from 0 s, one
-/// trace per joint; on the right the tool path from above (y right, x up: the vehicle's
+/// trace per joint, a thin grey line numbered 1, 2, … where each move starts (is
+/// commanded); on the right the tool path from above (y right, x up: the vehicle's
 /// forward up the page) and from the side (x right, height = −z up), one metre the same
 /// length on both axes, the commanded targets circled. Legends are below the panels.
 ///
 /// The joint traces are the simulated arm's true angles every 50 ms, one polyline per
 /// joint over the whole run (the angles are not wrapped: the joints stay within ±3 rad).
-/// Their jumps where a move starts are the arm's own motion, not the drawing (default
-/// seed, sampled every 10 ms):
-/// * between drivers (before the joint move, the jog and the square) the operator puts
-///   the previous driver in Standby, which sets every effort to zero, and the next one
-///   servoes about 0.13 s later: in between the arm falls under gravity (peaks of
-///   joint 2 +7 to +8°, joint 3 6 to 11°, joint 5 up to 5°) and the next driver holds it
-///   where it caught it, 3 to 7° from where the previous move left it. The same sag,
-///   0.14 s long, happens at 0 s before the first driver holds the arm;
-/// * the pose driver's joint reference (above, down to and back up from the pick point)
-///   moves each joint at a constant rate and stops on the target without slowing, so
-///   the servo overshoots by up to 4° (joints 2, 5 and 6) and settles within about
-///   0.3 s.
+/// Between moves the traces are flat: when a driver goes to Standby the Primitive
+/// Manipulator's holding controller keeps the arm where the move left it (gravity
+/// compensated) until the next driver, which starts from the efforts it finds, takes
+/// over (default seed, sampled every 10 ms: no joint moves more than 0.03° at a
+/// hand-over, where it used to sag 7 to 11° for 0.13 s). Each move ends by slowing into
+/// its target on a jerk-limited profile: no joint passes where the move leaves it by
+/// more than 0.4° (the pose driver's constant-rate ramp used to overshoot by 3.4 to
+/// 4.1°).
 pub fn svg(r: &ArmReport) -> std::io::Result<String> {
     let deg: Vec<(f64, Vec<f64>)> = r
         .joints
@@ -142,6 +149,24 @@ pub fn svg(r: &ArmReport) -> std::io::Result<String> {
             .label_style(plot::text(12.0, &plot::INK))
             .axis_desc_style(plot::text(13.0, &plot::INK))
             .draw()?;
+        // Where each move starts: thin rectangles (not lines, so the traces stay the
+        // joints'), numbered at the top.
+        let y_top = chart.y_range().end;
+        let y_bottom = chart.y_range().start;
+        let width = t_end * 0.0015;
+        chart.draw_series(r.moves.iter().map(|m| {
+            Rectangle::new(
+                [(m.start, y_bottom), (m.start + width, y_top)],
+                MOVE_MARK.filled(),
+            )
+        }))?;
+        chart.draw_series(r.moves.iter().enumerate().map(|(i, m)| {
+            Text::new(
+                format!("{}", i + 1),
+                (m.start + width * 2.0, y_top),
+                plot::text_left(11.0, &plot::INK),
+            )
+        }))?;
         for j in 0..n {
             chart.draw_series(LineSeries::new(
                 deg.iter().filter_map(|(t, q)| q.get(j).map(|v| (*t, *v))),
@@ -164,8 +189,8 @@ pub fn svg(r: &ArmReport) -> std::io::Result<String> {
             &entries,
         )?;
         for (i, line) in [
-            "Jumps where a move starts are the arm's own motion: between drivers it has no",
-            "effort for about 0.13 s and sags; the pose driver's ramp stops without slowing.",
+            "Grey lines: where moves 1, 2, … of the table start. Between drivers the Primitive",
+            "Manipulator holds the arm still; every move slows into its target.",
         ]
         .iter()
         .enumerate()

@@ -19,7 +19,9 @@ use rand::SeedableRng;
 use rand_distr::{Distribution, Normal};
 
 use jaus::stock::manipulator::hardware::{JointActuators, JointSensors, JointState};
+use jaus::stock::manipulator::hold::{GravityModel, HoldConfig, HoldingController};
 use jaus::stock::manipulator::kinematics::{Chain, Joint, JointKind};
+use jaus::stock::manipulator::servo::ServoGains;
 
 /// Parameters of a simulated arm (one entry per joint in every list).
 #[derive(Debug, Clone)]
@@ -118,8 +120,26 @@ impl ArmParams {
     }
 }
 
+impl ArmParams {
+    /// The arm's weight as a Primitive Manipulator's holding controller models it: these
+    /// masses, tool point and maximum efforts (no gravity when `gravity` is off).
+    pub fn gravity_model(&self) -> GravityModel {
+        GravityModel {
+            link_mass: self.link_mass.clone(),
+            tool_mass: self.tool_mass,
+            tool: self.tool,
+            max_effort: self.max_effort.clone(),
+            gravity: if self.gravity {
+                Vector3::new(0.0, 0.0, G)
+            } else {
+                Vector3::zeros()
+            },
+        }
+    }
+}
+
 /// Standard gravity, m/s².
-const G: f64 = 9.80665;
+const G: f64 = jaus::stock::manipulator::hold::STANDARD_GRAVITY;
 /// Integration step.
 const STEP: Duration = Duration::from_millis(1);
 
@@ -159,6 +179,11 @@ impl ArmSim {
     /// The arm's kinematics.
     pub fn chain(&self) -> &Chain {
         &self.params.chain
+    }
+
+    /// The arm's parameters.
+    pub fn params(&self) -> &ArmParams {
+        &self.params
     }
 
     /// True joint positions.
@@ -288,6 +313,19 @@ impl SimArm {
     /// Locks the arm's state (recovering it if a holder panicked).
     pub fn lock(&self) -> MutexGuard<'_, ArmSim> {
         self.0.lock().unwrap_or_else(|e| e.into_inner())
+    }
+
+    /// A holding controller for a Primitive Manipulator over this arm: its joint sensors,
+    /// its weight ([`ArmParams::gravity_model`]) and the default servo gains.
+    pub fn holding_controller(&self) -> HoldingController {
+        let gravity = Some(self.lock().params().gravity_model());
+        HoldingController::new(
+            self.clone(),
+            HoldConfig {
+                gains: ServoGains::default(),
+                gravity,
+            },
+        )
     }
 }
 

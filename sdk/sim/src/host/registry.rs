@@ -139,7 +139,12 @@ const REGISTRY: &[(u8, Build)] = &[
         let chain = arm.lock().chain().clone();
         cx.run_arm(
             c::primitive_manipulator::component,
-            StockPrimitiveManipulator::new(arm, chain, PrimitiveManipulatorConfig::default()),
+            StockPrimitiveManipulator::new(
+                arm.clone(),
+                chain,
+                PrimitiveManipulatorConfig::default(),
+            )
+            .with_hold(arm.holding_controller()),
         )
     }),
     (c::manipulator_joint_position_sensor::ID, |cx| {

@@ -1,16 +1,20 @@
 //! The closed-loop manipulator driver all six drivers of Part 1 §5.4.6–§5.4.11 are:
 //! an [`ArmLink`] and a [`Goal`] that turns the command into a joint reference every
 //! control period. While nothing is commanded (or a velocity command went stale) the
-//! driver holds the arm where it is; on leaving Ready, on emergency and when control is
-//! lost it sets every effort to zero and gives the Primitive Manipulator back.
+//! driver holds the arm where it is. On emergency, failure and shutdown it sets every
+//! effort to zero; on Standby it stops commanding without a word and gives the Primitive
+//! Manipulator back, whose holding controller keeps the arm where it is until the next
+//! driver takes it (a hand-over without a moment of zero effort); when its own controller
+//! lets it go it forgets the command and holds the arm where it is.
 
-use std::time::Instant;
+use std::collections::VecDeque;
+use std::time::{Duration, Instant};
 
 use super::link::{ArmDriverConfig, ArmLink};
-use crate::component::{Context, CoreState, EmittedBy, InitError, Interface, Refused};
+use crate::component::{Context, CoreState, EmittedBy, InitError, Interface, Refused, StopReason};
 use crate::components::parts::ManipulatorDriver;
 use crate::messages::{
-    QueryManipulatorSpecifications, ReportJointEfforts, ReportJointPositions,
+    QueryJointEfforts, QueryManipulatorSpecifications, ReportJointEfforts, ReportJointPositions,
     ReportJointVelocities, ReportManipulatorSpecifications, SetJointEfforts,
 };
 use crate::JausMessage;
@@ -70,6 +74,7 @@ impl<G: Goal> StockArmDriver<G> {
     where
         SetJointEfforts: EmittedBy<I>,
         QueryManipulatorSpecifications: EmittedBy<I>,
+        QueryJointEfforts: EmittedBy<I>,
     {
         // The arm is learnt in every state, so commands are accepted as soon as the
         // driver is Ready.
@@ -107,7 +112,8 @@ impl<G: Goal> StockArmDriver<G> {
         (self.q_ref, self.qd_ref) = (q_ref, qd_ref);
     }
 
-    /// Stops: forget the command, every effort to zero.
+    /// Stops: forget the command, every effort to zero (emergency, failure, shutdown,
+    /// stale feedback).
     pub fn halt<I: Interface>(&mut self, ctx: &mut Context<'_, I>)
     where
         SetJointEfforts: EmittedBy<I>,
@@ -117,66 +123,136 @@ impl<G: Goal> StockArmDriver<G> {
         self.link.stop(ctx);
     }
 
-    /// On leaving Ready: stop and give the Primitive Manipulator back.
-    pub fn leave_ready<I: Interface>(&mut self, ctx: &mut Context<'_, I>)
+    /// Hands the arm back: forget the command, stop commanding and give the Primitive
+    /// Manipulator back, whose holding controller keeps the arm where it is.
+    pub fn let_go<I: Interface>(&mut self, ctx: &mut Context<'_, I>) {
+        self.goal.clear();
+        self.hold = None;
+        self.link.let_go();
+        self.link.release_output(ctx);
+    }
+
+    /// What the runtime's stop asks: emergency, failure and shutdown set every effort to
+    /// zero; Standby hands the arm back ([`let_go`](Self::let_go)); when the driver's
+    /// own controller lets it go the command is forgotten and the driver holds the arm
+    /// where it is.
+    pub fn stop_for<I: Interface>(&mut self, ctx: &mut Context<'_, I>, reason: StopReason)
     where
         SetJointEfforts: EmittedBy<I>,
     {
-        self.halt(ctx);
-        self.link.release_output(ctx);
-    }
-}
-
-/// Moves a joint reference toward a target at a limited rate per joint (the position
-/// drivers' reference, so the servo is never asked for a step).
-#[derive(Debug, Clone, Default)]
-pub struct Ramp {
-    reference: Option<Vec<f64>>,
-    last: Option<Instant>,
-}
-
-impl Ramp {
-    /// Restarts from the current positions on the next step.
-    pub fn reset(&mut self) {
-        self.reference = None;
-        self.last = None;
-    }
-
-    /// Steps the reference from where it is (or from `q` on the first step) toward
-    /// `target`, each joint at no more than `rates[j]`; fills `q_ref`, `qd_ref`.
-    pub fn step(
-        &mut self,
-        now: Instant,
-        q: &[f64],
-        target: &[f64],
-        rates: impl Fn(usize) -> f64,
-        q_ref: &mut [f64],
-        qd_ref: &mut [f64],
-    ) {
-        let dt = self.last.map_or(0.0, |t| {
-            now.saturating_duration_since(t).as_secs_f64().min(0.1)
-        });
-        self.last = Some(now);
-        let r = self.reference.get_or_insert_with(|| q.to_vec());
-        if r.len() != target.len() {
-            *r = q.to_vec();
+        match reason {
+            StopReason::Emergency | StopReason::Failure | StopReason::Shutdown => self.halt(ctx),
+            StopReason::Standby => self.let_go(ctx),
+            StopReason::ControlLost { .. } => {
+                self.goal.clear();
+                self.hold = None;
+            }
         }
-        for j in 0..target.len() {
-            let max = rates(j) * dt;
-            let step = (target[j] - r[j]).clamp(-max, max);
-            r[j] += step;
-            q_ref[j] = r[j];
-            qd_ref[j] = if dt > 0.0 && (target[j] - r[j]).abs() > 0.0 {
-                step / dt
+    }
+
+    /// On leaving Ready: to Standby, hand the arm back; otherwise (emergency, failure,
+    /// shutdown) every effort to zero, then give the Primitive Manipulator back.
+    pub fn leave_ready<I: Interface>(&mut self, ctx: &mut Context<'_, I>, to: CoreState)
+    where
+        SetJointEfforts: EmittedBy<I>,
+    {
+        if to == CoreState::Standby {
+            self.let_go(ctx);
+        } else {
+            self.halt(ctx);
+            self.link.release_output(ctx);
+        }
+    }
+}
+
+/// Moves the joint rates `rates` toward `desired` over `dt` seconds with each joint's
+/// change within `limit(j)` (its acceleration, per second), all joints' changes scaled
+/// by the same factor (so a tool velocity keeps its direction while it changes).
+pub fn slew(rates: &mut [f64], desired: &[f64], dt: f64, limit: impl Fn(usize) -> f64) {
+    if dt.is_nan() || dt <= 0.0 {
+        return;
+    }
+    let scale = rates
+        .iter()
+        .zip(desired)
+        .enumerate()
+        .map(|(j, (r, d))| {
+            let most = limit(j) * dt;
+            if most > 0.0 && most.is_finite() {
+                (d - r).abs() / most
             } else {
                 0.0
-            };
-        }
+            }
+        })
+        .fold(1.0, f64::max);
+    for (r, d) in rates.iter_mut().zip(desired) {
+        *r += (d - *r) / scale;
+    }
+}
+
+/// Joint rates averaged over a sliding time window (the velocity drivers' jerk limit):
+/// rates that ramp from one value to another come out with a change that builds up and
+/// dies away over the window, within the same speed and acceleration. Time before the
+/// first rates counts as at rest.
+#[derive(Debug, Clone, Default)]
+pub struct RateSmoother {
+    history: VecDeque<(Instant, Vec<f64>)>,
+}
+
+impl RateSmoother {
+    /// Forgets the history (at rest).
+    pub fn reset(&mut self) {
+        self.history.clear();
     }
 
-    /// Whether the reference has reached `target`.
-    pub fn arrived(&self, target: &[f64]) -> bool {
-        self.reference.as_deref() == Some(target)
+    /// Whether every rate in the window is zero.
+    pub fn still(&self) -> bool {
+        self.history
+            .iter()
+            .all(|(_, v)| v.iter().all(|r| *r == 0.0))
+    }
+
+    /// Takes `rates` (in force since the previous call) at `now` and writes their
+    /// average over the last `window` into `out`; without a window, `rates` themselves.
+    pub fn smooth(&mut self, now: Instant, rates: &[f64], window: Duration, out: &mut [f64]) {
+        let w = window.as_secs_f64();
+        if w <= 0.0 {
+            out.copy_from_slice(rates);
+            self.history.clear();
+            return;
+        }
+        if self
+            .history
+            .back()
+            .is_some_and(|(_, v)| v.len() != rates.len())
+        {
+            self.history.clear();
+        }
+        self.history.push_back((now, rates.to_vec()));
+        // Keep one entry from before the window: it marks where the next one starts.
+        while self
+            .history
+            .get(1)
+            .is_some_and(|(t, _)| now.saturating_duration_since(*t) >= window)
+        {
+            self.history.pop_front();
+        }
+        out.iter_mut().for_each(|v| *v = 0.0);
+        let from = now.checked_sub(window);
+        let mut previous: Option<Instant> = None;
+        for (t, v) in &self.history {
+            // Rates `v` were in force from the previous entry's time to `t`.
+            let start = match (previous, from) {
+                (Some(p), Some(f)) => p.max(f),
+                (Some(p), None) => p,
+                (None, _) => *t,
+            };
+            let span = t.saturating_duration_since(start).as_secs_f64();
+            for (o, r) in out.iter_mut().zip(v) {
+                *o += r * span / w;
+            }
+            previous = Some(*t);
+        }
     }
 }
 
@@ -188,6 +264,7 @@ impl<G: Goal, I: Interface> ManipulatorDriver<I> for StockArmDriver<G>
 where
     SetJointEfforts: EmittedBy<I>,
     QueryManipulatorSpecifications: EmittedBy<I>,
+    QueryJointEfforts: EmittedBy<I>,
 {
     fn on_report_manipulator_specifications(
         &mut self,
@@ -200,9 +277,10 @@ where
 
     fn on_report_joint_efforts(
         &mut self,
-        _ctx: &mut Context<'_, I>,
-        _r: &ReportJointEfforts,
+        ctx: &mut Context<'_, I>,
+        r: &ReportJointEfforts,
     ) -> Result<(), Refused> {
+        self.link.on_efforts(ctx.source(), r);
         Ok(())
     }
 
@@ -237,7 +315,7 @@ where
 
     fn state_changed(&mut self, ctx: &mut Context<'_, I>, _from: CoreState, to: CoreState) {
         if to != CoreState::Ready {
-            self.leave_ready(ctx);
+            self.leave_ready(ctx, to);
         }
     }
 

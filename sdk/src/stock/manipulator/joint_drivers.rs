@@ -3,9 +3,9 @@
 
 use std::time::Instant;
 
-use super::driver::{check_joints, Goal, Ramp, StockArmDriver};
+use super::driver::{check_joints, slew, Goal, RateSmoother, StockArmDriver};
 use super::link::ArmLink;
-use super::profile::{JointMove, JointSet};
+use super::profile::{JointMove, JointSet, SynchronisedMove};
 use crate::component::{Refused, StopReason};
 use crate::components::parts::ManipulatorDriver;
 use crate::components::{
@@ -14,23 +14,38 @@ use crate::components::{
 };
 use crate::messages::*;
 
-/// Joint positions toward which the reference ramps at a fraction of each joint's rate.
+/// Joint positions the reference moves to on a synchronised rest-to-rest, jerk-limited
+/// profile ([`SynchronisedMove`]): each joint within a fraction
+/// ([`speed_fraction`](super::link::ArmDriverConfig::speed_fraction)) of its rate and its
+/// acceleration limit ([`acceleration_time`](super::link::ArmDriverConfig::acceleration_time)),
+/// smoothed over [`jerk_time`](super::link::ArmDriverConfig::jerk_time), all arriving
+/// together, decelerating into the target; then the target is held. A new target starts
+/// from the reference where it is (from rest).
 #[derive(Debug, Default)]
 pub struct JointTarget {
     target: Option<Vec<f64>>,
-    ramp: Ramp,
+    plan: Option<(Instant, SynchronisedMove)>,
+    reference: Option<Vec<f64>>,
+    arrived: bool,
 }
 
 impl JointTarget {
-    /// Sets a new target (the reference starts from where the arm is).
+    /// Sets a new target (the profile starts on the next control period from the
+    /// reference, or from where the arm is).
     pub fn set(&mut self, target: Vec<f64>) {
         self.target = Some(target);
-        self.ramp.reset();
+        self.plan = None;
+        self.arrived = false;
     }
 
     /// The target, if any.
     pub fn target(&self) -> Option<&[f64]> {
         self.target.as_deref()
+    }
+
+    /// Whether the reference has reached the target.
+    pub fn arrived(&self) -> bool {
+        self.arrived
     }
 }
 
@@ -46,24 +61,53 @@ impl Goal for JointTarget {
         let (Some(target), Some(chain)) = (&self.target, link.chain()) else {
             return false;
         };
-        if target.len() != q.len() {
+        if target.len() != q.len() || chain.dof() != q.len() {
             return false;
         }
-        let fraction = link.config.speed_fraction;
-        self.ramp.step(
-            now,
-            q,
-            target,
-            |j| chain.joints[j].max_rate * fraction,
-            q_ref,
-            qd_ref,
-        );
+        if self.arrived {
+            q_ref.copy_from_slice(target);
+            qd_ref.iter_mut().for_each(|v| *v = 0.0);
+            return true;
+        }
+        if self.plan.is_none() {
+            let start = match &self.reference {
+                Some(r) if r.len() == q.len() => r.clone(),
+                _ => q.to_vec(),
+            };
+            let fraction = link.config.speed_fraction;
+            let ramp = link.config.acceleration_time.as_secs_f64();
+            let limits = |j: usize| {
+                let rate = chain.joints[j].max_rate;
+                (rate * fraction, rate / ramp)
+            };
+            let smoothing = link.config.jerk_time.as_secs_f64();
+            match SynchronisedMove::plan(&start, target, limits, smoothing) {
+                Ok(plan) => self.plan = Some((now, plan)),
+                Err(e) => {
+                    // Only bad settings get here (the target is within the limits).
+                    tracing::warn!("joint target: no profile ({e}); holding");
+                    q_ref.copy_from_slice(&start);
+                    qd_ref.iter_mut().for_each(|v| *v = 0.0);
+                    self.reference = Some(start);
+                    return true;
+                }
+            }
+        }
+        let Some((t0, plan)) = &self.plan else {
+            return false;
+        };
+        let t = now.saturating_duration_since(*t0).as_secs_f64();
+        plan.sample(t, q_ref, qd_ref);
+        if t >= plan.duration() {
+            self.plan = None;
+            self.arrived = true;
+        }
+        self.reference = Some(q_ref.to_vec());
         true
     }
 
     fn clear(&mut self) {
-        self.target = None;
-        self.ramp.reset();
+        *self = JointTarget::default();
     }
 }
 
@@ -75,8 +119,8 @@ impl jpd::ManipulatorJointPositionsDriver for StockJointPositionsDriver {
         Some(self)
     }
 
-    fn stop(&mut self, ctx: &mut jpd::Ctx<'_>, _reason: StopReason) {
-        self.halt(ctx);
+    fn stop(&mut self, ctx: &mut jpd::Ctx<'_>, reason: StopReason) {
+        self.stop_for(ctx, reason);
     }
 
     fn on_set_joint_positions(
@@ -99,11 +143,15 @@ impl jpd::ManipulatorJointPositionsDriver for StockJointPositionsDriver {
 }
 
 /// Joint velocities held while the command is fresh; the position reference integrates
-/// them.
+/// them, its rates changing within each joint's acceleration limit, smoothed over the
+/// drivers' jerk time (it slows to a stop when the command goes stale).
 #[derive(Debug, Default)]
 pub struct JointRates {
     command: Option<(Instant, Vec<f64>)>,
     reference: Option<Vec<f64>>,
+    rates: Vec<f64>,
+    smoother: RateSmoother,
+    smoothed: Vec<f64>,
     last: Option<Instant>,
 }
 
@@ -128,30 +176,52 @@ impl Goal for JointRates {
         q_ref: &mut [f64],
         qd_ref: &mut [f64],
     ) -> bool {
-        let fresh = matches!(&self.command, Some((t, v))
-            if v.len() == q.len()
-                && now.saturating_duration_since(*t) <= link.config.command_timeout);
-        if !fresh {
-            if self.command.take().is_some() {
-                tracing::info!("joint velocity command not refreshed; holding");
-            }
-            self.reference = None;
-            self.last = None;
-            return false;
-        }
-        let Some((_, rates)) = &self.command else {
+        let Some(chain) = link.chain() else {
             return false;
         };
+        let n = q.len();
+        if chain.dof() != n {
+            *self = JointRates::default();
+            return false;
+        }
+        let fresh = matches!(&self.command, Some((t, v))
+            if v.len() == n
+                && now.saturating_duration_since(*t) <= link.config.command_timeout);
+        if !fresh && self.command.take().is_some() {
+            tracing::info!("joint velocity command not refreshed; stopping");
+        }
+        if self.command.is_none() && !self.rates.iter().any(|v| *v != 0.0) && self.smoother.still()
+        {
+            *self = JointRates::default();
+            return false;
+        }
         let dt = self.last.map_or(0.0, |t| {
             now.saturating_duration_since(t).as_secs_f64().min(0.1)
         });
         self.last = Some(now);
+        if self.rates.len() != n {
+            self.rates = vec![0.0; n];
+        }
+        let desired = self
+            .command
+            .as_ref()
+            .map_or_else(|| vec![0.0; n], |c| c.1.clone());
+        let ramp = link.config.acceleration_time.as_secs_f64();
+        slew(&mut self.rates, &desired, dt, |j| {
+            chain.joints[j].max_rate / ramp
+        });
+        self.smoothed.resize(n, 0.0);
+        self.smoother
+            .smooth(now, &self.rates, link.config.jerk_time, &mut self.smoothed);
         let r = self.reference.get_or_insert_with(|| q.to_vec());
-        for (r, v) in r.iter_mut().zip(rates) {
+        if r.len() != n {
+            *r = q.to_vec();
+        }
+        for (r, v) in r.iter_mut().zip(&self.smoothed) {
             *r += v * dt;
         }
         q_ref.copy_from_slice(r);
-        qd_ref.copy_from_slice(rates);
+        qd_ref.copy_from_slice(&self.smoothed);
         true
     }
 
@@ -169,8 +239,8 @@ impl jvd::ManipulatorJointVelocitiesDriver for StockJointVelocitiesDriver {
         Some(self)
     }
 
-    fn stop(&mut self, ctx: &mut jvd::Ctx<'_>, _reason: StopReason) {
-        self.halt(ctx);
+    fn stop(&mut self, ctx: &mut jvd::Ctx<'_>, reason: StopReason) {
+        self.stop_for(ctx, reason);
     }
 
     fn on_set_joint_velocities(
@@ -250,7 +320,9 @@ impl Goal for JointMotion {
 }
 
 /// The Joint Move Driver: each joint set of Set Joint Motion reached at its time, on
-/// trapezoidal profiles within the given velocity, acceleration and deceleration.
+/// trapezoidal profiles within the given velocity, acceleration and deceleration (capped
+/// by the joint's rate and acceleration limits), smoothed over the drivers' jerk time so
+/// each joint decelerates gently into the last set.
 pub type StockJointMoveDriver = StockArmDriver<JointMotion>;
 
 impl jmd::ManipulatorJointMoveDriver for StockJointMoveDriver {
@@ -258,8 +330,8 @@ impl jmd::ManipulatorJointMoveDriver for StockJointMoveDriver {
         Some(self)
     }
 
-    fn stop(&mut self, ctx: &mut jmd::Ctx<'_>, _reason: StopReason) {
-        self.halt(ctx);
+    fn stop(&mut self, ctx: &mut jmd::Ctx<'_>, reason: StopReason) {
+        self.stop_for(ctx, reason);
     }
 
     fn on_set_joint_motion(
@@ -290,15 +362,21 @@ impl jmd::ManipulatorJointMoveDriver for StockJointMoveDriver {
                     .iter()
                     .enumerate()
                     .map(|(j, l)| {
-                        // The joint's own rate limit caps the move's.
-                        let v = l.max_velocity.abs().min(chain.joints[j].max_rate);
-                        (l.position, v, l.max_acceleration, l.max_deceleration)
+                        // The joint's own rate and acceleration limits cap the move's.
+                        let rate = chain.joints[j].max_rate;
+                        let accel = rate / self.link.config.acceleration_time.as_secs_f64();
+                        let v = l.max_velocity.abs().min(rate);
+                        let a = l.max_acceleration.abs().min(accel);
+                        let d = l.max_deceleration.abs().min(accel);
+                        (l.position, v, a, d)
                     })
                     .collect(),
             });
         }
         let start = self.link.start_positions(ctx.now())?;
-        let plan = JointMove::plan(&start, &sets).map_err(|e| Refused::Invalid(e.to_string()))?;
+        let plan = JointMove::plan(&start, &sets)
+            .map_err(|e| Refused::Invalid(e.to_string()))?
+            .smoothed(self.link.config.jerk_time.as_secs_f64());
         if ctx.mode() == jmd::Mode::Idle {
             ctx.transition(jmd::Transition::Start)
                 .map_err(|e| Refused::Invalid(e.to_string()))?;

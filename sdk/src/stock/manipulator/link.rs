@@ -10,8 +10,8 @@ use super::kinematics::Chain;
 use super::servo::{JointServo, ServoGains};
 use crate::component::{Context, EmittedBy, Interface, Refused};
 use crate::messages::{
-    QueryManipulatorSpecifications, ReportJointPositions, ReportJointVelocities,
-    ReportManipulatorSpecifications, SetJointEfforts,
+    QueryJointEfforts, QueryManipulatorSpecifications, ReportJointEfforts, ReportJointPositions,
+    ReportJointVelocities, ReportManipulatorSpecifications, SetJointEfforts,
 };
 use crate::stock::output::OutputControl;
 use crate::{Address, JausMessage};
@@ -38,11 +38,27 @@ pub struct ArmDriverConfig {
     /// Fraction of each joint's maximum rate the position drivers (joint positions,
     /// end-effector pose) move at.
     pub speed_fraction: f64,
+    /// Time a joint takes to reach its maximum rate at the largest acceleration the
+    /// drivers ask of it: each joint's acceleration limit is its maximum rate (Report
+    /// Manipulator Specifications) over this time. Report Manipulator Specifications
+    /// carries no acceleration, so this is the drivers' setting.
+    pub acceleration_time: Duration,
+    /// Time over which the position and velocity drivers' acceleration builds up and
+    /// dies away (their jerk limit): a move to a joint target or pose is smoothed over it
+    /// ([`SynchronisedMove`](super::profile::SynchronisedMove)), and so are the changes
+    /// of a commanded velocity. Zero: acceleration in steps.
+    pub jerk_time: Duration,
+    /// How long a driver that took the Primitive Manipulator waits for the efforts it
+    /// applies (Query Joint Efforts) before it starts its servo from zero: the servo
+    /// starts from them, so the hand-over does not change the effort.
+    pub takeover_timeout: Duration,
 }
 
 /// The defaults: output 1.1.49.1, sensors 1.1.51.1 and 1.1.52.1, feedback at 100 Hz with a
 /// 100 ms watchdog, velocity commands stale after 500 ms, [`ServoGains::default`], moves
-/// at 50 % of the joints' rates.
+/// at 50 % of the joints' rates, a joint's full rate reached in 0.5 s at the most,
+/// accelerations smoothed over 300 ms, up to 200 ms to learn the efforts applied when
+/// taking the arm.
 ///
 /// ```
 /// use std::time::Duration;
@@ -50,6 +66,9 @@ pub struct ArmDriverConfig {
 /// assert_eq!(c.output, jaus::Address::new(1, 1, 49, 1));
 /// assert_eq!((c.feedback_rate_hz, c.feedback_timeout), (100.0, Duration::from_millis(100)));
 /// assert_eq!((c.command_timeout, c.speed_fraction), (Duration::from_millis(500), 0.5));
+/// assert_eq!(c.acceleration_time, Duration::from_millis(500));
+/// assert_eq!(c.jerk_time, Duration::from_millis(300));
+/// assert_eq!(c.takeover_timeout, Duration::from_millis(200));
 /// ```
 impl Default for ArmDriverConfig {
     fn default() -> Self {
@@ -62,6 +81,9 @@ impl Default for ArmDriverConfig {
             command_timeout: Duration::from_millis(500),
             gains: ServoGains::default(),
             speed_fraction: 0.5,
+            acceleration_time: Duration::from_millis(500),
+            jerk_time: Duration::from_millis(300),
+            takeover_timeout: Duration::from_millis(200),
         }
     }
 }
@@ -94,7 +116,19 @@ pub struct ArmLink {
     last_servo: Option<Instant>,
     efforts: Vec<f64>,
     sending: bool,
+    takeover: Takeover,
     counters: ArmCounters,
+}
+
+/// Where a driver is in taking the arm over from whoever held it.
+#[derive(Debug, Clone, PartialEq)]
+enum Takeover {
+    /// The efforts applied now are not known yet.
+    Needed,
+    /// Query Joint Efforts sent first at this instant (last at the second).
+    Asked(Instant, Instant),
+    /// The servo starts from them (or from zero after the timeout).
+    Done,
 }
 
 impl ArmLink {
@@ -114,6 +148,7 @@ impl ArmLink {
             last_servo: None,
             efforts: Vec::new(),
             sending: false,
+            takeover: Takeover::Needed,
             counters: ArmCounters::default(),
         }
     }
@@ -214,6 +249,7 @@ impl ArmLink {
                 }
                 if self.chain.as_ref().map(Chain::dof) != Some(chain.dof()) {
                     self.servo.reset();
+                    self.takeover = Takeover::Needed;
                     self.positions = None;
                     self.velocities = None;
                 }
@@ -275,6 +311,21 @@ impl ArmLink {
             }
         }
         self.positions = Some((now, r.joint_position.clone()));
+    }
+
+    /// Takes Report Joint Efforts from the Primitive Manipulator (`source`): while taking
+    /// the arm over, the servo starts from them.
+    pub fn on_efforts(&mut self, source: Option<Address>, r: &ReportJointEfforts) {
+        let dof = self.chain.as_ref().map(Chain::dof);
+        if source != Some(self.config.output) || !matches!(self.takeover, Takeover::Asked(..)) {
+            return;
+        }
+        if dof != Some(r.joint_effort.len()) || !r.joint_effort.iter().all(|e| e.is_finite()) {
+            self.counters.bad_feedback += 1;
+            return;
+        }
+        self.servo.preload(&self.config.gains, &r.joint_effort);
+        self.takeover = Takeover::Done;
     }
 
     /// Takes Report Joint Velocities (from the velocity sensor).
@@ -353,13 +404,18 @@ impl ArmLink {
     }
 
     /// Whether the driver may command the arm now: it controls the Primitive
-    /// Manipulator, knows the arm and has fresh feedback. Without fresh feedback the
-    /// efforts go to zero (the watchdog, counted once per loss).
+    /// Manipulator, knows the arm, has fresh feedback and knows the efforts the
+    /// Primitive Manipulator applies (asked for once control is granted, up to
+    /// [`ArmDriverConfig::takeover_timeout`]; meanwhile whoever held the arm keeps it).
+    /// Without fresh feedback the efforts go to zero (the watchdog, counted once per
+    /// loss).
     pub fn ready_to_drive<I: Interface>(&mut self, ctx: &mut Context<'_, I>) -> bool
     where
         SetJointEfforts: EmittedBy<I>,
+        QueryJointEfforts: EmittedBy<I>,
     {
         if !self.output.granted(ctx) || self.chain.is_none() {
+            self.takeover = Takeover::Needed;
             return false;
         }
         if self.feedback(ctx.now()).is_none() {
@@ -376,7 +432,30 @@ impl ArmLink {
             self.stop(ctx);
             return false;
         }
-        true
+        let now = ctx.now();
+        let (first, ask) = match self.takeover {
+            Takeover::Done => return true,
+            Takeover::Needed => (now, true),
+            Takeover::Asked(first, last) => (
+                first,
+                now.saturating_duration_since(last) >= Duration::from_millis(50),
+            ),
+        };
+        if now.saturating_duration_since(first) >= self.config.takeover_timeout {
+            tracing::info!(
+                component = I::NAME,
+                address = %ctx.address(),
+                "no Report Joint Efforts from {}; the servo starts from zero",
+                self.config.output
+            );
+            self.takeover = Takeover::Done;
+            return true;
+        }
+        if ask {
+            ctx.send(self.config.output, QueryJointEfforts {});
+            self.takeover = Takeover::Asked(first, now);
+        }
+        false
     }
 
     /// Servoes the joints toward `q_ref`, `qd_ref` (call once per control period, after
@@ -412,14 +491,25 @@ impl ArmLink {
         );
     }
 
+    /// Stops commanding without a word: the Primitive Manipulator's holding controller
+    /// (or its watchdog) takes the arm. For hand-overs (Standby, control lost); then
+    /// [`release_output`](Self::release_output).
+    pub fn let_go(&mut self) {
+        self.servo.reset();
+        self.last_servo = None;
+        self.sending = false;
+        self.takeover = Takeover::Needed;
+    }
+
     /// Sets every effort to zero: sends Set Joint Efforts of zeros once (the Primitive
-    /// Manipulator's own watchdog keeps them at zero when nothing further arrives).
+    /// Manipulator keeps zero effort until an effort is commanded again).
     pub fn stop<I: Interface>(&mut self, ctx: &mut Context<'_, I>)
     where
         SetJointEfforts: EmittedBy<I>,
     {
         self.servo.reset();
         self.last_servo = None;
+        self.takeover = Takeover::Needed;
         if self.sending {
             self.sending = false;
             let n = self.chain.as_ref().map_or(self.efforts.len(), Chain::dof);

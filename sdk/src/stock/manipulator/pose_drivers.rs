@@ -10,7 +10,7 @@ use std::time::Instant;
 use nalgebra::{Dyn, Isometry3, Matrix6, OMatrix, Quaternion, Translation3, UnitQuaternion, U6};
 use nalgebra::{Vector3, Vector6};
 
-use super::driver::{Goal, StockArmDriver};
+use super::driver::{slew, Goal, RateSmoother, StockArmDriver};
 use super::joint_drivers::JointTarget;
 use super::kinematics::{Chain, IkSolver};
 use super::link::ArmLink;
@@ -117,8 +117,8 @@ impl epd::ManipulatorEndEffectorPoseDriver for StockEndEffectorPoseDriver {
         Some(self)
     }
 
-    fn stop(&mut self, ctx: &mut epd::Ctx<'_>, _reason: StopReason) {
-        self.halt(ctx);
+    fn stop(&mut self, ctx: &mut epd::Ctx<'_>, reason: StopReason) {
+        self.stop_for(ctx, reason);
     }
 
     fn on_set_tool_point(
@@ -183,11 +183,14 @@ pub enum VelocityFrame {
 
 /// An end-effector velocity (linear m/s, angular rad/s) held while fresh; the joint
 /// rates come from the damped pseudo-inverse of the Jacobian, scaled down together so
-/// no joint exceeds its rate, and stop at a joint limit.
+/// no joint exceeds its rate; the tool's velocity changes within the joints' acceleration
+/// limits (smoothed over the drivers' jerk time); a joint stops at its limit.
 #[derive(Debug, Default)]
 pub struct ToolVelocity {
     command: Option<(Instant, VelocityFrame, Vector3<f64>, Vector3<f64>)>,
     reference: Option<Vec<f64>>,
+    twist: Vector6<f64>,
+    smoother: RateSmoother,
     last: Option<Instant>,
     jacobian: Option<OMatrix<f64, U6, Dyn>>,
 }
@@ -202,30 +205,10 @@ impl ToolVelocity {
     }
 }
 
-impl Goal for ToolVelocity {
-    fn reference(
-        &mut self,
-        link: &ArmLink,
-        now: Instant,
-        q: &[f64],
-        q_ref: &mut [f64],
-        qd_ref: &mut [f64],
-    ) -> bool {
-        let (Some((t, frame, linear, angular)), Some(chain)) = (self.command, link.chain()) else {
-            return false;
-        };
-        if now.saturating_duration_since(t) > link.config.command_timeout || q.len() != chain.dof()
-        {
-            self.command = None;
-            self.reference = None;
-            self.last = None;
-            return false;
-        }
-        let dt = self.last.map_or(0.0, |t| {
-            now.saturating_duration_since(t).as_secs_f64().min(0.1)
-        });
-        self.last = Some(now);
-        let r = self.reference.get_or_insert_with(|| q.to_vec());
+impl ToolVelocity {
+    /// The joint rates that give `twist` (vehicle frame: linear, angular) at the joint
+    /// positions `r`, or `None` when the Jacobian cannot be inverted.
+    fn rates_for(&mut self, chain: &Chain, twist: &Vector6<f64>, r: &[f64]) -> Option<Vec<f64>> {
         let n = chain.dof();
         let jac = self
             .jacobian
@@ -234,28 +217,104 @@ impl Goal for ToolVelocity {
             *jac = OMatrix::<f64, U6, Dyn>::zeros(n);
         }
         chain.jacobian(r, jac);
-        let (linear, angular) = match frame {
-            VelocityFrame::Vehicle => (linear, angular),
-            VelocityFrame::EndEffector => {
-                let rot = chain.tool_pose(r).rotation;
-                (rot * linear, rot * angular)
-            }
-        };
-        let twist = Vector6::new(
-            linear.x, linear.y, linear.z, angular.x, angular.y, angular.z,
-        );
         let jjt: Matrix6<f64> = &*jac * jac.transpose() + Matrix6::identity() * DAMPING * DAMPING;
-        let Some(w) = jjt.cholesky().map(|c| c.solve(&twist)) else {
+        let w = jjt.cholesky().map(|c| c.solve(twist))?;
+        Some((0..n).map(|j| jac.column(j).dot(&w)).collect())
+    }
+}
+
+impl Goal for ToolVelocity {
+    /// The tool's velocity follows the command with every joint's change of rate within
+    /// its acceleration limit, smoothed over the drivers' jerk time (in the tool's space,
+    /// so the joints stay coordinated): it speeds up into a command and slows down to a
+    /// stop when the command is zero or went stale, rather than stepping.
+    fn reference(
+        &mut self,
+        link: &ArmLink,
+        now: Instant,
+        q: &[f64],
+        q_ref: &mut [f64],
+        qd_ref: &mut [f64],
+    ) -> bool {
+        let Some(chain) = link.chain() else {
             return false;
         };
-        let mut rates: Vec<f64> = (0..n).map(|j| jac.column(j).dot(&w)).collect();
-        let scale = rates
+        let n = chain.dof();
+        if q.len() != n {
+            *self = ToolVelocity::default();
+            return false;
+        }
+        if self
+            .command
+            .is_some_and(|c| now.saturating_duration_since(c.0) > link.config.command_timeout)
+        {
+            tracing::info!("end-effector velocity command not refreshed; stopping");
+            self.command = None;
+        }
+        let moving = self.twist.iter().any(|v| *v != 0.0) || !self.smoother.still();
+        if self.command.is_none() && !moving {
+            *self = ToolVelocity {
+                jacobian: self.jacobian.take(),
+                ..ToolVelocity::default()
+            };
+            return false;
+        }
+        let dt = self.last.map_or(0.0, |t| {
+            now.saturating_duration_since(t).as_secs_f64().min(0.1)
+        });
+        self.last = Some(now);
+        let mut r = self
+            .reference
+            .take()
+            .filter(|r| r.len() == n)
+            .unwrap_or_else(|| q.to_vec());
+        let desired = match self.command {
+            Some((_, frame, linear, angular)) => {
+                let (linear, angular) = match frame {
+                    VelocityFrame::Vehicle => (linear, angular),
+                    VelocityFrame::EndEffector => {
+                        let rot = chain.tool_pose(&r).rotation;
+                        (rot * linear, rot * angular)
+                    }
+                };
+                Vector6::new(
+                    linear.x, linear.y, linear.z, angular.x, angular.y, angular.z,
+                )
+            }
+            None => Vector6::zeros(),
+        };
+        // The change of twist this period, scaled so no joint's rate changes faster than
+        // its acceleration limit.
+        let change = desired - self.twist;
+        let ramp = link.config.acceleration_time.as_secs_f64();
+        if let Some(delta) = self.rates_for(chain, &change, &r) {
+            let mut step = vec![0.0; n];
+            slew(&mut step, &delta, dt, |j| chain.joints[j].max_rate / ramp);
+            let scale = delta
+                .iter()
+                .zip(&step)
+                .map(|(d, s)| if d.abs() > 0.0 { s / d } else { 1.0 })
+                .fold(1.0, f64::min)
+                .max(0.0);
+            self.twist += change * scale;
+        }
+        let mut smoothed = [0.0; 6];
+        self.smoother.smooth(
+            now,
+            self.twist.as_slice(),
+            link.config.jerk_time,
+            &mut smoothed,
+        );
+        let mut rates = self
+            .rates_for(chain, &Vector6::from(smoothed), &r)
+            .unwrap_or_else(|| vec![0.0; n]);
+        let over = rates
             .iter()
             .enumerate()
             .map(|(j, v)| v.abs() / chain.joints[j].max_rate)
             .fold(1.0, f64::max);
         for (j, v) in rates.iter_mut().enumerate() {
-            *v /= scale;
+            *v /= over;
             let next = r[j] + *v * dt;
             let joint = &chain.joints[j];
             if next < joint.min || next > joint.max {
@@ -265,6 +324,7 @@ impl Goal for ToolVelocity {
             q_ref[j] = r[j];
             qd_ref[j] = *v;
         }
+        self.reference = Some(r);
         true
     }
 
@@ -281,8 +341,8 @@ impl evd::ManipulatorEndEffectorVelocityStateDriver for StockEndEffectorVelocity
         Some(self)
     }
 
-    fn stop(&mut self, ctx: &mut evd::Ctx<'_>, _reason: StopReason) {
-        self.halt(ctx);
+    fn stop(&mut self, ctx: &mut evd::Ctx<'_>, reason: StopReason) {
+        self.stop_for(ctx, reason);
     }
 
     fn on_set_end_effector_velocity_state(
@@ -417,8 +477,8 @@ impl dpd::ManipulatorEndEffectorDiscretePoseDriver for StockEndEffectorDiscreteP
         Some(self)
     }
 
-    fn stop(&mut self, ctx: &mut dpd::Ctx<'_>, _reason: StopReason) {
-        self.halt(ctx);
+    fn stop(&mut self, ctx: &mut dpd::Ctx<'_>, reason: StopReason) {
+        self.stop_for(ctx, reason);
     }
 
     fn on_set_end_effector_path_motion(

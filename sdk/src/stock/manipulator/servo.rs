@@ -19,11 +19,13 @@ pub struct ServoGains {
 }
 
 /// The defaults, tuned on the simulated 6-axis arm (`jaus_sim::arm`): kp 400 %/rad,
-/// ki 1000 %/(rad·s), kd 30 %/(rad/s), kv 20 %/(rad/s), integral up to 70 %.
+/// ki 1000 %/(rad·s), kd 30 %/(rad/s), kv 2.5 %/(rad/s) (about the simulated joints'
+/// viscous friction: a larger feed-forward is carried by the integral term while moving
+/// and pushes the arm back once it stops), integral up to 70 %.
 ///
 /// ```
 /// let g = jaus::stock::manipulator::servo::ServoGains::default();
-/// assert_eq!((g.kp, g.ki, g.kd, g.kv, g.integral_limit), (400.0, 1000.0, 30.0, 20.0, 70.0));
+/// assert_eq!((g.kp, g.ki, g.kd, g.kv, g.integral_limit), (400.0, 1000.0, 30.0, 2.5, 70.0));
 /// ```
 impl Default for ServoGains {
     fn default() -> Self {
@@ -31,7 +33,7 @@ impl Default for ServoGains {
             kp: 400.0,
             ki: 1000.0,
             kd: 30.0,
-            kv: 20.0,
+            kv: 2.5,
             integral_limit: 70.0,
         }
     }
@@ -47,6 +49,22 @@ impl JointServo {
     /// Forgets the integral terms (on a new command, a stop, a change of arm).
     pub fn reset(&mut self) {
         self.integral.clear();
+    }
+
+    /// Starts the integral terms so that, with no position or velocity error, the servo
+    /// gives `efforts` (percent, one per joint; each within the integral limit): the
+    /// bumpless start of a servo that takes over an arm someone else was holding.
+    pub fn preload(&mut self, gains: &ServoGains, efforts: &[f64]) {
+        self.integral = efforts
+            .iter()
+            .map(|e| {
+                if gains.ki > 0.0 && e.is_finite() {
+                    e.clamp(-gains.integral_limit, gains.integral_limit) / gains.ki
+                } else {
+                    0.0
+                }
+            })
+            .collect();
     }
 
     /// Efforts (percent, clamped to ±100) into `out` that drive the joints from `q`,
@@ -148,5 +166,19 @@ mod tests {
             &mut out,
         );
         assert!(out[0] > 0.0);
+    }
+
+    #[test]
+    fn a_preloaded_servo_starts_from_the_given_efforts() {
+        let mut s = JointServo::default();
+        let g = ServoGains::default();
+        s.preload(&g, &[-30.0, 500.0]);
+        let mut out = Vec::new();
+        s.efforts(
+            &g, 0.01, &[0.0; 2], &[0.0; 2], &[0.0; 2], &[0.0; 2], &mut out,
+        );
+        assert!((out[0] + 30.0).abs() < 1e-9, "{out:?}");
+        // Within the integral limit.
+        assert!((out[1] - g.integral_limit).abs() < 1e-9, "{out:?}");
     }
 }
