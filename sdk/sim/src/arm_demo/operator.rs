@@ -81,8 +81,10 @@ impl Phase {
     }
 }
 
-/// Tool point within this of the target and joints this still count as settled.
+/// Tool point within this of the target (position and orientation) and joints this
+/// still count as settled.
 const SETTLED_MM: f64 = 0.5;
+const SETTLED_DEG: f64 = 0.08;
 const STILL_RAD_S: f64 = 0.002;
 
 /// The scripted arm operator.
@@ -111,7 +113,7 @@ impl ArmOperator {
 
     /// Whether the joints are still and, except after the jog (whose end point is only
     /// as exact as the integration of the commanded velocity), the tool point is on the
-    /// target.
+    /// target, in position and orientation.
     fn settled(&self, phase: Phase) -> bool {
         let (Some(target), Some(p)) = (self.target, self.tool_pose()) else {
             return false;
@@ -121,7 +123,8 @@ impl ArmOperator {
             .as_ref()
             .is_some_and(|r| r.iter().all(|v| v.abs() < STILL_RAD_S));
         let err = (p.translation.vector - target.translation.vector).norm() * 1000.0;
-        still && (phase == Phase::Jog || err < SETTLED_MM)
+        let turn = p.rotation.angle_to(&target.rotation).to_degrees();
+        still && (phase == Phase::Jog || (err < SETTLED_MM && turn < SETTLED_DEG))
     }
 
     fn command(&mut self, ctx: &mut Ctx<'_>, phase: Phase) {
