@@ -422,3 +422,77 @@ pub fn as4(data: &[u8]) {
         );
     }
 }
+
+/// Cuts `data` into pieces whose lengths cycle through the bytes of `sizes` (1-64), as a
+/// stream's reads would.
+fn stream_pieces<'a>(sizes: &'a [u8], mut data: &'a [u8]) -> Vec<&'a [u8]> {
+    let mut out = Vec::new();
+    let mut i = 0;
+    while !data.is_empty() {
+        let n = sizes
+            .get(i % sizes.len().max(1))
+            .map_or(data.len(), |s| usize::from(s % 64) + 1);
+        let (piece, rest) = data.split_at(n.min(data.len()));
+        out.push(piece);
+        data = rest;
+        i += 1;
+    }
+    out
+}
+
+/// (g) A JTCP stream (first byte: how reads cut it): the decoder never panics, keeps at
+/// most one frame, fails for good once it fails; every datagram it hands on encodes back
+/// to a stream that decodes to the same datagrams.
+pub fn jtcp(data: &[u8]) {
+    use jaus::net::stream::{jtcp::JtcpEncoder, JtcpDecoder};
+    let (sizes, stream) = data.split_at(data.len().min(4));
+    let mut d = JtcpDecoder::new(1024);
+    let mut got = Vec::new();
+    let mut failed = None;
+    for piece in stream_pieces(sizes, stream) {
+        match d.decode(piece, |g| got.push(g.to_vec())) {
+            Ok(()) => assert!(failed.is_none(), "read on after {failed:?}"),
+            Err(e) => {
+                assert!(failed.is_none_or(|f| f == e), "{failed:?} then {e}");
+                failed = Some(e);
+            }
+        }
+        assert!(d.pending() <= 1024);
+    }
+    let mut e = JtcpEncoder::default();
+    let mut wire = Vec::new();
+    for g in &got {
+        e.encode(g, &mut wire).expect("a decoded datagram encodes");
+    }
+    let mut again = Vec::new();
+    JtcpDecoder::new(1024)
+        .decode(&wire, |g| again.push(g.to_vec()))
+        .expect("re-encoded frames decode");
+    assert_eq!(again, got);
+}
+
+/// (h) A serial line's bytes (first four: how reads cut them): the JSerial decoder never
+/// panics and counts every byte it takes; every datagram it hands on encodes back to a
+/// packet that decodes to the same datagram, with nothing skipped.
+pub fn jserial(data: &[u8]) {
+    use jaus::net::stream::{jserial, JSerialDecoder};
+    let (sizes, line) = data.split_at(data.len().min(4));
+    let mut d = JSerialDecoder::new(1024);
+    let mut got = Vec::new();
+    for piece in stream_pieces(sizes, line) {
+        d.decode(piece, |g| got.push(g.to_vec()));
+    }
+    let s = d.stats();
+    assert_eq!(s.bytes as usize, line.len());
+    assert!(s.bytes_skipped <= s.bytes);
+    assert_eq!(s.frames as usize, got.len());
+    let mut wire = Vec::new();
+    for g in &got {
+        jserial::encode_into(g, &mut wire).expect("a decoded datagram encodes");
+    }
+    let mut again = Vec::new();
+    let mut d2 = JSerialDecoder::new(1024);
+    d2.decode(&wire, |g| again.push(g.to_vec()));
+    assert_eq!(again, got);
+    assert_eq!(d2.stats().bytes_skipped, 0);
+}

@@ -52,3 +52,13 @@ fn runtime_corpus() {
 fn as4_corpus() {
     assert!(replay("as4", jaus_tests::fuzz::as4) >= 4);
 }
+
+#[test]
+fn jtcp_corpus() {
+    assert!(replay("jtcp", jaus_tests::fuzz::jtcp) >= 4);
+}
+
+#[test]
+fn jserial_corpus() {
+    assert!(replay("jserial", jaus_tests::fuzz::jserial) >= 4);
+}

@@ -9,7 +9,7 @@
 
 use jaus::codec::{Encode, EncodeError};
 use jaus::messages::Message;
-use jaus_spec::{Bits, Field, Int, Len, Spec, TypeForm, TypeKind, Wire};
+use jaus_spec::{Field, Spec, TypeForm, TypeKind, Wire};
 use proptest::prelude::*;
 use proptest::test_runner::{Config, TestCaseError, TestRunner};
 use serde_json::{json, Map, Value};

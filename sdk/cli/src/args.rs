@@ -340,9 +340,10 @@ pub(crate) struct NetArgs {
     /// auto (join the peer's node when --me is on it), join, or node.
     #[arg(long, default_value = "auto")]
     pub(crate) mode: jaus_cli::net::Mode,
-    /// Peer node sockets.
+    /// Peer nodes: HOST:PORT (JUDP), tcp://HOST:PORT (JTCP, dialed) or
+    /// serial:///dev/DEVICE?baud=N (JSerial; one line); repeatable, one transport.
     #[arg(long, default_value = "127.0.0.1:3794")]
-    pub(crate) peer: Vec<std::net::SocketAddr>,
+    pub(crate) peer: Vec<jaus::net::PeerUrl>,
     /// Framing: judp or opc.
     #[arg(long, default_value = "judp")]
     pub(crate) framing: String,
@@ -352,6 +353,17 @@ pub(crate) struct NetArgs {
 }
 
 impl NetArgs {
+    /// The peers of a command that speaks UDP only (`what`, for the error).
+    pub(crate) fn udp_peers(&self, what: &str) -> Result<Vec<std::net::SocketAddr>, String> {
+        self.peer
+            .iter()
+            .map(|p| match p {
+                jaus::net::PeerUrl::Udp(a) => Ok(*a),
+                other => Err(format!("--peer {other}: {what} speaks JUDP over UDP only")),
+            })
+            .collect()
+    }
+
     pub(crate) fn client(&self) -> Result<jaus_cli::net::Client, String> {
         let framing = match self.framing.as_str() {
             "judp" => jaus::net::Framing::Judp,
@@ -364,10 +376,12 @@ impl NetArgs {
                 .map_err(|_| format!("--me {m}: expected subsystem.node.component.instance"))?,
             None => jaus_cli::net::default_me(),
         };
+        let (carrier, peers) = jaus_cli::net::carrier_of(&self.peer)?;
         Ok(jaus_cli::net::Client {
             me,
             bind: self.bind,
-            peers: self.peer.clone(),
+            peers,
+            carrier,
             framing,
             wait: std::time::Duration::from_secs_f64(self.wait.max(0.0)),
             mode: self.mode,

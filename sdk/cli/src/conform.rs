@@ -146,11 +146,11 @@ fn conform_as4(
         .map(as4::parse_id)
         .transpose()
         .map_err(|e| format!("--as4-target {e}"))?;
-    let peer = *net
-        .peer
+    let peers = net.udp_peers("conform --as4")?;
+    let peer = *peers
         .first()
         .ok_or("give the vehicle's socket with --peer ADDR")?;
-    if net.peer.len() > 1 {
+    if peers.len() > 1 {
         let _ = writeln!(
             out,
             "--as4 tests one vehicle: {peer} (the other peers are not used)"
@@ -231,6 +231,7 @@ pub fn conform(
     if args.allow_motion || args.as4_target.is_some() {
         return Err("--allow-motion and --as4-target go with --as4 (the IOP scenario)".into());
     }
+    net.udp_peers("conform")?;
     let client = net.client()?;
     let spec = if spec_paths.is_empty() {
         jaus_spec::load_sdk()

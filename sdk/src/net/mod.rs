@@ -1,9 +1,11 @@
 //! The network layer: framing and multi-packet messages ([`framing`]), the node
 //! manager and its system tree ([`manager`]), a sans-IO node that routes between its
 //! components and the network ([`node`]), the seam to any datagram carrier
-//! ([`Transport`]) with the one loop that drives a node over it ([`shell`]), and UDP,
-//! the carrier of RA 3.3's JUDP ([`udp`]). The `jaus-sim` crate runs nodes on a
-//! simulated lossy network with a virtual clock.
+//! ([`Transport`]) with the one loop that drives a node over it ([`shell`]), and the
+//! carriers: UDP for JUDP ([`udp`]), TCP for JTCP ([`tcp`]), serial lines for JSerial
+//! (`serial`, on Linux), the two stream framings sans-IO in [`stream`], and
+//! [`PeerUrl`] naming a peer on any of them (docs/wire.md §9.6). The `jaus-sim` crate
+//! runs nodes on a simulated lossy network with a virtual clock.
 //!
 //! Two hosts drive components on a carrier, both [`Participant`]s: a [`Node`]
 //! (its own node manager, routing for the node) and [`Attached`] (components in a
@@ -19,9 +21,14 @@ pub mod framing;
 pub mod manager;
 pub mod node;
 pub mod oj;
+mod peer_url;
 pub mod policy;
 pub mod reliable;
+#[cfg(target_os = "linux")]
+pub mod serial;
 pub mod shell;
+pub mod stream;
+pub mod tcp;
 mod transport;
 pub mod udp;
 
@@ -32,6 +39,7 @@ pub use attached::{Attached, AttachedConfig, AttachedStats};
 pub use framing::{Framing, Reassembler, ReassemblyLimits};
 pub use manager::{ManagerConfig, SystemTree};
 pub use node::{Datagram, NetStats, Node, NodeConfig, Via};
+pub use peer_url::{PeerUrl, DEFAULT_BAUD};
 pub use policy::{Permission, Policy, Rule};
 pub use transport::{PeerAddr, Transport};
 

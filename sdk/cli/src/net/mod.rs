@@ -30,6 +30,7 @@ mod node;
 mod output;
 mod place;
 mod policy_file;
+mod port;
 mod session;
 
 pub use attach::{attach_openjaus, OjNodeManager};
@@ -40,4 +41,5 @@ pub use place::{
     bind_socket, default_me, flush, silence_hint, Client, Commander, Link, Mode, Tool,
 };
 pub use policy_file::{PolicyFile, RuleFile};
+pub use port::{carrier_of, Carrier, Port, SERIAL_FAR_END};
 pub use session::{parse_message, Outcome, Script};

@@ -16,6 +16,8 @@ use jaus::net::{
 use jaus::stock::commander::{ControlEvent, ControlKeeper};
 use jaus::{Address, CommandCode, Header, JausMessage};
 
+use super::port::Port;
+
 /// How the CLI takes its place (see the module docs).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Mode {
@@ -48,8 +50,10 @@ pub struct Client {
     pub me: Address,
     /// Local socket (`None`: chosen as the module docs say).
     pub bind: Option<SocketAddr>,
-    /// Peers.
+    /// Peers (on a serial line, [`SERIAL_FAR_END`](super::port::SERIAL_FAR_END)).
     pub peers: Vec<SocketAddr>,
+    /// What carries the datagrams (UDP unless `--peer` said `tcp://` or `serial://`).
+    pub carrier: super::port::Carrier,
     /// Framing.
     pub framing: Framing,
     /// How long to wait for answers.
@@ -231,7 +235,7 @@ pub fn default_me() -> Address {
 impl Client {
     /// Asks the peers who speaks for `--me`'s node: the peer whose node manager answers
     /// as that node is joined.
-    fn probe(&self, socket: &UdpSocket) -> Option<SocketAddr> {
+    fn probe(&self, port: &mut Port) -> Option<SocketAddr> {
         // Asked of every node manager (a broadcast, so no node logs a message for a
         // subsystem it is not); the one answering as `--me`'s node is joined. Done as soon
         // as every peer has answered.
@@ -248,7 +252,7 @@ impl Client {
         let packet = jaus::Packet::new(header, body).to_bytes().ok()?;
         let bytes = self.framing.encode(&packet);
         for p in &self.peers {
-            let _ = socket.send_to(&bytes, p);
+            let _ = port.send_to(&bytes, *p);
         }
         let deadline = Instant::now() + Duration::from_millis(400);
         let mut answered: Vec<SocketAddr> = Vec::new();
@@ -257,8 +261,8 @@ impl Client {
             if !self.peers.is_empty() && self.peers.iter().all(|p| answered.contains(p)) {
                 break;
             }
-            let _ = socket.set_read_timeout(Some(left.max(Duration::from_millis(1))));
-            let Ok((n, from)) = socket.recv_from(&mut buf) else {
+            let Ok(Some((n, from))) = port.recv_from(&mut buf, left.max(Duration::from_millis(1)))
+            else {
                 break;
             };
             if let Ok((h, _)) = self.framing.packet(&buf[..n]) {
@@ -273,9 +277,9 @@ impl Client {
         None
     }
 
-    /// Takes this client's place on `socket` (see the module docs): the peer's node
+    /// Takes this client's place on `port` (see the module docs): the peer's node
     /// joined, or a node of its own, with this tool's component in it.
-    pub fn link(&self, socket: &UdpSocket, t0: Instant) -> Result<Link, String> {
+    pub fn link(&self, port: &mut Port, t0: Instant) -> Result<Link, String> {
         if !self.me.is_valid() || self.me.component == 1 {
             return Err(format!(
                 "--me {}: not a component address (ids 1-254, component not 1: the node manager's)",
@@ -285,11 +289,11 @@ impl Client {
         let join = match self.mode {
             Mode::Node => None,
             Mode::Join => Some(
-                self.probe(socket)
+                self.probe(port)
                     .or(self.peers.first().copied())
                     .ok_or("--mode join needs a --peer: the socket of the node to join")?,
             ),
-            Mode::Auto => self.probe(socket),
+            Mode::Auto => self.probe(port),
         };
         let tool = system_commander::component(
             self.me,
@@ -336,13 +340,13 @@ impl Client {
 
     /// `jaus discover`: a node of its own listens for `wait`, then the system tree.
     pub fn discover(&self, stop: &AtomicBool) -> Result<(SystemTree, bool), String> {
-        let socket = bind_socket(self.bind, &self.peers)?;
+        let mut port = Port::open(&self.carrier, self.bind, &self.peers)?;
         let t0 = Instant::now();
         let client = Client {
             mode: Mode::Node,
             ..self.clone()
         };
-        let Link::Node(mut node) = client.link(&socket, t0)? else {
+        let Link::Node(mut node) = client.link(&mut port, t0)? else {
             return Err("discover runs a node of its own".into());
         };
         let mut heard = false;
@@ -350,13 +354,12 @@ impl Client {
         let end = t0 + self.wait;
         let mut buf = vec![0u8; 8 + 4096 + 64];
         while Instant::now() < end && !stop.load(Ordering::Relaxed) {
-            let _ = socket.set_read_timeout(Some(Duration::from_millis(20)));
-            if let Ok((n, from)) = socket.recv_from(&mut buf) {
+            if let Ok(Some((n, from))) = port.recv_from(&mut buf, Duration::from_millis(20)) {
                 heard |= peers.contains(&from);
                 node.handle_datagram(Instant::now(), from, &buf[..n]);
             }
             node.handle_timeout(Instant::now());
-            flush(node.as_mut(), &socket);
+            flush(node.as_mut(), &mut port);
         }
         Ok((node.tree().clone(), heard))
     }
@@ -369,10 +372,10 @@ impl Client {
             })
     }
 }
-/// Sends every datagram `host` has queued on `socket`.
-pub fn flush(host: &mut dyn Participant, socket: &UdpSocket) {
+/// Sends every datagram `host` has queued on `port`.
+pub fn flush(host: &mut dyn Participant, port: &mut Port) {
     while let Some(Datagram { to, bytes, .. }) = host.poll_transmit() {
-        if let Err(e) = socket.send_to(&bytes, to) {
+        if let Err(e) = port.send_to(&bytes, to) {
             tracing::debug!(%to, "send failed: {e}");
         }
     }

@@ -16,7 +16,8 @@ use jaus::{Address, CommandCode, Header, JausMessage};
 
 use super::{
     output::{unix_now, AckLine, RawLine, Tap, Tapped},
-    place::{bind_socket, flush, Client, Link},
+    place::{flush, Client, Link},
+    port::Port,
 };
 
 /// What the session does with its time.
@@ -94,13 +95,13 @@ impl Client {
         out: &mut impl Write,
         err: &mut impl Write,
     ) -> Result<Outcome, String> {
-        let socket = bind_socket(self.bind, &self.peers)?;
-        let local = socket.local_addr().map_err(|e| e.to_string())?;
+        let mut port = Port::open(&self.carrier, self.bind, &self.peers)?;
+        let local = port.describe();
         let t0 = Instant::now();
-        let mut link = self.link(&socket, t0)?;
+        let mut link = self.link(&mut port, t0)?;
         let mut outcome = Outcome {
             joined: matches!(link, Link::Attached(_)),
-            local: Some(local),
+            local: port.local_addr(),
             ..Outcome::default()
         };
         // Commands wait until the system knows this tool (a node manager asked for its
@@ -131,7 +132,6 @@ impl Client {
         let mut done = false;
         let step = Duration::from_millis(500);
         let mut buf = vec![0u8; 8 + 4096 + 64];
-        let _ = socket.set_nonblocking(false);
         loop {
             let now = Instant::now();
             if stop.load(Ordering::Relaxed) {
@@ -244,9 +244,8 @@ impl Client {
                     t.saturating_duration_since(Instant::now())
                 })
                 .clamp(Duration::from_micros(100), Duration::from_millis(50));
-            let _ = socket.set_read_timeout(Some(wake));
-            match socket.recv_from(&mut buf) {
-                Ok((n, from)) => {
+            match port.recv_from(&mut buf, wake) {
+                Ok(Some((n, from))) => {
                     let now = Instant::now();
                     if self.peers.contains(&from) || matches!(link, Link::Attached(_)) {
                         outcome.heard = true;
@@ -379,18 +378,12 @@ impl Client {
                     }
                     link.host().handle_datagram(now, from, &buf[..n]);
                 }
-                Err(e)
-                    if matches!(
-                        e.kind(),
-                        std::io::ErrorKind::WouldBlock
-                            | std::io::ErrorKind::TimedOut
-                            | std::io::ErrorKind::ConnectionReset
-                    ) => {}
+                Ok(None) => {}
                 Err(e) => return Err(format!("{local}: {e}")),
             }
             let host = link.host();
             host.handle_timeout(Instant::now());
-            flush(host, &socket);
+            flush(host, &mut port);
         }
         // Commands nobody acknowledged, with what the system tree says of them.
         for (to, code) in awaiting_ack {
@@ -435,7 +428,7 @@ impl Client {
         }
         let host = link.host();
         host.handle_timeout(now + Duration::from_millis(60));
-        flush(host, &socket);
+        flush(host, &mut port);
         Ok(outcome)
     }
 }

@@ -4,7 +4,7 @@
 //! reads what arrives for the client before the runtime does, answering the queries,
 //! control requests and watches Python waits on.
 
-use std::net::{SocketAddr, UdpSocket};
+use std::net::SocketAddr;
 use std::sync::atomic::AtomicU64;
 use std::sync::{mpsc, Arc};
 use std::time::{Duration, Instant};
@@ -83,7 +83,7 @@ pub(crate) struct Io {
     cat: Arc<Catalog>,
     codes: Catalogue,
     stats: Arc<Stats>,
-    socket: UdpSocket,
+    port: jaus_cli::net::Port,
     link: Link,
     reassembler: Reassembler,
     t0: Instant,
@@ -116,9 +116,9 @@ impl Io {
         cat: Arc<Catalog>,
         stats: Arc<Stats>,
     ) -> Result<Io, String> {
-        let socket = jaus_cli::net::bind_socket(client.bind, &client.peers)?;
+        let mut port = jaus_cli::net::Port::open(&client.carrier, client.bind, &client.peers)?;
         let t0 = Instant::now();
-        let mut link = client.link(&socket, t0)?;
+        let mut link = client.link(&mut port, t0)?;
         if let Some(tool) = link.tool(client.me) {
             // Control is kept (asked for again when lost), never resumed behind
             // Python's back: the script sends Resume when it wants one.
@@ -133,7 +133,7 @@ impl Io {
             cat,
             codes: Catalogue::sdk(),
             stats,
-            socket,
+            port,
             link,
             reassembler: Reassembler::new(ReassemblyLimits::default()),
             t0,
@@ -154,9 +154,9 @@ impl Io {
     pub(crate) fn joined(&self) -> Joined {
         Joined {
             local: self
-                .socket
+                .port
                 .local_addr()
-                .unwrap_or_else(|_| SocketAddr::from(([0, 0, 0, 0], 0))),
+                .unwrap_or_else(|| SocketAddr::from(([0, 0, 0, 0], 0))),
             joined: matches!(self.link, Link::Attached(_)),
         }
     }
@@ -235,10 +235,10 @@ impl Io {
             .poll_timeout()
             .map_or(POLL, |t| t.saturating_duration_since(Instant::now()))
             .clamp(Duration::from_micros(100), POLL);
-        let _ = self.socket.set_read_timeout(Some(wake));
         let mut buf = [0u8; 8 + 4096 + 64];
-        match self.socket.recv_from(&mut buf) {
-            Ok((n, from)) => {
+        match self.port.recv_from(&mut buf, wake) {
+            Ok(None) => {}
+            Ok(Some((n, from))) => {
                 let now = Instant::now();
                 add(&self.stats.datagrams_received);
                 if self.client.peers.contains(&from) || matches!(self.link, Link::Attached(_)) {
@@ -258,7 +258,7 @@ impl Io {
         }
         let host = self.link.host();
         host.handle_timeout(Instant::now());
-        flush(host, &self.socket);
+        flush(host, &mut self.port);
         self.poll_tool();
     }
 
@@ -558,7 +558,7 @@ impl Io {
         // connections (as the CLI's session ends).
         let host = self.link.host();
         host.handle_timeout(Instant::now() + Duration::from_millis(60));
-        flush(host, &self.socket);
+        flush(host, &mut self.port);
         for r in self.releases.drain(..) {
             answer(&r, Ok(()));
         }

@@ -239,6 +239,7 @@ impl Client {
             me,
             bind,
             peers: peers(peer)?,
+            carrier: jaus_cli::net::Carrier::Udp,
             framing: Framing::Judp,
             wait: timeout,
             mode,

@@ -20,6 +20,9 @@ pub use run::{node, tree_json, TreePrinter};
 /// node_name: vehicle computer
 /// bind: 127.0.0.1:3794
 /// framing: judp          # or opc ("JAUS01.0")
+/// transport: udp         # or tcp (JTCP: `bind` is the listening address, `peers` dialed),
+///                        # or serial (JSerial on `serial:`; no bind, no peers)
+/// serial: serial:///dev/ttyUSB0?baud=57600   # the line of `transport: serial`
 /// peers: [127.0.0.2:3794]
 /// host:                  # what the node hosts (see below)
 ///   - vehicle                                # the demo's whole simulated vehicle
@@ -94,11 +97,22 @@ pub struct NodeFile {
     /// Node name.
     #[serde(default)]
     pub node_name: Option<String>,
-    /// Local address and port.
+    /// Local address and port: the UDP socket, or with `transport: tcp` the listening
+    /// address (required but with `transport: serial`).
+    #[serde(default = "no_bind")]
     pub bind: SocketAddr,
     /// Framing.
     #[serde(default)]
     pub framing: Framing,
+    /// The carrier: `udp` (JUDP, the default) or `tcp` (JTCP: the node listens on
+    /// `bind`, dials every `peers` address and keeps it connected, redialing with
+    /// backoff; RA 3.3 and `as4:` alike; no multicast, no OpenJAUS component sockets).
+    #[serde(default)]
+    pub transport: TransportFile,
+    /// The line of `transport: serial` (`serial:///dev/ttyUSB0?baud=57600`): JSerial,
+    /// point to point, the far end its only peer.
+    #[serde(default)]
+    pub serial: Option<jaus::net::PeerUrl>,
     /// Peers sent broadcasts and messages to nodes not yet located.
     #[serde(default)]
     pub peers: Vec<SocketAddr>,
@@ -266,6 +280,53 @@ pub struct As4File {
     pub multicast: Option<std::net::Ipv4Addr>,
 }
 
+/// `transport:` of a node file.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum TransportFile {
+    /// JUDP over UDP.
+    #[default]
+    Udp,
+    /// JTCP over TCP (`jaus::net::tcp`).
+    Tcp,
+    /// JSerial on the `serial:` line (`jaus::net::serial`).
+    Serial,
+}
+
+/// `bind` when the file gives none (only `transport: serial` may leave it out).
+fn no_bind() -> SocketAddr {
+    SocketAddr::from(([127, 0, 0, 1], 0))
+}
+
+impl NodeFile {
+    /// The serial transport of a `transport: serial` file (`path`: the file, for
+    /// errors); its far end is `jaus_cli::net::SERIAL_FAR_END`, the node's one peer.
+    #[cfg(target_os = "linux")]
+    pub fn serial_transport(
+        &self,
+        path: &Path,
+    ) -> Result<jaus::net::serial::SerialTransport<SocketAddr>, String> {
+        let Some(jaus::net::PeerUrl::Serial { path: line, baud }) = &self.serial else {
+            return Err(format!("{}: no `serial:` line", path.display()));
+        };
+        jaus::net::serial::SerialTransport::open(
+            jaus::net::serial::SerialConfig::new(line, *baud),
+            super::SERIAL_FAR_END,
+        )
+        .map_err(|e| format!("{}: {e}", path.display()))
+    }
+
+    /// The TCP transport of a `transport: tcp` file (`path`: the file, for errors).
+    pub fn tcp_transport(&self, path: &Path) -> Result<jaus::net::tcp::TcpTransport, String> {
+        jaus::net::tcp::TcpTransport::new(jaus::net::tcp::TcpConfig {
+            listen: Some(self.bind),
+            peers: self.peers.clone(),
+            ..jaus::net::tcp::TcpConfig::default()
+        })
+        .map_err(|e| format!("{}: transport: tcp: {e}", path.display()))
+    }
+}
+
 /// `io:` of a node file: how the node waits for and reads datagrams.
 #[derive(Debug, Clone, Default, serde::Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -408,6 +469,58 @@ impl NodeFile {
                 ));
             }
         }
+        let has_bind = serde_yaml::from_str::<serde_yaml::Value>(&text)
+            .ok()
+            .is_some_and(|v| v.get("bind").is_some());
+        match (f.transport, &f.serial) {
+            (TransportFile::Serial, Some(jaus::net::PeerUrl::Serial { .. }))
+                if !f.peers.is_empty() =>
+            {
+                return Err(format!(
+                    "{}: a serial line has one far end: `transport: serial` takes no `peers`",
+                    at("peers")
+                ));
+            }
+            (TransportFile::Serial, Some(jaus::net::PeerUrl::Serial { .. })) => {}
+            (TransportFile::Serial, _) => {
+                return Err(format!(
+                    "{}: `transport: serial` needs `serial: serial:///dev/DEVICE?baud=N`",
+                    at("transport")
+                ))
+            }
+            (_, Some(_)) => {
+                return Err(format!(
+                    "{}: `serial:` goes with `transport: serial`",
+                    at("serial")
+                ))
+            }
+            (_, None) if !has_bind => {
+                return Err(format!(
+                    "{}: missing `bind` (the node's address: its UDP socket, or its TCP listening address)",
+                    path.display()
+                ))
+            }
+            _ => {}
+        }
+        if f.transport != TransportFile::Udp {
+            let udp_only = [
+                ("multicast", f.multicast.is_some()),
+                ("openjaus_components", f.openjaus_components.is_some()),
+                (
+                    "as4.multicast",
+                    f.as4.as_ref().is_some_and(|a| a.multicast.is_some()),
+                ),
+                ("framing", f.framing != Framing::Judp),
+            ];
+            if let Some((key, _)) = udp_only.iter().find(|(_, set)| *set) {
+                return Err(format!(
+                    "{}: `{key}` is for UDP only; with `transport: {}` the node speaks {} (framing judp)",
+                    at(key),
+                    if f.transport == TransportFile::Tcp { "tcp" } else { "serial" },
+                    if f.transport == TransportFile::Tcp { "JTCP to its peers" } else { "JSerial on its line" },
+                ));
+            }
+        }
         let hosted = f.hosted_at(&at)?;
         f.communicator_at(&hosted, &at)?;
         f.check_quic_links(path, &at)?;
@@ -431,7 +544,11 @@ impl NodeFile {
             subsystem: self.subsystem,
             node: self.node,
             framing: self.framing,
-            peers: self.peers.clone(),
+            peers: if self.transport == TransportFile::Serial {
+                vec![super::SERIAL_FAR_END]
+            } else {
+                self.peers.clone()
+            },
             ..NodeConfig::default()
         };
         if let Some(n) = &self.subsystem_name {
@@ -457,5 +574,51 @@ impl NodeFile {
             .as_ref()
             .and_then(|p| p.policy(&|k| k.to_string()).ok());
         c
+    }
+}
+
+#[cfg(test)]
+mod transport_tests {
+    use super::*;
+
+    fn load(yaml: &str) -> Result<NodeFile, String> {
+        let dir = std::env::temp_dir().join(format!("jaus-node-transport-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let p = dir.join(format!("{}.yaml", yaml.len()));
+        std::fs::write(&p, yaml).unwrap();
+        NodeFile::load(&p)
+    }
+
+    #[test]
+    fn transports_are_checked_with_where() {
+        let f = load(
+            "subsystem: 1\nnode: 1\ntransport: tcp\nbind: 127.0.0.1:0\npeers: [127.0.0.1:9]\n",
+        )
+        .unwrap();
+        assert_eq!(f.transport, TransportFile::Tcp);
+        let e = load("subsystem: 1\nnode: 1\ntransport: tcp\nbind: 127.0.0.1:0\nmulticast: { group: 224.1.0.1 }\n")
+            .unwrap_err();
+        assert!(e.contains("`multicast` is for UDP only"), "{e}");
+        let e = load("subsystem: 1\nnode: 1\n").unwrap_err();
+        assert!(e.contains("missing `bind`"), "{e}");
+        let f = load(
+            "subsystem: 1\nnode: 1\ntransport: serial\nserial: serial:///dev/ttyUSB0?baud=9600\n",
+        )
+        .unwrap();
+        assert_eq!(f.node_config().peers, [crate::net::SERIAL_FAR_END]);
+        let e = load("subsystem: 1\nnode: 1\ntransport: serial\n").unwrap_err();
+        assert!(
+            e.contains("needs `serial: serial:///dev/DEVICE?baud=N`"),
+            "{e}"
+        );
+        let e = load("subsystem: 1\nnode: 1\ntransport: serial\nserial: serial:///dev/x\npeers: [127.0.0.1:9]\n")
+            .unwrap_err();
+        assert!(e.contains("takes no `peers`"), "{e}");
+        let e = load("subsystem: 1\nnode: 1\nbind: 127.0.0.1:0\nserial: serial:///dev/x\n")
+            .unwrap_err();
+        assert!(e.contains("goes with `transport: serial`"), "{e}");
+        let e = load("subsystem: 1\nnode: 1\ntransport: serial\nserial: tcp://127.0.0.1:1\n")
+            .unwrap_err();
+        assert!(e.contains("needs `serial:"), "{e}");
     }
 }

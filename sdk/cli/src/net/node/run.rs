@@ -124,10 +124,39 @@ pub fn node(
     }
     let _ = out.flush();
     let mut printer = TreePrinter::new(Duration::from_secs(1));
-    let socket = std::net::UdpSocket::bind(file.bind).map_err(|e| format!("{}: {e}", file.bind))?;
-    let local = socket
-        .local_addr()
-        .map_err(|e| format!("{}: {e}", file.bind))?;
+    // JTCP: the node listens on `bind` over TCP and dials its peers; no UDP socket.
+    let stream = match file.transport {
+        TransportFile::Udp => None,
+        TransportFile::Tcp => Some(Carrier::Tcp(Box::new(file.tcp_transport(config)?))),
+        #[cfg(target_os = "linux")]
+        TransportFile::Serial => Some(Carrier::Serial(Box::new(file.serial_transport(config)?))),
+        #[cfg(not(target_os = "linux"))]
+        TransportFile::Serial => {
+            return Err(format!(
+                "{}: serial lines are supported on Linux only",
+                config.display()
+            ))
+        }
+    };
+    // Over TCP the UDP socket is a stand-in that nothing reads (the settings that need
+    // it are refused by `load`).
+    let udp_bind = if stream.is_some() {
+        SocketAddr::from(([127, 0, 0, 1], 0))
+    } else {
+        file.bind
+    };
+    let socket = std::net::UdpSocket::bind(udp_bind).map_err(|e| format!("{}: {e}", file.bind))?;
+    let local = match &stream {
+        Some(Carrier::Tcp(t)) => t.local_addr().unwrap_or(file.bind),
+        Some(_) => file.bind,
+        None => socket
+            .local_addr()
+            .map_err(|e| format!("{}: {e}", file.bind))?,
+    };
+    if let Some(c) = &stream {
+        let _ = writeln!(out, "transport: {}", c.describe());
+        let _ = out.flush();
+    }
     if let Some(m) = &file.multicast {
         let at =
             |e: std::io::Error| format!("{}: multicast group {}: {e}", config.display(), m.group);
@@ -191,6 +220,7 @@ pub fn node(
         component_data: oj.as_ref().map(|p| &p.1),
     };
     let io = file.io.clone().unwrap_or_default().options();
+    let mut carrier = stream.unwrap_or(Carrier::Udp(sockets, io));
     let until = duration.map(|d| t0 + d);
     let mut show_tree = |n: &jaus::net::Node| {
         let now = Instant::now();
@@ -230,15 +260,7 @@ pub fn node(
     // The AS-4 side's counters, taken from the mux before it is unwrapped.
     let mut as4_line: Option<String> = None;
     let result = match (as4, first_proxy) {
-        (None, None) => udp::run_node(
-            &mut node,
-            sockets,
-            &io,
-            stop,
-            until,
-            |n| show_tree(n),
-            &mut tap,
-        ),
+        (None, None) => carrier.drive(&mut node, stop, until, |n| show_tree(n), &mut tap),
         (None, Some(first)) => {
             // AS-4 vehicles only: the node is their client on its own socket, each
             // proxy served the messages for its own AS-4 id.
@@ -250,15 +272,7 @@ pub fn node(
             for p in proxies {
                 mux.add_endpoint(p);
             }
-            let r = udp::run_node(
-                &mut mux,
-                sockets,
-                &io,
-                stop,
-                until,
-                |m| show_tree(m.inner()),
-                &mut tap,
-            );
+            let r = carrier.drive(&mut mux, stop, until, |m| show_tree(m.inner()), &mut tap);
             as4_line = Some(as4_stats_line(&mux));
             node = mux.into_inner();
             r
@@ -272,21 +286,32 @@ pub fn node(
             for p in proxies {
                 dual = dual.with_endpoint(p);
             }
-            let r = udp::run_node(
-                &mut dual,
-                sockets,
-                &io,
-                stop,
-                until,
-                |d| show_tree(d.node()),
-                &mut tap,
-            );
+            let r = carrier.drive(&mut dual, stop, until, |d| show_tree(d.node()), &mut tap);
             as4_line = Some(as4_stats_line(dual.mux()));
             node = dual.into_node();
             r
         }
     }
     .map_err(|e| format!("{}: {e}", file.bind));
+    #[cfg(target_os = "linux")]
+    if let Carrier::Serial(t) = &carrier {
+        let (s, l) = (t.stats(), t.line_stats());
+        let _ = writeln!(
+            out,
+            "serial stats: datagrams_received {} datagrams_sent {} queue_full {} not_carried {} write_errors {} bytes_lost {} packets {} bytes_skipped {} resyncs {} bad_header_checksum {} bad_checksum {} bad_length {} bad_version {} malformed {} abandoned {}",
+            s.datagrams_received, s.datagrams_sent, s.queue_full, s.not_carried, s.write_errors, s.bytes_lost, l.frames, l.bytes_skipped, l.resyncs,
+            l.bad_header_checksum, l.bad_checksum, l.bad_length, l.bad_version, l.malformed, l.abandoned,
+        );
+    }
+    if let Carrier::Tcp(t) = &carrier {
+        let s = t.stats();
+        let _ = writeln!(
+            out,
+            "tcp stats: accepted {} connected {} connect_failures {} closed {} bad_stream {} stalled {} refused {} datagrams_received {} datagrams_sent {} queue_full {} no_connection {} wrong_version {} not_carried {}",
+            s.accepted, s.connected, s.connect_failures, s.closed, s.bad_stream, s.stalled, s.refused,
+            s.datagrams_received, s.datagrams_sent, s.queue_full, s.no_connection, s.wrong_version, s.not_carried,
+        );
+    }
     // What the node counted, for whoever watched it run (one line, `key value` pairs).
     let st = node.stats();
     let (reassembly, buffered) = node.reassembly();
@@ -326,6 +351,44 @@ pub fn node(
         return Err(format!("{}: capture stopped: {e}", p.display()));
     }
     result
+}
+
+/// What carries the node's datagrams: its UDP sockets, or JTCP.
+enum Carrier<'a> {
+    Udp(udp::NodeSockets<'a>, udp::IoOptions),
+    Tcp(Box<jaus::net::tcp::TcpTransport>),
+    #[cfg(target_os = "linux")]
+    Serial(Box<jaus::net::serial::SerialTransport<SocketAddr>>),
+}
+
+impl Carrier<'_> {
+    /// Runs `p` on this carrier through the one I/O loop.
+    fn drive<P: jaus::net::Participant>(
+        &mut self,
+        p: &mut P,
+        stop: &AtomicBool,
+        until: Option<Instant>,
+        on_tick: impl FnMut(&mut P),
+        tap: impl FnMut(udp::Direction, SocketAddr, &[u8]),
+    ) -> std::io::Result<()> {
+        match self {
+            Carrier::Udp(sockets, io) => udp::run_node(p, *sockets, io, stop, until, on_tick, tap),
+            Carrier::Tcp(t) => jaus::net::shell::run(p, t.as_mut(), stop, until, on_tick, tap),
+            #[cfg(target_os = "linux")]
+            Carrier::Serial(t) => jaus::net::shell::run(p, t.as_mut(), stop, until, on_tick, tap),
+        }
+    }
+
+    /// What carries the node, for its first lines.
+    fn describe(&self) -> String {
+        use jaus::net::Transport;
+        match self {
+            Carrier::Udp(..) => "JUDP".into(),
+            Carrier::Tcp(t) => format!("JTCP ({})", t.describe()),
+            #[cfg(target_os = "linux")]
+            Carrier::Serial(t) => format!("JSerial ({})", t.describe()),
+        }
+    }
 }
 
 /// The system tree as JSON (`jaus discover --json`): subsystems, their nodes, and the
