@@ -22,11 +22,21 @@ pub struct DualNode<A: PeerAddr = SocketAddr> {
 
 impl<A: PeerAddr> DualNode<A> {
     /// `node` with a gateway set up by `config` added to it (at `config.ra33`).
-    pub fn new(mut node: Node<A>, config: GatewayConfig) -> Result<Self, NetError> {
+    pub fn new(node: Node<A>, config: GatewayConfig) -> Result<Self, NetError> {
+        Self::with_transport(node, config, As4Config::default())
+    }
+
+    /// [`new`](Self::new) with the AS5669A side's settings `transport` (e.g. messages
+    /// that arrive, [`As4Config::reliable`]).
+    pub fn with_transport(
+        mut node: Node<A>,
+        config: GatewayConfig,
+        transport: As4Config,
+    ) -> Result<Self, NetError> {
         let at = config.ra33;
         node.add(Gateway::<A>::new(config))?;
         let mut dual = Self {
-            mux: As4Mux::hosted(node, InNode(at), As4Config::default()),
+            mux: As4Mux::hosted(node, InNode(at), transport),
             at,
         };
         let now = dual.mux.inner().now();

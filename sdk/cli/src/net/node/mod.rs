@@ -147,6 +147,12 @@ pub struct NodeFile {
     /// the node file's directory); in memory without it.
     #[serde(default)]
     pub store: Option<std::path::PathBuf>,
+    /// Commands that arrive (docs/wire.md §1.7): `reliable: {}` makes the commands the
+    /// hosted components send to other nodes (and the AS-4 side's, to AS-4 vehicles)
+    /// ask for an acknowledgement and be resent until answered, one at a time per
+    /// component, in order (see [`ReliableFile`]). Off without it: sent once.
+    #[serde(default)]
+    pub reliable: Option<ReliableFile>,
     /// AS-4 clients too: an AS-4 component on the same socket (AS5669A) presenting RA
     /// 3.3 components as AS-4 services (see [`As4File`]).
     #[serde(default)]
@@ -155,6 +161,48 @@ pub struct NodeFile {
     /// on the node's own socket; see [`As4VehicleFile`]).
     #[serde(default)]
     pub as4_vehicles: Vec<As4VehicleFile>,
+}
+
+/// `reliable:` of a node file: how hard commands are tried (`jaus::net::reliable`).
+///
+/// ```yaml
+/// reliable: {}                  # the defaults below
+/// reliable:
+///   first_timeout_ms: 200       # wait for the first copy's acknowledgement
+///   max_timeout_ms: 1600        # the wait doubles up to this
+///   attempts: 6                 # copies in all (about 6 s with the defaults)
+/// ```
+#[derive(Debug, Clone, Default, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ReliableFile {
+    /// Wait for the first copy's acknowledgement, ms. Default 200.
+    #[serde(default)]
+    pub first_timeout_ms: Option<u64>,
+    /// Longest wait between copies, ms. Default 1600.
+    #[serde(default)]
+    pub max_timeout_ms: Option<u64>,
+    /// Copies sent in all. Default 6.
+    #[serde(default)]
+    pub attempts: Option<u32>,
+}
+
+impl ReliableFile {
+    /// The policy it describes (bounded: at least 10 ms, one copy).
+    pub fn policy(&self) -> jaus::net::reliable::RetryPolicy {
+        let d = jaus::net::reliable::RetryPolicy::default();
+        let first = self
+            .first_timeout_ms
+            .map_or(d.first_timeout, |ms| Duration::from_millis(ms.max(10)));
+        jaus::net::reliable::RetryPolicy {
+            first_timeout: first,
+            max_timeout: self
+                .max_timeout_ms
+                .map_or(d.max_timeout, |ms| Duration::from_millis(ms))
+                .max(first),
+            max_attempts: self.attempts.map_or(d.max_attempts, |n| n.clamp(1, 100)),
+            ..d
+        }
+    }
 }
 
 /// One entry of `as4_vehicles:` of a node file: an AS-4 vehicle presented as RA 3.3
@@ -568,6 +616,7 @@ impl NodeFile {
             c.multicast = Some(SocketAddr::from((m.group, self.bind.port())));
         }
         c.communicator = self.communicator();
+        c.reliable = self.reliable.as_ref().map(ReliableFile::policy);
         // Checked by `load`.
         c.policy = self
             .policy
@@ -587,6 +636,28 @@ mod transport_tests {
         let p = dir.join(format!("{}.yaml", yaml.len()));
         std::fs::write(&p, yaml).unwrap();
         NodeFile::load(&p)
+    }
+
+    #[test]
+    fn reliable_sets_the_retry_policy_of_the_node() {
+        let off = load("subsystem: 1\nnode: 1\nbind: 127.0.0.1:0\n").unwrap();
+        assert!(off.node_config().reliable.is_none());
+        let on = load("subsystem: 1\nnode: 1\nbind: 127.0.0.1:0\nreliable: {}\n").unwrap();
+        assert_eq!(
+            on.node_config().reliable,
+            Some(jaus::net::reliable::RetryPolicy::default())
+        );
+        let tuned = load(
+            "subsystem: 1\nnode: 1\nbind: 127.0.0.1:0\nreliable: { first_timeout_ms: 50, max_timeout_ms: 20, attempts: 0 }\n",
+        )
+        .unwrap();
+        let p = tuned.node_config().reliable.unwrap();
+        assert_eq!(p.first_timeout, Duration::from_millis(50));
+        assert_eq!(p.max_timeout, p.first_timeout, "never below the first wait");
+        assert_eq!(p.max_attempts, 1, "at least one copy");
+        let e =
+            load("subsystem: 1\nnode: 1\nbind: 127.0.0.1:0\nreliable: { tries: 3 }\n").unwrap_err();
+        assert!(e.contains("tries"), "{e}");
     }
 
     #[test]

@@ -259,16 +259,16 @@ pub fn node(
     let first_proxy = if as4.is_none() { proxies.next() } else { None };
     // The AS-4 side's counters, taken from the mux before it is unwrapped.
     let mut as4_line: Option<String> = None;
+    let as4_transport = jaus::net::as5669a::As4Config {
+        reliable: file.reliable.as_ref().map(super::ReliableFile::policy),
+        ..jaus::net::as5669a::As4Config::default()
+    };
     let result = match (as4, first_proxy) {
         (None, None) => carrier.drive(&mut node, stop, until, |n| show_tree(n), &mut tap),
         (None, Some(first)) => {
             // AS-4 vehicles only: the node is their client on its own socket, each
             // proxy served the messages for its own AS-4 id.
-            let mut mux = jaus::net::as5669a::As4Mux::new(
-                node,
-                first,
-                jaus::net::as5669a::As4Config::default(),
-            );
+            let mut mux = jaus::net::as5669a::As4Mux::new(node, first, as4_transport);
             for p in proxies {
                 mux.add_endpoint(p);
             }
@@ -281,7 +281,7 @@ pub fn node(
             // AS-4 clients on the same socket: version-2 datagrams go to the gateway
             // the node hosts, which finds the presented components in the tree (and
             // to the proxies of `as4_vehicles:`, those for their ids).
-            let mut dual = jaus_as4::gateway::DualNode::new(node, gw)
+            let mut dual = jaus_as4::gateway::DualNode::with_transport(node, gw, as4_transport)
                 .map_err(|e| format!("{}: as4: {e}", config.display()))?;
             for p in proxies {
                 dual = dual.with_endpoint(p);
@@ -340,6 +340,17 @@ pub fn node(
         st.not_via_communicator,
         st.policy_refused,
     );
+    // Commands that arrive: what this node's commands did, and the retransmissions it
+    // carried out once (those happen whether or not `reliable:` is set).
+    let r = node.reliable_stats();
+    if file.reliable.is_some() || r.duplicates_dropped > 0 {
+        let _ = writeln!(
+            out,
+            "reliable stats: tracked {} retried {} acknowledged {} refused {} given_up {} untracked_peer {} untracked_full {} stray_answers {} duplicates_dropped {} answers_repeated {}",
+            r.tracked, r.retried, r.acknowledged, r.refused, r.given_up, r.untracked_peer,
+            r.untracked_full, r.stray_answers, r.duplicates_dropped, r.answers_repeated,
+        );
+    }
     if let Some(line) = &as4_line {
         let _ = writeln!(out, "{line}");
     }
