@@ -360,6 +360,9 @@ fn with_commands_that_arrive_every_phase_finishes_at_10_percent_loss() {
         assert_eq!(run.phase, "done", "seed {seed}: {run:#?}");
         assert!(run.finished.iter().all(Option::is_some), "{run:#?}");
         assert!(o.retried > 0 && v.duplicates_dropped > 0, "{run:#?}");
+        // Every command carried out in order: none refused (a waypoint overtaken by the
+        // next one is refused as a gap, and the route shortened), none given up.
+        assert_eq!((o.refused, o.given_up), (0, 0), "{run:#?}");
     }
 }
 

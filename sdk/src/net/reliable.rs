@@ -67,6 +67,12 @@ pub struct RetryPolicy {
     pub duplicate_window: Duration,
     /// Most receptions remembered (the oldest are forgotten first). Default 4096.
     pub max_remembered: usize,
+    /// How long a message to a peer not yet known to acknowledge waits behind the one
+    /// before it at most (a peer known to acknowledge gets its messages strictly one at
+    /// a time). Default 2 s: an answering peer's acknowledgement is back well before,
+    /// even after three lost copies (order kept); a silent one's messages are not held
+    /// up for the whole retry time of each.
+    pub hold_unknown: Duration,
 }
 
 impl Default for RetryPolicy {
@@ -79,6 +85,7 @@ impl Default for RetryPolicy {
             learn_after: 2,
             duplicate_window: Duration::from_secs(10),
             max_remembered: 4096,
+            hold_unknown: Duration::from_secs(2),
         }
     }
 }
@@ -173,9 +180,10 @@ pub enum Tracked {
     Send,
     /// Tracked, and held: an earlier message to the same peer waits for its answer.
     /// The sender hands its first copy to [`Sender::poll`]'s `send` once that one is
-    /// settled, so that a peer gets its commands in the order they were given, however
-    /// the network reorders them (a Resume before the Set Travel Speed it would reset,
-    /// a Spool Mission before its Run Mission).
+    /// settled (or, for a peer not yet known to answer, after
+    /// [`RetryPolicy::hold_unknown`] at most), so that a peer gets its commands in the
+    /// order they were given, however the network reorders them (a Resume before the
+    /// Set Travel Speed it would reset, a Spool Mission before its Run Mission).
     Held,
     /// Not tracked (the peer does not acknowledge, or too many wait): to be sent now,
     /// once.
@@ -250,15 +258,21 @@ impl<K: Copy + Eq + std::fmt::Debug, P: Copy + Eq + Hash, M> Sender<K, P, M> {
             return Tracked::Untracked;
         }
         self.stats.tracked += 1;
-        // One at a time per peer, in the order given (a peer that never answers costs
-        // each message the whole retry time until it is learnt).
+        // One at a time per peer, in the order given; behind a peer not yet known to
+        // answer, for `hold_unknown` at most.
         let behind = self.waiting.iter().any(|w| w.peer == peer);
+        let known = self.habits.get(&peer).is_some_and(|h| h.acknowledged > 0);
+        let next = match (behind, known) {
+            (false, _) => Some(now + self.policy.wait_after(1)),
+            (true, true) => None,
+            (true, false) => Some(now + self.policy.hold_unknown),
+        };
         self.waiting.push(Waiting {
             key,
             peer,
             message,
             first: now,
-            next: (!behind).then(|| now + self.policy.wait_after(1)),
+            next,
             attempts: u32::from(!behind),
         });
         if behind {
@@ -382,7 +396,7 @@ impl<K: Copy + Eq + std::fmt::Debug, P: Copy + Eq + Hash, M> Sender<K, P, M> {
         if let Some(w) = self
             .waiting
             .iter_mut()
-            .find(|w| w.peer == peer && w.next.is_none())
+            .find(|w| w.peer == peer && w.attempts == 0)
         {
             w.next = Some(now);
         }
@@ -581,7 +595,11 @@ mod tests {
             t = next;
             s.poll(t, |_, _| {});
         }
-        assert_eq!(s.stats().given_up, 2, "the held one went after the first");
+        assert_eq!(
+            s.stats().given_up,
+            2,
+            "the held one went 2 s after the first"
+        );
         assert!(!s.acknowledges(5));
         assert_eq!(s.track(t, 3, 5, "y"), Tracked::Untracked, "sent once");
         assert_eq!(s.stats().untracked_peer, 1);
@@ -611,6 +629,28 @@ mod tests {
             .count();
         assert_eq!(tracked, 3);
         assert_eq!(s.stats().untracked_full, 2);
+    }
+
+    #[test]
+    fn behind_a_peer_not_yet_known_to_answer_a_message_waits_a_little_only() {
+        let t0 = Instant::now();
+        let mut s = sender();
+        assert_eq!(s.track(t0, 1, 3, "a"), Tracked::Send);
+        assert_eq!(s.track(t0, 2, 3, "b"), Tracked::Held);
+        let mut sent = Vec::new();
+        s.poll(t0 + Duration::from_millis(200), |k, _| sent.push(*k));
+        assert_eq!(sent, [1], "the first again, the second still held");
+        s.poll(t0 + Duration::from_millis(600), |k, _| sent.push(*k));
+        s.poll(t0 + Duration::from_millis(1400), |k, _| sent.push(*k));
+        assert_eq!(sent, [1, 1, 1], "the first's copies, the second still held");
+        s.poll(t0 + Duration::from_secs(2), |k, _| sent.push(*k));
+        assert_eq!(sent, [1, 1, 1, 2], "the second after 2 s");
+        // Answered within the hold, the next goes at once.
+        assert_eq!(s.track(t0, 3, 7, "c"), Tracked::Send);
+        assert_eq!(s.track(t0, 4, 7, "d"), Tracked::Held);
+        let t = t0 + Duration::from_millis(30);
+        assert!(s.answered(t, 3, 7, true, |_| false));
+        assert_eq!(s.next_timeout(), Some(t));
     }
 
     #[test]
