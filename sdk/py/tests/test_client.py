@@ -73,6 +73,15 @@ def test_a_command_is_acknowledged(vehicle):
             c.send(GWD, jaus.message("Standby"), ack=True)
 
 
+def test_an_unacknowledged_command_says_what_is_known(vehicle):
+    with client(vehicle) as c:
+        with pytest.raises(jaus.ClientError) as e:
+            c.send("1.1.99.1", jaus.message("Standby"), ack=True, timeout=0.5)
+        text = str(e.value)
+        assert "Standby" in text and "1.1.99.1" in text
+        assert "system tree does not list it" in text, text
+
+
 def test_control_is_granted_refused_and_given_back(vehicle):
     with client(vehicle, me="201.1.40.1") as a, client(vehicle, me="202.1.40.1") as b:
         with a.control(GWD, authority=10) as held:

@@ -327,6 +327,9 @@ impl Client {
                     node: self.me.node,
                     framing: self.framing,
                     peers: self.peers.clone(),
+                    // The tool's commands arrive: resent until acknowledged, in order,
+                    // a component that never acknowledges learnt (docs/wire.md §1.7).
+                    reliable: Some(jaus::net::reliable::RetryPolicy::default()),
                     ..NodeConfig::default()
                 };
                 c.manager.node_name = "jaus CLI".into();

@@ -478,9 +478,10 @@ impl Io {
                 true
             }
         });
+        let link = &self.link;
         self.acks.retain(|a| {
             if waited(a.deadline) {
-                let text = format!("{}: no acknowledgement from {} within the time given (is the component there? `client.tree()` lists the system)", a.name, a.to);
+                let text = no_ack_text(link, a.name, a.to);
                 answer(&a.reply, Err(Failure::new(text)));
                 false
             } else {
@@ -562,5 +563,28 @@ impl Io {
         for r in self.releases.drain(..) {
             answer(&r, Ok(()));
         }
+    }
+}
+
+/// Why a command was not acknowledged in time, with what is known of its component: a
+/// component the system tree lists is there, and one that has never acknowledged
+/// anything most likely never will (OpenJAUS 3.3's components send no ACK/NAK).
+fn no_ack_text(link: &Link, name: &str, to: Address) -> String {
+    let node = match link {
+        Link::Node(n) => Some(n),
+        Link::Attached(_) => None,
+    };
+    let listed = node.is_some_and(|n| n.tree().component(to).is_some());
+    let silent = node.is_some_and(|n| !n.acknowledges(to));
+    match (listed, silent) {
+        (true, true) => format!(
+            "{name}: {to} is in the system but has never acknowledged a command (it let every request for one go unanswered; OpenJAUS 3.3's components never send ACK/NAK): `ack=True` cannot confirm it there; query the value back to see whether it took effect"
+        ),
+        (true, false) => format!(
+            "{name}: {to} is in the system but did not acknowledge within the time given (it may never acknowledge, as OpenJAUS 3.3's components do not; query the value back to see whether it took effect)"
+        ),
+        _ => format!(
+            "{name}: no acknowledgement from {to} within the time given, and the system tree does not list it (is the component there? `client.tree()` lists the system)"
+        ),
     }
 }
