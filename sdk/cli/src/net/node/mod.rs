@@ -197,7 +197,7 @@ impl ReliableFile {
             first_timeout: first,
             max_timeout: self
                 .max_timeout_ms
-                .map_or(d.max_timeout, |ms| Duration::from_millis(ms))
+                .map_or(d.max_timeout, Duration::from_millis)
                 .max(first),
             max_attempts: self.attempts.map_or(d.max_attempts, |n| n.clamp(1, 100)),
             ..d
