@@ -378,6 +378,7 @@ impl NetArgs {
         };
         let (carrier, peers) = jaus_cli::net::carrier_of(&self.peer)?;
         Ok(jaus_cli::net::Client {
+            name: "jaus CLI".into(),
             me,
             bind: self.bind,
             peers,

@@ -37,8 +37,16 @@ def test_the_tree_lists_the_vehicle(vehicle):
         }
         assert components[GWD] == "GlobalWaypointDriver"
         assert components[GPS] == "GlobalPoseSensor"
-        assert components[c.me] == "jaus CLI"
+        assert components[c.me] == "jaus Python client"
         assert not c.joined
+    with client(vehicle, name="survey station") as c:
+        names = {
+            comp["address"]: comp["name"]
+            for s in c.tree()["subsystems"]
+            for n in s["nodes"]
+            for comp in n["components"]
+        }
+        assert names[c.me] == "survey station"
 
 
 def test_query_returns_the_report(vehicle):

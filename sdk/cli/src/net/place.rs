@@ -60,6 +60,10 @@ pub struct Client {
     pub wait: Duration,
     /// How to take a place in the system.
     pub mode: Mode,
+    /// The name the tool gives itself in others' system trees (its identification, and
+    /// its node's and subsystem's when it runs a node of its own). The CLI's is
+    /// `jaus CLI`.
+    pub name: String,
 }
 
 /// The CLI's own component: a System Commander whose runtime answers the discovery
@@ -299,7 +303,7 @@ impl Client {
             self.me,
             Commander::default(),
             Config {
-                identification: Some("jaus CLI".into()),
+                identification: Some(self.name.clone()),
                 ..Config::default()
             },
             t0,
@@ -332,8 +336,8 @@ impl Client {
                     reliable: Some(jaus::net::reliable::RetryPolicy::default()),
                     ..NodeConfig::default()
                 };
-                c.manager.node_name = "jaus CLI".into();
-                c.manager.subsystem_name = "jaus CLI".into();
+                c.manager.node_name = self.name.clone();
+                c.manager.subsystem_name = self.name.clone();
                 let mut node = Node::new(c, t0);
                 node.add(tool).map_err(|e| e.to_string())?;
                 Link::Node(Box::new(node))

@@ -254,6 +254,7 @@ class Client:
         timeout: float = 5.0,
         mode: str = "auto",
         schema: Optional[Schema] = None,
+        name: str = "jaus Python client",
     ) -> None: ...
     @property
     def me(self) -> str: ...

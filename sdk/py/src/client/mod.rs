@@ -213,7 +213,8 @@ impl Client {
     /// on `bind` (default: the CLI's choice, port 3794 of an address of its own), and
     /// waits until the peers answered and know it (at most `timeout` seconds).
     #[new]
-    #[pyo3(signature = (peer = None, me = None, *, bind = None, timeout = 5.0, mode = "auto", schema = None))]
+    #[pyo3(signature = (peer = None, me = None, *, bind = None, timeout = 5.0, mode = "auto", schema = None, name = "jaus Python client"))]
+    #[allow(clippy::too_many_arguments)]
     fn new(
         py: Python<'_>,
         peer: Option<&Bound<'_, PyAny>>,
@@ -222,7 +223,13 @@ impl Client {
         timeout: f64,
         mode: &str,
         schema: Option<PyRef<'_, Schema>>,
+        name: &str,
     ) -> PyResult<Client> {
+        if name.is_empty() || name.len() > 255 {
+            return Err(PyValueError::new_err(format!(
+                "name {name:?}: 1 to 255 bytes (it is sent in Report Identification)"
+            )));
+        }
         let timeout = seconds(timeout, "timeout")?;
         let me = match me {
             Some(m) => address(m, "me")?,
@@ -240,6 +247,7 @@ impl Client {
             bind,
             peers: peers(peer)?,
             carrier: jaus_cli::net::Carrier::Udp,
+            name: name.to_string(),
             framing: Framing::Judp,
             wait: timeout,
             mode,
