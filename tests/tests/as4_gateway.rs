@@ -7,6 +7,7 @@
 use std::net::SocketAddr;
 use std::time::{Duration, Instant};
 
+use jaus::codec::Encode;
 use jaus::net::as5669a::{As4Client, As4Id, As4Message};
 use jaus::net::NodeConfig;
 use jaus::{Address, JausMessage};
@@ -53,7 +54,7 @@ impl Judge {
 
     fn send(&mut self, m: impl Into<Message>) {
         let m: Message = m.into();
-        let body = jaus::codec::Encode::to_bytes(m.body()).unwrap();
+        let body = m.body().to_bytes().unwrap();
         let to = SimNet::addr(self.vehicle);
         let c = self.net.get_mut::<As4Client>(self.client).unwrap();
         c.send(to, &[As4Message::new(m.code().0, VEHICLE, ME, body)]);
@@ -608,4 +609,272 @@ fn a_subsystem_with_only_global_services_gets_local_ones_over_them() {
         (moved.norm() - 6f64.hypot(4.0)).abs() < 1.0,
         "moved {moved:?} on the globe"
     );
+}
+
+/// An RA 3.3 Primitive Driver that never answers Query Wrench Effort (OpenJAUS 3.3's)
+/// until told to: it counts the queries it receives, and answers Query Identification
+/// and Query Services like any component.
+#[derive(Debug)]
+struct Mute {
+    me: Address,
+    answers: bool,
+    queried: Vec<Instant>,
+    out: std::collections::VecDeque<jaus::component::Outgoing>,
+}
+
+impl Mute {
+    fn new(me: Address) -> Self {
+        Self {
+            me,
+            answers: false,
+            queried: Vec::new(),
+            out: std::collections::VecDeque::new(),
+        }
+    }
+
+    fn reply(&mut self, to: Address, m: jaus::messages::Message) {
+        self.out.push_back(jaus::component::Outgoing {
+            header: jaus::wire::Header::new(m.code(), to, self.me),
+            name: m.name(),
+            body: m.to_bytes(),
+        });
+    }
+}
+
+impl jaus::component::Endpoint for Mute {
+    fn address(&self) -> Address {
+        self.me
+    }
+
+    fn handle(&mut self, now: Instant, header: &jaus::wire::Header, body: &[u8]) {
+        use jaus::messages as ra;
+        let Ok(m) = ra::Message::decode(header.command_code, body) else {
+            return;
+        };
+        let to = header.source;
+        match m {
+            ra::Message::QueryWrenchEffort(_) => {
+                self.queried.push(now);
+                if self.answers {
+                    self.reply(to, ra::ReportWrenchEffort::default().into());
+                }
+            }
+            ra::Message::QueryIdentification(q) => self.reply(
+                to,
+                ra::ReportIdentification {
+                    query_type: q.query_field,
+                    authority: 0,
+                    identification_type: 0,
+                    identification: "mute primitive driver".into(),
+                }
+                .into(),
+            ),
+            ra::Message::QueryServices(_) => self.reply(
+                to,
+                ra::ReportServices {
+                    services: vec![ra::JausService {
+                        service_type: 33,
+                        input_commands: vec![],
+                        output_commands: vec![],
+                    }],
+                }
+                .into(),
+            ),
+            _ => {}
+        }
+    }
+
+    fn handle_timeout(&mut self, _now: Instant) {}
+
+    fn poll_transmit(&mut self) -> Option<jaus::component::Outgoing> {
+        self.out.pop_front()
+    }
+
+    fn poll_timeout(&self) -> Option<Instant> {
+        None
+    }
+
+    fn as_any(&self) -> &dyn std::any::Any {
+        self
+    }
+
+    fn as_any_mut(&mut self) -> &mut dyn std::any::Any {
+        self
+    }
+}
+
+const GATEWAY_RA33: Address = Address::new(1, 1, 60, 1);
+const MUTE: Address = Address::new(1, 1, 33, 1);
+
+fn mute(j: &Judge) -> &Mute {
+    j.net
+        .get::<DualNode>(j.vehicle)
+        .unwrap()
+        .node()
+        .get::<Mute>(MUTE)
+        .unwrap()
+}
+
+fn ra33_stats(j: &Judge) -> jaus_as4::ra33::Ra33Stats {
+    let dual = j.net.get::<DualNode>(j.vehicle).unwrap();
+    dual.gateway().unwrap().node().env().stats()
+}
+
+#[test]
+fn a_query_never_answered_is_asked_less_and_less_then_no_more_until_answered() {
+    use jaus_as4::ra33::{BACKOFF_AFTER, GIVE_UP_AFTER};
+    let t0 = Instant::now();
+    let mut node = jaus::net::Node::new(NodeConfig::default(), t0);
+    node.add(Mute::new(MUTE)).unwrap();
+    let mut j = Judge::with_node(t0, node);
+    // The gateway offers the AS-4 Primitive Driver over it and polls it.
+    assert!(service_uris(&mut j).contains(&"urn:jaus:jss:mobility:PrimitiveDriver".to_string()));
+
+    // Ten simulated minutes.
+    j.net.run_for(Duration::from_secs(600));
+    let polls = mute(&j).queried.clone();
+    assert_eq!(polls.len(), GIVE_UP_AFTER as usize, "{polls:?}");
+    let gaps: Vec<Duration> = polls.windows(2).map(|w| w[1] - w[0]).collect();
+    let period = Duration::from_millis(100);
+    // At the period while BACKOFF_AFTER polls are unanswered, then doubling each time.
+    let mut want = Vec::new();
+    let mut every = period;
+    for n in 1..GIVE_UP_AFTER {
+        if n > BACKOFF_AFTER {
+            every *= 2;
+        }
+        want.push(every);
+    }
+    assert_eq!(gaps, want, "the gaps between the polls");
+    // All within 13 s of the first (0.1 * 3 + 0.2 + ... + 6.4 = 12.9 s): nothing after.
+    assert!(polls[polls.len() - 1] - polls[0] <= Duration::from_millis(12_900));
+    let stats = ra33_stats(&j);
+    assert_eq!(stats.polls_sent, u64::from(GIVE_UP_AFTER), "{stats:?}");
+    assert_eq!(
+        stats.polls_unanswered,
+        u64::from(GIVE_UP_AFTER),
+        "{stats:?}"
+    );
+    assert_eq!(stats.polls_given_up, 1, "{stats:?}");
+    assert_eq!(stats.polls_resumed, 0, "{stats:?}");
+    let dual = j.net.get::<DualNode>(j.vehicle).unwrap();
+    assert_eq!(
+        dual.gateway().unwrap().node().env().polls_given_up(),
+        vec![(MUTE, jaus::messages::QueryWrenchEffort::CODE)]
+    );
+
+    // The driver answers after all: it reports its efforts once (unasked), and answers
+    // every query from now on.
+    let now = j.net.now();
+    let dual = j.net.get_mut::<DualNode>(j.vehicle).unwrap();
+    dual.node_mut().get_mut::<Mute>(MUTE).unwrap().answers = true;
+    let report: jaus::messages::Message = jaus::messages::ReportWrenchEffort::default().into();
+    dual.node_mut().send(
+        now,
+        jaus::wire::Header::new(report.code(), GATEWAY_RA33, MUTE),
+        report.to_bytes().unwrap(),
+    );
+    j.net.run_for(Duration::from_secs(10));
+    let resumed = &mute(&j).queried[GIVE_UP_AFTER as usize..];
+    // Polled at the period again for 10 s: 100 polls, give or take the edges.
+    assert!(
+        (99..=101).contains(&resumed.len()),
+        "{} polls in 10 s after the answer",
+        resumed.len()
+    );
+    assert!(
+        resumed.windows(2).all(|w| w[1] - w[0] == period),
+        "{resumed:?}"
+    );
+    let stats = ra33_stats(&j);
+    assert_eq!(stats.polls_given_up, 1, "{stats:?}");
+    assert_eq!(stats.polls_resumed, 1, "{stats:?}");
+    assert_eq!(
+        stats.polls_sent,
+        u64::from(GIVE_UP_AFTER) + resumed.len() as u64
+    );
+    assert_eq!(
+        stats.polls_unanswered,
+        u64::from(GIVE_UP_AFTER),
+        "{stats:?}"
+    );
+    let dual = j.net.get::<DualNode>(j.vehicle).unwrap();
+    assert!(dual
+        .gateway()
+        .unwrap()
+        .node()
+        .env()
+        .polls_given_up()
+        .is_empty());
+}
+
+#[test]
+fn the_gateways_ra33_component_answers_query_services() {
+    use jaus::component::local::Probe;
+    use jaus::messages as ra;
+    let mut j = Judge::new();
+    // An RA 3.3 client on another node (as OpenJAUS's node manager across the network).
+    let t0 = j.net.now();
+    let mut other = jaus::net::Node::new(
+        NodeConfig {
+            subsystem: 1,
+            node: 2,
+            peers: vec![SimNet::addr(j.vehicle)],
+            ..NodeConfig::default()
+        },
+        t0,
+    );
+    let probe = Address::new(1, 2, 200, 1);
+    other.add(Probe::new(probe)).unwrap();
+    let other = j.net.add(other);
+    j.net.run_for(Duration::from_secs(3));
+    let now = j.net.now();
+    j.net.node_mut(other).unwrap().send(
+        now,
+        jaus::wire::Header::new(ra::QueryServices::CODE, GATEWAY_RA33, probe),
+        Vec::new(),
+    );
+    j.net.run_for(Duration::from_secs(1));
+    let p: &Probe = j.net.node(other).unwrap().get(probe).unwrap();
+    let reports: Vec<&ra::ReportServices> = p
+        .received()
+        .iter()
+        .filter(|r| r.header.source == GATEWAY_RA33)
+        .filter_map(|r| match &r.message {
+            ra::Message::ReportServices(s) => Some(s),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(reports.len(), 1, "{:?}", p.received());
+    let core = &reports[0].services;
+    assert_eq!(core.len(), 1, "{core:?}");
+    assert_eq!(core[0].service_type, 0);
+    let inputs: Vec<u16> = core[0]
+        .input_commands
+        .iter()
+        .map(|c| c.command_code)
+        .collect();
+    let outputs: Vec<u16> = core[0]
+        .output_commands
+        .iter()
+        .map(|c| c.command_code)
+        .collect();
+    for want in [ra::QueryServices::CODE, ra::QueryIdentification::CODE] {
+        assert!(inputs.contains(&want.0), "{want:?} not in {inputs:?}");
+    }
+    // What it polls the vehicle's components with, and the reports that answer them.
+    assert!(inputs.contains(&ra::ReportGlobalPose::CODE.0), "{inputs:?}");
+    for want in [ra::ReportServices::CODE, ra::QueryGlobalPose::CODE] {
+        assert!(outputs.contains(&want.0), "{want:?} not in {outputs:?}");
+    }
+    // Both node managers list it with the core service: they asked too, and were answered.
+    for node in [j.vehicle, other] {
+        let tree = match j.net.get::<DualNode>(node) {
+            Some(d) => d.node().tree().clone(),
+            None => j.net.node(node).unwrap().tree().clone(),
+        };
+        let info = tree.component(GATEWAY_RA33).cloned().unwrap_or_default();
+        assert_eq!(info.services, Some(vec![0]), "{}", tree.render());
+        assert!(info.inputs.contains(&ra::QueryServices::CODE.0), "{info:?}");
+    }
 }

@@ -143,6 +143,7 @@ pub mod gateway;
 pub mod mobility;
 pub mod node;
 pub mod proxy;
+pub mod ra33;
 pub mod service;
 
 /// The generated messages and types of both service sets (group `as4`), the

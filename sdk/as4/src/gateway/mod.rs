@@ -45,8 +45,8 @@ use crate::ComponentState;
 pub mod dual;
 pub mod ra33;
 
+pub use crate::ra33::{Ra33Side, Targets};
 pub use dual::DualNode;
-pub use ra33::{Ra33Side, Targets};
 
 /// Settings of a [`Gateway`].
 #[derive(Debug, Clone)]
@@ -91,6 +91,10 @@ pub struct Gateway<A: PeerAddr = SocketAddr> {
     pending_since: Option<Instant>,
     seen: (ComponentState, bool),
     tree_seen: Option<u64>,
+    /// The presented components the system tree listed at the last
+    /// [`refresh`](Self::refresh) (one that leaves it and comes back is discovered
+    /// again: the polls it stopped answering start again).
+    in_tree: HashSet<Address>,
     /// The local services offered over the global ones (the subsystem had no Local Pose
     /// Sensor, no Local Waypoint Driver when its global ones were found): a local one
     /// found later is not offered beside them.
@@ -125,6 +129,7 @@ impl<A: PeerAddr> Gateway<A> {
             pending_since: None,
             seen,
             tree_seen: None,
+            in_tree: HashSet::new(),
             derived: Derived::default(),
         }
     }
@@ -141,8 +146,29 @@ impl<A: PeerAddr> Gateway<A> {
     }
 
     /// Looks for the presented subsystem's components in `tree` and offers the service
-    /// of each one found for the first time (Report Services lists it from then on).
+    /// of each one found for the first time (Report Services lists it from then on). A
+    /// presented component that was missing from the tree (or
+    /// [forgotten](Endpoint::forget)) and is listed again is discovered again: the RA 3.3
+    /// side polls it at the normal rate again ([`Ra33Side::rediscovered`]).
     pub fn refresh(&mut self, now: Instant, tree: &SystemTree) {
+        let listed = |t: &Targets| -> HashSet<Address> {
+            t.all().filter(|a| tree.component(*a).is_some()).collect()
+        };
+        let back: Vec<Address> = listed(self.node.env().targets())
+            .difference(&self.in_tree)
+            .copied()
+            .collect();
+        for a in back {
+            tracing::debug!(gateway = %self.node.env().address(), component = %a, "presented RA 3.3 component listed again");
+            self.node.env_mut().rediscovered(now, a);
+        }
+        self.offer(now, tree);
+        self.in_tree = listed(self.node.env().targets());
+    }
+
+    /// Offers the service of each presented component found in `tree` for the first
+    /// time.
+    fn offer(&mut self, now: Instant, tree: &SystemTree) {
         let found = Targets::of_tree(tree, self.present);
         let mut targets = *self.node.env().targets();
         let add = |slot: &mut Option<Address>, new: Option<Address>| match (*slot, new) {
@@ -348,6 +374,12 @@ impl<A: PeerAddr> Endpoint for Gateway<A> {
         self.node.env_mut().handle_timeout(now);
     }
 
+    /// A component is gone: if it is presented, it is discovered again when the tree
+    /// lists it next ([`refresh`](Gateway::refresh)).
+    fn forget(&mut self, gone: Address) {
+        self.in_tree.remove(&gone);
+    }
+
     fn poll_transmit(&mut self) -> Option<Ra33Outgoing> {
         let (to, m) = self.node.env_mut().poll_transmit()?;
         let me = self.node.env().address();
@@ -389,5 +421,97 @@ impl<A: PeerAddr> HostedEndpoint<Node<A>, A> for InNode {
     fn get_mut<'a>(&self, host: &'a mut Node<A>) -> Option<&'a mut dyn As4Endpoint<A>> {
         host.get_mut::<Gateway<A>>(self.0)
             .map(|g| g as &mut dyn As4Endpoint<A>)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::collections::BTreeMap;
+
+    use jaus::messages::QueryWrenchEffort;
+    use jaus::net::manager::{ComponentInfo, NodeInfo, Subscription, SubsystemInfo};
+
+    use super::*;
+
+    const PD: Address = Address::new(1, 1, 33, 1);
+
+    /// Subsystem 1, node 1, with the Primitive Driver or without.
+    fn tree(with_driver: bool, now: Instant) -> SystemTree {
+        let mut components = BTreeMap::new();
+        components.insert((1, 1), ComponentInfo::default());
+        if with_driver {
+            components.insert((PD.component, PD.instance), ComponentInfo::default());
+        }
+        let node = NodeInfo {
+            name: None,
+            components,
+            configured: true,
+            last_heard: now,
+            subscription: Subscription::None,
+            config_asked: None,
+        };
+        let mut tree = SystemTree::default();
+        tree.subsystems.insert(
+            1,
+            SubsystemInfo {
+                name: None,
+                nodes: BTreeMap::from([(1, node)]),
+            },
+        );
+        tree
+    }
+
+    /// Runs the gateway's RA 3.3 side until nothing is due; the queries sent.
+    fn run_out(g: &mut Gateway<SocketAddr>, now: &mut Instant) -> usize {
+        let mut sent = 0;
+        while let Some(due) = Endpoint::poll_timeout(g) {
+            *now = due;
+            Endpoint::handle_timeout(g, *now);
+            while Endpoint::poll_transmit(g).is_some() {
+                sent += 1;
+            }
+        }
+        sent
+    }
+
+    #[test]
+    fn a_driver_that_leaves_the_tree_and_comes_back_is_polled_again() {
+        let config = GatewayConfig::new(As4Id::new(1, 1, 1), Address::new(1, 1, 60, 1), 1, "gw");
+        let mut g = Gateway::<SocketAddr>::new(config);
+        let t0 = Instant::now();
+        g.refresh(t0, &tree(true, t0));
+        assert_eq!(g.node().env().targets().primitive_driver, Some(PD));
+        let mut now = t0;
+        assert_eq!(
+            run_out(&mut g, &mut now),
+            crate::ra33::GIVE_UP_AFTER as usize
+        );
+        let given_up = vec![(PD, QueryWrenchEffort::CODE)];
+        assert_eq!(g.node().env().polls_given_up(), given_up);
+        // Still listed: nothing changes.
+        g.refresh(now, &tree(true, now));
+        assert_eq!(Endpoint::poll_timeout(&g), None);
+        // Gone, then back: polled again at once.
+        g.refresh(now, &tree(false, now));
+        assert_eq!(Endpoint::poll_timeout(&g), None);
+        now += Duration::from_secs(60);
+        g.refresh(now, &tree(true, now));
+        assert!(g.node().env().polls_given_up().is_empty());
+        assert_eq!(Endpoint::poll_timeout(&g), Some(now));
+        assert_eq!(g.node().env().stats().polls_resumed, 1);
+        // Given up again; then forgotten by the node (timed out) and listed again.
+        assert_eq!(
+            run_out(&mut g, &mut now),
+            crate::ra33::GIVE_UP_AFTER as usize
+        );
+        assert_eq!(g.node().env().polls_given_up(), given_up);
+        Endpoint::forget(&mut g, PD);
+        g.refresh(now, &tree(true, now));
+        assert_eq!(Endpoint::poll_timeout(&g), Some(now));
+        let stats = g.node().env().stats();
+        assert_eq!(
+            (stats.polls_given_up, stats.polls_resumed, stats.polls_sent),
+            (2, 2, 2 * u64::from(crate::ra33::GIVE_UP_AFTER))
+        );
     }
 }

@@ -16,8 +16,8 @@ use jaus::{CommandCode, JausMessage};
 
 use super::lists::{self, Goal, Kind, ListDriver, DEFAULT_TOLERANCE};
 use super::ServiceIds;
-use crate::gateway::ra33::Ra33Side;
 use crate::messages::{QueryLocalWaypoint, SetLocalWaypoint};
+use crate::ra33::Ra33Side;
 use crate::service::ServiceId;
 use crate::Message;
 
@@ -124,7 +124,7 @@ mod tests {
     use jaus::Address;
 
     use super::*;
-    use crate::gateway::ra33::{Frame, Targets};
+    use crate::ra33::{Frame, Targets};
 
     fn side_with_fix(lat: f64, lon: f64) -> Ra33Side {
         let gps = Address::new(10, 1, 38, 1);

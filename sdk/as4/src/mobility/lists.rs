@@ -18,12 +18,12 @@ use jaus::messages as ra;
 use jaus::{Address, CommandCode, JausMessage};
 
 use super::{is, ServiceIds};
-use crate::gateway::ra33::Ra33Side;
 use crate::messages::{
     ExecuteList, QueryActiveElement, QueryGlobalWaypoint, QueryLocalWaypoint, QueryTravelSpeed,
     ReportActiveElement, ReportGlobalWaypoint, ReportLocalWaypoint, ReportTravelSpeed,
     SetGlobalWaypoint, SetLocalWaypoint,
 };
+use crate::ra33::Ra33Side;
 use crate::service::{Cx, Handled, Request, Service, ServiceId};
 use crate::{ComponentState, Message};
 

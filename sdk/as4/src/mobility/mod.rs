@@ -1,9 +1,9 @@
 //! The Mobility services (AS6009, `urn:jaus:jss:mobility`) over RA 3.3 components: what
-//! a gateway ([`crate::gateway`]) presents of an RA 3.3 subsystem, be it the stock
+//! a gateway (the `gateway` module) presents of an RA 3.3 subsystem, be it the stock
 //! components of this SDK on the same node or OpenJAUS 3.3's vehicle across the network.
 //!
 //! Each is a [`Service`](crate::service::Service) over the gateway's RA 3.3 side
-//! ([`Ra33Side`](crate::gateway::ra33::Ra33Side)): sensors answer from the latest RA 3.3
+//! ([`Ra33Side`](crate::ra33::Ra33Side)): sensors answer from the latest RA 3.3
 //! report (kept fresh by polling), drivers pass commands on to the RA 3.3 driver the
 //! gateway controls while an AS-4 client controls it.
 //!

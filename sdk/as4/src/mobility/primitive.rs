@@ -7,8 +7,8 @@ use jaus::messages as ra;
 use jaus::{Address, CommandCode, JausMessage};
 
 use super::{efforts, is, ServiceIds};
-use crate::gateway::ra33::Ra33Side;
 use crate::messages::{QueryWrenchEffort, ReportWrenchEffort, SetWrenchEffort};
+use crate::ra33::Ra33Side;
 use crate::service::{Cx, Handled, Request, Service, ServiceId};
 use crate::Message;
 
@@ -75,7 +75,7 @@ impl Service<Ra33Side> for PrimitiveDriver {
         // Primitive Driver itself (its standby follows from the gateway's control).
         if from == crate::ComponentState::Ready
             && to != crate::ComponentState::Ready
-            && cx.env.control_of(self.driver) == crate::gateway::ra33::Ra33Control::Granted
+            && cx.env.control_of(self.driver) == crate::ra33::Ra33Control::Granted
         {
             cx.env.send(
                 self.driver,

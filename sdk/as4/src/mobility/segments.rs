@@ -17,11 +17,11 @@ use jaus::{CommandCode, JausMessage};
 
 use super::lists::{self, Goal, Kind, ListDriver, DEFAULT_TOLERANCE};
 use super::ServiceIds;
-use crate::gateway::ra33::Ra33Side;
 use crate::messages::{
     QueryGlobalPathSegment, QueryLocalPathSegment, ReportGlobalPathSegment, ReportLocalPathSegment,
     SetGlobalPathSegment, SetLocalPathSegment,
 };
+use crate::ra33::Ra33Side;
 use crate::service::ServiceId;
 use crate::Message;
 
@@ -214,7 +214,7 @@ mod tests {
     use jaus::Address;
 
     use super::*;
-    use crate::gateway::ra33::{Frame, Targets};
+    use crate::ra33::{Frame, Targets};
 
     fn side(frame: Frame) -> Ra33Side {
         let me = Address::new(1, 1, 60, 1);

@@ -6,11 +6,11 @@ use jaus::messages as ra;
 use jaus::{Address, CommandCode, JausMessage};
 
 use super::{is, time_stamp, ServiceIds};
-use crate::gateway::ra33::{Frame, Ra33Side};
 use crate::messages::{
     QueryGlobalPose, QueryLocalPose, QueryVelocityState, ReportGlobalPose, ReportLocalPose,
     ReportVelocityState, SetLocalPose,
 };
+use crate::ra33::{Frame, Ra33Side};
 use crate::service::{Cx, Handled, Request, Service, ServiceId};
 use crate::Message;
 
