@@ -6,11 +6,14 @@
 //!
 //! It also regenerates the AS-4 Core's state machine from jaus-as4's definitions with one
 //! transition edited (`regenerate_core`), as a vendor would when the standard revises;
-//! `tests/as4_regenerate.rs` runs a component on it.
+//! `tests/as4_regenerate.rs` runs a component on it. And it generates a vendor's own
+//! AS-4 service on jaus-as4's definitions (`as4-vendor/lamp.yaml`, `extends: as4`), as a
+//! vendor's build script does (`vendor_as4`); `tests/as4_vendor_service.rs` runs it.
 
 fn main() {
     let out = std::env::var("OUT_DIR").expect("cargo sets OUT_DIR");
     regenerate_core(&out);
+    vendor_as4(&out);
     if let Err(e) = jaus_gen::Builder::new()
         .overlay("vendor/acme.yaml")
         .lock("vendor/acme.lock")
@@ -67,4 +70,47 @@ fn regenerate_core(out: &str) {
         eprintln!("{e}");
         std::process::exit(1);
     }
+}
+
+/// Generates `as4-vendor/lamp.yaml` on jaus-as4's definitions (where jaus-as4 says they
+/// are, `DEP_JAUS_AS4_DEFS`) into `OUT_DIR/as4-lamp`, and, with its guard edited so that
+/// any client may set the level, into `OUT_DIR/as4-lamp-edited`.
+fn vendor_as4(out: &str) {
+    let defs = std::env::var("DEP_JAUS_AS4_DEFS").expect("jaus-as4 says where its definitions are");
+    // `watch`: the edited copy is this script's output, not an input.
+    let generate = |spec: &std::path::Path, dir: &std::path::Path, watch: bool| {
+        if let Err(e) = jaus_gen::Builder::new()
+            .emit_rerun_if_changed(watch)
+            .spec_dir(spec)
+            .base("as4", &defs, "::jaus_as4")
+            .runtime_path("::jaus")
+            .out_dir(dir)
+            .generate()
+        {
+            eprintln!("{e}");
+            std::process::exit(1);
+        }
+    };
+    let out = std::path::Path::new(out);
+    generate(
+        std::path::Path::new("as4-vendor"),
+        &out.join("as4-lamp"),
+        true,
+    );
+    // The regeneration promise on a vendor's service: one guard edited.
+    let text = std::fs::read_to_string("as4-vendor/lamp.yaml").expect("read as4-vendor/lamp.yaml");
+    let from = "condition: \"isControllingClient(transportData) && isLevelValid(msg)\"";
+    assert!(
+        text.contains(from),
+        "as4-vendor/lamp.yaml no longer has the guard tests/build.rs edits"
+    );
+    let edited = out.join("as4-lamp-edited");
+    let spec = edited.join("defs");
+    std::fs::create_dir_all(&spec).expect("create OUT_DIR/as4-lamp-edited/defs");
+    let text = text.replace(from, "condition: \"isLevelValid(msg)\"");
+    let target = spec.join("lamp.yaml");
+    if std::fs::read_to_string(&target).ok().as_deref() != Some(text.as_str()) {
+        std::fs::write(target, text).expect("write the edited lamp.yaml");
+    }
+    generate(&spec, &edited, false);
 }

@@ -190,6 +190,20 @@ pub struct Builder {
     serde_cfg: Option<String>,
     lock: Option<PathBuf>,
     update_lock: Option<bool>,
+    base: Option<Base>,
+}
+
+/// Base definitions other than the SDK's that a vendor's set extends
+/// ([`Builder::base`]).
+#[derive(Debug, Clone, Default)]
+struct Base {
+    /// The name the vendor's files say in `extends:` (`as4`).
+    name: String,
+    /// The directory of the base's YAML files.
+    dir: PathBuf,
+    /// The Rust path of the crate generated from them (`::jaus_as4`): its `messages`
+    /// module holds the base's items and `messages::services` its services.
+    path: String,
 }
 
 /// What one generation run produced.
@@ -331,6 +345,40 @@ impl Builder {
         self
     }
 
+    /// Builds the definitions of [`spec_dir`](Self::spec_dir) (which say `extends:
+    /// NAME`) on other base definitions than the SDK's: the YAML files of `dir`, whose
+    /// generated code is the crate at Rust path `path`. For a vendor's AS-4 services on
+    /// jaus-as4, from the vendor's build script (jaus-as4 tells where its definitions
+    /// are, `links` metadata):
+    ///
+    /// ```no_run
+    /// let defs = std::env::var("DEP_JAUS_AS4_DEFS").expect("jaus-as4 is a dependency");
+    /// jaus_gen::Builder::new()
+    ///     .spec_dir("defs")
+    ///     .base("as4", defs, "::jaus_as4")
+    ///     .out_dir(std::env::var("OUT_DIR").unwrap())
+    ///     .generate()
+    ///     .unwrap();
+    /// ```
+    ///
+    /// Only the set's own items are generated; the base's messages and types are used
+    /// from `PATH::messages`, a service inheriting one of the base's services
+    /// (`urn:jaus:jss:core:AccessControl`) gets its machines and runs its inherited
+    /// guards and actions on the base's implementation (`PATH::messages::services`).
+    pub fn base(
+        mut self,
+        name: impl Into<String>,
+        dir: impl Into<PathBuf>,
+        path: impl Into<String>,
+    ) -> Self {
+        self.base = Some(Base {
+            name: name.into(),
+            dir: dir.into(),
+            path: path.into(),
+        });
+        self
+    }
+
     /// Adds a directory of JSIDL (AS5684) files (read recursively) to import instead of
     /// YAML: each directory is one group, and the imported definitions stand alone
     /// (`extends: none`; overlays given with [`overlay`](Self::overlay) are loaded with
@@ -364,6 +412,47 @@ impl Builder {
         Ok(jaus_spec::load_texts(texts)?)
     }
 
+    /// The set of [`spec_dir`](Self::spec_dir) and the overlays on [`Builder::base`].
+    fn load_on(&self, base: &Base) -> Result<Spec, Error> {
+        let read_dir = |dir: &Path| -> Result<Vec<(PathBuf, String)>, Error> {
+            let io = |source| Error::Io {
+                path: dir.to_path_buf(),
+                source,
+            };
+            let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
+                .map_err(io)?
+                .filter_map(|e| e.ok().map(|e| e.path()))
+                .filter(|p| p.extension().is_some_and(|x| x == "yaml" || x == "yml"))
+                .collect();
+            files.sort();
+            files
+                .into_iter()
+                .map(|f| {
+                    let text = std::fs::read_to_string(&f).map_err(|source| Error::Io {
+                        path: f.clone(),
+                        source,
+                    })?;
+                    Ok((f, text))
+                })
+                .collect()
+        };
+        let base_texts = read_dir(&base.dir)?;
+        let mut own = Vec::new();
+        for d in &self.spec_dirs {
+            own.extend(read_dir(d)?);
+        }
+        for o in &self.overlays {
+            let text = std::fs::read_to_string(o).map_err(|source| Error::Io {
+                path: o.clone(),
+                source,
+            })?;
+            own.push((o.clone(), text));
+        }
+        Ok(jaus_spec::load_overlay_texts_on(
+            &base.name, base_texts, own,
+        )?)
+    }
+
     /// Loads and validates the definitions.
     pub fn load(&self) -> Result<Spec, Error> {
         if !self.jsidl_dirs.is_empty() {
@@ -374,7 +463,9 @@ impl Builder {
                 println!("cargo:rerun-if-changed={}", d.display());
             }
         }
-        let spec = if self.spec_dirs.is_empty() {
+        let spec = if let Some(base) = &self.base {
+            self.load_on(base)?
+        } else if self.spec_dirs.is_empty() {
             jaus_spec::load_overlays(&self.overlays)?
         } else {
             jaus_spec::load(&self.spec_dirs, &self.overlays)?
@@ -486,9 +577,21 @@ impl Builder {
         let spec = self.load()?;
         let lock = self.check_lock(&spec)?;
         let rt = self.runtime.as_deref().unwrap_or("::jaus");
-        let ctx = build_context(&spec, self.feature_gates, rt);
+        let mut ctx = build_context(&spec, self.feature_gates, rt);
+        let base = match &self.base {
+            Some(b) => {
+                // The SDK's feature groups are a question for sets on the SDK's own.
+                ctx.requires.clear();
+                format!("{}::messages", b.path)
+            }
+            None => format!("{rt}::messages"),
+        };
         let mut env = self.environment()?;
         env.add_global("rt", rt);
+        env.add_global("base", base.clone());
+        // A set on other base definitions than the SDK's is no RA 3.3 message set (the
+        // component runtime's `MessageSet` wraps the SDK's messages).
+        env.add_global("on_base", self.base.is_some());
         env.add_global("serde_cfg", self.serde_cfg.as_deref().unwrap_or("any()"));
         let raw = env.get_template("messages.rs.j2")?.render(&ctx)?;
         let code = format_code(&raw, self.out_dir.as_deref(), "messages")?;
@@ -510,7 +613,8 @@ impl Builder {
         let (services, service_count) = if spec.services.is_empty() {
             (String::new(), 0)
         } else {
-            let ctx = build_services(&spec).map_err(Error::Services)?;
+            let on = self.base.as_ref().map(|_| base.as_str());
+            let ctx = build_services(&spec, on).map_err(Error::Services)?;
             let raw = env.get_template("services.rs.j2")?.render(&ctx)?;
             (
                 format_code(&raw, self.out_dir.as_deref(), "services")?,

@@ -190,9 +190,34 @@ pub fn load_overlays<Q: AsRef<Path>>(overlays: &[Q]) -> Result<Spec, SpecErrors>
 /// [`load_overlays`] of files already read, as `(path, text)` pairs (the path is used
 /// in errors and positions only): a vendor's overlay from a git revision, say.
 pub fn load_overlay_texts(own: Vec<(PathBuf, String)>) -> Result<Spec, SpecErrors> {
+    match overlay_base(&own, None)? {
+        true => load_texts_on(sdk_texts(), own),
+        false => load_texts_on(Vec::new(), own),
+    }
+}
+
+/// Loads a vendor's overlay on other base definitions than the SDK's: `base` (file
+/// path, text), named `name` (`as4`: jaus-as4's definitions). Every file of `own`
+/// says `extends: NAME` (or `extends: none` for a set of its own); the items of `base`
+/// are not generated again ([`Spec::is_own`]).
+pub fn load_overlay_texts_on(
+    name: &str,
+    base: Vec<(PathBuf, String)>,
+    own: Vec<(PathBuf, String)>,
+) -> Result<Spec, SpecErrors> {
+    match overlay_base(&own, Some(name))? {
+        true => load_texts_on(base, own),
+        false => load_texts_on(Vec::new(), own),
+    }
+}
+
+/// Whether the overlay `own` extends its base: every file's `extends:` is checked
+/// against the base's name (`jaus` when `name` is `None`), `none` meaning it extends
+/// nothing.
+fn overlay_base(own: &[(PathBuf, String)], name: Option<&str>) -> Result<bool, SpecErrors> {
     let mut extends = true;
     let mut errors = Vec::new();
-    for (path, text) in &own {
+    for (path, text) in own {
         #[derive(serde::Deserialize)]
         struct Head {
             #[serde(default)]
@@ -201,24 +226,33 @@ pub fn load_overlay_texts(own: Vec<(PathBuf, String)>) -> Result<Spec, SpecError
         let Ok(head) = serde_yaml::from_str::<Head>(text) else {
             continue; // the full load reports the syntax error
         };
-        match head.extends.as_deref() {
-            None | Some("jaus") => {}
-            Some("none") => extends = false,
-            Some(other) => errors.push(SpecError {
+        let fine = match (head.extends.as_deref(), name) {
+            (Some("none"), _) => {
+                extends = false;
+                true
+            }
+            (None | Some("jaus"), None) => true,
+            (Some(e), Some(n)) => e == n,
+            _ => false,
+        };
+        if !fine {
+            let expected = name.unwrap_or("jaus");
+            let found = head.extends.as_deref().unwrap_or("jaus (the default)");
+            errors.push(SpecError {
                 file: path.clone(),
                 pos: LocationIndex::build(text).find("extends"),
                 context: String::new(),
                 message: format!(
-                    "`extends: {other}`: an overlay extends `jaus` (the SDK's definitions, the default) or `none`"
+                    "`extends: {found}`: this set is loaded on `{expected}`; say `extends: {expected}` (the definitions it builds on) or `none`"
                 ),
-            }),
+            });
         }
     }
-    if !errors.is_empty() {
-        return Err(SpecErrors(errors));
+    if errors.is_empty() {
+        Ok(extends)
+    } else {
+        Err(SpecErrors(errors))
     }
-    let base = if extends { sdk_texts() } else { Vec::new() };
-    load_texts_on(base, own)
 }
 
 /// Loads definitions from `(path, text)` pairs (the path is used in errors only).

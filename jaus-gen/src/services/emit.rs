@@ -3,8 +3,8 @@
 
 use super::model::{chain, ident, origin, parents, Arg, Call, Conv, Mach, St, Trans, G};
 use super::{
-    ArgVariantCtx, EventCtx, FieldCtx, MachineCtx, MethodCtx, ReceivedArm, ReceivedCtx, ServiceCtx,
-    ServicesCtx, SiteCtx, StateCtx, TransCtx, TriggerCtx,
+    ArgVariantCtx, EventCtx, FieldCtx, InheritedCtx, MachineCtx, MethodCtx, ReceivedArm,
+    ReceivedCtx, ServiceCtx, ServicesCtx, SiteCtx, StateCtx, TransCtx, TriggerCtx,
 };
 use crate::components::wrap;
 use jaus_spec::model::{FieldDef, TransitionKind};
@@ -67,9 +67,16 @@ fn each_call(m: &mut Mach, f: &mut dyn FnMut(&mut Call, bool)) {
 
 /// The template context of every service of `spec`; the error names the service and
 /// the file and line.
-pub fn build_services(spec: &Spec) -> Result<ServicesCtx, String> {
+///
+/// `base` is the Rust path of the generated messages of the base definitions the set is
+/// built on (`::jaus_as4::messages`), if any: their services are not generated again;
+/// a service of the set that inherits one of them calls the inherited guards and actions
+/// on an implementation of the base's trait, handed to its `Machines` beside the
+/// service's own.
+pub fn build_services(spec: &Spec, base: Option<&str>) -> Result<ServicesCtx, String> {
     let parents = parents(spec)?;
     let n = spec.services.len();
+    let is_base = |k: usize| base.is_some() && !spec.is_own(spec.services[k].source);
     // Each service's own machines, names resolved against its ancestors.
     let mut own: Vec<Vec<Mach>> = Vec::with_capacity(n);
     for svc in 0..n {
@@ -78,6 +85,7 @@ pub fn build_services(spec: &Spec) -> Result<ServicesCtx, String> {
                 spec,
                 parents: &parents,
                 svc,
+                base,
             }
             .machines()?,
         );
@@ -105,7 +113,7 @@ pub fn build_services(spec: &Spec) -> Result<ServicesCtx, String> {
             });
         }
     }
-    let (methods, args) = signatures(&mut own)?;
+    let (methods, args) = signatures(&mut own, &is_base)?;
     // Merge, root services first.
     let mut merged: Vec<Option<Vec<Mach>>> = vec![None; n];
     for i in 0..n {
@@ -133,7 +141,14 @@ pub fn build_services(spec: &Spec) -> Result<ServicesCtx, String> {
     }
     let mut services = Vec::new();
     for (i, m) in merged.iter().enumerate() {
+        if is_base(i) {
+            continue;
+        }
         let machines = m.clone().unwrap_or_default();
+        let on = Inherit {
+            base,
+            is_base: &is_base,
+        };
         services.push(service(
             spec,
             i,
@@ -141,6 +156,7 @@ pub fn build_services(spec: &Spec) -> Result<ServicesCtx, String> {
             &machines,
             &methods,
             !args.is_empty(),
+            &on,
         )?);
     }
     let has_args = methods.values().any(|m| matches!(m.sig, Sig::Slice));
@@ -168,17 +184,45 @@ fn shape(a: &Arg) -> Shape {
 #[allow(clippy::type_complexity)]
 fn signatures(
     own: &mut [Vec<Mach>],
+    is_base: &dyn Fn(usize) -> bool,
 ) -> Result<(BTreeMap<(usize, String), Method>, BTreeMap<String, String>), String> {
     let mut args: BTreeMap<String, String> = BTreeMap::new();
     let mut sites: BTreeMap<(usize, String), Vec<(bool, Call)>> = BTreeMap::new();
-    for ms in own.iter_mut() {
+    // Calls from the set's own services of methods a base service declares.
+    let mut onto_base: Vec<Call> = Vec::new();
+    for (k, ms) in own.iter_mut().enumerate() {
         for m in ms.iter_mut() {
             each_call(m, &mut |c, guard| {
+                if is_base(c.owner) && !is_base(k) {
+                    onto_base.push(c.clone());
+                    return;
+                }
                 sites
                     .entry((c.owner, c.method.clone()))
                     .or_default()
                     .push((guard, c.clone()));
             });
+        }
+    }
+    // An inherited method is called as the base declares it: its trait is generated
+    // already, from the base's own call sites.
+    for c in &onto_base {
+        let Some(list) = sites.get(&(c.owner, c.method.clone())) else {
+            return Err(format!(
+                "{}: `{}` names a method the inherited service does not declare (its definitions never call `{}`): name an action or guard of this service instead",
+                c.origin, c.raw, c.method
+            ));
+        };
+        let declared: Vec<Shape> = list[0].1.args.iter().map(shape).collect();
+        let uniform = list
+            .iter()
+            .all(|(_, x)| x.args.iter().map(shape).collect::<Vec<_>>() == declared);
+        let here: Vec<Shape> = c.args.iter().map(shape).collect();
+        if !uniform || here != declared {
+            return Err(format!(
+                "{}: `{}` calls an inherited method with other arguments than its definition declares (as at {}): call it as `{}` does",
+                c.origin, c.raw, list[0].1.origin, list[0].1.raw
+            ));
         }
     }
     let mut out = BTreeMap::new();
@@ -194,7 +238,7 @@ fn signatures(
         let uniform = list
             .iter()
             .all(|(_, c)| c.args.iter().map(shape).collect::<Vec<_>>() == shapes);
-        if !uniform {
+        if !uniform && !is_base(key.0) {
             for (_, c) in &list {
                 for a in &c.args {
                     if let Arg::Param { ty, .. } = a {
@@ -300,8 +344,19 @@ fn list(v: &[u16]) -> String {
     )
 }
 
+/// What a service of a set built on base definitions inherits from them.
+struct Inherit<'a> {
+    /// The base's generated messages (`::jaus_as4::messages`).
+    base: Option<&'a str>,
+    /// Whether service `k` is one of the base's.
+    is_base: &'a dyn Fn(usize) -> bool,
+}
+
 /// Builds one service's context.
 struct Emit<'a> {
+    is_base: &'a dyn Fn(usize) -> bool,
+    /// The base's generated messages, for the `Arg` of inherited methods.
+    base: Option<&'a str>,
     methods: &'a BTreeMap<(usize, String), Method>,
     borrows_args: bool,
     guards: Vec<SiteCtx>,
@@ -317,22 +372,30 @@ impl Emit<'_> {
                 .map(|m| &m.sig),
             Some(Sig::Slice)
         );
+        // An inherited method of a base service takes the base's `Arg`.
+        let arg = match self.base {
+            Some(b) if (self.is_base)(c.owner) => format!("{b}::services::Arg"),
+            _ => "super::Arg".to_string(),
+        };
         let args: Vec<String> = c
             .args
             .iter()
             .map(|a| match (a, slice) {
                 (Arg::Const(v), false) => format!("{v:?}"),
                 (Arg::Param { field, .. }, false) => field.clone(),
-                (Arg::Const(v), true) => format!("super::Arg::Const({v:?})"),
+                (Arg::Const(v), true) => format!("{arg}::Const({v:?})"),
                 (Arg::Param { field, ty }, true) => {
-                    format!("super::Arg::{}({field})", ty.variant)
+                    format!("{arg}::{}({field})", ty.variant)
                 }
             })
             .collect();
+        // The service's own methods are on its implementation; inherited ones of a base
+        // service on the base's.
+        let on = if (self.is_base)(c.owner) { 1 } else { 0 };
         if slice {
-            format!("self.0.{}(&[{}])", c.method, args.join(", "))
+            format!("self.{on}.{}(&[{}])", c.method, args.join(", "))
         } else {
-            format!("self.0.{}({})", c.method, args.join(", "))
+            format!("self.{on}.{}({})", c.method, args.join(", "))
         }
     }
 
@@ -467,10 +530,13 @@ fn service(
     machines: &[Mach],
     methods: &BTreeMap<(usize, String), Method>,
     args: bool,
+    on: &Inherit<'_>,
 ) -> Result<ServiceCtx, String> {
     let s = &spec.services[i];
     let d = &s.def;
     let mut e = Emit {
+        is_base: on.is_base,
+        base: on.base,
         methods,
         borrows_args: args,
         guards: Vec::new(),
@@ -543,7 +609,7 @@ fn service(
         }
     }
     let borrows = triggers.iter().any(|t| !t.fields.is_empty());
-    let received = received(spec, &triggers);
+    let received = received(spec, &triggers, on);
     let mut out_machines = Vec::new();
     let (mut state_count, mut transition_count) = (0, 0);
     for m in machines {
@@ -694,16 +760,49 @@ fn service(
             doc.extend(lines);
         }
     }
+    // A `Hosted` adapter when the service inherits a base service and its messages
+    // arrive with Transport's `Receive` data alone (the JSIDL convention).
+    let hosted = on.base.filter(|_| {
+        chain(parents, i).into_iter().any(|k| (on.is_base)(k))
+            && received.as_ref().is_some_and(|r| {
+                r.params.len() == 1 && r.params[0].ty.ends_with("::transport::event::Receive")
+            })
+    });
+    let hosted = hosted.map(|b| b.trim_end_matches("::messages").to_string());
+    let version = {
+        let mut it = d
+            .version
+            .split('.')
+            .map(|x| x.trim().parse::<u8>().unwrap_or(0));
+        (it.next().unwrap_or(0), it.next().unwrap_or(0))
+    };
     Ok(ServiceCtx {
         name: d.name.clone(),
         module: ident(&d.name),
         id: format!("{} {}", d.id, d.version),
         doc,
         origin: short(&origin(spec, s.source, &s.path)),
-        supertrait: parents[i].map(|p| {
+        supertrait: parents[i].filter(|p| !(on.is_base)(*p)).map(|p| {
             let n = &spec.services[p].def.name;
             format!("super::{}::{n}", ident(n))
         }),
+        inherited: chain(parents, i)
+            .into_iter()
+            .find(|k| (on.is_base)(*k))
+            .zip(on.base)
+            .map(|(k, b)| {
+                let n = &spec.services[k].def.name;
+                InheritedCtx {
+                    name: n.clone(),
+                    path: format!("{b}::services::{}::{n}", ident(n)),
+                    machines: format!("{b}::services::{}::Machines", ident(n)),
+                    tables: format!("{b}::services::{}::MACHINES", ident(n)),
+                }
+            }),
+        hosted,
+        uri: d.id.clone(),
+        major: version.0,
+        minor: version.1,
         events,
         methods: methods_ctx,
         lt: if borrows { "<'a>" } else { "" }.into(),
@@ -722,7 +821,7 @@ fn service(
 /// gets an arm, when all of them have the same other parameters (names and types, in
 /// order); `None` when no trigger carries a message or their other parameters differ
 /// (the trait and tables are generated all the same; the owner builds triggers itself).
-fn received(spec: &Spec, triggers: &[TriggerCtx]) -> Option<ReceivedCtx> {
+fn received(spec: &Spec, triggers: &[TriggerCtx], on: &Inherit<'_>) -> Option<ReceivedCtx> {
     let is_message = |ty: &str| {
         let name = ty.trim_start_matches("&'a ");
         spec.message(name).is_some()
@@ -746,7 +845,16 @@ fn received(spec: &Spec, triggers: &[TriggerCtx]) -> Option<ReceivedCtx> {
             Some(_) => {}
             None => params = Some(rest),
         }
+        // A base message is in the set's `Message` as the base's.
+        let from_base = on.base.filter(|_| {
+            spec.message(&t.variant)
+                .is_some_and(|x| !spec.is_own(x.source))
+        });
         arms.push(ReceivedArm {
+            pattern: match from_base {
+                Some(b) => format!("Message::Jaus({b}::Message::{}({}))", t.variant, m.name),
+                None => format!("Message::{}({})", t.variant, m.name),
+            },
             message: t.variant.clone(),
             field: m.name.clone(),
         });

@@ -48,8 +48,23 @@ pub struct ServiceCtx {
     pub doc: Vec<String>,
     /// `file:line` of the definition.
     pub origin: String,
-    /// The parent's trait (`super::events::Events`), if it inherits.
+    /// The parent's trait (`super::events::Events`), if it inherits one of the set's
+    /// own services.
     pub supertrait: Option<String>,
+    /// The nearest service of the base definitions it inherits, if the set is built on
+    /// base definitions: its inherited guards and actions run on an implementation of
+    /// that service's trait.
+    pub inherited: Option<InheritedCtx>,
+    /// The base crate's path (`::jaus_as4`) when a `Hosted` adapter is generated: the
+    /// service inherits a base service and its messages arrive with Transport's
+    /// `Receive` data alone.
+    pub hosted: Option<String>,
+    /// Its URI (`urn:acme:Lamp`).
+    pub uri: String,
+    /// Its major version.
+    pub major: u8,
+    /// Its minor version.
+    pub minor: u8,
     /// Its internal events.
     pub events: Vec<EventCtx>,
     /// Its trait's methods (the guards, then the actions), by name.
@@ -116,9 +131,24 @@ pub struct ReceivedCtx {
     pub arms: Vec<ReceivedArm>,
 }
 
+/// A base service a service inherits (a set built on base definitions).
+#[derive(Debug, Clone, Serialize)]
+pub struct InheritedCtx {
+    /// Its name (`AccessControl`).
+    pub name: String,
+    /// Its trait's path (`::jaus_as4::messages::services::access_control::AccessControl`).
+    pub path: String,
+    /// Its `Machines`' path.
+    pub machines: String,
+    /// Its `MACHINES` tables' path (the machines the inherited states follow).
+    pub tables: String,
+}
+
 /// One arm of the dispatch.
 #[derive(Debug, Clone, Serialize)]
 pub struct ReceivedArm {
+    /// The pattern over the set's `Message` binding the message to the field.
+    pub pattern: String,
     /// The message's variant of the `Message` enum (and the trigger's).
     pub message: String,
     /// The trigger field that carries the message.

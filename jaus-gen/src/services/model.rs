@@ -175,6 +175,9 @@ pub(crate) struct Conv<'a> {
     pub spec: &'a Spec,
     pub parents: &'a [Option<usize>],
     pub svc: usize,
+    /// The Rust path of the base definitions' generated messages (`::jaus_as4::messages`)
+    /// when the set is built on them: an event of a base service is named there.
+    pub base: Option<&'a str>,
 }
 
 impl Conv<'_> {
@@ -220,8 +223,12 @@ impl Conv<'_> {
         for k in chain(self.parents, self.svc) {
             let s = &self.spec.services[k];
             if s.def.events.iter().any(|e| e.name == head) {
+                let module = match self.base {
+                    Some(b) if !self.spec.is_own(s.source) => format!("{b}::services"),
+                    _ => "super".to_string(),
+                };
                 return Some(ParamTy {
-                    rust: format!("super::{}::event::{head}", ident(&s.def.name)),
+                    rust: format!("{module}::{}::event::{head}", ident(&s.def.name)),
                     variant: format!("{}{head}", s.def.name),
                 });
             }

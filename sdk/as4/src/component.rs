@@ -82,6 +82,8 @@ pub struct As4Component<E> {
     core: Core,
     services: Vec<Box<dyn Service<E>>>,
     stats: ComponentStats,
+    /// What services sent besides their replies, for the next output.
+    spill: Vec<Outgoing>,
 }
 
 impl<E: 'static> As4Component<E> {
@@ -101,6 +103,7 @@ impl<E: 'static> As4Component<E> {
             core: Core::new(id, config),
             services: Vec::new(),
             stats: ComponentStats::default(),
+            spill: Vec::new(),
         }
     }
 
@@ -116,6 +119,7 @@ impl<E: 'static> As4Component<E> {
             core: Core::with_machine(id, config, machine),
             services: Vec::new(),
             stats: ComponentStats::default(),
+            spill: Vec::new(),
         }
     }
 
@@ -224,6 +228,7 @@ impl<E: 'static> As4Component<E> {
             _ => self.offer(now, from, msg, env),
         };
         self.notify(now, before, env);
+        out.append(&mut self.spill);
         out.extend(self.fire_events(now, env));
         self.stats.sent += out.len() as u64;
         out
@@ -239,6 +244,7 @@ impl<E: 'static> As4Component<E> {
             }
         });
         self.notify(now, before, env);
+        out.append(&mut self.spill);
         out.extend(self.fire_events(now, env));
         self.stats.sent += out.len() as u64;
         out
@@ -250,7 +256,8 @@ impl<E: 'static> As4Component<E> {
         let before = (self.core.state(), self.core.controller());
         self.with_services(now, env, |s, cx| s.tick(cx));
         self.notify(now, before, env);
-        let out = self.fire_events(now, env);
+        let mut out = std::mem::take(&mut self.spill);
+        out.extend(self.fire_events(now, env));
         self.stats.sent += out.len() as u64;
         out
     }
@@ -267,8 +274,9 @@ impl<E: 'static> As4Component<E> {
     /// The owner declares a failure (Management's Failure state; control ends).
     pub fn fail(&mut self, now: Instant, env: &mut E) -> Vec<Outgoing> {
         let before = (self.core.state(), self.core.controller());
-        let out = self.core.fail(now);
+        let mut out = self.core.fail(now);
         self.notify(now, before, env);
+        out.append(&mut self.spill);
         self.stats.sent += out.len() as u64;
         out
     }
@@ -284,6 +292,8 @@ impl<E: 'static> As4Component<E> {
         tracing::debug!(message = msg.name(), %from, component = %self.id, "refused: {reason}");
     }
 
+    /// Runs `f` on every service with the call's context; what they send besides their
+    /// replies is kept for the component's next output ([`Self::spill`]).
     fn with_services(
         &mut self,
         now: Instant,
@@ -291,13 +301,16 @@ impl<E: 'static> As4Component<E> {
         mut f: impl FnMut(&mut dyn Service<E>, &mut Cx<'_, E>),
     ) {
         let (me, state, controller) = (self.id, self.core.state(), self.core.controller());
+        let (lists, core) = self.core.parts();
         let mut cx = Cx {
             now,
             me,
             state,
             controller,
-            lists: self.core.lists_mut(),
+            lists,
             env,
+            core,
+            out: &mut self.spill,
         };
         for s in &mut self.services {
             f(s.as_mut(), &mut cx);

@@ -265,6 +265,47 @@ impl Machine {
             .any(|s| self.state(s).path == path)
     }
 
+    /// Follows a machine this one extends, whose current state is at `path` (a state
+    /// path of the parent's machine, such as `Receiving.Ready.Controlled.Available`):
+    /// the machine goes to the deepest of its states whose path is `path` or a prefix
+    /// of it, on through their initial sub-states, unless it already is inside that
+    /// state. No action runs: the states it shares with the parent are the parent's,
+    /// whose actions ran there. Returns whether the state changed. A `path` that shares
+    /// no state with this machine changes nothing.
+    pub fn follow(&mut self, path: &str) -> bool {
+        let mut at = path;
+        let target = loop {
+            if let Some(id) = state_id(self.def, at) {
+                break id;
+            }
+            match at.rfind('.') {
+                Some(i) => at = &at[..i],
+                None => return false,
+            }
+        };
+        self.started = true;
+        if self.ancestors(self.current).contains(&target) {
+            return false;
+        }
+        self.pushed.clear();
+        let mut s = target;
+        for _ in 0..self.def.states.len() {
+            match self.state(s).initial {
+                Some(child) if child != s => s = child,
+                _ => break,
+            }
+        }
+        self.current = s;
+        tracing::trace!(
+            service = self.def.service,
+            machine = self.def.name,
+            follows = path,
+            to = self.path(),
+            "followed"
+        );
+        true
+    }
+
     /// Handles one trigger to completion (starting the machine first if needed). The
     /// trigger's name is `key`; `payload` is passed to the guards and actions.
     pub fn handle<T: ?Sized, H: Host<T> + ?Sized>(
@@ -523,6 +564,15 @@ impl Machines {
             taken |= m.handle(host, key, payload) != Step::Ignored;
         }
         taken
+    }
+
+    /// Makes the machine named `machine` follow the machine it extends, now at `path`
+    /// ([`Machine::follow`]); whether its state changed (false for an unknown machine).
+    pub fn follow(&mut self, machine: &str, path: &str) -> bool {
+        self.machines
+            .iter_mut()
+            .find(|m| m.def().name == machine)
+            .is_some_and(|m| m.follow(path))
     }
 
     /// The current state's path in the machine named `machine`.

@@ -312,3 +312,28 @@ fn an_unanswered_trigger_is_ignored() {
     assert!(take(&mut log).is_empty());
     assert_eq!(m.path(), "Top.A");
 }
+
+#[test]
+fn follow_goes_to_the_deepest_shared_state_without_actions() {
+    let mut m = Machine::new(&DEF);
+    let mut log = Log::default();
+    m.start(&mut log);
+    take(&mut log);
+    // The parent is in `Top.B.X.Y`, states this machine lacks: the deepest shared state
+    // is `Top.B`, entered through its initial sub-state, without any action.
+    assert!(m.follow("Top.B.X.Y"));
+    assert_eq!(m.path(), "Top.B.B1");
+    assert!(take(&mut log).is_empty(), "following runs no action");
+    // Already inside `Top.B` (in B2): kept there.
+    m.follow("Top.B.B2");
+    assert_eq!(m.path(), "Top.B.B2");
+    assert!(!m.follow("Top.B"), "already inside Top.B");
+    assert_eq!(m.path(), "Top.B.B2");
+    // Nothing shared: nothing changes.
+    assert!(!m.follow("Elsewhere.C"));
+    assert_eq!(m.path(), "Top.B.B2");
+    // Back to A; then the machine goes on from there.
+    assert!(m.follow("Top.A"));
+    assert_eq!(m.path(), "Top.A");
+    assert!(matches!(m.handle(&mut log, "go", &()), Step::Taken { .. }));
+}

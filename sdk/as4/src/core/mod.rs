@@ -127,6 +127,17 @@ pub enum Refusal {
     Ignored(String),
 }
 
+/// The Core's data a service generated on the Core's services reaches during one call
+/// ([`Cx::with_core`](crate::service::Cx::with_core)).
+#[derive(Debug)]
+pub(crate) struct CoreParts<'a> {
+    pub(crate) access: &'a mut Access,
+    pub(crate) management: &'a mut Management,
+    pub(crate) events: &'a mut Events,
+    /// The Core machine's state path.
+    pub(crate) path: &'static str,
+}
+
 /// The Core services of one component.
 #[derive(Debug, Clone)]
 pub struct Core {
@@ -275,6 +286,20 @@ impl Core {
     /// The list manager.
     pub fn lists(&self) -> &Lists {
         &self.lists
+    }
+
+    /// The list manager and what a service generated on the Core's services uses of
+    /// them during one call: their data, run by [`Host`], and the machine's state.
+    pub(crate) fn parts(&mut self) -> (&mut Lists, CoreParts<'_>) {
+        (
+            &mut self.lists,
+            CoreParts {
+                access: &mut self.access,
+                management: &mut self.management,
+                events: &mut self.events,
+                path: self.machine.path(),
+            },
+        )
     }
 
     /// The list manager, mutably.

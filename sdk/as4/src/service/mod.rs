@@ -10,6 +10,11 @@
 //! service answers queries from its state and carries out commands; it is told when the
 //! component's state or its controller changes, and when its timer is due.
 //!
+//! A service generated from definitions built on jaus-as4's (`extends: as4`, the
+//! services inheriting Access Control or Management) is a [`GeneratedService`]: its
+//! generated machines decide, the Core's own services answer its inherited guards and
+//! actions, and it runs here as every other service does.
+//!
 //! Services are generic over an environment `E` that the component's owner supplies and
 //! hands to every call through [`Cx::env`]: nothing for a standalone AS-4 component
 //! (`()`), the RA 3.3 side of a gateway (its outbox and the reports it keeps) for the
@@ -22,7 +27,13 @@ use std::time::Instant;
 use jaus::net::as5669a::As4Id;
 use jaus::CommandCode;
 
+use crate::core::machine::Host;
+use crate::core::CoreParts;
 use crate::messages::{ComponentState, Message};
+
+mod generated;
+
+pub use generated::{receive_of, sender_of, GeneratedService, Outbox, Taken};
 
 /// A service's identity as Discovery reports it: its URI and version.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -108,6 +119,10 @@ pub enum Handled {
 }
 
 /// What a service may use besides its own state during a call.
+///
+/// Besides its fields, a service built on the Core's generated services (a
+/// [`GeneratedService`]) reaches the Core's guards and actions ([`Cx::with_core`]) and
+/// sends beyond its reply ([`Cx::send`]).
 pub struct Cx<'a, E> {
     /// The time of the call.
     pub now: Instant,
@@ -122,6 +137,39 @@ pub struct Cx<'a, E> {
     /// The owner's environment (`()` for a standalone component; the RA 3.3 side of a
     /// gateway).
     pub env: &'a mut E,
+    /// The Core's data, for [`Cx::with_core`].
+    pub(crate) core: CoreParts<'a>,
+    /// What the call sends besides its reply.
+    pub(crate) out: &'a mut Vec<Outgoing>,
+}
+
+impl<E> Cx<'_, E> {
+    /// Runs `f` on the Core's services (Transport, Events, Access Control, Management):
+    /// [`Host`] implements their generated traits, so a generated service's inherited
+    /// guards (`isControllingClient`) read the Core's state and its inherited actions
+    /// act on it. What they send leaves with the component's output.
+    pub fn with_core<R>(&mut self, f: impl FnOnce(&mut Host<'_>) -> R) -> R {
+        let mut host = Host::new(
+            self.now,
+            &mut *self.core.access,
+            &mut *self.core.management,
+            &mut *self.core.events,
+            &mut *self.out,
+            None,
+        );
+        f(&mut host)
+    }
+
+    /// The state of the Core's machine, by path
+    /// (`Receiving.Ready.Controlled.Available.Ready`).
+    pub fn core_state(&self) -> &'static str {
+        self.core.path
+    }
+
+    /// Sends `o` with the component's output (besides the call's reply).
+    pub fn send(&mut self, o: Outgoing) {
+        self.out.push(o);
+    }
 }
 
 impl<E> fmt::Debug for Cx<'_, E> {
