@@ -131,6 +131,11 @@ enum Cmd {
         /// enclosing workspace).
         #[arg(long)]
         member: bool,
+        /// An AS-4 crate: a service of its own on jaus-as4's definitions (inheriting
+        /// Access Control), its guards and actions, a node on UDP, a test in which an
+        /// AS-4 client drives it.
+        #[arg(long)]
+        as4: bool,
     },
 }
 
@@ -268,21 +273,25 @@ fn main() -> ExitCode {
             dir,
             sdk_path,
             member,
+            as4,
         } => {
             let mut c = jaus_gen::scaffold::NewCrate::new(&name);
             if let Some(p) = sdk_path {
                 c.sdk = jaus_gen::scaffold::Sdk::Path(p);
             }
             c.standalone = !member;
+            c.as4 = as4;
             let root = dir.join(&name);
             c.write(&root).map(|files| {
                 for f in files {
                     println!("wrote {}", f.display());
                 }
-                println!(
-                    "next: cd {} && cargo test && cargo run -- --seconds 10",
-                    root.display()
-                );
+                let run = if as4 {
+                    "cargo run -- --bind 127.0.0.1:3794 --id 30.1.5"
+                } else {
+                    "cargo run -- --seconds 10"
+                };
+                println!("next: cd {} && cargo test && {run}", root.display());
             })
         }
         Cmd::Generate {

@@ -4,6 +4,12 @@
 //! with modes, extending the SDK's definitions), `src/lib.rs` (the component's
 //! implementation and a node hosting it beside the SDK's stock Global Pose Sensor),
 //! `src/main.rs` (that node on UDP) and `tests/bus.rs` (a test on the in-process bus).
+//!
+//! `jaus-gen new --as4` writes an AS-4 crate instead: `defs/NAME.yaml` (`extends: as4`:
+//! vendor messages and a service inheriting Access Control), `build.rs` (generation on
+//! jaus-as4's definitions), `src/lib.rs` (the service's own guards and actions, a
+//! component and a UDP node hosting it), `src/main.rs` and `tests/udp.rs` (an AS-4
+//! client takes control and drives the service over UDP).
 
 use std::path::{Path, PathBuf};
 
@@ -45,6 +51,40 @@ const FILES: &[(&str, &str, &str)] = &[
     ),
 ];
 
+/// The files of a new AS-4 crate (`jaus-gen new --as4`): (path, template name, text).
+const FILES_AS4: &[(&str, &str, &str)] = &[
+    (
+        "Cargo.toml",
+        "as4/Cargo.toml.j2",
+        include_str!("../templates/new-as4/Cargo.toml.j2"),
+    ),
+    (
+        "build.rs",
+        "as4/build.rs.j2",
+        include_str!("../templates/new-as4/build.rs.j2"),
+    ),
+    (
+        "defs/{snake}.yaml",
+        "as4/defs.yaml.j2",
+        include_str!("../templates/new-as4/defs.yaml.j2"),
+    ),
+    (
+        "src/lib.rs",
+        "as4/lib.rs.j2",
+        include_str!("../templates/new-as4/lib.rs.j2"),
+    ),
+    (
+        "src/main.rs",
+        "as4/main.rs.j2",
+        include_str!("../templates/new-as4/main.rs.j2"),
+    ),
+    (
+        "tests/udp.rs",
+        "as4/test.rs.j2",
+        include_str!("../templates/new-as4/test.rs.j2"),
+    ),
+];
+
 /// Where the new crate takes the SDK from.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum Sdk {
@@ -65,6 +105,10 @@ pub struct NewCrate {
     /// Add an empty `[workspace]` table so that the crate builds on its own inside
     /// another workspace's directory tree (off for a member of a workspace).
     pub standalone: bool,
+    /// An AS-4 crate: a service of its own on jaus-as4's definitions (`extends: as4`,
+    /// inheriting Access Control), hosted on an AS-4 component, tested over UDP with an
+    /// AS-4 client; instead of RA 3.3 messages and a component.
+    pub as4: bool,
 }
 
 impl NewCrate {
@@ -74,6 +118,7 @@ impl NewCrate {
             name: name.into(),
             sdk: Sdk::Version(env!("CARGO_PKG_VERSION").to_string()),
             standalone: true,
+            as4: false,
         }
     }
 
@@ -100,26 +145,32 @@ impl NewCrate {
             })
             .collect::<Vec<_>>()
             .join(" ");
-        let (jaus_dep, gen_dep) = match &self.sdk {
-            Sdk::Version(v) => (format!("version = \"{v}\""), format!("version = \"{v}\"")),
+        let (jaus_dep, gen_dep, as4_dep) = match &self.sdk {
+            Sdk::Version(v) => (
+                format!("version = \"{v}\""),
+                format!("version = \"{v}\""),
+                format!("version = \"{v}\""),
+            ),
             Sdk::Path(p) => {
                 let p = p.to_string_lossy().replace('\\', "/");
                 (
                     format!("path = \"{p}/sdk\""),
                     format!("path = \"{p}/jaus-gen\""),
+                    format!("path = \"{p}/sdk/as4\""),
                 )
             }
         };
+        let files = if self.as4 { FILES_AS4 } else { FILES };
         let mut env = Environment::new();
         env.set_keep_trailing_newline(true);
-        for (_, name, text) in FILES {
+        for (_, name, text) in files {
             env.add_template(name, text)?;
         }
         let ctx = minijinja::context! {
             name => n, snake => &snake, title => &title, jaus_dep => jaus_dep,
-            gen_dep => gen_dep, standalone => self.standalone,
+            gen_dep => gen_dep, as4_dep => as4_dep, standalone => self.standalone,
         };
-        FILES
+        files
             .iter()
             .map(|(path, name, _)| {
                 let text = env.get_template(name)?.render(&ctx)?;

@@ -6,6 +6,8 @@
 //! an AS-4 client drives it over UDP. With one guard of the definition edited and
 //! regenerated, the running service does what the edited definition says.
 
+mod common;
+
 use std::net::{SocketAddr, UdpSocket};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
@@ -258,12 +260,10 @@ fn exchange(
     None
 }
 
-#[test]
-fn an_as4_client_drives_the_lamp_over_udp() {
-    let stop = Arc::new(AtomicBool::new(false));
+/// The lamp's node on a loopback socket, served by a thread until `stop`.
+fn serve(stop: Arc<AtomicBool>) -> (SocketAddr, std::thread::JoinHandle<()>) {
     let socket = UdpSocket::bind("127.0.0.1:0").unwrap();
     let peer = socket.local_addr().unwrap();
-    let s = stop.clone();
     let node = std::thread::spawn(move || {
         let now = Instant::now();
         let ra33: Node = Node::new(
@@ -276,8 +276,15 @@ fn an_as4_client_drives_the_lamp_over_udp() {
         );
         let as4: As4Node<()> = As4Node::new(()).with_component(component());
         let mut mux = As4Mux::new(ra33, as4, As4Config::default());
-        jaus::net::udp::run_on(&mut mux, &socket, &s, None, |_| {}).expect("the lamp's node");
+        jaus::net::udp::run_on(&mut mux, &socket, &stop, None, |_| {}).expect("the lamp's node");
     });
+    (peer, node)
+}
+
+#[test]
+fn an_as4_client_drives_the_lamp_over_udp() {
+    let stop = Arc::new(AtomicBool::new(false));
+    let (peer, node) = serve(stop.clone());
 
     let client = UdpSocket::bind("127.0.0.1:0").unwrap();
     client
@@ -320,4 +327,41 @@ fn an_as4_client_drives_the_lamp_over_udp() {
     );
     stop.store(true, Ordering::Relaxed);
     node.join().unwrap();
+}
+
+#[test]
+fn the_command_line_names_the_vendors_messages() {
+    let stop = Arc::new(AtomicBool::new(false));
+    let (peer, node) = serve(stop.clone());
+    let defs = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("as4-vendor");
+    let out = std::process::Command::new(common::jaus_bin())
+        .args([
+            "as4-send",
+            "--peer",
+            &peer.to_string(),
+            "--to",
+            "30.1.5",
+            "--wait",
+            "0.5",
+        ])
+        .arg("--as4-spec")
+        .arg(&defs)
+        .args(["--control", "10"])
+        .arg(r#"{"message": "SetLampLevel", "fields": {"level": 64}}"#)
+        .arg(r#"{"message": "QueryLampLevel"}"#)
+        .output()
+        .unwrap();
+    stop.store(true, Ordering::Relaxed);
+    node.join().unwrap();
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{text}{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(
+        text.lines()
+            .any(|l| l.contains(r#""message":"ReportLampLevel","fields":{"level":64}"#)),
+        "{text}"
+    );
 }

@@ -36,12 +36,14 @@ pub struct As4TalkArgs {
     /// The component's AS-4 id (subsystem.node.component).
     #[arg(long)]
     pub to: String,
-    /// Directories of YAML definitions loaded on jaus-as4's (a vendor's messages).
-    #[arg(long)]
+    /// Directories of YAML definitions loaded on jaus-as4's (a vendor's messages and
+    /// services, `extends: as4`). Not `--spec`: that is the RA 3.3 overlay of every
+    /// command.
+    #[arg(id = "as4_spec", long = "as4-spec", value_name = "DIR")]
     pub spec: Vec<PathBuf>,
     /// Directories of JSIDL to import and use instead of jaus-as4's definitions (give
     /// every set the services need, e.g. Core v1.1 with the vendor's).
-    #[arg(long, conflicts_with = "spec")]
+    #[arg(long, conflicts_with = "as4_spec")]
     pub jsidl: Vec<PathBuf>,
     /// Take control at this authority before the messages, give it back after.
     #[arg(long)]
