@@ -241,6 +241,12 @@ pub(crate) enum Cmd {
         /// what arrives); default: until every message is answered or --wait passed.
         #[arg(long)]
         hold: Option<f64>,
+        /// Confirm every command by its effect and print the outcome of each
+        /// (acknowledged; confirmed by read-back, for a component that never
+        /// acknowledges, by its `readback:` query or Query Component Status; refused; not
+        /// confirmed, with what is known); exits 1 when one is not confirmed.
+        #[arg(long)]
+        confirm: bool,
         /// Messages: {"message": "SetTravelSpeed", "fields": {"speed": 2.0}}; `fields` may
         /// be left out for a message without fields. None: JSON lines from stdin.
         messages: Vec<String>,
@@ -350,6 +356,9 @@ pub(crate) struct NetArgs {
     /// Seconds to wait for answers (discover: to listen).
     #[arg(long, default_value_t = 2.0)]
     pub(crate) wait: f64,
+    /// Confirm every command by its effect (`send --confirm` sets it).
+    #[arg(skip)]
+    pub(crate) confirm: bool,
 }
 
 impl NetArgs {
@@ -386,6 +395,7 @@ impl NetArgs {
             framing,
             wait: std::time::Duration::from_secs_f64(self.wait.max(0.0)),
             mode: self.mode,
+            confirm: self.confirm,
         })
     }
 }

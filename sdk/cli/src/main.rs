@@ -385,12 +385,13 @@ fn main() -> ExitCode {
             }),
         ),
         Cmd::Send {
-            net,
+            mut net,
             to,
             hold,
+            confirm,
             messages,
-        } => report(
-            &mut err,
+        } => report(&mut err, {
+            net.confirm = confirm;
             session(
                 &catalogue,
                 &net,
@@ -402,8 +403,8 @@ fn main() -> ExitCode {
                 false,
                 &mut out,
             )
-            .map(|_| ()),
-        ),
+            .map(|_| ())
+        }),
         Cmd::Query { net, to, messages } => report(
             &mut err,
             session(

@@ -140,6 +140,7 @@ fn _jaus(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Client>()?;
     m.add_class::<Control>()?;
     m.add_class::<Watch>()?;
+    m.add_class::<client::Confirmation>()?;
     m.add("JausError", py.get_type::<JausError>())?;
     m.add("DecodeError", py.get_type::<DecodeError>())?;
     m.add("EncodeError", py.get_type::<EncodeError>())?;

@@ -24,6 +24,7 @@
 //! its own (127.0.0.2, .3, ...) when the peers are on loopback, else `0.0.0.0:3794`.
 
 mod attach;
+pub mod confirm;
 mod demo;
 mod links_file;
 mod node;
@@ -38,7 +39,7 @@ pub use demo::demo_operator;
 pub use links_file::{LinkFile, QuicLinkFile};
 pub use node::{node, tree_json, NodeFile, TreePrinter};
 pub use place::{
-    bind_socket, default_me, flush, silence_hint, Client, Commander, Link, Mode, Tool,
+    bind_socket, default_me, flush, flush_seen, silence_hint, Client, Commander, Link, Mode, Tool,
 };
 pub use policy_file::{PolicyFile, RuleFile};
 pub use port::{carrier_of, Carrier, Port, SERIAL_FAR_END};

@@ -64,6 +64,10 @@ pub struct Client {
     /// its node's and subsystem's when it runs a node of its own). The CLI's is
     /// `jaus CLI`.
     pub name: String,
+    /// Confirm every command of a session by its effect (`jaus send --confirm`,
+    /// [`confirm`](super::confirm)): acknowledged, confirmed by read-back, refused or
+    /// not confirmed, printed per command.
+    pub confirm: bool,
 }
 
 /// The CLI's own component: a System Commander whose runtime answers the discovery
@@ -176,6 +180,15 @@ impl Link {
             .filter(|a| a.subsystem == to.subsystem && a.node == to.node)
             .collect();
         Some((on_node.contains(&to), on_node))
+    }
+
+    /// Whether `to` is asked for acknowledgements: false once this tool's node learnt
+    /// that it never gives one (always true when joined to a node).
+    pub fn acknowledges(&self, to: Address) -> bool {
+        match self {
+            Link::Node(n) => n.acknowledges(to),
+            Link::Attached(_) => true,
+        }
     }
 
     /// Whether messages to `to` can go now (its node located, or attached).
@@ -381,7 +394,14 @@ impl Client {
 }
 /// Sends every datagram `host` has queued on `port`.
 pub fn flush(host: &mut dyn Participant, port: &mut Port) {
+    flush_seen(host, port, |_| {});
+}
+
+/// [`flush`], showing `seen` each datagram as it goes (to see when a command held by
+/// the node leaves).
+pub fn flush_seen(host: &mut dyn Participant, port: &mut Port, mut seen: impl FnMut(&[u8])) {
     while let Some(Datagram { to, bytes, .. }) = host.poll_transmit() {
+        seen(&bytes);
         if let Err(e) = port.send_to(&bytes, to) {
             tracing::debug!(%to, "send failed: {e}");
         }

@@ -15,8 +15,9 @@ use jaus::wire::{AckNak, MessageClass};
 use jaus::{Address, CommandCode, Header, JausMessage};
 
 use super::{
+    confirm::{self, Check, Confirmation, Confirming, Habit, Habits, Step},
     output::{unix_now, AckLine, RawLine, Tap, Tapped},
-    place::{flush, Client, Link},
+    place::{flush, flush_seen, Client, Link},
     port::Port,
 };
 
@@ -72,6 +73,9 @@ pub struct Outcome {
     /// Another node answers as this tool's node (`--me`'s subsystem and node): the
     /// session stopped.
     pub conflict: Option<String>,
+    /// With [`Client::confirm`]: how each command ended (destination, name, outcome),
+    /// in the order sent. A command not confirmed is also in `unacknowledged`.
+    pub confirmations: Vec<(Address, String, Confirmation)>,
 }
 
 /// A message given to the CLI, in the shape [`jaus::json::parse_message`] reads
@@ -124,6 +128,10 @@ impl Client {
         // Reasons given by Report Refusal, until their NAK arrives.
         let mut reasons: Vec<(Address, CommandCode, String)> = Vec::new();
         let mut opened = false;
+        // The command being confirmed by its effect (`confirm`), and what is learnt of
+        // the components' acknowledgements.
+        let mut confirming: Option<Confirming> = None;
+        let mut habits = Habits::default();
         let mut tap = Tap {
             me,
             framing: self.framing,
@@ -171,7 +179,7 @@ impl Client {
             if pending.is_some_and(|p| now >= p.3) {
                 pending = None;
             }
-            if pending.is_none() {
+            if pending.is_none() && confirming.is_none() {
                 if let Some((to, next)) = queue.front() {
                     let waited = now.saturating_duration_since(t0);
                     let ready = (link.reaches(*to) || waited > Duration::from_millis(300))
@@ -203,7 +211,28 @@ impl Client {
                         } else {
                             step
                         };
-                        pending = Some((answer, to, code, now + wait));
+                        if self.confirm && class == MessageClass::Command {
+                            let check = confirm::checks().map_or_else(
+                                || Check::Nothing("the definitions did not load".into()),
+                                |c| c.of(code, &body),
+                            );
+                            let habit = if link.acknowledges(to) {
+                                habits.of(to)
+                            } else {
+                                Habit::Silent
+                            };
+                            confirming = Some(Confirming::new(
+                                to,
+                                code,
+                                msg.name(),
+                                check,
+                                habit,
+                                now,
+                                self.wait,
+                            ));
+                        } else {
+                            pending = Some((answer, to, code, now + wait));
+                        }
                         link.send(now, header, body);
                         outcome.sent += 1;
                         last_sent = Some(now);
@@ -219,8 +248,52 @@ impl Client {
                         .extend(script.service_connections.iter().copied());
                 }
             }
+            // The command being confirmed: its read-back asked, or its end.
+            if let Some(c) = &mut confirming {
+                match c.poll(now) {
+                    Step::Idle => {}
+                    Step::Ask(code, body) => link.send(now, Header::new(code, c.to, me), body),
+                    Step::Done(end) => {
+                        if let Some(acks) = c.learnt() {
+                            habits.learn(c.to, acks);
+                        }
+                        let (to, code, name) = (c.to, c.code, c.name.clone());
+                        confirming = None;
+                        if let Some(i) = awaiting_ack
+                            .iter()
+                            .position(|(a, k)| *a == to && *k == code)
+                        {
+                            awaiting_ack.remove(i);
+                        }
+                        let text = format!("{name} to {to}: {end}");
+                        let _ = writeln!(err, "{text}");
+                        let line = serde_json::json!({
+                            "t": now.saturating_duration_since(t0).as_secs_f64(),
+                            "utc": unix_now(),
+                            "confirm": name,
+                            "to": to.to_string(),
+                            "outcome": end.outcome(),
+                            "detail": end.detail(),
+                        });
+                        let _ = writeln!(out, "{line}");
+                        let _ = out.flush();
+                        outcome.printed += 1;
+                        match &end {
+                            Confirmation::ReadBack(_) => outcome.answered += 1,
+                            Confirmation::NotConfirmed(_) => outcome.unacknowledged.push(text),
+                            Confirmation::Refused(d)
+                                if d.starts_with("Confirm Component Control") =>
+                            {
+                                outcome.rejected += 1;
+                            }
+                            _ => {}
+                        }
+                        outcome.confirmations.push((to, name, end));
+                    }
+                }
+            }
             // Done?
-            let idle = queue.is_empty() && pending.is_none() && !stdin_open;
+            let idle = queue.is_empty() && pending.is_none() && confirming.is_none() && !stdin_open;
             if idle && !done {
                 let since = last_sent.unwrap_or(t0);
                 let all_answered = outcome.answered >= outcome.sent;
@@ -276,14 +349,20 @@ impl Client {
                                 {
                                     awaiting_ack.remove(i);
                                 }
-                                if h.ack_nak == AckNak::Nak {
+                                let nak = h.ack_nak == AckNak::Nak;
+                                let reason = reasons
+                                    .iter()
+                                    .position(|(a, c, _)| *a == h.source && *c == h.command_code)
+                                    .filter(|_| nak)
+                                    .map(|i| reasons.remove(i).2);
+                                if let Some(c) = confirming
+                                    .as_mut()
+                                    .filter(|c| c.to.matches(&h.source) && c.code == h.command_code)
+                                {
+                                    c.ack(nak, reason.as_deref());
+                                }
+                                if nak {
                                     outcome.naks += 1;
-                                    let reason = reasons
-                                        .iter()
-                                        .position(|(a, c, _)| {
-                                            *a == h.source && *c == h.command_code
-                                        })
-                                        .map(|i| reasons.remove(i).2);
                                     let text = format!(
                                         "NAK from {} for {name}: {}",
                                         h.source,
@@ -321,6 +400,12 @@ impl Client {
                                         controlled.push(from_addr);
                                     }
                                     Message::ReportRefusal(r) => {
+                                        if let Some(c) = confirming.as_mut().filter(|c| {
+                                            c.to.matches(&from_addr)
+                                                && c.code == CommandCode(r.refused_code)
+                                        }) {
+                                            c.refused(&r.text);
+                                        }
                                         // The reason of the NAK that follows.
                                         if reasons.len() >= 64 {
                                             reasons.remove(0);
@@ -342,6 +427,13 @@ impl Client {
                                         requested.retain(|a| *a != from_addr);
                                     }
                                     _ => {}
+                                }
+                                if let (Some(c), Some(checks)) =
+                                    (confirming.as_mut(), confirm::checks())
+                                {
+                                    if let Ok(body) = p.message.to_bytes() {
+                                        c.message(checks, from_addr, code, &body);
+                                    }
                                 }
                                 let answer = pending.is_some_and(|q| {
                                     q.0 == Some(code) && q.1.matches(&p.header.source)
@@ -382,8 +474,14 @@ impl Client {
                 Err(e) => return Err(format!("{local}: {e}")),
             }
             let host = link.host();
-            host.handle_timeout(Instant::now());
-            flush(host, &mut port);
+            let now = Instant::now();
+            host.handle_timeout(now);
+            let framing = self.framing;
+            flush_seen(host, &mut port, |d| {
+                if let Some(c) = &mut confirming {
+                    c.leaving(framing, d, now);
+                }
+            });
         }
         // Commands nobody acknowledged, with what the system tree says of them.
         for (to, code) in awaiting_ack {

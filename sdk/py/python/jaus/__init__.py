@@ -21,6 +21,7 @@ from . import _jaus
 from ._aio import AsyncWatch
 from ._jaus import (
     ClientError,
+    Confirmation,
     Control,
     ControlRefused,
     DecodeError,

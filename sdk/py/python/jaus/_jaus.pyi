@@ -1,7 +1,20 @@
 """Type stubs of the extension module ``jaus._jaus`` (re-exported by ``jaus``)."""
 
 import os
-from typing import Any, Dict, Generic, Iterator, List, Optional, Sequence, Tuple, TypeVar, Union
+from typing import (
+    Any,
+    Dict,
+    Generic,
+    Iterator,
+    List,
+    Literal,
+    Optional,
+    Sequence,
+    Tuple,
+    TypeVar,
+    Union,
+    overload,
+)
 
 Address = Union[Tuple[int, int, int, int], str]
 """``(subsystem, node, component, instance)``, or ``"s.n.c.i"``."""
@@ -40,6 +53,11 @@ class ClientError(JausError):
     """The component the message went to, when known."""
     response_code: Optional[str]
     """``jaus.ControlRefused`` only: the response code."""
+    outcome: str
+    """``send(..., confirm=True)`` only: ``"refused"`` or ``"not_confirmed"``."""
+    detail: str
+    """``send(..., confirm=True)`` only: what is known (the refusal's reason, what the
+    read-back showed, whether the component acknowledges)."""
 
 class ControlRefused(ClientError):
     """A control request refused: ``response_code`` is ``"InsufficientAuthority"`` or
@@ -242,6 +260,18 @@ class Control:
     def __enter__(self) -> "Control": ...
     def __exit__(self, *args: Any) -> bool: ...
 
+class Confirmation:
+    """How a command sent with ``Client.send(..., confirm=True)`` took effect."""
+
+    @property
+    def outcome(self) -> Literal["acknowledged", "confirmed_by_readback"]:
+        """``"acknowledged"`` (an ACK) or ``"confirmed_by_readback"`` (no ACK; the
+        read-back shows the effect)."""
+    @property
+    def detail(self) -> str:
+        """What the read-back showed (``"Report Travel Speed 2.44 m/s"``); empty for an
+        acknowledgement."""
+
 class Client:
     """A member of a JAUS system, joined as the ``jaus`` CLI joins it."""
 
@@ -266,9 +296,26 @@ class Client:
     def closed(self) -> bool: ...
     def tree(self) -> Dict[str, Any]:
         """The system tree as ``jaus discover --json`` prints it."""
+    @overload
     def send(
-        self, dest: Address, message: Message, *, ack: bool = False, timeout: Optional[float] = None
+        self,
+        dest: Address,
+        message: Message,
+        *,
+        ack: bool = False,
+        confirm: Literal[False] = False,
+        timeout: Optional[float] = None,
     ) -> None: ...
+    @overload
+    def send(
+        self,
+        dest: Address,
+        message: Message,
+        *,
+        ack: bool = False,
+        confirm: Literal[True],
+        timeout: Optional[float] = None,
+    ) -> Confirmation: ...
     def query(
         self,
         dest: Address,

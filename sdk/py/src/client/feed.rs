@@ -32,13 +32,16 @@ impl Failure {
 /// A request from Python to the I/O thread.
 #[derive(Debug)]
 pub(crate) enum Cmd {
-    /// A message to send; `ack`: wait for its ACK or NAK.
+    /// A message to send; `ack`: wait for its ACK or NAK; `confirm`: confirm it by its
+    /// effect ([`jaus_cli::net::confirm`]).
     Send {
         to: Address,
         code: CommandCode,
         name: &'static str,
         body: Vec<u8>,
         ack: Option<(Duration, Reply<()>)>,
+        /// Confirm it by its effect, reading back for at most this long: how it ended.
+        confirm: Option<(Duration, Reply<jaus_cli::net::confirm::Confirmation>)>,
     },
     /// A query; the answer is the message with code `answer` from `to`.
     Query {

@@ -15,7 +15,8 @@ use jaus::net::framing::{Reassembler, ReassemblyLimits};
 use jaus::wire::{AckNak, MessageClass};
 use jaus::{Address, CommandCode, Header};
 use jaus_cli::catalogue::Catalogue;
-use jaus_cli::net::{flush, Link};
+use jaus_cli::net::confirm::{self, Check, Confirmation, Confirming, Habit, Habits, Step};
+use jaus_cli::net::{flush, flush_seen, Link};
 
 use super::feed::{Cmd, Failure, Feed, Reply, Stats};
 use crate::catalog::Catalog;
@@ -28,6 +29,8 @@ const KNOWN_BY: Duration = Duration::from_millis(2500);
 const POLL: Duration = Duration::from_millis(5);
 /// Refusal reasons kept until their NAK comes.
 const MAX_REASONS: usize = 64;
+/// Commands being confirmed by their effect at once, at most.
+const MAX_CONFIRMS: usize = 256;
 
 /// What the thread says once it has taken its place (or could not).
 #[derive(Debug, Clone)]
@@ -97,6 +100,10 @@ pub(crate) struct Io {
     watches: Vec<WatchState>,
     reasons: Vec<(Address, CommandCode, String)>,
     next_request: u8,
+    /// Commands being confirmed by their effect, each with its answer.
+    confirms: Vec<(Confirming, Reply<Confirmation>)>,
+    /// What is known of each component's acknowledgements (for the client's life).
+    habits: Habits,
 }
 
 fn answer<T>(reply: &Reply<T>, r: Result<T, Failure>) {
@@ -147,6 +154,8 @@ impl Io {
             watches: Vec::new(),
             reasons: Vec::new(),
             next_request: 1,
+            confirms: Vec::new(),
+            habits: Habits::default(),
         })
     }
 
@@ -221,6 +230,7 @@ impl Io {
                 break;
             }
             self.expire(Instant::now());
+            self.confirm(Instant::now());
             self.turn();
         }
         self.finish();
@@ -257,8 +267,14 @@ impl Io {
             Err(_) => add(&self.stats.send_errors),
         }
         let host = self.link.host();
-        host.handle_timeout(Instant::now());
-        flush(host, &mut self.port);
+        let now = Instant::now();
+        host.handle_timeout(now);
+        let (framing, confirms) = (self.client.framing, &mut self.confirms);
+        flush_seen(host, &mut self.port, |d| {
+            for (c, _) in confirms.iter_mut() {
+                c.leaving(framing, d, now);
+            }
+        });
         self.poll_tool();
     }
 
@@ -313,10 +329,39 @@ impl Io {
                 name,
                 body,
                 ack,
+                confirm,
             } => {
                 // Commands ask for an acknowledgement, as the CLI's do.
                 let is_command = self.codes.class_of(code) == MessageClass::Command;
-                self.send(to, code, body, is_command || ack.is_some());
+                let confirming = confirm.map(|(wait, reply)| {
+                    let check = confirm::checks().map_or_else(
+                        || Check::Nothing("the definitions did not load".into()),
+                        |c| c.of(code, &body),
+                    );
+                    let habit = if self.link.acknowledges(to) {
+                        self.habits.of(to)
+                    } else {
+                        Habit::Silent
+                    };
+                    let c = Confirming::new(to, code, name, check, habit, now, wait);
+                    (c, reply)
+                });
+                if let Some((_, reply)) = &confirming {
+                    if self.confirms.len() >= MAX_CONFIRMS {
+                        let text = format!("{name}: {MAX_CONFIRMS} commands are being confirmed already; wait for one");
+                        answer(reply, Err(Failure::new(text)));
+                        return;
+                    }
+                }
+                self.send(
+                    to,
+                    code,
+                    body,
+                    is_command || ack.is_some() || confirming.is_some(),
+                );
+                if let Some(c) = confirming {
+                    self.confirms.push(c);
+                }
                 if let Some((wait, reply)) = ack {
                     self.acks.push(PendingAck {
                         to,
@@ -466,6 +511,29 @@ impl Io {
         w.feed.end(why);
     }
 
+    /// Drives the commands being confirmed: their read-backs asked, their ends
+    /// answered (and what they taught of their components remembered).
+    fn confirm(&mut self, now: Instant) {
+        let mut i = 0;
+        while i < self.confirms.len() {
+            match self.confirms[i].0.poll(now) {
+                Step::Idle => i += 1,
+                Step::Ask(code, body) => {
+                    let to = self.confirms[i].0.to;
+                    self.send(to, code, body, false);
+                    i += 1;
+                }
+                Step::Done(end) => {
+                    let (c, reply) = self.confirms.remove(i);
+                    if let Some(acks) = c.learnt() {
+                        self.habits.learn(c.to, acks);
+                    }
+                    answer(&reply, Ok(end));
+                }
+            }
+        }
+    }
+
     /// Answers what waited too long.
     fn expire(&mut self, now: Instant) {
         let waited = |d: Instant| now >= d;
@@ -554,6 +622,9 @@ impl Io {
         }
         for a in self.acks.drain(..) {
             answer(&a.reply, Err(Failure::new("the client closed")));
+        }
+        for (_, reply) in self.confirms.drain(..) {
+            answer(&reply, Err(Failure::new("the client closed")));
         }
         // The component's next tick sends the releases and the ends of the service
         // connections (as the CLI's session ends).

@@ -3,6 +3,7 @@
 //! heartbeats, its System Commander) and answers Python's `send`, `query`,
 //! `control` and `watch`; Python waits with the GIL released.
 
+mod confirmation;
 mod feed;
 mod io;
 
@@ -25,6 +26,7 @@ use crate::errors::{client_error, decode_error_text};
 use crate::message::Message;
 use crate::packet::address;
 use crate::schema::Schema;
+pub use confirmation::Confirmation;
 use feed::{Cmd, Failure, Feed, Pop, Reply, Stats};
 use io::{Io, Joined};
 
@@ -251,6 +253,8 @@ impl Client {
             framing: Framing::Judp,
             wait: timeout,
             mode,
+            // Python asks per command (`send(..., confirm=True)`).
+            confirm: false,
         };
         let cat = match schema {
             Some(s) => s.cat.clone(),
@@ -335,29 +339,71 @@ impl Client {
 
     /// Sends `message` to `dest`. Commands ask for an acknowledgement as the CLI's do;
     /// with `ack=True` this waits for it and raises `jaus.ClientError` on a NAK (with
-    /// the receiver's reason) or when none comes within `timeout`.
-    #[pyo3(signature = (dest, message, *, ack = false, timeout = None))]
+    /// the receiver's reason) or when none comes within `timeout`. With
+    /// `confirm=True` it confirms the command by its effect and returns a
+    /// `jaus.Confirmation` (`.outcome` `"acknowledged"` or `"confirmed_by_readback"`,
+    /// `.detail`), or raises `jaus.ClientError` (`.outcome` `"refused"` or
+    /// `"not_confirmed"`, `.detail` naming what is known); `ack` is then implied.
+    #[pyo3(signature = (dest, message, *, ack = false, confirm = false, timeout = None))]
+    #[allow(clippy::too_many_arguments)]
     fn send(
         &self,
         py: Python<'_>,
         dest: &Bound<'_, PyAny>,
         message: PyRef<'_, Message>,
         ack: bool,
+        confirm: bool,
         timeout: Option<f64>,
-    ) -> PyResult<()> {
+    ) -> PyResult<Option<Confirmation>> {
         let to = address(dest, "dest")?;
         let (code, name, body) = Client::body(py, &message)?;
-        if !ack {
-            return self.submit(
+        if confirm {
+            let limit = self.limit(timeout)?;
+            // The command's departure (its node may hold it behind an unanswered one),
+            // the acknowledgement waited for (at most `limit`), then the read-back.
+            let end = self.call(
                 py,
-                Cmd::Send {
+                limit.saturating_mul(2) + jaus_cli::net::confirm::HELD_AT_MOST,
+                |reply| Cmd::Send {
                     to,
                     code,
                     name,
                     body,
                     ack: None,
+                    confirm: Some((limit, reply)),
                 },
+                Some(name),
+                Some(to),
+            )?;
+            if end.confirmed() {
+                return Ok(Some(Confirmation::of(&end)));
+            }
+            let err = client_error(
+                py,
+                format!("{name} to {to}: {end}"),
+                Some(name),
+                Some(to.to_string()),
+                None,
             );
+            let value = err.value(py);
+            value.setattr("outcome", end.outcome())?;
+            value.setattr("detail", end.detail())?;
+            return Err(err);
+        }
+        if !ack {
+            return self
+                .submit(
+                    py,
+                    Cmd::Send {
+                        to,
+                        code,
+                        name,
+                        body,
+                        ack: None,
+                        confirm: None,
+                    },
+                )
+                .map(|()| None);
         }
         let limit = self.limit(timeout)?;
         self.call(
@@ -369,10 +415,12 @@ impl Client {
                 name,
                 body,
                 ack: Some((limit, reply)),
+                confirm: None,
             },
             Some(name),
             Some(to),
         )
+        .map(|()| None)
     }
 
     /// Sends the query `message` to `dest` and returns its report (`report` names the

@@ -48,6 +48,12 @@ impl Io {
             }
             _ => {}
         }
+        // The read-back of a command being confirmed.
+        if let Some(checks) = jaus_cli::net::confirm::checks() {
+            for (c, _) in &mut self.confirms {
+                claimed |= c.message(checks, from, code, &body);
+            }
+        }
         // The answer to a query.
         if let Some(i) = self
             .queries
@@ -91,6 +97,13 @@ impl Io {
             .iter()
             .position(|(a, c, _)| *a == h.source && *c == h.command_code)
             .map(|i| self.reasons.remove(i).2);
+        if let Some((c, _)) = self
+            .confirms
+            .iter_mut()
+            .find(|(c, _)| c.to.matches(&h.source) && c.code == h.command_code)
+        {
+            c.ack(nak, reason.as_deref());
+        }
         if let Some(i) = self
             .acks
             .iter()
@@ -114,6 +127,13 @@ impl Io {
     }
 
     fn refusal(&mut self, from: Address, r: &ReportRefusal) {
+        if let Some((c, _)) = self
+            .confirms
+            .iter_mut()
+            .find(|(c, _)| c.to.matches(&from) && c.code == CommandCode(r.refused_code))
+        {
+            c.refused(&r.text);
+        }
         if self.reasons.len() >= MAX_REASONS {
             self.reasons.remove(0);
         }
