@@ -211,6 +211,20 @@ impl<'a> Importer<'a> {
                 let alts: Vec<_> = elements(def.node)
                     .filter(|c| tag(*c) != "vtag_field")
                     .collect();
+                if alts.is_empty() {
+                    // A variant of no alternatives (a "nothing here" alternative of
+                    // another): its tag alone is on the wire, a record of that field.
+                    t.kind = TypeKind::Record;
+                    let repr = t.repr.take().unwrap_or_else(|| "u8".into());
+                    t.fields.push(FieldDef {
+                        name: "vtag".into(),
+                        ty: repr,
+                        description: Some(format!(
+                            "The tag of a variant of no alternatives ({first})."
+                        )),
+                        ..FieldDef::default()
+                    });
+                }
                 for (i, a) in alts.into_iter().enumerate() {
                     let a = self.at(def, a);
                     let ty = self.container_type(a, &tname)?;
@@ -263,5 +277,117 @@ impl<'a> Importer<'a> {
             }
             _ => Err(self.err(body, "a body holds one record, list, variant or sequence")),
         }
+    }
+}
+
+/// The most elements an array may have: each is a field of its record.
+const MAX_ARRAY: usize = 256;
+
+impl<'a> Importer<'a> {
+    /// A fixed-count array (`array` with its `dimension`s) as a named record of one
+    /// field per element, in row-major order (`position_0`, `position_1`, …; `cell_1_2`
+    /// for two dimensions): the same bytes as the array, as the definition language has
+    /// no list of a fixed element count.
+    pub fn array(&mut self, def: At<'a>, owner: &str, mode: Mode) -> Result<String> {
+        let name = self.req(def, "name")?;
+        let key = def.key();
+        let tname = self.type_name(def, owner, name);
+        if self.types_done(key) {
+            if self.busy.contains(&key) {
+                return Err(self.err(def, format!("`{name}` contains itself")));
+            }
+            return Ok(tname);
+        }
+        let mut dims = Vec::new();
+        for d in elements(def.node).filter(|c| tag(*c) == "dimension") {
+            let d = self.at(def, d);
+            let n = self.number(d, "size")?;
+            if n == 0 {
+                return Err(self.err(d, "a dimension of size 0"));
+            }
+            dims.push(n);
+        }
+        let total = dims
+            .iter()
+            .try_fold(1usize, |acc, n| acc.checked_mul(*n))
+            .filter(|n| *n <= MAX_ARRAY);
+        let Some(total) = total.filter(|_| !dims.is_empty()) else {
+            return Err(self.err(
+                def,
+                format!("an array has 1 to {MAX_ARRAY} elements in one or more <dimension>s, found dimensions {dims:?}"),
+            ));
+        };
+        let items: Vec<_> = elements(def.node)
+            .filter(|c| tag(*c) != "dimension")
+            .collect();
+        let [item] = items[..] else {
+            return Err(self.err(
+                def,
+                format!("an array holds one kind of element, found {}", items.len()),
+            ));
+        };
+        let item = self.at(def, item);
+        self.busy.push(key);
+        let elem_tag = tag(item.node)
+            .strip_prefix("declared_")
+            .unwrap_or(tag(item.node));
+        let mut elem = if CONTAINERS.contains(&elem_tag) {
+            FieldDef {
+                name: snake(self.req(item, "name")?),
+                ty: self.container_type(item, &tname)?,
+                ..FieldDef::default()
+            }
+        } else {
+            let mut v = self.record_field(item, &tname, None, mode)?;
+            match v.len() {
+                1 => v.remove(0),
+                _ => {
+                    return Err(self.err(
+                        item,
+                        "an array element is one field (a variable format field is two)",
+                    ))
+                }
+            }
+        };
+        self.busy.retain(|k| *k != key);
+        let what = elem.description.take();
+        let mut fields = Vec::with_capacity(total);
+        for i in 0..total {
+            // The index of each dimension, the last one varying fastest.
+            let mut rest = i;
+            let mut idx = vec![0; dims.len()];
+            for (slot, n) in idx.iter_mut().zip(dims.iter()).rev() {
+                *slot = rest % n;
+                rest /= n;
+            }
+            let suffix: Vec<String> = idx.iter().map(ToString::to_string).collect();
+            fields.push(FieldDef {
+                name: format!("{}_{}", elem.name, suffix.join("_")),
+                ..elem.clone()
+            });
+        }
+        let shape: Vec<String> = dims.iter().map(ToString::to_string).collect();
+        let t = TypeDef {
+            name: tname.clone(),
+            kind: TypeKind::Record,
+            repr: None,
+            description: join(&[
+                interpretation(def.node),
+                Some(format!(
+                    "An array of {} `{}` ({}), in row-major order.",
+                    total,
+                    elem.name,
+                    shape.join(" × ")
+                )),
+                what,
+            ]),
+            presence: None,
+            fields,
+            values: Vec::new(),
+            bits: Vec::new(),
+            variants: Vec::new(),
+        };
+        self.add_type(def, t);
+        Ok(tname)
     }
 }

@@ -41,8 +41,9 @@ pub enum Error {
         /// What is wrong, and what the model lacks.
         message: String,
     },
-    /// Two JSIDL files declare the same set (URI and version).
-    #[error("{}: declares {id} version {version}, as {} does", file.display(), first.display())]
+    /// Two JSIDL files declare the same set (URI and version) differently (the same
+    /// set declared twice alike is read once).
+    #[error("{}: declares {id} version {version}, as {} does, differently: {difference}", file.display(), first.display())]
     Duplicate {
         /// The second file.
         file: PathBuf,
@@ -52,7 +53,12 @@ pub enum Error {
         id: String,
         /// Its version.
         version: String,
+        /// The first difference, with its line and column in each file.
+        difference: String,
     },
+    /// Every error of a run, in the order of the files (more than one).
+    #[error("{} errors:\n{}", .0.len(), .0.iter().map(ToString::to_string).collect::<Vec<_>>().join("\n"))]
+    Many(Vec<Error>),
     /// The model could not be written as YAML.
     #[error("{file}: cannot write the YAML: {source}")]
     Yaml {
@@ -65,6 +71,25 @@ pub enum Error {
     /// across the imported sets).
     #[error("the imported definitions do not validate:\n{0}")]
     Spec(#[from] jaus_spec::SpecErrors),
+}
+
+impl Error {
+    /// The errors one error stands for: itself, or each of [`Error::Many`].
+    pub fn all(&self) -> Vec<&Error> {
+        match self {
+            Error::Many(v) => v.iter().collect(),
+            e => vec![e],
+        }
+    }
+
+    /// One error for a list of them (`None` for none).
+    pub(crate) fn of(mut v: Vec<Error>) -> Option<Error> {
+        match v.len() {
+            0 => None,
+            1 => v.pop(),
+            _ => Some(Error::Many(v)),
+        }
+    }
 }
 
 /// Result of the importer.

@@ -4,6 +4,7 @@
 //! of all that vary in length.
 
 use crate::error::Result;
+use crate::expr;
 use crate::import::{At, Importer};
 use crate::names::{pascal, snake};
 use crate::xml::{child, elements, interpretation, tag};
@@ -142,12 +143,7 @@ impl<'a> Importer<'a> {
             }
             "variable_format_field" => return self.variable_format_field(def, f, mode),
             "variable_field" => f.ty = self.variable_field(def, owner)?,
-            "array" => {
-                return Err(self.err(
-                    el,
-                    "arrays are not supported: the definition language has no list of a fixed element count",
-                ))
-            }
+            "array" => f.ty = self.array(def, owner, mode)?,
             other => {
                 return Err(self.err(el, format!("<{other}> is not a field of a record")));
             }
@@ -156,7 +152,7 @@ impl<'a> Importer<'a> {
     }
 
     /// An unsigned integer attribute: a number, or a declared constant's name.
-    fn number(&self, at: At<'a>, attr: &str) -> Result<usize> {
+    pub fn number(&self, at: At<'a>, attr: &str) -> Result<usize> {
         let x = self.real(at, attr)?;
         if x >= 0.0 && x.fract() == 0.0 && x <= f64::from(u32::MAX) {
             Ok(x as usize)
@@ -165,27 +161,36 @@ impl<'a> Importer<'a> {
         }
     }
 
-    /// A real attribute: a number, or the name of a declared constant
-    /// (`constants.PI`), possibly negated; other expressions are refused.
+    /// A real attribute: a number, the name of a declared constant (`constants.PI`),
+    /// or a constant expression of them (`-8*constants.PI`, `3.14159265358979323846/2`).
     pub fn real(&self, at: At<'a>, attr: &str) -> Result<f64> {
+        Ok(self.real_expr(at, attr)?.0)
+    }
+
+    /// A real attribute's value, and its text when it is an expression (more than a
+    /// number or a constant's name, possibly negated).
+    pub fn real_expr(&self, at: At<'a>, attr: &str) -> Result<(f64, Option<String>)> {
         let v = self.req(at, attr)?.trim();
         if let Ok(x) = v.parse::<f64>() {
-            return Ok(x);
+            return Ok((x, None));
         }
-        let (sign, name) = match v.strip_prefix('-') {
-            Some(rest) => (-1.0, rest.trim()),
-            None => (1.0, v),
-        };
-        let is_name = name.starts_with(|c: char| c.is_ascii_alphabetic() || c == '_')
-            && name
-                .chars()
-                .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '.');
-        if !is_name {
-            return Err(self.err(
+        let e = expr::parse(v).map_err(|why| {
+            self.err(
                 at,
-                format!("`{attr}=\"{v}\"`: an expression is not supported (a number or a constant's name is)"),
-            ));
-        }
+                format!("`{attr}=\"{v}\"`: not a constant expression (numbers, constant names, + - * / and parentheses): {why}"),
+            )
+        })?;
+        let x = e
+            .eval(&mut |name: &str| self.constant(at, attr, v, name))
+            .map_err(|e| match e {
+                expr::Eval::Name(e) => e,
+                expr::Eval::Math(why) => self.err(at, format!("`{attr}=\"{v}\"`: {why}")),
+            })?;
+        Ok((x, (!e.is_simple()).then(|| v.to_string())))
+    }
+
+    /// The value of the declared constant `name` seen from `at`.
+    fn constant(&self, at: At<'a>, attr: &str, v: &str, name: &str) -> Result<f64> {
         let scope = self.scope(at).ok_or_else(|| {
             self.err(
                 at,
@@ -201,7 +206,6 @@ impl<'a> Importer<'a> {
         }
         let cv = self.req(c, "const_value")?.trim();
         cv.parse::<f64>()
-            .map(|x| sign * x)
             .map_err(|_| self.err(c, format!("constant value `{cv}` is not a number")))
     }
 
@@ -261,10 +265,20 @@ impl<'a> Importer<'a> {
                     ))
                 }
             }
-            f.scale = Some([
-                self.real(sr, "real_lower_limit")?,
-                self.real(sr, "real_upper_limit")?,
-            ]);
+            let (lo, lo_expr) = self.real_expr(sr, "real_lower_limit")?;
+            let (hi, hi_expr) = self.real_expr(sr, "real_upper_limit")?;
+            let (lo_expr, hi_expr) = (lo_expr.is_some(), hi_expr.is_some());
+            f.scale = Some([lo, hi]);
+            if lo_expr || hi_expr {
+                // The limits as the standard writes them.
+                let text = |attr: &str| sr.node.attribute(attr).unwrap_or("").trim().to_string();
+                let limits = format!(
+                    "Scaled from `{}` to `{}`.",
+                    text("real_lower_limit"),
+                    text("real_upper_limit")
+                );
+                f.description = join(&[f.description.take(), Some(limits)]);
+            }
         }
         let vs = elements(def.node).find(|c| matches!(tag(*c), "value_set" | "declared_value_set"));
         if let Some(vs) = vs {
@@ -308,14 +322,12 @@ impl<'a> Importer<'a> {
 
     /// A value set: its named values (an enumeration) and its ranges, as text.
     fn value_set(&self, vs: At<'a>) -> Result<(Vec<EnumValue>, Option<String>)> {
-        if matches!(
+        let offset = matches!(
             vs.node.attribute("offset_to_lower_limit"),
             Some("true" | "1")
-        ) {
-            return Err(self.err(
-                vs,
-                "`offset_to_lower_limit=\"true\"` (values sent as offsets from the lower limit) is not supported",
-            ));
+        );
+        if offset {
+            self.offset_is_zero(vs)?;
         }
         let mut values: Vec<EnumValue> = Vec::new();
         let mut ranges = Vec::new();
@@ -362,6 +374,31 @@ impl<'a> Importer<'a> {
         Ok((values, ranges))
     }
 
+    /// With `offset_to_lower_limit="true"`, a value is sent as its offset from the lowest
+    /// value of the set (the least of its enumerated values and range lower limits, as
+    /// the JAUS Tool Set computes it). An offset of 0 sends the values themselves,
+    /// which is how the published sets use it; any other has no form in the definition
+    /// language (it has no integer sent minus a constant), and is an error.
+    fn offset_is_zero(&self, vs: At<'a>) -> Result<()> {
+        let mut lowest: Option<f64> = None;
+        for c in elements(vs.node) {
+            let c = self.at(vs, c);
+            let v = match tag(c.node) {
+                "value_enum" => self.real(c, "enum_index")?,
+                "value_range" => self.real(c, "lower_limit")?,
+                _ => continue,
+            };
+            lowest = Some(lowest.map_or(v, |l| l.min(v)));
+        }
+        match lowest {
+            None | Some(0.0) => Ok(()),
+            Some(l) => Err(self.err(
+                vs,
+                format!("`offset_to_lower_limit=\"true\"` with the lower limit {l}: values sent as offsets from a lower limit other than 0 have no form in the definition language (no integer sent minus a constant)"),
+            )),
+        }
+    }
+
     /// A bit field as a named bit-field type.
     fn bit_field(&mut self, def: At<'a>, owner: &str) -> Result<String> {
         let name = self.req(def, "name")?;
@@ -402,8 +439,17 @@ impl<'a> Importer<'a> {
             } else {
                 (None, Some([from.min(to), from.max(to)]))
             };
+            let mut member = snake(self.req(sf, "name")?);
+            if member == "reserved" {
+                // The language keeps `reserved` for the bits no member names: a member
+                // so named is named after its bits.
+                member = match range {
+                    Some([lo, hi]) => format!("reserved_{lo}_{hi}"),
+                    None => format!("reserved_{from}"),
+                };
+            }
             bits.push(BitDef {
-                name: snake(self.req(sf, "name")?),
+                name: member,
                 bit,
                 bits: range,
                 description: join(&[
@@ -490,20 +536,44 @@ impl<'a> Importer<'a> {
         let mut variants = Vec::new();
         for e in elements(tu.node) {
             let e = self.at(tu, e);
-            if elements(e.node).next().is_some() {
-                return Err(self.err(e, "a scale range or value set of one type of a variable field is not supported (a union variant is a plain type)"));
-            }
-            let ft = self.req(e, "field_type")?;
-            let ty = basic(ft)
-                .ok_or_else(|| self.err(e, format!("field type `{ft}` is not supported")))?;
+            let vname = pascal(self.req(e, "name")?);
+            // A type-and-units enum reads as a fixed field: a plain type, a scaled
+            // integer or a value set.
+            let mut v = FieldDef {
+                name: "value".into(),
+                ..FieldDef::default()
+            };
+            self.fixed_field(e, &tname, &mut v)?;
+            let unit_text = v.unit.as_ref().map(|u| format!("Unit: {u}."));
+            let mut notes = None;
+            let ty = if v.scale.is_some() {
+                // A union variant is a type: a scaled value is a record of one field,
+                // which has the same bytes.
+                let rname = self.type_name(e, &tname, &vname);
+                if !self.types_done(e.key()) {
+                    let t = TypeDef {
+                        name: rname.clone(),
+                        kind: TypeKind::Record,
+                        repr: None,
+                        description: interpretation(e.node),
+                        presence: None,
+                        fields: vec![v],
+                        values: Vec::new(),
+                        bits: Vec::new(),
+                        variants: Vec::new(),
+                    };
+                    self.add_type(e, t);
+                }
+                rname
+            } else {
+                notes = v.description;
+                v.ty
+            };
             variants.push(VariantDef {
-                name: pascal(self.req(e, "name")?),
+                name: vname,
                 tag: self.number(e, "index")? as u64,
-                ty: Some(ty.to_string()),
-                description: join(&[
-                    interpretation(e.node),
-                    unit(e.node.attribute("field_units")).map(|u| format!("Unit: {u}.")),
-                ]),
+                ty: Some(ty),
+                description: join(&[interpretation(e.node), notes, unit_text]),
             });
         }
         self.add_type(

@@ -4,7 +4,8 @@
 
 use crate::error::{Error, Result};
 use crate::names::pascal;
-use crate::xml::{elements, tag, Doc, Node};
+use crate::same;
+use crate::xml::{element, elements, tag, Doc, Node};
 use jaus_spec::model::{MessageDef, ServiceDef, TypeDef};
 use std::collections::{HashMap, HashSet};
 
@@ -19,7 +20,7 @@ pub(crate) struct At<'a> {
 
 /// What identifies an element across documents.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub(crate) struct Key(usize, roxmltree::NodeId);
+pub(crate) struct Key(pub usize, pub roxmltree::NodeId);
 
 impl At<'_> {
     pub fn key(&self) -> Key {
@@ -47,6 +48,11 @@ pub(crate) struct Importer<'a> {
     pub out: Vec<Contribution>,
     /// Declared type and constant sets by URI and version.
     sets: HashMap<(String, String), usize>,
+    /// Documents declaring a set an earlier one declares (alike, or differently: then
+    /// an error), which are not read.
+    copies: HashSet<usize>,
+    /// Errors found on indexing the sets (sets declared twice differently).
+    pub errors: Vec<Error>,
     /// The type made of an element.
     pub types: HashMap<Key, String>,
     /// The message made of a `message_def`.
@@ -60,35 +66,76 @@ pub(crate) struct Importer<'a> {
 }
 
 impl<'a> Importer<'a> {
-    /// Indexes the sets the documents declare.
-    pub fn new(docs: &'a [Doc<'a>]) -> Result<Self> {
+    /// Indexes the sets the documents declare. A set two files declare alike is read
+    /// once, from the first; two that differ are an error naming the first difference
+    /// (in `errors`).
+    pub fn new(docs: &'a [Doc<'a>]) -> Self {
         let mut sets: HashMap<(String, String), usize> = HashMap::new();
+        let mut copies = HashSet::new();
+        let mut errors = Vec::new();
         for (i, d) in docs.iter().enumerate() {
             let root = d.root();
             if !matches!(tag(root), "declared_type_set" | "declared_const_set") {
                 continue;
             }
-            if let (Some(id), Some(v)) = (root.attribute("id"), root.attribute("version")) {
-                if let Some(first) = sets.insert((id.to_string(), v.to_string()), i) {
-                    return Err(Error::Duplicate {
-                        file: d.path.clone(),
-                        first: docs[first].path.clone(),
-                        id: id.to_string(),
-                        version: v.to_string(),
-                    });
-                }
+            let (Some(id), Some(v)) = (root.attribute("id"), root.attribute("version")) else {
+                continue;
+            };
+            let Some(&first) = sets.get(&(id.to_string(), v.to_string())) else {
+                sets.insert((id.to_string(), v.to_string()), i);
+                continue;
+            };
+            let f = &docs[first];
+            // Either way the second file is not read: a set declared differently is
+            // reported, and the run goes on to report the rest.
+            copies.insert(i);
+            if let Some(diff) = same::difference(f.root(), root) {
+                errors.push(Error::Duplicate {
+                    file: d.path.clone(),
+                    first: f.path.clone(),
+                    id: id.to_string(),
+                    version: v.to_string(),
+                    difference: format!(
+                        "<{}> at {} and at {}: {}",
+                        element(diff.a),
+                        f.position(diff.a),
+                        d.position(diff.b),
+                        diff.what,
+                    ),
+                });
             }
         }
-        Ok(Importer {
+        Importer {
+            errors,
             docs,
             out: docs.iter().map(|_| Contribution::default()).collect(),
             sets,
+            copies,
             types: HashMap::new(),
             messages: HashMap::new(),
             busy: Vec::new(),
             taken: HashMap::new(),
             written: HashSet::new(),
-        })
+        }
+    }
+
+    /// Whether document `doc` declares a set another document declared alike (it is
+    /// read from that one).
+    pub fn is_copy(&self, doc: usize) -> bool {
+        self.copies.contains(&doc)
+    }
+
+    /// The value of a conversion that succeeded; the error of one that failed goes into
+    /// `errors` (and what it was converting is forgotten, so the next starts clean).
+    pub fn keep<T>(&mut self, r: Result<T>, errors: &mut Vec<Error>) -> Option<T> {
+        match r {
+            Ok(v) => Some(v),
+            Err(e) => {
+                self.busy.clear();
+                errors.push(e);
+                None
+            }
+        }
     }
 
     /// The document of `at`.
@@ -165,30 +212,26 @@ impl<'a> Importer<'a> {
                     )
                 }),
             Some((head, rest)) => {
-                let r = elements(scope.node)
-                    .find(|c| {
-                        matches!(tag(*c), "declared_type_set_ref" | "declared_const_set_ref")
-                            && c.attribute("name") == Some(head)
-                    })
-                    .ok_or_else(|| {
+                let r = match self.set_ref(scope, head) {
+                    Some(r) => r,
+                    // As the JAUS Tool Set does: a set referred to by a set this one
+                    // refers to (the published HMI messages name `basicTypes`, which
+                    // their types set refers to).
+                    None => self.nested_set_ref(scope, head).ok_or_else(|| {
                         self.err(
                             from,
-                            format!("`{head}` (of `{reference}`) names no declared_type_set_ref of the type set `{set_name}`"),
+                            format!("`{head}` (of `{reference}`) names no declared_type_set_ref of the type set `{set_name}`, nor of a set it refers to"),
                         )
-                    })?;
-                let r_at = self.at(scope, r);
-                let id = self.req(r_at, "id")?;
-                let version = self.req(r_at, "version")?;
-                let doc = self
-                    .sets
-                    .get(&(id.to_string(), version.to_string()))
-                    .copied()
-                    .ok_or_else(|| {
-                        self.err(
-                            from,
-                            format!("`{reference}`: the set {id} version {version} is not among the imported files"),
-                        )
-                    })?;
+                    })?,
+                };
+                let id = self.req(r, "id")?;
+                let version = self.req(r, "version")?;
+                let doc = self.set_doc(r).ok_or_else(|| {
+                    self.err(
+                        from,
+                        format!("`{reference}`: the set {id} version {version} is not among the imported files"),
+                    )
+                })?;
                 let root = At {
                     doc,
                     node: self.docs[doc].root(),
@@ -198,17 +241,85 @@ impl<'a> Importer<'a> {
         }
     }
 
-    /// Claims a message name (an error if it is taken: messages keep their names).
+    /// The `declared_type_set_ref` (or `declared_const_set_ref`) named `name` of `set`.
+    fn set_ref(&self, set: At<'a>, name: &str) -> Option<At<'a>> {
+        elements(set.node)
+            .find(|c| {
+                matches!(tag(*c), "declared_type_set_ref" | "declared_const_set_ref")
+                    && c.attribute("name") == Some(name)
+            })
+            .map(|n| self.at(set, n))
+    }
+
+    /// The document declaring the set a set reference names, if imported.
+    fn set_doc(&self, r: At<'a>) -> Option<usize> {
+        let id = r.node.attribute("id")?;
+        let version = r.node.attribute("version")?;
+        self.sets
+            .get(&(id.to_string(), version.to_string()))
+            .copied()
+    }
+
+    /// A set reference named `name` of a set that `set` refers to, breadth first
+    /// through the imported sets of sets (the first found, in document order).
+    fn nested_set_ref(&self, set: At<'a>, name: &str) -> Option<At<'a>> {
+        let mut seen = HashSet::new();
+        let mut queue = std::collections::VecDeque::from([set]);
+        while let Some(s) = queue.pop_front() {
+            for r in elements(s.node)
+                .filter(|c| matches!(tag(*c), "declared_type_set_ref" | "declared_const_set_ref"))
+            {
+                let Some(doc) = self.set_doc(self.at(s, r)) else {
+                    continue;
+                };
+                if !seen.insert(doc) {
+                    continue;
+                }
+                let root = At {
+                    doc,
+                    node: self.docs[doc].root(),
+                };
+                if let Some(found) = self.set_ref(root, name) {
+                    return Some(found);
+                }
+                queue.push_back(root);
+            }
+        }
+        None
+    }
+
+    /// Claims a message name (messages keep their names). A message of another set
+    /// with the name that is the same message (see [`crate::alike`]) is read once, as
+    /// the first; any other clash is an error.
     pub fn claim_message(&mut self, at: At<'a>, name: &str) -> Result<()> {
-        match self.taken.get(name) {
-            Some(k) if *k != at.key() => Err(self.err(
+        let Some(&k) = self.taken.get(name) else {
+            self.taken.insert(name.to_string(), at.key());
+            return Ok(());
+        };
+        if k == at.key() {
+            return Ok(());
+        }
+        let first = self
+            .node_of(k)
+            .filter(|f| tag(f.node) == "message_def" && tag(at.node) == "message_def");
+        let Some(first) = first else {
+            return Err(self.err(
                 at,
                 format!("a message or type named `{name}` is already defined: message names must be unique in an import"),
-            )),
-            _ => {
-                self.taken.insert(name.to_string(), at.key());
+            ));
+        };
+        match self.message_difference(first, at)? {
+            None => {
+                self.messages.insert(at.key(), name.to_string());
                 Ok(())
             }
+            Some(diff) => Err(self.err(
+                at,
+                format!(
+                    "a message named `{name}` is already defined at {}, differently ({diff}): the definition language holds one message of a name and message ID in an import",
+                    self.doc(first).position(first.node)
+                ),
+            )),
         }
     }
 

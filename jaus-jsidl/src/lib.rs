@@ -18,13 +18,16 @@
 //! import.write("defs/core").unwrap();
 //! ```
 
+mod alike;
 mod containers;
 mod emit;
 mod error;
+mod expr;
 mod fields;
 mod import;
 mod messages;
 mod names;
+mod same;
 mod services;
 mod xml;
 
@@ -148,41 +151,60 @@ pub fn import<P: AsRef<Path>>(dirs: &[P]) -> Result<Import> {
         }
     }
     let mut docs = Vec::new();
+    let mut errors = Vec::new();
     for (path, rel, dir, text) in &texts {
-        docs.push(Doc::parse(path.clone(), rel.clone(), *dir, text)?);
+        match Doc::parse(path.clone(), rel.clone(), *dir, text) {
+            Ok(d) => docs.push(d),
+            Err(e) => errors.push(e),
+        }
+    }
+    if let Some(e) = Error::of(errors) {
+        return Err(e);
     }
     run(&docs, &groups)
 }
 
 /// Converts the parsed documents.
 fn run(docs: &[Doc<'_>], groups: &[String]) -> Result<Import> {
-    let mut im = Importer::new(docs)?;
+    let mut im = Importer::new(docs);
+    // Every error is reported: each message, declaration and service is converted on
+    // its own, and the run goes on after one fails.
+    let mut errors = std::mem::take(&mut im.errors);
+    let read: Vec<usize> = (0..docs.len()).filter(|i| !im.is_copy(*i)).collect();
     // Messages keep their names: claim them all before any type takes one.
-    for (i, d) in docs.iter().enumerate() {
+    for &i in &read {
+        let d = &docs[i];
         for n in d.root().descendants().filter(|n| tag(*n) == "message_def") {
             let at = At { doc: i, node: n };
-            let name = names::pascal(im.req(at, "name")?);
-            im.claim_message(at, &name)?;
+            let claimed = im
+                .req(at, "name")
+                .and_then(|name| im.claim_message(at, &names::pascal(name)));
+            errors.extend(claimed.err());
         }
     }
-    for (i, d) in docs.iter().enumerate() {
+    for &i in &read {
+        let d = &docs[i];
         let root = At {
             doc: i,
             node: d.root(),
         };
         match tag(root.node) {
-            "service_def" => im.service(root)?,
-            "declared_type_set" => top_level(&mut im, root)?,
+            "service_def" => {
+                let r = im.service(root);
+                im.keep(r, &mut errors);
+            }
+            "declared_type_set" => top_level(&mut im, root, &mut errors),
             // Constants are not types: a reference to one where a number is wanted is
             // reported there.
             "declared_const_set" => {}
-            other => {
-                return Err(d.err(
-                    root.node,
-                    format!("<{other}> is not a JSIDL service definition or declared type set"),
-                ))
-            }
+            other => errors.push(d.err(
+                root.node,
+                format!("<{other}> is not a JSIDL service definition or declared type set"),
+            )),
         }
+    }
+    if let Some(e) = Error::of(dedup(errors)) {
+        return Err(e);
     }
     let mut files = Vec::new();
     let mut names_seen = std::collections::HashSet::new();
@@ -225,27 +247,54 @@ fn by_offset<T>(mut v: Vec<(usize, T)>) -> Vec<T> {
     v.into_iter().map(|(_, x)| x).collect()
 }
 
+/// Errors once each (a declaration several messages use fails once per use), by file
+/// and position.
+fn dedup(errors: Vec<Error>) -> Vec<Error> {
+    let mut seen = std::collections::HashSet::new();
+    let mut v: Vec<Error> = errors
+        .into_iter()
+        .filter(|e| seen.insert(e.to_string()))
+        .collect();
+    v.sort_by(|a, b| position(a).cmp(&position(b)));
+    v
+}
+
+/// Where an error is, for sorting: sets declared twice differently first (what follows
+/// from them comes after), then by file and position.
+fn position(e: &Error) -> (u8, Option<&Path>, u32, u32) {
+    match e {
+        Error::Duplicate { file, .. } => (0, Some(file.as_path()), 0, 0),
+        Error::Io { path, .. } => (0, Some(path.as_path()), 0, 0),
+        Error::Xml {
+            file, line, column, ..
+        }
+        | Error::At {
+            file, line, column, ..
+        } => (1, Some(file.as_path()), *line, *column),
+        _ => (2, None, 0, 0),
+    }
+}
+
 /// The top-level declarations of a declared type set: messages, and every record,
-/// list, variant, sequence, bit field, enumerated fixed field and variable field as a
-/// named type (plain fields and strings are written where they are used).
-fn top_level<'a>(im: &mut Importer<'a>, set: At<'a>) -> Result<()> {
+/// list, variant, sequence, array, bit field, enumerated fixed field and variable field
+/// as a named type (plain fields and strings are written where they are used).
+fn top_level<'a>(im: &mut Importer<'a>, set: At<'a>, errors: &mut Vec<Error>) {
     for c in elements(set.node) {
         let at = im.at(set, c);
         match tag(c) {
             "message_def" => {
-                im.message(at)?;
+                let r = im.message(at);
+                im.keep(r, errors);
             }
             "record" | "list" | "variant" | "sequence" => {
-                im.container_type(at, "")?;
+                let r = im.container_type(at, "");
+                im.keep(r, errors);
             }
-            "bit_field" | "fixed_field" | "variable_field" => {
-                im.record_field(at, "", None, fields::Mode::Wire)?;
-            }
-            "array" => {
-                return Err(im.err(at, "arrays are not supported: the definition language has no list of a fixed element count"))
+            "bit_field" | "fixed_field" | "variable_field" | "array" => {
+                let r = im.record_field(at, "", None, fields::Mode::Wire);
+                im.keep(r, errors);
             }
             _ => {}
         }
     }
-    Ok(())
 }

@@ -8,7 +8,7 @@ use crate::error::Result;
 use crate::fields::{join, Mode};
 use crate::import::{At, Importer};
 use crate::names::pascal;
-use crate::xml::{child, collapse, description, elements, interpretation, tag};
+use crate::xml::{child, collapse, description, elements, interpretation, tag, Node};
 use jaus_spec::model::{
     ActionDef, BehaviourDef, DefaultStateDef, EventDef, GuardDef, MachineDef, ParamDef, ServiceDef,
     ServiceRef, ServiceTransitionDef, StartDef, StateDef, TransitionKind,
@@ -18,6 +18,20 @@ use jaus_spec::model::{
 fn starts(text: Option<&str>, word: &str) -> bool {
     text.and_then(collapse)
         .is_some_and(|t| t.to_ascii_lowercase().starts_with(word))
+}
+
+/// Whether a `state_machine` extends an inherited one: its interpretation says
+/// `extending`, or its name is an inherited machine's (`base.ReceiveFSM`, the local
+/// name of the parent service in front) in a service that inherits.
+fn machine_extends(m: Node<'_>) -> bool {
+    let inherits = m
+        .ancestors()
+        .find(|n| tag(*n) == "service_def")
+        .and_then(|sv| child(sv, "references"))
+        .and_then(|r| child(r, "inherits_from"))
+        .is_some();
+    starts(m.attribute("interpretation"), "extending")
+        || (inherits && m.attribute("name").is_some_and(|n| n.contains('.')))
 }
 
 impl<'a> Importer<'a> {
@@ -129,11 +143,10 @@ impl<'a> Importer<'a> {
                     state: self.req(c, "state_name")?.to_string(),
                 }),
                 "state_machine" => {
-                    let interp = c.node.attribute("interpretation");
                     let mut m = MachineDef {
                         name: self.req(c, "name")?.to_string(),
                         description: interpretation(c.node),
-                        extends: starts(interp, "extending"),
+                        extends: machine_extends(c.node),
                         states: Vec::new(),
                         default: None,
                     };
@@ -186,6 +199,27 @@ impl<'a> Importer<'a> {
                 "default_state" => st.default = Some(self.default_state(c)?),
                 other => return Err(self.err(c, format!("<{other}> is not part of a state"))),
             }
+        }
+        // A state of a machine that extends an inherited one, starting in a sub-state it
+        // does not declare, can only start in the inherited state's: it extends that
+        // state; and a state holding one that extends an inherited state extends its
+        // inherited one too (the published sets leave out `redefine` there).
+        let machine = s.node.ancestors().find(|n| tag(*n) == "state_machine");
+        let extending = machine.is_some_and(machine_extends);
+        // A machine that extends by its name alone (no interpretation says so) says
+        // nothing of its states either: each extends the inherited state of its name
+        // (one the parent lacks is added, as any new state).
+        if machine.is_some_and(|m| {
+            machine_extends(m) && !starts(m.attribute("interpretation"), "extending")
+        }) {
+            st.redefine = true;
+        }
+        let starts_inherited = st
+            .initial
+            .as_ref()
+            .is_some_and(|i| !st.states.iter().any(|c| &c.name == i));
+        if extending && (starts_inherited || st.states.iter().any(|c| c.redefine)) {
+            st.redefine = true;
         }
         Ok(st)
     }

@@ -55,17 +55,19 @@ impl<'a> Doc<'a> {
     /// An error about `node`.
     pub fn err(&self, node: Node<'_>, message: impl Into<String>) -> Error {
         let p = self.tree.text_pos_at(node.range().start);
-        let element = match node.attribute("name") {
-            Some(n) => format!("{} name=\"{n}\"", tag(node)),
-            None => tag(node).to_string(),
-        };
         Error::At {
             file: self.path.clone(),
             line: p.row,
             column: p.col,
-            element,
+            element: element(node),
             message: message.into(),
         }
+    }
+
+    /// `file:line:column` of `node`.
+    pub fn position(&self, node: Node<'_>) -> String {
+        let p = self.tree.text_pos_at(node.range().start);
+        format!("{}:{}:{}", self.path.display(), p.row, p.col)
     }
 
     /// The attribute `name` of `node`, or an error saying it is missing.
@@ -78,6 +80,14 @@ impl<'a> Doc<'a> {
 /// The element's name without its namespace (`internal` for `ns2:internal`).
 pub(crate) fn tag<'n>(node: Node<'n>) -> &'n str {
     node.tag_name().name()
+}
+
+/// An element as errors name it: `fixed_field name="Speed"`.
+pub(crate) fn element(node: Node<'_>) -> String {
+    match node.attribute("name") {
+        Some(n) => format!("{} name=\"{n}\"", tag(node)),
+        None => tag(node).to_string(),
+    }
 }
 
 /// The element children of `node`, in order.
