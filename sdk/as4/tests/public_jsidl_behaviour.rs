@@ -1,4 +1,5 @@
-//! The protocol behaviour of our Core services (`defs/core_services.yaml`) against the
+//! The protocol behaviour of our Core services (`defs/core_services.yaml`: Transport,
+//! Events, Access Control, Management, Time, Liveness, Discovery, List Manager) against the
 //! public JSIDL of Core v1.1, service by service: the same states, and per state the same
 //! triggers with the same guards and the same kind and target; differences are listed,
 //! and only the refinements that `core_services.yaml` declares at its top may remain.
@@ -168,6 +169,9 @@ const OURS: &[&str] = &[
     "in Receiving.Ready.NotControlled.NotAvailable.Emergency on ClearEmergency [isidstored && !islastemergency] internal",
     "in Receiving.Ready.NotControlled.NotAvailable.Emergency on ClearEmergency [isidstored && islastemergency] pop",
     "in Receiving.Ready.NotControlled.NotAvailable.Emergency on SetEmergency [] internal",
+    // List Manager: one transition each, the action decides.
+    "in Receiving.Ready.Controlled on DeleteElement [iscontrollingclient] internal",
+    "in Receiving.Ready.Controlled on SetElement [iscontrollingclient] internal",
 ];
 const THEIRS: &[&str] = &[
     // Transport's SendFSM and its bare Receive.
@@ -201,6 +205,12 @@ const THEIRS: &[&str] = &[
     // One emergency at a time.
     "in Receiving.Ready.Controlled.NotAvailable.Emergency on ClearEmergency [isidstored] pop",
     "in Receiving.Ready.NotControlled.NotAvailable.Emergency on ClearEmergency [isidstored] pop",
+    // List Manager: validity, support and existence decided in the actions.
+    "in Receiving.Ready.Controlled on DeleteElement [iscontrollingclient && !elementexists] internal",
+    "in Receiving.Ready.Controlled on DeleteElement [iscontrollingclient && elementexists] internal",
+    "in Receiving.Ready.Controlled on SetElement [iscontrollingclient && !iselementsupported] internal",
+    "in Receiving.Ready.Controlled on SetElement [iscontrollingclient && !isvalidelementrequest] internal",
+    "in Receiving.Ready.Controlled on SetElement [iscontrollingclient && isvalidelementrequest && iselementsupported] internal",
 ];
 const STATES: &[&str] = &["Transport: Sending"];
 
@@ -224,7 +234,16 @@ fn our_core_machines_have_the_behaviour_of_the_public_jsidl() {
         .unwrap_or_else(|e| panic!("importing Core v1.1: {e}"));
     let mut unexplained = Vec::new();
     let mut compared = 0;
-    for name in ["Transport", "Events", "AccessControl", "Management"] {
+    for name in [
+        "Transport",
+        "Events",
+        "AccessControl",
+        "Management",
+        "Time",
+        "Liveness",
+        "Discovery",
+        "ListManager",
+    ] {
         let id = format!("urn:jaus:jss:core:{name}");
         let (Some(o), Some(t)) = (service(&ours, &id), service(&theirs, &id)) else {
             panic!("service {id} missing: ours or the JSIDL's");

@@ -273,7 +273,7 @@ impl Lists {
     }
 }
 
-fn answer(request_id: u8, r: Result<(), ElementRejection>) -> Message {
+pub(crate) fn answer(request_id: u8, r: Result<(), ElementRejection>) -> Message {
     match r {
         Ok(()) => ConfirmElementRequest { request_id }.into(),
         Err(response_code) => RejectElementRequest {

@@ -76,6 +76,12 @@ pub struct Host<'a> {
     out: &'a mut Vec<Outgoing>,
     event_query: Option<Result<Message, Rejection>>,
     bound: Option<String>,
+    /// The data of the Core's other services (Time, Discovery, List Manager), when the
+    /// Core runs their machines ([`super::others`]).
+    others: Option<super::others::Others<'a>>,
+    /// Why an action did not do what was asked (a time out of range), taken by the Core
+    /// as a refusal.
+    refused: Option<String>,
 }
 
 impl fmt::Debug for Host<'_> {
@@ -107,7 +113,45 @@ impl<'a> Host<'a> {
             out,
             event_query,
             bound: None,
+            others: None,
+            refused: None,
         }
+    }
+
+    /// With the data of the Core's other services.
+    pub(crate) fn with_others(mut self, others: super::others::Others<'a>) -> Self {
+        self.others = Some(others);
+        self
+    }
+
+    /// The data of the Core's other services, when given.
+    pub(crate) fn others(&mut self) -> Option<&mut super::others::Others<'a>> {
+        self.others.as_mut()
+    }
+
+    /// The data of the Core's other services, when given (to read).
+    pub(crate) fn others_ref(&self) -> Option<&super::others::Others<'a>> {
+        self.others.as_ref()
+    }
+
+    /// The time of the call.
+    pub(crate) fn now(&self) -> Instant {
+        self.now
+    }
+
+    /// An action could not do what was asked: `why`, taken by the Core as a refusal.
+    pub(crate) fn refuse(&mut self, why: String) {
+        self.refused = Some(why);
+    }
+
+    /// The refusal of an action, taken.
+    pub(crate) fn take_refused(&mut self) -> Option<String> {
+        self.refused.take()
+    }
+
+    /// A bound an action reached (counted as such).
+    pub(crate) fn reach_bound(&mut self, why: String) {
+        self.bound = Some(why);
     }
 
     /// Management's data (the component's state is noted there).
@@ -120,7 +164,7 @@ impl<'a> Host<'a> {
         self.bound.take()
     }
 
-    fn send(&mut self, to: As4Id, message: impl Into<Message>) {
+    pub(crate) fn send(&mut self, to: As4Id, message: impl Into<Message>) {
         self.out.push(Outgoing::new(to, message));
     }
 

@@ -29,12 +29,13 @@ pub mod lists;
 pub mod liveness;
 pub mod machine;
 pub mod management;
+mod others;
 pub mod time;
 
 use std::time::{Duration, Instant};
 
 use jaus::net::as5669a::As4Id;
-use jaus::{CommandCode, JausMessage};
+use jaus::CommandCode;
 
 use crate::messages::{self as m, ComponentState, Message};
 use crate::service::Outgoing;
@@ -150,6 +151,8 @@ pub struct Core {
     discovery: Discovery,
     lists: Lists,
     machine: Box<dyn CoreMachine>,
+    /// The machines of Time, Liveness, Discovery and the List Manager.
+    others: others::OtherMachines,
 }
 
 impl Core {
@@ -184,6 +187,7 @@ impl Core {
             ),
             lists: Lists::new(config.max_elements),
             machine,
+            others: others::OtherMachines::default(),
             config,
         }
     }
@@ -309,7 +313,8 @@ impl Core {
 
     /// Whether message `code` is one the Core services receive.
     pub fn handles(&self, code: CommandCode) -> bool {
-        CORE_INPUTS.contains(&code) || (self.config.list_manager && Lists::handles(code))
+        m::services::management::RECEIVES.contains(&code)
+            || others::OtherMachines::takes(code, self.config.list_manager)
     }
 
     /// The answer of a Core query, as if `from` asked (`None`: not a Core query, or
@@ -362,40 +367,42 @@ impl Core {
             Some(false) => return Err(self.refusal(from, msg)),
             None => {}
         }
-        let is_controller = self.access.controller() == Some(from);
-        let need_control = |what: &str| -> Result<(), Refusal> {
-            if is_controller {
-                Ok(())
-            } else {
-                Err(Refusal::NotController(format!("{what} needs control")))
+        // Time, Liveness, Discovery and the List Manager: their own machines, following
+        // the main one's state.
+        let core_state = self.machine.path();
+        let list_manager = self.config.list_manager;
+        let mut out = Vec::new();
+        let mut host = Host::new(
+            now,
+            &mut self.access,
+            &mut self.management,
+            &mut self.events,
+            &mut out,
+            None,
+        )
+        .with_others(others::Others {
+            time: &mut self.time,
+            discovery: &mut self.discovery,
+            lists: list_manager.then_some(&mut self.lists),
+        });
+        let taken = self
+            .others
+            .receive(&mut host, msg, from, core_state, list_manager);
+        let (bound, refused) = (host.take_bound(), host.take_refused());
+        if let Some(b) = bound {
+            return Err(Refusal::Bounds(b));
+        }
+        if let Some(why) = refused {
+            return Err(Refusal::Ignored(why));
+        }
+        match taken {
+            Some(true) if out.is_empty() && is_query(msg) => {
+                Err(Refusal::Ignored("nothing to answer".into()))
             }
-        };
-        let out = match msg {
-            Message::SetTime(t) => {
-                need_control("Set Time")?;
-                self.time.set(now, t).map_err(Refusal::Ignored)?;
-                Vec::new()
-            }
-            Message::SetElement(_) | Message::DeleteElement(_) if self.config.list_manager => {
-                need_control(msg.name())?;
-                self.lists
-                    .handle(msg)
-                    .map(|a| Outgoing::new(from, a))
-                    .into_iter()
-                    .collect()
-            }
-            Message::RegisterServices(r) => {
-                self.discovery
-                    .register(from, r.services.clone())
-                    .map_err(Refusal::Bounds)?;
-                Vec::new()
-            }
-            _ => match self.answer_query(now, msg) {
-                Some(a) => vec![Outgoing::new(from, a)],
-                None => return Err(Refusal::Ignored("nothing to answer".into())),
-            },
-        };
-        Ok(out)
+            Some(true) => Ok(out),
+            Some(false) => Err(self.refusal(from, msg)),
+            None => Err(Refusal::Ignored("nothing to answer".into())),
+        }
     }
 
     /// Why the machine took no transition for `msg` from `from`, as the component counts
@@ -475,34 +482,10 @@ pub fn core_services(list_manager: bool) -> Vec<ServiceId> {
     v
 }
 
-/// The Core messages [`Core::handle`] takes (besides the List Manager's).
-const CORE_INPUTS: &[CommandCode] = &[
-    m::SetAuthority::CODE,
-    m::Shutdown::CODE,
-    m::Standby::CODE,
-    m::Resume::CODE,
-    m::Reset::CODE,
-    m::SetEmergency::CODE,
-    m::ClearEmergency::CODE,
-    m::RequestControl::CODE,
-    m::ReleaseControl::CODE,
-    m::SetTime::CODE,
-    m::CreateEvent::CODE,
-    m::UpdateEvent::CODE,
-    m::CancelEvent::CODE,
-    m::CreateCommandEvent::CODE,
-    m::RegisterServices::CODE,
-    m::QueryAuthority::CODE,
-    m::QueryStatus::CODE,
-    m::QueryTimeout::CODE,
-    m::QueryControl::CODE,
-    m::QueryTime::CODE,
-    m::QueryEvents::CODE,
-    m::QueryEventTimeout::CODE,
-    m::QueryHeartbeatPulse::CODE,
-    m::QueryIdentification::CODE,
-    m::QueryConfiguration::CODE,
-    m::QuerySubsystemList::CODE,
-    m::QueryServices::CODE,
-    m::QueryServiceList::CODE,
-];
+/// Whether `msg` is a query (it names its report in the definitions).
+fn is_query(msg: &Message) -> bool {
+    let code = msg.code();
+    m::MESSAGES
+        .iter()
+        .any(|i| i.code == code && i.report.is_some())
+}
