@@ -196,6 +196,16 @@ fn check_bitfield(cx: &mut Ctx<'_>, t: &Parsed<TypeDef>, ctx: &str) -> Option<Ty
 fn check_union(cx: &mut Ctx<'_>, t: &Parsed<TypeDef>, ctx: &str) -> Option<TypeForm> {
     let d = &t.def;
     let repr = need_repr(cx, t, ctx, "a union tag", false);
+    if d.variants.is_empty() {
+        // Nothing could be decoded (every tag unknown) and no Rust enum can be empty.
+        cx.err(
+            t.source,
+            &format!("{}.variants", t.path),
+            ctx.to_string(),
+            "a union needs at least one variant".to_string(),
+        );
+        return None;
+    }
     let mut variants = Some(Vec::with_capacity(d.variants.len()));
     let mut tags: HashMap<u64, &str> = HashMap::new();
     for (i, v) in d.variants.iter().enumerate() {
