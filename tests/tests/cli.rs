@@ -518,3 +518,31 @@ fn jaus_wireshark_writes_the_dissector_of_both_generations() {
     );
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn jaus_ros2_runs_the_bridge_and_reports_a_silent_robot() {
+    // No ROS 2 robot on this DDS domain: after the watchdog time (500 ms) the bridge
+    // says so, holds its commands at zero (zero twists published) and prints its
+    // counters when it stops.
+    let port = common::free_port();
+    let out = Command::new(jaus_bin())
+        .args(["ros2", "--seconds", "1.5", "--domain", "111"])
+        .arg("--bind")
+        .arg(format!("127.0.0.1:{port}"))
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{text}{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let lines: Vec<serde_json::Value> = text
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap_or_else(|e| panic!("{l}: {e}")))
+        .collect();
+    assert!(lines.iter().any(|l| l["event"] == "ros_silent"), "{text}");
+    let stats = &lines.last().expect("a stats line")["stats"];
+    assert_eq!(stats["odom"], 0, "{text}");
+    assert!(stats["published_zero"].as_u64().unwrap_or(0) >= 1, "{text}");
+}

@@ -131,6 +131,15 @@ pub(crate) enum Cmd {
         #[arg(long)]
         seconds: Option<f64>,
     },
+    /// A ROS 2 robot on the JAUS network, with no ROS install: its cmd_vel, odom and
+    /// fix topics (DDS) as a Primitive Driver, Local Pose, Velocity State and Global
+    /// Pose Sensor on UDP, a watchdog stopping it when the JAUS side loses its
+    /// controller or the ROS side goes silent (docs/ros2.md); prints each watchdog event
+    /// as a JSON line, the bridge's counters at the end.
+    Ros2 {
+        #[command(flatten)]
+        args: jaus_cli::ros2::Ros2Args,
+    },
     /// Run a node from a configuration file (YAML: subsystem, node, bind, framing,
     /// peers, host); prints the system tree whenever it changes.
     Node {

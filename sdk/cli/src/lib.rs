@@ -30,5 +30,6 @@ pub mod net;
 pub mod ocu;
 mod plot;
 pub mod report;
+pub mod ros2;
 pub mod series;
 pub mod traffic;

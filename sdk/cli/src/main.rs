@@ -354,6 +354,7 @@ fn main() -> ExitCode {
         Cmd::Conform { net, args } => {
             report(&mut err, conform::conform(&net, &args, &cli.spec, &mut out))
         }
+        Cmd::Ros2 { args } => report(&mut err, jaus_cli::ros2::run(&args, &STOP, &mut out)),
         Cmd::As4Drive { args } => report(&mut err, jaus_cli::as4_drive::as4_drive(&args, &mut out)),
         Cmd::As4Query { args } => report(
             &mut err,

@@ -1,0 +1,538 @@
+//! The ROS 2 side: one thread owning a ROS 2 node (ros2-client on RustDDS) that reads
+//! `odom` and `fix` into shared state and publishes `cmd_vel` from a one-slot mailbox
+//! (the latest command wins; superseded ones are counted), and the ROS-silence
+//! watchdog. The thread sleeps in a mio poll on the DDS readers and the mailbox, so a
+//! sample or a command is handled as soon as it arrives.
+
+use std::collections::VecDeque;
+use std::sync::{Arc, Mutex, MutexGuard};
+use std::thread::JoinHandle;
+use std::time::{Duration, Instant};
+
+use jaus::stock::hardware::{LocalPose, VelocityState};
+use jaus::stock::nalgebra::UnitQuaternion;
+use jaus::Address;
+use mio::{Events, Poll, PollOpt, Ready, Registration, SetReadiness, Token};
+use ros2_client::ros2::{policy, QosPolicies, QosPolicyBuilder};
+use ros2_client::{
+    Context, ContextOptions, MessageTypeName, Name, Node, NodeName, NodeOptions, Publisher,
+    Subscription,
+};
+
+use crate::config::{Qos, Reliability, Ros2Config};
+use crate::convert::{fix_to_jaus, odometry_to_jaus};
+use crate::msg::{NavSatFix, Odometry, RosMessage, Time, Twist};
+use crate::Ros2Error;
+
+/// Watchdog events kept for [`Ros2Link::events`]; older ones are dropped and counted.
+const MAX_EVENTS: usize = 256;
+/// The longest the thread sleeps without an event (it checks the watchdog then).
+const IDLE: Duration = Duration::from_millis(10);
+/// Samples taken from one reader in one round (the rest wait for the next round).
+const MAX_TAKE: usize = 64;
+
+/// Why the bridge stopped the robot, or that the ROS side came back.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum WatchdogEvent {
+    /// The JAUS Primitive Driver stopped (control lost, Standby, Emergency, Shutdown,
+    /// Failure, or a wrench effort not refreshed within the command timeout): a zero
+    /// twist was published.
+    JausStop {
+        /// When.
+        at: Instant,
+        /// The controller that released control or vanished, when that was the reason.
+        controller: Option<Address>,
+        /// `control lost`, `standby`, `emergency`, `shutdown`, `failure` or
+        /// `command timeout`.
+        reason: &'static str,
+    },
+    /// No `odom` within the watchdog time: a zero twist was published and commands are
+    /// held at zero.
+    RosSilent {
+        /// When.
+        at: Instant,
+    },
+    /// `odom` arrived again after a silence: commands pass again.
+    RosResumed {
+        /// When.
+        at: Instant,
+    },
+}
+
+/// Counters of the bridge.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct BridgeStats {
+    /// `odom` samples used.
+    pub odom: u64,
+    /// `fix` samples used.
+    pub fix: u64,
+    /// Samples refused: not finite, no fix, or undecodable (read errors).
+    pub refused: u64,
+    /// `odom` samples in frames other than the configured ones (ignored).
+    pub foreign_frames: u64,
+    /// `cmd_vel` messages published.
+    pub published: u64,
+    /// Zero twists among them.
+    pub published_zero: u64,
+    /// Publications DDS refused.
+    pub publish_errors: u64,
+    /// Commands replaced in the mailbox by a newer one before being published.
+    pub superseded: u64,
+    /// Non-zero commands held at zero while the ROS side was silent.
+    pub held: u64,
+    /// Watchdog events dropped from the full event queue.
+    pub events_dropped: u64,
+}
+
+/// The latest odometry as JAUS sees it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct OdomSample {
+    /// Local pose (JAUS local frame).
+    pub pose: LocalPose,
+    /// Velocity state (JAUS vehicle frame).
+    pub velocity: VelocityState,
+    /// When the bridge took it from DDS.
+    pub received: Instant,
+    /// Its `header.stamp`.
+    pub stamp: Time,
+}
+
+#[derive(Debug, Default)]
+pub(crate) struct Shared {
+    pub(crate) odom: Option<OdomSample>,
+    pub(crate) fix: Option<(jaus::stock::hardware::GlobalPose, Instant)>,
+    pending: Option<Twist>,
+    last_published: Option<Twist>,
+    pub(crate) silent: bool,
+    stop: bool,
+    pub(crate) stats: BridgeStats,
+    events: VecDeque<WatchdogEvent>,
+}
+
+impl Shared {
+    pub(crate) fn event(&mut self, e: WatchdogEvent) {
+        if self.events.len() >= MAX_EVENTS {
+            self.events.pop_front();
+            self.stats.events_dropped += 1;
+        }
+        self.events.push_back(e);
+    }
+}
+
+/// Locks `m`; a panic elsewhere while it was held leaves plain data, still usable.
+pub(crate) fn lock(m: &Mutex<Shared>) -> MutexGuard<'_, Shared> {
+    m.lock().unwrap_or_else(|e| e.into_inner())
+}
+
+/// What the JAUS components hold: the shared state and the mailbox's doorbell.
+#[derive(Debug, Clone)]
+pub(crate) struct Tap {
+    pub(crate) shared: Arc<Mutex<Shared>>,
+    bell: SetReadiness,
+}
+
+impl Tap {
+    /// Puts `t` in the mailbox and wakes the ROS thread.
+    pub(crate) fn command(&self, t: Twist) {
+        {
+            let mut s = lock(&self.shared);
+            if s.pending.replace(t).is_some() {
+                s.stats.superseded += 1;
+            }
+        }
+        // Fails only when the thread's poll is gone (it stopped): nothing to wake.
+        let _ = self.bell.set_readiness(Ready::readable());
+    }
+}
+
+/// The running ROS 2 side of a bridge. Dropping it publishes a zero twist and stops
+/// the ROS 2 node.
+#[derive(Debug)]
+pub struct Ros2Link {
+    tap: Tap,
+    thread: Option<JoinHandle<()>>,
+    topics: [String; 3],
+}
+
+impl Ros2Link {
+    /// Starts the ROS 2 node of `config` (its DDS participant joins the domain) and
+    /// waits until its publisher and readers exist.
+    pub fn start(config: &Ros2Config) -> Result<Ros2Link, Ros2Error> {
+        config.validate()?;
+        let topics = [
+            dds_topic_name(&config.namespace, &config.topics.cmd_vel)?,
+            dds_topic_name(&config.namespace, &config.topics.odom)?,
+            dds_topic_name(&config.namespace, &config.topics.fix)?,
+        ];
+        let (registration, bell) = Registration::new2();
+        let tap = Tap {
+            shared: Arc::new(Mutex::new(Shared::default())),
+            bell,
+        };
+        let (ready_tx, ready_rx) = std::sync::mpsc::sync_channel(1);
+        let thread_tap = tap.clone();
+        let config = config.clone();
+        let thread = std::thread::Builder::new()
+            .name("jaus-ros2".into())
+            .spawn(move || {
+                let side = match RosSide::open(&config, registration) {
+                    Ok(side) => {
+                        let _ = ready_tx.send(Ok(()));
+                        side
+                    }
+                    Err(e) => {
+                        let _ = ready_tx.send(Err(e));
+                        return;
+                    }
+                };
+                side.run(&config, &thread_tap);
+            })
+            .map_err(|e| Ros2Error::Dds(format!("cannot start the ROS 2 thread: {e}")))?;
+        match ready_rx.recv() {
+            Ok(Ok(())) => Ok(Ros2Link {
+                tap,
+                thread: Some(thread),
+                topics,
+            }),
+            Ok(Err(e)) => Err(e),
+            Err(_) => Err(Ros2Error::Dds(
+                "the ROS 2 thread ended during set-up".into(),
+            )),
+        }
+    }
+
+    pub(crate) fn tap(&self) -> Tap {
+        self.tap.clone()
+    }
+
+    /// The DDS topic names of `cmd_vel`, `odom` and `fix` (`rt/cmd_vel`, ...).
+    pub fn dds_topics(&self) -> [&str; 3] {
+        [&self.topics[0], &self.topics[1], &self.topics[2]]
+    }
+
+    /// Counters.
+    pub fn stats(&self) -> BridgeStats {
+        lock(&self.tap.shared).stats
+    }
+
+    /// The latest odometry, if any.
+    pub fn odom(&self) -> Option<OdomSample> {
+        lock(&self.tap.shared).odom
+    }
+
+    /// The twist published last.
+    pub fn last_published(&self) -> Option<Twist> {
+        lock(&self.tap.shared).last_published
+    }
+
+    /// Whether the ROS side is silent (no `odom` within the watchdog time).
+    pub fn ros_silent(&self) -> bool {
+        lock(&self.tap.shared).silent
+    }
+
+    /// Takes the watchdog events so far, oldest first.
+    pub fn events(&self) -> Vec<WatchdogEvent> {
+        lock(&self.tap.shared).events.drain(..).collect()
+    }
+
+    /// Publishes a zero twist and stops the ROS 2 node (as dropping does).
+    pub fn stop(mut self) {
+        self.shut();
+    }
+
+    fn shut(&mut self) {
+        lock(&self.tap.shared).stop = true;
+        let _ = self.tap.bell.set_readiness(Ready::readable());
+        if let Some(t) = self.thread.take() {
+            let _ = t.join();
+        }
+    }
+}
+
+impl Drop for Ros2Link {
+    fn drop(&mut self) {
+        self.shut();
+    }
+}
+
+/// The DDS name of ROS topic `topic` in `namespace`: `rt` and the absolute name.
+pub fn dds_topic_name(namespace: &str, topic: &str) -> Result<String, Ros2Error> {
+    Ok(format!("rt{}", absolute(namespace, topic)?.1))
+}
+
+/// The topic as ros2-client's [`Name`] and as its absolute string.
+fn absolute(namespace: &str, topic: &str) -> Result<(Name, String), Ros2Error> {
+    let full = if topic.starts_with('/') {
+        topic.to_string()
+    } else {
+        format!("{}/{topic}", namespace.trim_end_matches('/'))
+    };
+    let full = if full.starts_with('/') {
+        full
+    } else {
+        format!("/{full}")
+    };
+    Name::parse(&full)
+        .map(|n| (n, full.clone()))
+        .map_err(|e| Ros2Error::Config(format!("topic {full:?}: {e:?}")))
+}
+
+fn qos_of(q: Qos) -> QosPolicies {
+    let reliability = match q.reliability {
+        Reliability::Reliable => policy::Reliability::Reliable {
+            max_blocking_time: ros2_client::ros2::Duration::from_millis(100),
+        },
+        Reliability::BestEffort => policy::Reliability::BestEffort,
+    };
+    QosPolicyBuilder::new()
+        .reliability(reliability)
+        .history(policy::History::KeepLast { depth: q.depth })
+        .durability(policy::Durability::Volatile)
+        .build()
+}
+
+/// The ROS 2 node and its endpoints (owned by the thread: none of it crosses threads).
+struct RosSide {
+    _node: Node,
+    cmd_vel: Publisher<Twist>,
+    odom: Subscription<Odometry>,
+    fix: Subscription<NavSatFix>,
+    poll: Poll,
+    _registration: Registration,
+}
+
+const ODOM: Token = Token(0);
+const FIX: Token = Token(1);
+const BELL: Token = Token(2);
+
+impl RosSide {
+    fn open(c: &Ros2Config, registration: Registration) -> Result<RosSide, Ros2Error> {
+        let dds = |what: &str, e: &dyn std::fmt::Debug| Ros2Error::Dds(format!("{what}: {e:?}"));
+        let context = Context::with_options(ContextOptions::new().domain_id(c.domain_id))
+            .map_err(|e| dds("DDS participant", &e))?;
+        let node_name = NodeName::new(&c.namespace, &c.node_name)
+            .map_err(|e| Ros2Error::Config(format!("node name: {e:?}")))?;
+        let mut node = context
+            .new_node(node_name, NodeOptions::new().enable_rosout(false))
+            .map_err(|e| dds("ROS 2 node", &e))?;
+        let topic = |name: &str, ty: (&str, &str), qos: Qos| {
+            let (n, _) = absolute(&c.namespace, name)?;
+            node.create_topic(&n, MessageTypeName::new(ty.0, ty.1), &qos_of(qos))
+                .map_err(|e| dds(name, &e))
+        };
+        let cmd_topic = topic(
+            &c.topics.cmd_vel,
+            (Twist::PACKAGE, Twist::NAME),
+            c.qos_commands,
+        )?;
+        let odom_topic = topic(
+            &c.topics.odom,
+            (Odometry::PACKAGE, Odometry::NAME),
+            c.qos_sensors,
+        )?;
+        let fix_topic = topic(
+            &c.topics.fix,
+            (NavSatFix::PACKAGE, NavSatFix::NAME),
+            c.qos_sensors,
+        )?;
+        let cmd_vel = node
+            .create_publisher::<Twist>(&cmd_topic, None)
+            .map_err(|e| dds("cmd_vel publisher", &e))?;
+        let odom = node
+            .create_subscription::<Odometry>(&odom_topic, None)
+            .map_err(|e| dds("odom reader", &e))?;
+        let fix = node
+            .create_subscription::<NavSatFix>(&fix_topic, None)
+            .map_err(|e| dds("fix reader", &e))?;
+        let poll = Poll::new().map_err(|e| dds("poll", &e))?;
+        let edge = PollOpt::edge();
+        poll.register(&odom, ODOM, Ready::readable(), edge)
+            .and_then(|_| poll.register(&fix, FIX, Ready::readable(), edge))
+            .and_then(|_| poll.register(&registration, BELL, Ready::readable(), edge))
+            .map_err(|e| dds("poll registration", &e))?;
+        Ok(RosSide {
+            _node: node,
+            cmd_vel,
+            odom,
+            fix,
+            poll,
+            _registration: registration,
+        })
+    }
+
+    /// Publishes `t` (without holding the shared state: a DDS write may take a while)
+    /// and counts it.
+    fn publish(&self, shared: &Mutex<Shared>, t: Twist) {
+        let r = self.cmd_vel.publish(t);
+        let mut s = lock(shared);
+        match r {
+            Ok(()) => {
+                s.stats.published += 1;
+                if t.is_zero() {
+                    s.stats.published_zero += 1;
+                }
+                s.last_published = Some(t);
+            }
+            Err(e) => {
+                s.stats.publish_errors += 1;
+                if s.stats.publish_errors % 100 == 1 {
+                    tracing::warn!(
+                        errors = s.stats.publish_errors,
+                        "jaus-ros2: cmd_vel not published: {e:?}"
+                    );
+                }
+            }
+        }
+    }
+
+    fn run(self, c: &Ros2Config, tap: &Tap) {
+        let started = Instant::now();
+        let watchdog = c.watchdog();
+        let mut events = Events::with_capacity(16);
+        loop {
+            if let Err(e) = self.poll.poll(&mut events, Some(IDLE)) {
+                tracing::warn!("jaus-ros2: poll failed: {e}");
+                std::thread::sleep(IDLE);
+            }
+            // Re-arm the doorbell before emptying the mailbox: a command put after this
+            // rings again.
+            let _ = tap.bell.set_readiness(Ready::empty());
+            self.read_odom(c, tap);
+            self.read_fix(tap);
+            let now = Instant::now();
+            // What to publish, decided under the lock, published after it.
+            let (stop, went_silent, command) = {
+                let mut s = lock(&tap.shared);
+                let last = s.odom.map_or(started, |o| o.received);
+                let silent = now.saturating_duration_since(last) > watchdog;
+                let went_silent = silent && !s.silent;
+                if went_silent {
+                    s.silent = true;
+                    tracing::warn!(
+                        "jaus-ros2: no {} for {watchdog:?}: zero twist, commands held",
+                        c.topics.odom
+                    );
+                    s.event(WatchdogEvent::RosSilent { at: now });
+                } else if !silent && s.silent {
+                    s.silent = false;
+                    tracing::info!("jaus-ros2: {} is back", c.topics.odom);
+                    s.event(WatchdogEvent::RosResumed { at: now });
+                }
+                let command = s.pending.take().map(|t| {
+                    if s.silent && !t.is_zero() {
+                        s.stats.held += 1;
+                        Twist::ZERO
+                    } else {
+                        t
+                    }
+                });
+                (s.stop, went_silent, command)
+            };
+            if stop {
+                self.publish(&tap.shared, Twist::ZERO);
+                return;
+            }
+            if went_silent {
+                self.publish(&tap.shared, Twist::ZERO);
+            }
+            if let Some(t) = command {
+                self.publish(&tap.shared, t);
+            }
+        }
+    }
+
+    fn read_odom(&self, c: &Ros2Config, tap: &Tap) {
+        for _ in 0..MAX_TAKE {
+            let (o, _info) = match self.odom.take() {
+                Ok(Some(x)) => x,
+                Ok(None) => return,
+                Err(e) => {
+                    lock(&tap.shared).stats.refused += 1;
+                    tracing::debug!("jaus-ros2: odom not read: {e:?}");
+                    continue;
+                }
+            };
+            let received = Instant::now();
+            let frames = &c.frames;
+            let foreign = (!frames.odom.is_empty() && o.header.frame_id != frames.odom)
+                || (!frames.base.is_empty() && o.child_frame_id != frames.base);
+            let mut s = lock(&tap.shared);
+            if foreign {
+                if s.stats.foreign_frames == 0 {
+                    tracing::warn!(
+                        "jaus-ros2: odom in frames {:?}/{:?}, expected {:?}/{:?}: ignored",
+                        o.header.frame_id,
+                        o.child_frame_id,
+                        frames.odom,
+                        frames.base
+                    );
+                }
+                s.stats.foreign_frames += 1;
+                continue;
+            }
+            match odometry_to_jaus(&o, c.odom_axes) {
+                Some((pose, velocity)) => {
+                    s.stats.odom += 1;
+                    s.odom = Some(OdomSample {
+                        pose,
+                        velocity,
+                        received,
+                        stamp: o.header.stamp,
+                    });
+                }
+                None => s.stats.refused += 1,
+            }
+        }
+    }
+
+    fn read_fix(&self, tap: &Tap) {
+        for _ in 0..MAX_TAKE {
+            let f = match self.fix.take() {
+                Ok(Some((f, _))) => f,
+                Ok(None) => return,
+                Err(e) => {
+                    lock(&tap.shared).stats.refused += 1;
+                    tracing::debug!("jaus-ros2: fix not read: {e:?}");
+                    continue;
+                }
+            };
+            let mut s = lock(&tap.shared);
+            let attitude = s
+                .odom
+                .map_or(UnitQuaternion::identity(), |o| o.pose.attitude);
+            match fix_to_jaus(&f, attitude) {
+                Some(g) => {
+                    s.stats.fix += 1;
+                    s.fix = Some((g, Instant::now()));
+                }
+                None => s.stats.refused += 1,
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn topic_names_get_rt_and_the_namespace() {
+        assert_eq!(dds_topic_name("/", "odom").unwrap(), "rt/odom");
+        assert_eq!(
+            dds_topic_name("/robot1", "cmd_vel").unwrap(),
+            "rt/robot1/cmd_vel"
+        );
+        assert_eq!(dds_topic_name("/robot1/", "/fix").unwrap(), "rt/fix");
+        assert!(dds_topic_name("/", "bad-name").is_err());
+    }
+
+    #[test]
+    fn the_event_queue_is_bounded() {
+        let mut s = Shared::default();
+        for _ in 0..MAX_EVENTS + 5 {
+            s.event(WatchdogEvent::RosSilent { at: Instant::now() });
+        }
+        assert_eq!(s.events.len(), MAX_EVENTS);
+        assert_eq!(s.stats.events_dropped, 5);
+    }
+}

@@ -1,0 +1,263 @@
+//! The bridge's settings ([`Ros2Config`]): serde with a default for every field, so a
+//! node file's `ros2:` section needs only what differs.
+//!
+//! ```
+//! let c: jaus_ros2::Ros2Config = serde_json::from_str(
+//!     r#"{"domain_id": 7, "effort": {"max_linear": 0.8}}"#,
+//! ).unwrap();
+//! assert_eq!(c.domain_id, 7);
+//! assert_eq!(c.effort.max_angular, 1.0);
+//! assert_eq!(c.topics.odom, "odom");
+//! c.validate().unwrap();
+//! ```
+
+use std::time::Duration;
+
+use serde::{Deserialize, Serialize};
+
+use crate::Ros2Error;
+
+/// Everything the bridge needs to know about the ROS 2 side.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct Ros2Config {
+    /// DDS domain (`ROS_DOMAIN_ID`), 0..=232.
+    pub domain_id: u16,
+    /// The ROS 2 node's name (`ros2 node list` shows `<namespace>/<node_name>`).
+    pub node_name: String,
+    /// The node's namespace; relative topic names are resolved in it.
+    pub namespace: String,
+    /// Topic names.
+    pub topics: Topics,
+    /// Frame ids the bridge expects on `odom`.
+    pub frames: Frames,
+    /// How the odometry frame's axes lie.
+    pub odom_axes: OdomAxes,
+    /// QoS of the topics the bridge publishes (`cmd_vel`).
+    pub qos_commands: Qos,
+    /// QoS of the topics the bridge reads (`odom`, `fix`).
+    pub qos_sensors: Qos,
+    /// JAUS wrench effort → `cmd_vel` scaling.
+    pub effort: EffortMapping,
+    /// No `odom` for this long (ms): the ROS side is silent; the bridge publishes a zero
+    /// twist, holds every further command at zero and stops reporting local pose and
+    /// velocity until `odom` comes back.
+    pub watchdog_ms: u64,
+    /// The Primitive Driver's command timeout (ms): a wrench effort not refreshed within
+    /// it is replaced by brakes (a zero twist).
+    pub command_timeout_ms: u64,
+}
+
+impl Default for Ros2Config {
+    fn default() -> Self {
+        Ros2Config {
+            domain_id: 0,
+            node_name: "jaus_bridge".into(),
+            namespace: "/".into(),
+            topics: Topics::default(),
+            frames: Frames::default(),
+            odom_axes: OdomAxes::default(),
+            qos_commands: Qos {
+                reliability: Reliability::Reliable,
+                depth: 10,
+            },
+            qos_sensors: Qos {
+                reliability: Reliability::BestEffort,
+                depth: 10,
+            },
+            effort: EffortMapping::default(),
+            watchdog_ms: 500,
+            command_timeout_ms: 300,
+        }
+    }
+}
+
+impl Ros2Config {
+    /// The ROS-silence watchdog time.
+    pub fn watchdog(&self) -> Duration {
+        Duration::from_millis(self.watchdog_ms)
+    }
+
+    /// The Primitive Driver's command timeout.
+    pub fn command_timeout(&self) -> Duration {
+        Duration::from_millis(self.command_timeout_ms)
+    }
+
+    /// Checks the values a DDS participant or the mapping cannot use.
+    pub fn validate(&self) -> Result<(), Ros2Error> {
+        let bad = |what: String| Err(Ros2Error::Config(what));
+        if self.domain_id > 232 {
+            return bad(format!("domain_id {} above 232", self.domain_id));
+        }
+        for (name, m) in [
+            ("max_linear", self.effort.max_linear),
+            ("max_angular", self.effort.max_angular),
+        ] {
+            if !(m.is_finite() && m >= 0.0) {
+                return bad(format!("effort.{name} {m} is not a finite speed ≥ 0"));
+            }
+        }
+        for (name, q) in [
+            ("qos_commands", self.qos_commands),
+            ("qos_sensors", self.qos_sensors),
+        ] {
+            if q.depth == 0 || q.depth > 10_000 {
+                return bad(format!("{name}.depth {} not in 1..=10000", q.depth));
+            }
+        }
+        if self.watchdog_ms == 0 || self.command_timeout_ms == 0 {
+            return bad("watchdog_ms and command_timeout_ms must be above 0".into());
+        }
+        for (name, t) in [
+            ("cmd_vel", &self.topics.cmd_vel),
+            ("odom", &self.topics.odom),
+            ("fix", &self.topics.fix),
+        ] {
+            if t.is_empty() || t.contains("//") || t.ends_with('/') {
+                return bad(format!("topics.{name} {t:?} is not a ROS 2 topic name"));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Topic names, relative to the node's namespace unless they start with `/`; on DDS
+/// each becomes `rt/<namespace>/<name>`.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct Topics {
+    /// `geometry_msgs/Twist` the bridge publishes.
+    pub cmd_vel: String,
+    /// `nav_msgs/Odometry` the bridge reads.
+    pub odom: String,
+    /// `sensor_msgs/NavSatFix` the bridge reads.
+    pub fix: String,
+}
+
+impl Default for Topics {
+    fn default() -> Self {
+        Topics {
+            cmd_vel: "cmd_vel".into(),
+            odom: "odom".into(),
+            fix: "fix".into(),
+        }
+    }
+}
+
+/// Frame ids expected on `odom` (REP-105); an empty one accepts any. An odometry
+/// message in other frames is ignored and counted
+/// ([`BridgeStats::foreign_frames`](crate::BridgeStats::foreign_frames)).
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct Frames {
+    /// The pose's frame (`header.frame_id`).
+    pub odom: String,
+    /// The twist's frame (`child_frame_id`).
+    pub base: String,
+}
+
+impl Default for Frames {
+    fn default() -> Self {
+        Frames {
+            odom: "odom".into(),
+            base: "base_link".into(),
+        }
+    }
+}
+
+/// How the axes of the odometry frame lie; the robot's base frame is always REP-103's
+/// x forward, y left, z up.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum OdomAxes {
+    /// x east, y north, z up (REP-103 for world frames; what a GPS-aligned odometry or
+    /// `robot_localization` with a magnetometer gives): JAUS x north = ROS y, y east =
+    /// ROS x, z down = −ROS z, yaw = π/2 − ROS yaw.
+    #[default]
+    Enu,
+    /// Forward, left, up from where the robot started (plain wheel odometry): JAUS x =
+    /// ROS x, y = −ROS y, z = −ROS z, yaw = −ROS yaw. JAUS "north" is then the robot's
+    /// initial heading.
+    Flu,
+}
+
+/// DDS reliability.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Reliability {
+    /// Retransmitted until acknowledged (ROS 2's default QoS profile).
+    Reliable,
+    /// Sent once (the sensor-data profile); a best-effort reader matches writers of
+    /// either kind.
+    BestEffort,
+}
+
+/// A topic's QoS: reliability and the depth of its keep-last history; volatile
+/// durability (ROS 2's defaults for both profiles).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Qos {
+    /// Reliability.
+    pub reliability: Reliability,
+    /// Samples kept per writer/reader.
+    pub depth: i32,
+}
+
+/// How a JAUS wrench effort (percent of the platform's available effort) becomes a
+/// velocity command: 100 % propulsive linear x is `max_linear` m/s forward, 100 %
+/// propulsive rotational z is `max_angular` rad/s (JAUS z points down, so + turns right,
+/// which is a negative ROS `angular.z`). A resistive (braking) effort scales its axis
+/// down: 100 % brakes is a zero twist.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct EffortMapping {
+    /// m/s at 100 % linear effort (x, y and z alike).
+    pub max_linear: f64,
+    /// rad/s at 100 % rotational effort (about x, y and z alike).
+    pub max_angular: f64,
+}
+
+impl Default for EffortMapping {
+    fn default() -> Self {
+        EffortMapping {
+            max_linear: 1.0,
+            max_angular: 1.0,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn defaults_validate_and_round_trip_through_yaml() {
+        let c = Ros2Config::default();
+        c.validate().unwrap();
+        let y = serde_yaml::to_string(&c).unwrap();
+        assert!(y.contains("reliability: best_effort"), "{y}");
+        assert_eq!(serde_yaml::from_str::<Ros2Config>(&y).unwrap(), c);
+        let partial: Ros2Config =
+            serde_yaml::from_str("odom_axes: flu\nqos_sensors: {reliability: reliable, depth: 5}")
+                .unwrap();
+        assert_eq!(partial.odom_axes, OdomAxes::Flu);
+        assert_eq!(partial.qos_sensors.depth, 5);
+        assert_eq!(partial.watchdog(), Duration::from_millis(500));
+    }
+
+    #[test]
+    fn bad_values_are_refused() {
+        let mut c = Ros2Config {
+            domain_id: 300,
+            ..Ros2Config::default()
+        };
+        assert!(c.validate().is_err());
+        c.domain_id = 0;
+        c.effort.max_linear = f64::NAN;
+        assert!(c.validate().is_err());
+        c.effort.max_linear = 1.0;
+        c.topics.odom = "a//b".into();
+        assert!(c.validate().is_err());
+        assert!(serde_yaml::from_str::<Ros2Config>("domian_id: 3").is_err());
+    }
+}

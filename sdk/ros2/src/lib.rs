@@ -1,0 +1,53 @@
+//! A ROS 2 robot on a JAUS network, with no ROS install.
+//!
+//! The crate joins a DDS domain as a ROS 2 node (through `ros2-client` on RustDDS, pure
+//! Rust) and hosts the SDK's stock JAUS components over the robot's ROS 2 topics:
+//!
+//! | ROS 2 | JAUS |
+//! | --- | --- |
+//! | `cmd_vel` (`geometry_msgs/Twist`), published | Primitive Driver (33): Set Wrench Effort |
+//! | `odom` (`nav_msgs/Odometry`), read | Local Pose Sensor (41), Velocity State Sensor (42) |
+//! | `fix` (`sensor_msgs/NavSatFix`), read | Global Pose Sensor (38) |
+//!
+//! A watchdog publishes a zero twist and records a [`WatchdogEvent`] when the JAUS side
+//! stops the robot (its controller released control or vanished, Standby, Emergency,
+//! a command not refreshed) and when `odom` has been silent longer than
+//! [`Ros2Config::watchdog_ms`]. Units and frames: [`convert`]; the whole mapping, the
+//! configuration and the measured latency: `docs/ros2.md`.
+//!
+//! ```no_run
+//! use std::time::Instant;
+//! use jaus::net::NodeConfig;
+//!
+//! let config = jaus_ros2::Ros2Config::default();
+//! let node_config = NodeConfig { subsystem: 5, node: 1, ..NodeConfig::default() };
+//! let (mut node, link) = jaus_ros2::robot_node(&config, node_config, Instant::now())?;
+//! // Run `node` with jaus::net::udp::run_on(&mut node, &socket, &stop, None, |_| {});
+//! // `link.stats()` and `link.events()` tell what the ROS 2 side did.
+//! # let _ = (&mut node, link);
+//! # Ok::<(), jaus_ros2::Ros2Error>(())
+//! ```
+
+pub mod bridge;
+pub mod config;
+pub mod convert;
+pub mod msg;
+pub mod robot;
+
+pub use bridge::{dds_topic_name, BridgeStats, OdomSample, Ros2Link, WatchdogEvent};
+pub use config::{EffortMapping, Frames, OdomAxes, Qos, Reliability, Ros2Config, Topics};
+pub use robot::{ids, robot_components, robot_node};
+
+/// What can go wrong starting a bridge.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum Ros2Error {
+    /// A setting is out of range or a name is not a ROS 2 name.
+    #[error("ros2 configuration: {0}")]
+    Config(String),
+    /// The DDS participant, a topic, a reader or the writer could not be created.
+    #[error("ros2 (DDS): {0}")]
+    Dds(String),
+    /// The JAUS node refused a component.
+    #[error("ros2 (JAUS node): {0}")]
+    Jaus(String),
+}
