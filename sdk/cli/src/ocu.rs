@@ -79,6 +79,8 @@ pub fn ocu(args: &OcuArgs, stop: &AtomicBool, out: &mut impl Write) -> Result<()
                 subsystem: args.subsystem,
                 node: args.node,
                 peers: args.peers.clone(),
+                // As ConsoleOptions::default: the Station's commands arrive.
+                reliable: Some(jaus::net::reliable::RetryPolicy::cautious()),
                 ..NodeConfig::default()
             };
         }

@@ -58,6 +58,10 @@ impl Default for ConsoleOptions {
             node: NodeConfig {
                 subsystem: 200,
                 node: 1,
+                // The Station's commands (control, Resume, waypoints, missions) are
+                // resent until acknowledged, in order, a peer that never acknowledges
+                // learnt (jaus::net::reliable); the console sends no set-point stream.
+                reliable: Some(jaus::net::reliable::RetryPolicy::cautious()),
                 ..NodeConfig::default()
             },
             bind: SocketAddr::from(([127, 0, 0, 1], 0)),

@@ -1,6 +1,6 @@
 """The README's Python script, as written there, drives the demo vehicle hosted by
-`jaus node` to its waypoint: control taken, Resume, the waypoint, pose reports until
-the driver is back in Standby."""
+`jaus node` to its waypoint: control taken, Resume, the waypoint, each command's
+confirmation, pose reports until the vehicle stands at the waypoint."""
 
 import re
 import subprocess
@@ -36,6 +36,9 @@ def test_the_readme_script_drives_the_vehicle_to_its_waypoint(vehicle):
     assert run.returncode == 0, run.stderr
     lines = run.stdout.splitlines()
     assert lines[-1] == "arrived", run.stdout[-2000:]
+    # Our vehicle acknowledges each command.
+    for name in ("SetGlobalWaypoint", "SetTravelSpeed"):
+        assert f"{name} acknowledged" in lines, run.stdout[-2000:]
     poses = [
         tuple(float(x) for x in re.findall(r"-?\d+\.\d+", line)[:2])
         for line in lines

@@ -73,6 +73,16 @@ pub struct RetryPolicy {
     /// even after three lost copies (order kept); a silent one's messages are not held
     /// up for the whole retry time of each.
     pub hold_unknown: Duration,
+    /// Whether a message to a peer not yet known to acknowledge is resent. Default
+    /// true (the SDK's components acknowledge and drop retransmissions, Part 1). False
+    /// ([`RetryPolicy::cautious`]): one copy, whose acknowledgement is awaited for
+    /// [`hold_unknown`](Self::hold_unknown); a peer is known once it acknowledged
+    /// anything, and from then on its messages are resent until acknowledged. A peer
+    /// that neither acknowledges nor drops retransmissions (OpenJAUS 3.3 carried out
+    /// each of six copies of one Set Global Waypoint from a client: six waypoints)
+    /// then carries out each command once; the price is that a first command lost on
+    /// the way to a peer not yet heard acknowledging is not sent again.
+    pub retry_unknown: bool,
 }
 
 impl Default for RetryPolicy {
@@ -86,11 +96,23 @@ impl Default for RetryPolicy {
             duplicate_window: Duration::from_secs(10),
             max_remembered: 4096,
             hold_unknown: Duration::from_secs(2),
+            retry_unknown: true,
         }
     }
 }
 
 impl RetryPolicy {
+    /// The defaults, but a peer not yet known to acknowledge gets one copy of each
+    /// message ([`retry_unknown`](Self::retry_unknown) false): for a client on a system
+    /// that may hold components which neither acknowledge nor drop retransmissions
+    /// (OpenJAUS 3.3's), such as the command line's, Python's and the console's node.
+    pub fn cautious() -> Self {
+        Self {
+            retry_unknown: false,
+            ..Self::default()
+        }
+    }
+
     /// The wait after copy number `attempt` (1 for the first): doubling from
     /// [`first_timeout`](Self::first_timeout) up to [`max_timeout`](Self::max_timeout).
     pub fn wait_after(&self, attempt: u32) -> Duration {
@@ -261,9 +283,9 @@ impl<K: Copy + Eq + std::fmt::Debug, P: Copy + Eq + Hash, M> Sender<K, P, M> {
         // One at a time per peer, in the order given; behind a peer not yet known to
         // answer, for `hold_unknown` at most.
         let behind = self.waiting.iter().any(|w| w.peer == peer);
-        let known = self.habits.get(&peer).is_some_and(|h| h.acknowledged > 0);
+        let known = self.known(peer);
         let next = match (behind, known) {
-            (false, _) => Some(now + self.policy.wait_after(1)),
+            (false, _) => Some(now + self.wait_after(peer, 1)),
             (true, true) => None,
             (true, false) => Some(now + self.policy.hold_unknown),
         };
@@ -335,7 +357,13 @@ impl<K: Copy + Eq + std::fmt::Debug, P: Copy + Eq + Hash, M> Sender<K, P, M> {
                 i += 1;
                 continue;
             }
-            if self.waiting[i].attempts >= self.policy.max_attempts {
+            let peer = self.waiting[i].peer;
+            let last = if self.known(peer) || self.policy.retry_unknown {
+                self.policy.max_attempts
+            } else {
+                1
+            };
+            if self.waiting[i].attempts >= last {
                 let w = self.waiting.remove(i);
                 self.stats.given_up += 1;
                 if self.habits.len() < MAX_HABITS || self.habits.contains_key(&w.peer) {
@@ -353,12 +381,13 @@ impl<K: Copy + Eq + std::fmt::Debug, P: Copy + Eq + Hash, M> Sender<K, P, M> {
                 i = 0;
                 continue;
             }
+            let wait = self.wait_after(peer, self.waiting[i].attempts + 1);
             let w = &mut self.waiting[i];
             if w.attempts > 0 {
                 self.stats.retried += 1;
             }
             w.attempts += 1;
-            w.next = Some(now + self.policy.wait_after(w.attempts));
+            w.next = Some(now + wait);
             send(&w.key, &w.message);
             i += 1;
         }
@@ -385,6 +414,22 @@ impl<K: Copy + Eq + std::fmt::Debug, P: Copy + Eq + Hash, M> Sender<K, P, M> {
     }
 
     /// The first message held for `peer` is due now (the one before it settled).
+    /// Whether `peer` acknowledged anything (it is then resent to: a peer that
+    /// acknowledges drops retransmissions, Part 1).
+    fn known(&self, peer: P) -> bool {
+        self.habits.get(&peer).is_some_and(|h| h.acknowledged > 0)
+    }
+
+    /// The wait after copy `attempt` to `peer`: the policy's backoff, or, for the one
+    /// copy to a peer not yet known to acknowledge, `hold_unknown`.
+    fn wait_after(&self, peer: P, attempt: u32) -> Duration {
+        if self.known(peer) || self.policy.retry_unknown {
+            self.policy.wait_after(attempt)
+        } else {
+            self.policy.hold_unknown
+        }
+    }
+
     fn release(&mut self, now: Instant, peer: P) {
         if self
             .waiting
@@ -512,6 +557,33 @@ mod tests {
 
     fn sender() -> Sender<u16, u8, &'static str> {
         Sender::new(RetryPolicy::default())
+    }
+
+    #[test]
+    fn cautiously_a_peer_not_yet_known_gets_one_copy_then_resends_once_it_acknowledged() {
+        // Cautious: a peer that never acknowledged gets one copy of each message (a
+        // peer that neither acknowledges nor drops copies carries out each once).
+        let t0 = Instant::now();
+        let mut s: Sender<u16, u8, &'static str> = Sender::new(RetryPolicy::cautious());
+        assert_eq!(s.track(t0, 1, 4, "waypoint"), Tracked::Send);
+        let mut copies = Vec::new();
+        while let Some(next) = s.next_timeout() {
+            s.poll(next, |k, _| copies.push((next - t0, *k)));
+        }
+        assert!(copies.is_empty(), "no second copy: {copies:?}");
+        let d = s.poll_delivery().unwrap();
+        assert_eq!((d.outcome, d.attempts), (Outcome::GaveUp, 1));
+        assert_eq!(d.elapsed, RetryPolicy::cautious().hold_unknown);
+        // Once it acknowledged something, its messages are resent until acknowledged.
+        let t1 = t0 + Duration::from_secs(10);
+        assert_eq!(s.track(t1, 2, 4, "speed"), Tracked::Send);
+        assert!(s.answered(t1, 2, 4, true, |_| false));
+        assert_eq!(s.track(t1, 3, 4, "resume"), Tracked::Send);
+        let mut again = 0;
+        while let Some(next) = s.next_timeout() {
+            s.poll(next, |_, _| again += 1);
+        }
+        assert_eq!(again, 5, "five more copies to a peer known to acknowledge");
     }
 
     #[test]

@@ -346,7 +346,7 @@ impl Client {
                     peers: self.peers.clone(),
                     // The tool's commands arrive: resent until acknowledged, in order,
                     // a component that never acknowledges learnt (docs/wire.md §1.7).
-                    reliable: Some(jaus::net::reliable::RetryPolicy::default()),
+                    reliable: Some(jaus::net::reliable::RetryPolicy::cautious()),
                     ..NodeConfig::default()
                 };
                 c.manager.node_name = self.name.clone();

@@ -171,6 +171,9 @@ pub struct NodeFile {
 ///   first_timeout_ms: 200       # wait for the first copy's acknowledgement
 ///   max_timeout_ms: 1600        # the wait doubles up to this
 ///   attempts: 6                 # copies in all (about 6 s with the defaults)
+///   retry_unknown: true         # false: one copy to a peer never heard acknowledging
+///                               #   (peers that may be OpenJAUS 3.3, which carries
+///                               #   out every copy)
 /// ```
 #[derive(Debug, Clone, Default, serde::Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -184,6 +187,10 @@ pub struct ReliableFile {
     /// Copies sent in all. Default 6.
     #[serde(default)]
     pub attempts: Option<u32>,
+    /// Whether a peer never heard acknowledging is sent more than one copy. Default
+    /// true (`RetryPolicy::retry_unknown`).
+    #[serde(default)]
+    pub retry_unknown: Option<bool>,
 }
 
 impl ReliableFile {
@@ -200,6 +207,7 @@ impl ReliableFile {
                 .map_or(d.max_timeout, Duration::from_millis)
                 .max(first),
             max_attempts: self.attempts.map_or(d.max_attempts, |n| n.clamp(1, 100)),
+            retry_unknown: self.retry_unknown.unwrap_or(d.retry_unknown),
             ..d
         }
     }
