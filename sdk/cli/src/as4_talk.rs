@@ -13,13 +13,13 @@
 //! arrives for `--wait` seconds.
 
 use std::io::Write;
-use std::net::{SocketAddr, UdpSocket};
+use std::net::SocketAddr;
 use std::path::{Path, PathBuf};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
-use jaus::net::as5669a::{As4Config, As4Id, As4Message, As4Stack};
-use jaus::CommandCode;
-use jaus_dynamic::{Decoded, DynMessage, Schema, Value};
+use jaus_dynamic::{DynMessage, Schema};
+
+use crate::as4_link::{As4Link, Incoming};
 
 /// Options of `jaus as4-query` and `jaus as4-send`.
 #[derive(Debug, clap::Args)]
@@ -104,151 +104,6 @@ fn parse(schema: &Schema, line: &str) -> Result<DynMessage, String> {
     schema.from_json(name, &fields).map_err(|e| e.to_string())
 }
 
-/// One component over AS5669A on UDP.
-struct Link<'s> {
-    schema: &'s Schema,
-    socket: UdpSocket,
-    stack: As4Stack<SocketAddr>,
-    peer: SocketAddr,
-    me: As4Id,
-    to: As4Id,
-    start: Instant,
-}
-
-impl Link<'_> {
-    fn send(&mut self, m: &DynMessage) -> Result<(), String> {
-        let body = self
-            .schema
-            .encode(m)
-            .map_err(|e| format!("{}: {e}", m.name))?;
-        self.send_raw(m.code, body)
-    }
-
-    fn send_raw(&mut self, code: CommandCode, body: Vec<u8>) -> Result<(), String> {
-        self.stack.send(
-            self.peer,
-            &[As4Message::new(code.0, self.to, self.me, body)],
-        );
-        while let Some(d) = self.stack.poll_transmit() {
-            self.socket
-                .send_to(&d.bytes, d.to)
-                .map_err(|e| format!("{}: {e}", self.peer))?;
-        }
-        Ok(())
-    }
-
-    /// The messages from the component within `wait`, each printed as it comes;
-    /// returns at the first for which `stop` says yes (with it), or `None` at the end.
-    fn receive(
-        &mut self,
-        wait: Duration,
-        out: &mut impl Write,
-        mut stop: impl FnMut(CommandCode, &Decoded) -> bool,
-    ) -> Result<Option<Decoded>, String> {
-        let until = Instant::now() + wait;
-        let mut buf = vec![0u8; 65536];
-        loop {
-            let left = until.saturating_duration_since(Instant::now());
-            if left.is_zero() {
-                return Ok(None);
-            }
-            let _ = self.socket.set_read_timeout(Some(left));
-            let Ok((n, from)) = self.socket.recv_from(&mut buf) else {
-                continue;
-            };
-            let Ok(messages) = self.stack.receive(Instant::now(), from, &buf[..n]) else {
-                continue;
-            };
-            for m in messages {
-                if m.source != self.to {
-                    continue;
-                }
-                let code = CommandCode(m.message_id);
-                let decoded = match self.schema.fields_json(code, &m.body) {
-                    Ok(d) => d,
-                    Err(e) => {
-                        writeln!(
-                            out,
-                            "{}",
-                            serde_json::json!({
-                                "t": self.start.elapsed().as_secs_f64(),
-                                "from": m.source.to_string(),
-                                "error": format!("{:#06X}: {e}", code.0),
-                            })
-                        )
-                        .map_err(|e| e.to_string())?;
-                        continue;
-                    }
-                };
-                self.print(out, m.source, &decoded)?;
-                if stop(code, &decoded) {
-                    return Ok(Some(decoded));
-                }
-            }
-        }
-    }
-
-    fn print(&self, out: &mut impl Write, from: As4Id, d: &Decoded) -> Result<(), String> {
-        struct Line<'a>(f64, String, &'a Decoded);
-        impl serde::Serialize for Line<'_> {
-            fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-                use serde::ser::SerializeMap;
-                let mut map = s.serialize_map(None)?;
-                map.serialize_entry("t", &self.0)?;
-                map.serialize_entry("from", &self.1)?;
-                self.2.serialize_entries(&mut map)?;
-                map.end()
-            }
-        }
-        let line = Line(self.start.elapsed().as_secs_f64(), from.to_string(), d);
-        let text = serde_json::to_string(&line).map_err(|e| e.to_string())?;
-        writeln!(out, "{text}").map_err(|e| e.to_string())
-    }
-
-    /// Request Control at `authority`: Ok when accepted, else the answer as the error.
-    fn take_control(
-        &mut self,
-        authority: u8,
-        wait: Duration,
-        out: &mut impl Write,
-    ) -> Result<(), String> {
-        let request = self
-            .schema
-            .from_json(
-                "RequestControl",
-                &serde_json::json!({ "authority_code": authority }),
-            )
-            .map_err(|e| e.to_string())?;
-        self.send(&request)?;
-        let confirm = self.schema.message("ConfirmControl").map(|m| m.code);
-        let answer = self.receive(wait, out, |code, _| Some(code) == confirm)?;
-        match answer {
-            Some(Decoded::Message(m)) => {
-                // Confirm Control's response code: 0 is Control Accepted.
-                let code = m.fields.field("response_code");
-                match code.and_then(Value::as_u64) {
-                    Some(0) => Ok(()),
-                    _ => Err(format!(
-                        "control of {} refused: {}",
-                        self.to,
-                        match code {
-                            Some(Value::Enum(name, v)) => format!("{name} ({v})"),
-                            Some(v) => format!("{v:?}"),
-                            None => "no response code".into(),
-                        }
-                    )),
-                }
-            }
-            _ => Err(format!(
-                "no Confirm Control from {} at {} within {:.1} s",
-                self.to,
-                self.peer,
-                wait.as_secs_f64()
-            )),
-        }
-    }
-}
-
 /// `jaus as4-query` (`wait_each`) and `jaus as4-send`.
 pub fn as4_talk(args: &As4TalkArgs, wait_each: bool, out: &mut impl Write) -> Result<(), String> {
     let schema = schema(&args.spec, &args.jsidl)?;
@@ -260,23 +115,21 @@ pub fn as4_talk(args: &As4TalkArgs, wait_each: bool, out: &mut impl Write) -> Re
     let me = jaus_conform::as4::parse_id(&args.me)?;
     let to = jaus_conform::as4::parse_id(&args.to)?;
     let wait = Duration::from_secs_f64(args.wait.clamp(0.0, 3600.0));
-    let socket = UdpSocket::bind(args.bind).map_err(|e| format!("{}: {e}", args.bind))?;
-    let mut link = Link {
-        schema: &schema,
-        socket,
-        stack: As4Stack::new(As4Config::default()),
-        peer: args.peer,
-        me,
-        to,
-        start: Instant::now(),
+    let mut link = As4Link::open(schema, args.peer, args.bind, me)?;
+    let mut print = |i: &Incoming| -> Result<(), String> {
+        writeln!(out, "{}", i.line()).map_err(|e| e.to_string())
     };
     if let Some(a) = args.control {
-        link.take_control(a, wait, out)?;
+        link.take_control(to, a, wait, &mut print)?;
     }
     let mut result = Ok(());
     for m in &messages {
-        link.send(m)?;
-        if wait_each && link.receive(wait, out, |_, _| true)?.is_none() {
+        link.send(to, m)?;
+        if wait_each
+            && link
+                .receive(to, wait, |i| print(i).map(|()| true))?
+                .is_none()
+        {
             result = Err(format!(
                 "{} to {} at {}: no answer within {:.1} s",
                 m.name,
@@ -288,15 +141,10 @@ pub fn as4_talk(args: &As4TalkArgs, wait_each: bool, out: &mut impl Write) -> Re
         }
     }
     if !wait_each {
-        link.receive(wait, out, |_, _| false)?;
+        link.receive(to, wait, |i| print(i).map(|()| false))?;
     }
     if args.control.is_some() {
-        if let Some(release) = schema.message("ReleaseControl") {
-            let code = release.code;
-            link.send_raw(code, Vec::new())?;
-            let reject = schema.message("RejectControl").map(|m| m.code);
-            link.receive(wait, out, |c, _| Some(c) == reject)?;
-        }
+        link.release_control(to, wait, &mut print)?;
     }
     result
 }

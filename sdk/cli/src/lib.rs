@@ -20,6 +20,7 @@
 
 pub mod arm_report;
 pub mod as4_drive;
+pub mod as4_link;
 pub mod as4_talk;
 pub mod capture;
 pub mod catalogue;

@@ -305,6 +305,9 @@ fn jaus_node_hosting_every_stock_component_conforms() {
 #[test]
 fn a_component_taking_commands_from_anyone_fails_over_udp() {
     let _one = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
+    // The binary first: building it can take longer than the target below runs (one
+    // CI run built it for over two minutes and found the target gone).
+    jaus_bin();
     let dir = scratch("broken");
     let socket = UdpSocket::bind("127.0.0.1:0").unwrap();
     let peer: SocketAddr = socket.local_addr().unwrap();

@@ -15,6 +15,7 @@
 //! Python API is documented in docs/python.md; the tests are the pytest suite in
 //! `tests/`.
 
+mod as4;
 mod catalog;
 mod client;
 mod convert;
@@ -141,6 +142,7 @@ fn _jaus(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Control>()?;
     m.add_class::<Watch>()?;
     m.add_class::<client::Confirmation>()?;
+    m.add_class::<as4::As4Client>()?;
     m.add("JausError", py.get_type::<JausError>())?;
     m.add("DecodeError", py.get_type::<DecodeError>())?;
     m.add("EncodeError", py.get_type::<EncodeError>())?;

@@ -20,6 +20,7 @@ See docs/python.md of the SDK for the whole API.
 from . import _jaus
 from ._aio import AsyncWatch
 from ._jaus import (
+    As4Client,
     ClientError,
     Confirmation,
     Control,

@@ -272,6 +272,33 @@ class Confirmation:
         """What the read-back showed (``"Report Travel Speed 2.44 m/s"``); empty for an
         acknowledgement."""
 
+class As4Client:
+    """An SAE AS-4 client (AS5669A over UDP) naming any message of the AS-4 definitions:
+    jaus-as4's (Core v1.1, Mobility), a vendor's YAML on them (``spec``), or imported JSIDL
+    (``jsidl``). Answers are dicts ``{"t", "from", "message", "fields"}``."""
+
+    def __init__(
+        self,
+        peer: str,
+        me: str = "42.1.7",
+        *,
+        bind: str = "0.0.0.0:0",
+        spec: list[str] = ...,
+        jsidl: list[str] = ...,
+        timeout: float = 2.0,
+    ) -> None: ...
+    def send(self, to: str, name: str, **fields: Any) -> None:
+        """Sends message ``name`` with ``fields`` to component ``to`` (``"S.N.C"``)."""
+    def query(self, to: str, name: str, *, timeout: float | None = None, **fields: Any) -> dict[str, Any]:
+        """Sends ``name`` and returns the component's first answer; ``ClientError``
+        when none comes within ``timeout``."""
+    def receive(self, to: str, *, timeout: float | None = None) -> list[dict[str, Any]]:
+        """What ``to`` sends within ``timeout``, oldest first."""
+    def take_control(self, to: str, authority: int) -> None:
+        """Request Control; ``ClientError`` naming the answer when refused."""
+    def release_control(self, to: str) -> None:
+        """Release Control."""
+
 class Client:
     """A member of a JAUS system, joined as the ``jaus`` CLI joins it."""
 
