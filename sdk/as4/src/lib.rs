@@ -142,6 +142,7 @@ pub mod embedded;
 pub mod gateway;
 pub mod mobility;
 pub mod node;
+pub mod outgoing;
 pub mod proxy;
 pub mod ra33;
 pub mod service;

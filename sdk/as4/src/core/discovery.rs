@@ -28,7 +28,7 @@ use crate::messages::{
     ReportConfiguration, ReportIdentification, ReportServiceList, ReportServices,
     ReportSubsystemList, ServiceInfo, SubsystemServices,
 };
-use crate::service::ServiceId;
+use crate::outgoing::ServiceId;
 
 /// Names Report Identification gives.
 #[derive(Debug, Clone, PartialEq, Eq)]

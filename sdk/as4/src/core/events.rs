@@ -36,7 +36,7 @@ use crate::messages::{
     ConfirmEventRequest, Event, EventInfo, EventRejection, EventType, EventsFilter, Message,
     RejectEventRequest, ReportEventTimeout, ReportEvents,
 };
-use crate::service::Outgoing;
+use crate::outgoing::Outgoing;
 
 /// Lowest periodic rate confirmed, Hz.
 pub const MIN_RATE: f64 = 0.1;

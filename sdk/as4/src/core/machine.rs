@@ -31,7 +31,7 @@ use crate::messages::{
     ConfirmControl, ControlConfirmation, ControlRejection, EmergencyCode, EventRejection,
     EventType, EventsFilter, Message, RejectControl,
 };
-use crate::service::Outgoing;
+use crate::outgoing::Outgoing;
 
 /// The internal events the Core's owner raises.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -38,8 +38,8 @@ use jaus::net::as5669a::As4Id;
 use jaus::CommandCode;
 
 use crate::messages::{self as m, ComponentState, Message};
-use crate::service::Outgoing;
-use crate::service::ServiceId;
+use crate::outgoing::Outgoing;
+use crate::outgoing::ServiceId;
 
 use access::Access;
 use discovery::{service_info, Discovery, Identification};

@@ -24,7 +24,7 @@ use crate::messages::{
     QueryServiceList, QueryServices, QueryTime, RegisterServices, ReportElement,
     ReportElementCount, ReportElementList, SetElement, SetTime,
 };
-use crate::service::{receive_of, sender_of};
+use crate::outgoing::{receive_of, sender_of};
 
 /// The data of the Core's other services, lent to a [`Host`] for one call.
 #[derive(Debug)]

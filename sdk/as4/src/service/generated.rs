@@ -31,7 +31,8 @@ use jaus::{CommandCode, JausMessage};
 use super::{Cx, Handled, Outgoing, Request, Service, ServiceId};
 use crate::core::machine::Host;
 use crate::messages::services::transport::event::Receive;
-use crate::messages::{ComponentAddress, Message};
+use crate::messages::Message;
+use crate::outgoing::{receive_of, sender_of};
 
 /// What a generated service did with a message ([`GeneratedService::receive`]).
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -120,23 +121,6 @@ impl<E: 'static, G: GeneratedService> Service<E> for G {
             Taken::Undecodable(why) => Handled::Refused(why),
         }
     }
-}
-
-/// Transport's `Receive` data of a message from `from`.
-pub fn receive_of(from: As4Id) -> Receive {
-    Receive {
-        source: ComponentAddress {
-            subsystem_id: from.subsystem,
-            node_id: from.node,
-            component_id: from.component,
-        },
-    }
-}
-
-/// The sender of a message, from Transport's `Receive` data.
-pub fn sender_of(transport: &Receive) -> As4Id {
-    let s = &transport.source;
-    As4Id::new(s.subsystem_id, s.node_id, s.component_id)
 }
 
 /// What a generated service's own actions send: put one in the implementation of the

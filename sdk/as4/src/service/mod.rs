@@ -33,31 +33,8 @@ use crate::messages::{ComponentState, Message};
 
 mod generated;
 
-pub use generated::{receive_of, sender_of, GeneratedService, Outbox, Taken};
-
-/// A service's identity as Discovery reports it: its URI and version.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub struct ServiceId {
-    /// The service's URI (`urn:jaus:jss:mobility:LocalPoseSensor`).
-    pub uri: &'static str,
-    /// Major version.
-    pub major: u8,
-    /// Minor version.
-    pub minor: u8,
-}
-
-impl ServiceId {
-    /// The service `uri` at version `major.minor`.
-    pub const fn new(uri: &'static str, major: u8, minor: u8) -> Self {
-        Self { uri, major, minor }
-    }
-}
-
-impl fmt::Display for ServiceId {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{} v{}.{}", self.uri, self.major, self.minor)
-    }
-}
+pub use crate::outgoing::{receive_of, sender_of, Outgoing, ServiceId};
+pub use generated::{GeneratedService, Outbox, Taken};
 
 /// Whether message `code` needs control: the catalogue's `needs_control` (AS-4's
 /// `is_command` of the definitions), and true for a code outside them (safe: a vendor's
@@ -67,25 +44,6 @@ pub fn needs_control(code: CommandCode) -> bool {
         .iter()
         .find(|m| m.code == code)
         .is_none_or(|m| m.needs_control)
-}
-
-/// A message to send: its destination and the message.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Outgoing {
-    /// The destination.
-    pub to: As4Id,
-    /// The message.
-    pub message: Message,
-}
-
-impl Outgoing {
-    /// `message` for `to`.
-    pub fn new(to: As4Id, message: impl Into<Message>) -> Self {
-        Self {
-            to,
-            message: message.into(),
-        }
-    }
 }
 
 /// A message handed to a service.
