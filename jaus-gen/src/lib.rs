@@ -191,6 +191,7 @@ pub struct Builder {
     lock: Option<PathBuf>,
     update_lock: Option<bool>,
     base: Option<Base>,
+    delegate: Option<String>,
 }
 
 /// Base definitions other than the SDK's that a vendor's set extends
@@ -376,6 +377,17 @@ impl Builder {
             dir: dir.into(),
             path: path.into(),
         });
+        self
+    }
+
+    /// Services of the set whose ids start with `id_prefix` (`urn:jaus:jss:core:`) are
+    /// inherited by delegation, as a base's are ([`Builder::base`]): a service of the
+    /// set inheriting one of them gets the merged machines, its trait declares only its
+    /// own guards and actions, and its `Machines` take a second implementation for the
+    /// inherited ones. One implementation of the delegated services (a component's Core)
+    /// then serves every service built on them, each service implemented apart.
+    pub fn delegate_inherited(mut self, id_prefix: impl Into<String>) -> Self {
+        self.delegate = Some(id_prefix.into());
         self
     }
 
@@ -614,7 +626,8 @@ impl Builder {
             (String::new(), 0)
         } else {
             let on = self.base.as_ref().map(|_| base.as_str());
-            let ctx = build_services(&spec, on).map_err(Error::Services)?;
+            let ctx =
+                build_services(&spec, on, self.delegate.as_deref()).map_err(Error::Services)?;
             let raw = env.get_template("services.rs.j2")?.render(&ctx)?;
             (
                 format_code(&raw, self.out_dir.as_deref(), "services")?,

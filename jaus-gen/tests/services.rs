@@ -46,6 +46,27 @@ fn the_access_fixture_generates_its_golden_rust() {
     check("access.services.rs", &g.services);
 }
 
+#[test]
+fn a_delegated_service_is_inherited_on_a_second_implementation() {
+    let g = Builder::new()
+        .emit_rerun_if_changed(false)
+        .runtime_path("::jaus")
+        .serde_cfg("all()")
+        .jsidl(dir().join("access"))
+        .delegate_inherited("urn:test:access:Link")
+        .render()
+        .unwrap();
+    // Both are generated; Access's trait holds only its own methods, and its machines
+    // run the inherited guards and actions on an implementation of Link's trait.
+    assert_eq!(g.service_count, 2);
+    assert!(g.services.contains("pub trait Link {"), "{}", g.services);
+    assert!(g.services.contains("pub trait Access {"));
+    assert!(!g.services.contains("pub trait Access: super::link::Link"));
+    assert!(g.services.contains("B: super::link::Link + ?Sized"));
+    assert!(g.services.contains("inherited: &mut B"));
+    // The undelegated rendering is unchanged (the golden test above).
+}
+
 /// Writes `yaml` as a one-file definition set and renders it.
 fn render(name: &str, yaml: &str) -> Result<jaus_gen::Generated, jaus_gen::Error> {
     let tmp = std::env::temp_dir().join(format!("jaus-gen-services-{}-{name}", std::process::id()));

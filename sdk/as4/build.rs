@@ -14,6 +14,9 @@ fn main() {
     if let Err(e) = jaus_gen::Builder::new()
         .spec_dir("defs")
         .runtime_path("::jaus")
+        // The Core's services are inherited by delegation: a Mobility service's trait
+        // holds only its own guards and actions, the inherited ones run on the Core.
+        .delegate_inherited("urn:jaus:jss:core:")
         .serde_cfg("feature = \"serde\"")
         .out_dir(out)
         .generate()

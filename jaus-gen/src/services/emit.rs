@@ -73,10 +73,27 @@ fn each_call(m: &mut Mach, f: &mut dyn FnMut(&mut Call, bool)) {
 /// a service of the set that inherits one of them calls the inherited guards and actions
 /// on an implementation of the base's trait, handed to its `Machines` beside the
 /// service's own.
-pub fn build_services(spec: &Spec, base: Option<&str>) -> Result<ServicesCtx, String> {
+///
+/// `delegate` is a service id prefix (`urn:jaus:jss:core:`) naming services of the set
+/// itself that the others inherit by delegation, as they would a base's: the delegated
+/// services are generated as usual, and a service inheriting one of them calls the
+/// inherited guards and actions on a second implementation (its trait does not extend
+/// the inherited trait). One implementation of the delegated services (a component's
+/// Core) then serves every service built on them, each implemented apart.
+pub fn build_services(
+    spec: &Spec,
+    base: Option<&str>,
+    delegate: Option<&str>,
+) -> Result<ServicesCtx, String> {
     let parents = parents(spec)?;
     let n = spec.services.len();
-    let is_base = |k: usize| base.is_some() && !spec.is_own(spec.services[k].source);
+    // A service of the base definitions: not generated here.
+    let external = |k: usize| base.is_some() && !spec.is_own(spec.services[k].source);
+    let delegated = |k: usize| delegate.is_some_and(|p| spec.services[k].def.id.starts_with(p));
+    // A service whose guards and actions a service inheriting it calls on a second
+    // implementation.
+    let is_base = |k: usize| external(k) || delegated(k);
+    let services_path = base.map_or_else(|| "super".to_string(), |b| format!("{b}::services"));
     // Each service's own machines, names resolved against its ancestors.
     let mut own: Vec<Vec<Mach>> = Vec::with_capacity(n);
     for svc in 0..n {
@@ -113,7 +130,7 @@ pub fn build_services(spec: &Spec, base: Option<&str>) -> Result<ServicesCtx, St
             });
         }
     }
-    let (methods, args) = signatures(&mut own, &is_base)?;
+    let (methods, args) = signatures(&mut own, &external)?;
     // Merge, root services first.
     let mut merged: Vec<Option<Vec<Mach>>> = vec![None; n];
     for i in 0..n {
@@ -140,14 +157,18 @@ pub fn build_services(spec: &Spec, base: Option<&str>) -> Result<ServicesCtx, St
         }
     }
     let mut services = Vec::new();
+    let standalone = |_: usize| false;
     for (i, m) in merged.iter().enumerate() {
-        if is_base(i) {
+        if external(i) {
             continue;
         }
         let machines = m.clone().unwrap_or_default();
+        // A delegated service is generated as a service of its own (its supertraits are
+        // its ancestors); the others call into it.
         let on = Inherit {
             base,
-            is_base: &is_base,
+            services: &services_path,
+            is_base: if delegated(i) { &standalone } else { &is_base },
         };
         services.push(service(
             spec,
@@ -184,7 +205,7 @@ fn shape(a: &Arg) -> Shape {
 #[allow(clippy::type_complexity)]
 fn signatures(
     own: &mut [Vec<Mach>],
-    is_base: &dyn Fn(usize) -> bool,
+    external: &dyn Fn(usize) -> bool,
 ) -> Result<(BTreeMap<(usize, String), Method>, BTreeMap<String, String>), String> {
     let mut args: BTreeMap<String, String> = BTreeMap::new();
     let mut sites: BTreeMap<(usize, String), Vec<(bool, Call)>> = BTreeMap::new();
@@ -193,7 +214,9 @@ fn signatures(
     for (k, ms) in own.iter_mut().enumerate() {
         for m in ms.iter_mut() {
             each_call(m, &mut |c, guard| {
-                if is_base(c.owner) && !is_base(k) {
+                // A delegated service of the set is generated here: a call onto it
+                // declares its method as any call does.
+                if external(c.owner) && !external(k) {
                     onto_base.push(c.clone());
                     return;
                 }
@@ -238,7 +261,7 @@ fn signatures(
         let uniform = list
             .iter()
             .all(|(_, c)| c.args.iter().map(shape).collect::<Vec<_>>() == shapes);
-        if !uniform && !is_base(key.0) {
+        if !uniform && !external(key.0) {
             for (_, c) in &list {
                 for a in &c.args {
                     if let Arg::Param { ty, .. } = a {
@@ -344,19 +367,25 @@ fn list(v: &[u16]) -> String {
     )
 }
 
-/// What a service of a set built on base definitions inherits from them.
+/// What a service of a set built on base definitions (or on delegated services of its
+/// own set) inherits from them.
 struct Inherit<'a> {
-    /// The base's generated messages (`::jaus_as4::messages`).
+    /// The base's generated messages (`::jaus_as4::messages`), for a set on base
+    /// definitions.
     base: Option<&'a str>,
-    /// Whether service `k` is one of the base's.
+    /// Where the inherited services' traits are: the base's `services` module, or
+    /// `super` for delegated services of the set.
+    services: &'a str,
+    /// Whether service `k` is one whose guards and actions run on a second
+    /// implementation.
     is_base: &'a dyn Fn(usize) -> bool,
 }
 
 /// Builds one service's context.
 struct Emit<'a> {
     is_base: &'a dyn Fn(usize) -> bool,
-    /// The base's generated messages, for the `Arg` of inherited methods.
-    base: Option<&'a str>,
+    /// Where the inherited services' traits are, for the `Arg` of inherited methods.
+    services: &'a str,
     methods: &'a BTreeMap<(usize, String), Method>,
     borrows_args: bool,
     guards: Vec<SiteCtx>,
@@ -373,9 +402,10 @@ impl Emit<'_> {
             Some(Sig::Slice)
         );
         // An inherited method of a base service takes the base's `Arg`.
-        let arg = match self.base {
-            Some(b) if (self.is_base)(c.owner) => format!("{b}::services::Arg"),
-            _ => "super::Arg".to_string(),
+        let arg = if (self.is_base)(c.owner) {
+            format!("{}::Arg", self.services)
+        } else {
+            "super::Arg".to_string()
         };
         let args: Vec<String> = c
             .args
@@ -536,7 +566,7 @@ fn service(
     let d = &s.def;
     let mut e = Emit {
         is_base: on.is_base,
-        base: on.base,
+        services: on.services,
         methods,
         borrows_args: args,
         guards: Vec::new(),
@@ -789,14 +819,14 @@ fn service(
         inherited: chain(parents, i)
             .into_iter()
             .find(|k| (on.is_base)(*k))
-            .zip(on.base)
-            .map(|(k, b)| {
+            .map(|k| {
                 let n = &spec.services[k].def.name;
+                let b = on.services;
                 InheritedCtx {
                     name: n.clone(),
-                    path: format!("{b}::services::{}::{n}", ident(n)),
-                    machines: format!("{b}::services::{}::Machines", ident(n)),
-                    tables: format!("{b}::services::{}::MACHINES", ident(n)),
+                    path: format!("{b}::{}::{n}", ident(n)),
+                    machines: format!("{b}::{}::Machines", ident(n)),
+                    tables: format!("{b}::{}::MACHINES", ident(n)),
                 }
             }),
         hosted,

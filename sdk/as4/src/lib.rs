@@ -135,6 +135,10 @@ pub const DEFS: &[(&str, &str)] = &[
         include_str!("../defs/core_services.yaml"),
     ),
     ("mobility.yaml", include_str!("../defs/mobility.yaml")),
+    (
+        "mobility_services.yaml",
+        include_str!("../defs/mobility_services.yaml"),
+    ),
 ];
 
 pub mod core;

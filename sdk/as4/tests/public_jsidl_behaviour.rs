@@ -299,3 +299,144 @@ fn our_core_machines_have_the_behaviour_of_the_public_jsidl() {
         unexplained.join("\n")
     );
 }
+
+/// What a Mobility service takes, state aside: `on TRIGGER [guard]`. The public Mobility
+/// set is written on Core v1.0 (its `StateA`/`StateB` are our `Available`) and repeats a
+/// query under NotControlled and Controlled where ours answers it once under
+/// `Receiving.Ready` (`mobility_services.yaml`'s header), so triggers and guards are
+/// compared, not states.
+fn takes(spec: &Spec, s: &ServiceDef) -> BTreeSet<String> {
+    behaviour(spec, s)
+        .1
+        .into_iter()
+        .map(|r| format!("on {} [{}]", r.trigger, r.guard))
+        .collect()
+}
+
+/// The differences `mobility_services.yaml` declares (its header), service by service.
+const MOBILITY_OURS: &[&str] = &[
+    // Execute List: from the head when no element is named; refused when none exists.
+    "ListDriver: on ExecuteList [iscontrollingclient && startelementexists]",
+    "ListDriver: on ExecuteList [iscontrollingclient && !startelementexists]",
+];
+const MOBILITY_THEIRS: &[&str] = &[
+    "ListDriver: on ExecuteList [iscontrollingclient && elementexists]",
+    "ListDriver: on ExecuteList [iscontrollingclient && !elementspecified]",
+    // Their copy of the List Manager's transitions, repeated in each driver.
+    "ListDriver: on SetElement [iscontrollingclient && isvalidelementrequest && iselementsupported]",
+    "ListDriver: on SetElement [iscontrollingclient && !isvalidelementrequest]",
+    "ListDriver: on SetElement [iscontrollingclient && !iselementsupported]",
+    "ListDriver: on DeleteElement [iscontrollingclient && elementexists]",
+    "ListDriver: on DeleteElement [iscontrollingclient && !elementexists]",
+    "ListDriver: on QueryElement [elementexists]",
+    "ListDriver: on QueryElementList []",
+    "ListDriver: on QueryElementCount []",
+    // Set Travel Speed on its own, and Set Global Pose, are not offered.
+    "ListDriver: on SetTravelSpeed [iscontrollingclient]",
+    "GlobalPoseSensor: on SetGlobalPose [iscontrollingclient]",
+    // Geomagnetic Property (magnetic variation) is not offered: RA 3.3 has none.
+    "GlobalPoseSensor: on QueryGeomagneticProperty []",
+    "GlobalPoseSensor: on SetGeomagneticProperty [iscontrollingclient]",
+];
+
+#[test]
+fn our_mobility_machines_take_what_the_public_jsidl_takes() {
+    let Some(root) = std::env::var_os("JAUS_JSIDL_DIR").map(PathBuf::from) else {
+        println!(
+            "skipped: set JAUS_JSIDL_DIR to compare our Mobility machines with the public JSIDL"
+        );
+        return;
+    };
+    let defs = Path::new(env!("CARGO_MANIFEST_DIR")).join("defs");
+    let ours = jaus_spec::load_dirs(&[&defs]).expect("our definitions validate");
+    // The published Mobility set re-declares Core v1.0's basic types in one file: import
+    // a copy without it (docs/as4.md).
+    let tmp = std::env::temp_dir().join(format!("jaus-as4-mobility-{}", std::process::id()));
+    copy_without(
+        &root.join("urn.jaus.jss.mobility"),
+        &tmp,
+        Path::new("MessageSet/CoreBasicTypes.xml"),
+    );
+    let theirs = jaus_jsidl::import(&[root.join("urn.jaus.jss.core-v1.0"), tmp.clone()])
+        .and_then(|i| i.load())
+        .unwrap_or_else(|e| panic!("importing Mobility v1.0: {e}"));
+    let _ = std::fs::remove_dir_all(&tmp);
+    let mut unexplained = Vec::new();
+    let mut compared = 0;
+    for name in [
+        "PrimitiveDriver",
+        "VelocityStateSensor",
+        "LocalPoseSensor",
+        "GlobalPoseSensor",
+        "LocalWaypointListDriver",
+        "GlobalWaypointListDriver",
+        "LocalPathSegmentDriver",
+        "GlobalPathSegmentDriver",
+    ] {
+        let id = format!("urn:jaus:jss:mobility:{name}");
+        let (Some(o), Some(t)) = (service(&ours, &id), service(&theirs, &id)) else {
+            panic!("service {id} missing: ours or the JSIDL's");
+        };
+        let inherits = |s: &ServiceDef| {
+            s.inherits
+                .as_ref()
+                .map(|i| i.id.rsplit(':').next().unwrap_or("").to_string())
+        };
+        if inherits(o) != inherits(t) && !name.ends_with("Driver") {
+            unexplained.push(format!(
+                "{name}: inherits {:?}, the JSIDL's {:?}",
+                inherits(o),
+                inherits(t)
+            ));
+        }
+        let label = if name.contains("List") || name.contains("Segment") {
+            "ListDriver"
+        } else {
+            name
+        };
+        let (o, t) = (takes(&ours, o), takes(&theirs, t));
+        compared += o.intersection(&t).count();
+        println!(
+            "{name}: {} triggers in the JSIDL, {} here",
+            t.len(),
+            o.len()
+        );
+        for x in t.difference(&o) {
+            let row = format!("{label}: {x}");
+            // A path segment driver's guard on its query is `segmentExists`, a waypoint
+            // list driver's `waypointExists`: both as in the JSIDL.
+            if !MOBILITY_THEIRS.contains(&row.as_str()) {
+                unexplained.push(format!("{name}: only in the JSIDL: {x}"));
+            }
+        }
+        for x in o.difference(&t) {
+            let row = format!("{label}: {x}");
+            if !MOBILITY_OURS.contains(&row.as_str()) {
+                unexplained.push(format!("{name}: only ours: {x}"));
+            }
+        }
+    }
+    println!("{compared} (trigger, guard) pairs identical");
+    assert!(compared > 0, "nothing compared");
+    assert!(
+        unexplained.is_empty(),
+        "differences not declared in mobility_services.yaml:\n{}",
+        unexplained.join("\n")
+    );
+}
+
+fn copy_without(from: &Path, to: &Path, skip: &Path) {
+    std::fs::create_dir_all(to).expect("create the copy's directory");
+    for e in std::fs::read_dir(from).expect("read the JSIDL directory") {
+        let e = e.expect("read the JSIDL directory");
+        let (src, dst) = (e.path(), to.join(e.file_name()));
+        if src.ends_with(skip) {
+            continue;
+        }
+        if src.is_dir() {
+            copy_without(&src, &dst, skip);
+        } else {
+            std::fs::copy(&src, &dst).expect("copy a JSIDL file");
+        }
+    }
+}

@@ -14,7 +14,8 @@ use jaus::stock::geo::LocalFrame;
 use jaus::stock::nalgebra::Vector2;
 use jaus::{CommandCode, JausMessage};
 
-use super::lists::{self, Goal, Kind, ListDriver, DEFAULT_TOLERANCE};
+use super::lists::{self, list_machines, Goal, Kind, ListDriver, DEFAULT_TOLERANCE};
+use super::machines::OnMachines;
 use super::ServiceIds;
 use crate::messages::{QueryLocalWaypoint, SetLocalWaypoint};
 use crate::ra33::Ra33Side;
@@ -54,7 +55,7 @@ pub fn local_pose(side: &Ra33Side) -> Option<ra::ReportLocalPose> {
 pub struct LocalOnGlobal;
 
 /// The Local Waypoint List Driver over an RA 3.3 Global Waypoint Driver.
-pub type LocalWaypointListDriverOnGlobal = ListDriver<LocalOnGlobal>;
+pub type LocalWaypointListDriverOnGlobal = OnMachines<ListDriver<LocalOnGlobal>>;
 
 impl LocalOnGlobal {
     fn plane(side: &Ra33Side) -> Result<&LocalFrame, String> {
@@ -67,6 +68,7 @@ impl Kind for LocalOnGlobal {
     const ID: ServiceId = ServiceIds::LOCAL_WAYPOINT_LIST_DRIVER;
     const QUERY: CommandCode = QueryLocalWaypoint::CODE;
     const COUNT: CommandCode = ra::ReportWaypointCount::CODE;
+    list_machines!(local_waypoint_list_driver);
 
     fn element(m: &Message) -> Option<SetLocalWaypoint> {
         lists::Local::element(m)

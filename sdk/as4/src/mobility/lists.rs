@@ -17,14 +17,22 @@
 use jaus::messages as ra;
 use jaus::{Address, CommandCode, JausMessage};
 
-use super::{is, ServiceIds};
+use super::machines::{Machined, On, OnMachines};
+use super::ServiceIds;
+use crate::core::lists::Lists;
+use crate::core::machine::Host;
+use crate::messages::services::global_path_segment_driver;
+use crate::messages::services::transport::event::Receive;
+use crate::messages::services::{global_waypoint_list_driver, list_manager};
+use crate::messages::services::{local_path_segment_driver, local_waypoint_list_driver};
 use crate::messages::{
-    ExecuteList, QueryActiveElement, QueryGlobalWaypoint, QueryLocalWaypoint, QueryTravelSpeed,
-    ReportActiveElement, ReportGlobalWaypoint, ReportLocalWaypoint, ReportTravelSpeed,
-    SetGlobalWaypoint, SetLocalWaypoint,
+    ExecuteList, QueryGlobalPathSegment, QueryGlobalWaypoint, QueryLocalPathSegment,
+    QueryLocalWaypoint, ReportActiveElement, ReportGlobalWaypoint, ReportLocalWaypoint,
+    ReportTravelSpeed, SetGlobalPathSegment, SetGlobalWaypoint, SetLocalPathSegment,
+    SetLocalWaypoint,
 };
 use crate::ra33::Ra33Side;
-use crate::service::{Cx, Handled, Request, Service, ServiceId};
+use crate::service::{Cx, ServiceId};
 use crate::{ComponentState, Message};
 
 /// How close counts as reached when an element gives no waypoint tolerance, metres.
@@ -88,7 +96,125 @@ pub trait Kind: std::fmt::Debug + Send + 'static {
     fn offset(a: [f64; 2], b: [f64; 2]) -> [f64; 2];
     /// The report of the element (masked by the query).
     fn report(e: &Self::Element, query: &Message) -> Message;
+
+    /// The generated machines of the service (one of the list drivers'), and how they run:
+    /// `list_machines!` writes these for a module of `crate::messages::services`.
+    type Machines: std::fmt::Debug + Send + Default + 'static;
+    /// The messages the machines take (the generated `RECEIVES`).
+    const RECEIVES: &'static [CommandCode];
+    /// The engine's machines inside [`Self::Machines`].
+    fn hsm(m: &mut Self::Machines) -> &mut jaus::hsm::Machines;
+    /// Offers `message` to the machines (the generated `Machines::receive`).
+    fn run(
+        m: &mut Self::Machines,
+        on: &mut On<'_, ListDriver<Self>>,
+        core: &mut Host<'_>,
+        message: &Message,
+        transport: &Receive,
+    ) -> Option<bool>
+    where
+        Self: Sized;
 }
+
+/// The [`Kind`] items that tie a kind to the generated list driver service `$module`.
+macro_rules! list_machines {
+    ($module:ident) => {
+        type Machines = $crate::messages::services::$module::Machines;
+        const RECEIVES: &'static [::jaus::CommandCode] =
+            $crate::messages::services::$module::RECEIVES;
+
+        fn hsm(m: &mut Self::Machines) -> &mut ::jaus::hsm::Machines {
+            &mut m.0
+        }
+
+        fn run(
+            m: &mut Self::Machines,
+            on: &mut $crate::mobility::machines::On<'_, $crate::mobility::lists::ListDriver<Self>>,
+            core: &mut $crate::core::machine::Host<'_>,
+            message: &$crate::Message,
+            transport: &$crate::messages::services::transport::event::Receive,
+        ) -> Option<bool> {
+            m.receive(on, core, message, transport)
+        }
+    };
+}
+pub(crate) use list_machines;
+
+/// The generated trait of list driver service `$module` for every kind whose elements
+/// are `$element`: the active element's query `$query` (guard `$exists`, report
+/// `$report`), Execute List, the travel speed and the active element.
+macro_rules! list_driver_trait {
+    ($module:ident :: $trait:ident, $element:ty, $query:ty, $exists:ident, $report:ident) => {
+        impl<K: Kind<Element = $element>> $module::$trait for On<'_, ListDriver<K>> {
+            fn $exists(&self, _msg: &$query) -> bool {
+                self.svc.active().is_some()
+            }
+
+            fn start_element_exists(&self, msg: &ExecuteList) -> bool {
+                start_of(self.lists, msg).is_some()
+            }
+
+            fn execute_list(&mut self, msg: &ExecuteList) {
+                if let Err(why) = execute(self, msg) {
+                    self.refuse(why);
+                }
+            }
+
+            fn refuse_execute_list(&mut self, msg: &ExecuteList) {
+                self.refuse(match msg.element_uid {
+                    Some(uid) => format!("Execute List: no element with UID {uid}"),
+                    None => "Execute List with an empty list".to_string(),
+                });
+            }
+
+            fn send_report_active_element(&mut self, transport: &Receive) {
+                let element_uid = self.svc.active_uid();
+                self.reply(transport, ReportActiveElement { element_uid });
+            }
+
+            fn send_report_travel_speed(&mut self, transport: &Receive) {
+                let speed = self.svc.run.as_ref().map_or(0.0, |r| r.speed);
+                self.reply(transport, ReportTravelSpeed { speed });
+            }
+
+            fn $report(&mut self, msg: &$query, transport: &Receive) {
+                if let Some(e) = self.svc.active().cloned() {
+                    let report = K::report(&e, &Message::from(msg.clone()));
+                    self.reply(transport, report);
+                }
+            }
+        }
+    };
+}
+
+list_driver_trait!(
+    local_waypoint_list_driver::LocalWaypointListDriver,
+    SetLocalWaypoint,
+    QueryLocalWaypoint,
+    waypoint_exists,
+    send_report_local_waypoint
+);
+list_driver_trait!(
+    global_waypoint_list_driver::GlobalWaypointListDriver,
+    SetGlobalWaypoint,
+    QueryGlobalWaypoint,
+    waypoint_exists,
+    send_report_global_waypoint
+);
+list_driver_trait!(
+    local_path_segment_driver::LocalPathSegmentDriver,
+    SetLocalPathSegment,
+    QueryLocalPathSegment,
+    segment_exists,
+    send_report_local_path_segment
+);
+list_driver_trait!(
+    global_path_segment_driver::GlobalPathSegmentDriver,
+    SetGlobalPathSegment,
+    QueryGlobalPathSegment,
+    segment_exists,
+    send_report_global_path_segment
+);
 
 /// Waypoints in the local frame.
 #[derive(Debug)]
@@ -103,6 +229,7 @@ impl Kind for Local {
     const ID: ServiceId = ServiceIds::LOCAL_WAYPOINT_LIST_DRIVER;
     const QUERY: CommandCode = QueryLocalWaypoint::CODE;
     const COUNT: CommandCode = ra::ReportWaypointCount::CODE;
+    list_machines!(local_waypoint_list_driver);
 
     fn element(m: &Message) -> Option<SetLocalWaypoint> {
         match m {
@@ -175,6 +302,7 @@ impl Kind for Global {
     const ID: ServiceId = ServiceIds::GLOBAL_WAYPOINT_LIST_DRIVER;
     const QUERY: CommandCode = QueryGlobalWaypoint::CODE;
     const COUNT: CommandCode = ra::ReportWaypointCount::CODE;
+    list_machines!(global_waypoint_list_driver);
 
     fn element(m: &Message) -> Option<SetGlobalWaypoint> {
         match m {
@@ -272,8 +400,8 @@ struct Run<W> {
     started: std::time::Instant,
 }
 
-/// A list driver of kind `K` over the RA 3.3 waypoint or path segment driver at an
-/// address.
+/// The data of a list driver of kind `K` over the RA 3.3 waypoint or path segment
+/// driver at an address; the service is an [`OnMachines`] of it.
 #[derive(Debug)]
 pub struct ListDriver<K: Kind> {
     driver: Address,
@@ -281,14 +409,28 @@ pub struct ListDriver<K: Kind> {
 }
 
 /// The Local Waypoint List Driver.
-pub type LocalWaypointListDriver = ListDriver<Local>;
+pub type LocalWaypointListDriver = OnMachines<ListDriver<Local>>;
 /// The Global Waypoint List Driver.
-pub type GlobalWaypointListDriver = ListDriver<Global>;
+pub type GlobalWaypointListDriver = OnMachines<ListDriver<Global>>;
 
-impl<K: Kind> ListDriver<K> {
+impl<K: Kind> OnMachines<ListDriver<K>> {
     /// The service over the RA 3.3 driver at `driver`.
     pub fn new(driver: Address) -> Self {
-        Self { driver, run: None }
+        OnMachines::from_impl(ListDriver { driver, run: None })
+    }
+
+    /// The UID of the element being driven to (0 when none).
+    pub fn active_uid(&self) -> u16 {
+        self.inner().active_uid()
+    }
+}
+
+impl<K: Kind> ListDriver<K> {
+    /// The element being driven to.
+    fn active(&self) -> Option<&K::Element> {
+        self.run
+            .as_ref()
+            .and_then(|r| r.elements.get(r.active).map(|e| &e.1))
     }
 
     /// The UID of the element being driven to (0 when none).
@@ -298,136 +440,124 @@ impl<K: Kind> ListDriver<K> {
             .and_then(|r| r.elements.get(r.active).map(|e| e.0))
             .unwrap_or(0)
     }
+}
 
-    fn execute(&mut self, cx: &mut Cx<'_, Ra33Side>, e: &ExecuteList) -> Handled {
-        let start = match e.element_uid {
-            Some(uid) => uid,
-            None => match cx.lists.head() {
-                Some(h) => h,
-                None => return Handled::Refused("Execute List with an empty list".into()),
-            },
-        };
-        let mut elements = Vec::new();
-        for el in cx.lists.iter_from(start) {
-            let Some(Ok(m)) = el.message() else {
-                return Handled::NotMine;
-            };
-            match K::element(&m) {
-                Some(w) => elements.push((el.uid, w)),
-                // A list of the other kind: the other list driver's.
-                None => return Handled::NotMine,
-            }
-        }
-        if elements.is_empty() {
-            return Handled::Refused(format!("Execute List: no element with UID {start}"));
-        }
-        if elements.len() > usize::from(u16::MAX) {
-            return Handled::Refused("Execute List: too many elements".into());
-        }
-        let mut messages = Vec::with_capacity(elements.len());
-        let mut targets = Vec::with_capacity(elements.len());
-        for (n, (uid, w)) in elements.iter().enumerate() {
-            match K::to_ra33(w, n as u16, cx.env) {
-                Ok((m, goal)) => {
-                    messages.push(m);
-                    targets.push(goal);
-                }
-                Err(why) => return Handled::Refused(format!("Execute List: element {uid}: {why}")),
-            }
-        }
-        // This driver moves the vehicle now; the others (the other list drivers, the
-        // Primitive Driver efforts the AS-4 client commanded) give way. The RA 3.3
-        // driver reaches the Primitive Driver through the Reflexive Driver.
-        if let Some(pd) = cx.env.targets().primitive_driver {
-            cx.env.release(pd);
-        }
-        cx.env.activate(self.driver);
-        for m in messages {
-            cx.env.send(self.driver, m);
-        }
-        cx.env
-            .send(self.driver, ra::SetTravelSpeed { speed: e.speed });
-        tracing::info!(
-            service = %K::ID, elements = elements.len(), speed = e.speed, "list executed"
-        );
-        cx.env.keep_polling(cx.now, self.driver, K::count_query());
-        self.run = Some(Run {
-            elements,
-            targets,
-            active: 0,
-            speed: e.speed,
-            started: cx.now,
-        });
-        Handled::Done
+/// The UID Execute List starts from: the one it names, else the list's head; `None` when
+/// the list holds no such element.
+fn start_of(lists: &Lists, e: &ExecuteList) -> Option<u16> {
+    match e.element_uid {
+        Some(uid) => lists.get(uid).map(|_| uid),
+        None => lists.head(),
     }
+}
+
+/// Execute List: sends the elements from the start on to the RA 3.3 driver, then the
+/// speed; why not, when an element cannot be moved into RA 3.3 terms.
+fn execute<K: Kind>(on: &mut On<'_, ListDriver<K>>, e: &ExecuteList) -> Result<(), String> {
+    let start = start_of(on.lists, e).ok_or("Execute List: no such element")?;
+    let mut elements = Vec::new();
+    for el in on.lists.iter_from(start) {
+        match el
+            .message()
+            .and_then(Result::ok)
+            .as_ref()
+            .and_then(K::element)
+        {
+            Some(w) => elements.push((el.uid, w)),
+            None => {
+                return Err(format!(
+                    "Execute List: element {} is not a {}",
+                    el.uid,
+                    K::ID
+                ))
+            }
+        }
+    }
+    if elements.len() > usize::from(u16::MAX) {
+        return Err("Execute List: too many elements".into());
+    }
+    let mut messages = Vec::with_capacity(elements.len());
+    let mut targets = Vec::with_capacity(elements.len());
+    for (n, (uid, w)) in elements.iter().enumerate() {
+        let (m, goal) = K::to_ra33(w, n as u16, on.env)
+            .map_err(|why| format!("Execute List: element {uid}: {why}"))?;
+        messages.push(m);
+        targets.push(goal);
+    }
+    // This driver moves the vehicle now; the others (the other list drivers, the
+    // Primitive Driver efforts the AS-4 client commanded) give way. The RA 3.3 driver
+    // reaches the Primitive Driver through the Reflexive Driver.
+    let driver = on.svc.driver;
+    if let Some(pd) = on.env.targets().primitive_driver {
+        on.env.release(pd);
+    }
+    on.env.activate(driver);
+    for m in messages {
+        on.env.send(driver, m);
+    }
+    on.env.send(driver, ra::SetTravelSpeed { speed: e.speed });
+    tracing::info!(
+        service = %K::ID, elements = elements.len(), speed = e.speed, "list executed"
+    );
+    on.env.keep_polling(on.now, driver, K::count_query());
+    on.svc.run = Some(Run {
+        elements,
+        targets,
+        active: 0,
+        speed: e.speed,
+        started: on.now,
+    });
+    Ok(())
 }
 
 /// Whether the component's list starts with an element that is not a waypoint of kind
 /// `K` (the other list driver's list).
-fn holds_other_kind<K: Kind>(cx: &Cx<'_, Ra33Side>) -> bool {
-    cx.lists
+fn holds_other_kind<K: Kind>(lists: &Lists) -> bool {
+    lists
         .head()
-        .and_then(|h| cx.lists.get(h))
+        .and_then(|h| lists.get(h))
         .and_then(|e| e.message())
         .and_then(Result::ok)
         .is_some_and(|m| K::element(&m).is_none())
 }
 
-impl<K: Kind> Service<Ra33Side> for ListDriver<K> {
-    fn id(&self) -> ServiceId {
-        K::ID
+impl<K: Kind> Machined for ListDriver<K> {
+    type Machines = K::Machines;
+    const ID: ServiceId = K::ID;
+    const RECEIVES: &'static [CommandCode] = K::RECEIVES;
+    const INHERITED: &'static [CommandCode] = list_manager::RECEIVES;
+
+    fn hsm(m: &mut Self::Machines) -> &mut jaus::hsm::Machines {
+        K::hsm(m)
     }
 
-    fn receives(&self, code: CommandCode) -> bool {
-        is(
-            code,
-            &[
-                ExecuteList::CODE,
-                QueryActiveElement::CODE,
-                QueryTravelSpeed::CODE,
-                K::QUERY,
-            ],
-        )
+    fn run(
+        m: &mut Self::Machines,
+        on: &mut On<'_, Self>,
+        core: &mut Host<'_>,
+        message: &Message,
+        transport: &Receive,
+    ) -> Option<bool> {
+        K::run(m, on, core, message, transport)
     }
 
-    fn handle(&mut self, cx: &mut Cx<'_, Ra33Side>, request: &Request<'_>) -> Handled {
-        match request.message {
-            Message::ExecuteList(e) => {
-                if !request.from_controller || request.state != ComponentState::Ready {
-                    return Handled::Refused("Execute List needs control and Ready".into());
-                }
-                self.execute(cx, e)
+    fn claims(&self, lists: &Lists, message: &Message) -> bool {
+        // One component, one list: while it holds another kind's elements, that other
+        // list driver answers for it and executes it.
+        match message {
+            Message::ExecuteList(e) => start_of(lists, e).is_none_or(|start| {
+                lists.iter_from(start).all(|el| {
+                    el.message()
+                        .and_then(Result::ok)
+                        .as_ref()
+                        .and_then(K::element)
+                        .is_some()
+                })
+            }),
+            Message::QueryActiveElement(_) | Message::QueryTravelSpeed(_) => {
+                !holds_other_kind::<K>(lists)
             }
-            // One component, one list: while it holds another kind's elements, that
-            // other list driver answers for it.
-            Message::QueryActiveElement(_) | Message::QueryTravelSpeed(_)
-                if holds_other_kind::<K>(cx) =>
-            {
-                Handled::NotMine
-            }
-            Message::QueryActiveElement(_) => Handled::Reply(
-                ReportActiveElement {
-                    element_uid: self.active_uid(),
-                }
-                .into(),
-            ),
-            Message::QueryTravelSpeed(_) => Handled::Reply(
-                ReportTravelSpeed {
-                    speed: self.run.as_ref().map_or(0.0, |r| r.speed),
-                }
-                .into(),
-            ),
-            m if m.code() == K::QUERY => {
-                let Some(w) = self
-                    .run
-                    .as_ref()
-                    .and_then(|r| r.elements.get(r.active).map(|e| e.1.clone()))
-                else {
-                    return Handled::Refused("no active element".into());
-                };
-                Handled::Reply(K::report(&w, m))
-            }
-            _ => Handled::NotMine,
+            _ => true,
         }
     }
 

@@ -2,10 +2,12 @@
 //! a gateway (the `gateway` module) presents of an RA 3.3 subsystem, be it the stock
 //! components of this SDK on the same node or OpenJAUS 3.3's vehicle across the network.
 //!
-//! Each is a [`Service`](crate::service::Service) over the gateway's RA 3.3 side
-//! ([`Ra33Side`](crate::ra33::Ra33Side)): sensors answer from the latest RA 3.3
-//! report (kept fresh by polling), drivers pass commands on to the RA 3.3 driver the
-//! gateway controls while an AS-4 client controls it.
+//! Each runs its generated machines (`defs/mobility_services.yaml`, [`machines`]) as a
+//! [`Service`](crate::service::Service) over the gateway's RA 3.3 side
+//! ([`Ra33Side`](crate::ra33::Ra33Side)): its own guards and actions are implemented
+//! here, the inherited ones are the Core's. Sensors answer from the latest RA 3.3 report
+//! (kept fresh by polling), drivers pass commands on to the RA 3.3 driver the gateway
+//! controls while an AS-4 client controls it.
 //!
 //! | AS-4 service | RA 3.3 component | messages |
 //! |---|---|---|
@@ -23,18 +25,18 @@
 //! Driver a Local Waypoint List Driver over the global one, in a local frame placed at
 //! its first global position ([`derived`]).
 
-use jaus::CommandCode;
-
 use crate::service::ServiceId;
 
 pub mod derived;
 pub mod lists;
+pub mod machines;
 pub mod primitive;
 pub mod segments;
 pub mod sensors;
 
 pub use derived::LocalWaypointListDriverOnGlobal;
 pub use lists::{GlobalWaypointListDriver, ListDriver, LocalWaypointListDriver};
+pub use machines::{Machined, On, OnMachines};
 pub use primitive::PrimitiveDriver;
 pub use segments::{GlobalPathSegmentDriver, LocalPathSegmentDriver};
 pub use sensors::{GlobalPoseSensor, LocalPoseSensor, VelocityStateSensor};
@@ -93,11 +95,6 @@ macro_rules! efforts {
     }};
 }
 pub(crate) use efforts;
-
-/// Whether `code` is one of `codes`.
-fn is(code: CommandCode, codes: &[CommandCode]) -> bool {
-    codes.contains(&code)
-}
 
 /// An RA 3.3 time stamp as AS-4's (the same bits).
 fn time_stamp(t: &jaus::messages::TimeStamp) -> crate::messages::TimeStamp {

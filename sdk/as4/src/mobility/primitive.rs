@@ -1,20 +1,26 @@
 //! The Primitive Driver over an RA 3.3 Primitive Driver: Set Wrench Effort passes
 //! through (the same twelve efforts in percent), Query Wrench Effort answers from the
-//! RA 3.3 driver's latest report.
+//! RA 3.3 driver's latest report; the machines (`defs/mobility_services.yaml`) take Set
+//! Wrench Effort from the controlling client while the component is Ready.
 
 use jaus::codec::Encode;
 use jaus::messages as ra;
-use jaus::{Address, CommandCode, JausMessage};
+use jaus::{Address, JausMessage};
 
-use super::{efforts, is, ServiceIds};
+use super::machines::{machined, On, OnMachines};
+use super::{efforts, ServiceIds};
+use crate::messages::services::primitive_driver as generated;
+use crate::messages::services::transport::event::Receive;
 use crate::messages::{QueryWrenchEffort, ReportWrenchEffort, SetWrenchEffort};
 use crate::ra33::Ra33Side;
-use crate::service::{Cx, Handled, Request, Service, ServiceId};
-use crate::Message;
+use crate::service::Cx;
 
-/// The Primitive Driver over the RA 3.3 one at an address.
+/// The Primitive Driver over the RA 3.3 one at an address, on its generated machines.
+pub type PrimitiveDriver = OnMachines<Primitive>;
+
+/// The Primitive Driver's data: the RA 3.3 Primitive Driver it drives.
 #[derive(Debug)]
-pub struct PrimitiveDriver {
+pub struct Primitive {
     driver: Address,
 }
 
@@ -29,42 +35,37 @@ impl PrimitiveDriver {
                 presence_vector: 0x0FFF,
             },
         );
-        Self { driver }
+        OnMachines::from_impl(Primitive { driver })
     }
 }
 
-impl Service<Ra33Side> for PrimitiveDriver {
-    fn id(&self) -> ServiceId {
-        ServiceIds::PRIMITIVE_DRIVER
+impl generated::PrimitiveDriver for On<'_, Primitive> {
+    fn send_report_wrench_effort(&mut self, msg: &QueryWrenchEffort, transport: &Receive) {
+        let mut report = match self
+            .env
+            .latest(self.svc.driver, ra::ReportWrenchEffort::CODE)
+        {
+            Some((_, ra::Message::ReportWrenchEffort(r))) => efforts!(r => ReportWrenchEffort),
+            _ => ReportWrenchEffort::default(),
+        };
+        report.keep_present(u64::from(msg.presence_vector));
+        self.reply(transport, report);
     }
 
-    fn receives(&self, code: CommandCode) -> bool {
-        is(code, &[SetWrenchEffort::CODE, QueryWrenchEffort::CODE])
+    fn set_wrench_effort(&mut self, msg: &SetWrenchEffort) {
+        // Efforts from the AS-4 client: the gateway takes the RA 3.3 driver (a waypoint
+        // list executed later gives it back to the drivers).
+        let driver = self.svc.driver;
+        self.env.activate(driver);
+        self.env.send(driver, efforts!(msg => RaSetWrenchEffort));
     }
+}
 
-    fn handle(&mut self, cx: &mut Cx<'_, Ra33Side>, request: &Request<'_>) -> Handled {
-        match request.message {
-            Message::SetWrenchEffort(s) => {
-                // Efforts from the AS-4 client: the gateway takes the RA 3.3 driver
-                // (a waypoint list executed later gives it back to the drivers).
-                cx.env.activate(self.driver);
-                cx.env.send(self.driver, efforts!(s => RaSetWrenchEffort));
-                Handled::Done
-            }
-            Message::QueryWrenchEffort(q) => {
-                let mut report = match cx.env.latest(self.driver, ra::ReportWrenchEffort::CODE) {
-                    Some((_, ra::Message::ReportWrenchEffort(r))) => {
-                        efforts!(r => ReportWrenchEffort)
-                    }
-                    _ => ReportWrenchEffort::default(),
-                };
-                report.keep_present(u64::from(q.presence_vector));
-                Handled::Reply(report.into())
-            }
-            _ => Handled::NotMine,
-        }
-    }
-
+machined!(
+    Primitive,
+    primitive_driver,
+    ServiceIds::PRIMITIVE_DRIVER,
+    management {
     fn state_changed(
         &mut self,
         cx: &mut Cx<'_, Ra33Side>,
@@ -87,6 +88,7 @@ impl Service<Ra33Side> for PrimitiveDriver {
             );
         }
     }
-}
+    }
+);
 
 use ra::SetWrenchEffort as RaSetWrenchEffort;

@@ -15,7 +15,8 @@
 use jaus::messages as ra;
 use jaus::{CommandCode, JausMessage};
 
-use super::lists::{self, Goal, Kind, ListDriver, DEFAULT_TOLERANCE};
+use super::lists::{self, list_machines, Goal, Kind, ListDriver, DEFAULT_TOLERANCE};
+use super::machines::OnMachines;
 use super::ServiceIds;
 use crate::messages::{
     QueryGlobalPathSegment, QueryLocalPathSegment, ReportGlobalPathSegment, ReportLocalPathSegment,
@@ -34,9 +35,9 @@ pub struct LocalSegments;
 pub struct GlobalSegments;
 
 /// The Local Path Segment Driver.
-pub type LocalPathSegmentDriver = ListDriver<LocalSegments>;
+pub type LocalPathSegmentDriver = OnMachines<ListDriver<LocalSegments>>;
 /// The Global Path Segment Driver.
-pub type GlobalPathSegmentDriver = ListDriver<GlobalSegments>;
+pub type GlobalPathSegmentDriver = OnMachines<ListDriver<GlobalSegments>>;
 
 /// How close to P2 counts as reached: the path tolerance when one above 0 is given.
 fn tolerance(path_tolerance: Option<f64>) -> f64 {
@@ -68,6 +69,7 @@ impl Kind for LocalSegments {
     const ID: ServiceId = ServiceIds::LOCAL_PATH_SEGMENT_DRIVER;
     const QUERY: CommandCode = QueryLocalPathSegment::CODE;
     const COUNT: CommandCode = ra::ReportPathSegmentCount::CODE;
+    list_machines!(local_path_segment_driver);
 
     fn element(m: &Message) -> Option<SetLocalPathSegment> {
         match m {
@@ -141,6 +143,7 @@ impl Kind for GlobalSegments {
     const ID: ServiceId = ServiceIds::GLOBAL_PATH_SEGMENT_DRIVER;
     const QUERY: CommandCode = QueryGlobalPathSegment::CODE;
     const COUNT: CommandCode = ra::ReportPathSegmentCount::CODE;
+    list_machines!(global_path_segment_driver);
 
     fn element(m: &Message) -> Option<SetGlobalPathSegment> {
         match m {

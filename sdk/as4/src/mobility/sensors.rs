@@ -3,20 +3,43 @@
 
 use jaus::codec::Encode;
 use jaus::messages as ra;
-use jaus::{Address, CommandCode, JausMessage};
+use jaus::{Address, JausMessage};
 
-use super::{is, time_stamp, ServiceIds};
+use super::machines::{machined, On, OnMachines};
+use super::{time_stamp, ServiceIds};
+use crate::messages::services::transport::event::Receive;
+use crate::messages::services::{global_pose_sensor, local_pose_sensor, velocity_state_sensor};
 use crate::messages::{
     QueryGlobalPose, QueryLocalPose, QueryVelocityState, ReportGlobalPose, ReportLocalPose,
     ReportVelocityState, SetLocalPose,
 };
 use crate::ra33::{Frame, Ra33Side};
-use crate::service::{Cx, Handled, Request, Service, ServiceId};
-use crate::Message;
+
+machined!(
+    VelocityState,
+    velocity_state_sensor,
+    ServiceIds::VELOCITY_STATE_SENSOR,
+    events
+);
+machined!(
+    LocalPose,
+    local_pose_sensor,
+    ServiceIds::LOCAL_POSE_SENSOR,
+    access_control
+);
+machined!(
+    GlobalPose,
+    global_pose_sensor,
+    ServiceIds::GLOBAL_POSE_SENSOR,
+    access_control
+);
 
 /// The Velocity State Sensor over an RA 3.3 Velocity State Sensor.
+pub type VelocityStateSensor = OnMachines<VelocityState>;
+
+/// The Velocity State Sensor's data: the RA 3.3 sensor it answers from.
 #[derive(Debug)]
-pub struct VelocityStateSensor {
+pub struct VelocityState {
     sensor: Address,
 }
 
@@ -30,7 +53,7 @@ impl VelocityStateSensor {
                 presence_vector: 0x01FF,
             },
         );
-        Self { sensor }
+        OnMachines::from_impl(VelocityState { sensor })
     }
 }
 
@@ -49,33 +72,28 @@ pub fn velocity_state(r: &ra::ReportVelocityState) -> ReportVelocityState {
     }
 }
 
-impl Service<Ra33Side> for VelocityStateSensor {
-    fn id(&self) -> ServiceId {
-        ServiceIds::VELOCITY_STATE_SENSOR
-    }
-
-    fn receives(&self, code: CommandCode) -> bool {
-        code == QueryVelocityState::CODE
-    }
-
-    fn handle(&mut self, cx: &mut Cx<'_, Ra33Side>, request: &Request<'_>) -> Handled {
-        let Message::QueryVelocityState(q) = request.message else {
-            return Handled::NotMine;
-        };
-        let mut report = match cx.env.latest(self.sensor, ra::ReportVelocityState::CODE) {
+impl velocity_state_sensor::VelocityStateSensor for On<'_, VelocityState> {
+    fn send_report_velocity_state(&mut self, msg: &QueryVelocityState, transport: &Receive) {
+        let mut report = match self
+            .env
+            .latest(self.svc.sensor, ra::ReportVelocityState::CODE)
+        {
             Some((_, ra::Message::ReportVelocityState(r))) => velocity_state(r),
             _ => ReportVelocityState::default(),
         };
-        report.keep_present(u64::from(q.presence_vector));
-        Handled::Reply(report.into())
+        report.keep_present(u64::from(msg.presence_vector));
+        self.reply(transport, report);
     }
 }
 
 /// The Local Pose Sensor over an RA 3.3 Local Pose Sensor (or, for a subsystem without
 /// one, over its Global Pose Sensor: [`super::derived`]), in the AS-4 local frame that
 /// Set Local Pose places ([`Ra33Side::frame`]).
+pub type LocalPoseSensor = OnMachines<LocalPose>;
+
+/// The Local Pose Sensor's data: the RA 3.3 sensor it answers from.
 #[derive(Debug)]
-pub struct LocalPoseSensor {
+pub struct LocalPose {
     /// The RA 3.3 Local Pose Sensor; `None`: the pose comes from the global one.
     sensor: Option<Address>,
 }
@@ -90,9 +108,9 @@ impl LocalPoseSensor {
                 presence_vector: 0x01FF,
             },
         );
-        Self {
+        OnMachines::from_impl(LocalPose {
             sensor: Some(sensor),
-        }
+        })
     }
 
     /// The service over the RA 3.3 Global Pose Sensor at `sensor`, in the local frame
@@ -106,9 +124,11 @@ impl LocalPoseSensor {
                 presence_vector: 0x01FF,
             },
         );
-        Self { sensor: None }
+        OnMachines::from_impl(LocalPose { sensor: None })
     }
+}
 
+impl LocalPose {
     fn current(&self, side: &Ra33Side) -> Option<ra::ReportLocalPose> {
         let Some(sensor) = self.sensor else {
             return super::derived::local_pose(side);
@@ -142,61 +162,46 @@ pub fn local_pose(r: &ra::ReportLocalPose, frame: &Frame) -> ReportLocalPose {
     }
 }
 
-impl Service<Ra33Side> for LocalPoseSensor {
-    fn id(&self) -> ServiceId {
-        ServiceIds::LOCAL_POSE_SENSOR
+impl local_pose_sensor::LocalPoseSensor for On<'_, LocalPose> {
+    fn send_report_local_pose(&mut self, msg: &QueryLocalPose, transport: &Receive) {
+        let mut report = self
+            .svc
+            .current(self.env)
+            .map(|r| local_pose(&r, &self.env.frame))
+            .unwrap_or_default();
+        report.keep_present(u64::from(msg.presence_vector));
+        self.reply(transport, report);
     }
 
-    fn receives(&self, code: CommandCode) -> bool {
-        is(code, &[QueryLocalPose::CODE, SetLocalPose::CODE])
-    }
-
-    fn needs_ready(&self, code: CommandCode) -> bool {
-        // Setting the pose is the controller's in any state, not a motion command.
-        code != SetLocalPose::CODE
-    }
-
-    fn handle(&mut self, cx: &mut Cx<'_, Ra33Side>, request: &Request<'_>) -> Handled {
-        match request.message {
-            Message::QueryLocalPose(q) => {
-                let mut report = self
-                    .current(cx.env)
-                    .map(|r| local_pose(&r, &cx.env.frame))
-                    .unwrap_or_default();
-                report.keep_present(u64::from(q.presence_vector));
-                Handled::Reply(report.into())
-            }
-            Message::SetLocalPose(s) => {
-                let Some(now) = self.current(cx.env) else {
-                    return Handled::Refused(if self.sensor.is_some() {
-                        "no pose from the RA 3.3 local pose sensor yet".into()
-                    } else {
-                        "no global position from the RA 3.3 global pose sensor yet".into()
-                    });
-                };
-                let (Some(x), Some(y), Some(yaw)) = (now.x, now.y, now.yaw) else {
-                    return Handled::Refused(
-                        "the RA 3.3 local pose sensor reports no position or yaw".into(),
-                    );
-                };
-                // Fields left out keep their current AS-4 value.
-                let here = local_pose(&now, &cx.env.frame);
-                let ax = s.x.or(here.x).unwrap_or(0.0);
-                let ay = s.y.or(here.y).unwrap_or(0.0);
-                let ayaw = s.yaw.or(here.yaw).unwrap_or(0.0);
-                cx.env.frame = Frame::placing(x, y, yaw, ax, ay, ayaw);
-                tracing::info!(x = ax, y = ay, yaw = ayaw, "AS-4 local pose set");
-                Handled::Done
-            }
-            _ => Handled::NotMine,
-        }
+    fn update_local_pose(&mut self, msg: &SetLocalPose) {
+        let Some(now) = self.svc.current(self.env) else {
+            let why = if self.svc.sensor.is_some() {
+                "no pose from the RA 3.3 local pose sensor yet"
+            } else {
+                "no global position from the RA 3.3 global pose sensor yet"
+            };
+            return self.refuse(why);
+        };
+        let (Some(x), Some(y), Some(yaw)) = (now.x, now.y, now.yaw) else {
+            return self.refuse("the RA 3.3 local pose sensor reports no position or yaw");
+        };
+        // Fields left out keep their current AS-4 value.
+        let here = local_pose(&now, &self.env.frame);
+        let ax = msg.x.or(here.x).unwrap_or(0.0);
+        let ay = msg.y.or(here.y).unwrap_or(0.0);
+        let ayaw = msg.yaw.or(here.yaw).unwrap_or(0.0);
+        self.env.frame = Frame::placing(x, y, yaw, ax, ay, ayaw);
+        tracing::info!(x = ax, y = ay, yaw = ayaw, "AS-4 local pose set");
     }
 }
 
 /// The Global Pose Sensor over an RA 3.3 Global Pose Sensor (Set Global Pose is not
 /// offered: an RA 3.3 pose sensor cannot be set).
+pub type GlobalPoseSensor = OnMachines<GlobalPose>;
+
+/// The Global Pose Sensor's data: the RA 3.3 sensor it answers from.
 #[derive(Debug)]
-pub struct GlobalPoseSensor {
+pub struct GlobalPose {
     sensor: Address,
 }
 
@@ -210,7 +215,7 @@ impl GlobalPoseSensor {
                 presence_vector: 0x01FF,
             },
         );
-        Self { sensor }
+        OnMachines::from_impl(GlobalPose { sensor })
     }
 }
 
@@ -229,24 +234,13 @@ pub fn global_pose(r: &ra::ReportGlobalPose) -> ReportGlobalPose {
     }
 }
 
-impl Service<Ra33Side> for GlobalPoseSensor {
-    fn id(&self) -> ServiceId {
-        ServiceIds::GLOBAL_POSE_SENSOR
-    }
-
-    fn receives(&self, code: CommandCode) -> bool {
-        code == QueryGlobalPose::CODE
-    }
-
-    fn handle(&mut self, cx: &mut Cx<'_, Ra33Side>, request: &Request<'_>) -> Handled {
-        let Message::QueryGlobalPose(q) = request.message else {
-            return Handled::NotMine;
-        };
-        let mut report = match cx.env.latest(self.sensor, ra::ReportGlobalPose::CODE) {
+impl global_pose_sensor::GlobalPoseSensor for On<'_, GlobalPose> {
+    fn send_report_global_pose(&mut self, msg: &QueryGlobalPose, transport: &Receive) {
+        let mut report = match self.env.latest(self.svc.sensor, ra::ReportGlobalPose::CODE) {
             Some((_, ra::Message::ReportGlobalPose(r))) => global_pose(r),
             _ => ReportGlobalPose::default(),
         };
-        report.keep_present(u64::from(q.presence_vector));
-        Handled::Reply(report.into())
+        report.keep_present(u64::from(msg.presence_vector));
+        self.reply(transport, report);
     }
 }

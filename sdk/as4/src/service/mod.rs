@@ -107,6 +107,16 @@ impl<E> Cx<'_, E> {
     /// guards (`isControllingClient`) read the Core's state and its inherited actions
     /// act on it. What they send leaves with the component's output.
     pub fn with_core<R>(&mut self, f: impl FnOnce(&mut Host<'_>) -> R) -> R {
+        self.with_core_env(|host, _, _| f(host))
+    }
+
+    /// [`with_core`](Self::with_core), lending the owner's environment and the list
+    /// manager beside the Core (a service over an environment runs its own guards and
+    /// actions on them while the inherited ones run on the Core).
+    pub fn with_core_env<R>(
+        &mut self,
+        f: impl FnOnce(&mut Host<'_>, &mut E, &mut crate::core::lists::Lists) -> R,
+    ) -> R {
         let mut host = Host::new(
             self.now,
             &mut *self.core.access,
@@ -115,7 +125,7 @@ impl<E> Cx<'_, E> {
             &mut *self.out,
             None,
         );
-        f(&mut host)
+        f(&mut host, &mut *self.env, &mut *self.lists)
     }
 
     /// The state of the Core's machine, by path
