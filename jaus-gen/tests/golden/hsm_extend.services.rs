@@ -9,6 +9,10 @@ pub mod counter {
     use super::*;
     /// The service's URI and version.
     pub const ID: &str = "urn:test:hsm:Counter 1.0";
+    /// The service's URI.
+    pub const URI: &str = "urn:test:hsm:Counter";
+    /// The service's version: major, minor.
+    pub const VERSION: (u8, u8) = (1, 0);
     /// The internal events of Counter: triggers of its transitions that are not
     /// received messages.
     pub mod event {
@@ -135,6 +139,10 @@ pub mod limited {
     use super::*;
     /// The service's URI and version.
     pub const ID: &str = "urn:test:hsm:Limited 1.0";
+    /// The service's URI.
+    pub const URI: &str = "urn:test:hsm:Limited";
+    /// The service's version: major, minor.
+    pub const VERSION: (u8, u8) = (1, 0);
     /// The internal events of Limited: triggers of its transitions that are not
     /// received messages.
     pub mod event {

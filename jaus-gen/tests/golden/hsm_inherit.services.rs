@@ -18,6 +18,10 @@ pub mod base {
     use super::*;
     /// The service's URI and version.
     pub const ID: &str = "urn:test:hsm:Base 1.0";
+    /// The service's URI.
+    pub const URI: &str = "urn:test:hsm:Base";
+    /// The service's version: major, minor.
+    pub const VERSION: (u8, u8) = (1, 0);
     /// The internal events of Base: triggers of its transitions that are not
     /// received messages.
     pub mod event {
@@ -147,6 +151,10 @@ pub mod lower {
     use super::*;
     /// The service's URI and version.
     pub const ID: &str = "urn:test:hsm:Lower 1.0";
+    /// The service's URI.
+    pub const URI: &str = "urn:test:hsm:Lower";
+    /// The service's version: major, minor.
+    pub const VERSION: (u8, u8) = (1, 0);
     /// The Lower service (`urn:test:hsm:Lower` version 1.0).
     ///
     /// Implement its guards and actions; [`Machines`] runs its state machines over the
@@ -260,6 +268,10 @@ pub mod upper {
     use super::*;
     /// The service's URI and version.
     pub const ID: &str = "urn:test:hsm:Upper 1.0";
+    /// The service's URI.
+    pub const URI: &str = "urn:test:hsm:Upper";
+    /// The service's version: major, minor.
+    pub const VERSION: (u8, u8) = (1, 0);
     /// The internal events of Upper: triggers of its transitions that are not
     /// received messages.
     pub mod event {
@@ -419,6 +431,10 @@ pub mod top {
     use super::*;
     /// The service's URI and version.
     pub const ID: &str = "urn:test:hsm:Top 1.0";
+    /// The service's URI.
+    pub const URI: &str = "urn:test:hsm:Top";
+    /// The service's version: major, minor.
+    pub const VERSION: (u8, u8) = (1, 0);
     /// The Top service (`urn:test:hsm:Top` version 1.0).
     ///
     /// Implement its guards and actions; [`Machines`] runs its state machines over the

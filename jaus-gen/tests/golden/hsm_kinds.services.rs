@@ -9,6 +9,10 @@ pub mod player {
     use super::*;
     /// The service's URI and version.
     pub const ID: &str = "urn:test:hsm:Player 1.0";
+    /// The service's URI.
+    pub const URI: &str = "urn:test:hsm:Player";
+    /// The service's version: major, minor.
+    pub const VERSION: (u8, u8) = (1, 0);
     /// The internal events of Player: triggers of its transitions that are not
     /// received messages.
     pub mod event {

@@ -18,6 +18,10 @@ pub mod access {
     use super::*;
     /// The service's URI and version.
     pub const ID: &str = "urn:test:access:Access 1.0";
+    /// The service's URI.
+    pub const URI: &str = "urn:test:access:Access";
+    /// The service's version: major, minor.
+    pub const VERSION: (u8, u8) = (1, 0);
     /// The internal events of Access: triggers of its transitions that are not
     /// received messages.
     pub mod event {
@@ -416,6 +420,10 @@ pub mod link {
     use super::*;
     /// The service's URI and version.
     pub const ID: &str = "urn:test:access:Link 1.0";
+    /// The service's URI.
+    pub const URI: &str = "urn:test:access:Link";
+    /// The service's version: major, minor.
+    pub const VERSION: (u8, u8) = (1, 0);
     /// The internal events of Link: triggers of its transitions that are not
     /// received messages.
     pub mod event {

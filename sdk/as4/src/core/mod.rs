@@ -49,22 +49,34 @@ use machine::{CoreEvent, CoreMachine, Host};
 use management::Management;
 use time::Time;
 
-/// Transport 1.1.
-pub const TRANSPORT: ServiceId = ServiceId::new("urn:jaus:jss:core:Transport", 1, 1);
-/// Events 1.1.
-pub const EVENTS: ServiceId = ServiceId::new("urn:jaus:jss:core:Events", 1, 1);
-/// Access Control 1.1.
-pub const ACCESS_CONTROL: ServiceId = ServiceId::new("urn:jaus:jss:core:AccessControl", 1, 1);
-/// Management 1.1.
-pub const MANAGEMENT: ServiceId = ServiceId::new("urn:jaus:jss:core:Management", 1, 1);
-/// Time 1.1.
-pub const TIME: ServiceId = ServiceId::new("urn:jaus:jss:core:Time", 1, 1);
-/// Liveness 1.1.
-pub const LIVENESS: ServiceId = ServiceId::new("urn:jaus:jss:core:Liveness", 1, 1);
-/// Discovery 1.1.
-pub const DISCOVERY: ServiceId = ServiceId::new("urn:jaus:jss:core:Discovery", 1, 1);
-/// List Manager 1.1.
-pub const LIST_MANAGER: ServiceId = ServiceId::new("urn:jaus:jss:core:ListManager", 1, 1);
+/// The id of generated service `$module` (its URI and version in the definitions).
+macro_rules! generated_id {
+    ($module:ident) => {
+        ServiceId::new(
+            crate::messages::services::$module::URI,
+            crate::messages::services::$module::VERSION.0,
+            crate::messages::services::$module::VERSION.1,
+        )
+    };
+}
+pub(crate) use generated_id;
+
+/// Transport (`defs/core_services.yaml`).
+pub const TRANSPORT: ServiceId = generated_id!(transport);
+/// Events.
+pub const EVENTS: ServiceId = generated_id!(events);
+/// Access Control.
+pub const ACCESS_CONTROL: ServiceId = generated_id!(access_control);
+/// Management.
+pub const MANAGEMENT: ServiceId = generated_id!(management);
+/// Time.
+pub const TIME: ServiceId = generated_id!(time);
+/// Liveness.
+pub const LIVENESS: ServiceId = generated_id!(liveness);
+/// Discovery.
+pub const DISCOVERY: ServiceId = generated_id!(discovery);
+/// List Manager.
+pub const LIST_MANAGER: ServiceId = generated_id!(list_manager);
 
 /// Settings of the Core services of a component.
 #[derive(Debug, Clone, PartialEq)]

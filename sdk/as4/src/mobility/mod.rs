@@ -25,6 +25,7 @@
 //! Driver a Local Waypoint List Driver over the global one, in a local frame placed at
 //! its first global position ([`derived`]).
 
+use crate::core::generated_id;
 use crate::service::ServiceId;
 
 pub mod derived;
@@ -41,60 +42,29 @@ pub use primitive::PrimitiveDriver;
 pub use segments::{GlobalPathSegmentDriver, LocalPathSegmentDriver};
 pub use sensors::{GlobalPoseSensor, LocalPoseSensor, VelocityStateSensor};
 
-/// The URIs and versions of the Mobility services (Mobility v1.0).
+/// The URIs and versions of the Mobility services, as `defs/mobility_services.yaml` gives
+/// them.
 #[derive(Debug)]
 pub struct ServiceIds;
 
 impl ServiceIds {
-    /// `urn:jaus:jss:mobility:PrimitiveDriver` 1.0.
-    pub const PRIMITIVE_DRIVER: ServiceId =
-        ServiceId::new("urn:jaus:jss:mobility:PrimitiveDriver", 1, 0);
-    /// `urn:jaus:jss:mobility:VelocityStateSensor` 1.0.
-    pub const VELOCITY_STATE_SENSOR: ServiceId =
-        ServiceId::new("urn:jaus:jss:mobility:VelocityStateSensor", 1, 0);
-    /// `urn:jaus:jss:mobility:LocalPoseSensor` 1.0.
-    pub const LOCAL_POSE_SENSOR: ServiceId =
-        ServiceId::new("urn:jaus:jss:mobility:LocalPoseSensor", 1, 0);
-    /// `urn:jaus:jss:mobility:GlobalPoseSensor` 1.0.
-    pub const GLOBAL_POSE_SENSOR: ServiceId =
-        ServiceId::new("urn:jaus:jss:mobility:GlobalPoseSensor", 1, 0);
-    /// `urn:jaus:jss:mobility:LocalWaypointListDriver` 1.0.
-    pub const LOCAL_WAYPOINT_LIST_DRIVER: ServiceId =
-        ServiceId::new("urn:jaus:jss:mobility:LocalWaypointListDriver", 1, 0);
-    /// `urn:jaus:jss:mobility:GlobalWaypointListDriver` 1.0.
-    pub const GLOBAL_WAYPOINT_LIST_DRIVER: ServiceId =
-        ServiceId::new("urn:jaus:jss:mobility:GlobalWaypointListDriver", 1, 0);
-    /// `urn:jaus:jss:mobility:LocalPathSegmentDriver` 1.0.
-    pub const LOCAL_PATH_SEGMENT_DRIVER: ServiceId =
-        ServiceId::new("urn:jaus:jss:mobility:LocalPathSegmentDriver", 1, 0);
-    /// `urn:jaus:jss:mobility:GlobalPathSegmentDriver` 1.0.
-    pub const GLOBAL_PATH_SEGMENT_DRIVER: ServiceId =
-        ServiceId::new("urn:jaus:jss:mobility:GlobalPathSegmentDriver", 1, 0);
+    /// `urn:jaus:jss:mobility:PrimitiveDriver`.
+    pub const PRIMITIVE_DRIVER: ServiceId = generated_id!(primitive_driver);
+    /// `urn:jaus:jss:mobility:VelocityStateSensor`.
+    pub const VELOCITY_STATE_SENSOR: ServiceId = generated_id!(velocity_state_sensor);
+    /// `urn:jaus:jss:mobility:LocalPoseSensor`.
+    pub const LOCAL_POSE_SENSOR: ServiceId = generated_id!(local_pose_sensor);
+    /// `urn:jaus:jss:mobility:GlobalPoseSensor`.
+    pub const GLOBAL_POSE_SENSOR: ServiceId = generated_id!(global_pose_sensor);
+    /// `urn:jaus:jss:mobility:LocalWaypointListDriver`.
+    pub const LOCAL_WAYPOINT_LIST_DRIVER: ServiceId = generated_id!(local_waypoint_list_driver);
+    /// `urn:jaus:jss:mobility:GlobalWaypointListDriver`.
+    pub const GLOBAL_WAYPOINT_LIST_DRIVER: ServiceId = generated_id!(global_waypoint_list_driver);
+    /// `urn:jaus:jss:mobility:LocalPathSegmentDriver`.
+    pub const LOCAL_PATH_SEGMENT_DRIVER: ServiceId = generated_id!(local_path_segment_driver);
+    /// `urn:jaus:jss:mobility:GlobalPathSegmentDriver`.
+    pub const GLOBAL_PATH_SEGMENT_DRIVER: ServiceId = generated_id!(global_path_segment_driver);
 }
-
-/// Copies the twelve same-named efforts of one wrench-effort message into another type
-/// (RA 3.3's and AS-4's share names and units): the gateway's Primitive Driver and the
-/// proxy's use it, each way.
-macro_rules! efforts {
-    ($src:expr => $dst:path) => {{
-        let s = $src;
-        $dst {
-            propulsive_linear_effort_x: s.propulsive_linear_effort_x,
-            propulsive_linear_effort_y: s.propulsive_linear_effort_y,
-            propulsive_linear_effort_z: s.propulsive_linear_effort_z,
-            propulsive_rotational_effort_x: s.propulsive_rotational_effort_x,
-            propulsive_rotational_effort_y: s.propulsive_rotational_effort_y,
-            propulsive_rotational_effort_z: s.propulsive_rotational_effort_z,
-            resistive_linear_effort_x: s.resistive_linear_effort_x,
-            resistive_linear_effort_y: s.resistive_linear_effort_y,
-            resistive_linear_effort_z: s.resistive_linear_effort_z,
-            resistive_rotational_effort_x: s.resistive_rotational_effort_x,
-            resistive_rotational_effort_y: s.resistive_rotational_effort_y,
-            resistive_rotational_effort_z: s.resistive_rotational_effort_z,
-        }
-    }};
-}
-pub(crate) use efforts;
 
 /// An RA 3.3 time stamp as AS-4's (the same bits).
 fn time_stamp(t: &jaus::messages::TimeStamp) -> crate::messages::TimeStamp {

@@ -8,10 +8,11 @@ use jaus::messages as ra;
 use jaus::{Address, JausMessage};
 
 use super::machines::{machined, On, OnMachines};
-use super::{efforts, ServiceIds};
+use super::ServiceIds;
 use crate::messages::services::primitive_driver as generated;
 use crate::messages::services::transport::event::Receive;
 use crate::messages::{QueryWrenchEffort, ReportWrenchEffort, SetWrenchEffort};
+use crate::ra33::efforts;
 use crate::ra33::Ra33Side;
 use crate::service::Cx;
 

@@ -15,7 +15,7 @@ use jaus::JausMessage;
 use super::shared::{lock, Shared, SharedRef};
 use super::Role;
 use crate::messages::{self as as4, ComponentState, EmergencyCode, Message};
-use crate::mobility::efforts;
+use crate::ra33::efforts;
 
 /// An AS-4 time stamp as RA 3.3's (the same bits).
 fn time_stamp(t: &as4::TimeStamp) -> ra::TimeStamp {

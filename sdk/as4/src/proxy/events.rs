@@ -368,8 +368,8 @@ fn slot_of(role: Role) -> Option<usize> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::gateway::ra33::Frame;
     use crate::messages::{EventRejection, ReportVelocityState};
+    use crate::ra33::Frame;
 
     const ME: As4Id = As4Id::new(2, 1, 200);
     const AT: As4Id = As4Id::new(1, 1, 1);

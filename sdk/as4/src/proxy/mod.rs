@@ -59,8 +59,8 @@ use jaus::net::as5669a::As4Id;
 use jaus::net::{NetError, Node, PeerAddr};
 use jaus::Address;
 
-use crate::gateway::ra33::Frame;
 use crate::mobility::ServiceIds;
+use crate::ra33::Frame;
 use crate::service::ServiceId;
 
 pub mod behaviours;

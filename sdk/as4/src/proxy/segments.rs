@@ -176,7 +176,7 @@ mod tests {
     use jaus::net::as5669a::As4Id;
 
     use super::*;
-    use crate::gateway::ra33::Frame;
+    use crate::ra33::Frame;
 
     #[test]
     fn a_local_segment_moves_into_the_as4_frame() {

@@ -14,8 +14,8 @@ use jaus::net::as5669a::As4Id;
 use jaus::CommandCode;
 
 use super::Role;
-use crate::gateway::ra33::Frame;
 use crate::messages::{ComponentState, ControlConfirmation, Message};
+use crate::ra33::Frame;
 
 /// Most AS-4 messages waiting to leave (more are dropped and counted).
 pub const MAX_OUTBOX: usize = 1024;
