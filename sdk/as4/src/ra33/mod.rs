@@ -430,6 +430,30 @@ impl Ra33Side {
     }
 }
 
+/// Copies the twelve same-named efforts of one wrench-effort message into another type
+/// (RA 3.3's and AS-4's share names and units): the gateway's Primitive Driver and the
+/// proxy's use it, each way.
+macro_rules! efforts {
+    ($src:expr => $dst:path) => {{
+        let s = $src;
+        $dst {
+            propulsive_linear_effort_x: s.propulsive_linear_effort_x,
+            propulsive_linear_effort_y: s.propulsive_linear_effort_y,
+            propulsive_linear_effort_z: s.propulsive_linear_effort_z,
+            propulsive_rotational_effort_x: s.propulsive_rotational_effort_x,
+            propulsive_rotational_effort_y: s.propulsive_rotational_effort_y,
+            propulsive_rotational_effort_z: s.propulsive_rotational_effort_z,
+            resistive_linear_effort_x: s.resistive_linear_effort_x,
+            resistive_linear_effort_y: s.resistive_linear_effort_y,
+            resistive_linear_effort_z: s.resistive_linear_effort_z,
+            resistive_rotational_effort_x: s.resistive_rotational_effort_x,
+            resistive_rotational_effort_y: s.resistive_rotational_effort_y,
+            resistive_rotational_effort_z: s.resistive_rotational_effort_z,
+        }
+    }};
+}
+pub(crate) use efforts;
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -564,27 +588,3 @@ mod tests {
         assert_eq!(s.stats().outbox_full, 5);
     }
 }
-
-/// Copies the twelve same-named efforts of one wrench-effort message into another type
-/// (RA 3.3's and AS-4's share names and units): the gateway's Primitive Driver and the
-/// proxy's use it, each way.
-macro_rules! efforts {
-    ($src:expr => $dst:path) => {{
-        let s = $src;
-        $dst {
-            propulsive_linear_effort_x: s.propulsive_linear_effort_x,
-            propulsive_linear_effort_y: s.propulsive_linear_effort_y,
-            propulsive_linear_effort_z: s.propulsive_linear_effort_z,
-            propulsive_rotational_effort_x: s.propulsive_rotational_effort_x,
-            propulsive_rotational_effort_y: s.propulsive_rotational_effort_y,
-            propulsive_rotational_effort_z: s.propulsive_rotational_effort_z,
-            resistive_linear_effort_x: s.resistive_linear_effort_x,
-            resistive_linear_effort_y: s.resistive_linear_effort_y,
-            resistive_linear_effort_z: s.resistive_linear_effort_z,
-            resistive_rotational_effort_x: s.resistive_rotational_effort_x,
-            resistive_rotational_effort_y: s.resistive_rotational_effort_y,
-            resistive_rotational_effort_z: s.resistive_rotational_effort_z,
-        }
-    }};
-}
-pub(crate) use efforts;
