@@ -30,6 +30,7 @@ pub(crate) fn basic(field_type: &str) -> Option<&'static str> {
     let words: Vec<&str> = field_type.split_whitespace().collect();
     Some(match words.join(" ").as_str() {
         "unsigned byte" => "u8",
+        "byte" => "i8",
         "unsigned short integer" => "u16",
         "unsigned integer" => "u32",
         "unsigned long integer" => "u64",
@@ -38,6 +39,17 @@ pub(crate) fn basic(field_type: &str) -> Option<&'static str> {
         "long integer" => "i64",
         "float" => "f32",
         "long float" => "f64",
+        _ => return None,
+    })
+}
+
+/// The unsigned type of the size of signed `ty`, and the largest value of `ty`.
+fn unsigned_for(ty: &str) -> Option<(&'static str, u64)> {
+    Some(match ty {
+        "i8" => ("u8", i8::MAX as u64),
+        "i16" => ("u16", i16::MAX as u64),
+        "i32" => ("u32", i32::MAX as u64),
+        "i64" => ("u64", i64::MAX as u64),
         _ => return None,
     })
 }
@@ -245,7 +257,7 @@ impl<'a> Importer<'a> {
         let ty = basic(ft).ok_or_else(|| {
             self.err(
                 def,
-                format!("field type `{ft}` is not supported (a signed byte has no type in the definition language)"),
+                format!("field type `{ft}` is not a JSIDL field type (byte, short integer, integer, long integer, their unsigned forms, float, long float)"),
             )
         })?;
         f.ty = ty.to_string();
@@ -292,14 +304,33 @@ impl<'a> Importer<'a> {
                 let name = self.req(def, "name")?;
                 let key = def.key();
                 let tname = self.type_name(def, owner, name);
+                // An enumeration is unsigned in the definition language. Named values of
+                // a signed field (HMI's `byte`s) that are all at most its largest value
+                // have the same bytes as the unsigned type of that size; a negative value
+                // on the wire arrives as the enumeration's unknown value.
+                let (repr, signed_note) = match unsigned_for(ty) {
+                    Some((unsigned, max)) if values.iter().all(|v| v.value <= max) => (
+                        unsigned,
+                        Some(format!(
+                            "Signed (`{ft}`) in the JSIDL; its named values are 0 to {max} at most, the same bytes as `{unsigned}`."
+                        )),
+                    ),
+                    Some(_) => {
+                        return Err(self.err(
+                            vs,
+                            format!("named values of a signed `{ft}` beyond its largest value"),
+                        ))
+                    }
+                    None => (ty, None),
+                };
                 if !self.types_done(key) {
                     self.add_type(
                         def,
                         TypeDef {
                             name: tname.clone(),
                             kind: TypeKind::Enum,
-                            repr: Some(ty.to_string()),
-                            description: interpretation(def.node),
+                            repr: Some(repr.to_string()),
+                            description: join(&[interpretation(def.node), signed_note]),
                             presence: None,
                             fields: Vec::new(),
                             values,
@@ -569,9 +600,17 @@ impl<'a> Importer<'a> {
                 notes = v.description;
                 v.ty
             };
+            let tag = self.number(e, "index")? as u64;
+            // Names repeat in published files (HMI's placeholder `rename_me` for every
+            // entry of a field): the repeated ones take their index, as enum values do.
+            let vname = if variants.iter().any(|v: &VariantDef| v.name == vname) {
+                format!("{vname}{tag}")
+            } else {
+                vname
+            };
             variants.push(VariantDef {
                 name: vname,
-                tag: self.number(e, "index")? as u64,
+                tag,
                 ty: Some(ty),
                 description: join(&[interpretation(e.node), notes, unit_text]),
             });

@@ -51,6 +51,11 @@ pub(crate) struct Importer<'a> {
     /// Documents declaring a set an earlier one declares (alike, or differently: then
     /// an error), which are not read.
     copies: HashSet<usize>,
+    /// Documents that declare a set again with items the first lacks and the items both
+    /// declare alike (Manipulator v2.0's copy of the Core basic types names the
+    /// application-layer header differently): a name the first document lacks is looked
+    /// up in them, by first document.
+    supplements: HashMap<usize, Vec<usize>>,
     /// Errors found on indexing the sets (sets declared twice differently).
     pub errors: Vec<Error>,
     /// The type made of an element.
@@ -72,6 +77,7 @@ impl<'a> Importer<'a> {
     pub fn new(docs: &'a [Doc<'a>]) -> Self {
         let mut sets: HashMap<(String, String), usize> = HashMap::new();
         let mut copies = HashSet::new();
+        let mut supplements: HashMap<usize, Vec<usize>> = HashMap::new();
         let mut errors = Vec::new();
         for (i, d) in docs.iter().enumerate() {
             let root = d.root();
@@ -89,6 +95,10 @@ impl<'a> Importer<'a> {
             // Either way the second file is not read: a set declared differently is
             // reported, and the run goes on to report the rest.
             copies.insert(i);
+            if same::difference(f.root(), root).is_some() && same::supplements(f.root(), root) {
+                supplements.entry(first).or_default().push(i);
+                continue;
+            }
             if let Some(diff) = same::difference(f.root(), root) {
                 errors.push(Error::Duplicate {
                     file: d.path.clone(),
@@ -106,6 +116,7 @@ impl<'a> Importer<'a> {
             }
         }
         Importer {
+            supplements,
             errors,
             docs,
             out: docs.iter().map(|_| Contribution::default()).collect(),
@@ -198,13 +209,31 @@ impl<'a> Importer<'a> {
     /// `ref.rest` through its `declared_type_set_ref` named `ref`.
     pub fn lookup(&self, from: At<'a>, scope: At<'a>, reference: &str) -> Result<At<'a>> {
         let set_name = scope.node.attribute("name").unwrap_or("?");
-        match reference.split_once('.') {
-            None => elements(scope.node)
+        let named = |set: At<'a>| {
+            elements(set.node)
                 .find(|c| {
                     c.attribute("name") == Some(reference)
                         && !matches!(tag(*c), "declared_type_set_ref" | "declared_const_set_ref")
                 })
-                .map(|n| self.at(scope, n))
+                .map(|n| self.at(set, n))
+        };
+        match reference.split_once('.') {
+            None => named(scope)
+                .or_else(|| {
+                    // An item a later declaration of the same set adds.
+                    let root = self.docs[scope.doc].root();
+                    (scope.node == root)
+                        .then(|| self.supplements.get(&scope.doc))
+                        .flatten()
+                        .into_iter()
+                        .flatten()
+                        .find_map(|&d| {
+                            named(At {
+                                doc: d,
+                                node: self.docs[d].root(),
+                            })
+                        })
+                })
                 .ok_or_else(|| {
                     self.err(
                         from,

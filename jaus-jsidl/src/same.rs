@@ -40,6 +40,30 @@ fn attributes(n: Node<'_>) -> Vec<(String, String)> {
     v
 }
 
+/// Whether set `b` only adds to set `a`: every item (child element with a name) that
+/// both declare is the same in both, and `b` declares at least one that `a` lacks. Such
+/// a re-declaration is read for its additions.
+pub(crate) fn supplements<'a>(a: Node<'a>, b: Node<'a>) -> bool {
+    let (ia, ib) = (items(a), items(b));
+    let mut added = false;
+    for (name, nb) in &ib {
+        match ia.iter().find(|(n, _)| n == name) {
+            Some((_, na)) if difference(*na, *nb).is_some() => return false,
+            Some(_) => {}
+            None => added = true,
+        }
+    }
+    added
+}
+
+/// The named child elements of a set, by `tag:name`.
+fn items<'a>(n: Node<'a>) -> Vec<(String, Node<'a>)> {
+    n.children()
+        .filter(|c| c.is_element())
+        .filter_map(|c| c.attribute("name").map(|x| (format!("{}:{x}", tag(c)), c)))
+        .collect()
+}
+
 /// `None` when `a` and `b` are the same, else their first difference (depth first, in
 /// document order).
 pub(crate) fn difference<'a>(a: Node<'a>, b: Node<'a>) -> Option<Difference<'a>> {

@@ -34,6 +34,28 @@ fn machine_extends(m: Node<'_>) -> bool {
         || (inherits && m.attribute("name").is_some_and(|n| n.contains('.')))
 }
 
+/// The spelling the behaviour of service `sv` uses for its parent's local name `name`,
+/// when it differs only in case and is never spelt as declared (the published HMI set
+/// declares `name="Events"` and writes `events.transport.Send`): the references are the
+/// name the machines use.
+fn spelling_in_use(sv: Node<'_>, name: &str) -> Option<String> {
+    let mut other = None;
+    for n in sv.descendants().filter(|n| n.is_element()) {
+        for a in n.attributes() {
+            let Some((head, _)) = a.value().split_once('.') else {
+                continue;
+            };
+            if head == name {
+                return None;
+            }
+            if other.is_none() && head.eq_ignore_ascii_case(name) {
+                other = Some(head.to_string());
+            }
+        }
+    }
+    other
+}
+
 impl<'a> Importer<'a> {
     /// A service definition.
     pub fn service(&mut self, sv: At<'a>) -> Result<()> {
@@ -46,11 +68,16 @@ impl<'a> Importer<'a> {
             })
         };
         let refs = child(sv.node, "references").map(|r| self.at(sv, r));
-        let inherits =
+        let mut inherits =
             match refs.and_then(|r| child(r.node, "inherits_from").map(|i| self.at(r, i))) {
                 Some(i) => Some(reference(i)?),
                 None => None,
             };
+        if let Some(i) = inherits.as_mut() {
+            if let Some(used) = spelling_in_use(sv.node, &i.name) {
+                i.name = used;
+            }
+        }
         let mut client_of = Vec::new();
         if let Some(r) = refs {
             for c in elements(r.node).filter(|c| tag(*c) == "client_of") {
@@ -206,12 +233,12 @@ impl<'a> Importer<'a> {
         // inherited one too (the published sets leave out `redefine` there).
         let machine = s.node.ancestors().find(|n| tag(*n) == "state_machine");
         let extending = machine.is_some_and(machine_extends);
-        // A machine that extends by its name alone (no interpretation says so) says
-        // nothing of its states either: each extends the inherited state of its name
-        // (one the parent lacks is added, as any new state).
-        if machine.is_some_and(|m| {
-            machine_extends(m) && !starts(m.attribute("interpretation"), "extending")
-        }) {
+        // In a machine that extends an inherited one, a state of an inherited state's
+        // name extends it, whatever its interpretation says (the JAUS Tool Set merges
+        // by name; Manipulator v2.0's pose sensors write `NotControlled` without
+        // `redefine` around the inherited `Available`), and one the parent lacks is
+        // added, as any new state.
+        if extending {
             st.redefine = true;
         }
         let starts_inherited = st
@@ -285,7 +312,17 @@ impl<'a> Importer<'a> {
             let c = self.at(t, c);
             match tag(c.node) {
                 "parameter" => tr.parameters.push(ParamDef {
-                    ty: self.req(c, "type")?.trim().to_string(),
+                    // A message or event by name, as the importer names them
+                    // (`QueryDCM` → `QueryDcm`); a path (`Receive.Body.ReceiveRec`) as
+                    // written.
+                    ty: {
+                        let ty = self.req(c, "type")?.trim();
+                        if ty.contains('.') {
+                            ty.to_string()
+                        } else {
+                            pascal(ty)
+                        }
+                    },
                     name: self.req(c, "value")?.trim().to_string(),
                     description: interpretation(c.node),
                 }),

@@ -216,7 +216,7 @@ fn what_cannot_be_represented_is_an_error_with_file_line_and_element() {
         ("message_differs", "Second.xml:3:3: <message_def name=\"ClearAlarm\">: a message named `ClearAlarm` is already defined at "),
         ("many", "3 errors:"),
         ("optional_no_pv", "OptionalNoPv.xml:8:9: <fixed_field name=\"Speed\">: an optional item needs a presence vector"),
-        ("signed_byte", "SignedByte.xml:8:9: <fixed_field name=\"Offset\">: field type `byte` is not supported"),
+        ("signed_enum_range", "SignedEnumRange.xml:9:11: <value_set>: named values of a signed `byte` beyond its largest value"),
         ("u64_count", "U64Count.xml:9:11: <count_field>: a count of type `unsigned long integer` has no wire form"),
         ("unknown_ref", "UnknownRef.xml:8:9: <declared_fixed_field name=\"Speed\">: `nope` (of `nope.Speed`) names no declared_type_set_ref"),
     ];
@@ -382,7 +382,9 @@ fn a_state_starting_in_a_sub_state_it_does_not_declare_extends_the_inherited_one
         running.redefine,
         "starts in a sub-state it does not declare"
     );
-    assert!(!running.states[0].redefine);
+    // Every state of an extending machine extends the inherited one of its name (a
+    // new one is added as any new state).
+    assert!(running.states[0].redefine);
     let base = &spec.service("PumpBase").unwrap().def;
     assert!(!base.behaviour.as_ref().unwrap().machines[0].states[0].redefine);
     // Extending by the machine's name alone: every state extends the inherited one.
@@ -394,12 +396,35 @@ fn a_state_starting_in_a_sub_state_it_does_not_declare_extends_the_inherited_one
 }
 
 #[test]
+fn the_quirks_of_the_published_hmi_set_import() {
+    let spec = import("quirks").load().unwrap();
+    let report = spec.message("ReportDcm").expect("`ReportDCM` named as the importer names");
+    let ty = |n: &str| report.def.fields.iter().find(|f| f.name == n).unwrap().ty.clone();
+    // A signed byte is an i8; named values on one, an unsigned enumeration of the same
+    // bytes, which says so.
+    assert_eq!(ty("trim"), "i8");
+    let state = spec.ty(&ty("state")).unwrap();
+    assert_eq!(state.def.repr.as_deref(), Some("u8"));
+    assert!(state.def.description.as_deref().unwrap_or("").contains("Signed (`byte`)"));
+    // Entries sharing a placeholder name are told apart by their index.
+    let reading = spec.ty(&ty("reading")).unwrap();
+    let names: Vec<&str> = reading.def.variants.iter().map(|v| v.name.as_str()).collect();
+    assert_eq!(names, ["RenameMe", "RenameMe1"]);
+    // The parent is named as the machine names it, and the transition's message as the
+    // importer names messages.
+    let dcm = &spec.service("Dcm").unwrap().def;
+    assert_eq!(dcm.inherits.as_ref().unwrap().name, "base");
+    let t = &dcm.behaviour.as_ref().unwrap().machines[0].states[0].transitions[0];
+    assert_eq!(t.parameters[0].ty, "QueryDcm");
+}
+
+#[test]
 fn every_error_of_a_run_is_reported_by_file_and_line() {
     let err = jaus_jsidl::import(&[fixtures().join("err").join("many")]).unwrap_err();
     let all: Vec<String> = err.all().iter().map(|e| e.to_string()).collect();
     assert_eq!(all.len(), 3, "{err}");
     assert!(
-        all[0].contains("One.xml:7:9: <fixed_field name=\"Offset\">: field type `byte`"),
+        all[0].contains("One.xml:7:9: <fixed_field name=\"Offset\">: field type `quad integer`"),
         "{}",
         all[0]
     );

@@ -217,6 +217,8 @@ pub enum Int {
     U32,
     /// JAUS Unsigned Long Integer.
     U64,
+    /// A signed byte (AS-4's JSIDL `byte`; RA 3.3 has none).
+    I8,
     /// JAUS Short Integer.
     I16,
     /// JAUS Integer.
@@ -233,6 +235,7 @@ impl Int {
             "u16" | "unsigned short" | "ushort" => Int::U16,
             "u32" | "unsigned integer" | "uint" => Int::U32,
             "u64" | "unsigned long" | "ulong" => Int::U64,
+            "i8" | "signed byte" => Int::I8,
             "i16" | "short" => Int::I16,
             "i32" | "integer" | "int" => Int::I32,
             "i64" | "long" => Int::I64,
@@ -246,6 +249,7 @@ impl Int {
             Int::U16 => "u16",
             Int::U32 => "u32",
             Int::U64 => "u64",
+            Int::I8 => "i8",
             Int::I16 => "i16",
             Int::I32 => "i32",
             Int::I64 => "i64",
@@ -254,7 +258,7 @@ impl Int {
     /// Size in bytes.
     pub fn bytes(self) -> usize {
         match self {
-            Int::U8 => 1,
+            Int::U8 | Int::I8 => 1,
             Int::U16 | Int::I16 => 2,
             Int::U32 | Int::I32 => 4,
             Int::U64 | Int::I64 => 8,
@@ -271,6 +275,7 @@ impl Int {
             Int::U8 => 255.0,
             Int::U16 => 65_535.0,
             Int::U32 | Int::I32 => 4_294_967_294.0,
+            Int::I8 => 254.0,
             Int::I16 => 65_534.0,
             Int::U64 => 18_446_744_073_709_551_615.0,
             Int::I64 => 18_446_744_073_709_551_614.0,

@@ -14,6 +14,7 @@ fn scaled_divisors_agree() {
     assert_eq!(Int::U16.divisor(), <u16 as ScaledRepr>::DIVISOR);
     assert_eq!(Int::U32.divisor(), <u32 as ScaledRepr>::DIVISOR);
     assert_eq!(Int::U64.divisor(), <u64 as ScaledRepr>::DIVISOR);
+    assert_eq!(Int::I8.divisor(), <i8 as ScaledRepr>::DIVISOR);
     assert_eq!(Int::I16.divisor(), <i16 as ScaledRepr>::DIVISOR);
     assert_eq!(Int::I32.divisor(), <i32 as ScaledRepr>::DIVISOR);
     assert_eq!(Int::I64.divisor(), <i64 as ScaledRepr>::DIVISOR);

@@ -52,6 +52,7 @@ impl Gen {
             Int::U16 => json!(v as u16),
             Int::U32 => json!(v as u32),
             Int::U64 => json!(v),
+            Int::I8 => json!(v as i8),
             Int::I16 => json!(v as i16),
             Int::I32 => json!(v as i32),
             Int::I64 => json!(v as i64),

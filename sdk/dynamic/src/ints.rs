@@ -28,6 +28,10 @@ macro_rules! with_int {
                 type $t = u64;
                 $body
             }
+            Int::I8 => {
+                type $t = i8;
+                $body
+            }
             Int::I16 => {
                 type $t = i16;
                 $body
@@ -52,6 +56,7 @@ pub(crate) fn read(int: Int, r: &mut Reader<'_>) -> Result<Result<u64, i64>, Dec
         Int::U16 => Ok(u64::from(u16::decode(r)?)),
         Int::U32 => Ok(u64::from(u32::decode(r)?)),
         Int::U64 => Ok(u64::decode(r)?),
+        Int::I8 => Err(i64::from(i8::decode(r)?)),
         Int::I16 => Err(i64::from(i16::decode(r)?)),
         Int::I32 => Err(i64::from(i32::decode(r)?)),
         Int::I64 => Err(i64::decode(r)?),
@@ -94,6 +99,7 @@ pub(crate) fn max_usize(int: Int) -> usize {
         Int::U16 => u16::MAX.into(),
         Int::U32 => u32::MAX.into(),
         Int::U64 => u64::MAX,
+        Int::I8 => i8::MAX.unsigned_abs().into(),
         Int::I16 => i16::MAX.unsigned_abs().into(),
         Int::I32 => i32::MAX.unsigned_abs().into(),
         Int::I64 => i64::MAX.unsigned_abs(),

@@ -13,6 +13,7 @@ fn int_strategy(i: Int) -> BoxedStrategy<Value> {
         Int::U16 => any::<u16>().prop_map(|v| json!(v)).boxed(),
         Int::U32 => any::<u32>().prop_map(|v| json!(v)).boxed(),
         Int::U64 => any::<u64>().prop_map(|v| json!(v)).boxed(),
+        Int::I8 => any::<i8>().prop_map(|v| json!(v)).boxed(),
         Int::I16 => any::<i16>().prop_map(|v| json!(v)).boxed(),
         Int::I32 => any::<i32>().prop_map(|v| json!(v)).boxed(),
         Int::I64 => any::<i64>().prop_map(|v| json!(v)).boxed(),
