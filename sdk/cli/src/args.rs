@@ -135,7 +135,9 @@ pub(crate) enum Cmd {
     /// fix topics (DDS) as a Primitive Driver, Local Pose, Velocity State and Global
     /// Pose Sensor on UDP, a watchdog stopping it when the JAUS side loses its
     /// controller or the ROS side goes silent (docs/ros2.md); prints each watchdog event
-    /// as a JSON line, the bridge's counters at the end.
+    /// as a JSON line, the bridge's counters at the end. With --vehicle SUBSYSTEM, the
+    /// other direction: a JAUS vehicle in ROS 2 (odom, fix, jaus/status published;
+    /// cmd_vel and goal_pose drive it).
     Ros2 {
         #[command(flatten)]
         args: jaus_cli::ros2::Ros2Args,

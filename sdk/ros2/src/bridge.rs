@@ -261,7 +261,7 @@ pub fn dds_topic_name(namespace: &str, topic: &str) -> Result<String, Ros2Error>
 }
 
 /// The topic as ros2-client's [`Name`] and as its absolute string.
-fn absolute(namespace: &str, topic: &str) -> Result<(Name, String), Ros2Error> {
+pub(crate) fn absolute(namespace: &str, topic: &str) -> Result<(Name, String), Ros2Error> {
     let full = if topic.starts_with('/') {
         topic.to_string()
     } else {
@@ -277,7 +277,7 @@ fn absolute(namespace: &str, topic: &str) -> Result<(Name, String), Ros2Error> {
         .map_err(|e| Ros2Error::Config(format!("topic {full:?}: {e:?}")))
 }
 
-fn qos_of(q: Qos) -> QosPolicies {
+pub(crate) fn qos_of(q: Qos) -> QosPolicies {
     let reliability = match q.reliability {
         Reliability::Reliable => policy::Reliability::Reliable {
             max_blocking_time: ros2_client::ros2::Duration::from_millis(100),

@@ -46,6 +46,9 @@ pub struct Ros2Config {
     /// The Primitive Driver's command timeout (ms): a wrench effort not refreshed within
     /// it is replaced by brakes (a zero twist).
     pub command_timeout_ms: u64,
+    /// The other direction: a JAUS vehicle in ROS 2 (`jaus ros2 --vehicle`,
+    /// [`crate::vehicle`]).
+    pub vehicle: VehicleConfig,
 }
 
 impl Default for Ros2Config {
@@ -68,6 +71,7 @@ impl Default for Ros2Config {
             effort: EffortMapping::default(),
             watchdog_ms: 500,
             command_timeout_ms: 300,
+            vehicle: VehicleConfig::default(),
         }
     }
 }
@@ -108,10 +112,30 @@ impl Ros2Config {
         if self.watchdog_ms == 0 || self.command_timeout_ms == 0 {
             return bad("watchdog_ms and command_timeout_ms must be above 0".into());
         }
+        let v = &self.vehicle;
+        if !(v.rate_hz.is_finite() && v.rate_hz > 0.0 && v.rate_hz <= 100.0) {
+            return bad(format!("vehicle.rate_hz {} not in (0, 100]", v.rate_hz));
+        }
+        if !(v.waypoint_speed.is_finite() && v.waypoint_speed > 0.0) {
+            return bad(format!(
+                "vehicle.waypoint_speed {} is not a speed > 0",
+                v.waypoint_speed
+            ));
+        }
+        if v.cmd_vel_timeout_ms == 0 {
+            return bad("vehicle.cmd_vel_timeout_ms must be above 0".into());
+        }
+        if v.subsystem.is_some()
+            && (self.effort.max_linear == 0.0 || self.effort.max_angular == 0.0)
+        {
+            return bad("vehicle mode: effort.max_linear and max_angular must be above 0".into());
+        }
         for (name, t) in [
             ("cmd_vel", &self.topics.cmd_vel),
             ("odom", &self.topics.odom),
             ("fix", &self.topics.fix),
+            ("status", &self.topics.status),
+            ("goal_pose", &self.topics.goal_pose),
         ] {
             if t.is_empty() || t.contains("//") || t.ends_with('/') {
                 return bad(format!("topics.{name} {t:?} is not a ROS 2 topic name"));
@@ -132,6 +156,12 @@ pub struct Topics {
     pub odom: String,
     /// `sensor_msgs/NavSatFix` the bridge reads.
     pub fix: String,
+    /// Vehicle mode: `std_msgs/String` the bridge publishes (the JAUS components' state
+    /// and controller).
+    pub status: String,
+    /// Vehicle mode: `geometry_msgs/PoseStamped` the bridge reads (a goal for the
+    /// vehicle's waypoint driver).
+    pub goal_pose: String,
 }
 
 impl Default for Topics {
@@ -140,6 +170,8 @@ impl Default for Topics {
             cmd_vel: "cmd_vel".into(),
             odom: "odom".into(),
             fix: "fix".into(),
+            status: "jaus/status".into(),
+            goal_pose: "goal_pose".into(),
         }
     }
 }
@@ -179,6 +211,50 @@ pub enum OdomAxes {
     /// ROS x, y = −ROS y, z = −ROS z, yaw = −ROS yaw. JAUS "north" is then the robot's
     /// initial heading.
     Flu,
+}
+
+/// Vehicle mode (a JAUS vehicle in ROS 2, [`crate::vehicle`]): which vehicle, how often
+/// its reports become topics, and how `cmd_vel` and `goal_pose` drive it. The topics'
+/// names are [`Topics`]'; the velocity → effort scaling is [`Ros2Config::effort`]
+/// (`max_linear` m/s is 100 %), the frames [`Ros2Config::frames`].
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct VehicleConfig {
+    /// The JAUS subsystem of the vehicle (its components are found in the system tree
+    /// by their component ids). `None` (the default): robot mode, not vehicle mode.
+    pub subsystem: Option<u8>,
+    /// Rate of the pose and velocity service connections and of `odom`, `fix`, Hz.
+    pub rate_hz: f64,
+    /// No `cmd_vel` for this long (ms): zero efforts are sent (the vehicle stops).
+    pub cmd_vel_timeout_ms: u64,
+    /// The authority the bridge asks for control with.
+    pub authority: u8,
+    /// Travel speed sent with a `goal_pose` waypoint, m/s.
+    pub waypoint_speed: f64,
+}
+
+impl Default for VehicleConfig {
+    fn default() -> Self {
+        VehicleConfig {
+            subsystem: None,
+            rate_hz: 10.0,
+            cmd_vel_timeout_ms: 500,
+            authority: 10,
+            waypoint_speed: 1.0,
+        }
+    }
+}
+
+impl VehicleConfig {
+    /// The `cmd_vel` watchdog time.
+    pub fn cmd_vel_timeout(&self) -> Duration {
+        Duration::from_millis(self.cmd_vel_timeout_ms)
+    }
+
+    /// The period of [`rate_hz`](Self::rate_hz).
+    pub fn period(&self) -> Duration {
+        Duration::from_secs_f64(1.0 / self.rate_hz.clamp(0.01, 1000.0))
+    }
 }
 
 /// DDS reliability.
@@ -259,5 +335,30 @@ mod tests {
         c.topics.odom = "a//b".into();
         assert!(c.validate().is_err());
         assert!(serde_yaml::from_str::<Ros2Config>("domian_id: 3").is_err());
+    }
+
+    #[test]
+    fn vehicle_settings_parse_and_are_checked() {
+        let c: Ros2Config =
+            serde_yaml::from_str("vehicle: {subsystem: 1, rate_hz: 20}\ntopics: {status: st}")
+                .unwrap();
+        assert_eq!((c.vehicle.subsystem, c.vehicle.rate_hz), (Some(1), 20.0));
+        assert_eq!(c.vehicle.cmd_vel_timeout(), Duration::from_millis(500));
+        assert_eq!(
+            (c.topics.status.as_str(), c.topics.goal_pose.as_str()),
+            ("st", "goal_pose")
+        );
+        c.validate().unwrap();
+        let mut bad = c.clone();
+        bad.vehicle.rate_hz = 0.0;
+        assert!(bad.validate().is_err());
+        let mut bad = c.clone();
+        bad.effort.max_linear = 0.0;
+        assert!(bad.validate().is_err());
+        bad.vehicle.subsystem = None;
+        bad.validate().unwrap();
+        let mut bad = c;
+        bad.vehicle.cmd_vel_timeout_ms = 0;
+        assert!(bad.validate().is_err());
     }
 }

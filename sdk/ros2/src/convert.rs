@@ -13,12 +13,12 @@ use crate::msg::{self, NavSatFix, NavSatStatus, Odometry, Twist};
 
 /// The rotation taking ROS base-frame vectors (x forward, y left, z up) to the JAUS
 /// vehicle frame (x forward, y right, z down): π about x.
-fn flu_to_frd() -> UnitQuaternion<f64> {
+pub(crate) fn flu_to_frd() -> UnitQuaternion<f64> {
     UnitQuaternion::from_axis_angle(&Vector3::x_axis(), std::f64::consts::PI)
 }
 
 /// The rotation taking vectors of the ROS odometry frame to the JAUS local frame.
-fn odom_to_local(axes: OdomAxes) -> UnitQuaternion<f64> {
+pub(crate) fn odom_to_local(axes: OdomAxes) -> UnitQuaternion<f64> {
     match axes {
         // x_n = y_e, y_e = x_e, z_d = −z_u: a proper rotation (det +1).
         OdomAxes::Enu => UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(

@@ -15,6 +15,11 @@
 //! [`Ros2Config::watchdog_ms`]. Units and frames: [`convert`]; the whole mapping, the
 //! configuration and the measured latency: `docs/ros2.md`.
 //!
+//! The other direction is [`vehicle`] mode ([`vehicle_node`]): a JAUS vehicle on the
+//! network (the SDK's or OpenJAUS 3.3's) published as `odom`, `fix` and `jaus/status`,
+//! driven by `cmd_vel` (Set Wrench Effort under control, with a watchdog) and
+//! `goal_pose` (a waypoint of its Local or Global Waypoint Driver).
+//!
 //! ```no_run
 //! use std::time::Instant;
 //! use jaus::net::NodeConfig;
@@ -33,10 +38,14 @@ pub mod config;
 pub mod convert;
 pub mod msg;
 pub mod robot;
+pub mod vehicle;
 
 pub use bridge::{dds_topic_name, BridgeStats, OdomSample, Ros2Link, WatchdogEvent};
-pub use config::{EffortMapping, Frames, OdomAxes, Qos, Reliability, Ros2Config, Topics};
+pub use config::{
+    EffortMapping, Frames, OdomAxes, Qos, Reliability, Ros2Config, Topics, VehicleConfig,
+};
 pub use robot::{ids, robot_components, robot_node};
+pub use vehicle::{vehicle_node, VehicleEvent, VehicleLink, VehicleStats};
 
 /// What can go wrong starting a bridge.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]

@@ -261,7 +261,25 @@ impl NavSatFix {
     pub const COVARIANCE_UNKNOWN: u8 = 0;
 }
 
+/// `geometry_msgs/PoseStamped`: what `goal_pose` carries (RViz's "2D Goal Pose").
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct PoseStamped {
+    /// Stamp and the pose's frame.
+    pub header: Header,
+    /// The pose.
+    pub pose: Pose,
+}
+
+/// `std_msgs/String`.
+#[derive(Debug, Clone, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct StdString {
+    /// The text (`string data`).
+    pub data: String,
+}
+
 ros_message!(Twist, "geometry_msgs", "Twist");
+ros_message!(PoseStamped, "geometry_msgs", "PoseStamped");
+ros_message!(StdString, "std_msgs", "String");
 ros_message!(Odometry, "nav_msgs", "Odometry");
 ros_message!(NavSatFix, "sensor_msgs", "NavSatFix");
 ros_message!(Header, "std_msgs", "Header");
