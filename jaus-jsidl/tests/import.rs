@@ -398,17 +398,38 @@ fn a_state_starting_in_a_sub_state_it_does_not_declare_extends_the_inherited_one
 #[test]
 fn the_quirks_of_the_published_hmi_set_import() {
     let spec = import("quirks").load().unwrap();
-    let report = spec.message("ReportDcm").expect("`ReportDCM` named as the importer names");
-    let ty = |n: &str| report.def.fields.iter().find(|f| f.name == n).unwrap().ty.clone();
+    let report = spec
+        .message("ReportDcm")
+        .expect("`ReportDCM` named as the importer names");
+    let ty = |n: &str| {
+        report
+            .def
+            .fields
+            .iter()
+            .find(|f| f.name == n)
+            .unwrap()
+            .ty
+            .clone()
+    };
     // A signed byte is an i8; named values on one, an unsigned enumeration of the same
     // bytes, which says so.
     assert_eq!(ty("trim"), "i8");
     let state = spec.ty(&ty("state")).unwrap();
     assert_eq!(state.def.repr.as_deref(), Some("u8"));
-    assert!(state.def.description.as_deref().unwrap_or("").contains("Signed (`byte`)"));
+    assert!(state
+        .def
+        .description
+        .as_deref()
+        .unwrap_or("")
+        .contains("Signed (`byte`)"));
     // Entries sharing a placeholder name are told apart by their index.
     let reading = spec.ty(&ty("reading")).unwrap();
-    let names: Vec<&str> = reading.def.variants.iter().map(|v| v.name.as_str()).collect();
+    let names: Vec<&str> = reading
+        .def
+        .variants
+        .iter()
+        .map(|v| v.name.as_str())
+        .collect();
     assert_eq!(names, ["RenameMe", "RenameMe1"]);
     // The parent is named as the machine names it, and the transition's message as the
     // importer names messages.

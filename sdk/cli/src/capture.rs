@@ -243,20 +243,34 @@ pub struct ReadStats {
 
 /// Every IPv4 UDP datagram of a pcap or pcapng file, in file order.
 pub fn read(path: &Path) -> Result<(Vec<Datagram>, ReadStats), CaptureError> {
+    let (frames, stats) = read_frames(path)?;
+    Ok((frames.into_iter().map(|(_, d)| d).collect(), stats))
+}
+
+/// As [`read`], each datagram with its frame number in the file (from 1, counting
+/// every packet record, as Wireshark numbers them).
+pub fn read_frames(path: &Path) -> Result<(Vec<(u64, Datagram)>, ReadStats), CaptureError> {
     let mut f = BufReader::new(File::open(path)?);
     let mut magic = [0u8; 4];
     f.read_exact(&mut magic)?;
     let f = BufReader::new(File::open(path)?);
     let mut out = Vec::new();
     let mut stats = ReadStats::default();
-    let mut push = |time: Duration, link: DataLink, data: &[u8]| match frame(link, data) {
-        Some((src, dst, payload)) => out.push(Datagram {
-            time,
-            src,
-            dst,
-            payload: payload.to_vec(),
-        }),
-        None => stats.skipped += 1,
+    let mut number = 0u64;
+    let mut push = |time: Duration, link: DataLink, data: &[u8]| {
+        number += 1;
+        match frame(link, data) {
+            Some((src, dst, payload)) => out.push((
+                number,
+                Datagram {
+                    time,
+                    src,
+                    dst,
+                    payload: payload.to_vec(),
+                },
+            )),
+            None => stats.skipped += 1,
+        }
     };
     match magic {
         [0x0a, 0x0d, 0x0d, 0x0a] => {

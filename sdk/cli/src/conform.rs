@@ -5,6 +5,7 @@ use std::io::Write;
 use std::path::PathBuf;
 use std::time::Duration;
 
+use jaus_conform::profile::{self, Profile, Selection};
 use jaus_conform::session::{Session, Voices};
 use jaus_conform::udp::UdpSession;
 use jaus_conform::{report, Options};
@@ -32,6 +33,13 @@ pub struct ConformArgs {
     /// evidence, for Wireshark or `jaus decode --pcap`).
     #[arg(long, value_name = "FILE")]
     pcap: Option<PathBuf>,
+    /// Judge this capture (pcap or pcapng: `jaus node --capture`, `--pcap`, tshark)
+    /// instead of testing components on the network: nothing is sent; queries
+    /// answered, acknowledgements given, malformed packets and state commands from
+    /// clients not in control carried out, each finding naming its packet numbers
+    /// (`--answer-wait` is the window an answer may take).
+    #[arg(long, value_name = "FILE", conflicts_with_all = ["target", "subsystem", "as4", "pcap", "list", "peer"])]
+    from_pcap: Option<PathBuf>,
     /// Seconds to wait for each answer during the checks.
     #[arg(long, default_value_t = 1.0)]
     answer_wait: f64,
@@ -62,6 +70,12 @@ pub struct ConformArgs {
     /// prints them as one JSON array.
     #[arg(long, value_name = "FORMAT", num_args = 0..=1, default_missing_value = "text")]
     list: Option<ListFormat>,
+    /// Run (or with --list, list) only the checks of a profile: a built-in one (`all`,
+    /// the default; `ra33-core`, the checks every RA 3.3 component gets; `iop`, the AS-4
+    /// judge's, as --as4) or a YAML file (name, description, checks: a list of
+    /// `{ id: ID or PREFIX*, level: required|advisory }`).
+    #[arg(long, value_name = "NAME|FILE")]
+    profile: Option<String>,
     /// With --as4: seconds to wait for the waypoint list to be driven to its end.
     #[arg(long, default_value_t = 60.0)]
     mission_timeout: f64,
@@ -133,6 +147,7 @@ fn verdict(run: &jaus_conform::RunReport) -> Result<(), String> {
 fn conform_as4(
     net: &super::NetArgs,
     args: &ConformArgs,
+    sel: Option<&Selection>,
     out: &mut impl Write,
 ) -> Result<(), String> {
     use jaus_conform::as4::{self, udp::UdpAs4Session, As4Options, As4Session};
@@ -172,7 +187,10 @@ fn conform_as4(
         mission_timeout: Duration::from_secs_f64(args.mission_timeout.max(0.0)),
         ..As4Options::default()
     };
-    let run = as4::run_as4(&mut session, &opts);
+    let run = match sel {
+        Some(sel) => profile::run_as4(&mut session, &opts, sel),
+        None => as4::run_as4(&mut session, &opts),
+    };
     let _ = write!(out, "{}", report::summary(&run));
     write_reports(&run, args)?;
     if let Some(p) = &args.pcap {
@@ -198,15 +216,41 @@ pub enum ListFormat {
     Json,
 }
 
-/// `jaus conform --list`: the catalogue of checks of `spec_paths` (or the SDK's).
-fn list(format: ListFormat, spec_paths: &[PathBuf], out: &mut impl Write) -> Result<(), String> {
-    let spec = if spec_paths.is_empty() {
+/// The definitions: the SDK's, with the overlays of `spec_paths`.
+fn load_spec(spec_paths: &[PathBuf]) -> Result<jaus_spec::Spec, String> {
+    if spec_paths.is_empty() {
         jaus_spec::load_sdk()
     } else {
         jaus_spec::load_overlays(spec_paths)
     }
-    .map_err(|e| e.to_string())?;
-    let all = jaus_conform::catalogue::catalogue(&spec);
+    .map_err(|e| e.to_string())
+}
+
+/// The checks `--profile` selects among those of `spec`, if given.
+fn selection(args: &ConformArgs, spec: &jaus_spec::Spec) -> Result<Option<Selection>, String> {
+    let Some(name) = &args.profile else {
+        return Ok(None);
+    };
+    let catalogue = jaus_conform::catalogue::catalogue(spec);
+    Profile::named(name)
+        .and_then(|p| p.select(&catalogue))
+        .map(Some)
+        .map_err(|e| e.to_string())
+}
+
+/// `jaus conform --list`: the catalogue of checks of `spec_paths` (or the SDK's), those
+/// of `--profile` when given.
+fn list(
+    format: ListFormat,
+    args: &ConformArgs,
+    spec_paths: &[PathBuf],
+    out: &mut impl Write,
+) -> Result<(), String> {
+    let spec = load_spec(spec_paths)?;
+    let mut all = jaus_conform::catalogue::catalogue(&spec);
+    if let Some(sel) = selection(args, &spec)? {
+        all = sel.entries(&all);
+    }
     let text = match format {
         ListFormat::Text => jaus_conform::catalogue::text(&all),
         ListFormat::Json => serde_json::to_string_pretty(&all).map_err(|e| e.to_string())? + "\n",
@@ -223,22 +267,40 @@ pub fn conform(
     out: &mut impl Write,
 ) -> Result<(), String> {
     if let Some(format) = args.list {
-        return list(format, spec_paths, out);
+        return list(format, args, spec_paths, out);
     }
-    if args.as4 {
-        return conform_as4(net, args, out);
+    if let Some(path) = &args.from_pcap {
+        return from_pcap(path, args, out);
+    }
+    let spec = load_spec(spec_paths)?;
+    let sel = selection(args, &spec)?;
+    if let Some(sel) = &sel {
+        let _ = writeln!(
+            out,
+            "profile {}: {} checks ({})",
+            sel.name,
+            sel.ids.len(),
+            sel.description
+        );
+    }
+    let as4_only = sel.as_ref().is_some_and(|s| !s.has_ra33());
+    if args.as4 || as4_only {
+        if let Some(s) = sel.as_ref().filter(|s| !s.has_as4()) {
+            return Err(format!(
+                "profile {} selects no check of the AS-4 judge (--as4)",
+                s.name
+            ));
+        }
+        if !args.target.is_empty() || args.subsystem.is_some() {
+            return Err("--target and --subsystem go with RA 3.3 checks: the profile selects the AS-4 judge's only (its vehicle is the first --peer, or --as4-target)".into());
+        }
+        return conform_as4(net, args, sel.as_ref(), out);
     }
     if args.allow_motion || args.as4_target.is_some() {
         return Err("--allow-motion and --as4-target go with --as4 (the IOP scenario)".into());
     }
     net.udp_peers("conform")?;
     let client = net.client()?;
-    let spec = if spec_paths.is_empty() {
-        jaus_spec::load_sdk()
-    } else {
-        jaus_spec::load_overlays(spec_paths)
-    }
-    .map_err(|e| e.to_string())?;
     let socket = jaus_cli::net::bind_socket(client.bind, &client.peers)?;
     let voices = Voices::on(client.me.subsystem, client.me.node);
     let mut session = UdpSession::new(socket, client.peers.clone(), client.framing, &voices)?;
@@ -284,7 +346,10 @@ pub fn conform(
         wait: Duration::from_secs_f64(args.answer_wait.max(0.01)),
         settle: Duration::from_millis(args.settle_ms),
     };
-    let mut run = jaus_conform::run(&mut session, &spec, voices, &targets, opts);
+    let mut run = match &sel {
+        Some(sel) => profile::run(&mut session, &spec, voices, &targets, opts, sel),
+        None => jaus_conform::run(&mut session, &spec, voices, &targets, opts),
+    };
     run.peer = client
         .peers
         .iter()
@@ -306,5 +371,102 @@ pub fn conform(
             client.wait,
         ));
     }
+    verdict(&run)
+}
+
+/// The record of datagram `d` (frame `number`) for the offline judge; `None` for one
+/// that is no JAUS traffic: OpenJAUS's local control datagrams, and datagrams of no
+/// JAUS framing (first byte not 1, 2 or "JAUS01.0") off the JAUS ports (3794, and
+/// OpenJAUS's data socket 24629, whose raw packets have no framing).
+fn offline_record(
+    number: u64,
+    d: &jaus_cli::capture::Datagram,
+) -> Option<jaus_conform::offline::Record> {
+    use jaus::net::as5669a::Generation;
+    use jaus_conform::offline::{Carrier, Record};
+    if d.is_openjaus_control() {
+        return None;
+    }
+    let ports = [d.src.port(), d.dst.port()];
+    let jaus_port = ports.contains(&3794) || ports.contains(&jaus::net::oj::DATA_PORT);
+    if Generation::of(&d.payload) == Generation::Unknown && !jaus_port {
+        return None;
+    }
+    let (carrier, payload) = if d.is_as5669a() {
+        (Carrier::As5669a, d.payload.clone())
+    } else {
+        match d.jaus_packet() {
+            Ok(p) => (Carrier::Ra33, p.to_vec()),
+            Err(e) => (Carrier::Unframed(e), d.payload.clone()),
+        }
+    };
+    Some(Record {
+        number,
+        time: d.time,
+        src: d.src.into(),
+        dst: d.dst.into(),
+        carrier,
+        payload,
+    })
+}
+
+/// `jaus conform --from-pcap FILE`: judges the capture, sending nothing; the same
+/// reports as a live run, `Err` when a required check failed.
+fn from_pcap(
+    path: &std::path::Path,
+    args: &ConformArgs,
+    out: &mut impl Write,
+) -> Result<(), String> {
+    if args.allow_motion || args.allow_shutdown || args.as4_target.is_some() {
+        return Err("--allow-motion, --allow-shutdown and --as4-target test a vehicle on the network: not with --from-pcap".into());
+    }
+    let (frames, stats) = jaus_cli::capture::read_frames(path)
+        .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+    let opts = jaus_conform::offline::Options {
+        window: Duration::from_secs_f64(args.answer_wait.clamp(0.001, 3600.0)),
+        ..jaus_conform::offline::Options::default()
+    };
+    let mut judge = jaus_conform::offline::Judge::new(opts);
+    let (mut judged, mut other) = (0u64, 0u64);
+    for (number, d) in &frames {
+        match offline_record(*number, d) {
+            Some(r) => {
+                judged += 1;
+                judge.push(&r);
+            }
+            None => other += 1,
+        }
+    }
+    let dropped = judge.dropped();
+    let run = judge.finish(&path.display().to_string());
+    let _ = writeln!(
+        out,
+        "{}: {judged} JAUS datagrams judged{}{}{}",
+        path.display(),
+        if other > 0 {
+            format!(", {other} other UDP datagrams left aside")
+        } else {
+            String::new()
+        },
+        if stats.skipped > 0 {
+            format!(", {} frames not IPv4/UDP skipped", stats.skipped)
+        } else {
+            String::new()
+        },
+        if stats.truncated {
+            " (the file ends inside a packet: read up to it)"
+        } else {
+            ""
+        },
+    );
+    if dropped > 0 {
+        let _ = writeln!(
+            out,
+            "{dropped} requests not judged: {} of their kind were waiting at once",
+            opts.max_outstanding
+        );
+    }
+    let _ = write!(out, "{}", report::summary(&run));
+    write_reports(&run, args)?;
     verdict(&run)
 }

@@ -2,8 +2,10 @@
 //!
 //! The RA 3.3 checks are what [`crate::plan`] plans for each component type of the
 //! definitions (a vendor's overlay included), merged by check id with the types each
-//! applies to; the AS-4 checks are the IOP judge's ([`crate::as4`]). Each entry carries
-//! its id, what it tests, its level and the rule it cites with the rule's source.
+//! applies to, and the engine's `teardown.as-found`; the AS-4 checks are the IOP
+//! judge's ([`crate::as4`]). Each entry carries its id, what it tests, its level and the
+//! rule it cites with the rule's source. [`markdown`] renders it as the table of
+//! docs/conformance.md (`sdk/conform/tests/docs_table.rs` keeps the two equal).
 
 use jaus_spec::Spec;
 use serde::Serialize;
@@ -55,6 +57,17 @@ pub fn catalogue(spec: &Spec) -> Vec<Entry> {
             }
         }
     }
+    // The engine's clean-up, after the checks it plans, on every component.
+    let teardown = crate::plan::rules::TEARDOWN;
+    out.push(Entry {
+        id: "teardown.as-found".into(),
+        title: "The component is left as it was found".into(),
+        level: Level::Advisory,
+        rule: teardown.id,
+        source: teardown.source,
+        text: teardown.text,
+        applies_to: spec.components.iter().map(|c| c.def.name.clone()).collect(),
+    });
     for (id, title, rule, level) in crate::as4::CHECKS {
         out.push(Entry {
             id: (*id).to_string(),
@@ -86,6 +99,68 @@ pub fn text(entries: &[Entry]) -> String {
             e.title,
             e.text,
             e.applies_to.join(", ")
+        ));
+    }
+    s
+}
+
+/// `text` for a Markdown table cell: `|` escaped, lines joined.
+fn cell(text: &str) -> String {
+    text.replace('|', "\\|").replace('\n', " ")
+}
+
+/// The level as the tables print it.
+fn level_name(level: Level) -> &'static str {
+    match level {
+        Level::Required => "required",
+        Level::Advisory => "advisory",
+    }
+}
+
+/// The catalogue of `spec` as Markdown (what docs/conformance.md holds between
+/// `<!-- checks:begin -->` and `<!-- checks:end -->`): a count, a table of the checks
+/// (id, level, the rule cited, what it runs against, what it tests; each row with an
+/// anchor `check-<id>`), then a table of the rules they cite (id, source, the rule in
+/// this tool's words; anchors `rule-<id>`).
+pub fn markdown(spec: &Spec) -> String {
+    let all = catalogue(spec);
+    let types = spec.components.len();
+    let required = all.iter().filter(|e| e.level == Level::Required).count();
+    let mut s = format!(
+        "{} checks, {required} of them required, with the SDK's definitions ({types} component \
+types). Generated from `jaus_conform::catalogue` (`jaus conform --list`) by \
+`sdk/conform/tests/docs_table.rs`: do not edit by hand, run \
+`UPDATE_DOCS=1 cargo test -p jaus-conform --test docs_table`.\n\n",
+        all.len()
+    );
+    s.push_str("| Check | Level | Rule | Applies to | What it tests |\n|---|---|---|---|---|\n");
+    for e in &all {
+        let applies = if types > 0 && e.applies_to.len() == types {
+            "every component".to_string()
+        } else {
+            e.applies_to.join(", ")
+        };
+        s.push_str(&format!(
+            "| <a id=\"check-{id}\"></a>`{id}` | {} | [`{rule}`](#rule-{rule}) | {} | {} |\n",
+            level_name(e.level),
+            cell(&applies),
+            cell(&e.title),
+            id = e.id,
+            rule = e.rule,
+        ));
+    }
+    s.push_str("\n| Rule | Source | The rule, in this tool's words |\n|---|---|---|\n");
+    let mut seen: Vec<&str> = Vec::new();
+    for e in &all {
+        if seen.contains(&e.rule) {
+            continue;
+        }
+        seen.push(e.rule);
+        s.push_str(&format!(
+            "| <a id=\"rule-{rule}\"></a>`{rule}` | {} | {} |\n",
+            cell(e.source),
+            cell(e.text),
+            rule = e.rule,
         ));
     }
     s
@@ -125,5 +200,24 @@ mod tests {
             .iter()
             .all(|e| !e.text.is_empty() && !e.source.is_empty()));
         assert!(text(&all).contains("control.authority_below"));
+        assert!(ids.contains(&"teardown.as-found"));
+    }
+
+    #[test]
+    fn markdown_has_a_row_per_check_and_one_per_rule() {
+        let spec = jaus_spec::load_sdk().unwrap();
+        let all = catalogue(&spec);
+        let md = markdown(&spec);
+        let rows = md
+            .lines()
+            .filter(|l| l.starts_with("| <a id=\"check-"))
+            .count();
+        assert_eq!(rows, all.len());
+        assert!(
+            md.contains("| <a id=\"rule-control.authority\"></a>"),
+            "{md}"
+        );
+        assert!(md.contains("`core.identification` | required | [`identification`](#rule-identification) | every component |"), "{md}");
+        assert_eq!(cell("a|b\nc"), "a\\|b c");
     }
 }

@@ -105,6 +105,9 @@ pub enum Kind {
     /// A step of the AS-4 IOP scenario ([`crate::as4`]), run by that module, not by the
     /// RA 3.3 engine.
     As4,
+    /// A finding on recorded traffic ([`crate::offline`]), judged from a capture, not
+    /// run on a component.
+    Offline,
 }
 
 /// The core state commands.

@@ -17,6 +17,7 @@
 //! * [`report`]: the terminal summary, JSON, JUnit XML and an HTML page;
 //! * [`capture`]: the datagrams of a run, for a pcap file;
 //! * [`catalogue`]: every check as data (`jaus conform --list`);
+//! * [`profile`]: named sets of checks (`jaus conform --profile`);
 //! * [`as4`]: the judge's side of the AS-4 IOP challenge scenario over AS5669A
 //!   (`jaus conform --as4`), reported the same way.
 //!
@@ -41,7 +42,9 @@ pub mod catalogue;
 pub mod check;
 pub mod engine;
 pub mod memory;
+pub mod offline;
 pub mod plan;
+pub mod profile;
 pub mod report;
 pub mod session;
 pub mod udp;
@@ -87,9 +90,25 @@ pub fn run(
     targets: &[Address],
     opts: Options,
 ) -> RunReport {
+    run_selected(session, spec, voices, targets, opts, None)
+}
+
+/// [`run`] planning only the checks `selection` selects ([`profile::run`]).
+pub(crate) fn run_selected(
+    session: &mut dyn session::Session,
+    spec: &Spec,
+    voices: session::Voices,
+    targets: &[Address],
+    opts: Options,
+    selection: Option<&profile::Selection>,
+) -> RunReport {
     let components = targets
         .iter()
-        .map(|t| Engine::new(session, spec, voices, *t, opts).run())
+        .map(|t| {
+            Engine::new(session, spec, voices, *t, opts)
+                .with_selection(selection.cloned())
+                .run()
+        })
         .collect();
     RunReport {
         tool: format!("jaus conform {}", env!("CARGO_PKG_VERSION")),

@@ -6,6 +6,7 @@
 use jaus_spec::Spec;
 
 use crate::check::{Check, Kind, Level, Malformed, Rule, StateCommand};
+use crate::profile::Selection;
 
 /// Every rule the checks cite.
 pub mod rules {
@@ -125,6 +126,13 @@ pub mod rules {
         source: "Part 1 §5 (component function), definitions `readback:`",
         text: "A value set by a command from the controller is what the command's read-back query reports, within one count of its scaling.",
     };
+    /// The tester's clean-up (`teardown.as-found`, run by the engine after the checks
+    /// it plans).
+    pub const TEARDOWN: Rule = Rule {
+        id: "teardown",
+        source: "jaus conform",
+        text: "The tester leaves the component as it found it: nobody in control, its core state as before the run.",
+    };
     /// Robustness.
     pub const ROBUST: Rule = Rule {
         id: "robust",
@@ -151,6 +159,23 @@ fn check(
 }
 
 /// The checks for the component with id `component` (a type the definitions may or
+/// may not know), in the order the engine runs them: every one, or those `selection`
+/// selects ([`crate::profile`]), at the levels it gives them.
+pub fn plan_selected(spec: &Spec, component: u8, selection: Option<&Selection>) -> Vec<Check> {
+    let all = plan(spec, component);
+    match selection {
+        None => all,
+        Some(sel) => all
+            .into_iter()
+            .filter_map(|mut c| {
+                c.level = sel.level_of(&c.id, c.level)?;
+                Some(c)
+            })
+            .collect(),
+    }
+}
+
+/// Every check for the component with id `component` (a type the definitions may or
 /// may not know), in the order the engine runs them.
 pub fn plan(spec: &Spec, component: u8) -> Vec<Check> {
     use rules::*;

@@ -89,6 +89,8 @@ pub struct Engine<'a> {
     identification: Option<String>,
     /// The definitions as a codec: messages by name, a vendor overlay's included.
     schema: jaus_dynamic::Schema,
+    /// The checks a profile selects (`None`: every check).
+    selection: Option<crate::profile::Selection>,
 }
 
 impl std::fmt::Debug for Engine<'_> {
@@ -100,12 +102,8 @@ impl std::fmt::Debug for Engine<'_> {
     }
 }
 
-/// The check recording the tester's clean-up.
-const TEARDOWN: Rule = Rule {
-    id: "teardown",
-    source: "jaus conform",
-    text: "The tester leaves the component as it found it: nobody in control, its core state as before the run.",
-};
+/// The check recording the tester's clean-up (its rule is the catalogue's).
+const TEARDOWN: Rule = crate::plan::rules::TEARDOWN;
 
 impl<'a> Engine<'a> {
     /// An engine testing `target` through `session` with `voices`, its checks read
@@ -129,12 +127,21 @@ impl<'a> Engine<'a> {
             authority: 0,
             identification: None,
             schema: jaus_dynamic::Schema::from_spec(spec),
+            selection: None,
         }
+    }
+
+    /// Plans only the checks `selection` selects, at the levels it gives them
+    /// (`jaus conform --profile`).
+    pub fn with_selection(mut self, selection: Option<crate::profile::Selection>) -> Self {
+        self.selection = selection;
+        self
     }
 
     /// Runs every check that applies to the target, then restores it.
     pub fn run(mut self) -> ComponentReport {
-        let checks = crate::plan::plan(self.spec, self.target.component);
+        let checks =
+            crate::plan::plan_selected(self.spec, self.target.component, self.selection.as_ref());
         let initial = self.status();
         self.evidence.clear();
         let mut outcomes = Vec::with_capacity(checks.len() + 1);
@@ -183,6 +190,11 @@ impl<'a> Engine<'a> {
             Kind::As4 => (
                 Verdict::Inconclusive,
                 "an AS-4 scenario check: run by jaus_conform::as4, not on RA 3.3".to_string(),
+            ),
+            Kind::Offline => (
+                Verdict::Inconclusive,
+                "a finding on recorded traffic: judged by jaus_conform::offline, not run"
+                    .to_string(),
             ),
         };
         Outcome {

@@ -1,7 +1,8 @@
 //! One HTML page per run: a contents list with each component's counts, then per
 //! component a table of its checks (id, rule, level, verdict, detail), each with the
-//! messages exchanged in a `<details>`; a filter shows every check, those that did not
-//! pass, or the required failures only.
+//! messages exchanged in a `<details>` and an anchor `v-<address>-<check id>` (the
+//! check and rule ids are the catalogue's, [`crate::catalogue`]); a filter shows every
+//! check, those that did not pass, or the required failures only.
 //!
 //! Everything printed is escaped: identification texts and field values come from the
 //! network. As a second wall, the page's Content-Security-Policy loads nothing and runs
@@ -96,6 +97,10 @@ pub fn html(run: &RunReport) -> String {
         );
         s.push_str("<table><tr><th>Check</th><th>Rule</th><th>Level</th><th>Verdict</th><th>Detail and messages</th></tr>\n");
         for o in &c.outcomes {
+            // Each verdict can be linked to; its check and rule ids are those of the
+            // catalogue (`jaus conform --list`, docs/conformance.md's `check-<id>` and
+            // `rule-<id>` anchors).
+            let anchor = escape(&format!("v-{}-{}", c.address, o.check.id).replace(' ', "_"));
             let verdict = match o.verdict {
                 Verdict::Pass => "pass",
                 Verdict::Fail => "fail",
@@ -103,7 +108,7 @@ pub fn html(run: &RunReport) -> String {
             };
             let _ = write!(
                 s,
-                "<tr class=\"check {verdict}{}\"><td>{}<br><small>{}</small></td><td>{}<br><small>{}</small></td><td>{}</td><td>{verdict}</td><td>{}<details><summary>{} messages</summary><pre>",
+                "<tr id=\"{anchor}\" class=\"check {verdict}{}\"><td><a href=\"#{anchor}\">{}</a><br><small>{}</small></td><td><code>{}</code>: {}<br><small>{}</small></td><td>{}</td><td>{verdict}</td><td>{}<details><summary>{} messages</summary><pre>",
                 if o.is_required_failure() {
                     " required-failure"
                 } else {
@@ -111,6 +116,7 @@ pub fn html(run: &RunReport) -> String {
                 },
                 escape(&o.check.id),
                 escape(&o.check.title),
+                escape(o.check.rule.id),
                 escape(o.check.rule.text),
                 escape(o.check.rule.source),
                 match o.check.level {

@@ -1,0 +1,554 @@
+//! Profiles: a named set of checks (`jaus conform --profile NAME|FILE`).
+//!
+//! A profile lists the checks a run plans, by id or by a prefix ending with `*`
+//! (`control.*`; `*` alone is every check), each optionally at another level than its
+//! own. Built in:
+//!
+//! * `all`: every check (a run without `--profile`);
+//! * `ra33-core`: the Part 1 core rules, the checks every RA 3.3 component gets
+//!   whatever its type (what [`crate::plan::plan`] gives a type the definitions do not
+//!   know: identification, services, status, heartbeat, time, authority, component
+//!   control, the core state commands, emergencies, the read-back of Set Component
+//!   Authority, events and a service connection on Report Component Status,
+//!   robustness) and the teardown check; not the checks a component type's own
+//!   interface brings (`core.services.inputs`, `query.*`, the read-back of its own
+//!   commands);
+//! * `iop`: the IGVC IOP challenge's AS-4 judge (`as4.*`, what `--as4` runs).
+//!
+//! A vendor's profile is a YAML file:
+//!
+//! ```yaml
+//! name: acme-pump
+//! description: What an Acme pump passes before it is fielded.
+//! checks:
+//!   - id: core.identification
+//!   - id: control.*
+//!   - id: events.every-change
+//!     level: required
+//! ```
+//!
+//! Every entry must name a check of the catalogue ([`crate::catalogue`]) or a prefix of
+//! one: an unknown id is an error naming the file, the entry's line and the closest
+//! known id. A check takes its level from the most specific entry that gives one (the
+//! entry naming it, else the longest prefix).
+//!
+//! The RA 3.3 checks a profile leaves out are not planned (nothing is sent for them);
+//! the engine's teardown still runs (the tester leaves the target as found) and is
+//! reported when selected. The AS-4 scenario is one sequence whose steps prepare the
+//! next (control, the list loaded): it runs whole and the report keeps the selected
+//! checks.
+
+use std::fmt;
+use std::path::Path;
+
+use jaus_spec::Spec;
+use serde::Deserialize;
+
+use crate::catalogue::Entry;
+use crate::check::Level;
+use crate::session::{Session, Voices};
+use crate::{Options, RunReport};
+
+/// The built-in profiles' names.
+pub const BUILTIN: [&str; 3] = ["all", "ra33-core", "iop"];
+
+/// The checks of `ra33-core`: those every RA 3.3 component gets.
+const RA33_CORE: &[&str] = &[
+    "core.identification",
+    "core.services",
+    "core.status",
+    "core.heartbeat",
+    "core.authority",
+    "core.time",
+    "control.*",
+    "state.*",
+    "emergency.*",
+    "readback.SetComponentAuthority",
+    "outsider.SetComponentAuthority",
+    "events.*",
+    "sc.*",
+    "robust.*",
+    "teardown.as-found",
+];
+
+/// A profile: its name, what it is for, and the checks it selects.
+#[derive(Debug, Clone, PartialEq, Eq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Profile {
+    /// Its name (reported with the run).
+    pub name: String,
+    /// What it is for.
+    #[serde(default)]
+    pub description: String,
+    /// The checks, by id or prefix.
+    pub checks: Vec<Pick>,
+    /// Where it was read from (a file's path, or `built-in`).
+    #[serde(skip)]
+    pub origin: String,
+}
+
+/// One entry of a profile.
+#[derive(Debug, Clone, PartialEq, Eq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Pick {
+    /// A check id, or a prefix of ids ending with `*`.
+    pub id: String,
+    /// The level the checks it selects are reported at, instead of their own.
+    #[serde(default)]
+    pub level: Option<LevelName>,
+    /// The entry's line in its file (1-based), when read from one.
+    #[serde(skip)]
+    pub line: Option<usize>,
+}
+
+/// A level as a profile file spells it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum LevelName {
+    /// [`Level::Required`].
+    Required,
+    /// [`Level::Advisory`].
+    Advisory,
+}
+
+impl From<LevelName> for Level {
+    fn from(l: LevelName) -> Level {
+        match l {
+            LevelName::Required => Level::Required,
+            LevelName::Advisory => Level::Advisory,
+        }
+    }
+}
+
+/// A profile that cannot be read or names what the catalogue does not have.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ProfileError {
+    /// The file (or `built-in`, or the name given).
+    pub origin: String,
+    /// The line, when known.
+    pub line: Option<usize>,
+    /// What is wrong.
+    pub message: String,
+}
+
+impl fmt::Display for ProfileError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.line {
+            Some(l) => write!(f, "profile {}, line {l}: {}", self.origin, self.message),
+            None => write!(f, "profile {}: {}", self.origin, self.message),
+        }
+    }
+}
+
+impl std::error::Error for ProfileError {}
+
+impl Pick {
+    fn of(id: &str) -> Pick {
+        Pick {
+            id: id.to_string(),
+            level: None,
+            line: None,
+        }
+    }
+
+    /// How specifically this entry selects `id`: `None` when it does not; an exact id
+    /// beats any prefix, a longer prefix a shorter one.
+    fn matches(&self, id: &str) -> Option<usize> {
+        match self.id.strip_suffix('*') {
+            Some(prefix) => id.starts_with(prefix).then_some(prefix.len()),
+            None => (self.id == id).then_some(usize::MAX),
+        }
+    }
+}
+
+impl Profile {
+    /// The built-in profile `name` ([`BUILTIN`]).
+    pub fn builtin(name: &str) -> Option<Profile> {
+        let (description, ids): (&str, &[&str]) = match name {
+            "all" => ("Every check (the default).", &["*"]),
+            "ra33-core" => (
+                "The Part 1 core rules: the checks every RA 3.3 component gets, whatever its type.",
+                RA33_CORE,
+            ),
+            "iop" => (
+                "The IGVC IOP challenge's AS-4 judge (as --as4).",
+                &["as4.*"],
+            ),
+            _ => return None,
+        };
+        Some(Profile {
+            name: name.to_string(),
+            description: description.to_string(),
+            checks: ids.iter().map(|id| Pick::of(id)).collect(),
+            origin: "built-in".into(),
+        })
+    }
+
+    /// A profile from the YAML `text` of the file `origin`, each entry with its line.
+    pub fn parse(text: &str, origin: &str) -> Result<Profile, ProfileError> {
+        let mut p: Profile = serde_yaml::from_str(text).map_err(|e| ProfileError {
+            origin: origin.to_string(),
+            line: e.location().map(|l| l.line()),
+            message: e.to_string(),
+        })?;
+        p.origin = origin.to_string();
+        let at = jaus_spec::location::LocationIndex::build(text);
+        for (i, pick) in p.checks.iter_mut().enumerate() {
+            pick.line = Some(at.find(&format!("checks[{i}].id")).line);
+        }
+        Ok(p)
+    }
+
+    /// The profile in the file `path`.
+    pub fn load(path: &Path) -> Result<Profile, ProfileError> {
+        let text = std::fs::read_to_string(path).map_err(|e| ProfileError {
+            origin: path.display().to_string(),
+            line: None,
+            message: format!("cannot read it: {e}"),
+        })?;
+        Profile::parse(&text, &path.display().to_string())
+    }
+
+    /// The built-in profile `name_or_file`, else the profile in that file.
+    pub fn named(name_or_file: &str) -> Result<Profile, ProfileError> {
+        if let Some(p) = Profile::builtin(name_or_file) {
+            return Ok(p);
+        }
+        let path = Path::new(name_or_file);
+        if !path.exists() {
+            return Err(ProfileError {
+                origin: name_or_file.to_string(),
+                line: None,
+                message: format!(
+                    "no built-in profile of that name ({}) and no such file",
+                    BUILTIN.join(", ")
+                ),
+            });
+        }
+        Profile::load(path)
+    }
+
+    /// The checks of `catalogue` this profile selects; `Err` names the first entry
+    /// that selects none, with the closest known id.
+    pub fn select(&self, catalogue: &[Entry]) -> Result<Selection, ProfileError> {
+        for (i, pick) in self.checks.iter().enumerate() {
+            if catalogue.iter().any(|e| pick.matches(&e.id).is_some()) {
+                continue;
+            }
+            let closest = closest(&pick.id, catalogue.iter().map(|e| e.id.as_str()));
+            return Err(ProfileError {
+                origin: self.origin.clone(),
+                line: pick.line,
+                message: format!(
+                    "entry {} names `{}`, which is no check{}{}",
+                    i + 1,
+                    pick.id,
+                    if pick.id.ends_with('*') {
+                        " prefix"
+                    } else {
+                        ""
+                    },
+                    closest.map_or(String::new(), |c| format!(" (did you mean `{c}`?)")),
+                ),
+            });
+        }
+        let ids = catalogue
+            .iter()
+            .filter(|e| self.picks(&e.id).next().is_some())
+            .map(|e| e.id.clone())
+            .collect();
+        Ok(Selection {
+            name: self.name.clone(),
+            description: self.description.clone(),
+            picks: self.checks.clone(),
+            ids,
+        })
+    }
+
+    fn picks<'a>(&'a self, id: &'a str) -> impl Iterator<Item = &'a Pick> + 'a {
+        self.checks.iter().filter(move |p| p.matches(id).is_some())
+    }
+}
+
+/// The catalogue id closest to `id` (by edit distance, at most a third of its length
+/// away), for an error.
+fn closest<'a>(id: &str, known: impl Iterator<Item = &'a str>) -> Option<&'a str> {
+    let id = id.trim_end_matches('*');
+    known
+        .map(|k| (distance(id, k), k))
+        .filter(|(d, _)| *d <= id.chars().count().max(3) / 3 + 1)
+        .min_by_key(|(d, _)| *d)
+        .map(|(_, k)| k)
+}
+
+/// Levenshtein distance.
+fn distance(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut row: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut prev = row[0];
+        row[0] = i + 1;
+        for (j, cb) in b.iter().enumerate() {
+            let here = row[j + 1];
+            row[j + 1] = (prev + usize::from(ca != *cb))
+                .min(row[j] + 1)
+                .min(here + 1);
+            prev = here;
+        }
+    }
+    row[b.len()]
+}
+
+/// A profile checked against the catalogue: what a run plans and reports.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Selection {
+    /// The profile's name.
+    pub name: String,
+    /// What it is for.
+    pub description: String,
+    picks: Vec<Pick>,
+    /// The catalogue ids selected, in catalogue order.
+    pub ids: Vec<String>,
+}
+
+impl Selection {
+    /// `None` when the check `id` is not selected; else its level: the one of the most
+    /// specific entry giving one, or `own`.
+    pub fn level_of(&self, id: &str, own: Level) -> Option<Level> {
+        let mut matching: Vec<(usize, usize, &Pick)> = self
+            .picks
+            .iter()
+            .enumerate()
+            .filter_map(|(i, p)| p.matches(id).map(|m| (m, i, p)))
+            .collect();
+        if matching.is_empty() {
+            return None;
+        }
+        // Most specific first; among equals, the later entry.
+        matching.sort_by_key(|&(specific, index, _)| std::cmp::Reverse((specific, index)));
+        Some(
+            matching
+                .iter()
+                .find_map(|(_, _, p)| p.level)
+                .map_or(own, Level::from),
+        )
+    }
+
+    /// Whether the check `id` is selected.
+    pub fn selects(&self, id: &str) -> bool {
+        self.level_of(id, Level::Advisory).is_some()
+    }
+
+    /// Whether it selects an AS-4 judge's check.
+    pub fn has_as4(&self) -> bool {
+        self.ids.iter().any(|id| id.starts_with("as4."))
+    }
+
+    /// Whether it selects an RA 3.3 check.
+    pub fn has_ra33(&self) -> bool {
+        self.ids.iter().any(|id| !id.starts_with("as4."))
+    }
+
+    /// The entries of `catalogue` it selects, at the levels it gives them
+    /// (`jaus conform --list --profile`).
+    pub fn entries(&self, catalogue: &[Entry]) -> Vec<Entry> {
+        catalogue
+            .iter()
+            .filter_map(|e| {
+                let level = self.level_of(&e.id, e.level)?;
+                Some(Entry { level, ..e.clone() })
+            })
+            .collect()
+    }
+
+    /// Keeps the outcomes of `run` it selects, at their levels, and names the profile
+    /// in the report's tool line.
+    pub fn apply(&self, run: &mut RunReport) {
+        for c in &mut run.components {
+            c.outcomes
+                .retain_mut(|o| match self.level_of(&o.check.id, o.check.level) {
+                    Some(level) => {
+                        o.check.level = level;
+                        true
+                    }
+                    None => false,
+                });
+        }
+        run.tool = format!("{}, profile {}", run.tool, self.name);
+    }
+}
+
+/// [`crate::run`] planning only the checks `selection` selects, at its levels; the
+/// report names the profile.
+pub fn run(
+    session: &mut dyn Session,
+    spec: &Spec,
+    voices: Voices,
+    targets: &[jaus::Address],
+    opts: Options,
+    selection: &Selection,
+) -> RunReport {
+    let mut report = crate::run_selected(session, spec, voices, targets, opts, Some(selection));
+    selection.apply(&mut report);
+    report
+}
+
+/// [`crate::as4::run_as4`] reporting the checks `selection` selects, at its levels (the
+/// scenario runs whole: its steps prepare the next).
+pub fn run_as4(
+    session: &mut dyn crate::as4::As4Session,
+    opts: &crate::as4::As4Options,
+    selection: &Selection,
+) -> RunReport {
+    let mut report = crate::as4::run_as4(session, opts);
+    selection.apply(&mut report);
+    report
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn catalogue() -> Vec<Entry> {
+        crate::catalogue::catalogue(&jaus_spec::load_sdk().unwrap())
+    }
+
+    const VENDOR: &str = "name: acme\ndescription: Acme's checks.\nchecks:\n  - id: core.identification\n  - id: control.*\n    level: advisory\n  - id: control.grant\n  - id: events.every-change\n    level: required\n";
+
+    #[test]
+    fn a_file_selects_by_id_and_prefix_with_levels() {
+        let p = Profile::parse(VENDOR, "acme.yaml").unwrap();
+        assert_eq!(p.name, "acme");
+        assert_eq!(p.checks[1].line, Some(5));
+        let sel = p.select(&catalogue()).unwrap();
+        assert!(sel.selects("core.identification") && sel.selects("control.release"));
+        assert!(!sel.selects("core.status") && !sel.selects("as4.control.query"));
+        // The prefix makes control.* advisory; the entry naming control.grant gives no
+        // level, so the prefix's applies.
+        assert_eq!(
+            sel.level_of("control.equal", Level::Required),
+            Some(Level::Advisory)
+        );
+        assert_eq!(
+            sel.level_of("control.grant", Level::Required),
+            Some(Level::Advisory)
+        );
+        assert_eq!(
+            sel.level_of("events.every-change", Level::Advisory),
+            Some(Level::Required)
+        );
+        assert_eq!(
+            sel.level_of("core.identification", Level::Required),
+            Some(Level::Required)
+        );
+        assert!(sel.has_ra33() && !sel.has_as4());
+        let listed = sel.entries(&catalogue());
+        assert_eq!(listed.len(), sel.ids.len());
+        assert!(listed
+            .iter()
+            .any(|e| e.id == "events.every-change" && e.level == Level::Required));
+    }
+
+    #[test]
+    fn an_unknown_id_names_the_file_the_line_and_the_closest_id() {
+        let text = "name: typo\nchecks:\n  - id: core.status\n  - id: control.grnat\n";
+        let err = Profile::parse(text, "typo.yaml")
+            .unwrap()
+            .select(&catalogue())
+            .unwrap_err();
+        assert_eq!(err.line, Some(4));
+        let msg = err.to_string();
+        assert!(
+            msg.starts_with("profile typo.yaml, line 4: entry 2"),
+            "{msg}"
+        );
+        assert!(msg.contains("`control.grnat`"), "{msg}");
+        assert!(msg.contains("did you mean `control.grant`?"), "{msg}");
+        // A prefix that selects nothing is as wrong.
+        let err = Profile::parse("name: p\nchecks:\n  - id: nothing.*\n", "p.yaml")
+            .unwrap()
+            .select(&catalogue())
+            .unwrap_err();
+        assert!(err.to_string().contains("no check prefix"), "{err}");
+    }
+
+    #[test]
+    fn bad_yaml_and_unknown_keys_are_errors_with_their_line() {
+        let err = Profile::parse(
+            "name: p\nchecks:\n  - id: core.status\n    levl: required\n",
+            "p.yaml",
+        )
+        .unwrap_err();
+        assert_eq!(err.origin, "p.yaml");
+        assert!(err.line.is_some(), "{err}");
+        assert!(err.to_string().contains("levl"), "{err}");
+        let err = Profile::parse(
+            "name: p\nchecks:\n  - id: core.status\n    level: optional\n",
+            "p.yaml",
+        )
+        .unwrap_err();
+        assert!(err.to_string().contains("optional"), "{err}");
+        let err = Profile::named("no-such-profile").unwrap_err();
+        assert!(err.to_string().contains("ra33-core"), "{err}");
+    }
+
+    #[test]
+    fn the_built_in_profiles() {
+        let spec = jaus_spec::load_sdk().unwrap();
+        let all = crate::catalogue::catalogue(&spec);
+        for name in BUILTIN {
+            let sel = Profile::named(name).unwrap().select(&all).unwrap();
+            assert!(!sel.ids.is_empty(), "{name}");
+        }
+        let every = Profile::builtin("all").unwrap().select(&all).unwrap();
+        assert_eq!(every.ids.len(), all.len());
+        let iop = Profile::builtin("iop").unwrap().select(&all).unwrap();
+        assert!(iop.has_as4() && !iop.has_ra33());
+        assert_eq!(
+            iop.ids.len(),
+            all.iter().filter(|e| e.id.starts_with("as4.")).count()
+        );
+        // ra33-core is what every component gets: the plan of a type the definitions
+        // do not know (the id no component has), and the teardown.
+        let unknown = (0..=255u8)
+            .find(|id| spec.components.iter().all(|c| c.def.id != *id))
+            .unwrap();
+        let mut core: Vec<String> = crate::plan::plan(&spec, unknown)
+            .into_iter()
+            .map(|c| c.id)
+            .collect();
+        core.push("teardown.as-found".into());
+        core.sort();
+        let mut sel = Profile::builtin("ra33-core")
+            .unwrap()
+            .select(&all)
+            .unwrap()
+            .ids;
+        sel.sort();
+        assert_eq!(sel, core);
+    }
+
+    #[test]
+    fn the_plan_follows_the_selection_only_inside_it() {
+        let spec = jaus_spec::load_sdk().unwrap();
+        let p = Profile::parse(VENDOR, "acme.yaml").unwrap();
+        let sel = p.select(&crate::catalogue::catalogue(&spec)).unwrap();
+        let planned = crate::plan::plan_selected(&spec, 45, Some(&sel));
+        assert!(planned.iter().all(|c| sel.selects(&c.id)));
+        assert!(planned
+            .iter()
+            .any(|c| c.id == "events.every-change" && c.level == Level::Required));
+        assert!(crate::plan::plan(&spec, 45).len() > planned.len());
+    }
+
+    #[test]
+    fn closest_ids() {
+        assert_eq!(distance("kitten", "sitting"), 3);
+        let known = ["control.grant", "core.status"];
+        assert_eq!(
+            closest("contrl.grant", known.iter().copied()),
+            Some("control.grant")
+        );
+        assert_eq!(closest("zzzzzzzz", known.iter().copied()), None);
+    }
+}
