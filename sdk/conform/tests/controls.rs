@@ -23,6 +23,10 @@ const SET_TRAVEL_SPEED: CommandCode = CommandCode(0x040A);
 const QUERY_TRAVEL_SPEED: CommandCode = CommandCode(0x240A);
 /// Request Component Control.
 const REQUEST_CONTROL: CommandCode = CommandCode(0x000D);
+/// Release Component Control.
+const RELEASE_CONTROL: CommandCode = CommandCode(0x000E);
+/// Query Component Control.
+const QUERY_CONTROL: CommandCode = CommandCode(0x200D);
 
 /// Drops the commands `codes` on arrival, from every sender, controller included.
 struct Deaf {
@@ -251,4 +255,26 @@ fn a_component_at_authority_zero_leaves_the_check_inconclusive() {
     let o = outcome(&run.components[0], "control.authority_below");
     assert_eq!(o.verdict, Verdict::Inconclusive, "{}", o.detail);
     assert!(o.detail.contains("authority is 0"), "{}", o.detail);
+}
+
+#[test]
+fn a_component_ignoring_release_fails_the_release_check() {
+    // As OpenJAUS 3.3's Communicator: Release Component Control and Query Component
+    // Control go unanswered and do nothing.
+    for codes in [vec![RELEASE_CONTROL], vec![RELEASE_CONTROL, QUERY_CONTROL]] {
+        let run = run(45, 0, |e| {
+            Box::new(Deaf {
+                inner: e,
+                codes: codes.clone(),
+            })
+        });
+        let o = outcome(&run.components[0], "control.release");
+        assert_eq!(o.verdict, Verdict::Fail, "{codes:?}: {}", o.detail);
+        assert!(
+            o.detail.contains("still in control after its Release")
+                || o.detail.contains("yet 200.1.40.1's request was refused"),
+            "{}",
+            o.detail
+        );
+    }
 }

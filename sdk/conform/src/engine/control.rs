@@ -156,8 +156,44 @@ impl Engine<'_> {
     }
 
     pub(super) fn control_release(&mut self) -> Found {
-        if let Err(e) = self.hold_control() {
-            return (Verdict::Inconclusive, e);
+        if let Err(refused) = self.hold_control() {
+            // A voice of the tester may still hold control from the checks before (the
+            // senior after control.preempt, which released it): each releases, and
+            // the controller asks again. Refused again, a release had no effect.
+            let (s, r, c) = (
+                self.voices.senior,
+                self.voices.rival,
+                self.voices.controller,
+            );
+            for v in [s, r] {
+                self.send(v, &ReleaseComponentControl {}.into(), false);
+            }
+            self.drain(self.opts.settle);
+            if let Err(again) = self.hold_control() {
+                let ours = [s, r, c];
+                return match self.controller() {
+                    Some(Some((holder, auth))) if ours.contains(&holder) => (
+                        Verdict::Fail,
+                        format!(
+                            "{holder} (authority {auth}) still in control after its Release Component Control; {c}'s request: {again}"
+                        ),
+                    ),
+                    Some(Some((holder, auth))) => (
+                        Verdict::Inconclusive,
+                        format!("{holder} (authority {auth}), not the tester, holds control: {refused}"),
+                    ),
+                    Some(None) => (Verdict::Inconclusive, format!("{refused}; then {again}, with nobody in control")),
+                    // Granted to the tester earlier in this run: since then only its
+                    // voices took control, and all of them released it.
+                    None if self.granted && again.contains("Reject") => (
+                        Verdict::Fail,
+                        format!(
+                            "{s} and {r} released control (the component granted the tester control earlier in this run; only the tester's voices took it since), yet {c}'s request was refused: {again}; Query Component Control is not answered, so the holder cannot be named"
+                        ),
+                    ),
+                    None => (Verdict::Inconclusive, again),
+                };
+            }
         }
         self.send(
             self.voices.controller,

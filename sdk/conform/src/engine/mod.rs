@@ -91,6 +91,9 @@ pub struct Engine<'a> {
     schema: jaus_dynamic::Schema,
     /// The checks a profile selects (`None`: every check).
     selection: Option<crate::profile::Selection>,
+    /// Whether the component has granted the tester's controller control in this run
+    /// (from then on, only the tester's voices took control of it).
+    granted: bool,
 }
 
 impl std::fmt::Debug for Engine<'_> {
@@ -128,6 +131,7 @@ impl<'a> Engine<'a> {
             identification: None,
             schema: jaus_dynamic::Schema::from_spec(spec),
             selection: None,
+            granted: false,
         }
     }
 

@@ -343,7 +343,10 @@ impl Engine<'_> {
     pub(super) fn hold_control(&mut self) -> Result<(), String> {
         let c = self.voices.controller;
         match self.acquire(c, self.authority) {
-            Some(ControlAnswer::Accepted) => Ok(()),
+            Some(ControlAnswer::Accepted) => {
+                self.granted = true;
+                Ok(())
+            }
             Some(ControlAnswer::Refused(why)) => Err(format!("control not granted to {c}: {why}")),
             None => Err(format!(
                 "no answer to Request Component Control from {c} within {:?}",
