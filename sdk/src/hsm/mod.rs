@@ -273,6 +273,16 @@ impl Machine {
     /// whose actions ran there. Returns whether the state changed. A `path` that shares
     /// no state with this machine changes nothing.
     pub fn follow(&mut self, path: &str) -> bool {
+        // Already there, or inside it (the common case: the parent did not move since
+        // the last message): one comparison, no search.
+        let here = self.state(self.current).path;
+        if self.started
+            && here
+                .strip_prefix(path)
+                .is_some_and(|rest| rest.is_empty() || rest.starts_with('.'))
+        {
+            return false;
+        }
         let mut at = path;
         let target = loop {
             if let Some(id) = state_id(self.def, at) {
@@ -573,6 +583,16 @@ impl Machines {
             .iter_mut()
             .find(|m| m.def().name == machine)
             .is_some_and(|m| m.follow(path))
+    }
+
+    /// Makes every machine follow the machine it extends, now at `path`
+    /// ([`Machine::follow`]); whether one's state changed.
+    pub fn follow_all(&mut self, path: &str) -> bool {
+        let mut changed = false;
+        for m in &mut self.machines {
+            changed |= m.follow(path);
+        }
+        changed
     }
 
     /// The current state's path in the machine named `machine`.

@@ -88,10 +88,7 @@ impl OtherMachines {
 
 /// Each machine follows the Core's (they all extend its ReceiveFSM).
 fn follow(m: &mut jaus::hsm::Machines, core_state: &'static str) {
-    let names: Vec<&'static str> = m.iter().map(|x| x.def().name).collect();
-    for n in names {
-        m.follow(n, core_state);
-    }
+    m.follow_all(core_state);
 }
 
 impl time::Time for Host<'_> {

@@ -197,11 +197,7 @@ impl<T: Machined> Service<Ra33Side> for OnMachines<T> {
         if !self.imp.claims(cx.lists, request.message) {
             return Handled::NotMine;
         }
-        let hsm = T::hsm(&mut self.machines);
-        let names: Vec<&'static str> = hsm.iter().map(|m| m.def().name).collect();
-        for n in names {
-            hsm.follow(n, cx.core_state());
-        }
+        T::hsm(&mut self.machines).follow_all(cx.core_state());
         let transport = receive_of(request.from);
         let now = cx.now;
         let (imp, machines) = (&mut self.imp, &mut self.machines);
