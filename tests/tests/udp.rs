@@ -770,6 +770,23 @@ fn the_networked_demo_operator_finishes_and_writes_its_plot() {
         .iter()
         .all(|l| l["src"].is_string() && l["dst"].is_string() && l["t"].is_number()));
 
+    // ... judged offline, the mission's traffic breaks no required rule (issue 46 item 5:
+    // queries answered, acknowledgements given, no outsider's command carried out, every
+    // packet decodes) ...
+    let judged = Command::new(jaus_bin())
+        .args(["conform", "--from-pcap"])
+        .arg(&capture)
+        .output()
+        .unwrap();
+    let verdicts = String::from_utf8_lossy(&judged.stdout);
+    println!("{verdicts}");
+    assert!(
+        judged.status.success(),
+        "{verdicts}\n{}",
+        String::from_utf8_lossy(&judged.stderr)
+    );
+    assert!(verdicts.contains(": CONFORMS"), "{verdicts}");
+
     // ... which the generated dissector shows as jaus decode does (issue 15 item 1) ...
     if jaus_tests::tshark::available() {
         let spec = jaus_spec::load_dirs(&[jaus_spec::defs_dir()]).unwrap();

@@ -44,25 +44,25 @@ pub mod access {
     pub trait Access: super::link::Link {
         /// the controller renews
         ///
-        /// Called as `isController(from)` (access.yaml:99).
+        /// Called as `isController(from)` (access.yaml:102).
         fn is_controller(&self, from: &super::link::event::Delivered) -> bool;
         /// a higher rank takes over
         ///
-        /// Called as `outranks(msg)` (access.yaml:120).
+        /// Called as `outranks(msg)` (access.yaml:123).
         fn outranks(&self, msg: &AskForControl) -> bool;
         /// below the service's own rank
         ///
-        /// Called as `rankTooLow(msg)` (access.yaml:51).
+        /// Called as `rankTooLow(msg)` (access.yaml:53).
         fn rank_too_low(&self, msg: &AskForControl) -> bool;
-        /// Called as `forgetController()` (access.yaml:42).
+        /// Called as `forgetController()` (access.yaml:44).
         fn forget_controller(&mut self);
-        /// Called as `rememberController(from)` (access.yaml:74).
+        /// Called as `rememberController(from)` (access.yaml:76).
         fn remember_controller(&mut self, from: &super::link::event::Delivered);
-        /// Called as `restartClock()` (access.yaml:80).
+        /// Called as `restartClock()` (access.yaml:82).
         fn restart_clock(&mut self);
-        /// Called as `stopClock()` (access.yaml:90).
+        /// Called as `stopClock()` (access.yaml:93).
         fn stop_clock(&mut self);
-        /// Called as `takeRank(msg)` (access.yaml:77).
+        /// Called as `takeRank(msg)` (access.yaml:79).
         fn take_rank(&mut self, msg: &AskForControl);
     }
     /// What drives the state machines of Access: a received message (with the
@@ -448,7 +448,7 @@ pub mod link {
     pub trait Link {
         /// refuse
         ///
-        /// Called as `link.Reply('AnswerControl', 'RANK_TOO_LOW', from)` (access.yaml:55), `link.Reply('AnswerControl', 'GRANTED', from)` (access.yaml:81), `link.Reply('EndControl')` (access.yaml:124) and 1 more.
+        /// Called as `link.Reply('AnswerControl', 'RANK_TOO_LOW', from)` (access.yaml:57), `link.Reply('AnswerControl', 'GRANTED', from)` (access.yaml:83), `link.Reply('EndControl')` (access.yaml:127) and 1 more.
         ///
         /// Its call sites pass different arguments: each call's are in `args`, in order.
         fn reply(&mut self, args: &[super::Arg<'_>]);

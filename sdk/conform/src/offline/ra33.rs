@@ -137,6 +137,12 @@ impl Ra33 {
         }
         if h.data_flag != DataFlag::Single {
             s.pieces += 1;
+            // A report in several packets (an image) answers its query when its first
+            // packet leaves; its body is not reassembled here.
+            if h.data_flag == DataFlag::First && code.class() == MessageClass::Inform {
+                self.queries
+                    .answer(h.destination, h.source, code.0, r.time, false);
+            }
             return;
         }
         let msg = match Message::decode(code, body) {
