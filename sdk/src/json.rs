@@ -227,7 +227,9 @@ pub fn closest_of(name: &str, names: impl Iterator<Item = &'static str>) -> Vec<
         .collect()
 }
 
-fn distance(a: &str, b: &str) -> usize {
+/// The edit (Levenshtein) distance between `a` and `b`, in characters: what the
+/// "did you mean" suggestions of names rank by.
+pub fn distance(a: &str, b: &str) -> usize {
     let b: Vec<char> = b.chars().collect();
     let mut row: Vec<usize> = (0..=b.len()).collect();
     for (i, ca) in a.chars().enumerate() {

@@ -25,6 +25,9 @@ use jaus_spec::{Bits, Spec, Wire};
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
+mod jsidl_common;
+use jsidl_common::copy_without;
+
 /// One item of a flattened layout.
 #[derive(Debug, Clone)]
 struct Item {
@@ -231,22 +234,6 @@ fn commands(spec: &Spec) -> BTreeMap<u16, Option<bool>> {
         .collect()
 }
 
-fn copy_dir(from: &Path, to: &Path, skip: &Path) {
-    std::fs::create_dir_all(to).expect("create the copy's directory");
-    for e in std::fs::read_dir(from).expect("read the JSIDL directory") {
-        let e = e.expect("read the JSIDL directory");
-        let (src, dst) = (e.path(), to.join(e.file_name()));
-        if src.ends_with(skip) {
-            continue;
-        }
-        if src.is_dir() {
-            copy_dir(&src, &dst, skip);
-        } else {
-            std::fs::copy(&src, &dst).expect("copy a JSIDL file");
-        }
-    }
-}
-
 /// What one imported set gave: its snapshot, `is_command` by code, and the codes of the
 /// messages to compare.
 struct Imported {
@@ -295,7 +282,7 @@ fn our_yaml_has_the_wire_layout_of_the_public_jsidl() {
     );
     let tmp = std::env::temp_dir().join(format!("jaus-as4-jsidl-{}", std::process::id()));
     let mobility_dir = tmp.join("urn.jaus.jss.mobility");
-    copy_dir(
+    copy_without(
         &root.join("urn.jaus.jss.mobility"),
         &mobility_dir,
         Path::new("MessageSet/CoreBasicTypes.xml"),

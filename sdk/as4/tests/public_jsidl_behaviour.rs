@@ -23,6 +23,9 @@ use jaus_spec::Spec;
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 
+mod jsidl_common;
+use jsidl_common::copy_without;
+
 /// One transition reduced to what is compared.
 #[derive(Debug, Clone, PartialEq, Eq, PartialOrd, Ord)]
 struct Row {
@@ -423,20 +426,4 @@ fn our_mobility_machines_take_what_the_public_jsidl_takes() {
         "differences not declared in mobility_services.yaml:\n{}",
         unexplained.join("\n")
     );
-}
-
-fn copy_without(from: &Path, to: &Path, skip: &Path) {
-    std::fs::create_dir_all(to).expect("create the copy's directory");
-    for e in std::fs::read_dir(from).expect("read the JSIDL directory") {
-        let e = e.expect("read the JSIDL directory");
-        let (src, dst) = (e.path(), to.join(e.file_name()));
-        if src.ends_with(skip) {
-            continue;
-        }
-        if src.is_dir() {
-            copy_without(&src, &dst, skip);
-        } else {
-            std::fs::copy(&src, &dst).expect("copy a JSIDL file");
-        }
-    }
 }

@@ -275,28 +275,10 @@ impl Profile {
 fn closest<'a>(id: &str, known: impl Iterator<Item = &'a str>) -> Option<&'a str> {
     let id = id.trim_end_matches('*');
     known
-        .map(|k| (distance(id, k), k))
+        .map(|k| (jaus::json::distance(id, k), k))
         .filter(|(d, _)| *d <= id.chars().count().max(3) / 3 + 1)
         .min_by_key(|(d, _)| *d)
         .map(|(_, k)| k)
-}
-
-/// Levenshtein distance.
-fn distance(a: &str, b: &str) -> usize {
-    let b: Vec<char> = b.chars().collect();
-    let mut row: Vec<usize> = (0..=b.len()).collect();
-    for (i, ca) in a.chars().enumerate() {
-        let mut prev = row[0];
-        row[0] = i + 1;
-        for (j, cb) in b.iter().enumerate() {
-            let here = row[j + 1];
-            row[j + 1] = (prev + usize::from(ca != *cb))
-                .min(row[j] + 1)
-                .min(here + 1);
-            prev = here;
-        }
-    }
-    row[b.len()]
 }
 
 /// A profile checked against the catalogue: what a run plans and reports.
@@ -543,7 +525,7 @@ mod tests {
 
     #[test]
     fn closest_ids() {
-        assert_eq!(distance("kitten", "sitting"), 3);
+        assert_eq!(jaus::json::distance("kitten", "sitting"), 3);
         let known = ["control.grant", "core.status"];
         assert_eq!(
             closest("contrl.grant", known.iter().copied()),
