@@ -320,6 +320,8 @@ impl SystemCommander for VehicleClient {
                     });
                     drop(s);
                     self.keeper.release(ctx, a);
+                    // Learn who holds it now rather than at the next status round.
+                    ctx.send_core(a, QueryComponentControl {});
                     self.mode = Mode::Idle;
                     self.pending_goal = None;
                 }
