@@ -175,6 +175,11 @@ async fn arrive(c: &Client, what: &str, to: (f64, f64)) -> (f64, f64) {
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn the_page_drives_the_simulated_vehicle_and_stops_it() {
+    // The vehicle's and the console's log, shown by the harness when the test fails.
+    let _ = tracing_subscriber::fmt()
+        .with_env_filter("info")
+        .with_test_writer()
+        .try_init();
     let Some(browser) = Browser::start().await else {
         return;
     };
@@ -348,10 +353,15 @@ async fn the_page_drives_the_simulated_vehicle_and_stops_it() {
     // Moving again (back to the start), then the emergency stop.
     click_map(&c, start.0, start.1).await;
     click(&c, "drive").await;
-    wait_for("the vehicle moving", Duration::from_secs(20), async || {
-        speed(&c).await.filter(|s| *s > 0.3)
-    })
-    .await;
+    let until = Instant::now() + Duration::from_secs(20);
+    while !speed(&c).await.is_some_and(|s| s > 0.3) {
+        assert!(
+            Instant::now() < until,
+            "timed out waiting for the vehicle moving; the console's view: {}",
+            get(&bound, "/api/view")
+        );
+        tokio::time::sleep(Duration::from_millis(100)).await;
+    }
     click(&c, "estop-all").await;
     let t_stop = Instant::now();
     wait_for("state Emergency", Duration::from_secs(5), async || {
