@@ -81,7 +81,7 @@ impl Judge {
     /// gateway.
     fn true_speed(&self) -> f64 {
         let dual = self.net.get::<DualNode>(self.vehicle).unwrap();
-        let g = dual.gateway().unwrap();
+        let g = dual.gateway();
         let vss = g.node().env().targets().velocity_state_sensor.unwrap();
         match g
             .node()
@@ -717,7 +717,7 @@ fn mute(j: &Judge) -> &Mute {
 
 fn ra33_stats(j: &Judge) -> jaus_as4::ra33::Ra33Stats {
     let dual = j.net.get::<DualNode>(j.vehicle).unwrap();
-    dual.gateway().unwrap().node().env().stats()
+    dual.gateway().node().env().stats()
 }
 
 #[test]
@@ -759,7 +759,7 @@ fn a_query_never_answered_is_asked_less_and_less_then_no_more_until_answered() {
     assert_eq!(stats.polls_resumed, 0, "{stats:?}");
     let dual = j.net.get::<DualNode>(j.vehicle).unwrap();
     assert_eq!(
-        dual.gateway().unwrap().node().env().polls_given_up(),
+        dual.gateway().node().env().polls_given_up(),
         vec![(MUTE, jaus::messages::QueryWrenchEffort::CODE)]
     );
 
@@ -799,13 +799,7 @@ fn a_query_never_answered_is_asked_less_and_less_then_no_more_until_answered() {
         "{stats:?}"
     );
     let dual = j.net.get::<DualNode>(j.vehicle).unwrap();
-    assert!(dual
-        .gateway()
-        .unwrap()
-        .node()
-        .env()
-        .polls_given_up()
-        .is_empty());
+    assert!(dual.gateway().node().env().polls_given_up().is_empty());
 }
 
 #[test]

@@ -128,7 +128,7 @@ impl Rig {
     /// The vehicle gateway's AS-4 component's counters (events sent, messages received).
     fn vehicle_stats(&self) -> jaus_as4::component::ComponentStats {
         let dual = self.net.get::<DualNode>(self.vehicle).unwrap();
-        dual.gateway().unwrap().component().unwrap().stats()
+        dual.gateway().component().unwrap().stats()
     }
 
     /// How old the proxy's latest Report Velocity State is.
@@ -198,7 +198,7 @@ impl Rig {
     /// gateway on the vehicle's node received it.
     fn true_position(&self) -> Option<(f64, f64)> {
         let dual = self.net.get::<DualNode>(self.vehicle)?;
-        let side = dual.gateway()?.node().env();
+        let side = dual.gateway().node().env();
         let gps = side.targets().global_pose_sensor?;
         match side.latest(gps, jaus::messages::ReportGlobalPose::CODE) {
             Some((_, jaus::messages::Message::ReportGlobalPose(p))) => {

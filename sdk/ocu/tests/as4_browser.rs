@@ -131,7 +131,7 @@ impl Drop for Rig {
 
 /// The vehicle's Global Pose Sensor's latest report on its own node.
 fn position(d: &DualNode) -> Option<(f64, f64)> {
-    let side = d.gateway()?.node().env();
+    let side = d.gateway().node().env();
     let gps = side.targets().global_pose_sensor?;
     match side.latest(gps, jaus::messages::ReportGlobalPose::CODE) {
         Some((_, jaus::messages::Message::ReportGlobalPose(p))) => {

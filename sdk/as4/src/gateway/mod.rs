@@ -4,10 +4,12 @@
 //! [`Gateway`] is at once an RA 3.3 component of the node (a
 //! [`jaus::component::Endpoint`]: it sends queries and commands to the RA 3.3 components
 //! it presents and receives their reports) and the AS-4 side of the node's socket (an
-//! [`As4Endpoint`] behind [`jaus::net::as5669a::As4Mux::hosted`], found in the node by
-//! [`InNode`]). It hosts one [`As4Component`] with the Core services and, for each RA 3.3
-//! component found in the presented subsystem, the matching Mobility service
-//! ([`crate::mobility`]).
+//! [`As4Endpoint`]). [`DualNode`] owns it beside the node, as a peer: the node hands it
+//! what is routed to its RA 3.3 address as [`jaus::net::NodeEvent`]s and takes what it
+//! sends at once ([`jaus::net::Node::handle_companion`]); the AS-4 side of the socket
+//! ([`jaus::net::as5669a::As4Side`]) hands it the AS-4 messages. It hosts one
+//! [`As4Component`] with the Core services and, for each RA 3.3 component found in the
+//! presented subsystem, the matching Mobility service ([`crate::mobility`]).
 //!
 //! The control and status semantics cross over: while an AS-4 client holds control of
 //! the AS-4 component, the gateway holds RA 3.3 control of the drivers (with its own
@@ -24,8 +26,8 @@ use std::time::{Duration, Instant};
 
 use jaus::codec::Encode;
 use jaus::component::{Endpoint, Outgoing as Ra33Outgoing};
-use jaus::net::as5669a::{As4Endpoint, As4Id, As4Message, As4Send, HostedEndpoint};
-use jaus::net::{Node, PeerAddr, SystemTree};
+use jaus::net::as5669a::{As4Endpoint, As4Id, As4Message, As4Send};
+use jaus::net::{PeerAddr, SystemTree};
 use jaus::wire::Header;
 use jaus::{Address, JausMessage};
 
@@ -90,7 +92,6 @@ pub struct Gateway<A: PeerAddr = SocketAddr> {
     pending: Vec<As4Send<A>>,
     pending_since: Option<Instant>,
     seen: (ComponentState, bool),
-    tree_seen: Option<u64>,
     /// The presented components the system tree listed at the last
     /// [`refresh`](Self::refresh) (one that leaves it and comes back is discovered
     /// again: the polls it stopped answering start again).
@@ -128,7 +129,6 @@ impl<A: PeerAddr> Gateway<A> {
             pending: Vec::new(),
             pending_since: None,
             seen,
-            tree_seen: None,
             in_tree: HashSet::new(),
             derived: Derived::default(),
         }
@@ -272,24 +272,6 @@ impl<A: PeerAddr> Gateway<A> {
         self.offered.extend(new.into_iter().flatten());
     }
 
-    /// [`refresh`](Self::refresh) of the gateway at `at` in `node`, from the node's own
-    /// system tree, when that tree changed since the last call: what the owner of the
-    /// node calls on each turn of its loop.
-    pub fn refresh_in(node: &mut Node<A>, at: Address, now: Instant) {
-        let version = node.tree_version();
-        if node
-            .get::<Gateway<A>>(at)
-            .is_none_or(|g| g.tree_seen == Some(version))
-        {
-            return;
-        }
-        let tree = node.tree().clone();
-        if let Some(g) = node.get_mut::<Gateway<A>>(at) {
-            g.tree_seen = Some(version);
-            g.refresh(now, &tree);
-        }
-    }
-
     /// Carries changes of the AS-4 component's controller and state over to the RA 3.3
     /// drivers.
     fn sync(&mut self) {
@@ -404,23 +386,6 @@ impl<A: PeerAddr> Endpoint for Gateway<A> {
 
     fn as_any_mut(&mut self) -> &mut dyn std::any::Any {
         self
-    }
-}
-
-/// Finds a [`Gateway`] hosted by a [`Node`] at its RA 3.3 address: what
-/// [`As4Mux::hosted`](jaus::net::as5669a::As4Mux::hosted) needs.
-#[derive(Debug, Clone, Copy)]
-pub struct InNode(pub Address);
-
-impl<A: PeerAddr> HostedEndpoint<Node<A>, A> for InNode {
-    fn get<'a>(&self, host: &'a Node<A>) -> Option<&'a dyn As4Endpoint<A>> {
-        host.get::<Gateway<A>>(self.0)
-            .map(|g| g as &dyn As4Endpoint<A>)
-    }
-
-    fn get_mut<'a>(&self, host: &'a mut Node<A>) -> Option<&'a mut dyn As4Endpoint<A>> {
-        host.get_mut::<Gateway<A>>(self.0)
-            .map(|g| g as &mut dyn As4Endpoint<A>)
     }
 }
 

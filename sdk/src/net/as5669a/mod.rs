@@ -40,9 +40,7 @@ pub use error::As4Error;
 pub use header::{
     AckNak, As4Header, As4Id, As4Packet, Broadcast, DataControl, HcRequest, Priority,
 };
-pub use mux::{
-    As4Config, As4Endpoint, As4Message, As4Mux, As4Send, As4Stack, As4Stats, HostedEndpoint,
-};
+pub use mux::{As4Config, As4Endpoint, As4Message, As4Mux, As4Send, As4Side, As4Stack, As4Stats};
 pub use reassembly::{As4Reassembler, As4ReassemblyLimits};
 pub use split::{ack, nak, split};
 

@@ -159,105 +159,183 @@ pub trait As4Endpoint<A: PeerAddr = SocketAddr>: std::fmt::Debug + Send + 'stati
     }
 }
 
-/// A host of RA 3.3 (`P`, e.g. a [`Node`](crate::net::Node)) and AS-4 endpoints on one
-/// carrier: version-2 datagrams go to the endpoints through an [`As4Stack`], all others
-/// to the host. Run it like the host ([`shell::run`](crate::net::shell::run),
-/// [`udp::run_on`](crate::net::udp::run_on)); [`inner`](Self::inner) reaches the host.
+/// The AS-4 side of a socket: the [`As4Stack`] and the endpoints that answer AS5669A
+/// peers, sans-IO. [`As4Mux`] puts one beside any RA 3.3 host; a host that owns an
+/// endpoint of its own (the RA 3.3 ↔ AS-4 gateway of `jaus-as4`, which is also a
+/// component of its node) passes it to each call as `first`, so that nothing has to
+/// find it inside anything.
 ///
 /// **Several endpoints on one socket.** A node may answer AS-4 clients (a gateway
 /// presenting its RA 3.3 components) and be an AS-4 client of other vehicles (a proxy
-/// presenting them as RA 3.3 components) at once. Each endpoint added
-/// ([`with_endpoint`](Self::with_endpoint), [`with_hosted`](Self::with_hosted)) gets
-/// the received messages whose destination it [serves](As4Endpoint::serves), in order
-/// (a broadcast destination may be served by several); their answers go back to the
-/// sender. A message no endpoint serves is dropped and counted
-/// ([`unrouted`](Self::unrouted)). Every endpoint's timer is run.
+/// presenting them as RA 3.3 components) at once. Each endpoint (`first`, then those
+/// added with [`add_endpoint`](Self::add_endpoint)) gets the received messages whose
+/// destination it [serves](As4Endpoint::serves), in order (a broadcast destination may
+/// be served by several); their answers go back to the sender. A message no endpoint
+/// serves is dropped and counted ([`unrouted`](Self::unrouted)). Every endpoint's timer
+/// is run.
 #[derive(Debug)]
-pub struct As4Mux<P, A: PeerAddr = SocketAddr> {
-    inner: P,
+pub struct As4Side<A: PeerAddr = SocketAddr> {
     stack: As4Stack<A>,
-    endpoints: Vec<EndpointAt<P, A>>,
+    endpoints: Vec<Box<dyn As4Endpoint<A>>>,
     unrouted: u64,
 }
 
-/// Finds an AS-4 endpoint that lives inside the host: an RA 3.3 component of a node
-/// that also speaks AS-4 (a gateway between the generations is both at once). The mux
-/// asks for it on every use, so the host keeps owning it.
-pub trait HostedEndpoint<P, A: PeerAddr>: std::fmt::Debug + Send + 'static {
-    /// The endpoint in `host`, if it is there.
-    fn get<'a>(&self, host: &'a P) -> Option<&'a dyn As4Endpoint<A>>;
-    /// The endpoint in `host`, mutable.
-    fn get_mut<'a>(&self, host: &'a mut P) -> Option<&'a mut dyn As4Endpoint<A>>;
-}
-
-/// Where the AS-4 endpoint of an [`As4Mux`] lives.
-#[derive(Debug)]
-enum EndpointAt<P, A: PeerAddr> {
-    Own(Box<dyn As4Endpoint<A>>),
-    Hosted(Box<dyn HostedEndpoint<P, A>>),
-}
-
-impl<P: 'static, A: PeerAddr> As4Mux<P, A> {
-    fn endpoint_ref(&self, i: usize) -> Option<&dyn As4Endpoint<A>> {
-        match self.endpoints.get(i)? {
-            EndpointAt::Own(e) => Some(e.as_ref()),
-            EndpointAt::Hosted(h) => h.get(&self.inner),
-        }
-    }
-
-    fn endpoint_mut(&mut self, i: usize) -> Option<&mut dyn As4Endpoint<A>> {
-        match self.endpoints.get_mut(i)? {
-            EndpointAt::Own(e) => Some(e.as_mut()),
-            EndpointAt::Hosted(h) => h.get_mut(&mut self.inner),
-        }
-    }
-}
-
-impl<P: Participant<A> + 'static, A: PeerAddr> As4Mux<P, A> {
-    /// `inner` on the carrier, with `endpoint` answering AS5669A peers.
-    pub fn new(inner: P, endpoint: impl As4Endpoint<A>, config: As4Config) -> Self {
+impl<A: PeerAddr> As4Side<A> {
+    /// A stack set up by `config`, no endpoint yet.
+    pub fn new(config: As4Config) -> Self {
         Self {
-            inner,
             stack: As4Stack::new(config),
-            endpoints: vec![EndpointAt::Own(Box::new(endpoint))],
+            endpoints: Vec::new(),
             unrouted: 0,
         }
     }
 
-    /// `inner` on the carrier, with an endpoint that lives inside it (found by
-    /// `hosted` on every use) answering AS5669A peers. After the endpoint has handled
-    /// messages the host is woken at once (its components may have queued RA 3.3
-    /// messages).
-    pub fn hosted(inner: P, hosted: impl HostedEndpoint<P, A>, config: As4Config) -> Self {
-        Self {
-            inner,
-            stack: As4Stack::new(config),
-            endpoints: vec![EndpointAt::Hosted(Box::new(hosted))],
-            unrouted: 0,
-        }
-    }
-
-    /// With another endpoint, owned by the mux, after those already there (see the
-    /// type's documentation for how messages are shared out).
-    pub fn with_endpoint(mut self, endpoint: impl As4Endpoint<A>) -> Self {
-        self.endpoints.push(EndpointAt::Own(Box::new(endpoint)));
-        self
-    }
-
-    /// With another endpoint that lives inside the host, after those already there.
-    pub fn with_hosted(mut self, hosted: impl HostedEndpoint<P, A>) -> Self {
-        self.endpoints.push(EndpointAt::Hosted(Box::new(hosted)));
-        self
-    }
-
-    /// Adds an endpoint owned by the mux (as [`with_endpoint`](Self::with_endpoint)).
+    /// Adds an endpoint after those already there.
     pub fn add_endpoint(&mut self, endpoint: impl As4Endpoint<A>) {
-        self.endpoints.push(EndpointAt::Own(Box::new(endpoint)));
+        self.endpoints.push(Box::new(endpoint));
+    }
+
+    /// Endpoint `i` of those added, in order (`None` past the end).
+    pub fn endpoint_at(&self, i: usize) -> Option<&dyn As4Endpoint<A>> {
+        self.endpoints.get(i).map(|e| e.as_ref())
     }
 
     /// Messages received that no endpoint serves (dropped).
     pub fn unrouted(&self) -> u64 {
         self.unrouted
+    }
+
+    /// The AS5669A stack.
+    pub fn stack(&self) -> &As4Stack<A> {
+        &self.stack
+    }
+
+    /// The AS5669A stack, mutable (e.g. to send a message of one's own).
+    pub fn stack_mut(&mut self) -> &mut As4Stack<A> {
+        &mut self.stack
+    }
+
+    /// Whether `datagram` is for the AS5669A side.
+    pub fn is_as4(datagram: &[u8]) -> bool {
+        Generation::of(datagram) == Generation::As5669a
+    }
+
+    /// An AS5669A datagram arrived from `from`: its whole messages go to the endpoints
+    /// that serve them (`first`, then the added ones); their answers are queued for
+    /// `from`.
+    pub fn handle_datagram(
+        &mut self,
+        now: Instant,
+        from: A,
+        datagram: &[u8],
+        first: Option<&mut dyn As4Endpoint<A>>,
+    ) {
+        let messages = match self.stack.receive(now, from, datagram) {
+            Ok(m) => m,
+            Err(e) => {
+                tracing::debug!(%from, "AS5669A datagram dropped: {e}");
+                return;
+            }
+        };
+        if messages.is_empty() {
+            return;
+        }
+        let mut routed = vec![false; messages.len()];
+        let mut replies = Vec::new();
+        let owned = self.endpoints.iter_mut().map(|e| e.as_mut());
+        for endpoint in first.into_iter().chain(owned) {
+            let batch: Vec<As4Message> = messages
+                .iter()
+                .zip(routed.iter_mut())
+                .filter(|(m, _)| endpoint.serves(m.destination))
+                .map(|(m, r)| {
+                    *r = true;
+                    m.clone()
+                })
+                .collect();
+            if !batch.is_empty() {
+                replies.extend(endpoint.handle(now, from, batch));
+            }
+        }
+        let lost = routed.iter().filter(|r| !**r).count() as u64;
+        if lost > 0 {
+            self.unrouted += lost;
+            tracing::debug!(%from, lost, "AS5669A messages dropped: no AS-4 endpoint serves their destination");
+        }
+        self.stack.send(from, &replies);
+    }
+
+    /// Time passed: the stack's timers (retransmissions, reassembly) and every due
+    /// endpoint's (`first` included); what they send is queued.
+    pub fn handle_timeout(&mut self, now: Instant, first: Option<&mut dyn As4Endpoint<A>>) {
+        self.stack.handle_timeout(now);
+        let owned = self.endpoints.iter_mut().map(|e| e.as_mut());
+        for e in first.into_iter().chain(owned) {
+            if e.poll_timeout().is_some_and(|t| t <= now) {
+                for s in e.handle_timeout(now) {
+                    self.stack.send(s.to, std::slice::from_ref(&s.message));
+                }
+            }
+        }
+    }
+
+    /// The next datagram to send.
+    pub fn poll_transmit(&mut self) -> Option<Datagram<A>> {
+        self.stack.poll_transmit()
+    }
+
+    /// When [`handle_timeout`](Self::handle_timeout) must next be called.
+    pub fn poll_timeout(&self, first: Option<&dyn As4Endpoint<A>>) -> Option<Instant> {
+        let owned = self.endpoints.iter().map(|e| e.as_ref());
+        first
+            .into_iter()
+            .chain(owned)
+            .filter_map(|e| e.poll_timeout())
+            .chain(self.stack.poll_timeout())
+            .min()
+    }
+
+    /// The wall clock, for the added endpoints (a host passes it to its own).
+    pub fn wall_clock(&mut self, now: Instant, utc: std::time::Duration) {
+        for e in &mut self.endpoints {
+            e.wall_clock(now, utc);
+        }
+    }
+}
+
+/// A host of RA 3.3 (`P`, e.g. a [`Node`](crate::net::Node)) and an [`As4Side`] on one
+/// carrier: version-2 datagrams go to the AS-4 side, all others to the host. Run it
+/// like the host ([`shell::run`](crate::net::shell::run),
+/// [`udp::run_on`](crate::net::udp::run_on)); [`inner`](Self::inner) reaches the host.
+#[derive(Debug)]
+pub struct As4Mux<P, A: PeerAddr = SocketAddr> {
+    inner: P,
+    side: As4Side<A>,
+}
+
+impl<P: Participant<A> + 'static, A: PeerAddr> As4Mux<P, A> {
+    /// `inner` on the carrier, with `endpoint` answering AS5669A peers.
+    pub fn new(inner: P, endpoint: impl As4Endpoint<A>, config: As4Config) -> Self {
+        let mut side = As4Side::new(config);
+        side.add_endpoint(endpoint);
+        Self { inner, side }
+    }
+
+    /// With another endpoint after those already there (see [`As4Side`] for how
+    /// messages are shared out).
+    pub fn with_endpoint(mut self, endpoint: impl As4Endpoint<A>) -> Self {
+        self.side.add_endpoint(endpoint);
+        self
+    }
+
+    /// Adds an endpoint (as [`with_endpoint`](Self::with_endpoint)).
+    pub fn add_endpoint(&mut self, endpoint: impl As4Endpoint<A>) {
+        self.side.add_endpoint(endpoint);
+    }
+
+    /// Messages received that no endpoint serves (dropped).
+    pub fn unrouted(&self) -> u64 {
+        self.side.unrouted()
     }
 
     /// The RA 3.3 host.
@@ -275,83 +353,41 @@ impl<P: Participant<A> + 'static, A: PeerAddr> As4Mux<P, A> {
         self.inner
     }
 
+    /// The AS-4 side (stack, endpoints, counters).
+    pub fn side(&self) -> &As4Side<A> {
+        &self.side
+    }
+
     /// The AS5669A side.
     pub fn stack(&self) -> &As4Stack<A> {
-        &self.stack
+        self.side.stack()
     }
 
     /// The AS5669A side, mutable (e.g. to send a message of one's own).
     pub fn stack_mut(&mut self) -> &mut As4Stack<A> {
-        &mut self.stack
+        self.side.stack_mut()
     }
 
-    /// The first endpoint, for a caller that knows its type (`None` when a hosted
-    /// endpoint is not in the host).
+    /// The first endpoint, for a caller that knows its type.
     pub fn endpoint(&self) -> Option<&dyn As4Endpoint<A>> {
-        self.endpoint_ref(0)
+        self.side.endpoint_at(0)
     }
 
-    /// Endpoint `i` in the order they were added (`None` past the end, or when a
-    /// hosted endpoint is not in the host).
+    /// Endpoint `i` in the order they were added (`None` past the end).
     pub fn endpoint_at(&self, i: usize) -> Option<&dyn As4Endpoint<A>> {
-        self.endpoint_ref(i)
+        self.side.endpoint_at(i)
     }
 
     /// Whether `datagram` is for the AS5669A side.
     pub fn is_as4(datagram: &[u8]) -> bool {
-        Generation::of(datagram) == Generation::As5669a
-    }
-
-    fn as4(&mut self, now: Instant, from: A, datagram: &[u8]) {
-        let messages = match self.stack.receive(now, from, datagram) {
-            Ok(m) => m,
-            Err(e) => {
-                tracing::debug!(%from, "AS5669A datagram dropped: {e}");
-                return;
-            }
-        };
-        if messages.is_empty() {
-            return;
-        }
-        let mut routed = vec![false; messages.len()];
-        let mut replies = Vec::new();
-        let mut hosted = false;
-        for i in 0..self.endpoints.len() {
-            let is_hosted = matches!(self.endpoints[i], EndpointAt::Hosted(_));
-            let Some(endpoint) = self.endpoint_mut(i) else {
-                continue;
-            };
-            let batch: Vec<As4Message> = messages
-                .iter()
-                .zip(routed.iter_mut())
-                .filter(|(m, _)| endpoint.serves(m.destination))
-                .map(|(m, r)| {
-                    *r = true;
-                    m.clone()
-                })
-                .collect();
-            if batch.is_empty() {
-                continue;
-            }
-            replies.extend(endpoint.handle(now, from, batch));
-            hosted |= is_hosted;
-        }
-        let lost = routed.iter().filter(|r| !**r).count() as u64;
-        if lost > 0 {
-            self.unrouted += lost;
-            tracing::debug!(%from, lost, "AS5669A messages dropped: no AS-4 endpoint serves their destination");
-        }
-        self.stack.send(from, &replies);
-        if hosted {
-            self.inner.handle_timeout(now);
-        }
+        As4Side::<A>::is_as4(datagram)
     }
 }
 
 impl<P: Participant<A> + 'static, A: PeerAddr> Participant<A> for As4Mux<P, A> {
     fn handle_datagram(&mut self, now: Instant, peer: A, datagram: &[u8]) {
         if Self::is_as4(datagram) {
-            self.as4(now, peer, datagram);
+            self.side.handle_datagram(now, peer, datagram, None);
         } else {
             self.inner.handle_datagram(now, peer, datagram);
         }
@@ -359,7 +395,7 @@ impl<P: Participant<A> + 'static, A: PeerAddr> Participant<A> for As4Mux<P, A> {
 
     fn handle_via(&mut self, now: Instant, via: Via, peer: A, datagram: &[u8]) {
         if via == Via::Network && Self::is_as4(datagram) {
-            self.as4(now, peer, datagram);
+            self.side.handle_datagram(now, peer, datagram, None);
         } else {
             self.inner.handle_via(now, via, peer, datagram);
         }
@@ -367,22 +403,13 @@ impl<P: Participant<A> + 'static, A: PeerAddr> Participant<A> for As4Mux<P, A> {
 
     fn handle_timeout(&mut self, now: Instant) {
         self.inner.handle_timeout(now);
-        self.stack.handle_timeout(now);
-        for i in 0..self.endpoints.len() {
-            let sends = match self.endpoint_mut(i) {
-                Some(e) if e.poll_timeout().is_some_and(|t| t <= now) => e.handle_timeout(now),
-                _ => Vec::new(),
-            };
-            for s in sends {
-                self.stack.send(s.to, std::slice::from_ref(&s.message));
-            }
-        }
+        self.side.handle_timeout(now, None);
     }
 
     fn poll_transmit(&mut self) -> Option<Datagram<A>> {
         self.inner
             .poll_transmit()
-            .or_else(|| self.stack.poll_transmit())
+            .or_else(|| self.side.poll_transmit())
     }
 
     fn recycle(&mut self, bytes: Vec<u8>) {
@@ -390,24 +417,15 @@ impl<P: Participant<A> + 'static, A: PeerAddr> Participant<A> for As4Mux<P, A> {
     }
 
     fn poll_timeout(&self) -> Option<Instant> {
-        [self.inner.poll_timeout(), self.stack.poll_timeout()]
+        [self.inner.poll_timeout(), self.side.poll_timeout(None)]
             .into_iter()
-            .chain(
-                (0..self.endpoints.len())
-                    .map(|i| self.endpoint_ref(i).and_then(|e| e.poll_timeout())),
-            )
             .flatten()
             .min()
     }
 
     fn wall_clock(&mut self, now: Instant, utc: std::time::Duration) {
         self.inner.wall_clock(now, utc);
-        // A hosted endpoint hears it from its host (an RA 3.3 component of the node).
-        for e in &mut self.endpoints {
-            if let EndpointAt::Own(e) = e {
-                e.wall_clock(now, utc);
-            }
-        }
+        self.side.wall_clock(now, utc);
     }
 
     fn as_any(&self) -> &dyn std::any::Any {

@@ -198,4 +198,7 @@ pub struct NetStats {
     /// Messages refused by the node's policy ([`NodeConfig::policy`]; per rule in
     /// [`Node::policy`](super::Node::policy)).
     pub policy_refused: u64,
+    /// Dropped: a message for a companion component found its owner's event queue
+    /// full ([`Node::poll_event`](super::Node::poll_event) not drained).
+    pub companion_queue_full: u64,
 }

@@ -12,11 +12,14 @@
 //!
 //! The node is cut by job: `route` decides where a message goes (a value), `peers`
 //! knows where the other nodes are, `external` keeps the components of other
-//! processes, `gateway` is the node's side of the subsystem's Communicator,
+//! processes, `companions` exchanges typed events with components its owner drives
+//! beside it (the AS-4 gateway), `gateway` is the node's side of the subsystem's
+//! Communicator,
 //! `oj_server` serves OpenJAUS's component sockets, `queue` holds the buffer pool
 //! and the outbox; this file applies the decisions.
 
 mod acks;
+mod companions;
 mod config;
 mod external;
 mod gateway;
@@ -30,6 +33,7 @@ use std::net::SocketAddr;
 use std::time::Instant;
 
 pub use acks::AckKey;
+pub use companions::NodeEvent;
 pub use config::{Datagram, NetStats, NodeConfig, Via};
 
 use super::framing::{split, DatagramError, Reassembler, ReassemblyStats, MAX_PACKET_BODY};
@@ -41,6 +45,7 @@ use crate::component::{Component, Endpoint, Endpoints, Outgoing};
 use crate::components::node_manager;
 use crate::wire::{DataFlag, Header};
 use crate::Address;
+use companions::Companions;
 use external::{Externals, Heard};
 use peers::{Peers, Targets};
 use queue::{Outbox, Pool};
@@ -79,6 +84,8 @@ pub struct Node<A: PeerAddr = SocketAddr> {
     now: Instant,
     manager: Manager,
     locals: Endpoints,
+    /// Components its owner drives beside it ([`NodeEvent`]).
+    companions: Companions,
     external: Externals<A>,
     peers: Peers<A>,
     reassembler: Reassembler,
@@ -139,6 +146,7 @@ impl<A: PeerAddr> Node<A> {
             now,
             manager,
             locals: Endpoints::default(),
+            companions: Companions::default(),
             external: Externals::new(config.max_external, config.external_timeout),
             peers: Peers::new(config.peers.clone(), config.multicast),
             outbox: Outbox::new(config.max_outbox),
@@ -317,6 +325,7 @@ impl<A: PeerAddr> Node<A> {
             || src.instance == 255
             || src == self.manager.address()
             || self.locals.contains(src)
+            || self.companions.contains(src)
         {
             return false;
         }
@@ -367,6 +376,8 @@ impl<A: PeerAddr> Node<A> {
             self.reassembler.next_timeout(),
             self.external.next_timeout(),
             self.sender.next_timeout(),
+            // Events wait for the owner: it drains them after every call.
+            self.companions.pending().then_some(self.now),
         ]
         .into_iter()
         .flatten()
@@ -424,6 +435,7 @@ impl<A: PeerAddr> Node<A> {
         for g in &gone {
             self.manager.0.forget(*g);
             self.locals.forget(*g);
+            self.forget_companions(*g);
         }
         !gone.is_empty()
     }
@@ -527,6 +539,9 @@ impl<A: PeerAddr> Node<A> {
             any = true;
         }
         any |= self.locals.deliver(now, header, body);
+        if !self.companions.is_empty() {
+            any |= self.deliver_companions(header, body);
+        }
         if !self.external.is_empty() {
             let targets = self.external.targets(d, header.source);
             if !targets.is_empty() {

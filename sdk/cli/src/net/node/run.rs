@@ -273,7 +273,7 @@ pub fn node(
                 mux.add_endpoint(p);
             }
             let r = carrier.drive(&mut mux, stop, until, |m| show_tree(m.inner()), &mut tap);
-            as4_line = Some(as4_stats_line(&mux));
+            as4_line = Some(as4_stats_line(mux.side()));
             node = mux.into_inner();
             r
         }
@@ -287,7 +287,7 @@ pub fn node(
                 dual = dual.with_endpoint(p);
             }
             let r = carrier.drive(&mut dual, stop, until, |d| show_tree(d.node()), &mut tap);
-            as4_line = Some(as4_stats_line(dual.mux()));
+            as4_line = Some(as4_stats_line(dual.as4()));
             node = dual.into_node();
             r
         }
@@ -437,9 +437,7 @@ pub fn tree_json(tree: &SystemTree) -> serde_json::Value {
 /// The AS-4 side's counters as one `as4 stats:` line of `key value` pairs: datagrams,
 /// malformed ones, messages, acknowledgements, reassembly drops, messages no endpoint
 /// serves, sends dropped.
-fn as4_stats_line<P: jaus::net::Participant<A> + 'static, A: jaus::net::PeerAddr>(
-    mux: &jaus::net::as5669a::As4Mux<P, A>,
-) -> String {
+fn as4_stats_line<A: jaus::net::PeerAddr>(mux: &jaus::net::as5669a::As4Side<A>) -> String {
     let st = mux.stack().stats();
     let (r, buffered) = mux.stack().reassembly();
     format!(
