@@ -69,8 +69,14 @@
 //! rule of the decoders, and the output formats are in `docs/spec-revisions.md` of the
 //! repository. `jaus-gen diff OLD NEW` (feature `cli`) prints them as text or JSON and
 //! exits 0, 1 (something wire-breaking, or as severe as `--fail-on`) or 2 (a usage or
-//! load error); a revision is a directory, files, a git `REV:PATH` ([`revision`]) or a
-//! lock file.
+//! load error); a revision is a directory, files, a git `REV:PATH` ([`revision`]), a
+//! lock file or a directory of JSIDL.
+//!
+//! Services (AS-4) are compared too: services added or removed, their versions and
+//! parents, the states and transitions of their machines (trigger, guard, actions,
+//! target), and the guard and action methods of their generated traits (a new one breaks
+//! a vendor's `impl`: source-breaking). Positions are in the files the vendor edits: the
+//! `.xml` files for a set imported from JSIDL ([`snapshot::JsidlPositions`]).
 //!
 //! [`Builder::lock`] pins the layout in a committed lock file ([`lock`]). Until the
 //! vendor pins it (`JAUS_UPDATE_LOCK=1 cargo build` or `jaus-gen lock`, when the
@@ -175,6 +181,10 @@ pub enum Error {
     #[error("{0}")]
     Jsidl(#[from] jaus_jsidl::Error),
 }
+
+/// The directory name under which YAML imported from JSIDL is loaded (it is never
+/// written there).
+const JSIDL_ROOT: &str = "jsidl";
 
 /// Configures and runs generation. The whole `build.rs` API.
 #[derive(Debug, Clone, Default)]
@@ -413,7 +423,7 @@ impl Builder {
             }
         }
         let import = jaus_jsidl::import(&self.jsidl_dirs)?;
-        let mut texts = import.texts(Path::new("jsidl"));
+        let mut texts = import.texts(Path::new(JSIDL_ROOT));
         for o in &self.overlays {
             let text = std::fs::read_to_string(o).map_err(|source| Error::Io {
                 path: o.clone(),
@@ -422,6 +432,23 @@ impl Builder {
             texts.push((o.clone(), text));
         }
         Ok(jaus_spec::load_texts(texts)?)
+    }
+
+    /// The layout of `spec` for the lock file, positions in the files the vendor edits:
+    /// the JSIDL files for definitions imported with [`jsidl`](Self::jsidl) (their YAML
+    /// exists in memory only), the YAML files otherwise.
+    fn snapshot(&self, spec: &Spec) -> Result<snapshot::Snapshot, Error> {
+        if self.jsidl_dirs.is_empty() {
+            return Ok(snapshot::Snapshot::from_spec(spec));
+        }
+        let import = jaus_jsidl::import(&self.jsidl_dirs)?;
+        let origins: Vec<(PathBuf, PathBuf)> = import
+            .files
+            .iter()
+            .map(|f| (Path::new(JSIDL_ROOT).join(&f.name), f.source.clone()))
+            .collect();
+        let at = snapshot::JsidlPositions::new(spec, &origins)?;
+        Ok(snapshot::Snapshot::from_jsidl(spec, &at))
     }
 
     /// The set of [`spec_dir`](Self::spec_dir) and the overlays on [`Builder::base`].
@@ -513,7 +540,7 @@ impl Builder {
         let update = self.update_lock.unwrap_or_else(|| {
             std::env::var(lock::UPDATE_ENV).is_ok_and(|v| !v.is_empty() && v != "0")
         });
-        let snap = snapshot::Snapshot::from_spec(spec);
+        let snap = self.snapshot(spec)?;
         let text = lock::to_text(&snap);
         let io = |source| Error::Io {
             path: path.clone(),

@@ -24,8 +24,14 @@
 //!     commands: [SetGlobalWaypoint, SetTravelSpeed]
 //! ```
 //!
+//! A set with services (AS-4) also pins them: `services:` holds each service's URI,
+//! version and parent, the guards and actions of its generated trait, its states and
+//! one line per transition (see the `services` part below).
+//!
 //! [`to_text`] writes it, [`parse`] reads it back into a [`Snapshot`] whose positions
 //! are the lock file's own lines.
+
+mod services;
 
 use crate::snapshot::*;
 use jaus_spec::location::LocationIndex;
@@ -261,6 +267,7 @@ pub fn to_text(s: &Snapshot) -> String {
             }
         }
     }
+    services::write(&mut out, &s.services);
     out
 }
 
@@ -274,6 +281,8 @@ struct LockFile {
     types: Vec<LockType>,
     #[serde(default)]
     components: Vec<LockComponent>,
+    #[serde(default)]
+    services: Vec<services::LockService>,
 }
 
 #[derive(Deserialize)]
@@ -574,5 +583,6 @@ pub fn parse(text: &str, file: &str) -> Result<Snapshot, String> {
             at: at(&path),
         });
     }
+    snap.services = services::read(lock.services, &at, &err)?;
     Ok(snap)
 }

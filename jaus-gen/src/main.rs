@@ -77,7 +77,8 @@ enum Cmd {
     Diff {
         /// The old revision: a directory of YAML, a YAML file, a comma-separated list of
         /// both (`jaus-spec/defs,acme.yaml`), a git revision `REV:PATH`
-        /// (`HEAD~1:jaus-spec/defs`) or a lock file. YAML without the SDK's `core` group
+        /// (`HEAD~1:jaus-spec/defs`), a lock file, or a directory of JSIDL (`*.xml`
+        /// files and no YAML; several, comma-separated, are imported together). YAML without the SDK's `core` group
         /// and without `extends: none` is a vendor's overlay: it is read on the SDK's
         /// built-in definitions and only its own items are compared.
         old: String,
@@ -89,6 +90,10 @@ enum Cmd {
         /// The least severe change that makes the exit status 1.
         #[arg(long, value_enum, default_value_t = FailOn::WireBreaking)]
         fail_on: FailOn,
+        /// Read every directory named as JSIDL (imported as `jaus-gen jsidl` does), even
+        /// one that also holds YAML.
+        #[arg(long)]
+        jsidl: bool,
     },
     /// Write (pin) the lock file of a definition set (the wire-layout snapshot that
     /// `Builder::lock` checks); with --check, compare instead and exit 1 on any change.
@@ -163,8 +168,8 @@ impl From<FailOn> for Severity {
 }
 
 /// `jaus-gen diff`: 0, 1, or 2 on an error.
-fn diff(old: &str, new: &str, format: Format, fail_on: Severity) -> ExitCode {
-    let load = |arg: &str| jaus_gen::revision::load(arg);
+fn diff(old: &str, new: &str, format: Format, fail_on: Severity, jsidl: bool) -> ExitCode {
+    let load = |arg: &str| jaus_gen::revision::load_with(arg, jsidl);
     let (old, new) = match (load(old), load(new)) {
         (Ok(o), Ok(n)) => (o, n),
         (o, n) => {
@@ -265,7 +270,8 @@ fn main() -> ExitCode {
             new,
             format,
             fail_on,
-        } => return diff(&old, &new, format, fail_on.into()),
+            jsidl,
+        } => return diff(&old, &new, format, fail_on.into(), jsidl),
         Cmd::Lock { defs, path, check } => lock(defs, path, check),
         Cmd::Jsidl { dirs, out } => jsidl(&dirs, &out),
         Cmd::New {

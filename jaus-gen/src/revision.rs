@@ -7,6 +7,7 @@
 //! | `A,B,...` | the directories and files in that order (a definition set and a vendor overlay: `jaus-spec/defs,acme.yaml`) |
 //! | `REV:PATH` | the directory or file `PATH` at git revision `REV` (`HEAD~1:jaus-spec/defs`), read with `git ls-tree` and `git cat-file` in the current directory's repository; `PATH` is from the repository root, or `./…` from the current directory, as git reads it |
 //! | `FILE.lock` or `REV:FILE.lock` | the layout stored in a lock file ([`crate::lock`]) |
+//! | `DIR` of JSIDL | a directory holding JSIDL `*.xml` files (recursively) and no `*.yaml`, or any directory with `--jsidl` ([`load_with`]): imported as `jaus-gen jsidl` imports it; several (`core-v1.1,manipulator-v2.0`) resolve references across each other; YAML files named with them are overlays on the import; positions are in the `.xml` files |
 //!
 //! A path that exists is read from disk even when it contains a colon. Definitions are
 //! validated and resolved by `jaus-spec`; the first problem set is returned as the
@@ -28,7 +29,7 @@
 //!   `jaus-gen diff defs/my.lock defs/my.yaml` compare like with like.
 
 use crate::lock;
-use crate::snapshot::{label, Snapshot};
+use crate::snapshot::{label, JsidlPositions, Snapshot};
 use crate::Error;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -116,14 +117,40 @@ fn from_git(arg: &str, rev: &str, path: &str) -> Result<Loaded, Error> {
 enum Loaded {
     Yaml(Vec<(PathBuf, String)>),
     Lock(String, String),
+    Jsidl(PathBuf),
+}
+
+/// Whether `dir` holds JSIDL: `*.xml` files (at any depth) and no `*.yaml` of its own.
+fn is_jsidl_dir(dir: &Path) -> bool {
+    let entries = |d: &Path| -> Vec<PathBuf> {
+        std::fs::read_dir(d)
+            .map(|rd| rd.filter_map(|e| e.ok().map(|e| e.path())).collect())
+            .unwrap_or_default()
+    };
+    let top = entries(dir);
+    if top.iter().any(|f| is_yaml(f)) {
+        return false;
+    }
+    let mut todo = top;
+    while let Some(p) = todo.pop() {
+        if p.is_dir() {
+            todo.extend(entries(&p));
+        } else if p.extension().is_some_and(|x| x == "xml") {
+            return true;
+        }
+    }
+    false
 }
 
 fn read(arg: &str, p: &Path) -> Result<String, Error> {
     std::fs::read_to_string(p).map_err(|e| err(arg, format!("{}: {e}", p.display())))
 }
 
-fn part(arg: &str, part: &str) -> Result<Loaded, Error> {
+fn part(arg: &str, part: &str, jsidl: bool) -> Result<Loaded, Error> {
     let p = Path::new(part);
+    if p.is_dir() && (jsidl || is_jsidl_dir(p)) {
+        return Ok(Loaded::Jsidl(p.to_path_buf()));
+    }
     if p.is_dir() {
         let mut files: Vec<PathBuf> = std::fs::read_dir(p)
             .map_err(|e| err(arg, format!("{part}: {e}")))?
@@ -161,16 +188,24 @@ fn part(arg: &str, part: &str) -> Result<Loaded, Error> {
 
 /// Loads the revision named by `arg` (see the module documentation).
 pub fn load(arg: &str) -> Result<Snapshot, Error> {
+    load_with(arg, false)
+}
+
+/// Loads the revision named by `arg`; with `jsidl`, every directory in it is JSIDL
+/// (`jaus-gen diff --jsidl`), whatever else it holds.
+pub fn load_with(arg: &str, jsidl: bool) -> Result<Snapshot, Error> {
     let mut yaml = Vec::new();
+    let mut xml = Vec::new();
     let mut lock = None;
     let parts: Vec<&str> = arg.split(',').filter(|s| !s.is_empty()).collect();
     if parts.is_empty() {
         return Err(err(arg, "no definitions named"));
     }
     for p in &parts {
-        match part(arg, p)? {
+        match part(arg, p, jsidl)? {
             Loaded::Yaml(v) => yaml.extend(v),
             Loaded::Lock(name, text) => lock = Some((name, text)),
+            Loaded::Jsidl(d) => xml.push(d),
         }
     }
     if let Some((name, text)) = lock {
@@ -179,7 +214,39 @@ pub fn load(arg: &str) -> Result<Snapshot, Error> {
         }
         return lock::parse(&text, &label(Path::new(&name))).map_err(Error::Revision);
     }
+    if !xml.is_empty() {
+        return jsidl_snapshot(&xml, yaml);
+    }
     yaml_snapshot(yaml)
+}
+
+/// The snapshot of JSIDL directories imported together (as `jaus-gen jsidl` imports
+/// them), with YAML overlays on them; positions of imported items are in the JSIDL
+/// files.
+pub fn jsidl_snapshot(
+    dirs: &[PathBuf],
+    overlays: Vec<(PathBuf, String)>,
+) -> Result<Snapshot, Error> {
+    let import = jaus_jsidl::import(dirs)?;
+    if import.files.is_empty() {
+        let names: Vec<String> = dirs.iter().map(|d| d.display().to_string()).collect();
+        return Err(err(
+            &names.join(","),
+            "no JSIDL service definition or declared type set (`*.xml`) in it",
+        ));
+    }
+    // The imported YAML exists in memory only: its paths are never shown.
+    let root = Path::new("jsidl");
+    let origins: Vec<(PathBuf, PathBuf)> = import
+        .files
+        .iter()
+        .map(|f| (root.join(&f.name), f.source.clone()))
+        .collect();
+    let mut texts = import.texts(root);
+    texts.extend(overlays);
+    let spec = jaus_spec::load_texts(texts)?;
+    let at = JsidlPositions::new(&spec, &origins)?;
+    Ok(Snapshot::from_jsidl(&spec, &at))
 }
 
 /// Why a set of YAML files is a definition set of its own rather than a vendor's
@@ -218,18 +285,24 @@ pub fn yaml_snapshot(files: Vec<(PathBuf, String)>) -> Result<Snapshot, Error> {
 }
 
 /// The snapshot of the directories and files `paths` on disk, in order, read as
-/// [`yaml_snapshot`] reads them (what `jaus-gen lock --spec DIR --overlay FILE` locks).
+/// [`yaml_snapshot`] reads them (what `jaus-gen lock --spec DIR --overlay FILE` locks);
+/// directories of JSIDL are imported ([`jsidl_snapshot`]).
 pub fn load_paths(paths: &[PathBuf]) -> Result<Snapshot, Error> {
     let mut yaml = Vec::new();
+    let mut xml = Vec::new();
     for p in paths {
         let arg = p.display().to_string();
         if !p.exists() {
             return Err(err(&arg, "no such file or directory"));
         }
-        match part(&arg, &arg)? {
+        match part(&arg, &arg, false)? {
             Loaded::Yaml(v) => yaml.extend(v),
             Loaded::Lock(..) => return Err(err(&arg, "a lock file is not a definition")),
+            Loaded::Jsidl(d) => xml.push(d),
         }
+    }
+    if !xml.is_empty() {
+        return jsidl_snapshot(&xml, yaml);
     }
     yaml_snapshot(yaml)
 }

@@ -6,13 +6,22 @@
 //! codes, presence vector types, fields in wire order with their resolved
 //! [`Wire`] form, presence bit, `present_if` and unit, enum values, bit-field members,
 //! union variants, and the messages and modes of each component. Descriptions, titles
-//! and group names are left out: they change no byte. Every item carries where it is
-//! defined ([`Loc`]), in the YAML for a snapshot of a [`Spec`], in the lock file for one
-//! read from a lock.
+//! and group names are left out: they change no byte. Services (AS-4) keep their URI,
+//! version and parent, the guard and action methods of their generated traits, and their
+//! states and transitions ([`ServiceSnap`]). Every item carries where it is defined
+//! ([`Loc`]): in the YAML for a snapshot of a [`Spec`], in the JSIDL files for a set
+//! imported from JSIDL ([`Snapshot::from_jsidl`]: the YAML of an import exists only in
+//! memory), in the lock file for one read from a lock.
 //!
 //! Snapshots are canonical: messages are sorted by command code, types and components by
 //! name, enum values by value, bit-field members by their lowest bit, union variants by
 //! tag, and a component's messages and modes by name. Fields keep their wire order.
+
+mod jsidl;
+mod services;
+
+pub use jsidl::JsidlPositions;
+pub use services::{MethodSnap, ServiceSnap, StateSnap, TransSnap};
 
 use jaus_spec::{Bits, CountRef, Int, Len, Spec, TypeForm, TypeKind, Wire};
 use serde::Serialize;
@@ -46,6 +55,8 @@ pub struct Snapshot {
     pub types: Vec<TypeSnap>,
     /// Component interfaces, by name.
     pub components: Vec<ComponentSnap>,
+    /// Services (AS-4 service sets), by name.
+    pub services: Vec<ServiceSnap>,
 }
 
 /// A message.
@@ -243,7 +254,20 @@ pub(crate) fn label(path: &Path) -> String {
 impl Snapshot {
     /// The snapshot of a validated definition set, positions in its YAML files.
     pub fn from_spec(spec: &Spec) -> Snapshot {
+        Snapshot::located(spec, None)
+    }
+
+    /// The snapshot of a definition set imported from JSIDL: positions in the JSIDL files
+    /// for what was imported (`jsidl`), in the YAML files for the rest (overlays).
+    pub fn from_jsidl(spec: &Spec, jsidl: &JsidlPositions) -> Snapshot {
+        Snapshot::located(spec, Some(jsidl))
+    }
+
+    fn located(spec: &Spec, jsidl: Option<&JsidlPositions>) -> Snapshot {
         let loc = |source: usize, path: &str| {
+            if let Some(l) = jsidl.and_then(|j| j.locate(source, path)) {
+                return l;
+            }
             let (file, pos) = spec.locate(source, path);
             Loc {
                 file: label(file),
@@ -420,10 +444,12 @@ impl Snapshot {
             })
             .collect();
         components.sort_by(|a, b| a.name.cmp(&b.name));
+        let services = services::services(spec, &loc);
         Snapshot {
             messages,
             types,
             components,
+            services,
         }
     }
 

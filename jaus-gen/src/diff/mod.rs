@@ -18,6 +18,7 @@ mod fields;
 mod pair;
 mod report;
 mod scale;
+mod services;
 mod types;
 
 use crate::snapshot::*;
@@ -192,6 +193,44 @@ kinds! {
     ComponentTransitionRemoved = "component-transition-removed",
     /// A mode transition's modes or core state changed.
     ComponentTransitionChanged = "component-transition-changed",
+    /// A new service.
+    ServiceAdded = "service-added",
+    /// A service is gone.
+    ServiceRemoved = "service-removed",
+    /// A service's URI and version now have another name.
+    ServiceRenamed = "service-renamed",
+    /// A service changed its version (or URI).
+    ServiceVersionChanged = "service-version-changed",
+    /// A service inherits from another service, another version, or nothing.
+    ServiceParentChanged = "service-parent-changed",
+    /// A new state of a service's machine.
+    ServiceStateAdded = "service-state-added",
+    /// A state of a service's machine is gone.
+    ServiceStateRemoved = "service-state-removed",
+    /// A state has another name and the same actions and transitions.
+    ServiceStateRenamed = "service-state-renamed",
+    /// A state's entry or exit actions changed.
+    ServiceStateActionsChanged = "service-state-actions-changed",
+    /// A new transition.
+    ServiceTransitionAdded = "service-transition-added",
+    /// A transition is gone.
+    ServiceTransitionRemoved = "service-transition-removed",
+    /// The same transition (trigger, guard, actions, target) is in another state.
+    ServiceTransitionMoved = "service-transition-moved",
+    /// A transition is started by another trigger.
+    ServiceTriggerChanged = "service-trigger-changed",
+    /// A transition's guard changed, appeared or went.
+    ServiceGuardChanged = "service-guard-changed",
+    /// A transition's actions changed.
+    ServiceActionsChanged = "service-actions-changed",
+    /// A transition's kind or target state changed.
+    ServiceTargetChanged = "service-target-changed",
+    /// A new guard or action method of a service's generated trait.
+    ServiceMethodAdded = "service-method-added",
+    /// A guard or action method of a service's generated trait is gone.
+    ServiceMethodRemoved = "service-method-removed",
+    /// A method of a service's generated trait changed its signature.
+    ServiceMethodChanged = "service-method-changed",
 }
 
 impl fmt::Display for ChangeKind {
@@ -208,7 +247,8 @@ pub struct Change {
     /// How serious it is.
     pub severity: Severity,
     /// The item: `Message`, `Message.field`, `Type.value`, `Component.accepts.Message`,
-    /// `Component.modes.Mode`.
+    /// `Component.modes.Mode`, `Service`, `Service/Machine/State.Sub`,
+    /// `Service::method`.
     pub path: String,
     /// Where it was in the old revision (or where its owner was, for something added);
     /// `None` for a message, type or component that is new.
@@ -245,6 +285,7 @@ pub fn diff(old: &Snapshot, new: &Snapshot) -> Diff {
     d.types();
     d.messages();
     d.components();
+    d.services();
     let mut changes = d.changes;
     changes.sort_by(|a, b| {
         let pos = |c: &Change| c.new.clone().or_else(|| c.old.clone());

@@ -5,8 +5,8 @@
 //! here into expression trees and emitted as data; the template only iterates.
 
 mod emit;
-mod guard;
-mod model;
+pub(crate) mod guard;
+pub(crate) mod model;
 
 use serde::Serialize;
 
