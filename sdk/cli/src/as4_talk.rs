@@ -14,7 +14,7 @@
 
 use std::io::Write;
 use std::net::SocketAddr;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::time::Duration;
 
 use jaus_dynamic::{DynMessage, Schema};
@@ -65,31 +65,7 @@ pub fn schema(spec: &[PathBuf], jsidl: &[PathBuf]) -> Result<Schema, String> {
 /// The AS-4 definitions: jaus-as4's built-in ones with the YAML of the directories
 /// `spec` on them, or the JSIDL of the directories `jsidl` imported instead.
 pub fn as4_spec(spec: &[PathBuf], jsidl: &[PathBuf]) -> Result<jaus_spec::Spec, String> {
-    let loaded = if jsidl.is_empty() {
-        let base: Vec<(PathBuf, String)> = jaus_as4::DEFS
-            .iter()
-            .map(|(name, text)| (Path::new("jaus-as4/defs").join(name), text.to_string()))
-            .collect();
-        let mut own = Vec::new();
-        for dir in spec {
-            let entries = std::fs::read_dir(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
-            let mut files: Vec<PathBuf> = entries
-                .filter_map(|e| e.ok().map(|e| e.path()))
-                .filter(|p| p.extension().is_some_and(|x| x == "yaml" || x == "yml"))
-                .collect();
-            files.sort();
-            for f in files {
-                let text =
-                    std::fs::read_to_string(&f).map_err(|e| format!("{}: {e}", f.display()))?;
-                own.push((f, text));
-            }
-        }
-        jaus_spec::load_texts(base.into_iter().chain(own).collect())
-    } else {
-        let import = jaus_jsidl::import(jsidl).map_err(|e| e.to_string())?;
-        jaus_spec::load_texts(import.texts(Path::new("jsidl")))
-    };
-    loaded.map_err(|e| e.to_string())
+    jaus_dynamic::load_overlaid(jaus_as4::DEFS, "jaus-as4/defs", spec, jsidl)
 }
 
 /// A message as the command line gives it.

@@ -79,6 +79,32 @@ pub struct ConformArgs {
     /// With --as4: seconds to wait for the waypoint list to be driven to its end.
     #[arg(long, default_value_t = 60.0)]
     mission_timeout: f64,
+    /// With --as4: instead of the IOP scenario, plan the checks from the AS-4 service
+    /// definitions of every service the component lists in Report Services: each query
+    /// answered with its report, each command that needs control refused without it
+    /// (and read back from the controller), each query subscribed with Create Event.
+    /// The definitions are jaus-as4's (Core v1.1, Mobility), with --as4-spec or --jsidl.
+    #[arg(long, requires = "as4")]
+    plan: bool,
+    /// With --as4 --plan: directories of YAML definitions loaded on jaus-as4's (a
+    /// vendor's messages and services, `extends: as4`), as `jaus as4-query --as4-spec`.
+    #[arg(
+        id = "as4_spec",
+        long = "as4-spec",
+        visible_alias = "defs",
+        value_name = "DIR",
+        requires = "plan"
+    )]
+    as4_spec: Vec<PathBuf>,
+    /// With --as4 --plan: directories of JSIDL to import and plan from instead of
+    /// jaus-as4's definitions (give every set the component's services need).
+    #[arg(
+        long,
+        value_name = "DIR",
+        requires = "plan",
+        conflicts_with = "as4_spec"
+    )]
+    jsidl: Vec<PathBuf>,
 }
 
 fn write_file(path: &PathBuf, text: &str) -> Result<(), String> {
@@ -150,7 +176,15 @@ fn conform_as4(
     sel: Option<&Selection>,
     out: &mut impl Write,
 ) -> Result<(), String> {
-    use jaus_conform::as4::{self, udp::UdpAs4Session, As4Options, As4Session};
+    use jaus_conform::as4::{self, planned, udp::UdpAs4Session, As4Options, As4Session};
+    let defs = if args.plan {
+        if sel.is_some() {
+            return Err("--profile selects the IOP scenario's checks: not with --plan".into());
+        }
+        Some(planned::Definitions::load(&args.as4_spec, &args.jsidl)?)
+    } else {
+        None
+    };
     let me = match &net.me {
         Some(m) => as4::parse_id(m).map_err(|e| format!("--me {e}"))?,
         None => As4Options::default().me,
@@ -187,9 +221,10 @@ fn conform_as4(
         mission_timeout: Duration::from_secs_f64(args.mission_timeout.max(0.0)),
         ..As4Options::default()
     };
-    let run = match sel {
-        Some(sel) => profile::run_as4(&mut session, &opts, sel),
-        None => as4::run_as4(&mut session, &opts),
+    let run = match (&defs, sel) {
+        (Some(defs), _) => planned::run_planned(&mut session, defs, &opts),
+        (None, Some(sel)) => profile::run_as4(&mut session, &opts, sel),
+        (None, None) => as4::run_as4(&mut session, &opts),
     };
     let _ = write!(out, "{}", report::summary(&run));
     write_reports(&run, args)?;

@@ -31,9 +31,11 @@ mod encode;
 mod intern;
 mod ints;
 mod json;
+mod overlay;
 mod schema;
 mod value;
 
+pub use overlay::load_overlaid;
 pub use schema::MessageLayout;
 pub use value::Value;
 

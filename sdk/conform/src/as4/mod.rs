@@ -31,6 +31,7 @@
 
 mod checks;
 mod mission;
+pub mod planned;
 mod sensors;
 pub mod session;
 mod talk;

@@ -121,6 +121,9 @@ pub(super) struct Judge<'a> {
     pub periodic: Periodic,
     /// Request Control again.
     pub keepalive: Keepalive,
+    /// Definitions loaded at run time, read for the evidence of messages jaus-as4's
+    /// own do not define (a vendor's).
+    schema: Option<&'a jaus_dynamic::Schema>,
 }
 
 impl std::fmt::Debug for Judge<'_> {
@@ -164,7 +167,14 @@ impl<'a> Judge<'a> {
                 refused: Vec::new(),
                 rejected: 0,
             },
+            schema: None,
         }
+    }
+
+    /// Reads the evidence of messages jaus-as4 does not define with `schema` too.
+    pub fn with_schema(mut self, schema: &'a jaus_dynamic::Schema) -> Self {
+        self.schema = Some(schema);
+        self
     }
 
     /// The session's clock.
@@ -242,7 +252,16 @@ impl<'a> Judge<'a> {
     }
 
     fn exchange(&self, since: Instant, dir: &'static str, m: &As4Message) -> Exchange {
-        let (message, fields) = describe(m.message_id, &m.body);
+        let (mut message, mut fields) = describe(m.message_id, &m.body);
+        if message.starts_with("raw ") {
+            if let Some(d) = self
+                .schema
+                .and_then(|s| s.decode(CommandCode(m.message_id), &m.body).ok())
+            {
+                message = d.name.to_string();
+                fields = serde_json::to_value(&d.fields).unwrap_or(serde_json::Value::Null);
+            }
+        }
         Exchange {
             t_ms: self.t_ms(since),
             dir,
@@ -279,6 +298,13 @@ impl<'a> Judge<'a> {
             return;
         };
         let m = As4Message::new(msg.code().0, to, self.me, body);
+        self.record("sent", &m);
+        self.session.send(m);
+    }
+
+    /// Sends message `id` with `body` to the component under test.
+    pub fn send_raw(&mut self, id: u16, body: Vec<u8>) {
+        let m = As4Message::new(id, self.peer, self.me, body);
         self.record("sent", &m);
         self.session.send(m);
     }
