@@ -14,7 +14,7 @@ use std::net::SocketAddr;
 use std::time::Instant;
 
 use super::framing::{split, Framing, Reassembler, ReassemblyLimits, ReassemblyStats};
-use super::node::Datagram;
+use super::Datagram;
 use super::{NetError, Participant};
 use crate::component::{Endpoint, Endpoints};
 use crate::wire::Header;
@@ -183,7 +183,7 @@ impl Attached {
                     self.outbox.push_back(Datagram {
                         to: self.config.node_socket,
                         bytes: self.config.framing.encode(p),
-                        via: super::node::Via::Network,
+                        via: super::Via::Network,
                     });
                 }
             }

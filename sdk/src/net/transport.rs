@@ -2,11 +2,10 @@
 //! generic over its peers' address type ([`PeerAddr`]); a [`Transport`] moves the bytes:
 //! UDP sockets ([`udp::UdpTransport`](super::udp::UdpTransport)), a serial bus, a radio
 //! modem's packet interface, an in-memory pipe in a test. The routing never sees which.
+//! What crosses the seam: [`Datagram`]s, each with the socket ([`Via`]) it uses.
 
+use std::net::SocketAddr;
 use std::time::Duration;
-
-use super::Datagram;
-use super::Via;
 
 /// The address of a peer on a carrier: a UDP socket address, a drop on a serial bus, a
 /// radio id. Anything small, comparable, hashable and printable is one.
@@ -51,4 +50,29 @@ pub trait Transport {
 
     /// What the carrier is bound to, for the shell's first log line.
     fn describe(&self) -> String;
+}
+
+/// A datagram to send.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Datagram<A = SocketAddr> {
+    /// The peer.
+    pub to: A,
+    /// Framed bytes.
+    pub bytes: Vec<u8>,
+    /// The socket it leaves from ([`Via::Network`] on a carrier that has only one).
+    pub via: Via,
+}
+
+/// Which socket of a node a datagram leaves from: the network interface, or one of the
+/// two sockets of OpenJAUS's local component interface ([`oj`](crate::net::oj)), which a
+/// node serves when its shell binds them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum Via {
+    /// The node's JAUS socket (JUDP or "JAUS01.0").
+    #[default]
+    Network,
+    /// The component data socket (raw packets, port 24629).
+    ComponentData,
+    /// The component control socket (8-byte control datagrams, port 24627).
+    ComponentControl,
 }

@@ -1,4 +1,4 @@
-//! A node's settings, the datagrams it hands its shell and its counters.
+//! A node's settings and its counters.
 
 use std::net::SocketAddr;
 
@@ -131,31 +131,6 @@ impl<A: PeerAddr> NodeConfig<A> {
             reliable: self.reliable,
         }
     }
-}
-
-/// A datagram to send.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct Datagram<A = SocketAddr> {
-    /// The peer.
-    pub to: A,
-    /// Framed bytes.
-    pub bytes: Vec<u8>,
-    /// The socket it leaves from ([`Via::Network`] on a carrier that has only one).
-    pub via: Via,
-}
-
-/// Which socket of a node a datagram leaves from: the network interface, or one of the
-/// two sockets of OpenJAUS's local component interface ([`oj`](crate::net::oj)), which a
-/// node serves when its shell binds them.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
-pub enum Via {
-    /// The node's JAUS socket (JUDP or "JAUS01.0").
-    #[default]
-    Network,
-    /// The component data socket (raw packets, port 24629).
-    ComponentData,
-    /// The component control socket (8-byte control datagrams, port 24627).
-    ComponentControl,
 }
 
 /// Counters of the interface and the routing.

@@ -7,7 +7,7 @@
 use std::collections::HashMap;
 use std::time::{Duration, Instant};
 
-use super::config::Via;
+use crate::net::Via;
 use crate::Address;
 
 /// An external component: where it is, when it was last heard, the socket of the node

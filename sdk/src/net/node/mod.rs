@@ -34,7 +34,8 @@ use std::time::Instant;
 
 pub use acks::AckKey;
 pub use companions::NodeEvent;
-pub use config::{Datagram, NetStats, NodeConfig, Via};
+pub use config::{NetStats, NodeConfig};
+pub use super::transport::{Datagram, Via};
 
 use super::framing::{split, DatagramError, Reassembler, ReassemblyStats, MAX_PACKET_BODY};
 use super::manager::{StockNodeManager, SystemTree};

@@ -8,7 +8,7 @@ use std::time::Instant;
 use super::super::framing::Framing;
 use super::super::oj::{matches_wildcard, Control};
 use super::super::PeerAddr;
-use super::config::{Datagram, Via};
+use crate::net::{Datagram, Via};
 use super::route::Origin;
 use super::Node;
 use crate::Address;

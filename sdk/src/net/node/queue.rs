@@ -5,7 +5,7 @@
 use std::collections::VecDeque;
 
 use super::super::framing::MAX_PACKET_BODY;
-use super::config::Datagram;
+use crate::net::Datagram;
 use crate::wire::HEADER_LEN;
 
 /// Most byte buffers a node keeps for reuse.
