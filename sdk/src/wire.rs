@@ -482,13 +482,19 @@ impl Header {
         let Some(b) = bytes.first_chunk::<HEADER_LEN>() else {
             return Err(truncated_header(bytes.len()));
         };
+        Ok(Header::from_array(b))
+    }
+
+    /// The header of these 16 bytes (every bit pattern is a header).
+    #[inline(always)]
+    fn from_array(b: &[u8; HEADER_LEN]) -> Header {
         let (lo, hi) = b.split_at(8);
         let lo = u64::from_le_bytes(lo.try_into().unwrap_or_default());
         let hi = u64::from_le_bytes(hi.try_into().unwrap_or_default());
         let props = lo as u16;
         let control = (hi >> 32) as u16;
         let address = |w: u64| Address::from_wire((w as u32).to_le_bytes());
-        Ok(Header {
+        Header {
             priority: (props & 0x0F) as u8,
             ack_nak: AckNak::from_bits((props >> 4) as u8),
             service_connection: props & (1 << 6) != 0,
@@ -501,7 +507,7 @@ impl Header {
             data_size: control & 0x0FFF,
             data_flag: DataFlag::from_bits((control >> 12) as u8),
             sequence_number: (hi >> 48) as u16,
-        })
+        }
     }
 }
 
@@ -593,12 +599,11 @@ impl<'a> PacketRef<'a> {
     /// Parses one datagram-sized packet: a header and exactly `data_size` body bytes.
     #[inline]
     pub fn parse(bytes: &'a [u8]) -> Result<PacketRef<'a>, DecodeError> {
-        let header = Header::parse(bytes)?;
         let (Some(raw), Some(body)) = (bytes.first_chunk::<HEADER_LEN>(), bytes.get(HEADER_LEN..))
         else {
             return Err(truncated_header(bytes.len()));
         };
-        // The data size read again from the datagram, not from `header`: the compiler
+        // The data size read from the datagram, not from a parsed header: the compiler
         // otherwise reloaded it together with the command code in one 8-byte load
         // straddling the header's narrow field stores on the stack (a store-forwarding
         // stall that cost about 40 % of decoding a fixed-size packet).
@@ -612,7 +617,15 @@ impl<'a> PacketRef<'a> {
                 12,
             ));
         }
-        Ok(PacketRef { header, body })
+        // The header built here, after both checks, not taken out of `Header::parse`'s
+        // `Result`: moved out of that `Result`, it was left on the stack in narrow
+        // stores, and the command code was read back for `Message::decode` in one 8-byte
+        // load across them (the same stall: 5-6 ns on every packet decoded by command
+        // code, more than the dispatch itself; issue 49, docs/performance.md).
+        Ok(PacketRef {
+            header: Header::from_array(raw),
+            body,
+        })
     }
 }
 
@@ -675,6 +688,33 @@ mod tests {
             Packet::parse(&bytes[..5]).unwrap_err().kind(),
             &DecodeErrorKind::TruncatedHeader { len: 5 }
         ));
+        // `PacketRef::parse` builds its header itself (after the size checks): the same
+        // header as `Header::parse`.
+        let p = PacketRef::parse(&bytes[..17]).unwrap();
+        assert_eq!(p.header, Header::parse(&bytes).unwrap());
+        assert_eq!(p.body, &[7]);
+    }
+
+    /// The size of `messages::Message`, which `Message::decode` (the README's first
+    /// example, by command code) returns and every hand-over of a decoded message moves.
+    /// 344 bytes is Report Platform Specifications, the largest message (the next is
+    /// 192: Set/Report Wrench Effort); a message that outgrows it fails here. Boxing
+    /// large variants was considered and not done (issue 49): the fixed-size messages
+    /// decoded most (pose, wrench effort, path segment) are 80–192 bytes, so a box
+    /// would allocate on every decode (`tests/tests/alloc.rs` pins none), and the
+    /// enum's size was measured not to be where decoding by code lost time
+    /// (docs/performance.md).
+    #[test]
+    fn message_enum_size_is_bounded() {
+        use crate::messages::Message;
+        let size = std::mem::size_of::<Message>();
+        assert!(
+            size <= 344,
+            "messages::Message grew to {size} bytes (bound 344): find the message that \
+             grew, or raise the bound with a measurement (docs/performance.md)"
+        );
+        // The decode error in the enum's niche: `Result` adds nothing to copy.
+        assert_eq!(std::mem::size_of::<Result<Message, DecodeError>>(), size);
     }
 
     /// A body of `n` bytes that counts the calls of `encoded_len`.

@@ -32,10 +32,10 @@ use std::collections::{HashMap, VecDeque};
 use std::net::SocketAddr;
 use std::time::Instant;
 
+pub use super::transport::{Datagram, Via};
 pub use acks::AckKey;
 pub use companions::NodeEvent;
 pub use config::{NetStats, NodeConfig};
-pub use super::transport::{Datagram, Via};
 
 use super::framing::{split, DatagramError, Reassembler, ReassemblyStats, MAX_PACKET_BODY};
 use super::manager::{StockNodeManager, SystemTree};

@@ -8,9 +8,9 @@ use std::time::Instant;
 use super::super::framing::Framing;
 use super::super::oj::{matches_wildcard, Control};
 use super::super::PeerAddr;
-use crate::net::{Datagram, Via};
 use super::route::Origin;
 use super::Node;
+use crate::net::{Datagram, Via};
 use crate::Address;
 
 impl<A: PeerAddr> Node<A> {
