@@ -60,7 +60,7 @@ impl Companions {
 }
 
 impl<A: PeerAddr> Node<A> {
-    /// Adds a companion component at `a` (see the [module](self)): the node lists it
+    /// Adds a companion component at `a` (see the module's documentation): the node lists it
     /// in its system tree and routes messages for it to [`poll_event`](Self::poll_event);
     /// the owner feeds what it sends to [`handle_companion`](Self::handle_companion).
     /// The address follows the rule of [`add`](Self::add).
