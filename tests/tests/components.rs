@@ -597,6 +597,60 @@ fn a_component_subscribes_by_service_connection_and_ends_it() {
     assert_eq!(bus.get::<Sensor>(GPS).unwrap().service_connections(), 0);
 }
 
+/// A GPS with no fix for its first `until` seconds: it refuses queries (and so service
+/// connections) until then.
+struct LateGps {
+    start: Instant,
+    until: Duration,
+}
+
+impl GlobalPoseSensor for LateGps {
+    fn on_query_global_pose(
+        &mut self,
+        ctx: &mut global_pose_sensor::Ctx<'_>,
+        _msg: &QueryGlobalPose,
+    ) -> Result<ReportGlobalPose, Refused> {
+        if ctx.now().saturating_duration_since(self.start) < self.until {
+            return Err(Refused::Invalid("no fix yet".into()));
+        }
+        Ok(ReportGlobalPose {
+            latitude: Some(29.6),
+            ..Default::default()
+        })
+    }
+}
+
+#[test]
+fn a_refused_service_connection_is_asked_for_again_until_the_provider_serves() {
+    // The waypoint driver subscribes at start-up, while the GPS has no fix (refused);
+    // it asks again after the silence allowed (3 s), then 6 s later, and is served once
+    // the GPS has a fix (after 8 s).
+    let mut bus = LocalBus::new(t0());
+    bus.add(global_pose_sensor::component(
+        GPS,
+        LateGps {
+            start: t0(),
+            until: Duration::from_secs(8),
+        },
+        config(),
+        t0(),
+    ));
+    bus.add(global_waypoint_driver::component(
+        WPD,
+        Follower::default(),
+        config(),
+        t0(),
+    ));
+    bus.run_for(Duration::from_secs(5));
+    assert_eq!(bus.get::<Wpd>(WPD).unwrap().behaviour().0.fixes, 0);
+    bus.run_for(Duration::from_secs(15));
+    let w = bus.get::<Wpd>(WPD).unwrap();
+    assert!(w.behaviour().0.fixes > 0, "never served after the refusals");
+    assert!(w.stats().subscriptions_renewed >= 2, "{:?}", w.stats());
+    type Late = jaus::component::Component<global_pose_sensor::Dispatch<LateGps>>;
+    assert_eq!(bus.get::<Late>(GPS).unwrap().service_connections(), 1);
+}
+
 #[test]
 fn modes_change_only_along_defined_transitions_and_core_effects_apply() {
     use global_waypoint_driver::{Mode, Transition};

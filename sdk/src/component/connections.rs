@@ -79,11 +79,18 @@ struct Subscription {
     presence: u32,
     /// When it was asked for or a report last arrived.
     heard: Option<Instant>,
+    /// Refusals since the last confirmation: each doubles the wait before it is asked
+    /// for again (a sensor with no data yet refuses, then can serve).
+    refusals: u32,
 }
 
 /// How long a subscription may stay silent before it is asked for again: five periods
 /// of the rate asked for, and never less than this.
 pub(super) const MIN_SILENCE: Duration = Duration::from_secs(3);
+
+/// Most doublings of the wait after refusals: a connection refused again and again is
+/// asked for at most every 32 × the silence allowed (96 s at the least).
+const MAX_BACKOFF_SHIFT: u32 = 5;
 
 #[derive(Debug, Default)]
 pub(super) struct RequesterTable {
@@ -116,6 +123,7 @@ impl RequesterTable {
             rate,
             presence: pv,
             heard: None,
+            refusals: 0,
         });
         true
     }
@@ -149,7 +157,8 @@ impl RequesterTable {
                 continue;
             };
             let period = Duration::from_secs_f64(5.0 / s.rate.max(1e-3));
-            if now.saturating_duration_since(heard) > period.max(MIN_SILENCE) {
+            let wait = period.max(MIN_SILENCE) * (1 << s.refusals.min(MAX_BACKOFF_SHIFT));
+            if now.saturating_duration_since(heard) > wait {
                 s.instance = None;
                 s.heard = Some(now);
                 return Some((s.provider, s.report, s.rate, s.presence));
@@ -298,7 +307,12 @@ impl<B: Behaviour> Component<B> {
         }
     }
 
-    pub(super) fn confirm_sc(&mut self, source: Address, m: &ConfirmServiceConnection) {
+    pub(super) fn confirm_sc(
+        &mut self,
+        now: Instant,
+        source: Address,
+        m: &ConfirmServiceConnection,
+    ) {
         let code = CommandCode(m.service_connection_command_code);
         let sub = self
             .rt
@@ -307,12 +321,19 @@ impl<B: Behaviour> Component<B> {
             .iter_mut()
             .find(|s| s.provider == source && s.report == code);
         match (sub, m.response_code) {
-            (Some(s), ServiceConnectionResponse::Successful) => s.instance = Some(m.instance_id),
-            (Some(_), _) => {
-                self.rt
-                    .requester
-                    .subs
-                    .retain(|s| !(s.provider == source && s.report == code));
+            (Some(s), ServiceConnectionResponse::Successful) => {
+                s.instance = Some(m.instance_id);
+                s.refusals = 0;
+            }
+            (Some(s), response) => {
+                // Kept and asked for again later, each refusal waiting twice as long: a
+                // provider that cannot serve yet (a sensor before its first data, a
+                // component still initialising) serves later. Ending the subscription
+                // is the behaviour's call (`unsubscribe`).
+                s.instance = None;
+                s.heard = Some(now);
+                s.refusals = s.refusals.saturating_add(1);
+                tracing::debug!(provider = %source, report = %code, ?response, refusals = s.refusals, "service connection refused; asked for again later");
             }
             (None, ServiceConnectionResponse::Successful) => {
                 // A connection nobody here asked for: end it (as OpenJAUS does).

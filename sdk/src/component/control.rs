@@ -130,7 +130,7 @@ impl<B: Behaviour> Component<B> {
                 Ok(())
             }
             Message::ConfirmServiceConnection(m) => {
-                self.confirm_sc(source, m);
+                self.confirm_sc(self.rt.now, source, m);
                 return Some(self.pass_on(header, original));
             }
             Message::CreateEvent(m) => {
