@@ -143,7 +143,13 @@ pub(crate) enum Cmd {
         args: jaus_cli::ros2::Ros2Args,
     },
     /// Run a node from a configuration file (YAML: subsystem, node, bind, framing,
-    /// peers, host); prints the system tree whenever it changes.
+    /// transport, peers, host, as4, as4_vehicles, ros2, ...; `jaus_cli::net::NodeFile`);
+    /// prints the system tree whenever it changes. `ros2:` (the keys of `jaus ros2
+    /// --config`'s file: domain_id, node_name, namespace, topics, frames, odom_axes,
+    /// qos_commands, qos_sensors, effort, watchdog_ms, command_timeout_ms) hosts a ROS 2
+    /// robot as this node's Primitive Driver 33.1 (cmd_vel), Global Pose Sensor 38.1
+    /// (fix), Local Pose Sensor 41.1 and Velocity State Sensor 42.1 (odom), over DDS
+    /// with no ROS install (docs/ros2.md).
     Node {
         /// The configuration file.
         #[arg(long)]

@@ -278,6 +278,127 @@ impl NodeFile {
         };
         built.map_err(|e| e.to_string())
     }
+    /// `ros2:`, checked (`at` gives the file:line:column of a YAML path): its values
+    /// (`Ros2Config::validate`), robot mode only, and none of the robot's four
+    /// components at an address a `host:` entry or an `as4_vehicles:` proxy takes.
+    pub(super) fn check_ros2(
+        &self,
+        hosted: &[Hosted],
+        path: &Path,
+        at: &dyn Fn(&str) -> String,
+    ) -> Result<(), String> {
+        use jaus_as4::proxy::Role;
+        let Some(r) = &self.ros2 else {
+            return Ok(());
+        };
+        if let Err(jaus_ros2::Ros2Error::Config(e)) = r.validate() {
+            // The message starts with the key it is about (`effort.max_linear ...`).
+            let key = e.split_whitespace().next().unwrap_or_default();
+            return Err(format!("{}: ros2: {e}", at(&format!("ros2.{key}"))));
+        }
+        if r.vehicle.subsystem.is_some() {
+            return Err(format!(
+                "{}: ros2: vehicle mode (a JAUS vehicle in ROS 2) is `jaus ros2 --vehicle`'s; a node file's `ros2:` hosts a ROS 2 robot (leave out `vehicle.subsystem`)",
+                at("ros2.vehicle.subsystem")
+            ));
+        }
+        let robot = |id: u8| Address::new(self.subsystem, self.node, id, jaus_ros2::ids::INSTANCE);
+        let ids = [
+            jaus_ros2::ids::PRIMITIVE_DRIVER,
+            jaus_ros2::ids::GLOBAL_POSE_SENSOR,
+            jaus_ros2::ids::LOCAL_POSE_SENSOR,
+            jaus_ros2::ids::VELOCITY_STATE_SENSOR,
+        ];
+        let names = [
+            "Primitive Driver",
+            "Global Pose Sensor",
+            "Local Pose Sensor",
+            "Velocity State Sensor",
+        ];
+        let ros2_part = |id: u8| {
+            let name = ids
+                .iter()
+                .position(|i| *i == id)
+                .map_or("component", |k| names[k]);
+            format!("`ros2:` hosts the ROS 2 robot's {name} there")
+        };
+        for (i, h) in hosted.iter().enumerate() {
+            let clash = match h {
+                Hosted::Vehicle => Some((
+                    "`vehicle` (the demo's simulated vehicle)".to_string(),
+                    ids[0],
+                    "leave out `vehicle`: the ROS 2 robot is this node's vehicle",
+                )),
+                Hosted::Arm => None,
+                Hosted::Stock(e) => ids
+                    .into_iter()
+                    .find(|id| e.stock.id() == *id && e.instance == jaus_ros2::ids::INSTANCE)
+                    .map(|id| {
+                        (
+                            format!("`{}` instance {}", e.stock.name(), e.instance),
+                            id,
+                            "leave the entry out, or give it another `instance`",
+                        )
+                    }),
+            };
+            if let Some((what, id, hint)) = clash {
+                return Err(format!(
+                    "{}: host[{i}]: {what} takes {}, and {}: {hint}",
+                    at(&format!("host[{i}]")),
+                    robot(id),
+                    ros2_part(id)
+                ));
+            }
+        }
+        for (i, (v, _)) in self.as4_vehicles(path)?.iter().enumerate() {
+            let taken = v.roles.iter().find_map(|role| {
+                let id = match role {
+                    Role::PrimitiveDriver => ids[0],
+                    Role::GlobalPoseSensor => ids[1],
+                    Role::LocalPoseSensor => ids[2],
+                    Role::VelocityStateSensor => ids[3],
+                    _ => return None,
+                };
+                (v.instance == jaus_ros2::ids::INSTANCE).then_some(id)
+            });
+            if let Some(id) = taken {
+                return Err(format!(
+                    "{}: as4_vehicles[{i}]: its proxy takes {}, and {}: give the entry another `instance`",
+                    at(&format!("as4_vehicles[{i}]")),
+                    robot(id),
+                    ros2_part(id)
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// With `ros2:`, starts the ROS 2 side (the robot's DDS domain joined) and adds the
+    /// robot's four components (`jaus_ros2::robot_components`) to `node`; the link
+    /// must live as long as the node runs (dropping it publishes a zero twist). `None`
+    /// without `ros2:` (`path`: the file, for the errors).
+    pub fn start_ros2(
+        &self,
+        path: &Path,
+        node: &mut Node,
+        t0: Instant,
+    ) -> Result<Option<jaus_ros2::Ros2Link>, String> {
+        let Some(config) = &self.ros2 else {
+            return Ok(None);
+        };
+        // `Ros2Error`s and the node's say `ros2 (...)` themselves.
+        let err = |e: &dyn std::fmt::Display| format!("{}: {e}", path.display());
+        let link = jaus_ros2::Ros2Link::start(config).map_err(|e| err(&e))?;
+        let component = self.node_config().component;
+        for c in
+            jaus_ros2::robot_components(&link, config, self.subsystem, self.node, &component, t0)
+        {
+            node.add_boxed(c)
+                .map_err(|e| format!("{}: ros2: {e}", path.display()))?;
+        }
+        Ok(Some(link))
+    }
+
     /// The file of `store:`, relative to the directory of the node file `path`.
     pub fn store_path(&self, path: &Path) -> Option<std::path::PathBuf> {
         let dir = path.parent().unwrap_or_else(|| Path::new("."));
@@ -481,6 +602,73 @@ mod tests {
 
     fn file(yaml: &str) -> NodeFile {
         serde_yaml::from_str(yaml).unwrap()
+    }
+
+    /// `ros2:` is a `Ros2Config`: its keys checked, its values validated, robot mode
+    /// only, and none of the robot's components where a `host:` entry or an
+    /// `as4_vehicles:` proxy is; each error names the file and the key.
+    #[test]
+    fn ros2_is_read_with_the_bridge_settings_and_errors_name_the_file_and_key() {
+        let dir = std::env::temp_dir().join(format!("jaus-node-ros2-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("robot.yaml");
+        let load = |tail: &str| {
+            std::fs::write(
+                &path,
+                format!("subsystem: 1\nnode: 1\nbind: 127.0.0.1:0\n{tail}"),
+            )
+            .unwrap();
+            NodeFile::load(&path)
+        };
+        let f = load(
+            "host: [local_waypoint_driver, { component: primitive_driver, instance: 2 }]\nas4: {}\nros2:\n  domain_id: 7\n  effort: { max_linear: 0.5 }\n",
+        )
+        .unwrap();
+        let r = f.ros2.as_ref().unwrap();
+        assert_eq!((r.domain_id, r.effort.max_linear), (7, 0.5));
+        assert_eq!(r.topics.odom, "odom");
+        assert!(load("").unwrap().ros2.is_none());
+
+        let e = load("ros2: { domian_id: 7 }\n").unwrap_err();
+        assert!(
+            e.contains("robot.yaml") && e.contains("ros2") && e.contains("domian_id"),
+            "{e}"
+        );
+        let e = load("ros2:\n  topics: { odom: a//b }\n").unwrap_err();
+        assert!(
+            e.contains("robot.yaml:5:") && e.contains("topics.odom"),
+            "{e}"
+        );
+        let e = load("ros2:\n  domain_id: 300\n").unwrap_err();
+        assert!(
+            e.contains("robot.yaml:5:") && e.contains("domain_id 300"),
+            "{e}"
+        );
+        let e = load("ros2: { vehicle: { subsystem: 2 } }\n").unwrap_err();
+        assert!(e.contains("jaus ros2 --vehicle"), "{e}");
+
+        let e = load("host: [global_pose_sensor]\nros2: {}\n").unwrap_err();
+        assert!(
+            e.contains("robot.yaml:4:")
+                && e.contains("host[0]: `global_pose_sensor` instance 1 takes 1.1.38.1")
+                && e.contains("`ros2:` hosts the ROS 2 robot's Global Pose Sensor there"),
+            "{e}"
+        );
+        let e = load("host: [vehicle]\nros2: {}\n").unwrap_err();
+        assert!(
+            e.contains("host[0]: `vehicle`")
+                && e.contains("1.1.33.1")
+                && e.contains("leave out `vehicle`"),
+            "{e}"
+        );
+        let e = load("as4_vehicles: [{ peer: 127.0.0.1:9 }]\nros2: {}\n").unwrap_err();
+        assert!(
+            e.contains("as4_vehicles[0]: its proxy takes 1.1.42.1")
+                && e.contains("Velocity State Sensor"),
+            "{e}"
+        );
+        load("as4_vehicles: [{ peer: 127.0.0.1:9, instance: 2 }]\nros2: {}\n").unwrap();
+        let _ = std::fs::remove_dir_all(&dir);
     }
 
     #[test]

@@ -42,7 +42,20 @@ pub use run::{node, tree_json, TreePrinter};
 ///   rules: [{ from: 200.*.*.*, may: command, max_authority: 100 }]
 /// communicator: 1.2.35.1 # optional: the subsystem's communicator on another node
 /// store: vehicle.jstore  # optional: world_model and mission_spooler entries durable
+/// ros2: { domain_id: 0 } # optional: a ROS 2 robot on DDS as this node's components
 /// ```
+///
+/// `ros2:` (the keys of `jaus ros2 --config`'s file, `jaus_ros2::Ros2Config`, every one
+/// defaulted: `domain_id`, `node_name`, `namespace`, `topics`, `frames`, `odom_axes`,
+/// `qos_commands`, `qos_sensors`, `effort`, `watchdog_ms`, `command_timeout_ms`;
+/// docs/ros2.md) joins the robot's DDS domain as a ROS 2 node (pure Rust, no ROS
+/// install) and hosts the robot as RA 3.3 components of this node: Primitive Driver
+/// 33.1 (publishes `cmd_vel`), Global Pose Sensor 38.1 (`fix`), Local Pose Sensor 41.1
+/// and Velocity State Sensor 42.1 (`odom`), beside the `host:` entries (none of which
+/// may take one of those four addresses; `host: [local_waypoint_driver]` drives the
+/// robot through them) and presented to AS-4 clients by `as4:`. Watchdog events are
+/// logged; the bridge's counters are the `ros2 stats:` line at the end. Vehicle mode
+/// (`vehicle: { subsystem }`) is `jaus ros2 --vehicle`'s, not a node file's.
 ///
 /// `store:` (a file, relative to the node file's directory; created if absent) makes
 /// the `world_model` and `mission_spooler` entries of `host:` durable
@@ -161,6 +174,10 @@ pub struct NodeFile {
     /// on the node's own socket; see [`As4VehicleFile`]).
     #[serde(default)]
     pub as4_vehicles: Vec<As4VehicleFile>,
+    /// A ROS 2 robot hosted on this node (crate `jaus-ros2`, docs/ros2.md): the keys of
+    /// [`jaus_ros2::Ros2Config`] (robot mode only).
+    #[serde(default)]
+    pub ros2: Option<jaus_ros2::Ros2Config>,
 }
 
 /// `reliable:` of a node file: how hard commands are tried (`jaus::net::reliable`).
@@ -578,6 +595,7 @@ impl NodeFile {
             }
         }
         let hosted = f.hosted_at(&at)?;
+        f.check_ros2(&hosted, path, &at)?;
         f.communicator_at(&hosted, &at)?;
         f.check_quic_links(path, &at)?;
         if let Some(p) = &f.policy {

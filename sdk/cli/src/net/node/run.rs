@@ -66,6 +66,8 @@ pub fn node(
     let file = NodeFile::load(config)?;
     let t0 = Instant::now();
     let mut node = file.build_node(config, t0)?;
+    // Before the first line: the robot's DDS domain joined, its components hosted.
+    let ros2 = file.start_ros2(config, &mut node, t0)?;
     let _ = writeln!(
         out,
         "node {} on {} ({:?}), peers {:?}",
@@ -99,6 +101,21 @@ pub fn node(
             "other subsystems through the communicator {c}{}{}",
             if links.is_empty() { "" } else { ": " },
             links.join(", ")
+        );
+    }
+    if let (Some(r), Some(link)) = (&file.ros2, &ros2) {
+        let at = |id| jaus::Address::new(file.subsystem, file.node, id, jaus_ros2::ids::INSTANCE);
+        let [cmd_vel, odom, fix] = link.dds_topics();
+        let _ = writeln!(
+            out,
+            "ROS 2 robot on DDS domain {} as node {}/{}: {cmd_vel} from Primitive Driver {}, {odom} to Local Pose Sensor {} and Velocity State Sensor {}, {fix} to Global Pose Sensor {}",
+            r.domain_id,
+            r.namespace.trim_end_matches('/'),
+            r.node_name,
+            at(jaus_ros2::ids::PRIMITIVE_DRIVER),
+            at(jaus_ros2::ids::LOCAL_POSE_SENSOR),
+            at(jaus_ros2::ids::VELOCITY_STATE_SENSOR),
+            at(jaus_ros2::ids::GLOBAL_POSE_SENSOR),
         );
     }
     let as4 = file.as4_config();
@@ -223,6 +240,11 @@ pub fn node(
     let mut carrier = stream.unwrap_or(Carrier::Udp(sockets, io));
     let until = duration.map(|d| t0 + d);
     let mut show_tree = |n: &jaus::net::Node| {
+        if let Some(link) = &ros2 {
+            for e in link.events() {
+                log_ros2_event(t0, &e);
+            }
+        }
         let now = Instant::now();
         if let Some(text) = printer.poll(now, n.tree_version(), n.tree()) {
             let _ = writeln!(
@@ -354,6 +376,20 @@ pub fn node(
     if let Some(line) = &as4_line {
         let _ = writeln!(out, "{line}");
     }
+    if let Some(link) = ros2 {
+        for e in link.events() {
+            log_ros2_event(t0, &e);
+        }
+        let s = link.stats();
+        let _ = writeln!(
+            out,
+            "ros2 stats: odom {} fix {} refused {} foreign_frames {} published {} published_zero {} publish_errors {} superseded {} held {} events_dropped {}",
+            s.odom, s.fix, s.refused, s.foreign_frames, s.published, s.published_zero,
+            s.publish_errors, s.superseded, s.held, s.events_dropped,
+        );
+        // A last zero twist; the ROS 2 node leaves the graph.
+        link.stop();
+    }
     let _ = out.flush();
     if let (Some(w), Some(p)) = (writer.as_mut(), capture) {
         w.flush().map_err(|e| format!("{}: {e}", p.display()))?;
@@ -362,6 +398,36 @@ pub fn node(
         return Err(format!("{}: capture stopped: {e}", p.display()));
     }
     result
+}
+
+/// A watchdog event of `ros2:` in the log (`t`: seconds since the node started).
+fn log_ros2_event(t0: Instant, e: &jaus_ros2::WatchdogEvent) {
+    use jaus_ros2::WatchdogEvent;
+    let t = |at: &Instant| at.saturating_duration_since(t0).as_secs_f64();
+    match e {
+        WatchdogEvent::JausStop {
+            at,
+            controller,
+            reason,
+        } => match controller {
+            Some(c) => tracing::info!(
+                t = t(at),
+                controller = %c,
+                "ros2: robot stopped (zero twist on cmd_vel): {reason}"
+            ),
+            None => tracing::info!(
+                t = t(at),
+                "ros2: robot stopped (zero twist on cmd_vel): {reason}"
+            ),
+        },
+        WatchdogEvent::RosSilent { at } => tracing::warn!(
+            t = t(at),
+            "ros2: no odom within the watchdog time: robot stopped, commands held at zero"
+        ),
+        WatchdogEvent::RosResumed { at } => {
+            tracing::info!(t = t(at), "ros2: odom again: commands pass")
+        }
+    }
 }
 
 /// What carries the node's datagrams: its UDP sockets, or JTCP.
