@@ -1,15 +1,13 @@
 //! The definitions the module reads messages with ([`Catalog`]): a compiled schema
 //! for the codec and the definitions behind it, for field names and docs. The SDK's
-//! own, compiled once ([`sdk`]). Every other module of the crate builds on it; it
-//! builds on none of them.
+//! own, compiled once ([`sdk`]). The codec's bytes in and out, lookups and docs;
+//! no Python objects are made here (a message from Python values is
+//! `message::build`). The modules above build on it; it builds on `errors` alone.
 
-use crate::convert::py_to_json;
-use crate::errors::{decode_error, encode_error, fields_error, JausError, SpecError};
-use jaus::json::JsonError;
+use crate::errors::{decode_error, encode_error, JausError, SpecError};
 use jaus::CommandCode;
 use jaus_dynamic::DynMessage;
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
 use std::collections::HashMap;
 use std::sync::{Arc, OnceLock};
 
@@ -67,37 +65,6 @@ impl Catalog {
         self.schema
             .encode(m)
             .map_err(|e| encode_error(py, Some(m.name), &e))
-    }
-
-    /// The message `name` with `fields` (Python values of the JSON form).
-    pub(crate) fn build(
-        &self,
-        py: Python<'_>,
-        name: &str,
-        fields: Option<&Bound<'_, PyDict>>,
-    ) -> PyResult<DynMessage> {
-        let json = match fields {
-            Some(f) => py_to_json(f.as_any(), name)?,
-            None => serde_json::Value::Object(Default::default()),
-        };
-        self.schema.from_json(name, &json).map_err(|e| match e {
-            JsonError::Fields { message, error } => {
-                // `error` is "Message.field.path: what was wrong".
-                // A path into the body (`Message.field`), not the body itself.
-                let field = error
-                    .split(": ")
-                    .next()
-                    .filter(|p| p.len() > message.len() && p.starts_with(message.as_str()))
-                    .map(str::to_string);
-                fields_error(
-                    py,
-                    format!("{message}: {error}"),
-                    Some(&message),
-                    field.as_deref(),
-                )
-            }
-            other => fields_error(py, other.to_string(), None, None),
-        })
     }
 }
 

@@ -1,23 +1,21 @@
-//! Values between Rust and Python.
+//! Values from Rust to Python, and `jaus.Record`.
 //!
-//! Out: a decoded [`Value`] becomes the Python form of its JSON (the CLI's JSON lines,
+//! A decoded [`Value`] becomes the Python form of its JSON (the CLI's JSON lines,
 //! field for field, in wire order): numbers, strings, lists, and dicts for records,
 //! bit fields, unions with a value and unknown enumeration values. For attribute
-//! access those objects are [`Record`]s instead of dicts.
+//! access those objects are [`Record`]s instead of dicts. JSON itself (the AS-4
+//! client's, the system tree, a packet's header) becomes dicts and lists
+//! ([`json_to_py`]).
 //!
-//! In: Python values become that JSON (`serde_json::Value`), which `jaus-dynamic`
-//! checks against the message's layout: one reading of the JSON form for the CLI and
-//! for Python.
+//! The other way, Python values into the JSON form of a message's fields, is
+//! `message::py_to_json`: a field may be given a `jaus.Packet`, whose module is
+//! above this one. This module builds on no other of the crate but `errors`.
 
-use crate::message::Record;
-use crate::packet::Packet;
 use jaus_dynamic::Value;
-use pyo3::exceptions::PyTypeError;
+use pyo3::exceptions::{PyAttributeError, PyKeyError, PyTypeError};
 use pyo3::prelude::*;
-use pyo3::types::{
-    PyBool, PyByteArray, PyBytes, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple,
-};
-use serde_json::{Map, Number, Value as Json};
+use pyo3::types::{PyBool, PyDict, PyFloat, PyIterator, PyList, PyString};
+use serde_json::Value as Json;
 
 /// Records (and the other JSON objects) as dicts, or as [`Record`]s.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -159,76 +157,98 @@ pub(crate) fn json_to_py<'py>(py: Python<'py>, j: &Json) -> PyResult<Bound<'py, 
     })
 }
 
-/// A Python value as the JSON form of a field. Accepted: None, bool, int, float
-/// (non-finite as the JSON form's `"NaN"`, `"inf"`, `"-inf"`), str, bytes (as hex),
-/// lists and tuples, dicts with str keys, `jaus.Record` and `jaus.Packet`.
-pub(crate) fn py_to_json(obj: &Bound<'_, PyAny>, path: &str) -> PyResult<Json> {
-    if obj.is_none() {
-        return Ok(Json::Null);
+/// A record inside a message (or a bit field, a union with a value, an unknown
+/// enumeration value): its entries as attributes and items, `to_dict()` for the
+/// JSON form.
+#[pyclass(module = "jaus", frozen)]
+#[derive(Debug)]
+pub struct Record {
+    pub(crate) value: Value,
+}
+
+impl Record {
+    pub(crate) fn new(value: Value) -> Record {
+        Record { value }
     }
-    if let Ok(b) = obj.cast::<PyBool>() {
-        return Ok(Json::Bool(b.is_true()));
+
+    fn keys_of(&self) -> Vec<&str> {
+        entries(&self.value)
+            .unwrap_or_default()
+            .into_iter()
+            .map(|(k, _)| k)
+            .collect()
     }
-    if obj.is_instance_of::<PyInt>() {
-        if let Ok(u) = obj.extract::<u64>() {
-            return Ok(Json::Number(u.into()));
+
+    fn get_entry<'py>(&self, py: Python<'py>, key: &str) -> PyResult<Option<Bound<'py, PyAny>>> {
+        entry(py, &self.value, key, Form::Objects)
+    }
+
+    fn missing(&self, key: &str) -> String {
+        format!("no entry `{key}`; present: {}", self.keys_of().join(", "))
+    }
+}
+
+#[pymethods]
+impl Record {
+    fn __getattr__<'py>(&self, py: Python<'py>, name: &str) -> PyResult<Bound<'py, PyAny>> {
+        self.get_entry(py, name)?
+            .ok_or_else(|| PyAttributeError::new_err(self.missing(name)))
+    }
+
+    fn __getitem__<'py>(&self, py: Python<'py>, key: &str) -> PyResult<Bound<'py, PyAny>> {
+        self.get_entry(py, key)?
+            .ok_or_else(|| PyKeyError::new_err(self.missing(key)))
+    }
+
+    fn __contains__(&self, key: &str) -> bool {
+        self.keys_of().contains(&key)
+    }
+
+    fn __len__(&self) -> usize {
+        self.keys_of().len()
+    }
+
+    fn __iter__<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyIterator>> {
+        PyList::new(py, self.keys_of())?.try_iter()
+    }
+
+    /// The entry names, in JSON order.
+    fn keys(&self) -> Vec<String> {
+        self.keys_of().into_iter().map(str::to_string).collect()
+    }
+
+    fn __dir__(&self) -> Vec<String> {
+        let mut out = self.keys();
+        out.extend(["keys", "to_dict", "to_json"].iter().map(|s| s.to_string()));
+        out
+    }
+
+    /// The JSON form as a dict.
+    fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        object_to_dict(py, &self.value)
+    }
+
+    /// The JSON form as text.
+    fn to_json(&self) -> PyResult<String> {
+        serde_json::to_string(&self.value)
+            .map_err(|e| crate::errors::EncodeError::new_err(e.to_string()))
+    }
+
+    /// Equal to a Record of the same value, or to a dict of its JSON form.
+    fn __eq__(&self, py: Python<'_>, other: &Bound<'_, PyAny>) -> PyResult<bool> {
+        if let Ok(o) = other.cast::<Record>() {
+            return Ok(o.get().value == self.value);
         }
-        if let Ok(i) = obj.extract::<i64>() {
-            return Ok(Json::Number(i.into()));
+        if other.is_instance_of::<PyDict>() {
+            return self.to_dict(py)?.as_any().eq(other);
         }
-        return Err(PyTypeError::new_err(format!(
-            "{path}: {} does not fit a 64-bit integer",
-            obj.str()?
-        )));
+        Ok(false)
     }
-    if let Ok(f) = obj.cast::<PyFloat>() {
-        let v = f.value();
-        return Ok(match Number::from_f64(v) {
-            Some(n) => Json::Number(n),
-            None => Json::String(jaus::codec::serde_float::Float::text(v)),
-        });
+
+    fn __repr__(&self) -> String {
+        format!(
+            "jaus.Record({})",
+            serde_json::to_string(&self.value).unwrap_or_default()
+        )
     }
-    if let Ok(s) = obj.cast::<PyString>() {
-        return Ok(Json::String(s.extract::<String>()?));
-    }
-    if let Ok(b) = obj.cast::<PyBytes>() {
-        return Ok(Json::String(jaus::hex::encode(b.as_bytes())));
-    }
-    if let Ok(b) = obj.cast::<PyByteArray>() {
-        return Ok(Json::String(jaus::hex::encode(&b.to_vec())));
-    }
-    if let Ok(r) = obj.cast::<Record>() {
-        return serde_json::to_value(&r.get().value)
-            .map_err(|e| PyTypeError::new_err(e.to_string()));
-    }
-    if let Ok(p) = obj.cast::<Packet>() {
-        return serde_json::to_value(p.get().packet())
-            .map_err(|e| PyTypeError::new_err(e.to_string()));
-    }
-    if let Ok(d) = obj.cast::<PyDict>() {
-        let mut out = Map::new();
-        for (k, v) in d.iter() {
-            let key = k.cast::<PyString>().map_err(|_| {
-                PyTypeError::new_err(format!(
-                    "{path}: a key is not a str: {}",
-                    k.repr().map(|r| r.to_string()).unwrap_or_default()
-                ))
-            })?;
-            let key = key.extract::<String>()?;
-            let value = py_to_json(&v, &format!("{path}.{key}"))?;
-            out.insert(key, value);
-        }
-        return Ok(Json::Object(out));
-    }
-    if obj.is_instance_of::<PyList>() || obj.is_instance_of::<PyTuple>() {
-        let mut out = Vec::new();
-        for (i, x) in obj.try_iter()?.enumerate() {
-            out.push(py_to_json(&x?, &format!("{path}[{i}]"))?);
-        }
-        return Ok(Json::Array(out));
-    }
-    Err(PyTypeError::new_err(format!(
-        "{path}: a value of type {} is not a field value (give numbers, str, bytes, lists, dicts or jaus.Record)",
-        obj.get_type().name()?
-    )))
 }

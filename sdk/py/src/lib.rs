@@ -21,15 +21,14 @@ mod client;
 mod convert;
 mod errors;
 mod message;
-mod packet;
 mod pcap;
 mod schema;
 pub mod stubs;
 
 pub use client::{Client, Control, Watch};
+pub use convert::Record;
 pub use errors::{ClientError, ControlRefused, DecodeError, EncodeError, JausError, SpecError};
-pub use message::{Message, Record};
-pub use packet::Packet;
+pub use message::{Message, Packet};
 pub use schema::Schema;
 
 use pyo3::prelude::*;
@@ -90,7 +89,7 @@ fn make_message(
     fields: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<Message> {
     let cat = catalog::sdk()?;
-    let m = cat.build(py, name, fields)?;
+    let m = message::build(py, &cat, name, fields)?;
     Ok(Message::new(cat, m))
 }
 

@@ -1,12 +1,26 @@
 //! `jaus.Message` (a decoded or built message: name, code, fields as attributes) and
-//! `jaus.Record` (a nested record, bit field or union of one, read the same way).
+//! `jaus.Packet` (a whole JAUS packet, its RA 3.3 header fields as attributes, its
+//! body and the message it holds), and a message built from Python values
+//! ([`build`]).
+//!
+//! The two types share a module because they hold each other: a packet holds its
+//! message, and a message's fields may be given a packet (`Message.from_dict`,
+//! [`py_to_json`]). Below this module: `catalog`, `convert`, `errors`.
 
 use crate::catalog::{sdk, Catalog};
-use crate::convert::{entries, entry, object_to_dict, value_to_py, Form};
+use crate::convert::{json_to_py, object_to_dict, value_to_py, Form, Record};
+use crate::errors::fields_error;
+use jaus::json::JsonError;
+use jaus::{Address, Header};
 use jaus_dynamic::{DynMessage, Value};
-use pyo3::exceptions::{PyAttributeError, PyKeyError};
+use pyo3::exceptions::{PyAttributeError, PyKeyError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::{PyBytes, PyDict, PyIterator, PyList};
+use pyo3::types::{
+    PyBool, PyByteArray, PyBytes, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple,
+};
+use serde::ser::{SerializeMap, Serializer};
+use serde::Serialize;
+use serde_json::{Map, Number, Value as Json};
 use std::sync::Arc;
 
 /// A JAUS message: `.name`, `.code`, and its fields as attributes (`m.speed`), in
@@ -142,7 +156,7 @@ impl Message {
         fields: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<Message> {
         let cat = sdk()?;
-        let msg = cat.build(py, name, fields)?;
+        let msg = build(py, &cat, name, fields)?;
         Ok(Message::new(cat, msg))
     }
 
@@ -165,98 +179,370 @@ impl Message {
     }
 }
 
-/// A record inside a message (or a bit field, a union with a value, an unknown
-/// enumeration value): its entries as attributes and items, `to_dict()` for the
-/// JSON form.
+/// A JAUS packet: the 16-byte header's fields as attributes (`priority`, `ack_nak`,
+/// `source`, ...), the `body` bytes and the `message` they hold (None for a command
+/// code the schema does not define, or a part of a multi-packet message).
 #[pyclass(module = "jaus", frozen)]
 #[derive(Debug)]
-pub struct Record {
-    pub(crate) value: Value,
+pub struct Packet {
+    packet: jaus::Packet,
+    message: Option<Py<Message>>,
 }
 
-impl Record {
-    pub(crate) fn new(value: Value) -> Record {
-        Record { value }
+impl Packet {
+    /// The packet of `header` and `body`, its body decoded when it is a whole message
+    /// of the schema.
+    pub(crate) fn decode(
+        py: Python<'_>,
+        cat: &Arc<Catalog>,
+        header: Header,
+        body: Vec<u8>,
+    ) -> PyResult<Packet> {
+        let whole = header.data_flag == jaus::wire::DataFlag::Single;
+        let message = match cat.schema.by_code(header.command_code) {
+            Some(_) if whole => {
+                let m = cat.decode(py, header.command_code.0, &body)?;
+                Some(Py::new(py, Message::new(cat.clone(), m))?)
+            }
+            _ => None,
+        };
+        Ok(Packet {
+            packet: jaus::Packet { header, body },
+            message,
+        })
     }
 
-    fn keys_of(&self) -> Vec<&str> {
-        entries(&self.value)
-            .unwrap_or_default()
-            .into_iter()
-            .map(|(k, _)| k)
-            .collect()
+    /// The packet.
+    pub(crate) fn packet(&self) -> &jaus::Packet {
+        &self.packet
     }
 
-    fn get_entry<'py>(&self, py: Python<'py>, key: &str) -> PyResult<Option<Bound<'py, PyAny>>> {
-        entry(py, &self.value, key, Form::Objects)
+    fn header(&self) -> &Header {
+        &self.packet.header
     }
+}
 
-    fn missing(&self, key: &str) -> String {
-        format!("no entry `{key}`; present: {}", self.keys_of().join(", "))
+fn address_tuple(a: Address) -> (u8, u8, u8, u8) {
+    (a.subsystem, a.node, a.component, a.instance)
+}
+
+/// The JSON text of a serde value (the header's enumerations).
+fn json_text<T: Serialize>(v: &T) -> String {
+    match serde_json::to_value(v) {
+        Ok(serde_json::Value::String(s)) => s,
+        Ok(other) => other.to_string(),
+        Err(e) => e.to_string(),
     }
 }
 
 #[pymethods]
-impl Record {
-    fn __getattr__<'py>(&self, py: Python<'py>, name: &str) -> PyResult<Bound<'py, PyAny>> {
-        self.get_entry(py, name)?
-            .ok_or_else(|| PyAttributeError::new_err(self.missing(name)))
+impl Packet {
+    /// Priority 0-15.
+    #[getter]
+    fn priority(&self) -> u8 {
+        self.header().priority
+    }
+    /// `"none"`, `"request"`, `"nak"` or `"ack"`.
+    #[getter]
+    fn ack_nak(&self) -> String {
+        json_text(&self.header().ack_nak)
+    }
+    /// The service-connection flag.
+    #[getter]
+    fn service_connection(&self) -> bool {
+        self.header().service_connection
+    }
+    /// The experimental flag.
+    #[getter]
+    fn experimental(&self) -> bool {
+        self.header().experimental
+    }
+    /// The header version (2 for RA 3.2/3.3).
+    #[getter]
+    fn version(&self) -> u8 {
+        self.header().version
+    }
+    /// The two reserved bits of the properties word.
+    #[getter]
+    fn reserved(&self) -> u8 {
+        self.header().reserved
+    }
+    /// The command code.
+    #[getter]
+    fn command_code(&self) -> u16 {
+        self.header().command_code.0
+    }
+    /// `(subsystem, node, component, instance)`.
+    #[getter]
+    fn destination(&self) -> (u8, u8, u8, u8) {
+        address_tuple(self.header().destination)
+    }
+    /// `(subsystem, node, component, instance)`.
+    #[getter]
+    fn source(&self) -> (u8, u8, u8, u8) {
+        address_tuple(self.header().source)
+    }
+    /// The body size the header gives.
+    #[getter]
+    fn data_size(&self) -> u16 {
+        self.header().data_size
+    }
+    /// `"single"`, `"first"`, `"normal"`, `"retransmit"` or `"last"`.
+    #[getter]
+    fn data_flag(&self) -> String {
+        json_text(&self.header().data_flag)
+    }
+    /// The sequence number.
+    #[getter]
+    fn sequence_number(&self) -> u16 {
+        self.header().sequence_number
+    }
+    /// The body bytes.
+    #[getter]
+    fn body<'py>(&self, py: Python<'py>) -> Bound<'py, PyBytes> {
+        PyBytes::new(py, &self.packet.body)
+    }
+    /// The message the body holds, or None.
+    #[getter]
+    fn message(&self, py: Python<'_>) -> Option<Py<Message>> {
+        self.message.as_ref().map(|m| m.clone_ref(py))
+    }
+    /// The message's name, `"Raw"` when the schema does not define the code.
+    #[getter]
+    fn name(&self) -> &'static str {
+        self.message.as_ref().map_or("Raw", |m| m.get().msg.name)
     }
 
-    fn __getitem__<'py>(&self, py: Python<'py>, key: &str) -> PyResult<Bound<'py, PyAny>> {
-        self.get_entry(py, key)?
-            .ok_or_else(|| PyKeyError::new_err(self.missing(key)))
+    /// The header as a dict (the `"header"` of `jaus decode`'s line).
+    fn header_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let json =
+            serde_json::to_value(self.header()).map_err(|e| PyTypeError::new_err(e.to_string()))?;
+        let d = PyDict::new(py);
+        // In the header's field order.
+        for k in [
+            "priority",
+            "ack_nak",
+            "service_connection",
+            "experimental",
+            "version",
+            "reserved",
+            "command_code",
+            "destination",
+            "source",
+            "data_size",
+            "data_flag",
+            "sequence_number",
+        ] {
+            if let Some(v) = json.get(k) {
+                d.set_item(k, json_to_py(py, v)?)?;
+            }
+        }
+        Ok(d)
     }
 
-    fn __contains__(&self, key: &str) -> bool {
-        self.keys_of().contains(&key)
-    }
-
-    fn __len__(&self) -> usize {
-        self.keys_of().len()
-    }
-
-    fn __iter__<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyIterator>> {
-        PyList::new(py, self.keys_of())?.try_iter()
-    }
-
-    /// The entry names, in JSON order.
-    fn keys(&self) -> Vec<String> {
-        self.keys_of().into_iter().map(str::to_string).collect()
-    }
-
-    fn __dir__(&self) -> Vec<String> {
-        let mut out = self.keys();
-        out.extend(["keys", "to_dict", "to_json"].iter().map(|s| s.to_string()));
-        out
-    }
-
-    /// The JSON form as a dict.
+    /// The line `jaus decode` prints, as a dict: `{"header", "message", "fields"}`.
     fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        object_to_dict(py, &self.value)
+        let d = PyDict::new(py);
+        d.set_item("header", self.header_dict(py)?)?;
+        match &self.message {
+            Some(m) => {
+                let m = m.get();
+                d.set_item("message", PyString::new(py, m.msg.name))?;
+                d.set_item("fields", object_to_dict(py, &m.msg.fields)?)?;
+            }
+            None => {
+                let raw = jaus::RawMessage {
+                    code: self.header().command_code,
+                    body: self.packet.body.clone(),
+                };
+                let json =
+                    serde_json::to_value(&raw).map_err(|e| PyTypeError::new_err(e.to_string()))?;
+                d.set_item("message", "Raw")?;
+                d.set_item("fields", json_to_py(py, &json)?)?;
+            }
+        }
+        Ok(d)
     }
 
-    /// The JSON form as text.
+    /// The line `jaus decode` prints, text for text.
     fn to_json(&self) -> PyResult<String> {
-        serde_json::to_string(&self.value)
-            .map_err(|e| crate::errors::EncodeError::new_err(e.to_string()))
+        serde_json::to_string(&Line(self)).map_err(|e| PyTypeError::new_err(e.to_string()))
     }
 
-    /// Equal to a Record of the same value, or to a dict of its JSON form.
-    fn __eq__(&self, py: Python<'_>, other: &Bound<'_, PyAny>) -> PyResult<bool> {
-        if let Ok(o) = other.cast::<Record>() {
-            return Ok(o.get().value == self.value);
-        }
-        if other.is_instance_of::<PyDict>() {
-            return self.to_dict(py)?.as_any().eq(other);
-        }
-        Ok(false)
+    /// The packet's bytes (the header's data size recomputed from the body).
+    fn encode<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyBytes>> {
+        let p = jaus::Packet::new(self.packet.header, self.packet.body.clone());
+        let bytes = jaus::codec::Encode::to_bytes(&p)
+            .map_err(|e| crate::errors::encode_error(py, Some(self.name()), &e))?;
+        Ok(PyBytes::new(py, &bytes))
     }
 
     fn __repr__(&self) -> String {
+        let a = |a: Address| format!("{a}");
         format!(
-            "jaus.Record({})",
-            serde_json::to_string(&self.value).unwrap_or_default()
+            "<jaus.Packet {} ({}) {} -> {}, {} byte(s)>",
+            self.name(),
+            self.header().command_code,
+            a(self.header().source),
+            a(self.header().destination),
+            self.packet.body.len()
         )
+    }
+}
+
+/// `{"header": ..., "message": ..., "fields": ...}`, as `jaus decode` prints it.
+struct Line<'a>(&'a Packet);
+
+impl Serialize for Line<'_> {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let p = self.0;
+        let mut map = s.serialize_map(Some(3))?;
+        map.serialize_entry("header", p.header())?;
+        match &p.message {
+            Some(m) => {
+                let m = m.get();
+                map.serialize_entry("message", m.msg.name)?;
+                map.serialize_entry("fields", &m.msg.fields)?;
+            }
+            None => {
+                map.serialize_entry("message", "Raw")?;
+                map.serialize_entry(
+                    "fields",
+                    &jaus::RawMessage {
+                        code: p.header().command_code,
+                        body: p.packet.body.clone(),
+                    },
+                )?;
+            }
+        }
+        map.end()
+    }
+}
+
+// Built from Python values.
+
+/// The message `name` of `cat` with `fields` (Python values of the JSON form).
+pub(crate) fn build(
+    py: Python<'_>,
+    cat: &Catalog,
+    name: &str,
+    fields: Option<&Bound<'_, PyDict>>,
+) -> PyResult<DynMessage> {
+    let json = match fields {
+        Some(f) => py_to_json(f.as_any(), name)?,
+        None => serde_json::Value::Object(Default::default()),
+    };
+    cat.schema.from_json(name, &json).map_err(|e| match e {
+        JsonError::Fields { message, error } => {
+            // `error` is "Message.field.path: what was wrong".
+            // A path into the body (`Message.field`), not the body itself.
+            let field = error
+                .split(": ")
+                .next()
+                .filter(|p| p.len() > message.len() && p.starts_with(message.as_str()))
+                .map(str::to_string);
+            fields_error(
+                py,
+                format!("{message}: {error}"),
+                Some(&message),
+                field.as_deref(),
+            )
+        }
+        other => fields_error(py, other.to_string(), None, None),
+    })
+}
+
+/// A Python value as the JSON form of a field. Accepted: None, bool, int, float
+/// (non-finite as the JSON form's `"NaN"`, `"inf"`, `"-inf"`), str, bytes (as hex),
+/// lists and tuples, dicts with str keys, `jaus.Record` and `jaus.Packet`.
+pub(crate) fn py_to_json(obj: &Bound<'_, PyAny>, path: &str) -> PyResult<Json> {
+    if obj.is_none() {
+        return Ok(Json::Null);
+    }
+    if let Ok(b) = obj.cast::<PyBool>() {
+        return Ok(Json::Bool(b.is_true()));
+    }
+    if obj.is_instance_of::<PyInt>() {
+        if let Ok(u) = obj.extract::<u64>() {
+            return Ok(Json::Number(u.into()));
+        }
+        if let Ok(i) = obj.extract::<i64>() {
+            return Ok(Json::Number(i.into()));
+        }
+        return Err(PyTypeError::new_err(format!(
+            "{path}: {} does not fit a 64-bit integer",
+            obj.str()?
+        )));
+    }
+    if let Ok(f) = obj.cast::<PyFloat>() {
+        let v = f.value();
+        return Ok(match Number::from_f64(v) {
+            Some(n) => Json::Number(n),
+            None => Json::String(jaus::codec::serde_float::Float::text(v)),
+        });
+    }
+    if let Ok(s) = obj.cast::<PyString>() {
+        return Ok(Json::String(s.extract::<String>()?));
+    }
+    if let Ok(b) = obj.cast::<PyBytes>() {
+        return Ok(Json::String(jaus::hex::encode(b.as_bytes())));
+    }
+    if let Ok(b) = obj.cast::<PyByteArray>() {
+        return Ok(Json::String(jaus::hex::encode(&b.to_vec())));
+    }
+    if let Ok(r) = obj.cast::<Record>() {
+        return serde_json::to_value(&r.get().value)
+            .map_err(|e| PyTypeError::new_err(e.to_string()));
+    }
+    if let Ok(p) = obj.cast::<Packet>() {
+        return serde_json::to_value(p.get().packet())
+            .map_err(|e| PyTypeError::new_err(e.to_string()));
+    }
+    if let Ok(d) = obj.cast::<PyDict>() {
+        let mut out = Map::new();
+        for (k, v) in d.iter() {
+            let key = k.cast::<PyString>().map_err(|_| {
+                PyTypeError::new_err(format!(
+                    "{path}: a key is not a str: {}",
+                    k.repr().map(|r| r.to_string()).unwrap_or_default()
+                ))
+            })?;
+            let key = key.extract::<String>()?;
+            let value = py_to_json(&v, &format!("{path}.{key}"))?;
+            out.insert(key, value);
+        }
+        return Ok(Json::Object(out));
+    }
+    if obj.is_instance_of::<PyList>() || obj.is_instance_of::<PyTuple>() {
+        let mut out = Vec::new();
+        for (i, x) in obj.try_iter()?.enumerate() {
+            out.push(py_to_json(&x?, &format!("{path}[{i}]"))?);
+        }
+        return Ok(Json::Array(out));
+    }
+    Err(PyTypeError::new_err(format!(
+        "{path}: a value of type {} is not a field value (give numbers, str, bytes, lists, dicts or jaus.Record)",
+        obj.get_type().name()?
+    )))
+}
+
+/// An address given from Python: `(subsystem, node, component, instance)` or
+/// `"s.n.c.i"`.
+pub(crate) fn address(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Address> {
+    if let Ok(s) = obj.extract::<String>() {
+        return s
+            .parse::<Address>()
+            .map_err(|e| PyValueError::new_err(format!("{what}: {}", e.0)));
+    }
+    match obj.extract::<(u8, u8, u8, u8)>() {
+        Ok((subsystem, node, component, instance)) => Ok(Address {
+            subsystem,
+            node,
+            component,
+            instance,
+        }),
+        Err(_) => Err(PyTypeError::new_err(format!(
+            "{what}: an address is (subsystem, node, component, instance), each 0-255, or \"s.n.c.i\""
+        ))),
     }
 }

@@ -5,7 +5,7 @@
 
 use crate::catalog::Catalog;
 use crate::errors::decode_error_text;
-use crate::packet::Packet;
+use crate::message::Packet;
 use jaus_cli::capture;
 use jaus_cli::traffic::{as4_json, CaptureDecoder, Captured};
 use pyo3::exceptions::PyOSError;

@@ -4,8 +4,7 @@
 
 use crate::catalog::{sdk, Catalog};
 use crate::errors::{decode_error, encode_error, fields_error, JausError, SpecError};
-use crate::message::Message;
-use crate::packet::{address, Packet};
+use crate::message::{address, build, Message, Packet};
 use jaus::{CommandCode, Header};
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict};
@@ -127,7 +126,7 @@ impl Schema {
         name: &str,
         fields: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<Message> {
-        let msg = self.cat.build(py, name, fields)?;
+        let msg = build(py, &self.cat, name, fields)?;
         Ok(Message::new(self.cat.clone(), msg))
     }
 
