@@ -17,7 +17,7 @@ use jaus::stock::commander::{
     Command, GeoPoint, MissionAction, Station, StationConfig, StationError, SystemView, TreeInput,
 };
 use jaus::stock::nalgebra::Vector2;
-use jaus::Address;
+use jaus::{Address, JausMessage};
 
 const ME: Address = Address::new(200, 1, 40, 1);
 const GWD: Address = Address::new(1, 1, 45, 1);
@@ -419,4 +419,61 @@ fn a_station_follows_commands_and_recovers_the_vehicle() {
     );
     let (x, y) = vehicle_xy(&v);
     assert!(x.hypot(y) < 1.0, "home at ({x:.2}, {y:.2})");
+}
+
+#[test]
+fn a_driver_that_stays_in_standby_after_resume_is_reported() {
+    let t0 = std::time::Instant::now();
+    let mut bus = LocalBus::new(t0);
+    let (parts, _) = jaus_sim::demo::vehicle_at(t0, &jaus_sim::demo::Options::default(), 1, 1);
+    let mut tree = TreeInput::default();
+    for p in parts {
+        let a = bus.add_boxed(p);
+        tree.components.insert(a, None);
+    }
+    bus.add(system_commander::component(
+        ME,
+        Station::new(StationConfig::default()),
+        Config::default(),
+        t0,
+    ));
+    station(&mut bus).set_tree(tree);
+    bus.run_for(Duration::from_secs(2));
+    station(&mut bus)
+        .submit(Command::TakeControl {
+            target: GWD,
+            authority: 10,
+        })
+        .unwrap();
+    bus.run_for(Duration::from_secs(2));
+    // The Resume is lost on its way: the driver stays in Standby, and the station says so.
+    bus.set_filter(|h| !(h.command_code == Resume::CODE && h.destination == GWD));
+    station(&mut bus)
+        .submit(Command::Resume { target: GWD })
+        .unwrap();
+    bus.run_for(Duration::from_secs(4));
+    let v = view(&mut bus);
+    assert_eq!(state(&v, GWD).as_deref(), Some("Standby"));
+    let stayed: Vec<String> = errors(&v)
+        .into_iter()
+        .filter(|e| e.contains("still in Standby") && e.contains("1.1.45.1"))
+        .collect();
+    assert_eq!(stayed.len(), 1, "{:?}", errors(&v));
+    assert!(
+        stayed[0].contains("its controller: 200.1.40.1"),
+        "{stayed:?}"
+    );
+    // Delivered, it is obeyed and nothing more is said.
+    bus.clear_filter();
+    station(&mut bus)
+        .submit(Command::Resume { target: GWD })
+        .unwrap();
+    bus.run_for(Duration::from_secs(4));
+    let v = view(&mut bus);
+    assert_eq!(state(&v, GWD).as_deref(), Some("Ready"));
+    let stayed = errors(&v)
+        .into_iter()
+        .filter(|e| e.contains("still in Standby"))
+        .count();
+    assert_eq!(stayed, 1, "{:?}", errors(&v));
 }

@@ -77,7 +77,10 @@ impl Station {
                     ),
                 );
             }
-            Command::Resume { target } => ctx.send_core(target, Resume {}),
+            Command::Resume { target } => {
+                ctx.send_core(target, Resume {});
+                self.resume_sent(ctx.now(), target);
+            }
             Command::Standby { target } => ctx.send_core(target, Standby {}),
             Command::Waypoints {
                 driver,
@@ -85,6 +88,7 @@ impl Station {
                 speed,
             } => {
                 ctx.send_core(driver, Resume {});
+                self.resume_sent(ctx.now(), driver);
                 for (i, p) in points.iter().enumerate() {
                     send(
                         ctx,
@@ -106,6 +110,7 @@ impl Station {
                 speed,
             } => {
                 ctx.send_core(driver, Resume {});
+                self.resume_sent(ctx.now(), driver);
                 let start = self
                     .vehicles
                     .get(&driver.subsystem)

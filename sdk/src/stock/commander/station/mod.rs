@@ -112,6 +112,9 @@ struct Known {
     name: Option<String>,
     state: Option<(CoreState, Instant)>,
     controller: Option<(Address, u8)>,
+    /// When the station last sent it Resume, until it reports Ready (or is reported
+    /// still in Standby after `track::RESUME_GRACE`).
+    resumed: Option<Instant>,
 }
 
 #[derive(Debug, Clone, Default)]

@@ -1,7 +1,7 @@
 //! The reports the station follows: component status and control, poses, velocities,
 //! world-model objects, mission status.
 
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 use nalgebra::Vector2;
 
@@ -12,7 +12,57 @@ use crate::stock::commander::view::{ObjectView, PoseView, VelocityView};
 use crate::stock::geo::LocalFrame;
 use crate::Address;
 
+/// How long after the station's Resume a component may still report Standby before the
+/// station says it did not obey (a driver whose controller is someone else refuses it;
+/// one that cannot take its output stays; OpenJAUS 3.3's drivers pass through Standby
+/// for a few milliseconds on their way to Ready).
+const RESUME_GRACE: Duration = Duration::from_millis(1500);
+
 impl Station {
+    /// The station sent `target` Resume at `now`: its next status reports say whether
+    /// it obeyed (asked for at once).
+    pub(super) fn resume_sent(&mut self, now: Instant, target: Address) {
+        if let Some(k) = self.known.get_mut(&target) {
+            k.resumed = Some(now);
+        }
+        self.next_status = None;
+    }
+
+    /// A status report from `source` that has been sent Resume: Ready ends the watch;
+    /// still Standby after [`RESUME_GRACE`] is reported (an error notice naming the
+    /// controller the station knows), once.
+    fn check_resumed(&mut self, now: Instant, source: Address, state: Option<CoreState>) {
+        let Some(k) = self.known.get_mut(&source) else {
+            return;
+        };
+        let Some(sent) = k.resumed else {
+            return;
+        };
+        match state {
+            Some(CoreState::Standby) => {
+                let waited = now.saturating_duration_since(sent);
+                if waited < RESUME_GRACE {
+                    return;
+                }
+                k.resumed = None;
+                let controller = match k.controller {
+                    Some((c, authority)) => format!("its controller: {c}, authority {authority}"),
+                    None => "no controller known".to_string(),
+                };
+                self.notice(
+                    true,
+                    format!(
+                        "{source}: still in Standby {:.1} s after Resume: it did not obey ({controller})",
+                        waited.as_secs_f64()
+                    ),
+                );
+            }
+            // Ready: obeyed. Emergency, Failure, Shutdown: reported as such elsewhere.
+            Some(_) => k.resumed = None,
+            None => {}
+        }
+    }
+
     /// Takes a message addressed to the station; returns whether it was one the
     /// station follows.
     pub fn on_message(&mut self, now: Instant, source: Address, msg: &Message) -> bool {
@@ -28,6 +78,7 @@ impl Station {
                     k.state = Some((s, now));
                 }
                 self.keeper.on_status(source, r);
+                self.check_resumed(now, source, state);
                 let emergency = self
                     .known
                     .iter()
