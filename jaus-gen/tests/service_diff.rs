@@ -17,6 +17,8 @@
 //!
 //! rewrites them.
 
+mod common;
+
 use jaus_gen::diff::{diff, ChangeKind, Diff, Severity};
 use jaus_gen::snapshot::Snapshot;
 use jaus_gen::{lock, revision, Builder, Error, LockState};
@@ -28,22 +30,13 @@ fn dir() -> PathBuf {
 }
 
 fn golden(name: &str, text: &str) {
-    let path = dir().join(name);
-    if std::env::var_os("UPDATE_GOLDEN").is_some() {
-        std::fs::write(&path, text).unwrap();
-        return;
-    }
-    let expected = std::fs::read_to_string(&path).unwrap_or_default();
-    if expected != text {
-        let d = similar::TextDiff::from_lines(expected.as_str(), text)
-            .unified_diff()
-            .header(&format!("tests/fixtures/services/{name}"), "produced")
-            .to_string();
-        panic!(
-            "output differs from tests/fixtures/services/{name}; review, then run \
-             `UPDATE_GOLDEN=1 cargo test -p jaus-gen --test service_diff`:\n{d}"
-        );
-    }
+    common::golden_in(
+        &dir(),
+        "tests/fixtures/services",
+        "--test service_diff",
+        name,
+        text,
+    );
 }
 
 fn rev(name: &str) -> Snapshot {

@@ -91,8 +91,9 @@ fn errors(v: &SystemView) -> Vec<String> {
         .collect()
 }
 
-#[test]
-fn a_station_follows_commands_and_recovers_the_vehicle() {
+/// The demo's simulated vehicle (subsystem 1) and a station (`ME`) that knows its
+/// components, with a probe at `INTRUDER`, on a bus with a virtual clock.
+fn rig() -> LocalBus {
     let t0 = std::time::Instant::now();
     let mut bus = LocalBus::new(t0);
     let (parts, _) = jaus_sim::demo::vehicle_at(t0, &jaus_sim::demo::Options::default(), 1, 1);
@@ -109,6 +110,12 @@ fn a_station_follows_commands_and_recovers_the_vehicle() {
     ));
     bus.add(Probe::new(INTRUDER));
     station(&mut bus).set_tree(tree);
+    bus
+}
+
+#[test]
+fn a_station_follows_commands_and_recovers_the_vehicle() {
+    let mut bus = rig();
 
     // It follows the pose (service connection) and every component's state.
     bus.run_for(Duration::from_secs(2));
@@ -423,21 +430,7 @@ fn a_station_follows_commands_and_recovers_the_vehicle() {
 
 #[test]
 fn a_driver_that_stays_in_standby_after_resume_is_reported() {
-    let t0 = std::time::Instant::now();
-    let mut bus = LocalBus::new(t0);
-    let (parts, _) = jaus_sim::demo::vehicle_at(t0, &jaus_sim::demo::Options::default(), 1, 1);
-    let mut tree = TreeInput::default();
-    for p in parts {
-        let a = bus.add_boxed(p);
-        tree.components.insert(a, None);
-    }
-    bus.add(system_commander::component(
-        ME,
-        Station::new(StationConfig::default()),
-        Config::default(),
-        t0,
-    ));
-    station(&mut bus).set_tree(tree);
+    let mut bus = rig();
     bus.run_for(Duration::from_secs(2));
     station(&mut bus)
         .submit(Command::TakeControl {

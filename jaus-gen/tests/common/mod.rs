@@ -1,5 +1,9 @@
 //! Shared by the tests of spec revisions (`diff.rs`, `revisions.rs`): the fixture
-//! directory and its golden files.
+//! directory and its golden files; `service_diff.rs` uses the golden-file comparison
+//! with fixtures of its own.
+
+// Each test binary uses part of it.
+#![allow(dead_code)]
 
 use std::path::{Path, PathBuf};
 
@@ -11,7 +15,20 @@ pub fn dir() -> PathBuf {
 /// Compares `text` with the golden file `name` under [`dir`] (rewritten under
 /// `UPDATE_GOLDEN`).
 pub fn golden(name: &str, text: &str) {
-    let path = dir().join(name);
+    golden_in(
+        &dir(),
+        "tests/diff",
+        "--test diff --test revisions",
+        name,
+        text,
+    );
+}
+
+/// Compares `text` with the golden file `name` under `dir` (shown as `shown` in the
+/// failure, which says to rerun with `UPDATE_GOLDEN=1 cargo test -p jaus-gen {tests}`);
+/// rewritten under `UPDATE_GOLDEN`.
+pub fn golden_in(dir: &Path, shown: &str, tests: &str, name: &str, text: &str) {
+    let path = dir.join(name);
     if std::env::var_os("UPDATE_GOLDEN").is_some() {
         if let Some(parent) = path.parent() {
             std::fs::create_dir_all(parent).unwrap();
@@ -23,11 +40,11 @@ pub fn golden(name: &str, text: &str) {
     if expected != text {
         let d = similar::TextDiff::from_lines(expected.as_str(), text)
             .unified_diff()
-            .header(&format!("tests/diff/{name}"), "produced")
+            .header(&format!("{shown}/{name}"), "produced")
             .to_string();
         panic!(
-            "output differs from tests/diff/{name}; review, then run \
-             `UPDATE_GOLDEN=1 cargo test -p jaus-gen --test diff --test revisions`:\n{d}"
+            "output differs from {shown}/{name}; review, then run \
+             `UPDATE_GOLDEN=1 cargo test -p jaus-gen {tests}`:\n{d}"
         );
     }
 }
