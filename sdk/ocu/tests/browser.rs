@@ -130,6 +130,42 @@ async fn set_speed(c: &Client, text: &str) {
     set_input(c, "speed", text).await;
 }
 
+/// Clicks the map at (`x`, `y`) m and waits until the page has the point in its draft.
+/// The map's automatic view may move between reading where the point is and the click
+/// (a new pose redraws it), so a click that added nothing is made again, up to 5 times;
+/// the failure names the element that took the click.
+async fn add_point(c: &Client, x: f64, y: f64) {
+    for _ in 0..5 {
+        let before = js(c, "return ocu.draft.length;")
+            .await
+            .as_u64()
+            .unwrap_or(0);
+        click_map(c, x, y).await;
+        for _ in 0..10 {
+            if js(c, "return ocu.draft.length;")
+                .await
+                .as_u64()
+                .unwrap_or(0)
+                > before
+            {
+                return;
+            }
+            tokio::time::sleep(Duration::from_millis(100)).await;
+        }
+    }
+    let hit = js(
+        c,
+        &format!(
+            "const p = ocu.worldToClient({x}, {y}); const e = document.elementFromPoint(p.x, p.y); \
+             return [p.x, p.y, e ? e.tagName + '#' + e.id : null];"
+        ),
+    )
+    .await;
+    panic!(
+        "5 clicks at ({x:.1}, {y:.1}) m added no point to the draft (the click's target: {hit})"
+    );
+}
+
 /// Selects `address` in the driver list and takes control of it with `authority`.
 async fn take(c: &Client, address: &str, authority: &str) {
     c.find(Locator::Id("driver"))
@@ -219,7 +255,7 @@ async fn the_page_drives_the_simulated_vehicle_and_stops_it() {
     .await;
 
     // A route without control: refused, visibly.
-    click_map(&c, start.0 + 3.0, start.1 + 3.0).await;
+    add_point(&c, start.0 + 3.0, start.1 + 3.0).await;
     click(&c, "drive").await;
     wait_for("the no-control error", Duration::from_secs(5), async || {
         notices(&c)
@@ -235,7 +271,7 @@ async fn the_page_drives_the_simulated_vehicle_and_stops_it() {
 
     // A malformed speed: refused, visibly, naming the field.
     set_speed(&c, "fast").await;
-    click_map(&c, start.0 + 3.0, start.1 + 3.0).await;
+    add_point(&c, start.0 + 3.0, start.1 + 3.0).await;
     click(&c, "drive").await;
     wait_for("the bad-speed error", Duration::from_secs(5), async || {
         notices(&c).await.into_iter().find(|n| n.contains("speed"))
@@ -249,7 +285,7 @@ async fn the_page_drives_the_simulated_vehicle_and_stops_it() {
         (start.0 + 12.0, start.1 - 2.0),
     ];
     for (x, y) in targets {
-        click_map(&c, x, y).await;
+        add_point(&c, x, y).await;
     }
     let draft = js(&c, "return ocu.draft.map(p => [p.x, p.y]);").await;
     let draft: Vec<(f64, f64)> = draft
@@ -287,7 +323,7 @@ async fn the_page_drives_the_simulated_vehicle_and_stops_it() {
     // A path segment through the Global Path Segment Driver.
     take(&c, "1.1.47.1", "5").await;
     let end = (start.0 + 6.0, start.1 - 8.0);
-    click_map(&c, end.0, end.1).await;
+    add_point(&c, end.0, end.1).await;
     click(&c, "drive-path").await;
     arrive(&c, "the end of the path segment", end).await;
 
@@ -298,7 +334,7 @@ async fn the_page_drives_the_simulated_vehicle_and_stops_it() {
         (start.0 + 2.0, start.1 - 3.0),
     ];
     for (x, y) in moves {
-        click_map(&c, x, y).await;
+        add_point(&c, x, y).await;
     }
     click(&c, "spool").await;
     wait_for("the mission spooled", Duration::from_secs(10), async || {
@@ -351,7 +387,7 @@ async fn the_page_drives_the_simulated_vehicle_and_stops_it() {
     take(&c, "1.1.45.1", "5").await;
 
     // Moving again (back to the start), then the emergency stop.
-    click_map(&c, start.0, start.1).await;
+    add_point(&c, start.0, start.1).await;
     click(&c, "drive").await;
     let until = Instant::now() + Duration::from_secs(20);
     while !speed(&c).await.is_some_and(|s| s > 0.3) {
