@@ -5,9 +5,11 @@
 use std::time::Duration;
 
 use jaus::CommandCode;
+use jaus::JausMessage;
 use jaus_as4::messages::{
-    CancelEvent, ComponentState, ControlConfirmation, CreateEvent, EventType, Message,
-    QueryControl, ReleaseControl, RequestControl,
+    CancelEvent, ComponentState, ConfirmControl, ConfirmEventRequest, ControlConfirmation,
+    CreateEvent, Event, EventType, Message, QueryControl, RejectControl, RejectEventRequest,
+    ReleaseControl, RequestControl,
 };
 use jaus_dynamic::DynMessage;
 
@@ -20,11 +22,13 @@ use crate::check::Verdict;
 /// A verdict and why.
 pub(super) type Found = (Verdict, String);
 
-const CONFIRM_CONTROL: u16 = 0x000F;
-const REJECT_CONTROL: u16 = 0x0010;
-const CONFIRM_EVENT: u16 = 0x01F3;
-const REJECT_EVENT: u16 = 0x01F4;
-const EVENT: u16 = 0x41F1;
+// The ids of the answers waited for, from the generated messages (one home: the
+// definitions).
+const CONFIRM_CONTROL: u16 = ConfirmControl::CODE.0;
+const REJECT_CONTROL: u16 = RejectControl::CODE.0;
+const CONFIRM_EVENT: u16 = ConfirmEventRequest::CODE.0;
+const REJECT_EVENT: u16 = RejectEventRequest::CODE.0;
+const EVENT: u16 = Event::CODE.0;
 /// The rate asked of a periodic event, Hz.
 const EVENT_RATE: f64 = 5.0;
 
@@ -505,7 +509,7 @@ impl<'a> Runner<'a> {
             let Some(a) = self.j.wait_for(left, peer, &[EVENT]) else {
                 break;
             };
-            let Ok(Message::Event(e)) = Message::decode(CommandCode(EVENT), &a.message.body) else {
+            let Ok(Message::Event(e)) = Message::decode(Event::CODE, &a.message.body) else {
                 return Err("an Event that does not decode".into());
             };
             if e.event_id != event_id {

@@ -110,11 +110,17 @@ pub fn report_of(defs: &Definitions, t: &TransitionModel) -> Option<String> {
             }
         }
     }
-    let layout = defs.schema().message(&t.message)?;
+    complement(defs, &t.message)
+}
+
+/// The report the definitions pair with `query` (`report:`, or its code + 0x2000: the
+/// rule of jaus-spec), else `Report<X>` for a `Query<X>` when the definitions have it.
+fn complement(defs: &Definitions, query: &str) -> Option<String> {
+    let layout = defs.schema().message(query)?;
     if let Some(l) = layout.report.and_then(|r| defs.schema().by_code(r)) {
         return Some(l.name.to_string());
     }
-    let r = format!("Report{}", t.message.strip_prefix("Query")?);
+    let r = format!("Report{}", query.strip_prefix("Query")?);
     defs.schema().message(&r).map(|_| r)
 }
 
@@ -139,10 +145,7 @@ pub fn report_name(defs: &Definitions, query: &str) -> Option<String> {
         .flat_map(|s| &s.transitions)
         .filter(|t| t.message == query)
         .find_map(|t| report_of(defs, t));
-    by_transition.or_else(|| {
-        let r = format!("Report{}", query.strip_prefix("Query")?);
-        defs.schema().message(&r).map(|_| r)
-    })
+    by_transition.or_else(|| complement(defs, query))
 }
 
 /// Whether the command moves the vehicle: a command of a Driver service (the
