@@ -11,7 +11,10 @@
 //! `JAUS_ROS2_PYTHON=/tmp/ros2venv/bin/python`). Without it the test says so on stderr
 //! and passes, unless `JAUS_REQUIRE_ROS2=1`. Run with `--nocapture` for the timings.
 
-use std::io::{BufRead, BufReader, Write};
+#[path = "../../ros2/tests/support/mod.rs"]
+mod support;
+
+use std::io::{BufRead, BufReader};
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
 use std::sync::{Arc, Mutex};
@@ -20,41 +23,6 @@ use std::time::{Duration, Instant};
 use serde_json::Value;
 
 const JAUS: &str = env!("CARGO_BIN_EXE_jaus");
-
-/// Says why the test is skipped on the real stderr; with `JAUS_REQUIRE_ROS2=1` (CI,
-/// once it installed cyclonedds) a skip is a failure.
-fn skip(why: &str) {
-    if std::env::var("JAUS_REQUIRE_ROS2").is_ok_and(|v| v == "1") {
-        panic!("JAUS_REQUIRE_ROS2=1 but the test cannot run: {why}");
-    }
-    let _ = writeln!(
-        std::io::stderr(),
-        "SKIPPED the_iop_judge_passes_against_a_ros2_robot_through_jaus_node: {why}"
-    );
-}
-
-fn python() -> Option<String> {
-    let Ok(py) = std::env::var("JAUS_ROS2_PYTHON") else {
-        skip(
-            "set JAUS_ROS2_PYTHON to a python with the cyclonedds package \
-             (python3 -m venv /tmp/ros2venv && /tmp/ros2venv/bin/pip install cyclonedds; \
-             JAUS_ROS2_PYTHON=/tmp/ros2venv/bin/python)",
-        );
-        return None;
-    };
-    let ok = Command::new(&py)
-        .args(["-c", "import cyclonedds"])
-        .output()
-        .map(|o| o.status.success())
-        .unwrap_or(false);
-    if !ok {
-        skip(&format!(
-            "{py} cannot import cyclonedds (pip install cyclonedds)"
-        ));
-        return None;
-    }
-    Some(py)
-}
 
 /// The processes of the run and its directory: every child killed and reaped, the
 /// directory removed, on every path (a failed assertion included).
@@ -123,7 +91,10 @@ fn file(dir: &Path, name: &str) -> std::fs::File {
 
 #[test]
 fn the_iop_judge_passes_against_a_ros2_robot_through_jaus_node() {
-    let Some(py) = python() else { return };
+    let Some(py) = support::python("the_iop_judge_passes_against_a_ros2_robot_through_jaus_node")
+    else {
+        return;
+    };
     let started = Instant::now();
     // A domain of its own (the jaus-ros2 tests use 100..=229), a free port.
     let domain = 40 + (std::process::id() % 60) as u16;

@@ -12,6 +12,8 @@
 //! `JAUS_ROS2_PYTHON=/tmp/ros2venv/bin/python`). Without it the test says so on stderr
 //! and passes, unless `JAUS_REQUIRE_ROS2=1`.
 
+mod support;
+
 use std::io::{BufRead, BufReader, Write};
 use std::process::{Child, ChildStdin, Command, Stdio};
 use std::sync::{Arc, Mutex};
@@ -25,41 +27,6 @@ use jaus::stock::motion::wrench_message;
 use jaus::{Address, Header, JausMessage};
 use jaus_ros2::{ids, robot_node, Ros2Config, WatchdogEvent};
 use serde_json::Value;
-
-/// Says why the test is skipped on the real stderr (the harness captures `println!`);
-/// with `JAUS_REQUIRE_ROS2=1` (CI, once it installed cyclonedds) a skip is a failure.
-fn skip(why: &str) {
-    if std::env::var("JAUS_REQUIRE_ROS2").is_ok_and(|v| v == "1") {
-        panic!("JAUS_REQUIRE_ROS2=1 but the test cannot run: {why}");
-    }
-    let _ = writeln!(
-        std::io::stderr(),
-        "SKIPPED a_jaus_client_drives_a_cyclone_dds_ros2_robot: {why}"
-    );
-}
-
-fn python() -> Option<String> {
-    let Ok(py) = std::env::var("JAUS_ROS2_PYTHON") else {
-        skip(
-            "set JAUS_ROS2_PYTHON to a python with the cyclonedds package \
-             (python3 -m venv /tmp/ros2venv && /tmp/ros2venv/bin/pip install cyclonedds; \
-             JAUS_ROS2_PYTHON=/tmp/ros2venv/bin/python)",
-        );
-        return None;
-    };
-    let ok = Command::new(&py)
-        .args(["-c", "import cyclonedds"])
-        .output()
-        .map(|o| o.status.success())
-        .unwrap_or(false);
-    if !ok {
-        skip(&format!(
-            "{py} cannot import cyclonedds (pip install cyclonedds)"
-        ));
-        return None;
-    }
-    Some(py)
-}
 
 fn wall_ns() -> i128 {
     SystemTime::now()
@@ -179,7 +146,9 @@ fn percentile(sorted: &[f64], p: f64) -> f64 {
 
 #[test]
 fn a_jaus_client_drives_a_cyclone_dds_ros2_robot() {
-    let Some(py) = python() else { return };
+    let Some(py) = support::python("a_jaus_client_drives_a_cyclone_dds_ros2_robot") else {
+        return;
+    };
     // A domain of its own, so that parallel runs do not meet.
     let domain = 100 + (std::process::id() % 100) as u16;
     let mut robot = Robot::start(&py, domain);

@@ -9,6 +9,8 @@
 //! Needs `JAUS_ROS2_PYTHON` as `tests/cyclone.rs` does (skips with a message without
 //! it, fails instead with `JAUS_REQUIRE_ROS2=1`).
 
+mod support;
+
 use std::io::{BufRead, BufReader, Write};
 use std::net::UdpSocket;
 use std::process::{Child, ChildStdin, Command, Stdio};
@@ -23,39 +25,6 @@ use jaus::{Address, Header, JausMessage, Packet};
 use jaus_ros2::{vehicle_node, Ros2Config, VehicleEvent, VehicleLink};
 use jaus_sim::demo::{vehicle_at, Options};
 use serde_json::Value;
-
-fn skip(why: &str) {
-    if std::env::var("JAUS_REQUIRE_ROS2").is_ok_and(|v| v == "1") {
-        panic!("JAUS_REQUIRE_ROS2=1 but the test cannot run: {why}");
-    }
-    let _ = writeln!(
-        std::io::stderr(),
-        "SKIPPED a_jaus_vehicle_is_driven_from_cyclone_dds: {why}"
-    );
-}
-
-fn python() -> Option<String> {
-    let Ok(py) = std::env::var("JAUS_ROS2_PYTHON") else {
-        skip(
-            "set JAUS_ROS2_PYTHON to a python with the cyclonedds package \
-             (python3 -m venv /tmp/ros2venv && /tmp/ros2venv/bin/pip install cyclonedds; \
-             JAUS_ROS2_PYTHON=/tmp/ros2venv/bin/python)",
-        );
-        return None;
-    };
-    let ok = Command::new(&py)
-        .args(["-c", "import cyclonedds"])
-        .output()
-        .map(|o| o.status.success())
-        .unwrap_or(false);
-    if !ok {
-        skip(&format!(
-            "{py} cannot import cyclonedds (pip install cyclonedds)"
-        ));
-        return None;
-    }
-    Some(py)
-}
 
 /// The Python ROS 2 side: its stdin and the JSON lines it printed.
 struct RosSide {
@@ -165,7 +134,9 @@ fn percentile(sorted: &[f64], p: f64) -> f64 {
 
 #[test]
 fn a_jaus_vehicle_is_driven_from_cyclone_dds() {
-    let Some(py) = python() else { return };
+    let Some(py) = support::python("a_jaus_vehicle_is_driven_from_cyclone_dds") else {
+        return;
+    };
     let domain = 150 + (std::process::id() % 80) as u16;
     let mut ros = RosSide::start(&py, domain);
 
