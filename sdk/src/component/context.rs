@@ -101,6 +101,40 @@ impl<I: Interface> Context<'_, I> {
         self.rt.send_set(to, msg, false, 0);
     }
 
+    /// [`forward`](Self::forward) with a sequence number of the component's own, returned:
+    /// when the node makes commands arrive, the outcome of the command comes back
+    /// with that number ([`take_settled`](Self::take_settled)), and sending it again
+    /// with [`forward_again`](Self::forward_again) under the same number lets the
+    /// destination drop it as a retransmission if the first copy did arrive.
+    pub fn forward_numbered(&mut self, to: Address, msg: I::Messages) -> u16 {
+        let seq = self.rt.next_sequence();
+        self.rt.send_set(to, msg, false, seq);
+        seq
+    }
+
+    /// [`forward`](Self::forward) under sequence number `sequence` (a command sent again,
+    /// see [`forward_numbered`](Self::forward_numbered)).
+    pub fn forward_again(&mut self, to: Address, msg: I::Messages, sequence: u16) {
+        self.rt.send_set(to, msg, false, sequence);
+    }
+
+    /// [`send`](Self::send) with a sequence number of the component's own, returned (see
+    /// [`forward_numbered`](Self::forward_numbered)).
+    pub fn send_numbered<M: EmittedBy<I>>(&mut self, to: Address, msg: M) -> u16 {
+        let seq = self.rt.next_sequence();
+        self.rt.send_set(to, msg.into_set(), false, seq);
+        seq
+    }
+
+    /// The next outcome of a command this component sent to another node, oldest
+    /// first (`None`: none waiting). Only a node making commands arrive
+    /// (`jaus::net::NodeConfig::reliable`) reports them, and only for commands it
+    /// tracked: a destination known never to acknowledge (OpenJAUS 3.3) gets its
+    /// commands once and reports nothing.
+    pub fn take_settled(&mut self) -> Option<super::Settled> {
+        self.rt.settled.pop_front()
+    }
+
     /// Moves to another mode. Allowed only in Ready and along a transition of the
     /// definition; a transition with a core effect (e.g. back to Standby at the final
     /// waypoint) also changes the core state.

@@ -55,6 +55,13 @@ pub trait Endpoint: Send + 'static {
     fn wall_clock(&mut self, now: Instant, utc: std::time::Duration) {
         let _ = (now, utc);
     }
+    /// How a command it sent to a component of another node ended, when its node makes
+    /// commands arrive (`jaus::net::NodeConfig::reliable`): acknowledged, refused or
+    /// given up. Ignored by default; a [`Component`] keeps it for its behaviour
+    /// ([`Context::take_settled`](super::Context::take_settled)).
+    fn settled(&mut self, now: Instant, settled: super::Settled) {
+        let _ = (now, settled);
+    }
     /// The runtime's counters, for a component (`None` for anything else).
     fn stats(&self) -> Option<super::Stats> {
         None
@@ -132,6 +139,9 @@ impl<B: Behaviour> Endpoint for Component<B> {
     }
     fn forget(&mut self, gone: Address) {
         Component::forget(self, gone);
+    }
+    fn settled(&mut self, _now: Instant, settled: super::Settled) {
+        Component::settled(self, settled);
     }
     fn wall_clock(&mut self, now: Instant, utc: std::time::Duration) {
         Component::wall_clock(self, now, utc);

@@ -50,6 +50,9 @@ pub struct Stats {
     /// Service-connection reports not sent because the component was run too late
     /// for their period (a busy or starved process): counted, never sent late.
     pub reports_missed: u64,
+    /// Outcomes of sent commands ([`Settled`](super::Settled)) dropped because the
+    /// behaviour did not take them ([`MAX_SETTLED`](super::MAX_SETTLED) kept).
+    pub settled_dropped: u64,
 }
 
 /// A message to send: its header (destination, flags, sequence number) and its body.
@@ -140,6 +143,18 @@ impl<B: Behaviour> Component<B> {
     /// Number of events served.
     pub fn events(&self) -> usize {
         self.rt.events.len()
+    }
+
+    /// How a command it sent ended (its node's reliable delivery): kept for the
+    /// behaviour, which takes it in its next tick or message
+    /// ([`Context::take_settled`]); the oldest is dropped (counted) beyond
+    /// [`MAX_SETTLED`](super::MAX_SETTLED).
+    pub fn settled(&mut self, settled: super::Settled) {
+        if self.rt.settled.len() >= super::MAX_SETTLED {
+            self.rt.settled.pop_front();
+            self.rt.stats.settled_dropped += 1;
+        }
+        self.rt.settled.push_back(settled);
     }
 
     /// The vendor behaviour.

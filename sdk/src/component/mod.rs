@@ -67,6 +67,7 @@ pub mod local;
 mod machine;
 mod refusal;
 mod runtime;
+mod settled;
 mod state;
 
 pub use config::{Config, ControlPolicy};
@@ -76,6 +77,7 @@ pub use info::{ComponentInfo, Hardware, StockInfo};
 pub use init_error::InitError;
 pub use machine::{Component, Stats, Transmit};
 pub use refusal::{refusal_report, Refused};
+pub use settled::{Outcome, Settled, MAX_SETTLED};
 pub use state::{CoreState, CoreTransition, Modes, NoModes, NoTransition, TransitionError};
 
 use crate::{Address, CommandCode, MessageSet};

@@ -51,6 +51,12 @@ pub(super) struct Runtime<I: Interface> {
     pub(super) provider: ProviderTable<I::Messages>,
     pub(super) events: EventTable<I::Messages>,
     pub(super) requester: RequesterTable,
+    /// How the commands it sent ended (its node's reliable delivery), for the
+    /// behaviour to take ([`Context::take_settled`](super::Context::take_settled)).
+    pub(super) settled: VecDeque<super::Settled>,
+    /// The last sequence number it gave a command itself
+    /// ([`Context::forward_numbered`](super::Context::forward_numbered)).
+    pub(super) sequence: u16,
 }
 
 impl<I: Interface> Runtime<I> {
@@ -78,8 +84,16 @@ impl<I: Interface> Runtime<I> {
             provider: ProviderTable::default(),
             events: EventTable::default(),
             requester: RequesterTable::default(),
+            settled: VecDeque::new(),
+            sequence: first_sequence(address),
             config,
         }
+    }
+
+    /// The next sequence number of its own (1-65535).
+    pub(super) fn next_sequence(&mut self) -> u16 {
+        self.sequence = self.sequence.wrapping_add(1).max(1);
+        self.sequence
     }
 
     pub(super) fn header(&self, code: CommandCode, to: Address) -> Header {
@@ -195,4 +209,12 @@ impl<I: Interface> Runtime<I> {
             self.send(provider, msg.into(), true, 0);
         }
     }
+}
+
+/// Where a component's own sequence numbers start: different in every process and
+/// every component (std's randomly keyed hasher; no clock read), so that a restarted
+/// component's numbers are not taken for retransmissions of its earlier ones.
+fn first_sequence(address: Address) -> u16 {
+    use std::hash::BuildHasher;
+    (std::collections::hash_map::RandomState::new().hash_one(address) as u16).max(1)
 }

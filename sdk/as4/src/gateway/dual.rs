@@ -53,6 +53,10 @@ impl<A: PeerAddr> DualNode<A> {
         transport: As4Config,
     ) -> Result<Self, NetError> {
         node.add_companion(config.ra33)?;
+        // Set-point streams go once, even on a node that makes commands arrive.
+        for code in crate::ra33::STREAMED {
+            node.send_once(config.ra33, *code);
+        }
         let mut dual = Self {
             gateway: Gateway::new(config),
             node,
@@ -111,6 +115,9 @@ impl<A: PeerAddr> DualNode<A> {
                     NodeEvent::Deliver { header, body, .. } => {
                         Endpoint::handle(&mut self.gateway, now, &header, &body);
                         self.node.recycle(body);
+                    }
+                    NodeEvent::Settled { settled, .. } => {
+                        Endpoint::settled(&mut self.gateway, now, settled);
                     }
                     NodeEvent::Forget(gone) => Endpoint::forget(&mut self.gateway, gone),
                 }

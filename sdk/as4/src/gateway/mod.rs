@@ -362,6 +362,15 @@ impl<A: PeerAddr> Endpoint for Gateway<A> {
         self.in_tree.remove(&gone);
     }
 
+    /// How a command of the RA 3.3 side ended (the node making commands arrive):
+    /// [`Ra33Side::on_settled`].
+    fn settled(&mut self, now: Instant, settled: jaus::component::Settled) {
+        self.node.env_mut().on_settled(now, settled);
+        let sends = self.node.poll(now);
+        self.queue(now, sends);
+        self.sync();
+    }
+
     fn poll_transmit(&mut self) -> Option<Ra33Outgoing> {
         let (to, m) = self.node.env_mut().poll_transmit()?;
         let me = self.node.env().address();

@@ -9,10 +9,20 @@
 //! unanswered backs off and then stops ([`GIVE_UP_AFTER`]) until the component answers
 //! it or is discovered again ([`Ra33Side::rediscovered`]). As an RA 3.3 component it
 //! answers Query Identification and Query Services ([`Ra33Side::services`]).
+//!
+//! Commands that arrive (issue 48): on a node that makes them arrive
+//! (`jaus::net::NodeConfig::reliable`), every command this side sends to an RA 3.3
+//! component of another node (Request and Release Component Control, Resume, Standby,
+//! the numbered Set Local/Global Waypoint and Path Segment uploads, Set Travel Speed)
+//! goes with an acknowledgement requested and is resent until acknowledged; the node
+//! hands the outcome back ([`Ra33Side::on_settled`]): counted ([`Ra33Stats`]), a
+//! refusal or a give-up logged with the message and the driver, and a control request
+//! given up asked again. The set-point streams ([`STREAMED`]) are the exception.
 
 use std::collections::{BTreeSet, HashMap, VecDeque};
 use std::time::{Duration, Instant};
 
+use jaus::component::{Outcome, Settled};
 use jaus::messages::{
     ConfirmComponentControl, ControlResponse, JausService, Message as Ra33Message, QueryLevel,
     ReleaseComponentControl, ReportIdentification, ReportServices, RequestComponentControl, Resume,
@@ -37,6 +47,24 @@ pub const IDENTIFICATION: &str = "AS-4 gateway";
 
 /// Most RA 3.3 messages waiting to leave (more are dropped and counted).
 pub const MAX_OUTBOX: usize = 1024;
+
+/// The commands this side streams, sent once and never asked for an acknowledgement
+/// even on a node that makes commands arrive ([`jaus::net::Node::send_once`], which the
+/// [`DualNode`](crate::gateway::DualNode) calls for them): Set Wrench Effort follows
+/// each AS-4 Set Wrench Effort of the client at its rate, so the next one replaces a
+/// lost one within a period, while a resent old one would arrive after (and undo) a
+/// newer effort; and as the node sends a peer's tracked commands one at a time, a
+/// stream waiting for each acknowledgement would fall behind the client.
+pub const STREAMED: &[CommandCode] = &[jaus::messages::SetWrenchEffort::CODE];
+
+/// Times a control request the node gave up on (no answer after every copy) is asked
+/// again at once, to a driver known to acknowledge; after that it is asked again when
+/// the client next commands the driver ([`Ra33Side::ensure_control`]).
+pub const CONTROL_RETRIES: u32 = 3;
+
+/// How long after its latest command a driver's reports are not kept while that
+/// command is unsettled ([`Ra33Side::on_message`]); longer than the node's retries.
+pub const UNSETTLED_MAX: Duration = Duration::from_secs(10);
 
 /// Where RA 3.3 control of one driver stands.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -73,6 +101,17 @@ pub struct Ra33Stats {
     /// (component, query) pairs polled again after they were given up: the component
     /// answered after all, or was discovered again.
     pub polls_resumed: u64,
+    /// Commands the RA 3.3 component acknowledged (the node making commands arrive).
+    pub acknowledged: u64,
+    /// Commands it refused (NAK).
+    pub refused: u64,
+    /// Commands the node gave up on: no answer after every copy.
+    pub given_up: u64,
+    /// Control requests asked again after the node gave up on them.
+    pub control_retried: u64,
+    /// Reports of a driver not kept because a command to it was still unsettled (the
+    /// query overtook the command's retransmission: the report may predate it).
+    pub stale_reports: u64,
 }
 
 /// The RA 3.3 side of a gateway: its own address, the components it presents, their
@@ -98,6 +137,14 @@ pub struct Ra33Side {
     /// Sensor reported: the RA 3.3 local frame of a subsystem without a Local Pose
     /// Sensor ([`crate::mobility::derived`]).
     tangent: Option<LocalFrame>,
+    /// Control requests asked again in a row, per driver ([`CONTROL_RETRIES`]).
+    control_retries: HashMap<Address, u32>,
+    /// Components whose commands the node reports the outcome of (it tracks them).
+    answering: BTreeSet<Address>,
+    /// Commands to each of those not settled yet, and when the latest was sent.
+    unsettled: HashMap<Address, (u32, Instant)>,
+    /// The latest time this side was told.
+    now: Option<Instant>,
     stats: Ra33Stats,
 }
 
@@ -119,6 +166,10 @@ impl Ra33Side {
             active: None,
             frame: Frame::default(),
             tangent: None,
+            control_retries: HashMap::new(),
+            answering: BTreeSet::new(),
+            unsettled: HashMap::new(),
+            now: None,
             stats: Ra33Stats::default(),
         }
     }
@@ -164,7 +215,16 @@ impl Ra33Side {
             tracing::warn!(gateway = %self.me, %to, "RA 3.3 outbox full: message dropped");
             return;
         }
-        let message = message.into();
+        let message: Ra33Message = message.into();
+        let code = message.code();
+        if let Some(now) = self.now.filter(|_| {
+            self.answering.contains(&to)
+                && code.class() == jaus::wire::MessageClass::Command
+                && !STREAMED.contains(&code)
+        }) {
+            let u = self.unsettled.entry(to).or_insert((0, now));
+            *u = (u.0 + 1, now);
+        }
         self.stats.sent += 1;
         self.sent_codes.insert(message.code());
         self.outbox.push_back((to, message));
@@ -214,6 +274,7 @@ impl Ra33Side {
 
     /// A message from an RA 3.3 component.
     pub fn on_message(&mut self, now: Instant, from: Address, message: Ra33Message) {
+        self.now = Some(now);
         match &message {
             Ra33Message::ConfirmComponentControl(ConfirmComponentControl { response_code }) => {
                 let state = if *response_code == ControlResponse::ControlAccepted {
@@ -257,11 +318,80 @@ impl Ra33Side {
                         }
                     }
                 }
-                self.stats.reports += 1;
                 self.polls.answered(now, from, m.code(), &mut self.stats);
+                if self.unsettled.get(&from).is_some_and(|(n, at)| {
+                    *n > 0 && now.saturating_duration_since(*at) < UNSETTLED_MAX
+                }) {
+                    // Asked before a command the node is still resending arrived: it
+                    // may show the driver without it (a waypoint count of 0 would end
+                    // the list). The next poll asks again.
+                    self.stats.stale_reports += 1;
+                    return;
+                }
+                self.stats.reports += 1;
                 self.latest.insert((from, m.code()), (now, message));
             }
             _ => self.stats.ignored += 1,
+        }
+    }
+
+    /// How a command this side sent ended, as the node learnt it (acknowledged,
+    /// refused, given up; see the module's documentation). A control request refused
+    /// leaves control refused; one given up while still unanswered is asked again, at
+    /// once to a driver known to acknowledge ([`CONTROL_RETRIES`] times), else when
+    /// the driver is next commanded.
+    pub fn on_settled(&mut self, now: Instant, s: Settled) {
+        self.now = Some(now);
+        if s.peer_known {
+            self.answering.insert(s.to);
+        }
+        if let Some(u) = self.unsettled.get_mut(&s.to) {
+            u.0 = u.0.saturating_sub(1);
+            if u.0 == 0 {
+                self.unsettled.remove(&s.to);
+            }
+        }
+        let name = jaus::MessageInfo::of(s.code).map_or("(unknown message)", |i| i.name);
+        let control = s.code == RequestComponentControl::CODE;
+        match s.outcome {
+            Outcome::Acknowledged => {
+                self.stats.acknowledged += 1;
+                if control {
+                    self.control_retries.remove(&s.to);
+                }
+                return;
+            }
+            Outcome::Refused => {
+                self.stats.refused += 1;
+                tracing::warn!(gateway = %self.me, driver = %s.to, message = name, "RA 3.3 command refused (NAK)");
+                if control && self.control_of(s.to) == Ra33Control::Requested {
+                    self.control
+                        .insert(s.to, Ra33Control::Refused(ControlResponse::NotAvailable));
+                }
+                return;
+            }
+            Outcome::GaveUp => self.stats.given_up += 1,
+        }
+        tracing::warn!(gateway = %self.me, driver = %s.to, message = name, attempts = s.attempts,
+            "RA 3.3 command not acknowledged after every copy");
+        if !control || self.control_of(s.to) != Ra33Control::Requested {
+            return;
+        }
+        let tries = self.control_retries.entry(s.to).or_insert(0);
+        if self.want_control && s.peer_known && *tries < CONTROL_RETRIES {
+            *tries += 1;
+            self.stats.control_retried += 1;
+            tracing::info!(gateway = %self.me, driver = %s.to, "RA 3.3 control asked for again");
+            self.send(
+                s.to,
+                RequestComponentControl {
+                    authority_code: self.authority,
+                },
+            );
+        } else {
+            // Asked again when the client next commands the driver.
+            self.control_retries.remove(&s.to);
+            self.control.insert(s.to, Ra33Control::None);
         }
     }
 
@@ -379,6 +509,7 @@ impl Ra33Side {
 
     /// Sends the polls that are due; a poll left unanswered backs off, then stops.
     pub fn handle_timeout(&mut self, now: Instant) {
+        self.now = Some(now);
         for (to, q) in self.polls.due(now, self.me, &mut self.stats) {
             self.send(to, q);
         }

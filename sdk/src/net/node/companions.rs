@@ -33,6 +33,14 @@ pub enum NodeEvent {
         /// Its body (hand it back with [`Node::recycle`] once read, to reuse it).
         body: Vec<u8>,
     },
+    /// How a command companion `to` sent ended ([`NodeConfig::reliable`](super::NodeConfig::reliable)):
+    /// hand it to the companion ([`Endpoint::settled`](crate::component::Endpoint::settled)).
+    Settled {
+        /// The companion that sent the command.
+        to: Address,
+        /// The outcome.
+        settled: crate::component::Settled,
+    },
     /// Component `gone` left the system (its node manager stopped answering, or it
     /// timed out): every companion forgets it, as local components do.
     Forget(Address),
@@ -121,6 +129,18 @@ impl<A: PeerAddr> Node<A> {
             });
         }
         any
+    }
+
+    /// Hands companion `to` the outcome of a command it sent (bounded as the other
+    /// events).
+    pub(super) fn settled_companion(&mut self, to: Address, settled: crate::component::Settled) {
+        if self.companions.events.len() >= self.config.max_outbox {
+            self.stats.companion_queue_full += 1;
+            return;
+        }
+        self.companions
+            .events
+            .push_back(NodeEvent::Settled { to, settled });
     }
 
     /// Tells the companions that `gone` left (one event, whatever their number).

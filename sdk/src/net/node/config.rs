@@ -60,7 +60,11 @@ pub struct NodeConfig<A: PeerAddr = SocketAddr> {
     /// (a message of the Command class) that a component here sends to one component
     /// of another node asks for an acknowledgement and is resent with backoff until it
     /// is acknowledged or refused, or the policy's attempts run out; each ends as a
-    /// [`Delivery`](crate::net::reliable::Delivery) ([`Node::poll_delivery`](super::Node::poll_delivery)).
+    /// [`Delivery`](crate::net::reliable::Delivery) ([`Node::poll_delivery`](super::Node::poll_delivery)),
+    /// also handed to the component that sent it
+    /// ([`Endpoint::settled`](crate::component::Endpoint::settled): the stock Mission
+    /// Spooler and the AS-4 gateway act on it). Set-point streams a component declares
+    /// with [`Node::send_once`](super::Node::send_once) go once.
     /// A peer that never acknowledges (OpenJAUS 3.3's components) is learnt and then
     /// sent to once. Messages asking for an acknowledgement themselves (`jaus send`,
     /// the Python client) are tracked the same way. Meant for nodes that send

@@ -33,7 +33,7 @@ use std::net::SocketAddr;
 use std::time::Instant;
 
 pub use super::transport::{Datagram, Via};
-pub use acks::AckKey;
+pub use acks::{AckKey, MAX_STREAMS};
 pub use companions::NodeEvent;
 pub use config::{NetStats, NodeConfig};
 
@@ -104,6 +104,16 @@ pub struct Node<A: PeerAddr = SocketAddr> {
     receiver: Receiver<acks::SeenKey, Header>,
     /// The sequence number of the last command tracked.
     ack_sequence: u16,
+    /// The component (local or companion) that sent each tracked command, to hand it
+    /// the outcome; as many as the sender tracks at most.
+    ack_sources: HashMap<AckKey, Address>,
+    /// Outcomes for [`poll_delivery`](Self::poll_delivery) (bounded, oldest dropped and
+    /// counted).
+    outcomes: VecDeque<super::reliable::Delivery<AckKey>>,
+    outcomes_dropped: u64,
+    /// (component, command code) pairs sent once, never tracked: set-point streams
+    /// ([`send_once`](Self::send_once)).
+    streams: Vec<(Address, crate::CommandCode)>,
 }
 
 impl<A: PeerAddr> std::fmt::Debug for Node<A> {
@@ -138,6 +148,10 @@ impl<A: PeerAddr> Node<A> {
             sender: Sender::new(retry),
             receiver: Receiver::new(&retry),
             ack_sequence: super::reliable::random_start(),
+            ack_sources: HashMap::new(),
+            outcomes: VecDeque::new(),
+            outcomes_dropped: 0,
+            streams: Vec::new(),
             reassembler: Reassembler::new(config.reassembly),
             scope: Scope {
                 subsystem: config.subsystem,
@@ -394,6 +408,7 @@ impl<A: PeerAddr> Node<A> {
     /// Moves everything the components want to send, and delivers local messages,
     /// until nothing is left.
     fn pump(&mut self) {
+        self.settle_outcomes();
         for _ in 0..MAX_LOCAL_ROUNDS {
             let mut out = std::mem::take(&mut self.transmits);
             loop {

@@ -140,6 +140,7 @@ impl MissionSpooler for StockMissionSpooler {
         }
         mission.state = MissionState::Running;
         self.running = Some(m.mission_id);
+        self.clear_reason(m.mission_id);
         self.touch(m.mission_id);
         ctx.transition(Transition::Run)
             .map_err(|e| Refused::Invalid(e.to_string()))?;
@@ -188,6 +189,7 @@ impl MissionSpooler for StockMissionSpooler {
             mission.state = MissionState::Running;
             ctx.transition(Transition::Resume)
                 .map_err(|e| Refused::Invalid(e.to_string()))?;
+            self.clear_reason(m.mission_id);
         } else {
             mission.paused_tasks.retain(|t| *t != m.task_id);
         }
@@ -209,6 +211,7 @@ impl MissionSpooler for StockMissionSpooler {
                 }
             }
             self.restored.remove(&m.mission_id);
+            self.clear_reason(m.mission_id);
             self.touch(m.mission_id);
             self.flush();
         } else {
@@ -488,6 +491,8 @@ impl MissionSpooler for StockMissionSpooler {
     }
 
     fn tick(&mut self, ctx: &mut Ctx<'_>) {
+        // What became of the deliveries (refused ones pause their mission).
+        self.take_outcomes(ctx);
         if ctx.state() == CoreState::Ready {
             self.pump(ctx);
         }

@@ -94,6 +94,11 @@ impl StockMissionSpooler {
                 cursor += 1;
             }
             if cursor >= m.items.len() {
+                if self.unsettled(id) {
+                    // Finished once every delivery to a destination that answers is
+                    // acknowledged (a refused one is sent again or pauses it).
+                    return;
+                }
                 let owner = m.owner;
                 if let Some(m) = self.missions.get_mut(&id) {
                     m.cursor = cursor;
@@ -212,29 +217,29 @@ impl StockMissionSpooler {
                 Delivery::Raw | Delivery::Probing(_) => {
                     for c in &cmds {
                         match Message::decode(c.message.header.command_code, &c.message.body) {
-                            Ok(msg) => ctx.forward(target, msg),
+                            Ok(msg) => self.deliver(ctx, id, target, vec![c.uid], msg),
                             Err(e) => tracing::warn!(
                                 uid = c.uid,
+                                destination = %target,
                                 "mission message does not decode; skipped: {e}"
                             ),
                         }
                     }
                 }
                 _ => {
-                    ctx.send(
-                        target,
-                        SpoolMission {
-                            mission_id: id,
-                            append_flag: 1,
-                            root: MissionTask {
-                                task_id: first_task,
-                                child_count: 0,
-                                child_offsets: Vec::new(),
-                                messages: cmds,
-                                children: Vec::new(),
-                            },
+                    let uids = cmds.iter().map(|c| c.uid).collect();
+                    let batch = SpoolMission {
+                        mission_id: id,
+                        append_flag: 1,
+                        root: MissionTask {
+                            task_id: first_task,
+                            child_count: 0,
+                            child_offsets: Vec::new(),
+                            messages: cmds,
+                            children: Vec::new(),
                         },
-                    );
+                    };
+                    self.deliver(ctx, id, target, uids, batch.into());
                     if start_remote {
                         ctx.send(target, RunMission { mission_id: id });
                     }

@@ -21,6 +21,11 @@
 //!   first message and released once no mission has a message for it left to send or a
 //!   blocking message it is still executing (a driver stops when it loses control), so
 //!   the component's usual controller gets it back.
+//! * With the node making commands arrive (`jaus::net::NodeConfig::reliable`), each
+//!   delivery to another node is acknowledged, resent, or its failure acted on: a
+//!   refusal pauses the mission with a reason ([`StockMissionSpooler::pause_reason`]), a
+//!   delivery given up is sent again or pauses the mission (`outcomes`,
+//!   [`DeliveryStats`]).
 //! * Pause and abort apply to a whole mission (task 0) or one task; Remove and Replace
 //!   Messages change only messages not yet sent.
 //!
@@ -40,6 +45,7 @@ mod component;
 mod delivery;
 mod journal;
 mod mission;
+mod outcomes;
 
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 use std::time::{Duration, Instant};
@@ -54,6 +60,7 @@ pub use build::{command, leaf_task, mission_of};
 pub use delivery::Delivery;
 pub use journal::{JournalError, MissionJournal, MissionMessage, MissionRecord};
 pub use mission::{ItemState, MissionState};
+pub use outcomes::{DeliveryStats, MAX_AWAITING, OUTCOME_TIMEOUT};
 
 /// Settings of the spooler.
 #[derive(Debug, Clone)]
@@ -76,6 +83,9 @@ pub struct SpoolerConfig {
     /// Most messages sent per tick (keeps the component's outgoing queue from
     /// overflowing on long non-blocking stretches).
     pub max_per_tick: usize,
+    /// Times a delivery to a destination that acknowledges is sent in all (the node
+    /// resends each one until it gives up) before its mission is paused. Default 3.
+    pub max_deliveries: u32,
 }
 
 impl Default for SpoolerConfig {
@@ -89,6 +99,7 @@ impl Default for SpoolerConfig {
             max_depth: 64,
             preference: 1000,
             max_per_tick: 128,
+            max_deliveries: 3,
         }
     }
 }
@@ -112,6 +123,8 @@ pub struct StockMissionSpooler {
     /// Missions paused by a restart (Resume or Run runs them again).
     restored: BTreeSet<u16>,
     journal_failures: u64,
+    /// Deliveries to other nodes waiting for their outcome.
+    outcomes: outcomes::Outcomes,
 }
 
 impl StockMissionSpooler {
@@ -132,6 +145,7 @@ impl StockMissionSpooler {
             dirty: BTreeSet::new(),
             restored: BTreeSet::new(),
             journal_failures: 0,
+            outcomes: outcomes::Outcomes::default(),
         }
     }
 
