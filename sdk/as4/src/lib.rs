@@ -5,11 +5,14 @@
 //! messages) and of the **Mobility Service Set v1.0** (SAE AS6009, `urn:jaus:jss:mobility`:
 //! Primitive Driver, Global and Local Pose Sensors, Velocity State Sensor and Driver,
 //! Acceleration State Sensor, Global and Local Vector, Waypoint, Waypoint List and Path
-//! Segment Drivers; 56 messages, of which the 10 List Manager messages are the Core's),
-//! as typed Rust: 103 messages in all.
+//! Segment Drivers; 56 messages, of which the 10 List Manager messages are the Core's)
+//! and of the **Manipulator Service Set v2.0** (SAE AS6057A, `urn:jaus:jss:manipulator`:
+//! joint and end-effector sensors and drivers, list driver, specification, tool offset,
+//! motion profile, pan-tilt; 72 messages, of which the 10 List Manager messages are the
+//! Core's), as typed Rust: 165 messages in all.
 //!
 //! The definitions are this crate's own YAML (`defs/core.yaml`, `defs/mobility.yaml`,
-//! each a standalone set, `extends: none`), written by hand from the layout facts of the
+//! `defs/manipulator.yaml`, each a standalone set, `extends: none`), written by hand from the layout facts of the
 //! public JSIDL (message IDs, field order, types, scales, units, enumerated values,
 //! presence bits, counts). The build script generates [`messages`] from them with the
 //! SDK's generator, so every message has the codec, serde support (feature `serde`, on by
@@ -44,8 +47,11 @@
 //! may differ from it by a count (a fraction of a micrometre for the local positions);
 //! 8- and 16-bit values use the same divisor and differ at most by the rounding.
 //!
-//! The services' behaviour is not in this crate's definitions (there is no `services:`
-//! section): it is the hand-written runtime below.
+//! The services' behaviour is in the definitions too (`defs/*_services.yaml`: states,
+//! triggers, guards and actions), generated into [`messages::services`] and run by the
+//! runtime below: the Core on [`core::Core`], the Mobility ([`mobility`]) and Manipulator
+//! ([`manipulator`]) services a gateway presents over RA 3.3 components on
+//! [`machined`].
 //!
 //! ## Running AS-4 services
 //!
@@ -134,6 +140,11 @@ pub const DEFS: &[(&str, &str)] = &[
         "core_services.yaml",
         include_str!("../defs/core_services.yaml"),
     ),
+    ("manipulator.yaml", include_str!("../defs/manipulator.yaml")),
+    (
+        "manipulator_services.yaml",
+        include_str!("../defs/manipulator_services.yaml"),
+    ),
     ("mobility.yaml", include_str!("../defs/mobility.yaml")),
     (
         "mobility_services.yaml",
@@ -144,6 +155,8 @@ pub const DEFS: &[(&str, &str)] = &[
 pub mod core;
 pub mod embedded;
 pub mod gateway;
+pub mod machined;
+pub mod manipulator;
 pub mod mobility;
 pub mod node;
 pub mod outgoing;

@@ -1,8 +1,9 @@
 //! The wire layout of our YAML against the public JSIDL, message by message.
 //!
 //! Runs only when `JAUS_JSIDL_DIR` names the `GUI/resources/xml` directory of the JAUS
-//! Tool Set repository (it holds `urn.jaus.jss.core-v1.1`, `urn.jaus.jss.core-v1.0` and
-//! `urn.jaus.jss.mobility`); otherwise it says that it skipped and passes:
+//! Tool Set repository (it holds `urn.jaus.jss.core-v1.1`, `urn.jaus.jss.core-v1.0`,
+//! `urn.jaus.jss.mobility` and `urn.jaus.jss.manipulator-v2.0`); otherwise it says that it
+//! skipped and passes:
 //!
 //! ```sh
 //! JAUS_JSIDL_DIR=/path/to/jaustoolset/GUI/resources/xml \
@@ -11,7 +12,8 @@
 //!
 //! Core v1.1 is imported on its own; Mobility with Core v1.0, whose services it inherits,
 //! and without its own copy of the Core basic types (`MessageSet/CoreBasicTypes.xml`,
-//! which declares the set Core v1.0 declares), as docs/as4.md describes. Both sides are
+//! which declares the set Core v1.0 declares), as docs/as4.md describes; Manipulator v2.0
+//! with Core v1.1, whose services it inherits. Both sides are
 //! reduced to their [`Snapshot`] (the wire layout `jaus-gen diff` and the lock files
 //! compare), then every message of the import is flattened into the sequence of what is
 //! on the wire: records are expanded where they are used (a record of one field is that
@@ -27,6 +29,11 @@ use std::path::{Path, PathBuf};
 
 mod jsidl_common;
 use jsidl_common::copy_without;
+
+/// Messages the public JSIDL marks `is_command="false"` although they command: Manipulator
+/// v2.0's Execute List (0x061E) starts the list driver's motion, as Mobility's Execute List
+/// (0x041E, a command in its JSIDL) does. Ours are commands; only the flag differs.
+const COMMAND_AS_PUBLISHED_IS_NOT: &[u16] = &[0x061E];
 
 /// One item of a flattened layout.
 #[derive(Debug, Clone)]
@@ -293,13 +300,21 @@ fn our_yaml_has_the_wire_layout_of_the_public_jsidl() {
         "jaus_jss_mobility",
     );
     let _ = std::fs::remove_dir_all(&tmp);
+    let manipulator = import(
+        "Manipulator v2.0",
+        &[
+            root.join("urn.jaus.jss.core-v1.1"),
+            root.join("urn.jaus.jss.manipulator-v2.0"),
+        ],
+        "jaus_jss_manipulator_v2_0",
+    );
 
     let our_flat = Flattener::new(&ours);
     let by_code: BTreeMap<u16, &MessageSnap> = ours.messages.iter().map(|m| (m.code, m)).collect();
     let mut problems = Vec::new();
     let mut covered = BTreeSet::new();
     let mut compared = 0;
-    for set in [&core, &mobility] {
+    for set in [&core, &mobility, &manipulator] {
         let flat = Flattener::new(&set.snap);
         let mut n = 0;
         for m in set
@@ -321,7 +336,7 @@ fn our_yaml_has_the_wire_layout_of_the_public_jsidl() {
                 problems.push(format!("{} 0x{:04X} {}: {d}", set.label, m.code, o.name));
             }
             let (a, b) = (our_commands[&m.code], set.commands[&m.code]);
-            if a != b {
+            if a != b && !COMMAND_AS_PUBLISHED_IS_NOT.contains(&m.code) {
                 problems.push(format!(
                     "{} 0x{:04X} {}: is_command ours {a:?}, the JSIDL's {b:?}",
                     set.label, m.code, o.name

@@ -70,7 +70,16 @@ fn guard(condition: &str) -> String {
             c => out.extend(c.to_lowercase()),
         }
     }
-    out.replace("&&", " && ").replace("||", " || ")
+    // A call named through the inherited services (`management.accessControl.
+    // isControllingClient`) is the call.
+    let out = out.replace("&&", " && ").replace("||", " || ");
+    out.split(' ')
+        .map(|w| {
+            let (not, call) = w.strip_prefix('!').map_or(("", w), |c| ("!", c));
+            format!("{not}{}", call.rsplit('.').next().unwrap_or(call))
+        })
+        .collect::<Vec<_>>()
+        .join(" ")
 }
 
 fn trigger(spec: &Spec, t: &ServiceTransitionDef) -> String {
@@ -364,20 +373,50 @@ fn our_mobility_machines_take_what_the_public_jsidl_takes() {
         .and_then(|i| i.load())
         .unwrap_or_else(|e| panic!("importing Mobility v1.0: {e}"));
     let _ = std::fs::remove_dir_all(&tmp);
+    compare_services(
+        &ours,
+        &theirs,
+        "urn:jaus:jss:mobility",
+        &[
+            "PrimitiveDriver",
+            "VelocityStateSensor",
+            "LocalPoseSensor",
+            "GlobalPoseSensor",
+            "LocalWaypointListDriver",
+            "GlobalWaypointListDriver",
+            "LocalPathSegmentDriver",
+            "GlobalPathSegmentDriver",
+        ],
+        |name| {
+            if name.contains("List") || name.contains("Segment") {
+                "ListDriver"
+            } else {
+                name
+            }
+        },
+        (MOBILITY_OURS, MOBILITY_THEIRS),
+        "mobility_services.yaml",
+    );
+}
+
+/// Compares the (trigger, guard) pairs of the services `names` of set `urn` in `ours`
+/// and `theirs`; a difference must be listed in `declared` (ours only, the JSIDL's
+/// only) as `label: on Trigger [guard]`, `label` given per service by `label_of`. Our
+/// drivers may inherit a richer Core service than the JSIDL's (the List Manager).
+fn compare_services(
+    ours: &Spec,
+    theirs: &Spec,
+    urn: &str,
+    names: &[&str],
+    label_of: impl Fn(&str) -> &str,
+    declared: (&[&str], &[&str]),
+    file: &str,
+) {
     let mut unexplained = Vec::new();
     let mut compared = 0;
-    for name in [
-        "PrimitiveDriver",
-        "VelocityStateSensor",
-        "LocalPoseSensor",
-        "GlobalPoseSensor",
-        "LocalWaypointListDriver",
-        "GlobalWaypointListDriver",
-        "LocalPathSegmentDriver",
-        "GlobalPathSegmentDriver",
-    ] {
-        let id = format!("urn:jaus:jss:mobility:{name}");
-        let (Some(o), Some(t)) = (service(&ours, &id), service(&theirs, &id)) else {
+    for &name in names {
+        let id = format!("{urn}:{name}");
+        let (Some(o), Some(t)) = (service(ours, &id), service(theirs, &id)) else {
             panic!("service {id} missing: ours or the JSIDL's");
         };
         let inherits = |s: &ServiceDef| {
@@ -392,12 +431,8 @@ fn our_mobility_machines_take_what_the_public_jsidl_takes() {
                 inherits(t)
             ));
         }
-        let label = if name.contains("List") || name.contains("Segment") {
-            "ListDriver"
-        } else {
-            name
-        };
-        let (o, t) = (takes(&ours, o), takes(&theirs, t));
+        let label = label_of(name);
+        let (o, t) = (takes(ours, o), takes(theirs, t));
         compared += o.intersection(&t).count();
         println!(
             "{name}: {} triggers in the JSIDL, {} here",
@@ -405,16 +440,12 @@ fn our_mobility_machines_take_what_the_public_jsidl_takes() {
             o.len()
         );
         for x in t.difference(&o) {
-            let row = format!("{label}: {x}");
-            // A path segment driver's guard on its query is `segmentExists`, a waypoint
-            // list driver's `waypointExists`: both as in the JSIDL.
-            if !MOBILITY_THEIRS.contains(&row.as_str()) {
+            if !declared.1.contains(&format!("{label}: {x}").as_str()) {
                 unexplained.push(format!("{name}: only in the JSIDL: {x}"));
             }
         }
         for x in o.difference(&t) {
-            let row = format!("{label}: {x}");
-            if !MOBILITY_OURS.contains(&row.as_str()) {
+            if !declared.0.contains(&format!("{label}: {x}").as_str()) {
                 unexplained.push(format!("{name}: only ours: {x}"));
             }
         }
@@ -423,7 +454,42 @@ fn our_mobility_machines_take_what_the_public_jsidl_takes() {
     assert!(compared > 0, "nothing compared");
     assert!(
         unexplained.is_empty(),
-        "differences not declared in mobility_services.yaml:\n{}",
+        "differences not declared in {file}:\n{}",
         unexplained.join("\n")
+    );
+}
+
+#[test]
+fn our_manipulator_machines_take_what_the_public_jsidl_takes() {
+    let Some(root) = std::env::var_os("JAUS_JSIDL_DIR").map(PathBuf::from) else {
+        println!(
+            "skipped: set JAUS_JSIDL_DIR to compare our Manipulator machines with the public JSIDL"
+        );
+        return;
+    };
+    let defs = Path::new(env!("CARGO_MANIFEST_DIR")).join("defs");
+    let ours = jaus_spec::load_dirs(&[&defs]).expect("our definitions validate");
+    let theirs = jaus_jsidl::import(&[
+        root.join("urn.jaus.jss.core-v1.1"),
+        root.join("urn.jaus.jss.manipulator-v2.0"),
+    ])
+    .and_then(|i| i.load())
+    .unwrap_or_else(|e| panic!("importing Manipulator v2.0: {e}"));
+    // The services we serve; every trigger and guard as published.
+    compare_services(
+        &ours,
+        &theirs,
+        "urn:jaus:jss:manipulator",
+        &[
+            "ManipulatorJointPositionSensor",
+            "ManipulatorJointVelocitySensor",
+            "ManipulatorSpecificationService",
+            "ManipulatorEndEffectorPoseSensor",
+            "ManipulatorJointPositionDriver",
+            "ManipulatorEndEffectorPoseDriver",
+        ],
+        |name| name,
+        (&[], &[]),
+        "manipulator_services.yaml",
     );
 }

@@ -1,7 +1,8 @@
 //! `jaus conform --as4 --plan` (`jaus_conform::as4::planned`): checks planned from the
 //! AS-4 service definitions of whatever component answers. Against the SDK's own
 //! vehicle (the demo vehicle behind the node's gateway: Core + Mobility, in memory on a
-//! virtual clock) every required planned check passes; a vendor service known only
+//! virtual clock) and its own arm (Core + Manipulator v2.0) every required planned check
+//! passes; a vendor service known only
 //! from a YAML fixture (tests/as4_vendor/beacon.yaml) is planned and checked; a broken
 //! one fails exactly the checks it breaks.
 
@@ -139,11 +140,11 @@ fn every_required_check_planned_for_core_and_mobility_passes_on_our_vehicle() {
         .services()
         .iter()
         .map(|s| {
-            (
-                s.uri.clone(),
-                1,
-                if s.uri.contains(":core:") { 1 } else { 0 },
-            )
+            let mut v = s
+                .version
+                .split('.')
+                .map(|p| p.parse::<u8>().expect("version"));
+            (s.uri.clone(), v.next().unwrap_or(1), v.next().unwrap_or(0))
         })
         .collect();
     let (plan, unknown) = plan::plan(&defs, &listed, PlanOptions::default());
@@ -231,6 +232,55 @@ const BEACON_CHECKS: [&str; 4] = [
     "as4.beacon.command.SetBeaconRate.controller",
     "as4.beacon.event.QueryBeaconRate",
 ];
+
+#[test]
+fn every_required_check_planned_for_the_manipulator_passes_on_our_arm() {
+    // The stock RA 3.3 manipulator components over the simulated 6-axis arm, behind the
+    // gateway: the Manipulator v2.0 services are planned from their definitions.
+    let t0 = Instant::now();
+    let arm = jaus_sim::arm::SimArm::new(jaus_sim::arm::ArmParams::six_axis());
+    let mut node = jaus::net::Node::new(NodeConfig::default(), t0);
+    for c in jaus_sim::arm_demo::arm_components(&arm, 1, 1, t0) {
+        node.add_boxed(c).expect("arm component");
+    }
+    let config = GatewayConfig::new(VEHICLE, Address::new(1, 1, 60, 1), 1, "arm");
+    let mut session = MemoryAs4Session::new(DualNode::new(node, config).expect("gateway"), t0);
+    let defs = Definitions::as4().expect("jaus-as4's definitions");
+    let opts = As4Options {
+        allow_motion: true,
+        ..As4Options::default()
+    };
+    let run = run_planned(&mut session, &defs, &opts);
+    print(&run);
+    let bad: Vec<String> = run.components[0]
+        .outcomes
+        .iter()
+        .filter(|o| o.check.level == Level::Required && o.verdict != Verdict::Pass)
+        .map(|o| format!("{} {:?}: {}", o.check.id, o.verdict, o.detail))
+        .collect();
+    assert!(bad.is_empty(), "{bad:#?}");
+    for id in [
+        "as4.manipulator_joint_position_sensor.query.QueryJointPositions",
+        "as4.manipulator_joint_velocity_sensor.query.QueryJointVelocity",
+        "as4.manipulator_specification_service.query.QueryManipulatorSpecifications",
+        "as4.manipulator_end_effector_pose_sensor.query.QueryEndEffectorPose",
+        "as4.manipulator_joint_position_driver.query.QueryCommandedJointPositions",
+        "as4.manipulator_joint_position_driver.command.SetJointPositions.outsider",
+        "as4.manipulator_end_effector_pose_driver.command.SetEndEffectorPose.outsider",
+    ] {
+        assert_eq!(outcome(&run, id).verdict, Verdict::Pass, "{id}");
+    }
+    // Where the rule comes from: the service and the file:line of its transition.
+    let o = outcome(
+        &run,
+        "as4.manipulator_joint_position_sensor.query.QueryJointPositions",
+    );
+    assert!(
+        o.check.rule.source.contains("manipulator_services.yaml:"),
+        "{}",
+        o.check.rule.source
+    );
+}
 
 #[test]
 fn a_vendor_service_from_its_yaml_is_planned_and_checked() {

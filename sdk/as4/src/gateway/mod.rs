@@ -171,36 +171,15 @@ impl<A: PeerAddr> Gateway<A> {
     fn offer(&mut self, now: Instant, tree: &SystemTree) {
         let found = Targets::of_tree(tree, self.present);
         let mut targets = *self.node.env().targets();
-        let add = |slot: &mut Option<Address>, new: Option<Address>| match (*slot, new) {
-            (None, Some(a)) => {
-                *slot = Some(a);
-                Some(a)
-            }
-            _ => None,
-        };
-        let vss = add(
-            &mut targets.velocity_state_sensor,
-            found.velocity_state_sensor,
-        );
-        let lps = add(&mut targets.local_pose_sensor, found.local_pose_sensor);
-        let gps = add(&mut targets.global_pose_sensor, found.global_pose_sensor);
-        let pd = add(&mut targets.primitive_driver, found.primitive_driver);
-        let lwd = add(
-            &mut targets.local_waypoint_driver,
-            found.local_waypoint_driver,
-        );
-        let gwd = add(
-            &mut targets.global_waypoint_driver,
-            found.global_waypoint_driver,
-        );
-        let lpsd = add(
-            &mut targets.local_path_segment_driver,
-            found.local_path_segment_driver,
-        );
-        let gpsd = add(
-            &mut targets.global_path_segment_driver,
-            found.global_path_segment_driver,
-        );
+        let new = targets.adopt(&found);
+        let vss = new.velocity_state_sensor;
+        let lps = new.local_pose_sensor;
+        let gps = new.global_pose_sensor;
+        let pd = new.primitive_driver;
+        let lwd = new.local_waypoint_driver;
+        let gwd = new.global_waypoint_driver;
+        let lpsd = new.local_path_segment_driver;
+        let gpsd = new.global_path_segment_driver;
         // Local services over the global ones where the subsystem has no local ones; a
         // local one found after that is not offered beside them.
         let lps = lps.filter(|_| !self.derived.pose);
@@ -211,8 +190,7 @@ impl<A: PeerAddr> Gateway<A> {
         });
         self.derived.pose |= derive_pose.is_some();
         self.derived.waypoints |= derive_waypoints.is_some();
-        let new = [vss, lps, gps, pd, lwd, gwd, lpsd, gpsd];
-        if new.iter().all(Option::is_none) {
+        if new.all().next().is_none() {
             return;
         }
         let env = self.node.env_mut();
@@ -250,6 +228,7 @@ impl<A: PeerAddr> Gateway<A> {
         if let Some(a) = gpsd {
             services.push(Box::new(GlobalPathSegmentDriver::new(a)));
         }
+        services.extend(crate::manipulator::services(env, now, &targets, &new));
         let Some(c) = self.node.component_mut(self.as4) else {
             return;
         };
@@ -269,7 +248,7 @@ impl<A: PeerAddr> Gateway<A> {
             tracing::info!(service = %s.id(), as4 = %self.as4, "AS-4 service offered");
             c.add_service(s);
         }
-        self.offered.extend(new.into_iter().flatten());
+        self.offered.extend(new.all());
     }
 
     /// Carries changes of the AS-4 component's controller and state over to the RA 3.3

@@ -15,8 +15,8 @@ use jaus::stock::nalgebra::Vector2;
 use jaus::{CommandCode, JausMessage};
 
 use super::lists::{self, list_machines, Goal, Kind, ListDriver, DEFAULT_TOLERANCE};
-use super::machines::OnMachines;
 use super::ServiceIds;
+use crate::machined::OnMachines;
 use crate::messages::{QueryLocalWaypoint, SetLocalWaypoint};
 use crate::ra33::Ra33Side;
 use crate::service::ServiceId;

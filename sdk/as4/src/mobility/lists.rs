@@ -17,10 +17,10 @@
 use jaus::messages as ra;
 use jaus::{Address, CommandCode, JausMessage};
 
-use super::machines::{Machined, On, OnMachines};
 use super::ServiceIds;
 use crate::core::lists::Lists;
 use crate::core::machine::Host;
+use crate::machined::{Machined, On, OnMachines};
 use crate::messages::services::global_path_segment_driver;
 use crate::messages::services::transport::event::Receive;
 use crate::messages::services::{global_waypoint_list_driver, list_manager};
@@ -129,7 +129,7 @@ macro_rules! list_machines {
 
         fn run(
             m: &mut Self::Machines,
-            on: &mut $crate::mobility::machines::On<'_, $crate::mobility::lists::ListDriver<Self>>,
+            on: &mut $crate::machined::On<'_, $crate::mobility::lists::ListDriver<Self>>,
             core: &mut $crate::core::machine::Host<'_>,
             message: &$crate::Message,
             transport: &$crate::messages::services::transport::event::Receive,

@@ -2,7 +2,7 @@
 //! a gateway (the `gateway` module) presents of an RA 3.3 subsystem, be it the stock
 //! components of this SDK on the same node or OpenJAUS 3.3's vehicle across the network.
 //!
-//! Each runs its generated machines (`defs/mobility_services.yaml`, [`machines`]) as a
+//! Each runs its generated machines (`defs/mobility_services.yaml`, [`crate::machined`]) as a
 //! [`Service`](crate::service::Service) over the gateway's RA 3.3 side
 //! ([`Ra33Side`](crate::ra33::Ra33Side)): its own guards and actions are implemented
 //! here, the inherited ones are the Core's. Sensors answer from the latest RA 3.3 report
@@ -30,14 +30,13 @@ use crate::service::ServiceId;
 
 pub mod derived;
 pub mod lists;
-pub mod machines;
 pub mod primitive;
 pub mod segments;
 pub mod sensors;
 
+pub use crate::machined::{Machined, On, OnMachines};
 pub use derived::LocalWaypointListDriverOnGlobal;
 pub use lists::{GlobalWaypointListDriver, ListDriver, LocalWaypointListDriver};
-pub use machines::{Machined, On, OnMachines};
 pub use primitive::PrimitiveDriver;
 pub use segments::{GlobalPathSegmentDriver, LocalPathSegmentDriver};
 pub use sensors::{GlobalPoseSensor, LocalPoseSensor, VelocityStateSensor};

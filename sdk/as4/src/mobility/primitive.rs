@@ -7,8 +7,8 @@ use jaus::codec::Encode;
 use jaus::messages as ra;
 use jaus::{Address, JausMessage};
 
-use super::machines::{machined, On, OnMachines};
 use super::ServiceIds;
+use crate::machined::{machined, On, OnMachines};
 use crate::messages::services::primitive_driver as generated;
 use crate::messages::services::transport::event::Receive;
 use crate::messages::{QueryWrenchEffort, ReportWrenchEffort, SetWrenchEffort};

@@ -16,8 +16,8 @@ use jaus::messages as ra;
 use jaus::{CommandCode, JausMessage};
 
 use super::lists::{self, list_machines, Goal, Kind, ListDriver, DEFAULT_TOLERANCE};
-use super::machines::OnMachines;
 use super::ServiceIds;
+use crate::machined::OnMachines;
 use crate::messages::{
     QueryGlobalPathSegment, QueryLocalPathSegment, ReportGlobalPathSegment, ReportLocalPathSegment,
     SetGlobalPathSegment, SetLocalPathSegment,

@@ -5,8 +5,8 @@ use jaus::codec::Encode;
 use jaus::messages as ra;
 use jaus::{Address, JausMessage};
 
-use super::machines::{machined, On, OnMachines};
 use super::{time_stamp, ServiceIds};
+use crate::machined::{machined, On, OnMachines};
 use crate::messages::services::transport::event::Receive;
 use crate::messages::services::{global_pose_sensor, local_pose_sensor, velocity_state_sensor};
 use crate::messages::{

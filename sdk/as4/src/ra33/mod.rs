@@ -38,7 +38,7 @@ pub mod targets;
 
 pub use frame::Frame;
 pub use polls::{BACKOFF_AFTER, GIVE_UP_AFTER, MAX_POLL_PERIOD};
-pub use targets::Targets;
+pub use targets::{Group, Targets};
 
 use polls::Polls;
 
@@ -130,7 +130,8 @@ pub struct Ra33Side {
     control: HashMap<Address, Ra33Control>,
     want_control: bool,
     ready: bool,
-    active: Option<Address>,
+    /// The driver of each group that moves its hardware ([`Ra33Side::activate`]).
+    active: HashMap<Group, Address>,
     /// The AS-4 local frame relative to the RA 3.3 one (Set Local Pose moves it).
     pub frame: Frame,
     /// A local frame (x north, y east) at the first global position the Global Pose
@@ -163,7 +164,7 @@ impl Ra33Side {
             control: HashMap::new(),
             want_control: false,
             ready: false,
-            active: None,
+            active: HashMap::new(),
             frame: Frame::default(),
             tangent: None,
             control_retries: HashMap::new(),
@@ -284,7 +285,7 @@ impl Ra33Side {
                     Ra33Control::Refused(*response_code)
                 };
                 self.control.insert(from, state);
-                if state == Ra33Control::Granted && self.ready && self.active == Some(from) {
+                if state == Ra33Control::Granted && self.ready && self.is_active(from) {
                     self.send(from, Resume {});
                 }
             }
@@ -465,14 +466,16 @@ impl Ra33Side {
         }
         self.ready = ready;
         if ready {
-            if let Some(d) = self.active {
+            let mut active: Vec<Address> = self.active.values().copied().collect();
+            active.sort();
+            for d in active {
                 if self.control_of(d) == Ra33Control::Granted {
                     self.send(d, Resume {});
                 }
             }
             return;
         }
-        self.active = None;
+        self.active.clear();
         let granted: Vec<Address> = self
             .control
             .iter()
@@ -484,24 +487,34 @@ impl Ra33Side {
         }
     }
 
-    /// Makes `driver` the one that moves the vehicle: it is resumed (control asked for
-    /// first if needed) and every other driver the gateway controls goes to standby, so
-    /// that two drivers never contend for the vehicle (two waypoint drivers in Ready
-    /// would both take the Reflexive Driver).
+    /// Whether `driver` is the active one of its group.
+    fn is_active(&self, driver: Address) -> bool {
+        self.active.get(&self.targets.group(driver)) == Some(&driver)
+    }
+
+    /// Makes `driver` the one that moves its group's hardware ([`Group`]): it is resumed
+    /// (control asked for first if needed) and every other driver of its group the
+    /// gateway controls goes to standby, so that two drivers never contend for the
+    /// vehicle (two waypoint drivers in Ready would both take the Reflexive Driver) or
+    /// for the arm; the other group's drivers are left as they are.
     pub fn activate(&mut self, driver: Address) {
         self.ensure_control(driver);
-        let others: Vec<Address> = self
+        let group = self.targets.group(driver);
+        let mut others: Vec<Address> = self
             .control
             .iter()
-            .filter(|(a, c)| **a != driver && **c == Ra33Control::Granted)
+            .filter(|(a, c)| {
+                **a != driver && **c == Ra33Control::Granted && self.targets.group(**a) == group
+            })
             .map(|(a, _)| *a)
             .collect();
-        if self.active != Some(driver) {
+        others.sort();
+        if !self.is_active(driver) {
             for d in others {
                 self.send(d, Standby {});
             }
         }
-        self.active = Some(driver);
+        self.active.insert(group, driver);
         if self.ready && self.control_of(driver) == Ra33Control::Granted {
             self.send(driver, Resume {});
         }

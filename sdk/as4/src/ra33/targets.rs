@@ -22,11 +22,33 @@ pub struct Targets {
     pub local_path_segment_driver: Option<Address>,
     /// Global Path Segment Driver.
     pub global_path_segment_driver: Option<Address>,
+    /// Primitive Manipulator (answers Query Manipulator Specifications).
+    pub primitive_manipulator: Option<Address>,
+    /// Manipulator Joint Position Sensor.
+    pub joint_position_sensor: Option<Address>,
+    /// Manipulator Joint Velocity Sensor.
+    pub joint_velocity_sensor: Option<Address>,
+    /// Manipulator Joint Positions Driver.
+    pub joint_positions_driver: Option<Address>,
+    /// Manipulator End-Effector Pose Driver.
+    pub end_effector_pose_driver: Option<Address>,
+}
+
+/// What a driver moves: drivers of one group contend for the same hardware (the
+/// vehicle's through the Reflexive Driver, the arm's through the Primitive Manipulator),
+/// so only one of a group is resumed at a time ([`Ra33Side::activate`](super::Ra33Side::activate)).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Group {
+    /// The waypoint and path segment drivers, the Primitive Driver.
+    Vehicle,
+    /// The manipulator's joint positions and end-effector pose drivers.
+    Arm,
 }
 
 impl Targets {
     /// The drivers the gateway takes RA 3.3 control of as soon as an AS-4 client
-    /// controls it: the waypoint and path segment drivers. The Primitive Driver is
+    /// controls it: the waypoint and path segment drivers and the manipulator's joint
+    /// positions and end-effector pose drivers. The Primitive Driver is
     /// taken only when the AS-4 client commands efforts
     /// ([`Ra33Side::ensure_control`](super::Ra33Side::ensure_control)): the other
     /// drivers reach it through the Reflexive Driver, which must hold it.
@@ -36,9 +58,50 @@ impl Targets {
             self.global_waypoint_driver,
             self.local_path_segment_driver,
             self.global_path_segment_driver,
+            self.joint_positions_driver,
+            self.end_effector_pose_driver,
         ]
         .into_iter()
         .flatten()
+    }
+
+    /// Takes the components of `found` whose slot is still empty; returns those it took
+    /// (every other slot `None`): the components to offer services for now.
+    pub fn adopt(&mut self, found: &Targets) -> Targets {
+        let mut new = Targets::default();
+        macro_rules! slots {
+            ($($f:ident),*) => {$(
+                if self.$f.is_none() && found.$f.is_some() {
+                    self.$f = found.$f;
+                    new.$f = found.$f;
+                }
+            )*};
+        }
+        slots!(
+            velocity_state_sensor,
+            local_pose_sensor,
+            global_pose_sensor,
+            primitive_driver,
+            local_waypoint_driver,
+            global_waypoint_driver,
+            local_path_segment_driver,
+            global_path_segment_driver,
+            primitive_manipulator,
+            joint_position_sensor,
+            joint_velocity_sensor,
+            joint_positions_driver,
+            end_effector_pose_driver
+        );
+        new
+    }
+
+    /// The group `driver` belongs to (the vehicle's unless it is one of the arm's).
+    pub fn group(&self, driver: Address) -> Group {
+        if [self.joint_positions_driver, self.end_effector_pose_driver].contains(&Some(driver)) {
+            Group::Arm
+        } else {
+            Group::Vehicle
+        }
     }
 
     /// Every component presented (sensors and drivers).
@@ -52,6 +115,11 @@ impl Targets {
             self.global_waypoint_driver,
             self.local_path_segment_driver,
             self.global_path_segment_driver,
+            self.primitive_manipulator,
+            self.joint_position_sensor,
+            self.joint_velocity_sensor,
+            self.joint_positions_driver,
+            self.end_effector_pose_driver,
         ]
         .into_iter()
         .flatten()
@@ -77,6 +145,11 @@ impl Targets {
             global_waypoint_driver: find(c::global_waypoint_driver::ID),
             local_path_segment_driver: find(c::local_path_segment_driver::ID),
             global_path_segment_driver: find(c::global_path_segment_driver::ID),
+            primitive_manipulator: find(c::primitive_manipulator::ID),
+            joint_position_sensor: find(c::manipulator_joint_position_sensor::ID),
+            joint_velocity_sensor: find(c::manipulator_joint_velocity_sensor::ID),
+            joint_positions_driver: find(c::manipulator_joint_positions_driver::ID),
+            end_effector_pose_driver: find(c::manipulator_end_effector_pose_driver::ID),
         }
     }
 }

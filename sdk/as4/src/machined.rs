@@ -1,4 +1,6 @@
-//! The Mobility services on their generated machines (`defs/mobility_services.yaml`).
+//! The services a gateway presents over RA 3.3 components, on their generated machines:
+//! the Mobility services (`defs/mobility_services.yaml`, [`crate::mobility`]) and the
+//! Manipulator services (`defs/manipulator_services.yaml`, [`crate::manipulator`]).
 //!
 //! Each service's data (the RA 3.3 component behind it, a list being driven) implements
 //! [`Machined`]; [`OnMachines`] runs it as a [`Service`] of the gateway's component:
@@ -30,7 +32,7 @@ use crate::ra33::Ra33Side;
 use crate::service::{Cx, Handled, Outgoing, Request, Service, ServiceId};
 use crate::{ComponentState, Message};
 
-/// What a Mobility service's own guards and actions are given during one trigger: the
+/// What a gateway service's own guards and actions are given during one trigger: the
 /// generated trait of the service is implemented for `On<'_, T>` of its data `T`.
 #[derive(Debug)]
 pub struct On<'a, T> {
@@ -63,7 +65,7 @@ impl<T> On<'_, T> {
     }
 }
 
-/// A Mobility service's data, run on its generated machines by [`OnMachines`].
+/// A gateway service's data, run on its generated machines by [`OnMachines`].
 pub trait Machined: fmt::Debug + Send + Sized + 'static {
     /// The service's generated machines.
     type Machines: fmt::Debug + Send + Default + 'static;
@@ -115,7 +117,7 @@ pub trait Machined: fmt::Debug + Send + Sized + 'static {
 /// items in braces are added to the implementation (`claims`, `state_changed`, `tick`).
 macro_rules! machined {
     ($data:ty, $module:ident, $id:expr, $inherited:ident $({ $($extra:item)* })?) => {
-        impl $crate::mobility::machines::Machined for $data {
+        impl $crate::machined::Machined for $data {
             type Machines = $crate::messages::services::$module::Machines;
             const ID: $crate::service::ServiceId = $id;
             const RECEIVES: &'static [::jaus::CommandCode] =
@@ -129,7 +131,7 @@ macro_rules! machined {
 
             fn run(
                 m: &mut Self::Machines,
-                on: &mut $crate::mobility::machines::On<'_, Self>,
+                on: &mut $crate::machined::On<'_, Self>,
                 core: &mut $crate::core::machine::Host<'_>,
                 message: &$crate::Message,
                 transport: &$crate::messages::services::transport::event::Receive,
@@ -143,7 +145,7 @@ macro_rules! machined {
 }
 pub(crate) use machined;
 
-/// A Mobility service running on its generated machines.
+/// A gateway service running on its generated machines.
 #[derive(Debug)]
 pub struct OnMachines<T: Machined> {
     imp: T,
