@@ -287,6 +287,13 @@ fn our_yaml_has_the_wire_layout_of_the_public_jsidl() {
         &[root.join("urn.jaus.jss.core-v1.1")],
         "jaus_jss_core_v1_1",
     );
+    // Core v1.0: what a client of the older revision (the JAUS Tool Set's own examples)
+    // sends and expects; its messages must be ours byte for byte (v1.1 only adds).
+    let core_v1_0 = import(
+        "Core v1.0",
+        &[root.join("urn.jaus.jss.core-v1.0")],
+        "jaus_jss_core_v1_0",
+    );
     let tmp = std::env::temp_dir().join(format!("jaus-as4-jsidl-{}", std::process::id()));
     let mobility_dir = tmp.join("urn.jaus.jss.mobility");
     copy_without(
@@ -314,7 +321,7 @@ fn our_yaml_has_the_wire_layout_of_the_public_jsidl() {
     let mut problems = Vec::new();
     let mut covered = BTreeSet::new();
     let mut compared = 0;
-    for set in [&core, &mobility, &manipulator] {
+    for set in [&core, &core_v1_0, &mobility, &manipulator] {
         let flat = Flattener::new(&set.snap);
         let mut n = 0;
         for m in set
