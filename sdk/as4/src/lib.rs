@@ -9,10 +9,13 @@
 //! and of the **Manipulator Service Set v2.0** (SAE AS6057A, `urn:jaus:jss:manipulator`:
 //! joint and end-effector sensors and drivers, list driver, specification, tool offset,
 //! motion profile, pan-tilt; 72 messages, of which the 10 List Manager messages are the
-//! Core's), as typed Rust: 165 messages in all.
+//! Core's) and of the **Environment Sensing Service Set** (SAE AS6060,
+//! `urn:jaus:jss:environmentSensing`: Range Sensor, Visual Sensor, Digital and Analog
+//! Video, Still Image; 35 messages), as typed Rust: 200 messages in all.
 //!
 //! The definitions are this crate's own YAML (`defs/core.yaml`, `defs/mobility.yaml`,
-//! `defs/manipulator.yaml`, each a standalone set, `extends: none`), written by hand from the layout facts of the
+//! `defs/manipulator.yaml`, `defs/environment.yaml`, each a standalone set,
+//! `extends: none`), written by hand from the layout facts of the
 //! public JSIDL (message IDs, field order, types, scales, units, enumerated values,
 //! presence bits, counts). The build script generates [`messages`] from them with the
 //! SDK's generator, so every message has the codec, serde support (feature `serde`, on by
@@ -140,6 +143,7 @@ pub const DEFS: &[(&str, &str)] = &[
         "core_services.yaml",
         include_str!("../defs/core_services.yaml"),
     ),
+    ("environment.yaml", include_str!("../defs/environment.yaml")),
     ("manipulator.yaml", include_str!("../defs/manipulator.yaml")),
     (
         "manipulator_services.yaml",

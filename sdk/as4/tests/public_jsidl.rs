@@ -307,6 +307,14 @@ fn our_yaml_has_the_wire_layout_of_the_public_jsidl() {
         "jaus_jss_mobility",
     );
     let _ = std::fs::remove_dir_all(&tmp);
+    let environment = import(
+        "Environment Sensing",
+        &[
+            root.join("urn.jaus.jss.core-v1.1"),
+            root.join("urn.jaus.jss.environmentSensing"),
+        ],
+        "jaus_jss_environmentsensing",
+    );
     let manipulator = import(
         "Manipulator v2.0",
         &[
@@ -321,7 +329,7 @@ fn our_yaml_has_the_wire_layout_of_the_public_jsidl() {
     let mut problems = Vec::new();
     let mut covered = BTreeSet::new();
     let mut compared = 0;
-    for set in [&core, &core_v1_0, &mobility, &manipulator] {
+    for set in [&core, &core_v1_0, &mobility, &manipulator, &environment] {
         let flat = Flattener::new(&set.snap);
         let mut n = 0;
         for m in set
