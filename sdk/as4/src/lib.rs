@@ -144,6 +144,10 @@ pub const DEFS: &[(&str, &str)] = &[
         include_str!("../defs/core_services.yaml"),
     ),
     ("environment.yaml", include_str!("../defs/environment.yaml")),
+    (
+        "environment_services.yaml",
+        include_str!("../defs/environment_services.yaml"),
+    ),
     ("manipulator.yaml", include_str!("../defs/manipulator.yaml")),
     (
         "manipulator_services.yaml",

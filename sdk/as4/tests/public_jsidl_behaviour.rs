@@ -493,3 +493,52 @@ fn our_manipulator_machines_take_what_the_public_jsidl_takes() {
         "manipulator_services.yaml",
     );
 }
+
+/// The differences `environment_services.yaml` declares: the Range Sensor's guard as
+/// the other services spell it.
+const ENVIRONMENT_OURS: &[&str] = &[
+    "RangeSensor: on QueryRangeSensorData [iscoordinatetransformsupported]",
+    "RangeSensor: on QueryRangeSensorData [!iscoordinatetransformsupported]",
+    "RangeSensor: on QueryRangeSensorCompressedData [iscoordinatetransformsupported]",
+    "RangeSensor: on QueryRangeSensorCompressedData [!iscoordinatetransformsupported]",
+];
+const ENVIRONMENT_THEIRS: &[&str] = &[
+    "RangeSensor: on QueryRangeSensorData [iscoordinatetranformsupported]",
+    "RangeSensor: on QueryRangeSensorData [!iscoordinatetranformsupported]",
+    "RangeSensor: on QueryRangeSensorCompressedData [iscoordinatetranformsupported]",
+    "RangeSensor: on QueryRangeSensorCompressedData [!iscoordinatetranformsupported]",
+];
+
+#[test]
+fn our_environment_sensing_machines_take_what_the_public_jsidl_takes() {
+    let Some(root) = std::env::var_os("JAUS_JSIDL_DIR").map(PathBuf::from) else {
+        println!(
+            "skipped: set JAUS_JSIDL_DIR to compare our Environment Sensing machines with the \
+             public JSIDL"
+        );
+        return;
+    };
+    let defs = Path::new(env!("CARGO_MANIFEST_DIR")).join("defs");
+    let ours = jaus_spec::load_dirs(&[&defs]).expect("our definitions validate");
+    let theirs = jaus_jsidl::import(&[
+        root.join("urn.jaus.jss.core-v1.0"),
+        root.join("urn.jaus.jss.environmentSensing"),
+    ])
+    .and_then(|i| i.load())
+    .unwrap_or_else(|e| panic!("importing Environment Sensing: {e}"));
+    compare_services(
+        &ours,
+        &theirs,
+        "urn:jaus:jss:environmentSensing",
+        &[
+            "RangeSensor",
+            "VisualSensor",
+            "StillImage",
+            "DigitalVideo",
+            "AnalogVideo",
+        ],
+        |name| name,
+        (ENVIRONMENT_OURS, ENVIRONMENT_THEIRS),
+        "environment_services.yaml",
+    );
+}
