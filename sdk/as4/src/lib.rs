@@ -162,6 +162,7 @@ pub const DEFS: &[(&str, &str)] = &[
 
 pub mod core;
 pub mod embedded;
+pub mod environment;
 pub mod gateway;
 pub mod machined;
 pub mod manipulator;

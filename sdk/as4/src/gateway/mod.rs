@@ -229,6 +229,9 @@ impl<A: PeerAddr> Gateway<A> {
             services.push(Box::new(GlobalPathSegmentDriver::new(a)));
         }
         services.extend(crate::manipulator::services(env, now, &targets, &new));
+        if let Some(a) = new.visual_sensor {
+            services.push(Box::new(crate::environment::StillImage::new(a)));
+        }
         let Some(c) = self.node.component_mut(self.as4) else {
             return;
         };

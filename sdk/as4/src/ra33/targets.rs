@@ -32,6 +32,8 @@ pub struct Targets {
     pub joint_positions_driver: Option<Address>,
     /// Manipulator End-Effector Pose Driver.
     pub end_effector_pose_driver: Option<Address>,
+    /// Visual Sensor.
+    pub visual_sensor: Option<Address>,
 }
 
 /// What a driver moves: drivers of one group contend for the same hardware (the
@@ -90,7 +92,8 @@ impl Targets {
             joint_position_sensor,
             joint_velocity_sensor,
             joint_positions_driver,
-            end_effector_pose_driver
+            end_effector_pose_driver,
+            visual_sensor
         );
         new
     }
@@ -120,6 +123,7 @@ impl Targets {
             self.joint_velocity_sensor,
             self.joint_positions_driver,
             self.end_effector_pose_driver,
+            self.visual_sensor,
         ]
         .into_iter()
         .flatten()
@@ -150,6 +154,7 @@ impl Targets {
             joint_velocity_sensor: find(c::manipulator_joint_velocity_sensor::ID),
             joint_positions_driver: find(c::manipulator_joint_positions_driver::ID),
             end_effector_pose_driver: find(c::manipulator_end_effector_pose_driver::ID),
+            visual_sensor: find(c::visual_sensor::ID),
         }
     }
 }
