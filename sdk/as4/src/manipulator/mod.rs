@@ -4,7 +4,7 @@
 //! vendor's.
 //!
 //! Each runs its generated machines (`defs/manipulator_services.yaml`,
-//! [`crate::machined`]) as a [`Service`](crate::service::Service) over the gateway's RA 3.3
+//! [`crate::machined`]) as a [`Service`] over the gateway's RA 3.3
 //! side, as the Mobility services do. The arm's kinematic chain is the RA 3.3 Primitive
 //! Manipulator's Report Manipulator Specifications, read into the SDK's
 //! [`Chain`] (the model the stock RA 3.3 drivers solve with), with the tool point of the
