@@ -3,13 +3,11 @@
 //! presents (`jaus_as4::environment`), reads its capabilities and configuration, and
 //! has a configuration it cannot give refused sensor by sensor.
 
-use std::net::SocketAddr;
 use std::time::{Duration, Instant};
 
-use jaus::net::as5669a::{As4Client, As4Id, As4Message};
+use jaus::net::as5669a::As4Id;
 use jaus::net::NodeConfig;
-use jaus::{Address, JausMessage};
-use jaus_as4::gateway::{DualNode, GatewayConfig};
+use jaus::JausMessage;
 use jaus_as4::{
     ConfirmSensorConfigurationVariant as Confirmed, CoordinateSystemEnum, Message,
     QueryStillImageData, QueryStillImageDataRec, QueryStillImageSensorCapabilities,
@@ -17,52 +15,36 @@ use jaus_as4::{
     QueryVisualSensorConfigurationRec, RequestControl, RequestIdRec, SensorStateEnum,
     SetStillImageSensorConfiguration, StillImageFormatEnum, StillImageSensorConfigurationRec,
 };
-use jaus_sim::network::{LinkModel, SimNet};
 
-const ME: As4Id = As4Id::new(42, 1, 1);
+mod common;
+use common::as4::As4Rig;
+
 const VEHICLE: As4Id = As4Id::new(1, 1, 1);
 const PNG: &[u8] = b"\x89PNG\r\n\x1a\n";
 
-struct Rig {
-    net: SimNet,
-    client: usize,
-    node: usize,
-}
+struct Rig(As4Rig);
 
 impl Rig {
     fn new() -> Self {
         let t0 = Instant::now();
         let node = jaus_sim::demo::vehicle_node(t0, NodeConfig::default(), 1, 1).unwrap();
-        let mut net = SimNet::new(t0, LinkModel::default(), 5);
-        let config = GatewayConfig::new(VEHICLE, Address::new(1, 1, 60, 1), 1, "demo vehicle");
-        let node = net.add(DualNode::new(node, config).unwrap());
-        let client = net.add(As4Client::<SocketAddr>::default());
-        // The node settles, the gateway finds the camera and has its first image.
-        net.run_for(Duration::from_secs(3));
-        Rig { net, client, node }
+        // The node settles, the gateway finds the camera.
+        Rig(As4Rig::new(
+            t0,
+            node,
+            VEHICLE,
+            "demo vehicle",
+            Duration::from_secs(3),
+        ))
     }
 
     fn one(&mut self, m: impl Into<Message>) -> Message {
-        let m: Message = m.into();
-        let body = m.body().to_bytes().unwrap();
-        let to = SimNet::addr(self.node);
-        let c = self.net.get_mut::<As4Client>(self.client).unwrap();
-        c.send(to, &[As4Message::new(m.code().0, VEHICLE, ME, body)]);
-        self.net.run_for(Duration::from_millis(500));
-        let c = self.net.get_mut::<As4Client>(self.client).unwrap();
-        let got: Vec<Message> = c
-            .take()
-            .into_iter()
-            .map(|(_, a)| Message::decode(jaus::CommandCode(a.message_id), &a.body).unwrap())
-            .collect();
-        assert_eq!(got.len(), 1, "one answer expected, got {got:?}");
-        got.into_iter().next().unwrap()
+        self.0.one_within(m, Duration::from_millis(500))
     }
 
     /// The PNG the RA 3.3 visual sensor last reported to the gateway.
     fn ra33_image(&self) -> Vec<u8> {
-        let dual = self.net.get::<DualNode>(self.node).unwrap();
-        let env = dual.gateway().node().env();
+        let env = self.0.dual().gateway().node().env();
         let vs = env.targets().visual_sensor.expect("the camera found");
         match env.latest(vs, jaus::messages::ReportImage::CODE) {
             Some((_, jaus::messages::Message::ReportImage(r))) => r.data.clone(),

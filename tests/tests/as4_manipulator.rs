@@ -5,13 +5,10 @@
 //! (`jaus_as4::manipulator`). The arm must actually get there: the check reads the
 //! simulated arm, not the gateway.
 
-use std::net::SocketAddr;
 use std::time::{Duration, Instant};
 
-use jaus::net::as5669a::{As4Client, As4Id, As4Message};
+use jaus::net::as5669a::As4Id;
 use jaus::net::{Node, NodeConfig};
-use jaus::Address;
-use jaus_as4::gateway::{DualNode, GatewayConfig};
 use jaus_as4::{
     ComponentState, ConfirmControl, ControlConfirmation, FirstJoint, JointPosition,
     JointPositionRadians, Message, NodeServicesQuery, QueryCommandedJointPositions,
@@ -20,23 +17,22 @@ use jaus_as4::{
     SetJointPositions,
 };
 use jaus_sim::arm::{ArmParams, SimArm};
-use jaus_sim::network::{LinkModel, SimNet};
 
-const ME: As4Id = As4Id::new(42, 1, 1);
+mod common;
+use common::as4::As4Rig;
+
 const ARM: As4Id = As4Id::new(1, 1, 1);
 /// 0.1°.
 const TENTH_DEGREE: f64 = 0.1 * std::f64::consts::PI / 180.0;
 
 struct Rig {
-    net: SimNet,
-    client: usize,
-    node: usize,
+    rig: As4Rig,
     arm: SimArm,
 }
 
 impl Rig {
     /// The stock manipulator components over a fresh arm on node 1.1, the gateway in
-    /// front of them as component 60, an AS-4 client.
+    /// front of them, an AS-4 client.
     fn new() -> Self {
         let t0 = Instant::now();
         let arm = SimArm::new(ArmParams::six_axis());
@@ -44,37 +40,16 @@ impl Rig {
         for c in jaus_sim::arm_demo::arm_components(&arm, 1, 1, t0) {
             node.add_boxed(c).unwrap();
         }
-        let mut net = SimNet::new(t0, LinkModel::default(), 11);
-        let config = GatewayConfig::new(ARM, Address::new(1, 1, 60, 1), 1, "arm");
-        let node = net.add(DualNode::new(node, config).unwrap());
-        let client = net.add(As4Client::<SocketAddr>::default());
-        net.run_for(Duration::from_secs(2));
-        Rig {
-            net,
-            client,
-            node,
-            arm,
-        }
+        let rig = As4Rig::new(t0, node, ARM, "arm", Duration::from_secs(2));
+        Rig { rig, arm }
     }
 
     fn ask(&mut self, m: impl Into<Message>, wait: Duration) -> Vec<Message> {
-        let m: Message = m.into();
-        let body = m.body().to_bytes().unwrap();
-        let to = SimNet::addr(self.node);
-        let c = self.net.get_mut::<As4Client>(self.client).unwrap();
-        c.send(to, &[As4Message::new(m.code().0, ARM, ME, body)]);
-        self.net.run_for(wait);
-        let c = self.net.get_mut::<As4Client>(self.client).unwrap();
-        c.take()
-            .into_iter()
-            .map(|(_, a)| Message::decode(jaus::CommandCode(a.message_id), &a.body).unwrap())
-            .collect()
+        self.rig.ask(m, wait)
     }
 
     fn one(&mut self, m: impl Into<Message>) -> Message {
-        let got = self.ask(m, Duration::from_millis(300));
-        assert_eq!(got.len(), 1, "one answer expected, got {got:?}");
-        got.into_iter().next().unwrap()
+        self.rig.one(m)
     }
 
     fn take_control(&mut self) {

@@ -6,7 +6,10 @@
 //! which is a quick no-op when the binary is up to date and keeps it from going stale.
 //! `JAUS_BIN` overrides the path (and skips the build).
 
-// Killed and restarted `jaus node` processes, and an operator station in the test.
+// An AS-4 client of a node's gateway on SimNet; killed and restarted `jaus node`
+// processes; an operator station in the test.
+#[allow(dead_code)]
+pub mod as4;
 #[allow(dead_code)]
 pub mod process;
 #[allow(dead_code)]

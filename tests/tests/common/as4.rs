@@ -1,0 +1,81 @@
+//! An AS-4 client of a node's gateway, on the simulated network: the node (its RA 3.3
+//! components) behind the gateway at 1.1.60.1 presenting subsystem 1, our `As4Client`
+//! beside it, messages sent by value and answers decoded.
+
+use std::net::SocketAddr;
+use std::time::{Duration, Instant};
+
+use jaus::net::as5669a::{As4Client, As4Id, As4Message};
+use jaus::net::Node;
+use jaus::Address;
+use jaus_as4::gateway::{DualNode, GatewayConfig};
+use jaus_as4::Message;
+use jaus_sim::network::{LinkModel, SimNet};
+
+/// The client's AS-4 id.
+pub const ME: As4Id = As4Id::new(42, 1, 1);
+
+/// The node with its gateway, the client, on SimNet.
+pub struct As4Rig {
+    /// The network (run it to let time pass).
+    pub net: SimNet,
+    /// The client's index on `net`.
+    pub client: usize,
+    /// The node's index on `net` (a [`DualNode`]).
+    pub node: usize,
+    /// The gateway's AS-4 component.
+    pub target: As4Id,
+}
+
+impl As4Rig {
+    /// `node` behind a gateway (AS-4 component `target`, named `name`), after `settle`
+    /// (its components come up, the gateway finds them).
+    pub fn new(t0: Instant, node: Node, target: As4Id, name: &str, settle: Duration) -> Self {
+        let mut net = SimNet::new(t0, LinkModel::default(), 11);
+        let config = GatewayConfig::new(target, Address::new(1, 1, 60, 1), 1, name);
+        let node = net.add(DualNode::new(node, config).expect("gateway"));
+        let client = net.add(As4Client::<SocketAddr>::default());
+        net.run_for(settle);
+        As4Rig {
+            net,
+            client,
+            node,
+            target,
+        }
+    }
+
+    /// Sends `m` to the gateway's component, runs the network for `wait`, returns what
+    /// came back.
+    pub fn ask(&mut self, m: impl Into<Message>, wait: Duration) -> Vec<Message> {
+        let m: Message = m.into();
+        let body = m.body().to_bytes().expect("encodes");
+        let to = SimNet::addr(self.node);
+        let c = self.net.get_mut::<As4Client>(self.client).expect("client");
+        c.send(to, &[As4Message::new(m.code().0, self.target, ME, body)]);
+        self.net.run_for(wait);
+        let c = self.net.get_mut::<As4Client>(self.client).expect("client");
+        c.take()
+            .into_iter()
+            .map(|(_, a)| {
+                Message::decode(jaus::CommandCode(a.message_id), &a.body).expect("decodes")
+            })
+            .collect()
+    }
+
+    /// The one answer to `m` within `wait`.
+    pub fn one_within(&mut self, m: impl Into<Message>, wait: Duration) -> Message {
+        let got = self.ask(m, wait);
+        assert_eq!(got.len(), 1, "one answer expected, got {got:?}");
+        got.into_iter().next().expect("one")
+    }
+
+    /// The one answer to `m` within 300 ms.
+    pub fn one(&mut self, m: impl Into<Message>) -> Message {
+        self.one_within(m, Duration::from_millis(300))
+    }
+
+    /// The node and its gateway.
+    pub fn dual(&self) -> &DualNode {
+        self.net.get::<DualNode>(self.node).expect("node")
+    }
+}
