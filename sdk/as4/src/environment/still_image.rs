@@ -294,9 +294,12 @@ impl generated::StillImage for On<'_, Images> {
             .iter()
             .any(|r| r.sensor_id == SENSOR_ID)
         {
-            return self.refuse(format!(
-                "no sensor of the ids asked (this one is {SENSOR_ID})"
-            ));
+            // No sensor of ours asked: no image, as the other queries answer an empty
+            // list for ids they do not know.
+            let none = ReportStillImageData {
+                still_image_data_list: Vec::new(),
+            };
+            return self.reply(transport, none);
         }
         let now = self.now;
         if let Some((at, format, data)) = latest_image(self.env, self.svc.sensor) {
