@@ -11,10 +11,18 @@
 //! motion profile, pan-tilt; 72 messages, of which the 10 List Manager messages are the
 //! Core's) and of the **Environment Sensing Service Set** (SAE AS6060,
 //! `urn:jaus:jss:environmentSensing`: Range Sensor, Visual Sensor, Digital and Analog
-//! Video, Still Image; 35 messages), as typed Rust: 200 messages in all.
+//! Video, Still Image; 35 messages), the **Unmanned Ground Vehicle Service Set** (SAE
+//! AS6091, `urn:jaus:jss:ugv`: Skid Steer, Ackermann, Stabilizer, Drive Train and Parking
+//! Brake Drivers, Platform Specifications, Power Plant Manager, Illumination, Annunciator,
+//! Odometry; 47 messages), the **Mission Spooling Service Set** (SAE AS6062,
+//! `urn:jaus:jss:missionSpooler`: Mission Spooler; 17 messages) and the
+//! **Human-Machine Interface Service Set** (SAE AS6040, `urn:jaus:jss:HMI`: Drawing, Pointing
+//! Device, Keyboard, Digital Control, Analog Control; 19 messages), as typed Rust: 283
+//! messages in all.
 //!
 //! The definitions are this crate's own YAML (`defs/core.yaml`, `defs/mobility.yaml`,
-//! `defs/manipulator.yaml`, `defs/environment.yaml`, each a standalone set,
+//! `defs/manipulator.yaml`, `defs/environment.yaml`, `defs/ugv.yaml`,
+//! `defs/mission_spooling.yaml`, `defs/hmi.yaml`, each a standalone set,
 //! `extends: none`), written by hand from the layout facts of the
 //! public JSIDL (message IDs, field order, types, scales, units, enumerated values,
 //! presence bits, counts). The build script generates [`messages`] from them with the
@@ -55,6 +63,8 @@
 //! runtime below: the Core on [`core::Core`], the Mobility ([`mobility`]) and Manipulator
 //! ([`manipulator`]) services a gateway presents over RA 3.3 components on
 //! [`machined`].
+//! The UGV, Mission Spooling and HMI services are defined and generated (their traits
+//! and machines) without an implementation in this crate.
 //!
 //! ## Running AS-4 services
 //!
@@ -148,15 +158,33 @@ pub const DEFS: &[(&str, &str)] = &[
         "environment_services.yaml",
         include_str!("../defs/environment_services.yaml"),
     ),
+    ("hmi.yaml", include_str!("../defs/hmi.yaml")),
+    (
+        "hmi_services.yaml",
+        include_str!("../defs/hmi_services.yaml"),
+    ),
     ("manipulator.yaml", include_str!("../defs/manipulator.yaml")),
     (
         "manipulator_services.yaml",
         include_str!("../defs/manipulator_services.yaml"),
     ),
+    (
+        "mission_spooling.yaml",
+        include_str!("../defs/mission_spooling.yaml"),
+    ),
+    (
+        "mission_spooling_services.yaml",
+        include_str!("../defs/mission_spooling_services.yaml"),
+    ),
     ("mobility.yaml", include_str!("../defs/mobility.yaml")),
     (
         "mobility_services.yaml",
         include_str!("../defs/mobility_services.yaml"),
+    ),
+    ("ugv.yaml", include_str!("../defs/ugv.yaml")),
+    (
+        "ugv_services.yaml",
+        include_str!("../defs/ugv_services.yaml"),
     ),
 ];
 

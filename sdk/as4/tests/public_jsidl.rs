@@ -2,8 +2,9 @@
 //!
 //! Runs only when `JAUS_JSIDL_DIR` names the `GUI/resources/xml` directory of the JAUS
 //! Tool Set repository (it holds `urn.jaus.jss.core-v1.1`, `urn.jaus.jss.core-v1.0`,
-//! `urn.jaus.jss.mobility` and `urn.jaus.jss.manipulator-v2.0`); otherwise it says that it
-//! skipped and passes:
+//! `urn.jaus.jss.mobility`, `urn.jaus.jss.manipulator-v2.0`,
+//! `urn.jaus.jss.environmentSensing`, `urn.jaus.jss.ugv`, `urn.jaus.jss.missionSpooler`
+//! and `urn.jaus.jss.hmi`); otherwise it says that it skipped and passes:
 //!
 //! ```sh
 //! JAUS_JSIDL_DIR=/path/to/jaustoolset/GUI/resources/xml \
@@ -12,8 +13,9 @@
 //!
 //! Core v1.1 is imported on its own; Mobility with Core v1.0, whose services it inherits,
 //! and without its own copy of the Core basic types (`MessageSet/CoreBasicTypes.xml`,
-//! which declares the set Core v1.0 declares), as docs/as4.md describes; Manipulator v2.0
-//! with Core v1.1, whose services it inherits. Both sides are
+//! which declares the set Core v1.0 declares), as docs/as4.md describes; Manipulator v2.0,
+//! UGV and Mission Spooling with Core v1.1, whose services they inherit; Environment
+//! Sensing with Core v1.1; HMI with Core v1.0, whose services it inherits. Both sides are
 //! reduced to their [`Snapshot`] (the wire layout `jaus-gen diff` and the lock files
 //! compare), then every message of the import is flattened into the sequence of what is
 //! on the wire: records are expanded where they are used (a record of one field is that
@@ -323,13 +325,47 @@ fn our_yaml_has_the_wire_layout_of_the_public_jsidl() {
         ],
         "jaus_jss_manipulator_v2_0",
     );
+    let ugv = import(
+        "UGV",
+        &[
+            root.join("urn.jaus.jss.core-v1.1"),
+            root.join("urn.jaus.jss.ugv"),
+        ],
+        "jaus_jss_ugv",
+    );
+    let mission_spooling = import(
+        "Mission Spooling",
+        &[
+            root.join("urn.jaus.jss.core-v1.1"),
+            root.join("urn.jaus.jss.missionSpooler"),
+        ],
+        "jaus_jss_missionspooler",
+    );
+    // HMI: with Core v1.0, whose services the published set inherits.
+    let hmi = import(
+        "HMI",
+        &[
+            root.join("urn.jaus.jss.core-v1.0"),
+            root.join("urn.jaus.jss.hmi"),
+        ],
+        "jaus_jss_hmi",
+    );
 
     let our_flat = Flattener::new(&ours);
     let by_code: BTreeMap<u16, &MessageSnap> = ours.messages.iter().map(|m| (m.code, m)).collect();
     let mut problems = Vec::new();
     let mut covered = BTreeSet::new();
     let mut compared = 0;
-    for set in [&core, &core_v1_0, &mobility, &manipulator, &environment] {
+    for set in [
+        &core,
+        &core_v1_0,
+        &mobility,
+        &manipulator,
+        &environment,
+        &ugv,
+        &mission_spooling,
+        &hmi,
+    ] {
         let flat = Flattener::new(&set.snap);
         let mut n = 0;
         for m in set

@@ -154,8 +154,13 @@ fn behaviour(spec: &Spec, s: &ServiceDef) -> (BTreeSet<String>, BTreeSet<Row>) {
     (names, rows)
 }
 
+/// The service `id` of `spec`; an id is read without surrounding spaces (three of the
+/// published HMI ids begin with one).
 fn service<'s>(spec: &'s Spec, id: &str) -> Option<&'s ServiceDef> {
-    spec.services.iter().map(|s| &s.def).find(|d| d.id == id)
+    spec.services
+        .iter()
+        .map(|s| &s.def)
+        .find(|d| d.id.trim() == id)
 }
 
 /// The differences `core_services.yaml` declares (its header), row by row: `OURS` only
@@ -540,5 +545,122 @@ fn our_environment_sensing_machines_take_what_the_public_jsidl_takes() {
         |name| name,
         (ENVIRONMENT_OURS, ENVIRONMENT_THEIRS),
         "environment_services.yaml",
+    );
+}
+
+/// The differences `ugv_services.yaml` declares: the JSIDL's `isSupported`, named for
+/// what it checks (a guard named as an inherited one is the inherited one: the Core
+/// Events' `isSupported`).
+const UGV_OURS: &[&str] = &[
+    "PowerPlantManager: on SetPowerPlantConfiguration [iscontrollingclient && isconfigurationsupported]",
+    "DriveTrainDriver: on SetTransmissionState [iscontrollingclient && istransmissionstatesupported]",
+    "DriveTrainDriver: on SetTransferCaseState [iscontrollingclient && istransfercasestatesupported]",
+    "IlluminationService: on SetIlluminationState [iscontrollingclient && isilluminationsupported]",
+    "AnnunciatorService: on SetAnnunciatorState [iscontrollingclient && isannunciatorsupported]",
+];
+const UGV_THEIRS: &[&str] = &[
+    "PowerPlantManager: on SetPowerPlantConfiguration [iscontrollingclient && issupported]",
+    "DriveTrainDriver: on SetTransmissionState [iscontrollingclient && issupported]",
+    "DriveTrainDriver: on SetTransferCaseState [iscontrollingclient && issupported]",
+    "IlluminationService: on SetIlluminationState [iscontrollingclient && issupported]",
+    "AnnunciatorService: on SetAnnunciatorState [iscontrollingclient && issupported]",
+];
+
+#[test]
+fn our_ugv_machines_take_what_the_public_jsidl_takes() {
+    let Some(root) = std::env::var_os("JAUS_JSIDL_DIR").map(PathBuf::from) else {
+        println!("skipped: set JAUS_JSIDL_DIR to compare our UGV machines with the public JSIDL");
+        return;
+    };
+    let defs = Path::new(env!("CARGO_MANIFEST_DIR")).join("defs");
+    let ours = jaus_spec::load_dirs(&[&defs]).expect("our definitions validate");
+    let theirs = jaus_jsidl::import(&[
+        root.join("urn.jaus.jss.core-v1.1"),
+        root.join("urn.jaus.jss.ugv"),
+    ])
+    .and_then(|i| i.load())
+    .unwrap_or_else(|e| panic!("importing UGV: {e}"));
+    compare_services(
+        &ours,
+        &theirs,
+        "urn:jaus:jss:ugv",
+        &[
+            "SkidSteerDriver",
+            "AckermannDriver",
+            "PlatformSpecifications",
+            "StabilizerDriver",
+            "PowerPlantManager",
+            "DriveTrainDriver",
+            "ParkingBrakeDriver",
+            "IlluminationService",
+            "AnnunciatorService",
+            "OdometryService",
+        ],
+        |name| name,
+        (UGV_OURS, UGV_THEIRS),
+        "ugv_services.yaml",
+    );
+}
+
+/// The differences `mission_spooling_services.yaml` declares: none in the triggers and
+/// guards (its refinements are in the actions and the guards' arguments).
+#[test]
+fn our_mission_spooler_machine_takes_what_the_public_jsidl_takes() {
+    let Some(root) = std::env::var_os("JAUS_JSIDL_DIR").map(PathBuf::from) else {
+        println!(
+            "skipped: set JAUS_JSIDL_DIR to compare our Mission Spooler machine with the public \
+             JSIDL"
+        );
+        return;
+    };
+    let defs = Path::new(env!("CARGO_MANIFEST_DIR")).join("defs");
+    let ours = jaus_spec::load_dirs(&[&defs]).expect("our definitions validate");
+    let theirs = jaus_jsidl::import(&[
+        root.join("urn.jaus.jss.core-v1.1"),
+        root.join("urn.jaus.jss.missionSpooler"),
+    ])
+    .and_then(|i| i.load())
+    .unwrap_or_else(|e| panic!("importing Mission Spooling: {e}"));
+    compare_services(
+        &ours,
+        &theirs,
+        "urn:jaus:jss:missionSpooler",
+        &["MissionSpooler"],
+        |name| name,
+        (&[], &[]),
+        "mission_spooling_services.yaml",
+    );
+}
+
+/// `hmi_services.yaml` declares no difference in the triggers and guards (its ids are
+/// the published ones without their leading space, which `service` ignores).
+#[test]
+fn our_hmi_machines_take_what_the_public_jsidl_takes() {
+    let Some(root) = std::env::var_os("JAUS_JSIDL_DIR").map(PathBuf::from) else {
+        println!("skipped: set JAUS_JSIDL_DIR to compare our HMI machines with the public JSIDL");
+        return;
+    };
+    let defs = Path::new(env!("CARGO_MANIFEST_DIR")).join("defs");
+    let ours = jaus_spec::load_dirs(&[&defs]).expect("our definitions validate");
+    let theirs = jaus_jsidl::import(&[
+        root.join("urn.jaus.jss.core-v1.0"),
+        root.join("urn.jaus.jss.hmi"),
+    ])
+    .and_then(|i| i.load())
+    .unwrap_or_else(|e| panic!("importing HMI: {e}"));
+    compare_services(
+        &ours,
+        &theirs,
+        "urn:jaus:jss:HMI",
+        &[
+            "Drawing",
+            "PointingDevice",
+            "Keyboard",
+            "DigitalControl",
+            "AnalogControl",
+        ],
+        |name| name,
+        (&[], &[]),
+        "hmi_services.yaml",
     );
 }

@@ -1,7 +1,7 @@
 //! `jaus as4-query` and `jaus as4-send`: any AS-4 message by name, for any definitions.
 //!
 //! The messages are built and read with the definitions loaded at run time
-//! (`jaus-dynamic`): jaus-as4's own (Core v1.1, Mobility, Manipulator v2.0, Environment Sensing), with a vendor's YAML on
+//! (`jaus-dynamic`): jaus-as4's own (every set of `jaus_as4::DEFS`), with a vendor's YAML on
 //! them (`--spec`), or a set imported from JSIDL instead (`--jsidl`). They travel over
 //! AS5669A on UDP to one component; every message the component sends back is printed as
 //! a JSON line (`{"t": seconds, "from": "S.N.C", "message": NAME, "fields": {...}}`).

@@ -1,5 +1,5 @@
 //! `jaus.As4Client`: an SAE AS-4 client (AS5669A over UDP) that names any message of
-//! the AS-4 definitions: jaus-as4's (Core v1.1, Mobility, Manipulator v2.0, Environment Sensing), a vendor's YAML on them
+//! the AS-4 definitions: jaus-as4's (every set of `jaus_as4::DEFS`), a vendor's YAML on them
 //! (`spec=[dirs]`, `extends: as4`), or a JSIDL import (`jsidl=[dirs]`). Messages go in as
 //! a name and keyword fields and come back as dicts (`{"t", "from", "message",
 //! "fields"}`), as `jaus as4-query` prints them. Over `jaus_cli::as4_link`.

@@ -1,4 +1,4 @@
-//! The definitions a plan reads: jaus-as4's (Core v1.1, Mobility, Manipulator v2.0, Environment Sensing) with a vendor's
+//! The definitions a plan reads: jaus-as4's (every set of `jaus_as4::DEFS`) with a vendor's
 //! YAML on them, or a set imported from JSIDL, as `jaus as4-query` loads them; and,
 //! per service, the transitions that take a message (which message, in which state,
 //! under which guard, doing what), each with the file and line it is written at.
@@ -92,7 +92,7 @@ impl Definitions {
         loaded.map(Definitions::from_spec)
     }
 
-    /// jaus-as4's own definitions (Core v1.1, Mobility, Manipulator v2.0, Environment Sensing).
+    /// jaus-as4's own definitions (every set of `jaus_as4::DEFS`).
     pub fn as4() -> Result<Definitions, String> {
         Definitions::load(&[], &[])
     }

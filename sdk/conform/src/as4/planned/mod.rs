@@ -2,7 +2,7 @@
 //! whatever component answers, not a fixed scenario.
 //!
 //! The judge's client asks the component's Report Services, finds each service it
-//! lists (URI and version) in the definitions (jaus-as4's Core v1.1, Mobility, Manipulator v2.0 and Environment Sensing, a
+//! lists (URI and version) in the definitions (every set of `jaus_as4::DEFS`, a
 //! vendor's YAML on them, or a JSIDL import: [`Definitions::load`]) and plans from the
 //! service's transitions ([`plan::plan`]):
 //!
