@@ -2,9 +2,24 @@
 through jaus-dynamic) against a plain `struct`-based decoder/encoder of the same
 packets written for this benchmark (fixed layouts, no checks beyond `struct`'s).
 
-    python sdk/py/bench/bench_codec.py            # after `pip install ./sdk/py`
+    python sdk/py/bench/bench_codec.py [N]        # after `pip install ./sdk/py`
 
-Full packets both ways: 16-byte header + body. Prints one line per packet and side.
+Full packets both ways: 16-byte header + body. Columns, per packet and side:
+
+- decode: bytes to an object the fields are read from. jaus: `decode_packet(raw)`
+  (the whole packet checked and decoded; the fields become Python values when read).
+  struct: the decoder below (header tuple + dict of every field, scaled).
+- decode+read: the same, then every field read once: the 12 header fields and every
+  field of the message, the members of its records too (jaus: attributes; struct:
+  the header tuple unpacked, the dict's items).
+- to_dict: jaus `decode_packet(raw).message.to_dict()` (what the struct side's decode
+  gives: a dict of every field).
+- encode: `encode_packet(message, source, destination)` / the struct encoder.
+- batch: packets per second decoded 1,000 at a time, all kept (a capture): jaus
+  `decode_many(batch)`, struct `[decode(r) for r in batch]`.
+
+Then the ratio jaus/struct of each column, in the same run (the machine may be
+shared: compare ratios, not rates across runs).
 """
 
 import struct
@@ -136,6 +151,94 @@ def vks_packet():
     return jaus.encode_packet(m, "5.6.7.8", "1.2.3.4")
 
 
+# Every field read once (the decode+read column).
+HEADER_ATTRS = ("priority", "ack_nak", "service_connection", "experimental", "version",
+                "reserved", "command_code", "destination", "source", "data_size",
+                "data_flag", "sequence_number")
+
+
+def read_jaus_header(p):
+    return (p.priority, p.ack_nak, p.service_connection, p.experimental, p.version,
+            p.reserved, p.command_code, p.destination, p.source, p.data_size, p.data_flag,
+            p.sequence_number)
+
+
+def read_pose_jaus(raw):
+    p = jaus.decode_packet(raw)
+    m = p.message
+    t = m.time_stamp
+    return (read_jaus_header(p), m.latitude, m.longitude, m.elevation, m.position_rms,
+            m.roll, m.pitch, m.yaw, m.attitude_rms,
+            t.millisecond, t.second, t.minute, t.hour, t.day)
+
+
+def read_pose_struct(raw):
+    h, f = decode_pose(raw)
+    a, b, c, d, e, g, i, j, k, l, m, n, o = h
+    t = f["time_stamp"]
+    return (h, f["latitude"], f["longitude"], f["elevation"], f["position_rms"],
+            f["roll"], f["pitch"], f["yaw"], f["attitude_rms"],
+            t["millisecond"], t["second"], t["minute"], t["hour"], t["day"])
+
+
+def read_wrench_jaus(raw):
+    p = jaus.decode_packet(raw)
+    m = p.message
+    return (read_jaus_header(p), m.propulsive_linear_effort_x, m.propulsive_linear_effort_y,
+            m.propulsive_linear_effort_z, m.propulsive_rotational_effort_x,
+            m.propulsive_rotational_effort_y, m.propulsive_rotational_effort_z,
+            m.resistive_linear_effort_x, m.resistive_linear_effort_y,
+            m.resistive_linear_effort_z, m.resistive_rotational_effort_x,
+            m.resistive_rotational_effort_y, m.resistive_rotational_effort_z)
+
+
+def read_wrench_struct(raw):
+    h, f = decode_wrench(raw)
+    a, b, c, d, e, g, i, j, k, l, m, n, o = h
+    return (h, f["propulsive_linear_effort_x"], f["propulsive_linear_effort_y"],
+            f["propulsive_linear_effort_z"], f["propulsive_rotational_effort_x"],
+            f["propulsive_rotational_effort_y"], f["propulsive_rotational_effort_z"],
+            f["resistive_linear_effort_x"], f["resistive_linear_effort_y"],
+            f["resistive_linear_effort_z"], f["resistive_rotational_effort_x"],
+            f["resistive_rotational_effort_y"], f["resistive_rotational_effort_z"])
+
+
+def read_segment_jaus(raw):
+    p = jaus.decode_packet(raw)
+    m = p.message
+    return (read_jaus_header(p), m.path_segment_number, m.p1_latitude, m.p1_longitude,
+            m.p1_altitude, m.p2_latitude, m.p2_longitude, m.p2_altitude, m.weighting_factor)
+
+
+def read_segment_struct(raw):
+    h, f = decode_segment(raw)
+    a, b, c, d, e, g, i, j, k, l, m, n, o = h
+    return (h, f["path_segment_number"], f["p1_latitude"], f["p1_longitude"],
+            f["p1_altitude"], f["p2_latitude"], f["p2_longitude"], f["p2_altitude"],
+            f["weighting_factor"])
+
+
+READ = {
+    "Report Global Pose": (read_pose_jaus, read_pose_struct),
+    "Set Wrench Effort": (read_wrench_jaus, read_wrench_struct),
+    "Set Global Path Segment": (read_segment_jaus, read_segment_struct),
+}
+
+
+def read_vks_jaus(raw):
+    """Every field of the VKS packet, its nested lists and unions too."""
+    p = jaus.decode_packet(raw)
+    m = p.message
+    out = [read_jaus_header(p), m.request_id, m.object_count]
+    for o in m.objects:
+        out += [o.object_id, o.object_type, o.buffer]
+        for f in o.feature_classes:
+            out += [f.id, f.attribute.UnsignedInteger]
+        for pt in o.points:
+            out += [pt.latitude, pt.longitude]
+    return out
+
+
 def rate(fn, n):
     """Calls per second: the best of 5 runs of n calls."""
     return n / min(timeit.repeat(fn, number=n, repeat=5))
@@ -145,30 +248,55 @@ def main():
     n = int(sys.argv[1]) if len(sys.argv) > 1 else 20_000
     packets = {k: bytes.fromhex(v) for k, v in PACKETS.items()}
     packets["Report VKS Objects"] = vks_packet()
-    print(f"{'packet':<26} {'side':<8} {'decode/s':>12} {'encode/s':>12}")
+    cols = ("decode/s", "decode+read/s", "to_dict/s", "encode/s", "batch/s")
+    print(f"{'packet':<26} {'side':<8} " + " ".join(f"{c:>14}" for c in cols))
     for name, raw in packets.items():
         count = n if len(raw) < 200 else max(n // 100, 50)
+        batch = [raw] * 1000
+        batches = max(count // 1000, 2)
         p = jaus.decode_packet(raw)
         m = p.message
         src, dst = p.source, p.destination
         assert jaus.encode_packet(m, src, dst) == raw
-        # Decoding reads the fields into Python values (to_dict), as the struct side does.
-        dec = rate(lambda: jaus.decode_packet(raw).message.to_dict(), count)
-        enc = rate(lambda: jaus.encode_packet(m, src, dst), count)
-        print(f"{name:<26} {'jaus':<8} {dec:>12,.0f} {enc:>12,.0f}")
+        if name in READ:
+            rj, rs = READ[name]
+        else:
+            rj, rs = read_vks_jaus, None
+        # Every field read is the SDK's value (to_dict), as the struct side's are below.
+        assert len(rj(raw)) > 2
+        j = (
+            rate(lambda: jaus.decode_packet(raw), count),
+            rate(lambda: rj(raw), count),
+            rate(lambda: jaus.decode_packet(raw).message.to_dict(), count),
+            rate(lambda: jaus.encode_packet(m, src, dst), count),
+            rate(lambda: jaus.decode_many(batch), batches) * len(batch),
+        )
+        print(f"{name:<26} {'jaus':<8} " + " ".join(f"{x:>14,.0f}" for x in j))
         if name in STRUCT:
             d, e = STRUCT[name]
             h, f = d(raw)
             assert e(h, f) == raw, name
             # The same values as the SDK's decode.
+            want_all = m.to_dict()
             for k, v in f.items():
-                want = m.to_dict()[k]
+                want = want_all[k]
                 assert v == want if isinstance(v, (int, dict)) else abs(v - want) < 1e-9 * max(1, abs(want)), k
-            dec = rate(lambda: d(raw), count)
-            enc = rate(lambda: e(h, f), count)
-            print(f"{name:<26} {'struct':<8} {dec:>12,.0f} {enc:>12,.0f}")
+            got_j, got_s = rj(raw), rs(raw)
+            assert len(got_j) == len(got_s), name
+            for a, b in zip(got_j[1:], got_s[1:]):
+                assert a == b if isinstance(a, int) else abs(a - b) < 1e-9 * max(1, abs(b)), name
+            s = (
+                rate(lambda: d(raw), count),
+                rate(lambda: rs(raw), count),
+                # struct's decode is its dict of every field already.
+                rate(lambda: d(raw), count),
+                rate(lambda: e(h, f), count),
+                rate(lambda: [d(r) for r in batch], batches) * len(batch),
+            )
+            print(f"{name:<26} {'struct':<8} " + " ".join(f"{x:>14,.0f}" for x in s))
+            print(f"{name:<26} {'ratio':<8} " + " ".join(f"{a / b:>13.2f}x" for a, b in zip(j, s)))
         else:
-            print(f"{name:<26} {'struct':<8} {'(not written)':>12}")
+            print(f"{name:<26} {'struct':<8} {'(not written)':>14}")
 
 
 if __name__ == "__main__":

@@ -72,11 +72,15 @@ static SDK: OnceLock<Arc<Catalog>> = OnceLock::new();
 
 /// The SDK's own definitions, compiled once.
 pub(crate) fn sdk() -> PyResult<Arc<Catalog>> {
+    sdk_ref().cloned()
+}
+
+/// The SDK's own definitions, compiled once, by reference (no count taken: the
+/// decoding functions' fast path).
+pub(crate) fn sdk_ref() -> PyResult<&'static Arc<Catalog>> {
     if let Some(c) = SDK.get() {
-        return Ok(c.clone());
+        return Ok(c);
     }
     let spec = jaus_spec::load_sdk().map_err(|e| SpecError::new_err(e.to_string()))?;
-    Ok(SDK
-        .get_or_init(|| Arc::new(Catalog::from_spec(spec)))
-        .clone())
+    Ok(SDK.get_or_init(|| Arc::new(Catalog::from_spec(spec))))
 }

@@ -105,12 +105,15 @@ pub(crate) fn entry<'py>(
             Ok(Some(reserved.into_pyobject(py)?.into_any()))
         }
         (Value::UnknownEnum(n), "Unknown") => Ok(Some(n.into_pyobject(py)?.into_any())),
-        _ => {
-            match entries(v).and_then(|e| e.into_iter().find(|(k, _)| *k == key).map(|(_, v)| v)) {
-                Some(x) => value_to_py(py, x, form).map(Some),
-                None => Ok(None),
-            }
+        // Looked up in place (no list of the entries made).
+        (Value::Record(f), _) | (Value::Bits(f, _), _) => match f.iter().find(|(k, _)| *k == key) {
+            Some((_, x)) => value_to_py(py, x, form).map(Some),
+            None => Ok(None),
+        },
+        (Value::Union(name, Some(inner)), _) if *name == key => {
+            value_to_py(py, inner, form).map(Some)
         }
+        _ => Ok(None),
     }
 }
 
@@ -188,8 +191,45 @@ impl Record {
     }
 }
 
+/// `object.__getattribute__`: the members of a message or record, when the name is not
+/// one of its fields.
+pub(crate) fn generic_getattr<'py>(
+    slf: &Bound<'py, PyAny>,
+    name: &Bound<'py, PyString>,
+) -> PyResult<Bound<'py, PyAny>> {
+    static GETATTRIBUTE: pyo3::sync::PyOnceLock<Py<PyAny>> = pyo3::sync::PyOnceLock::new();
+    let py = slf.py();
+    let f = GETATTRIBUTE.get_or_try_init(py, || {
+        py.get_type::<pyo3::types::PyAny>()
+            .getattr("__getattribute__")
+            .map(Bound::unbind)
+    })?;
+    f.bind(py).call1((slf, name))
+}
+
+/// The members of `jaus.Record`: an attribute of one of these names is the member, not
+/// an entry (an entry of that name is read as `r["keys"]`).
+const RECORD_MEMBERS: &[&str] = &["keys", "to_dict", "to_json"];
+
 #[pymethods]
 impl Record {
+    /// An entry by attribute (`r.hour`): looked up before the generic attribute lookup,
+    /// which would first fail (an AttributeError made and dropped) for every entry.
+    /// The members and dunders come first, as they always did.
+    fn __getattribute__<'py>(
+        slf: &Bound<'py, Self>,
+        name: &Bound<'py, PyString>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let n = name.to_cow()?;
+        let n: &str = &n;
+        if !n.starts_with("__") && !RECORD_MEMBERS.contains(&n) {
+            if let Some(v) = slf.get().get_entry(slf.py(), n)? {
+                return Ok(v);
+            }
+        }
+        generic_getattr(slf.as_any(), name)
+    }
+
     fn __getattr__<'py>(&self, py: Python<'py>, name: &str) -> PyResult<Bound<'py, PyAny>> {
         self.get_entry(py, name)?
             .ok_or_else(|| PyAttributeError::new_err(self.missing(name)))
@@ -219,7 +259,7 @@ impl Record {
 
     fn __dir__(&self) -> Vec<String> {
         let mut out = self.keys();
-        out.extend(["keys", "to_dict", "to_json"].iter().map(|s| s.to_string()));
+        out.extend(RECORD_MEMBERS.iter().map(|s| s.to_string()));
         out
     }
 

@@ -32,7 +32,7 @@ pub use message::{Message, Packet};
 pub use schema::Schema;
 
 use pyo3::prelude::*;
-use pyo3::types::{PyBytes, PyDict};
+use pyo3::types::{PyBytes, PyDict, PyList};
 use std::path::PathBuf;
 
 /// Decodes the body of the message with command code `code` (SDK messages).
@@ -43,10 +43,25 @@ fn decode(py: Python<'_>, body: &[u8], code: u16) -> PyResult<Message> {
     Ok(Message::new(cat, m))
 }
 
-/// Decodes a whole packet: the 16-byte RA 3.3 header and the body.
+/// Decodes a whole packet: the 16-byte RA 3.3 header and the body. The body is
+/// decoded (and checked) now; the message's Python objects are made as they are read.
 #[pyfunction]
-fn decode_packet(py: Python<'_>, packet: &[u8]) -> PyResult<Packet> {
-    schema::decode_packet(py, &catalog::sdk()?, packet)
+fn decode_packet(py: Python<'_>, packet: &Bound<'_, PyBytes>) -> PyResult<Packet> {
+    schema::decode_packet(py, catalog::sdk_ref()?, packet)
+}
+
+/// Decodes every packet of `packets` (an iterable of `bytes`): a list of
+/// `jaus.Packet`, in order. `strict=True`: the first that does not decode raises its
+/// `jaus.DecodeError` (`.index` its position); `strict=False`: that error takes the
+/// packet's place in the list.
+#[pyfunction]
+#[pyo3(signature = (packets, *, strict = true))]
+fn decode_many<'py>(
+    py: Python<'py>,
+    packets: &Bound<'py, PyAny>,
+    strict: bool,
+) -> PyResult<Bound<'py, PyList>> {
+    schema::decode_many(py, catalog::sdk_ref()?, packets, strict)
 }
 
 /// The body of `message` (by the schema it was made with).
@@ -126,6 +141,7 @@ fn _jaus(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
     m.add_function(wrap_pyfunction!(decode, m)?)?;
     m.add_function(wrap_pyfunction!(decode_packet, m)?)?;
+    m.add_function(wrap_pyfunction!(decode_many, m)?)?;
     m.add_function(wrap_pyfunction!(encode, m)?)?;
     m.add_function(wrap_pyfunction!(encode_packet, m)?)?;
     m.add_function(wrap_pyfunction!(make_message, m)?)?;

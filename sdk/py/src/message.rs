@@ -8,8 +8,8 @@
 //! [`py_to_json`]). Below this module: `catalog`, `convert`, `errors`.
 
 use crate::catalog::{sdk, Catalog};
-use crate::convert::{json_to_py, object_to_dict, value_to_py, Form, Record};
-use crate::errors::fields_error;
+use crate::convert::{generic_getattr, json_to_py, object_to_dict, value_to_py, Form, Record};
+use crate::errors::{decode_error, fields_error};
 use jaus::json::JsonError;
 use jaus::{Address, Header};
 use jaus_dynamic::{DynMessage, Value};
@@ -21,7 +21,27 @@ use pyo3::types::{
 use serde::ser::{SerializeMap, Serializer};
 use serde::Serialize;
 use serde_json::{Map, Number, Value as Json};
-use std::sync::Arc;
+use std::sync::{Arc, Mutex, OnceLock};
+
+/// The members of `jaus.Message` (methods and properties): an attribute of one of these
+/// names is the member, not a field (a field of that name is read as `m["name"]`).
+const MESSAGE_MEMBERS: &[&str] = &[
+    "name",
+    "code",
+    "fields",
+    "to_dict",
+    "to_json",
+    "encode",
+    "doc",
+    "from_dict",
+];
+
+/// Whether the Python form of `v` is immutable (a number, text, a `jaus.Record`), so
+/// that a message may hand out the same object on every read. Lists and embedded
+/// packets (dicts) are made anew on each read, as before.
+fn immutable(v: &Value) -> bool {
+    !matches!(v, Value::List(_) | Value::Packet(_))
+}
 
 /// A JAUS message: `.name`, `.code`, and its fields as attributes (`m.speed`), in
 /// the units and forms of the CLI's JSON lines. An optional field that is absent
@@ -31,11 +51,64 @@ use std::sync::Arc;
 pub struct Message {
     pub(crate) cat: Arc<Catalog>,
     pub(crate) msg: DynMessage,
+    /// The Python values of the fields read so far, by position in `msg.fields`: a
+    /// field is made a Python object when first read (immutable ones are kept).
+    cache: OnceLock<Box<[OnceLock<Py<PyAny>>]>>,
 }
 
 impl Message {
     pub(crate) fn new(cat: Arc<Catalog>, msg: DynMessage) -> Message {
-        Message { cat, msg }
+        Message {
+            cat,
+            msg,
+            cache: OnceLock::new(),
+        }
+    }
+
+    /// The Python value of the field at position `i` of the record `fields` (this
+    /// message's), from the cache or made now.
+    fn field_at<'py>(
+        &self,
+        py: Python<'py>,
+        fields: &[(&'static str, Value)],
+        i: usize,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let cache = self
+            .cache
+            .get_or_init(|| fields.iter().map(|_| OnceLock::new()).collect());
+        let slot = &cache[i];
+        if let Some(o) = slot.get() {
+            return Ok(o.bind(py).clone());
+        }
+        let v = &fields[i].1;
+        let o = value_to_py(py, v, Form::Objects)?;
+        if !immutable(v) {
+            return Ok(o);
+        }
+        // The first value kept is the one every read gives.
+        let _ = slot.set(o.unbind());
+        Ok(slot
+            .get()
+            .map_or_else(|| py.None().into_bound(py), |o| o.bind(py).clone()))
+    }
+
+    /// The field `name` when it is one: its value, or None for an optional field that
+    /// is absent.
+    fn known_field<'py>(&self, py: Python<'py>, name: &str) -> PyResult<Option<Bound<'py, PyAny>>> {
+        if let Value::Record(f) = &self.msg.fields {
+            if let Some(i) = f.iter().position(|(k, _)| *k == name) {
+                return self.field_at(py, f, i).map(Some);
+            }
+        }
+        if self
+            .cat
+            .field_names(self.msg.name)
+            .iter()
+            .any(|f| f == name)
+        {
+            return Ok(Some(py.None().into_bound(py)));
+        }
+        Ok(None)
     }
 
     fn no_field(&self, name: &str) -> String {
@@ -54,18 +127,11 @@ impl Message {
     /// The field `name` as Python: its value, None for an optional field that is
     /// absent, or an error naming the fields there are.
     fn field<'py>(&self, py: Python<'py>, name: &str) -> Result<Bound<'py, PyAny>, String> {
-        if let Some(v) = self.msg.fields.field(name) {
-            return value_to_py(py, v, Form::Objects).map_err(|e| e.to_string());
+        match self.known_field(py, name) {
+            Ok(Some(v)) => Ok(v),
+            Ok(None) => Err(self.no_field(name)),
+            Err(e) => Err(e.to_string()),
         }
-        if self
-            .cat
-            .field_names(self.msg.name)
-            .iter()
-            .any(|f| f == name)
-        {
-            return Ok(py.None().into_bound(py));
-        }
-        Err(self.no_field(name))
     }
 }
 
@@ -92,6 +158,32 @@ impl Message {
         }
     }
 
+    /// A field by attribute (`m.speed`): looked up before the generic attribute lookup,
+    /// which would first fail (an AttributeError made and dropped) for every field.
+    /// The members (`name`, `to_dict`, ...) and dunders come first, as they always did.
+    fn __getattribute__<'py>(
+        slf: &Bound<'py, Self>,
+        name: &Bound<'py, PyString>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let n = name.to_cow()?;
+        let n: &str = &n;
+        let py = slf.py();
+        let this = slf.get();
+        match n {
+            // The properties without the generic lookup's call.
+            "name" => return Ok(PyString::new(py, this.msg.name).into_any()),
+            "code" => return Ok(this.msg.code.0.into_pyobject(py)?.into_any()),
+            "fields" => return Ok(PyList::new(py, this.fields())?.into_any()),
+            _ => {}
+        }
+        if !n.starts_with("__") && !MESSAGE_MEMBERS.contains(&n) {
+            if let Some(v) = this.known_field(py, n)? {
+                return Ok(v);
+            }
+        }
+        generic_getattr(slf.as_any(), name)
+    }
+
     fn __getattr__<'py>(&self, py: Python<'py>, name: &str) -> PyResult<Bound<'py, PyAny>> {
         self.field(py, name).map_err(PyAttributeError::new_err)
     }
@@ -106,19 +198,7 @@ impl Message {
     }
 
     fn __dir__(&self) -> Vec<String> {
-        let mut out: Vec<String> = [
-            "name",
-            "code",
-            "fields",
-            "to_dict",
-            "to_json",
-            "encode",
-            "doc",
-            "from_dict",
-        ]
-        .iter()
-        .map(|s| s.to_string())
-        .collect();
+        let mut out: Vec<String> = MESSAGE_MEMBERS.iter().map(|s| s.to_string()).collect();
         out.extend(self.cat.field_names(self.msg.name).iter().cloned());
         out
     }
@@ -182,11 +262,67 @@ impl Message {
 /// A JAUS packet: the 16-byte header's fields as attributes (`priority`, `ack_nak`,
 /// `source`, ...), the `body` bytes and the `message` they hold (None for a command
 /// code the schema does not define, or a part of a multi-packet message).
+///
+/// The body is decoded, and so checked, when the packet is: a packet that is not a
+/// message raises then. What is kept is the decoded message; its Python object, and
+/// each of its fields', is made when first read.
 #[pyclass(module = "jaus", frozen)]
 #[derive(Debug)]
 pub struct Packet {
-    packet: jaus::Packet,
-    message: Option<Py<Message>>,
+    header: Header,
+    body: Body,
+    message: Option<Held>,
+}
+
+/// A packet's body.
+#[derive(Debug)]
+pub(crate) enum Body {
+    /// Bytes of its own.
+    Owned(Vec<u8>),
+    /// The whole packet's bytes as given (`bytes` are immutable): the body is from byte
+    /// 16 on.
+    Shared(Py<PyBytes>),
+}
+
+impl Body {
+    fn bytes<'a>(&'a self, py: Python<'_>) -> &'a [u8] {
+        match self {
+            Body::Owned(b) => b,
+            Body::Shared(p) => p.as_bytes(py).get(jaus::wire::HEADER_LEN..).unwrap_or(&[]),
+        }
+    }
+}
+
+/// The message a packet holds: decoded, its `jaus.Message` made on first read.
+struct Held {
+    name: &'static str,
+    cat: Arc<Catalog>,
+    /// The decoded message until its `jaus.Message` is made (moved into it then).
+    pending: Mutex<Option<DynMessage>>,
+    object: pyo3::sync::PyOnceLock<Py<Message>>,
+}
+
+impl std::fmt::Debug for Held {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Held")
+            .field("name", &self.name)
+            .finish_non_exhaustive()
+    }
+}
+
+impl Held {
+    fn object<'a>(&'a self, py: Python<'_>) -> PyResult<&'a Py<Message>> {
+        // The lock runs the maker once; a packet's message is made once.
+        self.object.get_or_try_init(py, || {
+            let msg = self
+                .pending
+                .lock()
+                .map_err(|_| PyTypeError::new_err("a packet's message was lost"))?
+                .take()
+                .ok_or_else(|| PyTypeError::new_err("a packet's message was lost"))?;
+            Py::new(py, Message::new(self.cat.clone(), msg))
+        })
+    }
 }
 
 impl Packet {
@@ -196,29 +332,61 @@ impl Packet {
         py: Python<'_>,
         cat: &Arc<Catalog>,
         header: Header,
-        body: Vec<u8>,
+        body: Body,
     ) -> PyResult<Packet> {
         let whole = header.data_flag == jaus::wire::DataFlag::Single;
-        let message = match cat.schema.by_code(header.command_code) {
-            Some(_) if whole => {
-                let m = cat.decode(py, header.command_code.0, &body)?;
-                Some(Py::new(py, Message::new(cat.clone(), m))?)
+        let message = if whole {
+            match cat.schema.decode(header.command_code, body.bytes(py)) {
+                Ok(m) => Some(Held {
+                    name: m.name,
+                    cat: cat.clone(),
+                    pending: Mutex::new(Some(m)),
+                    object: pyo3::sync::PyOnceLock::new(),
+                }),
+                // A code the schema does not define: a raw packet.
+                Err(e)
+                    if matches!(
+                        e.kind(),
+                        jaus::codec::DecodeErrorKind::UnknownCommandCode { code }
+                            if *code == header.command_code.0
+                    ) =>
+                {
+                    None
+                }
+                Err(e) => return Err(decode_error(py, &e)),
             }
-            _ => None,
+        } else {
+            None
         };
         Ok(Packet {
-            packet: jaus::Packet { header, body },
+            header,
+            body,
             message,
         })
     }
 
     /// The packet.
-    pub(crate) fn packet(&self) -> &jaus::Packet {
-        &self.packet
+    pub(crate) fn packet(&self, py: Python<'_>) -> jaus::Packet {
+        jaus::Packet {
+            header: self.header,
+            body: self.body.bytes(py).to_vec(),
+        }
     }
 
     fn header(&self) -> &Header {
-        &self.packet.header
+        &self.header
+    }
+
+    /// The message's object, when the packet holds one.
+    fn message_object<'a>(&'a self, py: Python<'_>) -> PyResult<Option<&'a Py<Message>>> {
+        self.message.as_ref().map(|h| h.object(py)).transpose()
+    }
+
+    fn raw(&self, py: Python<'_>) -> jaus::RawMessage {
+        jaus::RawMessage {
+            code: self.header().command_code,
+            body: self.body.bytes(py).to_vec(),
+        }
     }
 }
 
@@ -300,17 +468,17 @@ impl Packet {
     /// The body bytes.
     #[getter]
     fn body<'py>(&self, py: Python<'py>) -> Bound<'py, PyBytes> {
-        PyBytes::new(py, &self.packet.body)
+        PyBytes::new(py, self.body.bytes(py))
     }
     /// The message the body holds, or None.
     #[getter]
-    fn message(&self, py: Python<'_>) -> Option<Py<Message>> {
-        self.message.as_ref().map(|m| m.clone_ref(py))
+    fn message(&self, py: Python<'_>) -> PyResult<Option<Py<Message>>> {
+        Ok(self.message_object(py)?.map(|m| m.clone_ref(py)))
     }
     /// The message's name, `"Raw"` when the schema does not define the code.
     #[getter]
     fn name(&self) -> &'static str {
-        self.message.as_ref().map_or("Raw", |m| m.get().msg.name)
+        self.message.as_ref().map_or("Raw", |m| m.name)
     }
 
     /// The header as a dict (the `"header"` of `jaus decode`'s line).
@@ -344,17 +512,14 @@ impl Packet {
     fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let d = PyDict::new(py);
         d.set_item("header", self.header_dict(py)?)?;
-        match &self.message {
+        match self.message_object(py)? {
             Some(m) => {
                 let m = m.get();
                 d.set_item("message", PyString::new(py, m.msg.name))?;
                 d.set_item("fields", object_to_dict(py, &m.msg.fields)?)?;
             }
             None => {
-                let raw = jaus::RawMessage {
-                    code: self.header().command_code,
-                    body: self.packet.body.clone(),
-                };
+                let raw = self.raw(py);
                 let json =
                     serde_json::to_value(&raw).map_err(|e| PyTypeError::new_err(e.to_string()))?;
                 d.set_item("message", "Raw")?;
@@ -365,19 +530,26 @@ impl Packet {
     }
 
     /// The line `jaus decode` prints, text for text.
-    fn to_json(&self) -> PyResult<String> {
-        serde_json::to_string(&Line(self)).map_err(|e| PyTypeError::new_err(e.to_string()))
+    fn to_json(&self, py: Python<'_>) -> PyResult<String> {
+        let message = self.message_object(py)?.map(|m| m.get());
+        let raw = message.is_none().then(|| self.raw(py));
+        let line = Line {
+            packet: self,
+            message,
+            raw,
+        };
+        serde_json::to_string(&line).map_err(|e| PyTypeError::new_err(e.to_string()))
     }
 
     /// The packet's bytes (the header's data size recomputed from the body).
     fn encode<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyBytes>> {
-        let p = jaus::Packet::new(self.packet.header, self.packet.body.clone());
+        let p = jaus::Packet::new(self.header, self.body.bytes(py).to_vec());
         let bytes = jaus::codec::Encode::to_bytes(&p)
             .map_err(|e| crate::errors::encode_error(py, Some(self.name()), &e))?;
         Ok(PyBytes::new(py, &bytes))
     }
 
-    fn __repr__(&self) -> String {
+    fn __repr__(&self, py: Python<'_>) -> String {
         let a = |a: Address| format!("{a}");
         format!(
             "<jaus.Packet {} ({}) {} -> {}, {} byte(s)>",
@@ -385,34 +557,31 @@ impl Packet {
             self.header().command_code,
             a(self.header().source),
             a(self.header().destination),
-            self.packet.body.len()
+            self.body.bytes(py).len()
         )
     }
 }
 
 /// `{"header": ..., "message": ..., "fields": ...}`, as `jaus decode` prints it.
-struct Line<'a>(&'a Packet);
+struct Line<'a> {
+    packet: &'a Packet,
+    message: Option<&'a Message>,
+    /// The body as a raw message (a packet without a message).
+    raw: Option<jaus::RawMessage>,
+}
 
 impl Serialize for Line<'_> {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-        let p = self.0;
         let mut map = s.serialize_map(Some(3))?;
-        map.serialize_entry("header", p.header())?;
-        match &p.message {
+        map.serialize_entry("header", self.packet.header())?;
+        match self.message {
             Some(m) => {
-                let m = m.get();
                 map.serialize_entry("message", m.msg.name)?;
                 map.serialize_entry("fields", &m.msg.fields)?;
             }
             None => {
                 map.serialize_entry("message", "Raw")?;
-                map.serialize_entry(
-                    "fields",
-                    &jaus::RawMessage {
-                        code: p.header().command_code,
-                        body: p.packet.body.clone(),
-                    },
-                )?;
+                map.serialize_entry("fields", &self.raw)?;
             }
         }
         map.end()
@@ -495,7 +664,7 @@ pub(crate) fn py_to_json(obj: &Bound<'_, PyAny>, path: &str) -> PyResult<Json> {
             .map_err(|e| PyTypeError::new_err(e.to_string()));
     }
     if let Ok(p) = obj.cast::<Packet>() {
-        return serde_json::to_value(p.get().packet())
+        return serde_json::to_value(p.get().packet(obj.py()))
             .map_err(|e| PyTypeError::new_err(e.to_string()));
     }
     if let Ok(d) = obj.cast::<PyDict>() {

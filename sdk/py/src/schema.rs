@@ -3,11 +3,12 @@
 //! reader over them. The module's own functions use the SDK's schema.
 
 use crate::catalog::{sdk, Catalog};
-use crate::errors::{decode_error, encode_error, fields_error, JausError, SpecError};
-use crate::message::{address, build, Message, Packet};
+use crate::errors::{decode_error, encode_error, fields_error, DecodeError, JausError, SpecError};
+use crate::message::{address, build, Body, Message, Packet};
 use jaus::{CommandCode, Header};
+use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
-use pyo3::types::{PyBytes, PyDict};
+use pyo3::types::{PyBytes, PyDict, PyList};
 use std::path::PathBuf;
 use std::sync::Arc;
 
@@ -83,8 +84,22 @@ impl Schema {
     }
 
     /// Decodes a whole packet: the 16-byte header and the body.
-    fn decode_packet(&self, py: Python<'_>, packet: &[u8]) -> PyResult<Packet> {
+    fn decode_packet(&self, py: Python<'_>, packet: &Bound<'_, PyBytes>) -> PyResult<Packet> {
         decode_packet(py, &self.cat, packet)
+    }
+
+    /// Decodes every packet of `packets` (an iterable of `bytes`, a capture's
+    /// datagrams): a list of `jaus.Packet`, in order. With `strict=True` the first that
+    /// does not decode raises its `jaus.DecodeError` (`.index` its position); with
+    /// `strict=False` that error takes the packet's place in the list.
+    #[pyo3(signature = (packets, *, strict = true))]
+    fn decode_many<'py>(
+        &self,
+        py: Python<'py>,
+        packets: &Bound<'py, PyAny>,
+        strict: bool,
+    ) -> PyResult<Bound<'py, PyList>> {
+        decode_many(py, &self.cat, packets, strict)
     }
 
     /// The body of `message`.
@@ -177,10 +192,53 @@ fn unknown(s: &Schema, name: &str) -> PyErr {
     }
 }
 
-/// Decodes a whole packet.
-pub(crate) fn decode_packet(py: Python<'_>, cat: &Arc<Catalog>, bytes: &[u8]) -> PyResult<Packet> {
-    let p = jaus::PacketRef::parse(bytes).map_err(|e| decode_error(py, &e))?;
-    Packet::decode(py, cat, p.header, p.body.to_vec())
+/// Decodes a whole packet (the packet's bytes are kept, not copied: `bytes` do not
+/// change).
+pub(crate) fn decode_packet(
+    py: Python<'_>,
+    cat: &Arc<Catalog>,
+    bytes: &Bound<'_, PyBytes>,
+) -> PyResult<Packet> {
+    let header = jaus::PacketRef::parse(bytes.as_bytes())
+        .map_err(|e| decode_error(py, &e))?
+        .header;
+    Packet::decode(py, cat, header, Body::Shared(bytes.clone().unbind()))
+}
+
+/// Decodes every packet of `packets` (an iterable of `bytes`). `strict`: the first
+/// that does not decode raises its `jaus.DecodeError`, with `.index` its position;
+/// otherwise that error (with `.index`) takes the packet's place in the list.
+pub(crate) fn decode_many<'py>(
+    py: Python<'py>,
+    cat: &Arc<Catalog>,
+    packets: &Bound<'py, PyAny>,
+    strict: bool,
+) -> PyResult<Bound<'py, PyList>> {
+    let out = PyList::empty(py);
+    for (i, item) in packets.try_iter()?.enumerate() {
+        let item = item?;
+        let bytes = item.cast::<PyBytes>().map_err(|_| {
+            PyTypeError::new_err(format!(
+                "decode_many: packet {i} is a {}, not bytes",
+                item.get_type()
+                    .name()
+                    .map(|n| n.to_string())
+                    .unwrap_or_default()
+            ))
+        })?;
+        match decode_packet(py, cat, bytes) {
+            Ok(p) => out.append(Bound::new(py, p)?)?,
+            Err(e) if e.is_instance_of::<DecodeError>(py) => {
+                e.value(py).setattr("index", i)?;
+                if strict {
+                    return Err(e);
+                }
+                out.append(e.value(py))?;
+            }
+            Err(e) => return Err(e),
+        }
+    }
+    Ok(out)
 }
 
 /// The body of `message` (by the schema it was made with).

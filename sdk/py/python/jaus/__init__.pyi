@@ -22,6 +22,7 @@ from ._jaus import Schema as Schema
 from ._jaus import SpecError as SpecError
 from ._jaus import Watch as Watch
 from ._jaus import decode as decode
+from ._jaus import decode_many as decode_many
 from ._jaus import decode_packet as decode_packet
 from ._jaus import doc as doc
 from ._jaus import encode as encode

@@ -5,6 +5,7 @@ from typing import (
     Any,
     Dict,
     Generic,
+    Iterable,
     Iterator,
     List,
     Literal,
@@ -38,6 +39,9 @@ class JausError(ValueError):
 
 class DecodeError(JausError):
     """Bytes that are not a message."""
+
+    index: int
+    """``decode_many`` only: the position of the packet in the packets given."""
 
 class EncodeError(JausError):
     """A message that cannot be encoded, or fields that do not fit a message."""
@@ -164,6 +168,14 @@ class Schema:
     def doc(self, name: str) -> str: ...
     def decode(self, body: bytes, code: int) -> Message: ...
     def decode_packet(self, packet: bytes) -> Packet: ...
+    @overload
+    def decode_many(
+        self, packets: Iterable[bytes], *, strict: Literal[True] = True
+    ) -> List[Packet]: ...
+    @overload
+    def decode_many(
+        self, packets: Iterable[bytes], *, strict: bool
+    ) -> List[Union[Packet, DecodeError]]: ...
     def encode(self, message: Message) -> bytes: ...
     def encode_packet(
         self,
@@ -187,7 +199,17 @@ def decode(body: bytes, code: int) -> Message:
     """Decodes the body of the SDK's message with command code ``code``."""
 
 def decode_packet(packet: bytes) -> Packet:
-    """Decodes a whole packet: the 16-byte header and the body."""
+    """Decodes a whole packet: the 16-byte header and the body (checked now; the
+    message's fields become Python objects as they are read)."""
+
+@overload
+def decode_many(packets: Iterable[bytes], *, strict: Literal[True] = True) -> List[Packet]:
+    """Decodes every packet, in order; the first that does not decode raises its
+    ``DecodeError`` (``.index`` its position)."""
+@overload
+def decode_many(packets: Iterable[bytes], *, strict: bool) -> List[Union[Packet, DecodeError]]:
+    """``strict=False``: a packet that does not decode is its ``DecodeError`` (with
+    ``.index``) in the list."""
 
 def encode(message: Message) -> bytes:
     """The body of ``message``."""
