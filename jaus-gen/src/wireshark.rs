@@ -314,6 +314,39 @@ mod tests {
         assert_eq!(num(1e-7), "1e-7");
     }
 
+    /// The engine reads every integer the tables can name (a signed byte, AS-4's
+    /// JSIDL `byte`, was once missing: the dissector failed to load on HMI's fields).
+    #[test]
+    fn the_engine_knows_every_integer_representation() {
+        use jaus_spec::Int;
+        let table = |name: &str| {
+            let start = ENGINE
+                .find(&format!("local {name} = {{"))
+                .unwrap_or_else(|| panic!("{name} table in engine.lua"));
+            let end = start + ENGINE[start..].find("\n}").expect("table ends");
+            &ENGINE[start..end]
+        };
+        for i in [
+            Int::U8,
+            Int::U16,
+            Int::U32,
+            Int::U64,
+            Int::I8,
+            Int::I16,
+            Int::I32,
+            Int::I64,
+        ] {
+            let key = format!("{} = ", i.rust());
+            for name in ["INT", "DIVISOR"] {
+                assert!(
+                    table(name).contains(&key),
+                    "engine.lua's {name} has no entry for {}",
+                    i.rust()
+                );
+            }
+        }
+    }
+
     #[test]
     fn every_message_of_the_sdk_is_in_the_tables() {
         let spec = jaus_spec::load_dirs(&[jaus_spec::defs_dir()]).expect("definitions load");

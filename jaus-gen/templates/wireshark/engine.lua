@@ -103,12 +103,13 @@ local INT = {
   u16 = { size = 2, signed = false, pf = ProtoField.uint16 },
   u32 = { size = 4, signed = false, pf = ProtoField.uint32 },
   u64 = { size = 8, signed = false, pf = ProtoField.uint64 },
+  i8 = { size = 1, signed = true, pf = ProtoField.int8 },
   i16 = { size = 2, signed = true, pf = ProtoField.int16 },
   i32 = { size = 4, signed = true, pf = ProtoField.int32 },
   i64 = { size = 8, signed = true, pf = ProtoField.int64 },
 }
 local DIVISOR = {
-  u8 = 255.0, u16 = 65535.0, u32 = 4294967294.0, i32 = 4294967294.0, i16 = 65534.0,
+  u8 = 255.0, u16 = 65535.0, u32 = 4294967294.0, i8 = 254.0, i32 = 4294967294.0, i16 = 65534.0,
   u64 = 18446744073709551615.0, i64 = 18446744073709551614.0,
 }
 local MASKS = { u8 = 0xFF, u16 = 0xFFFF, u32 = 0xFFFFFFFF }
