@@ -38,6 +38,14 @@ impl<T: Transport> Transport for Until<T> {
         self.inner.send(d)
     }
 
+    fn send_all(
+        &mut self,
+        ds: &[Datagram<Self::Addr>],
+        done: impl FnMut(usize, std::io::Result<()>),
+    ) {
+        self.inner.send_all(ds, done);
+    }
+
     fn describe(&self) -> String {
         self.inner.describe()
     }

@@ -1,7 +1,8 @@
 //! The one I/O loop: a [`Participant`] (a node, attached components) driven over a
 //! [`Transport`] with the real clock. It waits for datagrams until the participant's
 //! next timeout, feeds them in, runs the timeout, lets the caller look, and sends what
-//! the participant queued (handing the buffers back for reuse).
+//! the participant queued, several datagrams per call to the transport (handing the
+//! buffers back for reuse).
 
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
@@ -35,6 +36,7 @@ where
 {
     tracing::info!(bind = %transport.describe(), "up");
     give_wall_clock(node);
+    let mut outgoing = Vec::with_capacity(SEND_BATCH);
     loop {
         if stopping(stop, until) {
             return Ok(());
@@ -48,16 +50,35 @@ where
         })?;
         node.handle_timeout(Instant::now());
         on_tick(node);
-        while let Some(d) = node.poll_transmit() {
-            match transport.send(&d) {
-                Ok(()) if d.via == Via::Network => tap(Direction::Sent, d.to, &d.bytes),
-                Ok(()) => {}
-                Err(e) => tracing::debug!(to = %d.to, "send failed: {e}"),
+        loop {
+            while outgoing.len() < SEND_BATCH {
+                match node.poll_transmit() {
+                    Some(d) => outgoing.push(d),
+                    None => break,
+                }
             }
-            node.recycle(d.bytes);
+            if outgoing.is_empty() {
+                break;
+            }
+            transport.send_all(&outgoing, |i, sent| {
+                let d = &outgoing[i];
+                match sent {
+                    Ok(()) if d.via == Via::Network => tap(Direction::Sent, d.to, &d.bytes),
+                    Ok(()) => {}
+                    Err(e) => tracing::debug!(to = %d.to, "send failed: {e}"),
+                }
+            });
+            for d in outgoing.drain(..) {
+                node.recycle(d.bytes);
+            }
         }
     }
 }
+
+/// Most datagrams handed to the transport at once ([`Transport::send_all`]): what a
+/// node queued while it handled one batch of received datagrams and its timeouts
+/// usually fits.
+const SEND_BATCH: usize = 32;
 
 /// The system's clock for the components whose clock nobody set (the shell reads the
 /// clocks; the sans-IO core does not).

@@ -48,6 +48,19 @@ pub trait Transport {
     /// error is logged by the shell and the datagram is dropped.
     fn send(&mut self, d: &Datagram<Self::Addr>) -> std::io::Result<()>;
 
+    /// Sends `ds` in order and tells `done` the outcome of each (its index in `ds`),
+    /// in as few system calls as the carrier can (`sendmmsg` for UDP on Linux). The
+    /// default sends them one by one with [`send`](Self::send).
+    fn send_all(
+        &mut self,
+        ds: &[Datagram<Self::Addr>],
+        mut done: impl FnMut(usize, std::io::Result<()>),
+    ) {
+        for (i, d) in ds.iter().enumerate() {
+            done(i, self.send(d));
+        }
+    }
+
     /// What the carrier is bound to, for the shell's first log line.
     fn describe(&self) -> String;
 }

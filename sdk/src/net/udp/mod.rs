@@ -24,7 +24,7 @@ mod socket;
 
 pub use shutdown::{join_within, ShutdownError, SHUTDOWN_BOUND};
 pub use socket::MAX_BATCH;
-use socket::{Receiver, MAX_DATAGRAM};
+use socket::{Receiver, Sender, MAX_DATAGRAM};
 
 /// How the I/O shell waits for and reads datagrams.
 ///
@@ -107,6 +107,7 @@ pub fn run_tapped<P: Participant>(
 pub struct UdpTransport<'a> {
     socket: &'a UdpSocket,
     receiver: Receiver,
+    sender: Sender,
 }
 
 impl<'a> UdpTransport<'a> {
@@ -115,6 +116,7 @@ impl<'a> UdpTransport<'a> {
         Self {
             socket,
             receiver: Receiver::new(io),
+            sender: Sender::default(),
         }
     }
 }
@@ -143,6 +145,10 @@ impl Transport for UdpTransport<'_> {
 
     fn send(&mut self, d: &Datagram) -> std::io::Result<()> {
         self.socket.send_to(&d.bytes, d.to).map(drop)
+    }
+
+    fn send_all(&mut self, ds: &[Datagram], done: impl FnMut(usize, std::io::Result<()>)) {
+        self.sender.send_all(self.socket, ds, done);
     }
 
     fn describe(&self) -> String {
