@@ -62,9 +62,10 @@
 //! triggers, guards and actions), generated into [`messages::services`] and run by the
 //! runtime below: the Core on [`core::Core`], the Mobility ([`mobility`]) and Manipulator
 //! ([`manipulator`]) services a gateway presents over RA 3.3 components on
-//! [`machined`].
-//! The UGV, Mission Spooling and HMI services are defined and generated (their traits
-//! and machines) without an implementation in this crate.
+//! [`machined`], with the Still Image ([`environment`]) and the UGV Parking Brake Driver
+//! and Platform Specifications ([`ugv`]).
+//! The other UGV services and the Mission Spooling and HMI services are defined and
+//! generated (their traits and machines) without an implementation in this crate.
 //!
 //! ## Running AS-4 services
 //!
@@ -200,6 +201,7 @@ pub mod outgoing;
 pub mod proxy;
 pub mod ra33;
 pub mod service;
+pub mod ugv;
 
 /// The generated messages and types of both service sets (group `as4`), the
 /// [`Message`] enum of all of them and the catalogue [`MESSAGES`].

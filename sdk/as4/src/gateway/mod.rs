@@ -9,7 +9,10 @@
 //! sends at once ([`jaus::net::Node::handle_companion`]); the AS-4 side of the socket
 //! ([`jaus::net::as5669a::As4Side`]) hands it the AS-4 messages. It hosts one
 //! [`As4Component`] with the Core services and, for each RA 3.3 component found in the
-//! presented subsystem, the matching Mobility service ([`crate::mobility`]).
+//! presented subsystem, the matching Mobility service ([`crate::mobility`]), Manipulator
+//! services ([`crate::manipulator`]) and Still Image ([`crate::environment`]); the UGV
+//! services ([`crate::ugv`]) come once the RA 3.3 Primitive Driver has answered what
+//! they read.
 //!
 //! The control and status semantics cross over: while an AS-4 client holds control of
 //! the AS-4 component, the gateway holds RA 3.3 control of the drivers (with its own
@@ -100,6 +103,8 @@ pub struct Gateway<A: PeerAddr = SocketAddr> {
     /// Sensor, no Local Waypoint Driver when its global ones were found): a local one
     /// found later is not offered beside them.
     derived: Derived,
+    /// The UGV services offered so far (each when its RA 3.3 report first came).
+    ugv: crate::ugv::Offered,
 }
 
 /// Which local services a [`Gateway`] derived from global ones.
@@ -131,6 +136,7 @@ impl<A: PeerAddr> Gateway<A> {
             seen,
             in_tree: HashSet::new(),
             derived: Derived::default(),
+            ugv: crate::ugv::Offered::default(),
         }
     }
 
@@ -161,6 +167,7 @@ impl<A: PeerAddr> Gateway<A> {
         for a in back {
             tracing::debug!(gateway = %self.node.env().address(), component = %a, "presented RA 3.3 component listed again");
             self.node.env_mut().rediscovered(now, a);
+            crate::ugv::rediscovered(self.node.env_mut(), a, &self.ugv);
         }
         self.offer(now, tree);
         self.in_tree = listed(self.node.env().targets());
@@ -229,6 +236,7 @@ impl<A: PeerAddr> Gateway<A> {
             services.push(Box::new(GlobalPathSegmentDriver::new(a)));
         }
         services.extend(crate::manipulator::services(env, now, &targets, &new));
+        crate::ugv::ask(env, &new);
         if let Some(a) = new.visual_sensor {
             services.push(Box::new(crate::environment::StillImage::new(a)));
         }
@@ -252,6 +260,22 @@ impl<A: PeerAddr> Gateway<A> {
             c.add_service(s);
         }
         self.offered.extend(new.all());
+    }
+
+    /// Offers the UGV services whose RA 3.3 report has just come for the first time
+    /// ([`crate::ugv::services`]).
+    fn offer_late(&mut self, now: Instant) {
+        let services = crate::ugv::services(self.node.env_mut(), now, &mut self.ugv);
+        if services.is_empty() {
+            return;
+        }
+        let Some(c) = self.node.component_mut(self.as4) else {
+            return;
+        };
+        for s in services {
+            tracing::info!(service = %s.id(), as4 = %self.as4, "AS-4 service offered");
+            c.add_service(s);
+        }
     }
 
     /// Carries changes of the AS-4 component's controller and state over to the RA 3.3
@@ -321,7 +345,10 @@ impl<A: PeerAddr> Endpoint for Gateway<A> {
 
     fn handle(&mut self, now: Instant, header: &Header, body: &[u8]) {
         match jaus::messages::Message::decode(header.command_code, body) {
-            Ok(m) => self.node.env_mut().on_message(now, header.source, m),
+            Ok(m) => {
+                self.node.env_mut().on_message(now, header.source, m);
+                self.offer_late(now);
+            }
             Err(e) => {
                 tracing::debug!(from = %header.source, "RA 3.3 message to the gateway does not decode: {e}");
                 return;
@@ -438,9 +465,11 @@ mod tests {
         g.refresh(t0, &tree(true, t0));
         assert_eq!(g.node().env().targets().primitive_driver, Some(PD));
         let mut now = t0;
+        // The polls of its efforts, after the UGV services' two queries (discrete devices,
+        // platform specifications: asked once, polled only once answered).
         assert_eq!(
             run_out(&mut g, &mut now),
-            crate::ra33::GIVE_UP_AFTER as usize
+            2 + crate::ra33::GIVE_UP_AFTER as usize
         );
         let given_up = vec![(PD, QueryWrenchEffort::CODE)];
         assert_eq!(g.node().env().polls_given_up(), given_up);
@@ -455,10 +484,11 @@ mod tests {
         assert!(g.node().env().polls_given_up().is_empty());
         assert_eq!(Endpoint::poll_timeout(&g), Some(now));
         assert_eq!(g.node().env().stats().polls_resumed, 1);
-        // Given up again; then forgotten by the node (timed out) and listed again.
+        // Given up again (the two queries asked again with the rediscovery); then
+        // forgotten by the node (timed out) and listed again.
         assert_eq!(
             run_out(&mut g, &mut now),
-            crate::ra33::GIVE_UP_AFTER as usize
+            2 + crate::ra33::GIVE_UP_AFTER as usize
         );
         assert_eq!(g.node().env().polls_given_up(), given_up);
         Endpoint::forget(&mut g, PD);

@@ -428,6 +428,11 @@ impl Ra33Side {
         }
     }
 
+    /// Whether an AS-4 client controls the AS-4 component ([`Self::set_controlled`]).
+    pub fn controlled(&self) -> bool {
+        self.want_control
+    }
+
     /// Asks for RA 3.3 control of `driver` now (the AS-4 client commands it directly),
     /// unless it is held or asked for already; nothing without an AS-4 controller.
     pub fn ensure_control(&mut self, driver: Address) {

@@ -1,0 +1,140 @@
+//! The Unmanned Ground Vehicle services (AS6091, `urn:jaus:jss:ugv`) over RA 3.3
+//! components, as the [`crate::mobility`], [`crate::manipulator`] and
+//! [`crate::environment`] services are: their machines are `defs/ugv_services.yaml`,
+//! run by [`crate::machined`].
+//!
+//! | AS-4 service | RA 3.3 component | messages |
+//! |---|---|---|
+//! | Parking Brake Driver | Primitive Driver | Set Parking Brake → RA 3.3 Set Discrete Devices (the parking brake bit: set for any level above 0, the horn bit kept as the driver reports it); Query Parking Brake answered from the driver's Report Discrete Devices (polled once answered): measured 100 % with the bit set, 0 % without (or without the field); commanded, the level last set (before any, the measured one) |
+//! | Platform Specifications | Primitive Driver | Query Platform Specifications answered from the driver's Report Platform Specifications (asked once, on discovery): name, extent, centre of gravity, wheel base, pitch-over and roll-over angles, maximum forward speed (RA 3.3 maximum velocity x) and rotational speed (maximum yaw rate); the steering kind Ackermann (minimum turning radius, wheel separation = track width) when the turning radius is above 0, else skid steer (track separation = track width) |
+//!
+//! A service is offered once the RA 3.3 Primitive Driver has answered the query it
+//! reads, asked once when the driver is found ([`ask`]) and again when it is
+//! discovered again ([`rediscovered`]) until answered ([`services`]): the SDK's stock driver answers Query Discrete Devices, not Query
+//! Platform Specifications (a documented deviation of its conformance run), so the demo
+//! vehicle gets the Parking Brake Driver only; a driver that answers both (a vendor's,
+//! OpenJAUS 3.3's) gets both.
+//!
+//! RA 3.3 control of the Primitive Driver is asked for when the controlling AS-4 client
+//! sets the parking brake ([`Ra33Side::ensure_control`]), as for its efforts; the command
+//! waits (the latest one) until it is granted. The stock driver takes Set Discrete
+//! Devices in Standby as in Ready, so the driver is not resumed and the vehicle's other
+//! drivers are left as they are.
+//!
+//! Not served: the Drive Train Driver (RA 3.3 Set Discrete Devices carries the gear and
+//! the transfer case as raw numbers that RA 3.3 leaves to the vendor: no mapping onto
+//! AS-4's Park/Neutral/Reverse/Drive/... and transfer case states), Odometry (RA 3.3's
+//! odometer is in Report Platform Operational Data, which the stock driver does not
+//! answer), the Skid Steer and Ackermann Drivers, the Stabilizer Driver and the Power
+//! Plant Manager; Illumination and Annunciator (RA 3.3 has no lights; its horn bit is the
+//! only annunciator). Their messages and machines are defined and generated.
+
+use std::time::Instant;
+
+use jaus::messages as ra;
+use jaus::{Address, JausMessage};
+
+use crate::core::generated_id;
+use crate::ra33::{Ra33Side, Targets};
+use crate::service::{Service, ServiceId};
+
+pub mod parking_brake;
+pub mod platform;
+
+pub use parking_brake::ParkingBrakeDriver;
+pub use platform::PlatformSpecificationsService;
+
+/// The URIs and versions of the UGV services served, as `defs/ugv_services.yaml` gives
+/// them.
+#[derive(Debug)]
+pub struct ServiceIds;
+
+impl ServiceIds {
+    /// `urn:jaus:jss:ugv:ParkingBrakeDriver`.
+    pub const PARKING_BRAKE_DRIVER: ServiceId = generated_id!(parking_brake_driver);
+    /// `urn:jaus:jss:ugv:PlatformSpecifications`.
+    pub const PLATFORM_SPECIFICATIONS: ServiceId = generated_id!(platform_specifications_service);
+}
+
+/// Which UGV services a gateway has offered (each once, when the RA 3.3 report it
+/// reads first came).
+#[derive(Debug, Default, Clone, Copy, PartialEq, Eq)]
+pub struct Offered {
+    /// The Parking Brake Driver.
+    pub parking_brake: bool,
+    /// The Platform Specifications service.
+    pub platform_specifications: bool,
+}
+
+/// Asks the RA 3.3 components just found (`new`) what the UGV services read, once: the
+/// Primitive Driver's discrete devices and platform specifications. Not polled until
+/// answered ([`services`]), so a driver that answers neither (OpenJAUS 3.3's answers
+/// little but efforts) is not asked again and again.
+pub fn ask(env: &mut Ra33Side, new: &Targets) {
+    if let Some(pd) = new.primitive_driver {
+        ask_driver(env, pd, &Offered::default());
+    }
+}
+
+/// `component` was discovered again: what the UGV services read from it and it has not
+/// answered yet is asked again, once.
+pub fn rediscovered(env: &mut Ra33Side, component: Address, offered: &Offered) {
+    if env.targets().primitive_driver == Some(component) {
+        ask_driver(env, component, offered);
+    }
+}
+
+fn ask_driver(env: &mut Ra33Side, pd: Address, offered: &Offered) {
+    if !offered.parking_brake {
+        env.send(pd, discrete_devices());
+    }
+    if !offered.platform_specifications {
+        env.send(
+            pd,
+            ra::QueryPlatformSpecifications {
+                presence_vector: 0x001F_FFFF,
+            },
+        );
+    }
+}
+
+/// Query Discrete Devices, every field.
+fn discrete_devices() -> ra::QueryDiscreteDevices {
+    ra::QueryDiscreteDevices {
+        presence_vector: 0x0F,
+    }
+}
+
+/// The UGV services not offered yet whose RA 3.3 report has come (`offered` records
+/// them): the Parking Brake Driver once the Primitive Driver reported its discrete
+/// devices (a report without the parking brake field reads as released: the stock
+/// driver leaves out the devices never set), from then on polled; the Platform
+/// Specifications once it reported them (asked once: they do not change).
+pub fn services(
+    env: &mut Ra33Side,
+    now: Instant,
+    offered: &mut Offered,
+) -> Vec<Box<dyn Service<Ra33Side>>> {
+    let mut out: Vec<Box<dyn Service<Ra33Side>>> = Vec::new();
+    let Some(pd) = env.targets().primitive_driver else {
+        return out;
+    };
+    if !offered.parking_brake && parking_brake::measured(env, pd).is_some() {
+        offered.parking_brake = true;
+        env.keep_polling(now, pd, discrete_devices());
+        out.push(Box::new(ParkingBrakeDriver::new(pd)));
+    }
+    if !offered.platform_specifications && specifications(env, pd).is_some() {
+        offered.platform_specifications = true;
+        out.push(Box::new(PlatformSpecificationsService::new(pd)));
+    }
+    out
+}
+
+/// The latest Report Platform Specifications of the RA 3.3 driver at `pd`.
+fn specifications(env: &Ra33Side, pd: Address) -> Option<&ra::ReportPlatformSpecifications> {
+    match env.latest(pd, ra::ReportPlatformSpecifications::CODE) {
+        Some((_, ra::Message::ReportPlatformSpecifications(r))) => Some(r),
+        _ => None,
+    }
+}

@@ -1,0 +1,338 @@
+//! AS-4 UGV services through the gateway (`jaus_as4::ugv`): an AS-4 client sets the
+//! demo vehicle's parking brake through the Parking Brake Driver the gateway presents
+//! over the RA 3.3 Primitive Driver's discrete devices, and reads it back from the RA
+//! 3.3 driver's report; only the controlling client may, and only while Ready but to
+//! apply it harder. The Platform Specifications service is offered over a Primitive
+//! Driver that answers Query Platform Specifications (the stock one does not).
+
+use std::time::{Duration, Instant};
+
+use jaus::component::{Config, CoreState, Refused, StopReason};
+use jaus::components::primitive_driver as pd;
+use jaus::messages as ra;
+use jaus::net::as5669a::As4Id;
+use jaus::net::{Node, NodeConfig};
+use jaus::stock::drivers::{PrimitiveConfig, StockPrimitiveDriver};
+use jaus::JausMessage;
+use jaus_as4::{
+    ComponentState, ControlConfirmation, Message, NodeServicesQuery, QueryParkingBrake,
+    QueryPlatformSpecifications, QueryServices, QueryStatus, ReportParkingBrake, RequestControl,
+    Resume, SetParkingBrake, Standby, SteeringSpecifics,
+};
+use jaus_sim::SimVehicle;
+
+mod common;
+use common::as4::As4Rig;
+
+const VEHICLE: As4Id = As4Id::new(1, 1, 1);
+const WAIT: Duration = Duration::from_millis(500);
+
+struct Rig(As4Rig);
+
+impl Rig {
+    /// The demo vehicle behind the gateway.
+    fn demo() -> Self {
+        let t0 = Instant::now();
+        let node = jaus_sim::demo::vehicle_node(t0, NodeConfig::default(), 1, 1).unwrap();
+        Rig::over(t0, node)
+    }
+
+    fn over(t0: Instant, node: Node) -> Self {
+        Rig(As4Rig::new(
+            t0,
+            node,
+            VEHICLE,
+            "demo vehicle",
+            Duration::from_secs(3),
+        ))
+    }
+
+    fn one(&mut self, m: impl Into<Message>) -> Message {
+        self.0.one_within(m, WAIT)
+    }
+
+    fn uris(&mut self) -> Vec<String> {
+        let Message::ReportServices(s) = self.one(QueryServices {
+            nodes: vec![NodeServicesQuery {
+                node_id: 255,
+                component_ids: vec![255],
+            }],
+        }) else {
+            panic!("no Report Services");
+        };
+        s.nodes
+            .iter()
+            .flat_map(|n| &n.components)
+            .flat_map(|c| &c.services)
+            .map(|s| s.uri.clone())
+            .collect()
+    }
+
+    fn take_control(&mut self) {
+        let Message::ConfirmControl(c) = self.one(RequestControl { authority_code: 5 }) else {
+            panic!("no Confirm Control");
+        };
+        assert_eq!(c.response_code, ControlConfirmation::ControlAccepted);
+    }
+
+    fn status(&mut self) -> ComponentState {
+        let Message::ReportStatus(s) = self.one(QueryStatus {}) else {
+            panic!("no Report Status");
+        };
+        s.status
+    }
+
+    /// Sends Set Parking Brake; what came back (nothing: it was taken or refused).
+    fn set(&mut self, level: f64) {
+        let got = self.0.ask(
+            SetParkingBrake {
+                parking_brake: level,
+            },
+            WAIT,
+        );
+        assert!(got.is_empty(), "{got:?}");
+    }
+
+    fn brake(&mut self) -> ReportParkingBrake {
+        match self.one(QueryParkingBrake {}) {
+            Message::ReportParkingBrake(r) => r,
+            other => panic!("{other:?}"),
+        }
+    }
+
+    /// The parking brake bit of the RA 3.3 Primitive Driver's latest Report Discrete
+    /// Devices, as the gateway holds it.
+    fn ra33_bit(&self) -> bool {
+        let env = self.0.dual().gateway().node().env();
+        let pd = env.targets().primitive_driver.expect("the driver found");
+        match env.latest(pd, ra::ReportDiscreteDevices::CODE) {
+            // Without the field: never set.
+            Some((_, ra::Message::ReportDiscreteDevices(r))) => {
+                r.parking_brake_and_horn.is_some_and(|d| d.parking_brake)
+            }
+            other => panic!("no RA 3.3 discrete devices: {other:?}"),
+        }
+    }
+}
+
+#[test]
+fn the_controlling_client_sets_the_parking_brake_of_the_ra33_driver() {
+    let mut r = Rig::demo();
+    let uris = r.uris();
+    assert!(
+        uris.iter()
+            .any(|u| u == "urn:jaus:jss:ugv:ParkingBrakeDriver"),
+        "{uris:?}"
+    );
+    // The stock RA 3.3 Primitive Driver does not answer Query Platform Specifications.
+    assert!(
+        !uris
+            .iter()
+            .any(|u| u == "urn:jaus:jss:ugv:PlatformSpecifications"),
+        "{uris:?}"
+    );
+    let released = r.brake();
+    assert_eq!(released.actual_parking_brake, 0.0);
+    assert!(!r.ra33_bit());
+
+    // Without control: refused, nothing changes.
+    r.set(100.0);
+    assert_eq!(r.brake().actual_parking_brake, 0.0);
+    assert!(!r.ra33_bit());
+
+    // The controller, Ready: applied, read back from the RA 3.3 report.
+    r.take_control();
+    r.0.ask(Resume {}, WAIT);
+    assert_eq!(r.status(), ComponentState::Ready);
+    r.set(100.0);
+    let b = r.brake();
+    assert_eq!(
+        (b.commanded_parking_brake, b.actual_parking_brake),
+        (100.0, 100.0)
+    );
+    assert!(r.ra33_bit());
+    // Released again.
+    r.set(0.0);
+    let b = r.brake();
+    assert_eq!(
+        (b.commanded_parking_brake, b.actual_parking_brake),
+        (0.0, 0.0)
+    );
+    assert!(!r.ra33_bit());
+    // A partial level applies the RA 3.3 brake (on or off only).
+    r.set(30.0);
+    let b = r.brake();
+    assert!((b.commanded_parking_brake - 30.0).abs() < 0.5, "{b:?}");
+    assert_eq!(b.actual_parking_brake, 100.0);
+    r.set(0.0);
+    assert_eq!(r.brake().actual_parking_brake, 0.0);
+}
+
+#[test]
+fn leaving_ready_applies_the_brake_and_outside_ready_it_is_only_applied_harder() {
+    let mut r = Rig::demo();
+    r.take_control();
+    r.0.ask(Resume {}, WAIT);
+    assert_eq!(r.status(), ComponentState::Ready);
+    assert_eq!(r.brake().actual_parking_brake, 0.0);
+    // Standby: the exit action of Ready applies the brake.
+    r.0.ask(Standby {}, WAIT);
+    assert_eq!(r.status(), ComponentState::Standby);
+    assert_eq!(r.brake().actual_parking_brake, 100.0);
+    assert!(r.ra33_bit());
+    // Controlled, not Ready: releasing is refused (not harder than applied).
+    r.set(0.0);
+    assert_eq!(r.brake().actual_parking_brake, 100.0);
+    assert!(r.ra33_bit());
+}
+
+/// The stock RA 3.3 Primitive Driver of the demo vehicle that also answers Query
+/// Platform Specifications (as a vendor's may).
+struct Specified(StockPrimitiveDriver<SimVehicle>);
+
+/// The RA 3.3 specifications `Specified` reports.
+fn ra33_specifications() -> ra::ReportPlatformSpecifications {
+    ra::ReportPlatformSpecifications {
+        platform_name: Some("demo rover".into()),
+        front: Some(0.6),
+        back: Some(0.4),
+        right: Some(0.35),
+        left: Some(0.35),
+        bottom: Some(0.1),
+        top: Some(0.5),
+        x_cg: Some(0.1),
+        y_cg: Some(0.0),
+        z_cg: Some(0.2),
+        turning_radius: Some(0.0),
+        wheel_base: Some(0.55),
+        track_width: Some(0.6),
+        pitch_over: Some(0.7),
+        roll_over: Some(0.6),
+        maximum_velocity_x: Some(2.0),
+        maximum_yaw_rate: Some(1.5),
+        ..Default::default()
+    }
+}
+
+impl pd::PrimitiveDriver for Specified {
+    fn stop(&mut self, ctx: &mut pd::Ctx<'_>, reason: StopReason) {
+        self.0.stop(ctx, reason);
+    }
+    fn on_set_wrench_effort(
+        &mut self,
+        ctx: &mut pd::Ctx<'_>,
+        msg: &ra::SetWrenchEffort,
+    ) -> Result<(), Refused> {
+        self.0.on_set_wrench_effort(ctx, msg)
+    }
+    fn on_set_discrete_devices(
+        &mut self,
+        ctx: &mut pd::Ctx<'_>,
+        msg: &ra::SetDiscreteDevices,
+    ) -> Result<(), Refused> {
+        self.0.on_set_discrete_devices(ctx, msg)
+    }
+    fn on_query_wrench_effort(
+        &mut self,
+        ctx: &mut pd::Ctx<'_>,
+        q: &ra::QueryWrenchEffort,
+    ) -> Result<ra::ReportWrenchEffort, Refused> {
+        self.0.on_query_wrench_effort(ctx, q)
+    }
+    fn on_query_discrete_devices(
+        &mut self,
+        ctx: &mut pd::Ctx<'_>,
+        q: &ra::QueryDiscreteDevices,
+    ) -> Result<ra::ReportDiscreteDevices, Refused> {
+        self.0.on_query_discrete_devices(ctx, q)
+    }
+    fn on_query_platform_specifications(
+        &mut self,
+        _ctx: &mut pd::Ctx<'_>,
+        _q: &ra::QueryPlatformSpecifications,
+    ) -> Result<ra::ReportPlatformSpecifications, Refused> {
+        Ok(ra33_specifications())
+    }
+    fn state_changed(&mut self, ctx: &mut pd::Ctx<'_>, from: CoreState, to: CoreState) {
+        self.0.state_changed(ctx, from, to);
+    }
+    fn tick(&mut self, ctx: &mut pd::Ctx<'_>) {
+        self.0.tick(ctx);
+    }
+}
+
+#[test]
+fn platform_specifications_are_those_of_the_ra33_primitive_driver() {
+    let t0 = Instant::now();
+    let opts = jaus_sim::demo::Options {
+        local_waypoint_driver: true,
+        ..Default::default()
+    };
+    let (parts, vehicle) = jaus_sim::demo::vehicle_at(t0, &opts, 1, 1);
+    let mut node = Node::new(
+        NodeConfig {
+            subsystem: 1,
+            node: 1,
+            ..NodeConfig::default()
+        },
+        t0,
+    );
+    let at = jaus::Address::new(1, 1, jaus::components::primitive_driver::ID, 1);
+    for p in parts.into_iter().filter(|p| p.address() != at) {
+        node.add_boxed(p).unwrap();
+    }
+    let driver = Specified(StockPrimitiveDriver::new(
+        vehicle,
+        PrimitiveConfig::default(),
+    ));
+    node.add_boxed(Box::new(pd::component(at, driver, Config::default(), t0)))
+        .unwrap();
+    let mut r = Rig::over(t0, node);
+    let uris = r.uris();
+    for want in [
+        "urn:jaus:jss:ugv:PlatformSpecifications",
+        "urn:jaus:jss:ugv:ParkingBrakeDriver",
+    ] {
+        assert_eq!(
+            uris.iter().filter(|u| *u == want).count(),
+            1,
+            "{want} once in {uris:?}"
+        );
+    }
+    let Message::ReportPlatformSpecifications(s) = r.one(QueryPlatformSpecifications {}) else {
+        panic!("no Report Platform Specifications");
+    };
+    let want = ra33_specifications();
+    let close = |a: Option<f64>, b: Option<f64>| {
+        let (a, b) = (a.expect("present"), b.expect("present"));
+        assert!((a - b).abs() < 0.01, "{a} vs {b}");
+    };
+    let g = &s.platform_spec;
+    assert_eq!(g.mobility_platform_name, "demo rover");
+    close(g.front, want.front);
+    close(g.back, want.back);
+    close(g.right, want.right);
+    close(g.left, want.left);
+    close(g.bottom, want.bottom);
+    close(g.top, want.top);
+    close(g.cg_x, want.x_cg);
+    close(g.cg_y, want.y_cg);
+    close(g.cg_z, want.z_cg);
+    close(g.wheel_base, want.wheel_base);
+    close(g.static_pitch_over, want.pitch_over);
+    close(g.static_roll_over, want.roll_over);
+    // RA 3.3 has no weight, no approach, departure or breakover angle.
+    assert_eq!(g.vehicle_weight, None);
+    assert_eq!(g.approach_angle, None);
+    let p = &s.platform_inertial;
+    close(p.maximum_forward_speed, want.maximum_velocity_x);
+    close(p.maximum_rotational_speed, want.maximum_yaw_rate);
+    assert_eq!(p.maximum_reverse_speed, None);
+    assert_eq!(p.maximum_forward_acceleration, None);
+    // A turning radius of 0: skid steer, the track width its track separation.
+    let SteeringSpecifics::SkidSteer(k) = &s.platform_specifics else {
+        panic!("{:?}", s.platform_specifics);
+    };
+    close(k.track_separation, want.track_width);
+    assert_eq!(k.drive_wheel_radius, None);
+}
