@@ -7,7 +7,7 @@
 
 use std::time::{Duration, Instant};
 
-use jaus::component::{Config, CoreState, Refused, StopReason};
+use jaus::component::Config;
 use jaus::components::primitive_driver as pd;
 use jaus::messages as ra;
 use jaus::net::as5669a::As4Id;
@@ -19,7 +19,6 @@ use jaus_as4::{
     QueryPlatformSpecifications, QueryServices, QueryStatus, ReportParkingBrake, RequestControl,
     Resume, SetParkingBrake, Standby, SteeringSpecifics,
 };
-use jaus_sim::SimVehicle;
 
 mod common;
 use common::as4::As4Rig;
@@ -124,13 +123,22 @@ fn the_controlling_client_sets_the_parking_brake_of_the_ra33_driver() {
             .any(|u| u == "urn:jaus:jss:ugv:ParkingBrakeDriver"),
         "{uris:?}"
     );
-    // The stock RA 3.3 Primitive Driver does not answer Query Platform Specifications.
+    // The demo vehicle's stock RA 3.3 Primitive Driver answers Query Platform
+    // Specifications with what the simulation's model says.
     assert!(
-        !uris
-            .iter()
+        uris.iter()
             .any(|u| u == "urn:jaus:jss:ugv:PlatformSpecifications"),
         "{uris:?}"
     );
+    let Message::ReportPlatformSpecifications(s) = r.one(QueryPlatformSpecifications {}) else {
+        panic!("no Report Platform Specifications");
+    };
+    assert_eq!(s.platform_spec.mobility_platform_name, "jaus sim");
+    let top = s
+        .platform_inertial
+        .maximum_forward_speed
+        .expect("top speed");
+    assert!((top - 2.0).abs() < 0.01, "{top}");
     let released = r.brake();
     assert_eq!(released.actual_parking_brake, 0.0);
     assert!(!r.ra33_bit());
@@ -186,11 +194,7 @@ fn leaving_ready_applies_the_brake_and_outside_ready_it_is_only_applied_harder()
     assert!(r.ra33_bit());
 }
 
-/// The stock RA 3.3 Primitive Driver of the demo vehicle that also answers Query
-/// Platform Specifications (as a vendor's may).
-struct Specified(StockPrimitiveDriver<SimVehicle>);
-
-/// The RA 3.3 specifications `Specified` reports.
+/// The RA 3.3 specifications a vendor's platform gives its Primitive Driver.
 fn ra33_specifications() -> ra::ReportPlatformSpecifications {
     ra::ReportPlatformSpecifications {
         platform_name: Some("demo rover".into()),
@@ -214,53 +218,6 @@ fn ra33_specifications() -> ra::ReportPlatformSpecifications {
     }
 }
 
-impl pd::PrimitiveDriver for Specified {
-    fn stop(&mut self, ctx: &mut pd::Ctx<'_>, reason: StopReason) {
-        self.0.stop(ctx, reason);
-    }
-    fn on_set_wrench_effort(
-        &mut self,
-        ctx: &mut pd::Ctx<'_>,
-        msg: &ra::SetWrenchEffort,
-    ) -> Result<(), Refused> {
-        self.0.on_set_wrench_effort(ctx, msg)
-    }
-    fn on_set_discrete_devices(
-        &mut self,
-        ctx: &mut pd::Ctx<'_>,
-        msg: &ra::SetDiscreteDevices,
-    ) -> Result<(), Refused> {
-        self.0.on_set_discrete_devices(ctx, msg)
-    }
-    fn on_query_wrench_effort(
-        &mut self,
-        ctx: &mut pd::Ctx<'_>,
-        q: &ra::QueryWrenchEffort,
-    ) -> Result<ra::ReportWrenchEffort, Refused> {
-        self.0.on_query_wrench_effort(ctx, q)
-    }
-    fn on_query_discrete_devices(
-        &mut self,
-        ctx: &mut pd::Ctx<'_>,
-        q: &ra::QueryDiscreteDevices,
-    ) -> Result<ra::ReportDiscreteDevices, Refused> {
-        self.0.on_query_discrete_devices(ctx, q)
-    }
-    fn on_query_platform_specifications(
-        &mut self,
-        _ctx: &mut pd::Ctx<'_>,
-        _q: &ra::QueryPlatformSpecifications,
-    ) -> Result<ra::ReportPlatformSpecifications, Refused> {
-        Ok(ra33_specifications())
-    }
-    fn state_changed(&mut self, ctx: &mut pd::Ctx<'_>, from: CoreState, to: CoreState) {
-        self.0.state_changed(ctx, from, to);
-    }
-    fn tick(&mut self, ctx: &mut pd::Ctx<'_>) {
-        self.0.tick(ctx);
-    }
-}
-
 #[test]
 fn platform_specifications_are_those_of_the_ra33_primitive_driver() {
     let t0 = Instant::now();
@@ -281,10 +238,13 @@ fn platform_specifications_are_those_of_the_ra33_primitive_driver() {
     for p in parts.into_iter().filter(|p| p.address() != at) {
         node.add_boxed(p).unwrap();
     }
-    let driver = Specified(StockPrimitiveDriver::new(
+    let driver = StockPrimitiveDriver::new(
         vehicle,
-        PrimitiveConfig::default(),
-    ));
+        PrimitiveConfig {
+            specifications: Some(ra33_specifications()),
+            ..PrimitiveConfig::default()
+        },
+    );
     node.add_boxed(Box::new(pd::component(at, driver, Config::default(), t0)))
         .unwrap();
     let mut r = Rig::over(t0, node);

@@ -77,9 +77,8 @@ fn every_stock_component_conforms() {
     // Documented deviations: advisory checks the stock components fail, with the
     // reason (docs/conformance.md).
     let deviations = [
-        // The stock Primitive Driver does not implement these two queries (its
-        // definition accepts them; Part 1 §5.3.4 lists them).
-        ("1.1.33.1", "query.QueryPlatformSpecifications"),
+        // The stock Primitive Driver does not implement this query (its definition
+        // accepts it; Part 1 §5.3.4 lists it).
         ("1.1.33.1", "query.QueryPlatformOperationalData"),
     ];
     let failed: Vec<_> = not_passed(&run)

@@ -272,8 +272,8 @@ fn jaus_node_hosting_every_stock_component_conforms() {
             .any(|l| l.starts_with(&line) && l.contains(&format!("{n} checks"))));
     }
     assert!(total > 7 * 25, "{total} checks");
-    // The documented deviations (docs/conformance.md): advisory, the stock Primitive
-    // Driver does not implement two queries its definition accepts.
+    // The documented deviation (docs/conformance.md): advisory, the stock Primitive
+    // Driver does not implement a query its definition accepts.
     let advisory_failures: Vec<String> = components
         .iter()
         .flat_map(|c| {
@@ -293,10 +293,7 @@ fn jaus_node_hosting_every_stock_component_conforms() {
         .collect();
     assert_eq!(
         advisory_failures,
-        [
-            "1.1.33.1 query.QueryPlatformSpecifications",
-            "1.1.33.1 query.QueryPlatformOperationalData"
-        ]
+        ["1.1.33.1 query.QueryPlatformOperationalData"]
     );
     assert_eq!(junit.matches("<testcase ").count(), total);
     assert_eq!(junit.matches("<failure ").count(), 0);

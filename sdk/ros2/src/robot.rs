@@ -212,6 +212,7 @@ pub fn robot_components(
             },
             PrimitiveConfig {
                 command_timeout: config.command_timeout(),
+                ..PrimitiveConfig::default()
             },
         ),
         tap: link.tap(),

@@ -190,6 +190,21 @@ impl GroundVehicle {
     }
 }
 
+impl VehicleParams {
+    /// What the model says of the platform, as RA 3.3 specifications: its top speed and
+    /// yaw rate at full effort, and a turning radius of 0 (it turns in place, as a
+    /// skid-steered vehicle does). The model has no body, so no dimensions are given.
+    pub fn specifications(&self) -> jaus::messages::ReportPlatformSpecifications {
+        jaus::messages::ReportPlatformSpecifications {
+            platform_name: Some("jaus sim".into()),
+            turning_radius: Some(0.0),
+            maximum_velocity_x: Some(self.max_speed),
+            maximum_yaw_rate: Some(self.max_yaw_rate),
+            ..Default::default()
+        }
+    }
+}
+
 /// A shared handle to a simulated vehicle: clone it into the primitive driver and the
 /// sensors. (One process, one virtual clock: the mutex is never contended for long.)
 #[derive(Debug, Clone)]

@@ -74,7 +74,14 @@ pub fn vehicle_at(
     });
     let cfg = config();
     let cfg_lwd = cfg.clone();
-    let pd = StockPrimitiveDriver::new(vehicle.clone(), PrimitiveConfig::default());
+    let specifications = Some(vehicle.lock().params().specifications());
+    let pd = StockPrimitiveDriver::new(
+        vehicle.clone(),
+        PrimitiveConfig {
+            specifications,
+            ..PrimitiveConfig::default()
+        },
+    );
     let rd = StockReflexiveDriver::new(
         (),
         ReflexiveConfig {

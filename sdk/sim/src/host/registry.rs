@@ -31,10 +31,17 @@ type Build = fn(&BuildCx<'_>) -> Built;
 /// the order `jaus node` lists them.
 const REGISTRY: &[(u8, Build)] = &[
     (c::primitive_driver::ID, |cx| {
-        cx.run(
-            c::primitive_driver::component,
-            StockPrimitiveDriver::new(cx.vehicle(), PrimitiveConfig::default()),
-        )
+        cx.run(c::primitive_driver::component, {
+            let vehicle = cx.vehicle();
+            let specifications = Some(vehicle.lock().params().specifications());
+            StockPrimitiveDriver::new(
+                vehicle,
+                PrimitiveConfig {
+                    specifications,
+                    ..PrimitiveConfig::default()
+                },
+            )
+        })
     }),
     (c::reflexive_driver::ID, |cx| {
         cx.run(

@@ -3,6 +3,7 @@
 
 use std::time::{Duration, Instant};
 
+use crate::codec::Encode;
 use crate::component::{CoreState, Refused, StopReason};
 use crate::components::primitive_driver as pd;
 use crate::messages::*;
@@ -14,12 +15,17 @@ use crate::stock::motion::{wrench_message, wrench_of};
 pub struct PrimitiveConfig {
     /// A wrench not refreshed within this time is replaced by brakes (watchdog).
     pub command_timeout: Duration,
+    /// The platform's specifications (dimensions, centre of gravity, turning radius,
+    /// top speeds), answered to Query Platform Specifications with the fields the query
+    /// asks for; `None` refuses the query (the platform did not say).
+    pub specifications: Option<ReportPlatformSpecifications>,
 }
 
 impl Default for PrimitiveConfig {
     fn default() -> Self {
         Self {
             command_timeout: Duration::from_millis(300),
+            specifications: None,
         }
     }
 }
@@ -117,6 +123,18 @@ impl<A: Actuators> pd::PrimitiveDriver for StockPrimitiveDriver<A> {
         _q: &QueryDiscreteDevices,
     ) -> Result<ReportDiscreteDevices, Refused> {
         Ok(self.devices.clone())
+    }
+
+    fn on_query_platform_specifications(
+        &mut self,
+        _ctx: &mut pd::Ctx<'_>,
+        q: &QueryPlatformSpecifications,
+    ) -> Result<ReportPlatformSpecifications, Refused> {
+        let mut r = self.config.specifications.clone().ok_or_else(|| {
+            Refused::Invalid("this platform's specifications are not configured".into())
+        })?;
+        r.keep_present(u64::from(q.presence_vector));
+        Ok(r)
     }
 
     fn stop(&mut self, ctx: &mut pd::Ctx<'_>, _reason: StopReason) {
