@@ -211,6 +211,12 @@ pub(crate) fn generic_getattr<'py>(
 /// an entry (an entry of that name is read as `r["keys"]`).
 const RECORD_MEMBERS: &[&str] = &["keys", "to_dict", "to_json"];
 
+/// Whether an attribute name may name an entry (a field of a message, an entry of a
+/// record): not a dunder, not one of the object's `members`, which come first.
+pub(crate) fn may_be_entry(name: &str, members: &[&str]) -> bool {
+    !name.starts_with("__") && !members.contains(&name)
+}
+
 #[pymethods]
 impl Record {
     /// An entry by attribute (`r.hour`): looked up before the generic attribute lookup,
@@ -222,7 +228,7 @@ impl Record {
     ) -> PyResult<Bound<'py, PyAny>> {
         let n = name.to_cow()?;
         let n: &str = &n;
-        if !n.starts_with("__") && !RECORD_MEMBERS.contains(&n) {
+        if may_be_entry(n, RECORD_MEMBERS) {
             if let Some(v) = slf.get().get_entry(slf.py(), n)? {
                 return Ok(v);
             }

@@ -8,7 +8,9 @@
 //! [`py_to_json`]). Below this module: `catalog`, `convert`, `errors`.
 
 use crate::catalog::{sdk, Catalog};
-use crate::convert::{generic_getattr, json_to_py, object_to_dict, value_to_py, Form, Record};
+use crate::convert::{
+    generic_getattr, json_to_py, may_be_entry, object_to_dict, value_to_py, Form, Record,
+};
 use crate::errors::{decode_error, fields_error};
 use jaus::json::JsonError;
 use jaus::{Address, Header};
@@ -25,7 +27,7 @@ use std::sync::{Arc, Mutex, OnceLock};
 
 /// The members of `jaus.Message` (methods and properties): an attribute of one of these
 /// names is the member, not a field (a field of that name is read as `m["name"]`).
-const MESSAGE_MEMBERS: &[&str] = &[
+pub(crate) const MESSAGE_MEMBERS: &[&str] = &[
     "name",
     "code",
     "fields",
@@ -176,7 +178,7 @@ impl Message {
             "fields" => return Ok(PyList::new(py, this.fields())?.into_any()),
             _ => {}
         }
-        if !n.starts_with("__") && !MESSAGE_MEMBERS.contains(&n) {
+        if may_be_entry(n, MESSAGE_MEMBERS) {
             if let Some(v) = this.known_field(py, n)? {
                 return Ok(v);
             }

@@ -7,19 +7,8 @@
 
 use std::fmt::Write as _;
 
+use crate::message::MESSAGE_MEMBERS;
 use jaus_spec::{Field, Spec, TypeKind, Wire};
-
-/// Member names of `jaus.Message`: a field of that name is read as `m["name"]`.
-const MESSAGE_MEMBERS: &[&str] = &[
-    "name",
-    "code",
-    "fields",
-    "to_dict",
-    "to_json",
-    "encode",
-    "doc",
-    "from_dict",
-];
 
 /// Python's keywords: not attribute or argument names.
 const KEYWORDS: &[&str] = &[
