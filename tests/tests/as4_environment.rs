@@ -3,10 +3,8 @@
 //! presents (`jaus_as4::environment`), reads its capabilities and configuration, and
 //! has a configuration it cannot give refused sensor by sensor.
 
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
-use jaus::net::as5669a::As4Id;
-use jaus::net::NodeConfig;
 use jaus::JausMessage;
 use jaus_as4::{
     ConfirmSensorConfigurationVariant as Confirmed, CoordinateSystemEnum, Message,
@@ -19,23 +17,14 @@ use jaus_as4::{
 mod common;
 use common::as4::As4Rig;
 
-const VEHICLE: As4Id = As4Id::new(1, 1, 1);
 const PNG: &[u8] = b"\x89PNG\r\n\x1a\n";
 
 struct Rig(As4Rig);
 
 impl Rig {
     fn new() -> Self {
-        let t0 = Instant::now();
-        let node = jaus_sim::demo::vehicle_node(t0, NodeConfig::default(), 1, 1).unwrap();
         // The node settles, the gateway finds the camera.
-        Rig(As4Rig::new(
-            t0,
-            node,
-            VEHICLE,
-            "demo vehicle",
-            Duration::from_secs(3),
-        ))
+        Rig(As4Rig::demo_vehicle())
     }
 
     fn one(&mut self, m: impl Into<Message>) -> Message {

@@ -15,9 +15,8 @@ use jaus::net::{Node, NodeConfig};
 use jaus::stock::drivers::{PrimitiveConfig, StockPrimitiveDriver};
 use jaus::JausMessage;
 use jaus_as4::{
-    ComponentState, ControlConfirmation, Message, NodeServicesQuery, QueryParkingBrake,
-    QueryPlatformSpecifications, QueryServices, QueryStatus, ReportParkingBrake, RequestControl,
-    Resume, SetParkingBrake, Standby, SteeringSpecifics,
+    ComponentState, Message, QueryParkingBrake, QueryPlatformSpecifications, QueryStatus,
+    ReportParkingBrake, Resume, SetParkingBrake, Standby, SteeringSpecifics,
 };
 
 mod common;
@@ -31,9 +30,7 @@ struct Rig(As4Rig);
 impl Rig {
     /// The demo vehicle behind the gateway.
     fn demo() -> Self {
-        let t0 = Instant::now();
-        let node = jaus_sim::demo::vehicle_node(t0, NodeConfig::default(), 1, 1).unwrap();
-        Rig::over(t0, node)
+        Rig(As4Rig::demo_vehicle())
     }
 
     fn over(t0: Instant, node: Node) -> Self {
@@ -51,27 +48,11 @@ impl Rig {
     }
 
     fn uris(&mut self) -> Vec<String> {
-        let Message::ReportServices(s) = self.one(QueryServices {
-            nodes: vec![NodeServicesQuery {
-                node_id: 255,
-                component_ids: vec![255],
-            }],
-        }) else {
-            panic!("no Report Services");
-        };
-        s.nodes
-            .iter()
-            .flat_map(|n| &n.components)
-            .flat_map(|c| &c.services)
-            .map(|s| s.uri.clone())
-            .collect()
+        self.0.service_uris()
     }
 
     fn take_control(&mut self) {
-        let Message::ConfirmControl(c) = self.one(RequestControl { authority_code: 5 }) else {
-            panic!("no Confirm Control");
-        };
-        assert_eq!(c.response_code, ControlConfirmation::ControlAccepted);
+        self.0.take_control();
     }
 
     fn status(&mut self) -> ComponentState {

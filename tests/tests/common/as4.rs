@@ -9,6 +9,7 @@ use jaus::net::as5669a::{As4Client, As4Id, As4Message};
 use jaus::net::Node;
 use jaus::Address;
 use jaus_as4::gateway::{DualNode, GatewayConfig};
+use jaus_as4::messages::{ControlConfirmation, NodeServicesQuery, QueryServices, RequestControl};
 use jaus_as4::Message;
 use jaus_sim::network::{LinkModel, SimNet};
 
@@ -77,5 +78,52 @@ impl As4Rig {
     /// The node and its gateway.
     pub fn dual(&self) -> &DualNode {
         self.net.get::<DualNode>(self.node).expect("node")
+    }
+
+    /// The demo vehicle (node 1.1) behind its gateway as AS-4 component 1.1.1, settled
+    /// for 3 s (the gateway has found its components).
+    pub fn demo_vehicle() -> Self {
+        let t0 = Instant::now();
+        let node =
+            jaus_sim::demo::vehicle_node(t0, jaus::net::NodeConfig::default(), 1, 1).unwrap();
+        As4Rig::new(
+            t0,
+            node,
+            As4Id::new(1, 1, 1),
+            "demo vehicle",
+            Duration::from_secs(3),
+        )
+    }
+
+    /// The URIs of every service Report Services lists for the gateway's subsystem.
+    pub fn service_uris(&mut self) -> Vec<String> {
+        let Message::ReportServices(s) = self.one_within(
+            QueryServices {
+                nodes: vec![NodeServicesQuery {
+                    node_id: 255,
+                    component_ids: vec![255],
+                }],
+            },
+            Duration::from_millis(500),
+        ) else {
+            panic!("no Report Services");
+        };
+        s.nodes
+            .iter()
+            .flat_map(|n| &n.components)
+            .flat_map(|c| &c.services)
+            .map(|s| s.uri.clone())
+            .collect()
+    }
+
+    /// Requests control (authority 5) and checks it is accepted.
+    pub fn take_control(&mut self) {
+        let Message::ConfirmControl(c) = self.one_within(
+            RequestControl { authority_code: 5 },
+            Duration::from_millis(500),
+        ) else {
+            panic!("no Confirm Control");
+        };
+        assert_eq!(c.response_code, ControlConfirmation::ControlAccepted);
     }
 }
