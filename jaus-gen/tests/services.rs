@@ -136,3 +136,38 @@ fn a_target_that_is_no_state_is_an_error() {
     let e = render("target", &yaml).unwrap_err().to_string();
     assert!(e.contains("`B` is not a state of machine `M`"), "{e}");
 }
+
+/// A guard of the name of an inherited guard but with another message is the
+/// service's own, called through its trait (both traits declare the name); with the
+/// inherited guard's message it is the inherited one. The workspace's
+/// `tests/tests/services.rs` compiles the golden files and drives them.
+#[test]
+fn a_guard_named_as_an_inherited_one_with_another_message_is_the_services_own() {
+    let g = Builder::new()
+        .emit_rerun_if_changed(false)
+        .runtime_path("::jaus")
+        .serde_cfg("all()")
+        .overlay(dir().join("shadow/shadow.yaml"))
+        .render()
+        .unwrap();
+    let s = &g.services;
+    assert!(s.contains("pub trait Dimmer: super::switch::Switch"), "{s}");
+    assert!(
+        s.contains("fn is_allowed(&self, msg: &SwitchOn) -> bool;"),
+        "{s}"
+    );
+    assert!(
+        s.contains("fn is_allowed(&self, msg: &SetLevel) -> bool;"),
+        "{s}"
+    );
+    assert!(
+        s.contains("super::dimmer::Dimmer::is_allowed(&*self.0, msg)"),
+        "{s}"
+    );
+    assert!(
+        s.contains("super::switch::Switch::is_allowed(&*self.0, msg)"),
+        "{s}"
+    );
+    check("shadow.messages.rs", &g.code);
+    check("shadow.services.rs", &g.services);
+}

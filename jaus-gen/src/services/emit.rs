@@ -12,7 +12,7 @@ use jaus_spec::{Int, Spec};
 use std::collections::{BTreeMap, BTreeSet};
 
 /// The shape of one argument position.
-#[derive(Debug, Clone, PartialEq, Eq)]
+#[derive(Debug, Clone, PartialEq, Eq, PartialOrd, Ord)]
 enum Shape {
     Param(String),
     Const,
@@ -108,23 +108,29 @@ pub fn build_services(
         );
     }
     // A method named without a prefix belongs to the farthest ancestor that declares it
-    // too, so that no trait repeats a supertrait's method.
-    let mut declared: BTreeSet<(usize, String)> = BTreeSet::new();
+    // too with the same arguments, so that no trait repeats a supertrait's method. One
+    // of the same name but other arguments is the service's own (UGV's `isSupported`
+    // of a Set Configuration is not the Events' `isSupported` of a Create Event).
+    let mut declared: BTreeMap<(usize, String), BTreeSet<Vec<Shape>>> = BTreeMap::new();
     for ms in &mut own {
         for m in ms.iter_mut() {
             each_call(m, &mut |c, _| {
-                declared.insert((c.owner, c.method.clone()));
+                declared
+                    .entry((c.owner, c.method.clone()))
+                    .or_default()
+                    .insert(c.args.iter().map(shape).collect());
             });
         }
     }
     for ms in &mut own {
         for m in ms.iter_mut() {
             each_call(m, &mut |c, _| {
-                if let Some(up) = chain(&parents, c.owner)
-                    .into_iter()
-                    .rev()
-                    .find(|a| declared.contains(&(*a, c.method.clone())))
-                {
+                let here: Vec<Shape> = c.args.iter().map(shape).collect();
+                if let Some(up) = chain(&parents, c.owner).into_iter().rev().find(|a| {
+                    declared
+                        .get(&(*a, c.method.clone()))
+                        .is_some_and(|s| s.contains(&here))
+                }) {
                     c.owner = up;
                 }
             });
@@ -391,6 +397,9 @@ struct Emit<'a> {
     guards: Vec<SiteCtx>,
     actions: Vec<SiteCtx>,
     service: String,
+    /// The service and the ancestors whose traits are its supertraits (up to the first
+    /// base service), each with its trait's path from the service's module.
+    supers: Vec<(usize, String)>,
 }
 
 impl Emit<'_> {
@@ -422,10 +431,30 @@ impl Emit<'_> {
         // The service's own methods are on its implementation; inherited ones of a base
         // service on the base's.
         let on = if (self.is_base)(c.owner) { 1 } else { 0 };
-        if slice {
-            format!("self.{on}.{}(&[{}])", c.method, args.join(", "))
+        let args = if slice {
+            format!("&[{}]", args.join(", "))
         } else {
-            format!("self.{on}.{}({})", c.method, args.join(", "))
+            args.join(", ")
+        };
+        // Two traits of the service's supertrait chain declaring a method of the same
+        // name (with other arguments) would make `self.0.method()` ambiguous (E0034):
+        // call it through its trait.
+        let shadowed = on == 0
+            && self
+                .supers
+                .iter()
+                .any(|(k, _)| *k != c.owner && self.methods.contains_key(&(*k, c.method.clone())));
+        match self.supers.iter().find(|(k, _)| *k == c.owner) {
+            Some((_, path)) if shadowed => {
+                let guard = self
+                    .methods
+                    .get(&(c.owner, c.method.clone()))
+                    .is_some_and(|m| m.guard);
+                let me = if guard { "&*self.0" } else { "&mut *self.0" };
+                let sep = if args.is_empty() { "" } else { ", " };
+                format!("{path}::{}({me}{sep}{args})", c.method)
+            }
+            _ => format!("self.{on}.{}({args})", c.method),
         }
     }
 
@@ -466,9 +495,11 @@ impl Emit<'_> {
             &mut self.actions
         };
         let n = v.len();
+        let follows = key.is_none() && !(self.is_base)(c.owner);
         v.push(SiteCtx {
             pattern: Self::pattern(n, key, c),
             call,
+            follows,
         });
         u16::try_from(n)
             .map_err(|_| format!("service `{}`: more than 65535 call sites", self.service))
@@ -572,6 +603,14 @@ fn service(
         guards: Vec::new(),
         actions: Vec::new(),
         service: d.name.clone(),
+        supers: chain(parents, i)
+            .into_iter()
+            .take_while(|k| !(on.is_base)(*k))
+            .map(|k| {
+                let n = &spec.services[k].def.name;
+                (k, format!("super::{}::{n}", ident(n)))
+            })
+            .collect(),
     };
     // Triggers: the union of the parameters of every transition with the key.
     let mut triggers: Vec<TriggerCtx> = Vec::new();

@@ -548,22 +548,15 @@ fn our_environment_sensing_machines_take_what_the_public_jsidl_takes() {
     );
 }
 
-/// The differences `ugv_services.yaml` declares: the JSIDL's `isSupported`, named for
-/// what it checks (a guard named as an inherited one is the inherited one: the Core
-/// Events' `isSupported`).
+/// The differences `ugv_services.yaml` declares: the Drive Train Driver's two checks,
+/// one `isSupported` in the JSIDL for two messages, are two typed guards.
 const UGV_OURS: &[&str] = &[
-    "PowerPlantManager: on SetPowerPlantConfiguration [iscontrollingclient && isconfigurationsupported]",
     "DriveTrainDriver: on SetTransmissionState [iscontrollingclient && istransmissionstatesupported]",
     "DriveTrainDriver: on SetTransferCaseState [iscontrollingclient && istransfercasestatesupported]",
-    "IlluminationService: on SetIlluminationState [iscontrollingclient && isilluminationsupported]",
-    "AnnunciatorService: on SetAnnunciatorState [iscontrollingclient && isannunciatorsupported]",
 ];
 const UGV_THEIRS: &[&str] = &[
-    "PowerPlantManager: on SetPowerPlantConfiguration [iscontrollingclient && issupported]",
     "DriveTrainDriver: on SetTransmissionState [iscontrollingclient && issupported]",
     "DriveTrainDriver: on SetTransferCaseState [iscontrollingclient && issupported]",
-    "IlluminationService: on SetIlluminationState [iscontrollingclient && issupported]",
-    "AnnunciatorService: on SetAnnunciatorState [iscontrollingclient && issupported]",
 ];
 
 #[test]
