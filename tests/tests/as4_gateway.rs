@@ -15,9 +15,9 @@ use jaus_as4::gateway::{DualNode, GatewayConfig};
 use jaus_as4::{
     ComponentState, ControlConfirmation, DeleteElement, Element, ExecuteList, Message,
     NodeServicesQuery, QueryActiveElement, QueryControl, QueryGlobalPathSegment, QueryGlobalPose,
-    QueryLocalPathSegment, QueryLocalPose, QueryServices, QueryStatus, QueryVelocityState,
-    RequestControl, Resume, SetElement, SetGlobalPathSegment, SetLocalPathSegment, SetLocalPose,
-    SetLocalWaypoint, Standby,
+    QueryLocalPathSegment, QueryLocalPose, QueryServices, QueryStatus, QueryTravelSpeed,
+    QueryVelocityState, RequestControl, Resume, SetElement, SetGlobalPathSegment,
+    SetLocalPathSegment, SetLocalPose, SetLocalWaypoint, Standby,
 };
 use jaus_sim::network::{LinkModel, SimNet};
 
@@ -485,6 +485,59 @@ fn an_as4_client_drives_the_ra33_vehicle_along_path_segments_through_the_gateway
         off.hypot(east) < 1.0,
         "ended {off:.2} m north, {east:.2} m east of P2"
     );
+
+    // The same segment run again, left mid-way by Standby: the exit action of Ready
+    // (`resetTravelSpeed`, run as the driver's machine follows the Core out of Ready)
+    // ends the run: no active element, travel speed 0. A segment 6 m further north.
+    let further: Message = SetGlobalPathSegment {
+        p1_latitude: lat + north * 1.5,
+        p1_longitude: lon,
+        p2_latitude: lat + north * 2.0,
+        p2_longitude: lon,
+        weighting_factor: 0.0,
+        ..Default::default()
+    }
+    .into();
+    assert!(matches!(
+        j.one(DeleteElement {
+            request_id: 10,
+            element_uids: vec![jaus_as4::core::lists::DELETE_ALL],
+        }),
+        Message::ConfirmElementRequest(_)
+    ));
+    assert!(matches!(
+        j.one(SetElement {
+            request_id: 11,
+            elements: vec![Element::holding(1, 0, 0, &further).unwrap()],
+        }),
+        Message::ConfirmElementRequest(_)
+    ));
+    assert!(j
+        .ask(
+            ExecuteList {
+                speed: 1.0,
+                element_uid: Some(1),
+            },
+            Duration::from_millis(300)
+        )
+        .is_empty());
+    let Message::ReportActiveElement(a) = j.one(QueryActiveElement {}) else {
+        panic!("Report Active Element expected")
+    };
+    assert_eq!(a.element_uid, 1, "the run did not start");
+    let Message::ReportTravelSpeed(v) = j.one(QueryTravelSpeed {}) else {
+        panic!("Report Travel Speed expected")
+    };
+    assert!((v.speed - 1.0).abs() < 0.01, "{v:?}");
+    assert!(j.ask(Standby {}, Duration::from_millis(300)).is_empty());
+    let Message::ReportActiveElement(a) = j.one(QueryActiveElement {}) else {
+        panic!("Report Active Element expected")
+    };
+    assert_eq!(a.element_uid, 0, "Standby left the run going");
+    let Message::ReportTravelSpeed(v) = j.one(QueryTravelSpeed {}) else {
+        panic!("Report Travel Speed expected")
+    };
+    assert_eq!(v.speed, 0.0);
 }
 
 /// The services listed by Report Services.

@@ -173,6 +173,9 @@ pub struct SiteCtx {
     pub pattern: String,
     /// The call.
     pub call: String,
+    /// A call of the service's own without a trigger (an entry or exit action, a
+    /// default transition's): run too when its machines follow the inherited ones.
+    pub follows: bool,
 }
 
 /// A state machine's table.

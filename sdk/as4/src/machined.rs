@@ -8,7 +8,10 @@
 //! 1. a message of the service's own (not one the Core takes) arrives and the service
 //!    claims it ([`Machined::claims`]: of two list drivers on one list, the one whose
 //!    kind the list holds);
-//! 2. its machine follows the Core's (the inherited states are the Core's);
+//! 2. its machine follows the Core's (the inherited states are the Core's), as it also
+//!    does whenever the Core's state or controller changes, running the service's own
+//!    exit and entry actions of the states it leaves and enters (the Parking Brake
+//!    Driver's `engageBrake` on leaving Ready, the list drivers' `resetTravelSpeed`);
 //! 3. the trigger runs: the inherited guards (`isControllingClient`) on the Core, the
 //!    service's own guards and actions on an [`On`], which lends them the service's data,
 //!    the RA 3.3 side and the list manager;
@@ -22,6 +25,7 @@
 use std::fmt;
 use std::time::Instant;
 
+use jaus::net::as5669a::As4Id;
 use jaus::CommandCode;
 
 use crate::core::lists::Lists;
@@ -89,6 +93,10 @@ pub trait Machined: fmt::Debug + Send + Sized + 'static {
         transport: &Receive,
     ) -> Option<bool>;
 
+    /// Makes the machines follow the Core's, now at `path`, running the service's own
+    /// exit and entry actions on `on` (the generated `Machines::follow`).
+    fn follow(m: &mut Self::Machines, on: &mut On<'_, Self>, path: &str) -> bool;
+
     /// Whether this service answers `message` at all (default: yes); false leaves it to
     /// the component's next service.
     fn claims(&self, lists: &Lists, message: &Message) -> bool {
@@ -139,6 +147,14 @@ macro_rules! machined {
                 m.receive(on, core, message, transport)
             }
 
+            fn follow(
+                m: &mut Self::Machines,
+                on: &mut $crate::machined::On<'_, Self>,
+                path: &str,
+            ) -> bool {
+                m.follow(on, path)
+            }
+
             $($($extra)*)?
         }
     };
@@ -159,6 +175,33 @@ impl<T: Machined> OnMachines<T> {
         Self {
             imp,
             machines: T::Machines::default(),
+        }
+    }
+
+    /// Makes the machines follow the Core's state, running the service's own exit and
+    /// entry actions of the states left and entered (`engageBrake` on leaving Ready);
+    /// what they send leaves with the component's output.
+    fn follow(&mut self, cx: &mut Cx<'_, Ra33Side>) {
+        let path = cx.core_state();
+        let now = cx.now;
+        let (imp, machines) = (&mut self.imp, &mut self.machines);
+        let out = cx.with_core_env(|_, env, lists| {
+            let mut on = On {
+                svc: imp,
+                env,
+                lists,
+                now,
+                out: Vec::new(),
+                refused: None,
+            };
+            T::follow(machines, &mut on, path);
+            if let Some(why) = on.refused {
+                tracing::warn!(service = %T::ID, state = path, "{why}");
+            }
+            on.out
+        });
+        for o in out {
+            cx.send(o);
         }
     }
 
@@ -199,7 +242,7 @@ impl<T: Machined> Service<Ra33Side> for OnMachines<T> {
         if !self.imp.claims(cx.lists, request.message) {
             return Handled::NotMine;
         }
-        T::hsm(&mut self.machines).follow_all(cx.core_state());
+        self.follow(cx);
         let transport = receive_of(request.from);
         let now = cx.now;
         let (imp, machines) = (&mut self.imp, &mut self.machines);
@@ -247,7 +290,13 @@ impl<T: Machined> Service<Ra33Side> for OnMachines<T> {
         from: ComponentState,
         to: ComponentState,
     ) {
+        self.follow(cx);
         self.imp.state_changed(cx, from, to);
+    }
+
+    fn controller_changed(&mut self, cx: &mut Cx<'_, Ra33Side>, _controller: Option<As4Id>) {
+        // Controlled and NotControlled are states of the Core's machine too.
+        self.follow(cx);
     }
 
     fn tick(&mut self, cx: &mut Cx<'_, Ra33Side>) {

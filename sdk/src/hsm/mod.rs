@@ -265,14 +265,29 @@ impl Machine {
             .any(|s| self.state(s).path == path)
     }
 
+    /// Follows a machine this one extends, whose current state is at `path`, without
+    /// running any action ([`follow_with`](Self::follow_with) over [`NoHost`]).
+    pub fn follow(&mut self, path: &str) -> bool {
+        self.follow_with::<(), _>(path, &mut NoHost)
+    }
+
     /// Follows a machine this one extends, whose current state is at `path` (a state
     /// path of the parent's machine, such as `Receiving.Ready.Controlled.Available`):
     /// the machine goes to the deepest of its states whose path is `path` or a prefix
     /// of it, on through their initial sub-states, unless it already is inside that
-    /// state. No action runs: the states it shares with the parent are the parent's,
-    /// whose actions ran there. Returns whether the state changed. A `path` that shares
-    /// no state with this machine changes nothing.
-    pub fn follow(&mut self, path: &str) -> bool {
+    /// state. On the way it runs the exit actions of the states it leaves (from the
+    /// current leaf up to, not including, the least common ancestor) and the entry
+    /// actions of those it enters, top down, on `host` with no trigger: a host that
+    /// runs only the extending service's own actions runs what the service added to
+    /// the shared states (an exit action of `Ready`), the parent's having run in the
+    /// parent. A machine not started is taken to be in its start state, entered
+    /// without actions. Returns whether the state changed. A `path` that shares no
+    /// state with this machine changes nothing.
+    pub fn follow_with<T: ?Sized, H: Host<T> + ?Sized>(
+        &mut self,
+        path: &str,
+        host: &mut H,
+    ) -> bool {
         // Already there, or inside it (the common case: the parent did not move since
         // the last message): one comparison, no search.
         let here = self.state(self.current).path;
@@ -294,18 +309,24 @@ impl Machine {
             }
         };
         self.started = true;
-        if self.ancestors(self.current).contains(&target) {
+        let left = self.ancestors(self.current);
+        if left.contains(&target) {
             return false;
         }
         self.pushed.clear();
-        let mut s = target;
-        for _ in 0..self.def.states.len() {
-            match self.state(s).initial {
-                Some(child) if child != s => s = child,
-                _ => break,
+        let down = self.ancestors(target);
+        let lca = left.iter().copied().find(|s| down.contains(s));
+        for s in left {
+            if Some(s) == lca {
+                break;
             }
+            self.run(host, self.state(s).exit, None);
         }
-        self.current = s;
+        let entered: Vec<StateId> = down.into_iter().take_while(|s| Some(*s) != lca).collect();
+        for s in entered.into_iter().rev() {
+            self.run(host, self.state(s).entry, None);
+        }
+        self.current = self.descend(host, target, None);
         tracing::trace!(
             service = self.def.service,
             machine = self.def.name,
@@ -588,9 +609,20 @@ impl Machines {
     /// Makes every machine follow the machine it extends, now at `path`
     /// ([`Machine::follow`]); whether one's state changed.
     pub fn follow_all(&mut self, path: &str) -> bool {
+        self.follow_all_with::<(), _>(path, &mut NoHost)
+    }
+
+    /// Makes every machine follow the machine it extends, now at `path`, running the
+    /// exit and entry actions on the way on `host` ([`Machine::follow_with`]); whether
+    /// one's state changed.
+    pub fn follow_all_with<T: ?Sized, H: Host<T> + ?Sized>(
+        &mut self,
+        path: &str,
+        host: &mut H,
+    ) -> bool {
         let mut changed = false;
         for m in &mut self.machines {
-            changed |= m.follow(path);
+            changed |= m.follow_with(path, host);
         }
         changed
     }

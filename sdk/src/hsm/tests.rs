@@ -337,3 +337,37 @@ fn follow_goes_to_the_deepest_shared_state_without_actions() {
     assert_eq!(m.path(), "Top.A");
     assert!(matches!(m.handle(&mut log, "go", &()), Step::Taken { .. }));
 }
+
+#[test]
+fn follow_with_runs_the_exits_and_entries_on_the_way() {
+    let mut m = Machine::new(&DEF);
+    let mut log = Log::default();
+    m.start(&mut log);
+    take(&mut log);
+    // A → B (through its initial B1): A's exit, then B's and B1's entries; Top is
+    // shared and neither left nor entered.
+    assert!(m.follow_with("Top.B.X", &mut log));
+    assert_eq!(m.path(), "Top.B.B1");
+    assert_eq!(take(&mut log), [11, 20, 30]);
+    // B1 → B2 inside B: B1's exit, B2's entry.
+    assert!(m.follow_with("Top.B.B2", &mut log));
+    assert_eq!(take(&mut log), [31, 40]);
+    // Already there: nothing runs.
+    assert!(!m.follow_with("Top.B", &mut log));
+    assert!(take(&mut log).is_empty());
+    // Back to A: B2's and B's exits, A's entry.
+    assert!(m.follow_with("Top.A", &mut log));
+    assert_eq!(take(&mut log), [41, 21, 10]);
+}
+
+#[test]
+fn follow_with_before_start_leaves_the_start_state_without_entering_it() {
+    // Not started: taken to be in its start state (Top, whose initial is A), entered
+    // without actions; following to B runs only B's and B1's entries.
+    let mut m = Machine::new(&DEF);
+    let mut log = Log::default();
+    assert!(m.follow_with("Top.B", &mut log));
+    assert_eq!(m.path(), "Top.B.B1");
+    assert_eq!(take(&mut log), [20, 30]);
+    assert!(m.is_started());
+}

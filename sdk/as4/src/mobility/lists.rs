@@ -33,7 +33,7 @@ use crate::messages::{
 };
 use crate::ra33::Ra33Side;
 use crate::service::{Cx, ServiceId};
-use crate::{ComponentState, Message};
+use crate::Message;
 
 /// How close counts as reached when an element gives no waypoint tolerance, metres.
 pub const DEFAULT_TOLERANCE: f64 = 1.0;
@@ -114,6 +114,10 @@ pub trait Kind: std::fmt::Debug + Send + 'static {
     ) -> Option<bool>
     where
         Self: Sized;
+    /// Follows the Core's state (the generated `Machines::follow`).
+    fn follow(m: &mut Self::Machines, on: &mut On<'_, ListDriver<Self>>, path: &str) -> bool
+    where
+        Self: Sized;
 }
 
 /// The [`Kind`] items that tie a kind to the generated list driver service `$module`.
@@ -135,6 +139,14 @@ macro_rules! list_machines {
             transport: &$crate::messages::services::transport::event::Receive,
         ) -> Option<bool> {
             m.receive(on, core, message, transport)
+        }
+
+        fn follow(
+            m: &mut Self::Machines,
+            on: &mut $crate::machined::On<'_, $crate::mobility::lists::ListDriver<Self>>,
+            path: &str,
+        ) -> bool {
+            m.follow(on, path)
         }
     };
 }
@@ -170,6 +182,15 @@ macro_rules! list_driver_trait {
             fn send_report_active_element(&mut self, transport: &Receive) {
                 let element_uid = self.svc.active_uid();
                 self.reply(transport, ReportActiveElement { element_uid });
+            }
+
+            fn reset_travel_speed(&mut self) {
+                // The RA 3.3 driver stops on standby and forgets its path: so does the
+                // run.
+                if let Some(r) = self.svc.run.as_mut() {
+                    r.active = r.elements.len();
+                    r.speed = 0.0;
+                }
             }
 
             fn send_report_travel_speed(&mut self, transport: &Receive) {
@@ -541,6 +562,10 @@ impl<K: Kind> Machined for ListDriver<K> {
         K::run(m, on, core, message, transport)
     }
 
+    fn follow(m: &mut Self::Machines, on: &mut On<'_, Self>, path: &str) -> bool {
+        K::follow(m, on, path)
+    }
+
     fn claims(&self, lists: &Lists, message: &Message) -> bool {
         // One component, one list: while it holds another kind's elements, that other
         // list driver answers for it and executes it.
@@ -558,21 +583,6 @@ impl<K: Kind> Machined for ListDriver<K> {
                 !holds_other_kind::<K>(lists)
             }
             _ => true,
-        }
-    }
-
-    fn state_changed(
-        &mut self,
-        _cx: &mut Cx<'_, Ra33Side>,
-        _from: ComponentState,
-        to: ComponentState,
-    ) {
-        // The RA 3.3 driver stops on standby and forgets its path: so does the run.
-        if to != ComponentState::Ready {
-            if let Some(r) = self.run.as_mut() {
-                r.active = r.elements.len();
-                r.speed = 0.0;
-            }
         }
     }
 

@@ -115,19 +115,6 @@ machined!(
             self.flush(cx.env);
         }
 
-        fn state_changed(
-            &mut self,
-            cx: &mut Cx<'_, Ra33Side>,
-            from: crate::ComponentState,
-            to: crate::ComponentState,
-        ) {
-            // The exit action of Ready (`engageBrake`): the machines follow the Core's
-            // state without running it, so it runs here. Sent before the gateway gives
-            // up RA 3.3 control when the client's control ends with it.
-            if from == crate::ComponentState::Ready && to != crate::ComponentState::Ready {
-                self.engage(cx.env);
-            }
-        }
     }
 );
 
