@@ -1,7 +1,8 @@
 //! `jaus ros2`: a ROS 2 robot on the JAUS network (crate `jaus-ros2`, docs/ros2.md). The
 //! robot's `cmd_vel`, `odom` and `fix` topics, over DDS without a ROS install, become a
 //! node of RA 3.3 components (Primitive Driver, Local Pose, Velocity State and Global
-//! Pose Sensors) on UDP. Each watchdog event (control lost, ROS silent, ...) is printed
+//! Pose Sensors) on UDP; with `sensors: {range: true, visual: true}` in the file, its
+//! `scan` and camera also become a Range Sensor and a Visual Sensor. Each watchdog event (control lost, ROS silent, ...) is printed
 //! as a JSON line on stdout; the bridge's counters at the end.
 //!
 //! With `--vehicle SUBSYSTEM` (or `vehicle: {subsystem: S}` in the file) the other
@@ -22,7 +23,7 @@ use jaus_ros2::{robot_node, vehicle_node, Ros2Config, VehicleEvent, WatchdogEven
 pub struct Ros2Args {
     /// The bridge's settings (YAML: domain_id, node_name, namespace, topics, frames,
     /// odom_axes, qos_commands, qos_sensors, effort, watchdog_ms, command_timeout_ms,
-    /// vehicle; docs/ros2.md); default: the defaults there.
+    /// vehicle, sensors, camera; docs/ros2.md); default: the defaults there.
     #[arg(long, value_name = "FILE")]
     pub config: Option<PathBuf>,
     /// The DDS domain id (overrides the file's).
@@ -220,6 +221,8 @@ pub fn run(args: &Ros2Args, stop: &AtomicBool, out: &mut impl Write) -> Result<(
                 "foreign_frames": s.foreign_frames, "published": s.published,
                 "published_zero": s.published_zero, "publish_errors": s.publish_errors,
                 "superseded": s.superseded, "held": s.held, "events_dropped": s.events_dropped,
+                "scans": s.scans, "scans_refused": s.scans_refused,
+                "images": s.images, "images_refused": s.images_refused,
             }
         })
     )

@@ -1,5 +1,5 @@
 //! The ROS 2 side: one thread owning a ROS 2 node (ros2-client on RustDDS) that reads
-//! `odom` and `fix` into shared state and publishes `cmd_vel` from a one-slot mailbox
+//! `odom`, `fix`, `scan` and the camera ([`crate::sensors`]) into shared state and publishes `cmd_vel` from a one-slot mailbox
 //! (the latest command wins; superseded ones are counted), and the ROS-silence
 //! watchdog. The thread sleeps in a mio poll on the DDS readers and the mailbox, so a
 //! sample or a command is handled as soon as it arrives.
@@ -21,7 +21,8 @@ use ros2_client::{
 
 use crate::config::{Qos, Reliability, Ros2Config};
 use crate::convert::{fix_to_jaus, odometry_to_jaus};
-use crate::msg::{NavSatFix, Odometry, RosMessage, Time, Twist};
+use crate::msg::{CompressedImage, Image, LaserScan, NavSatFix, Odometry, RosMessage, Time, Twist};
+use crate::sensors::{self, Frame};
 use crate::Ros2Error;
 
 /// Watchdog events kept for [`Ros2Link::events`]; older ones are dropped and counted.
@@ -82,6 +83,15 @@ pub struct BridgeStats {
     pub held: u64,
     /// Watchdog events dropped from the full event queue.
     pub events_dropped: u64,
+    /// `scan` sweeps taken.
+    pub scans: u64,
+    /// `scan` sweeps dropped (too many beams, angles or limits not finite, undecodable).
+    pub scans_refused: u64,
+    /// Camera images taken.
+    pub images: u64,
+    /// Camera images dropped (encoding or format not handled, too large, step or data
+    /// too short, a PNG that does not decode, undecodable).
+    pub images_refused: u64,
 }
 
 /// The latest odometry as JAUS sees it.
@@ -101,6 +111,10 @@ pub struct OdomSample {
 pub(crate) struct Shared {
     pub(crate) odom: Option<OdomSample>,
     pub(crate) fix: Option<(jaus::stock::hardware::GlobalPose, Instant)>,
+    /// The latest sweep (platform frame) and when it was taken.
+    pub(crate) scan: Option<(Vec<jaus::stock::environment::scan::Beam>, Instant)>,
+    /// The latest camera message and when it was taken.
+    pub(crate) image: Option<(Arc<Frame>, Instant)>,
     pending: Option<Twist>,
     last_published: Option<Twist>,
     pub(crate) silent: bool,
@@ -145,6 +159,17 @@ impl Tap {
     }
 }
 
+#[cfg(test)]
+impl Tap {
+    /// A tap with no ROS thread behind it.
+    pub(crate) fn detached() -> Tap {
+        Tap {
+            shared: Arc::new(Mutex::new(Shared::default())),
+            bell: Registration::new2().1,
+        }
+    }
+}
+
 /// The running ROS 2 side of a bridge. Dropping it publishes a zero twist and stops
 /// the ROS 2 node.
 #[derive(Debug)]
@@ -152,6 +177,8 @@ pub struct Ros2Link {
     tap: Tap,
     thread: Option<JoinHandle<()>>,
     topics: [String; 3],
+    scan_topic: Option<String>,
+    camera_topic: Option<String>,
 }
 
 impl Ros2Link {
@@ -164,6 +191,7 @@ impl Ros2Link {
             dds_topic_name(&config.namespace, &config.topics.odom)?,
             dds_topic_name(&config.namespace, &config.topics.fix)?,
         ];
+        let (scan_topic, camera_topic) = sensor_topics(config)?;
         let (registration, bell) = Registration::new2();
         let tap = Tap {
             shared: Arc::new(Mutex::new(Shared::default())),
@@ -193,6 +221,8 @@ impl Ros2Link {
                 tap,
                 thread: Some(thread),
                 topics,
+                scan_topic,
+                camera_topic,
             }),
             Ok(Err(e)) => Err(e),
             Err(_) => Err(Ros2Error::Dds(
@@ -208,6 +238,12 @@ impl Ros2Link {
     /// The DDS topic names of `cmd_vel`, `odom` and `fix` (`rt/cmd_vel`, ...).
     pub fn dds_topics(&self) -> [&str; 3] {
         [&self.topics[0], &self.topics[1], &self.topics[2]]
+    }
+
+    /// The DDS topic names of the lidar's `scan` and of the camera (`image_raw`, or
+    /// `image_raw/compressed`), each when its sensor is on ([`crate::config::Sensors`]).
+    pub fn sensor_topics(&self) -> (Option<&str>, Option<&str>) {
+        (self.scan_topic.as_deref(), self.camera_topic.as_deref())
     }
 
     /// Counters.
@@ -255,6 +291,26 @@ impl Drop for Ros2Link {
     }
 }
 
+/// The DDS names of the scan and camera topics read, each when its sensor is on.
+pub(crate) fn sensor_topics(c: &Ros2Config) -> Result<(Option<String>, Option<String>), Ros2Error> {
+    let t = &c.topics;
+    let camera = if c.sensors.compressed {
+        &t.compressed_image
+    } else {
+        &t.image
+    };
+    Ok((
+        c.sensors
+            .range
+            .then(|| dds_topic_name(&c.namespace, &t.scan))
+            .transpose()?,
+        c.sensors
+            .visual
+            .then(|| dds_topic_name(&c.namespace, camera))
+            .transpose()?,
+    ))
+}
+
 /// The DDS name of ROS topic `topic` in `namespace`: `rt` and the absolute name.
 pub fn dds_topic_name(namespace: &str, topic: &str) -> Result<String, Ros2Error> {
     Ok(format!("rt{}", absolute(namespace, topic)?.1))
@@ -297,6 +353,9 @@ struct RosSide {
     cmd_vel: Publisher<Twist>,
     odom: Subscription<Odometry>,
     fix: Subscription<NavSatFix>,
+    scan: Option<Subscription<LaserScan>>,
+    image: Option<Subscription<Image>>,
+    compressed: Option<Subscription<CompressedImage>>,
     poll: Poll,
     _registration: Registration,
 }
@@ -304,6 +363,8 @@ struct RosSide {
 const ODOM: Token = Token(0);
 const FIX: Token = Token(1);
 const BELL: Token = Token(2);
+const SCAN: Token = Token(3);
+const IMAGE: Token = Token(4);
 
 impl RosSide {
     fn open(c: &Ros2Config, registration: Registration) -> Result<RosSide, Ros2Error> {
@@ -335,6 +396,35 @@ impl RosSide {
             (NavSatFix::PACKAGE, NavSatFix::NAME),
             c.qos_sensors,
         )?;
+        let sn = c.sensors;
+        let scan_topic = sn
+            .range
+            .then(|| {
+                topic(
+                    &c.topics.scan,
+                    (LaserScan::PACKAGE, LaserScan::NAME),
+                    c.qos_sensors,
+                )
+            })
+            .transpose()?;
+        let image_topic = (sn.visual && !sn.compressed)
+            .then(|| {
+                topic(
+                    &c.topics.image,
+                    (Image::PACKAGE, Image::NAME),
+                    c.qos_sensors,
+                )
+            })
+            .transpose()?;
+        let compressed_topic = (sn.visual && sn.compressed)
+            .then(|| {
+                topic(
+                    &c.topics.compressed_image,
+                    (CompressedImage::PACKAGE, CompressedImage::NAME),
+                    c.qos_sensors,
+                )
+            })
+            .transpose()?;
         let cmd_vel = node
             .create_publisher::<Twist>(&cmd_topic, None)
             .map_err(|e| dds("cmd_vel publisher", &e))?;
@@ -344,17 +434,47 @@ impl RosSide {
         let fix = node
             .create_subscription::<NavSatFix>(&fix_topic, None)
             .map_err(|e| dds("fix reader", &e))?;
+        let scan = scan_topic
+            .map(|t| node.create_subscription::<LaserScan>(&t, None))
+            .transpose()
+            .map_err(|e| dds("scan reader", &e))?;
+        let image = image_topic
+            .map(|t| node.create_subscription::<Image>(&t, None))
+            .transpose()
+            .map_err(|e| dds("image reader", &e))?;
+        let compressed = compressed_topic
+            .map(|t| node.create_subscription::<CompressedImage>(&t, None))
+            .transpose()
+            .map_err(|e| dds("compressed image reader", &e))?;
         let poll = Poll::new().map_err(|e| dds("poll", &e))?;
         let edge = PollOpt::edge();
-        poll.register(&odom, ODOM, Ready::readable(), edge)
-            .and_then(|_| poll.register(&fix, FIX, Ready::readable(), edge))
-            .and_then(|_| poll.register(&registration, BELL, Ready::readable(), edge))
+        let (r, e) = (Ready::readable(), edge);
+        poll.register(&odom, ODOM, r, e)
+            .and_then(|_| poll.register(&fix, FIX, r, e))
+            .and_then(|_| poll.register(&registration, BELL, r, e))
+            .and_then(|_| {
+                scan.as_ref()
+                    .map_or(Ok(()), |s| poll.register(s, SCAN, r, e))
+            })
+            .and_then(|_| {
+                image
+                    .as_ref()
+                    .map_or(Ok(()), |s| poll.register(s, IMAGE, r, e))
+            })
+            .and_then(|_| {
+                compressed
+                    .as_ref()
+                    .map_or(Ok(()), |s| poll.register(s, IMAGE, r, e))
+            })
             .map_err(|e| dds("poll registration", &e))?;
         Ok(RosSide {
             _node: node,
             cmd_vel,
             odom,
             fix,
+            scan,
+            image,
+            compressed,
             poll,
             _registration: registration,
         })
@@ -399,6 +519,7 @@ impl RosSide {
             let _ = tap.bell.set_readiness(Ready::empty());
             self.read_odom(c, tap);
             self.read_fix(tap);
+            self.read_sensors(c, tap);
             let now = Instant::now();
             // What to publish, decided under the lock, published after it.
             let (stop, went_silent, command) = {
@@ -481,6 +602,51 @@ impl RosSide {
                     });
                 }
                 None => s.stats.refused += 1,
+            }
+        }
+    }
+
+    /// Takes the lidar's and the camera's samples: each checked and kept as the latest,
+    /// or dropped and counted (an image is converted when the Visual Sensor asks).
+    fn read_sensors(&self, c: &Ros2Config, tap: &Tap) {
+        let refused = |what: &str, e: &dyn std::fmt::Debug, images: bool| {
+            let mut s = lock(&tap.shared);
+            if images {
+                s.stats.images_refused += 1;
+            } else {
+                s.stats.scans_refused += 1;
+            }
+            tracing::debug!("jaus-ros2: {what} not read: {e:?}");
+        };
+        if let Some(r) = &self.scan {
+            for _ in 0..MAX_TAKE {
+                match r.take() {
+                    Ok(Some((scan, _))) => sensors::on_scan(&tap.shared, &scan, &c.topics.scan),
+                    Ok(None) => break,
+                    Err(e) => refused("scan", &e, false),
+                }
+            }
+        }
+        let max = c.sensors.max_image_bytes;
+        if let Some(r) = &self.image {
+            for _ in 0..MAX_TAKE {
+                match r.take() {
+                    Ok(Some((i, _))) => {
+                        sensors::on_frame(&tap.shared, Frame::Raw(i), max, &c.topics.image)
+                    }
+                    Ok(None) => break,
+                    Err(e) => refused("image", &e, true),
+                }
+            }
+        }
+        if let Some(r) = &self.compressed {
+            let topic = &c.topics.compressed_image;
+            for _ in 0..MAX_TAKE {
+                match r.take() {
+                    Ok(Some((i, _))) => sensors::on_compressed(&tap.shared, i, max, topic),
+                    Ok(None) => break,
+                    Err(e) => refused("compressed image", &e, true),
+                }
             }
         }
     }

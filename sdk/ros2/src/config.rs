@@ -49,6 +49,11 @@ pub struct Ros2Config {
     /// The other direction: a JAUS vehicle in ROS 2 (`jaus ros2 --vehicle`,
     /// [`crate::vehicle`]).
     pub vehicle: VehicleConfig,
+    /// Which of the robot's sensors (lidar, camera) are JAUS components, and their
+    /// bounds.
+    pub sensors: Sensors,
+    /// The camera as the Visual Sensor presents it.
+    pub camera: CameraConfig,
 }
 
 impl Default for Ros2Config {
@@ -72,6 +77,8 @@ impl Default for Ros2Config {
             watchdog_ms: 500,
             command_timeout_ms: 300,
             vehicle: VehicleConfig::default(),
+            sensors: Sensors::default(),
+            camera: CameraConfig::default(),
         }
     }
 }
@@ -136,10 +143,43 @@ impl Ros2Config {
             ("fix", &self.topics.fix),
             ("status", &self.topics.status),
             ("goal_pose", &self.topics.goal_pose),
+            ("scan", &self.topics.scan),
+            ("image", &self.topics.image),
+            ("compressed_image", &self.topics.compressed_image),
         ] {
             if t.is_empty() || t.contains("//") || t.ends_with('/') {
                 return bad(format!("topics.{name} {t:?} is not a ROS 2 topic name"));
             }
+        }
+        let (sn, cam) = (&self.sensors, &self.camera);
+        if sn.max_age_ms == 0 {
+            return bad("sensors.max_age_ms must be above 0".into());
+        }
+        if !(1024..=MAX_IMAGE_BYTES).contains(&sn.max_image_bytes) {
+            return bad(format!(
+                "sensors.max_image_bytes {} not in 1024..={MAX_IMAGE_BYTES}",
+                sn.max_image_bytes
+            ));
+        }
+        for (name, v) in [("width", cam.width), ("height", cam.height)] {
+            if !(1..=MAX_IMAGE_SIDE).contains(&u32::from(v)) {
+                return bad(format!("camera.{name} {v} not in 1..={MAX_IMAGE_SIDE}"));
+            }
+        }
+        if cam.frame_rate == 0 || cam.frame_rate > 255 {
+            return bad(format!(
+                "camera.frame_rate {} not in 1..=255",
+                cam.frame_rate
+            ));
+        }
+        if !(cam.horizontal_fov_deg.is_finite()
+            && cam.horizontal_fov_deg > 0.0
+            && cam.horizontal_fov_deg <= 180.0)
+        {
+            return bad(format!(
+                "camera.horizontal_fov_deg {} not in (0, 180]",
+                cam.horizontal_fov_deg
+            ));
         }
         Ok(())
     }
@@ -162,6 +202,15 @@ pub struct Topics {
     /// Vehicle mode: `geometry_msgs/PoseStamped` the bridge reads (a goal for the
     /// vehicle's waypoint driver).
     pub goal_pose: String,
+    /// `sensor_msgs/LaserScan` the bridge reads (the Range Sensor's sweeps, with
+    /// [`Sensors::range`]).
+    pub scan: String,
+    /// `sensor_msgs/Image` the bridge reads (the Visual Sensor's frames, with
+    /// [`Sensors::visual`] and not [`Sensors::compressed`]).
+    pub image: String,
+    /// `sensor_msgs/CompressedImage` the bridge reads instead of
+    /// [`image`](Self::image) with [`Sensors::compressed`] (PNG only).
+    pub compressed_image: String,
 }
 
 impl Default for Topics {
@@ -172,6 +221,9 @@ impl Default for Topics {
             fix: "fix".into(),
             status: "jaus/status".into(),
             goal_pose: "goal_pose".into(),
+            scan: "scan".into(),
+            image: "image_raw".into(),
+            compressed_image: "image_raw/compressed".into(),
         }
     }
 }
@@ -254,6 +306,84 @@ impl VehicleConfig {
     /// The period of [`rate_hz`](Self::rate_hz).
     pub fn period(&self) -> Duration {
         Duration::from_secs_f64(1.0 / self.rate_hz.clamp(0.01, 1000.0))
+    }
+}
+
+/// The most a configured image may hold ([`Sensors::max_image_bytes`]): 64 MiB.
+pub const MAX_IMAGE_BYTES: usize = 64 << 20;
+/// The widest and tallest image taken, pixels (larger ones are dropped and counted).
+pub const MAX_IMAGE_SIDE: u32 = 4096;
+/// The most beams a sweep may have (a larger `LaserScan` is dropped and counted).
+pub const MAX_BEAMS: usize = 4096;
+
+/// The robot's sensors as JAUS components (robot mode). Off by default: a JAUS
+/// component for a sensor the robot does not have would only refuse its queries.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct Sensors {
+    /// Host a Range Sensor (50) over [`Topics::scan`] (default `false`).
+    pub range: bool,
+    /// Host a Visual Sensor (37) over [`Topics::image`] (or
+    /// [`Topics::compressed_image`]) (default `false`).
+    pub visual: bool,
+    /// The camera reads `sensor_msgs/CompressedImage` (format `png`) from
+    /// [`Topics::compressed_image`] instead of raw images.
+    pub compressed: bool,
+    /// A scan or image older than this (ms) is none: the Range Sensor and the Visual
+    /// Sensor refuse their queries until a new one arrives.
+    pub max_age_ms: u64,
+    /// Larger images (raw bytes, or a compressed file and what it decodes to) are
+    /// dropped and counted, 1024..=64 MiB.
+    pub max_image_bytes: usize,
+}
+
+impl Default for Sensors {
+    fn default() -> Self {
+        Sensors {
+            range: false,
+            visual: false,
+            compressed: false,
+            max_age_ms: 1000,
+            max_image_bytes: 16 << 20,
+        }
+    }
+}
+
+impl Sensors {
+    /// [`max_age_ms`](Self::max_age_ms).
+    pub fn max_age(&self) -> Duration {
+        Duration::from_millis(self.max_age_ms)
+    }
+}
+
+/// The camera as the Visual Sensor (37) presents it: one fixed camera (no pan or
+/// tilt) at the platform's origin. JAUS gets frames of its camera settings' size (at
+/// most `width` × `height`, the default); an image of another size is resampled
+/// (nearest pixel), so set these to what the topic publishes.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct CameraConfig {
+    /// Name in Report Camera Pose (15 characters).
+    pub name: String,
+    /// Largest (and default) image width, pixels, 1..=4096.
+    pub width: u16,
+    /// Largest (and default) image height, pixels, 1..=4096.
+    pub height: u16,
+    /// Highest frame rate, frames/s (a faster Query Image gets the last frame again).
+    pub frame_rate: u16,
+    /// Horizontal field of view, degrees, (0, 180].
+    pub horizontal_fov_deg: f64,
+}
+
+impl Default for CameraConfig {
+    fn default() -> Self {
+        CameraConfig {
+            name: "ros2 camera".into(),
+            width: 640,
+            height: 480,
+            frame_rate: 30,
+            horizontal_fov_deg: 60.0,
+        }
     }
 }
 
@@ -360,5 +490,43 @@ mod tests {
         let mut bad = c;
         bad.vehicle.cmd_vel_timeout_ms = 0;
         assert!(bad.validate().is_err());
+    }
+
+    #[test]
+    fn sensor_settings_parse_and_are_checked() {
+        let c = Ros2Config::default();
+        assert_eq!(
+            (c.topics.scan.as_str(), c.topics.image.as_str()),
+            ("scan", "image_raw")
+        );
+        assert!(!c.sensors.range && !c.sensors.visual && !c.sensors.compressed);
+        let c: Ros2Config = serde_yaml::from_str(
+            "sensors: {visual: true, max_age_ms: 250}\ncamera: {width: 8, height: 6}\ntopics: {scan: front/scan}",
+        )
+        .unwrap();
+        assert!(!c.sensors.range && c.sensors.visual);
+        assert_eq!(c.sensors.max_age(), Duration::from_millis(250));
+        assert_eq!(
+            (c.camera.width, c.camera.height, c.camera.frame_rate),
+            (8, 6, 30)
+        );
+        c.validate().unwrap();
+        assert!(serde_yaml::from_str::<Ros2Config>("sensors: {lidar: true}").is_err());
+        assert!(serde_yaml::from_str::<Ros2Config>("camera: {fov: 3}").is_err());
+        for bad in [
+            "camera: {width: 0}",
+            "camera: {height: 5000}",
+            "camera: {frame_rate: 0}",
+            "camera: {horizontal_fov_deg: .nan}",
+            "camera: {horizontal_fov_deg: 190}",
+            "sensors: {max_age_ms: 0}",
+            "sensors: {max_image_bytes: 100}",
+            "topics: {image: a//b}",
+        ] {
+            let c: Ros2Config = serde_yaml::from_str(bad).unwrap();
+            let e = c.validate().unwrap_err().to_string();
+            let key = bad.split(['{', ':']).nth(2).unwrap_or_default().trim();
+            assert!(e.contains(key), "{bad}: {e}");
+        }
     }
 }

@@ -8,6 +8,8 @@
 //! | `cmd_vel` (`geometry_msgs/Twist`), published | Primitive Driver (33): Set Wrench Effort |
 //! | `odom` (`nav_msgs/Odometry`), read | Local Pose Sensor (41), Velocity State Sensor (42) |
 //! | `fix` (`sensor_msgs/NavSatFix`), read | Global Pose Sensor (38) |
+//! | `scan` (`sensor_msgs/LaserScan`), read (`sensors.range`) | Range Sensor (50): Query Relative Object Position |
+//! | `image_raw` (`sensor_msgs/Image`) or `image_raw/compressed` (PNG), read (`sensors.visual`) | Visual Sensor (37): Query Image |
 //!
 //! A watchdog publishes a zero twist and records a [`WatchdogEvent`] when the JAUS side
 //! stops the robot (its controller released control or vanished, Standby, Emergency,
@@ -38,13 +40,16 @@ pub mod config;
 pub mod convert;
 pub mod msg;
 pub mod robot;
+pub mod sensors;
 pub mod vehicle;
 
 pub use bridge::{dds_topic_name, BridgeStats, OdomSample, Ros2Link, WatchdogEvent};
 pub use config::{
-    EffortMapping, Frames, OdomAxes, Qos, Reliability, Ros2Config, Topics, VehicleConfig,
+    CameraConfig, EffortMapping, Frames, OdomAxes, Qos, Reliability, Ros2Config, Sensors, Topics,
+    VehicleConfig,
 };
-pub use robot::{ids, robot_components, robot_node};
+pub use robot::{ids, robot_components, robot_node, robot_parts};
+pub use sensors::SensorError;
 pub use vehicle::{vehicle_node, VehicleEvent, VehicleLink, VehicleStats};
 
 /// What can go wrong starting a bridge.

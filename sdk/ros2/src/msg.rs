@@ -277,11 +277,72 @@ pub struct StdString {
     pub data: String,
 }
 
+/// `sensor_msgs/LaserScan`: one sweep of a planar range finder, beam `i` at
+/// `angle_min + i · angle_increment` (rad, counter-clockwise, 0 along the laser frame's
+/// x axis, REP-103).
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct LaserScan {
+    /// Stamp (the first beam) and the laser's frame.
+    pub header: Header,
+    /// Angle of the first beam, rad.
+    pub angle_min: f32,
+    /// Angle of the last beam, rad.
+    pub angle_max: f32,
+    /// Angle between beams, rad.
+    pub angle_increment: f32,
+    /// Time between beams, s.
+    pub time_increment: f32,
+    /// Time between sweeps, s.
+    pub scan_time: f32,
+    /// Shortest valid range, m.
+    pub range_min: f32,
+    /// Longest valid range, m.
+    pub range_max: f32,
+    /// Ranges, m (outside `[range_min, range_max]`, `inf` or `NaN`: no return).
+    pub ranges: Vec<f32>,
+    /// Intensities (device units; may be empty).
+    pub intensities: Vec<f32>,
+}
+
+/// `sensor_msgs/Image`: an uncompressed image, rows top to bottom, `step` bytes a row.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct Image {
+    /// Stamp and the camera's optical frame.
+    pub header: Header,
+    /// Rows.
+    pub height: u32,
+    /// Columns.
+    pub width: u32,
+    /// Pixel encoding (`rgb8`, `bgr8`, `mono8`, ...: `sensor_image_encodings.h`).
+    pub encoding: String,
+    /// Whether multi-byte channels are big-endian.
+    pub is_bigendian: u8,
+    /// Bytes a row (at least `width` × bytes a pixel).
+    pub step: u32,
+    /// The rows.
+    pub data: Vec<u8>,
+}
+
+/// `sensor_msgs/CompressedImage`: an image file (`format` names it: `png`, `jpeg`, or
+/// image_transport's `rgb8; png compressed bgr8`).
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct CompressedImage {
+    /// Stamp and the camera's optical frame.
+    pub header: Header,
+    /// The file's format.
+    pub format: String,
+    /// The file.
+    pub data: Vec<u8>,
+}
+
 ros_message!(Twist, "geometry_msgs", "Twist");
 ros_message!(PoseStamped, "geometry_msgs", "PoseStamped");
 ros_message!(StdString, "std_msgs", "String");
 ros_message!(Odometry, "nav_msgs", "Odometry");
 ros_message!(NavSatFix, "sensor_msgs", "NavSatFix");
+ros_message!(LaserScan, "sensor_msgs", "LaserScan");
+ros_message!(Image, "sensor_msgs", "Image");
+ros_message!(CompressedImage, "sensor_msgs", "CompressedImage");
 ros_message!(Header, "std_msgs", "Header");
 ros_message!(Time, "builtin_interfaces", "Time");
 
@@ -392,6 +453,74 @@ mod tests {
         assert_eq!(b.len(), 24 + 8 * 12 + 1);
         assert_eq!(b[b.len() - 1], 2);
         assert_eq!(back::<NavSatFix>(&b), f);
+    }
+
+    #[test]
+    fn laserscan_layout_matches_the_idl() {
+        let l = LaserScan {
+            header: Header {
+                stamp: Time { sec: 1, nanosec: 2 },
+                frame_id: "laser".into(),
+            },
+            angle_min: -1.5,
+            angle_max: 1.5,
+            angle_increment: 0.5,
+            range_min: 0.1,
+            range_max: 30.0,
+            ranges: vec![1.0, f32::INFINITY],
+            intensities: vec![],
+            ..LaserScan::default()
+        };
+        let b = cdr(&l);
+        // 8 stamp + 4 length + "laser\0" = 18, padded to 20; seven floats; ranges.
+        assert_eq!(LaserScan::DDS_TYPE, "sensor_msgs::msg::dds_::LaserScan_");
+        assert_eq!(&b[20..24], &(-1.5f32).to_le_bytes());
+        assert_eq!(&b[44..48], &30.0f32.to_le_bytes());
+        assert_eq!(&b[48..52], &2u32.to_le_bytes());
+        assert_eq!(&b[52..56], &1.0f32.to_le_bytes());
+        assert_eq!(&b[60..64], &0u32.to_le_bytes());
+        assert_eq!(b.len(), 64);
+        assert_eq!(back::<LaserScan>(&b), l);
+    }
+
+    #[test]
+    fn image_layouts_match_the_idl() {
+        let i = Image {
+            header: Header {
+                stamp: Time { sec: 1, nanosec: 2 },
+                frame_id: "cam".into(),
+            },
+            height: 2,
+            width: 1,
+            encoding: "rgb8".into(),
+            is_bigendian: 0,
+            step: 3,
+            data: vec![1, 2, 3, 4, 5, 6],
+        };
+        let b = cdr(&i);
+        // 8 + 4 + "cam\0" = 16; height, width; "rgb8\0" at 24 (length) 28..33; u8 at 33;
+        // step at 36; data length at 40, bytes at 44.
+        assert_eq!(&b[16..20], &2u32.to_le_bytes());
+        assert_eq!(&b[28..33], b"rgb8\0");
+        assert_eq!(&b[36..40], &3u32.to_le_bytes());
+        assert_eq!(&b[40..44], &6u32.to_le_bytes());
+        assert_eq!(&b[44..], &[1, 2, 3, 4, 5, 6]);
+        assert_eq!(back::<Image>(&b), i);
+        let c = CompressedImage {
+            format: "png".into(),
+            data: vec![9; 3],
+            ..CompressedImage::default()
+        };
+        let b = cdr(&c);
+        // 8 + 4 + "\0" = 13, pad 16: "png\0" length; data length at 24.
+        assert_eq!(&b[20..24], b"png\0");
+        assert_eq!(&b[24..28], &3u32.to_le_bytes());
+        assert_eq!(back::<CompressedImage>(&b), c);
+        assert_eq!(Image::DDS_TYPE, "sensor_msgs::msg::dds_::Image_");
+        assert_eq!(
+            CompressedImage::DDS_TYPE,
+            "sensor_msgs::msg::dds_::CompressedImage_"
+        );
     }
 
     #[test]

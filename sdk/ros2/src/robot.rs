@@ -1,18 +1,22 @@
 //! The JAUS side: the SDK's stock Primitive Driver, Local Pose, Velocity State and
-//! Global Pose Sensors over hardware traits implemented on the ROS 2 topics, hosted on
-//! one JAUS node.
+//! Global Pose Sensors, and the Range and Visual Sensors ([`crate::sensors`]), over
+//! hardware traits implemented on the ROS 2 topics, hosted on one JAUS node.
 
 use std::time::{Duration, Instant};
 
 use jaus::component::{Config, CoreState, Endpoint, Refused, StopReason};
 use jaus::components::primitive_driver::{self as pd, PrimitiveDriver};
-use jaus::components::{global_pose_sensor, local_pose_sensor, velocity_state_sensor};
+use jaus::components::{
+    global_pose_sensor, local_pose_sensor, range_sensor, velocity_state_sensor, visual_sensor,
+};
 use jaus::messages::{
     QueryDiscreteDevices, QueryWrenchEffort, ReportDiscreteDevices, ReportWrenchEffort,
     SetDiscreteDevices, SetWrenchEffort,
 };
 use jaus::net::{Node, NodeConfig};
 use jaus::stock::drivers::{PrimitiveConfig, StockPrimitiveDriver};
+use jaus::stock::environment::camera::{StockVisualSensor, VisualConfig};
+use jaus::stock::environment::range::{RangeConfig, StockRangeSensor};
 use jaus::stock::hardware::{
     Actuators, GlobalPose, GlobalPoseSource, LocalPose, LocalPoseSource, VelocitySource,
     VelocityState, Wrench,
@@ -23,6 +27,7 @@ use jaus::Address;
 use crate::bridge::{lock, Ros2Link, Tap, WatchdogEvent};
 use crate::config::{EffortMapping, Ros2Config};
 use crate::convert::twist_of;
+use crate::sensors::{RosCamera, ScanSource};
 use crate::Ros2Error;
 
 /// A fix older than this is no fix (a GPS publishes at 1..20 Hz).
@@ -40,6 +45,10 @@ pub mod ids {
     pub const LOCAL_POSE_SENSOR: u8 = local_pose_sensor::ID;
     /// Velocity State Sensor (42).
     pub const VELOCITY_STATE_SENSOR: u8 = velocity_state_sensor::ID;
+    /// Visual Sensor (37), with `sensors.visual`.
+    pub const VISUAL_SENSOR: u8 = visual_sensor::ID;
+    /// Range Sensor (50), with `sensors.range`.
+    pub const RANGE_SENSOR: u8 = range_sensor::ID;
     /// The instance of each.
     pub const INSTANCE: u8 = 1;
 }
@@ -192,9 +201,29 @@ impl PrimitiveDriver for RosPrimitiveDriver {
     }
 }
 
-/// The four components of a ROS 2 robot at `subsystem`.`node`, over `link`: Primitive
+/// The component ids and names a ROS 2 robot of `config` hosts ([`robot_components`]),
+/// instance [`ids::INSTANCE`] each.
+pub fn robot_parts(config: &Ros2Config) -> Vec<(u8, &'static str)> {
+    let mut parts = vec![
+        (ids::PRIMITIVE_DRIVER, "Primitive Driver"),
+        (ids::GLOBAL_POSE_SENSOR, "Global Pose Sensor"),
+        (ids::LOCAL_POSE_SENSOR, "Local Pose Sensor"),
+        (ids::VELOCITY_STATE_SENSOR, "Velocity State Sensor"),
+    ];
+    if config.sensors.range {
+        parts.push((ids::RANGE_SENSOR, "Range Sensor"));
+    }
+    if config.sensors.visual {
+        parts.push((ids::VISUAL_SENSOR, "Visual Sensor"));
+    }
+    parts
+}
+
+/// The components of a ROS 2 robot at `subsystem`.`node`, over `link`: Primitive
 /// Driver (33), Global Pose Sensor (38), Local Pose Sensor (41), Velocity State Sensor
-/// (42), instance 1 each, with the component settings `component`.
+/// (42), and with `sensors.range` a Range Sensor (50) over `scan`, with `sensors.visual`
+/// a Visual Sensor (37) over the camera ([`robot_parts`]); instance 1 each, with the
+/// component settings `component`.
 pub fn robot_components(
     link: &Ros2Link,
     config: &Ros2Config,
@@ -217,7 +246,7 @@ pub fn robot_components(
         ),
         tap: link.tap(),
     };
-    vec![
+    let mut parts: Vec<Box<dyn Endpoint>> = vec![
         Box::new(pd::component(
             at(ids::PRIMITIVE_DRIVER),
             driver,
@@ -242,7 +271,29 @@ pub fn robot_components(
             component.clone(),
             t0,
         )),
-    ]
+    ];
+    let (scan_topic, camera_topic) = link.sensor_topics();
+    if scan_topic.is_some() {
+        parts.push(Box::new(range_sensor::component(
+            at(ids::RANGE_SENSOR),
+            StockRangeSensor::new(
+                ScanSource::new(link.tap(), &config.sensors),
+                RangeConfig::default(),
+            ),
+            component.clone(),
+            t0,
+        )));
+    }
+    if let Some(topic) = camera_topic {
+        let camera = RosCamera::new(link.tap(), config, topic.to_string());
+        parts.push(Box::new(visual_sensor::component(
+            at(ids::VISUAL_SENSOR),
+            StockVisualSensor::new(camera, VisualConfig::default()),
+            component.clone(),
+            t0,
+        )));
+    }
+    parts
 }
 
 /// A JAUS node hosting a ROS 2 robot: starts the ROS 2 side of `config` (a ROS 2 node

@@ -5,7 +5,9 @@
 //! forward, sees the Local Pose, Velocity State and Global Pose move, releases control
 //! and sees the zero twist stop the robot; then the ROS side goes silent and the
 //! watchdog holds the robot. The bridge's latency (odom published → Report Local Pose
-//! reflecting it) is printed with `--nocapture`.
+//! reflecting it) is printed with `--nocapture`. A second test gives the robot a lidar
+//! and a camera (`rt/scan`, `rt/image_raw`, `rt/image_raw/compressed`) and reads them
+//! through the Range Sensor and the Visual Sensor.
 //!
 //! Needs `JAUS_ROS2_PYTHON`: a Python with `cyclonedds`
 //! (`python3 -m venv /tmp/ros2venv && /tmp/ros2venv/bin/pip install cyclonedds`, then
@@ -43,11 +45,12 @@ struct Robot {
 }
 
 impl Robot {
-    fn start(py: &str, domain: u16) -> Robot {
+    fn start(py: &str, domain: u16, extra: &[&str]) -> Robot {
         let script = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/ros2_robot.py");
         let mut child = Command::new(py)
             .arg(script)
             .args(["--domain", &domain.to_string(), "--duration", "90"])
+            .args(extra)
             .stdin(Stdio::piped())
             .stdout(Stdio::piped())
             .spawn()
@@ -151,7 +154,7 @@ fn a_jaus_client_drives_a_cyclone_dds_ros2_robot() {
     };
     // A domain of its own, so that parallel runs do not meet.
     let domain = 100 + (std::process::id() % 100) as u16;
-    let mut robot = Robot::start(&py, domain);
+    let mut robot = Robot::start(&py, domain, &[]);
     let t = Instant::now();
     while !robot.lines().iter().any(|l| l["ready"] == true) && t.elapsed() < Duration::from_secs(20)
     {
@@ -448,4 +451,191 @@ fn a_jaus_client_drives_a_cyclone_dds_ros2_robot() {
         last.last().is_some_and(|t| t.iter().all(|v| *v == 0.0)),
         "{last:?}"
     );
+}
+
+/// The camera's pixel (x, y), as `ros2_robot.py` draws it.
+fn pattern(x: u32, y: u32) -> [u8; 3] {
+    [(x * 30) as u8, (y * 40) as u8, (200 - x * 10) as u8]
+}
+
+fn decode_png(data: &[u8]) -> (u32, u32, Vec<u8>) {
+    let mut d = png::Decoder::new(data).read_info().expect("a PNG");
+    let mut buf = vec![0; d.output_buffer_size()];
+    let info = d.next_frame(&mut buf).expect("PNG pixels");
+    assert_eq!(info.color_type, png::ColorType::Rgb);
+    buf.truncate(info.buffer_size());
+    (info.width, info.height, buf)
+}
+
+/// Asks the Visual Sensor of `c` for an image until one comes (5 s at most).
+fn query_image(c: &mut Client) -> ReportImage {
+    let t = Instant::now();
+    while t.elapsed() < Duration::from_secs(5) {
+        c.send(ids::VISUAL_SENSOR, &QueryImage {});
+        c.run(Duration::from_millis(50), Duration::from_millis(5), |_| {});
+        if let Some(r) = c.take().into_iter().find_map(|m| match m {
+            Message::ReportImage(r) => Some(r),
+            _ => None,
+        }) {
+            return r;
+        }
+    }
+    panic!("no Report Image");
+}
+
+/// Waits (running `c`'s node) until `done` or 20 s.
+fn wait_for(c: &mut Client, mut done: impl FnMut() -> bool) -> bool {
+    let t = Instant::now();
+    while !done() && t.elapsed() < Duration::from_secs(20) {
+        c.run(Duration::from_millis(50), Duration::from_millis(5), |_| {});
+    }
+    done()
+}
+
+#[test]
+fn lidar_and_camera_of_a_cyclone_dds_ros2_robot() {
+    let Some(py) = support::python("lidar_and_camera_of_a_cyclone_dds_ros2_robot") else {
+        return;
+    };
+    // Not the other test's domain (100..=199) when both run at once.
+    let domain = 200 + (std::process::id() % 30) as u16;
+    let mut robot = Robot::start(&py, domain, &["--sensors"]);
+    let t = Instant::now();
+    while !robot.lines().iter().any(|l| l["ready"] == true) && t.elapsed() < Duration::from_secs(20)
+    {
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    let mut config = Ros2Config {
+        domain_id: domain,
+        ..Ros2Config::default()
+    };
+    (config.sensors.range, config.sensors.visual) = (true, true);
+    (config.camera.width, config.camera.height) = (8, 6);
+    let node_config = NodeConfig {
+        subsystem: 9,
+        node: 1,
+        ..NodeConfig::default()
+    };
+    let (mut node, link) = robot_node(&config, node_config, Instant::now()).unwrap();
+    assert_eq!(
+        link.sensor_topics(),
+        (Some("rt/scan"), Some("rt/image_raw"))
+    );
+    let me = Address::new(9, 1, 200, 1);
+    node.add(Probe::new(me)).unwrap();
+    let mut c = Client { node, me };
+    assert!(
+        wait_for(&mut c, || {
+            let s = link.stats();
+            s.scans > 0 && s.images > 0
+        }),
+        "no scan or image over DDS: {:?}",
+        link.stats()
+    );
+
+    // The Range Sensor: the nearest object, 2.0 m at ROS −30° (to the right), is at
+    // JAUS bearing +30°; the 0.05 m return (below range_min) and the NaN are ignored.
+    c.send(
+        ids::RANGE_SENSOR,
+        &QueryRelativeObjectPosition {
+            presence_vector: 0x7f,
+        },
+    );
+    c.run(Duration::from_millis(100), Duration::from_millis(5), |_| {});
+    let r = c
+        .take()
+        .into_iter()
+        .find_map(|m| match m {
+            Message::ReportRelativeObjectPosition(r) => Some(r),
+            _ => None,
+        })
+        .expect("no Report Relative Object Position");
+    println!("range sensor: {r:?}");
+    let range = r.range.expect("a range");
+    let bearing = r.bearing.expect("a bearing");
+    assert!((range - 2.0).abs() < 0.01, "range {range}");
+    // One beam is 1°: the bearing within half of it.
+    assert!(
+        (bearing - 30f64.to_radians()).abs() < 0.5f64.to_radians(),
+        "bearing {} rad ({}°): positive is to the right",
+        bearing,
+        bearing.to_degrees()
+    );
+    assert_eq!(r.confidence, Some(5), "five beams saw the object");
+
+    // The Visual Sensor: rgb8 rows with padding, as PNG.
+    let check = |r: &ReportImage, mark: Option<[u8; 3]>| {
+        assert_eq!((r.camera_id, r.video_format), (1, ImageFormat::Png));
+        let (w, h, px) = decode_png(&r.data);
+        assert_eq!((w, h), (8, 6));
+        for y in 0..h {
+            for x in 0..w {
+                let at = ((y * w + x) * 3) as usize;
+                let want = match mark {
+                    Some(m) if (x, y) == (7, 5) => m,
+                    _ => pattern(x, y),
+                };
+                assert_eq!(&px[at..at + 3], &want, "pixel ({x}, {y})");
+            }
+        }
+    };
+    check(&query_image(&mut c), None);
+    // bgr8: the same colours (and the mark only bgr8 frames have).
+    robot.say("encoding bgr8");
+    let images = link.stats().images;
+    assert!(wait_for(&mut c, || link.stats().images >= images + 3));
+    check(&query_image(&mut c), Some([250, 10, 60]));
+
+    // Bad messages: dropped and counted, nothing else changes.
+    let before = link.stats();
+    robot.say("bad");
+    assert!(
+        wait_for(&mut c, || {
+            let s = link.stats();
+            s.scans_refused > before.scans_refused && s.images_refused > before.images_refused
+        }),
+        "{:?}",
+        link.stats()
+    );
+    c.run(Duration::from_millis(300), Duration::from_millis(5), |_| {});
+    check(&query_image(&mut c), Some([250, 10, 60]));
+    println!("bridge stats: {:?}", link.stats());
+
+    // The camera as `sensor_msgs/CompressedImage` (PNG), on a second bridge node.
+    let mut compressed = config.clone();
+    compressed.node_name = "jaus_bridge_png".into();
+    (compressed.sensors.compressed, compressed.sensors.range) = (true, false);
+    let node_config = NodeConfig {
+        subsystem: 9,
+        node: 2,
+        ..NodeConfig::default()
+    };
+    let (mut node, link2) = robot_node(&compressed, node_config, Instant::now()).unwrap();
+    assert_eq!(
+        link2.sensor_topics(),
+        (None, Some("rt/image_raw/compressed"))
+    );
+    let me = Address::new(9, 2, 200, 1);
+    node.add(Probe::new(me)).unwrap();
+    let mut c2 = Client { node, me };
+    assert!(
+        wait_for(&mut c2, || link2.stats().images > 0),
+        "no compressed image over DDS: {:?}",
+        link2.stats()
+    );
+    check(&query_image(&mut c2), None);
+    c2.send(
+        ids::RANGE_SENSOR,
+        &QueryRelativeObjectPosition {
+            presence_vector: 0x7f,
+        },
+    );
+    c2.run(Duration::from_millis(100), Duration::from_millis(5), |_| {});
+    assert!(
+        !c2.take()
+            .iter()
+            .any(|m| matches!(m, Message::ReportRelativeObjectPosition(_))),
+        "sensors.range off: no Range Sensor"
+    );
+    println!("compressed bridge stats: {:?}", link2.stats());
 }

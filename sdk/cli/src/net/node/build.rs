@@ -279,8 +279,9 @@ impl NodeFile {
         built.map_err(|e| e.to_string())
     }
     /// `ros2:`, checked (`at` gives the file:line:column of a YAML path): its values
-    /// (`Ros2Config::validate`), robot mode only, and none of the robot's four
-    /// components at an address a `host:` entry or an `as4_vehicles:` proxy takes.
+    /// (`Ros2Config::validate`), robot mode only, and none of the robot's components
+    /// (`jaus_ros2::robot_parts`) at an address a `host:` entry or an `as4_vehicles:`
+    /// proxy takes.
     pub(super) fn check_ros2(
         &self,
         hosted: &[Hosted],
@@ -303,35 +304,26 @@ impl NodeFile {
             ));
         }
         let robot = |id: u8| Address::new(self.subsystem, self.node, id, jaus_ros2::ids::INSTANCE);
-        let ids = [
-            jaus_ros2::ids::PRIMITIVE_DRIVER,
-            jaus_ros2::ids::GLOBAL_POSE_SENSOR,
-            jaus_ros2::ids::LOCAL_POSE_SENSOR,
-            jaus_ros2::ids::VELOCITY_STATE_SENSOR,
-        ];
-        let names = [
-            "Primitive Driver",
-            "Global Pose Sensor",
-            "Local Pose Sensor",
-            "Velocity State Sensor",
-        ];
+        let parts = jaus_ros2::robot_parts(r);
+        let ids: Vec<u8> = parts.iter().map(|(id, _)| *id).collect();
         let ros2_part = |id: u8| {
-            let name = ids
+            let name = parts
                 .iter()
-                .position(|i| *i == id)
-                .map_or("component", |k| names[k]);
+                .find(|(i, _)| *i == id)
+                .map_or("component", |(_, name)| *name);
             format!("`ros2:` hosts the ROS 2 robot's {name} there")
         };
         for (i, h) in hosted.iter().enumerate() {
             let clash = match h {
                 Hosted::Vehicle => Some((
                     "`vehicle` (the demo's simulated vehicle)".to_string(),
-                    ids[0],
+                    jaus_ros2::ids::PRIMITIVE_DRIVER,
                     "leave out `vehicle`: the ROS 2 robot is this node's vehicle",
                 )),
                 Hosted::Arm => None,
                 Hosted::Stock(e) => ids
-                    .into_iter()
+                    .iter()
+                    .copied()
                     .find(|id| e.stock.id() == *id && e.instance == jaus_ros2::ids::INSTANCE)
                     .map(|id| {
                         (
@@ -353,10 +345,10 @@ impl NodeFile {
         for (i, (v, _)) in self.as4_vehicles(path)?.iter().enumerate() {
             let taken = v.roles.iter().find_map(|role| {
                 let id = match role {
-                    Role::PrimitiveDriver => ids[0],
-                    Role::GlobalPoseSensor => ids[1],
-                    Role::LocalPoseSensor => ids[2],
-                    Role::VelocityStateSensor => ids[3],
+                    Role::PrimitiveDriver => jaus_ros2::ids::PRIMITIVE_DRIVER,
+                    Role::GlobalPoseSensor => jaus_ros2::ids::GLOBAL_POSE_SENSOR,
+                    Role::LocalPoseSensor => jaus_ros2::ids::LOCAL_POSE_SENSOR,
+                    Role::VelocityStateSensor => jaus_ros2::ids::VELOCITY_STATE_SENSOR,
                     _ => return None,
                 };
                 (v.instance == jaus_ros2::ids::INSTANCE).then_some(id)
@@ -374,7 +366,7 @@ impl NodeFile {
     }
 
     /// With `ros2:`, starts the ROS 2 side (the robot's DDS domain joined) and adds the
-    /// robot's four components (`jaus_ros2::robot_components`) to `node`; the link
+    /// robot's components (`jaus_ros2::robot_components`) to `node`; the link
     /// must live as long as the node runs (dropping it publishes a zero twist). `None`
     /// without `ros2:` (`path`: the file, for the errors).
     pub fn start_ros2(
@@ -652,6 +644,14 @@ mod tests {
             e.contains("robot.yaml:4:")
                 && e.contains("host[0]: `global_pose_sensor` instance 1 takes 1.1.38.1")
                 && e.contains("`ros2:` hosts the ROS 2 robot's Global Pose Sensor there"),
+            "{e}"
+        );
+        // The lidar and camera only when on.
+        assert!(load("host: [range_sensor, visual_sensor]\nros2: {}\n").is_ok());
+        let e = load("host: [visual_sensor]\nros2: { sensors: { visual: true } }\n").unwrap_err();
+        assert!(
+            e.contains("host[0]: `visual_sensor` instance 1 takes 1.1.37.1")
+                && e.contains("`ros2:` hosts the ROS 2 robot's Visual Sensor there"),
             "{e}"
         );
         let e = load("host: [vehicle]\nros2: {}\n").unwrap_err();

@@ -117,6 +117,21 @@ pub fn node(
             at(jaus_ros2::ids::VELOCITY_STATE_SENSOR),
             at(jaus_ros2::ids::GLOBAL_POSE_SENSOR),
         );
+        let (scan, camera) = link.sensor_topics();
+        if let Some(scan) = scan {
+            let _ = writeln!(
+                out,
+                "ROS 2 lidar: {scan} to Range Sensor {}",
+                at(jaus_ros2::ids::RANGE_SENSOR)
+            );
+        }
+        if let Some(camera) = camera {
+            let _ = writeln!(
+                out,
+                "ROS 2 camera: {camera} to Visual Sensor {}",
+                at(jaus_ros2::ids::VISUAL_SENSOR)
+            );
+        }
     }
     let as4 = file.as4_config();
     if let Some(gw) = &as4 {
@@ -383,9 +398,10 @@ pub fn node(
         let s = link.stats();
         let _ = writeln!(
             out,
-            "ros2 stats: odom {} fix {} refused {} foreign_frames {} published {} published_zero {} publish_errors {} superseded {} held {} events_dropped {}",
+            "ros2 stats: odom {} fix {} refused {} foreign_frames {} published {} published_zero {} publish_errors {} superseded {} held {} events_dropped {} scans {} scans_refused {} images {} images_refused {}",
             s.odom, s.fix, s.refused, s.foreign_frames, s.published, s.published_zero,
-            s.publish_errors, s.superseded, s.held, s.events_dropped,
+            s.publish_errors, s.superseded, s.held, s.events_dropped, s.scans,
+            s.scans_refused, s.images, s.images_refused,
         );
         // A last zero twist; the ROS 2 node leaves the graph.
         link.stop();
