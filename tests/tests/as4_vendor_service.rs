@@ -73,6 +73,9 @@ impl lamp::services::lamp::Lamp for Bulb {
     fn set_level(&mut self, msg: &SetLampLevel) {
         self.level = msg.level;
     }
+    fn go_dark(&mut self) {
+        self.level = 0;
+    }
 }
 
 /// The same bulb on the edited definition's trait.
@@ -97,6 +100,9 @@ impl edited::services::lamp::Lamp for EditedBulb {
     }
     fn set_level(&mut self, msg: &edited::SetLampLevel) {
         self.0.level = msg.level;
+    }
+    fn go_dark(&mut self) {
+        self.0.level = 0;
     }
 }
 
@@ -170,11 +176,13 @@ fn only_the_controller_sets_the_level_and_anyone_asks_it() {
     assert_eq!(c.stats().refused, 3);
     assert_eq!(query(&mut c, t, OPERATOR), 40);
 
-    // Released: nobody sets it.
+    // Released: the lamp goes dark (the exit action of Controlled, run as its machine
+    // follows the Core out of Controlled), and nobody sets it.
     c.handle(t, OPERATOR, &ReleaseControl {}.into(), &mut ());
     assert_eq!(c.controller(), None);
+    assert_eq!(query(&mut c, t, OTHER), 0);
     set(&mut c, t, OPERATOR, 10);
-    assert_eq!(query(&mut c, t, OTHER), 40);
+    assert_eq!(query(&mut c, t, OTHER), 0);
     assert_eq!(c.stats().refused, 4);
 }
 
@@ -221,10 +229,11 @@ fn the_edited_definition_runs_as_edited() {
     control(&mut c, t, OPERATOR);
     set(&mut c, t, OTHER, 70);
     assert_eq!(query(&mut c, t, OPERATOR), 70);
-    // Still only while controlled: the transition stays under Controlled.
+    // Still only while controlled: the transition stays under Controlled (released,
+    // the lamp went dark, and stays so).
     c.handle(t, OPERATOR, &ReleaseControl {}.into(), &mut ());
     set(&mut c, t, OTHER, 20);
-    assert_eq!(query(&mut c, t, OPERATOR), 70);
+    assert_eq!(query(&mut c, t, OPERATOR), 0);
 
     // The stock definition refuses the same.
     let mut stock = component();

@@ -9,9 +9,11 @@
 //!    arrives: a vendor's message (outside jaus-as4's definitions, `Message::Raw`) is
 //!    decoded with the vendor's definitions; an undecodable one is refused, naming the
 //!    message and the error;
-//! 2. the service's machine first follows the Core's (`hsm::Machine::follow`): the
-//!    states it inherits are the Core's, so `Receiving.Ready.Controlled` is where the
-//!    Core is when the component is controlled;
+//! 2. the service's machine first follows the Core's (`hsm::Machine::follow_with`):
+//!    the states it inherits are the Core's, so `Receiving.Ready.Controlled` is where
+//!    the Core is when the component is controlled; it also follows whenever the
+//!    Core's state or controller changes, running the service's own exit and entry
+//!    actions of the states left and entered;
 //! 3. the trigger runs; inherited guards and actions run on the Core ([`Cx::with_core`]:
 //!    `isControllingClient` is the Core's controller), the service's own on `S`;
 //! 4. what `S` sent ([`Outbox`]) leaves: the first message to the sender is the reply
@@ -31,7 +33,7 @@ use jaus::{CommandCode, JausMessage};
 use super::{Cx, Handled, Outgoing, Request, Service, ServiceId};
 use crate::core::machine::Host;
 use crate::messages::services::transport::event::Receive;
-use crate::messages::Message;
+use crate::messages::{ComponentState, Message};
 use crate::outgoing::{receive_of, sender_of};
 
 /// What a generated service did with a message ([`GeneratedService::receive`]).
@@ -66,7 +68,8 @@ pub trait GeneratedService: fmt::Debug + Send + 'static {
     }
 
     /// Makes the inherited part of its machines follow the Core's machine, now at
-    /// `core_state` (a path of the Core's machine).
+    /// `core_state` (a path of the Core's machine), running the service's own exit and
+    /// entry actions of the states left and entered (the generated `Machines::follow`).
     fn follow(&mut self, core_state: &'static str);
 
     /// Offers `message` from `transport`'s sender to its machines, the inherited guards
@@ -96,6 +99,21 @@ impl<E: 'static, G: GeneratedService> Service<E> for G {
     fn needs_ready(&self, _code: CommandCode) -> bool {
         // The machines decide: a transition under `Ready` is what needs Ready.
         false
+    }
+
+    fn state_changed(&mut self, cx: &mut Cx<'_, E>, _from: ComponentState, _to: ComponentState) {
+        self.follow(cx.core_state());
+        for o in self.take_output() {
+            cx.send(o);
+        }
+    }
+
+    fn controller_changed(&mut self, cx: &mut Cx<'_, E>, _controller: Option<As4Id>) {
+        // Controlled and NotControlled are states of the Core's machine too.
+        self.follow(cx.core_state());
+        for o in self.take_output() {
+            cx.send(o);
+        }
     }
 
     fn handle(&mut self, cx: &mut Cx<'_, E>, request: &Request<'_>) -> Handled {
