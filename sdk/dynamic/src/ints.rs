@@ -50,6 +50,7 @@ macro_rules! with_int {
 
 /// Reads an integer, widened: unsigned types to `u64` (`Ok(Ok(_))`), signed ones to
 /// `i64` (`Ok(Err(_))`).
+#[inline]
 pub(crate) fn read(int: Int, r: &mut Reader<'_>) -> Result<Result<u64, i64>, DecodeError> {
     Ok(match int {
         Int::U8 => Ok(u64::from(u8::decode(r)?)),
@@ -65,6 +66,7 @@ pub(crate) fn read(int: Int, r: &mut Reader<'_>) -> Result<Result<u64, i64>, Dec
 
 /// Reads an unsigned integer (presence vectors, tags, enumerations, bit fields); a
 /// signed type is read as its bit pattern.
+#[inline]
 pub(crate) fn read_u(int: Int, r: &mut Reader<'_>) -> Result<u64, DecodeError> {
     Ok(match read(int, r)? {
         Ok(v) => v,
@@ -108,6 +110,7 @@ pub(crate) fn max_usize(int: Int) -> usize {
 }
 
 /// Reads a scaled integer and gives its real value.
+#[inline]
 pub(crate) fn read_scaled(
     int: Int,
     s: &ScaledField,

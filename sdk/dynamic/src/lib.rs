@@ -113,13 +113,27 @@ impl Schema {
         let m = self.by_code(code).ok_or_else(|| {
             DecodeError::new(DecodeErrorKind::UnknownCommandCode { code: code.0 }, 0)
         })?;
-        let fields =
-            decode::message(&self.layouts, &m.body, body).map_err(|e| e.in_message(m.name))?;
+        let fields = decode::message::<decode::Tree>(&self.layouts, &m.body, body)
+            .map_err(|e| e.in_message(m.name))?;
         Ok(DynMessage {
             name: m.name,
             code: m.code,
             fields,
         })
+    }
+
+    /// Checks a body of the message with command code `code` as [`Schema::decode`]
+    /// does — every check, in the same order, with the same error — without making its
+    /// values (nothing is allocated but for text and embedded packets). What passes
+    /// decodes; what fails, fails to decode with this error. Gives the message's
+    /// layout.
+    pub fn check(&self, code: CommandCode, body: &[u8]) -> Result<&MessageLayout, DecodeError> {
+        let m = self.by_code(code).ok_or_else(|| {
+            DecodeError::new(DecodeErrorKind::UnknownCommandCode { code: code.0 }, 0)
+        })?;
+        decode::message::<decode::Check>(&self.layouts, &m.body, body)
+            .map_err(|e| e.in_message(m.name))?;
+        Ok(m)
     }
 
     /// Encodes a message's body.

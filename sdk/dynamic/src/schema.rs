@@ -13,13 +13,15 @@ use jaus::codec::ScaledField;
 use jaus::CommandCode;
 use jaus_spec::{Bits, Int, Len, MessageClass, Spec, TypeForm, Wire};
 use std::collections::{BTreeSet, HashMap};
+use std::hash::{BuildHasherDefault, Hasher};
 use std::path::Path;
 
 /// The layouts of a definition set: what [`crate::Schema`] decodes and encodes with.
 #[derive(Debug)]
 pub(crate) struct Layouts {
     pub(crate) messages: Vec<MessageLayout>,
-    pub(crate) by_code: HashMap<u16, usize>,
+    /// By command code, hashed by [`CodeHasher`] (looked up on every decode).
+    pub(crate) by_code: HashMap<u16, usize, BuildHasherDefault<CodeHasher>>,
     pub(crate) by_name: HashMap<&'static str, usize>,
     pub(crate) types: Vec<TypeLayout>,
 }
@@ -213,7 +215,7 @@ pub(crate) fn compile(spec: &Spec) -> Layouts {
         })
         .collect();
     let mut messages = Vec::with_capacity(spec.messages.len());
-    let mut by_code = HashMap::new();
+    let mut by_code = HashMap::default();
     let mut by_name = HashMap::new();
     for m in &spec.messages {
         let name = intern::name(&m.def.name);
@@ -240,6 +242,29 @@ pub(crate) fn compile(spec: &Spec) -> Layouts {
         by_code,
         by_name,
         types,
+    }
+}
+
+/// The hash of a command code: one multiplication (Fibonacci hashing) instead of
+/// SipHash, whose keying buys nothing against codes a schema defines itself (a code
+/// looked up that it does not define costs a probe, as any other).
+#[derive(Debug, Default, Clone, Copy)]
+pub(crate) struct CodeHasher(u64);
+
+impl Hasher for CodeHasher {
+    #[inline]
+    fn finish(&self) -> u64 {
+        self.0
+    }
+    #[inline]
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.0 = (self.0.rotate_left(8) ^ u64::from(b)).wrapping_mul(0x9E37_79B9_7F4A_7C15);
+        }
+    }
+    #[inline]
+    fn write_u16(&mut self, v: u16) {
+        self.0 = (self.0 ^ u64::from(v)).wrapping_mul(0x9E37_79B9_7F4A_7C15);
     }
 }
 

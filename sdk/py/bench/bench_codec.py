@@ -7,7 +7,8 @@ packets written for this benchmark (fixed layouts, no checks beyond `struct`'s).
 Full packets both ways: 16-byte header + body. Columns, per packet and side:
 
 - decode: bytes to an object the fields are read from. jaus: `decode_packet(raw)`
-  (the whole packet checked and decoded; the fields become Python values when read).
+  (the whole packet checked, as the decode checks it, and kept; the message is decoded
+  when first needed, its fields become Python values when read).
   struct: the decoder below (header tuple + dict of every field, scaled).
 - decode+read: the same, then every field read once: the 12 header fields and every
   field of the message, the members of its records too (jaus: attributes; struct:

@@ -21,6 +21,7 @@ mod client;
 mod convert;
 mod errors;
 mod message;
+mod packet;
 mod pcap;
 mod schema;
 pub mod stubs;
@@ -28,7 +29,8 @@ pub mod stubs;
 pub use client::{Client, Control, Watch};
 pub use convert::Record;
 pub use errors::{ClientError, ControlRefused, DecodeError, EncodeError, JausError, SpecError};
-pub use message::{Message, Packet};
+pub use message::Message;
+pub use packet::Packet;
 pub use schema::Schema;
 
 use pyo3::prelude::*;
@@ -44,7 +46,8 @@ fn decode(py: Python<'_>, body: &[u8], code: u16) -> PyResult<Message> {
 }
 
 /// Decodes a whole packet: the 16-byte RA 3.3 header and the body. The body is
-/// decoded (and checked) now; the message's Python objects are made as they are read.
+/// checked now (a packet that is not a message raises now); the message's values and
+/// Python objects are made as they are read.
 #[pyfunction]
 fn decode_packet(py: Python<'_>, packet: &Bound<'_, PyBytes>) -> PyResult<Packet> {
     schema::decode_packet(py, catalog::sdk_ref()?, packet)

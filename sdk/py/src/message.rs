@@ -1,29 +1,27 @@
-//! `jaus.Message` (a decoded or built message: name, code, fields as attributes) and
-//! `jaus.Packet` (a whole JAUS packet, its RA 3.3 header fields as attributes, its
-//! body and the message it holds), and a message built from Python values
-//! ([`build`]).
+//! `jaus.Message` (a decoded or built message: name, code, fields as attributes), and
+//! a message built from Python values ([`build`]).
 //!
-//! The two types share a module because they hold each other: a packet holds its
-//! message, and a message's fields may be given a packet (`Message.from_dict`,
-//! [`py_to_json`]). Below this module: `catalog`, `convert`, `errors`.
+//! A message decoded from a packet is made from the packet's checked body and decodes
+//! it when first needed (a field read, `to_dict`, `==`, encoding), once; its fields
+//! become Python objects as they are read. This module and `packet` hold each other: a
+//! packet holds its message, and a message's fields may be given a packet
+//! (`Message.from_dict`, [`py_to_json`]). Below them: `catalog`, `convert`, `errors`.
 
 use crate::catalog::{sdk, Catalog};
-use crate::convert::{
-    generic_getattr, json_to_py, may_be_entry, object_to_dict, value_to_py, Form, Record,
-};
+use crate::convert::{generic_getattr, may_be_entry, object_to_dict, value_to_py, Form, Record};
 use crate::errors::{decode_error, fields_error};
+use crate::packet::{Body, Packet};
+use jaus::codec::DecodeError;
 use jaus::json::JsonError;
-use jaus::{Address, Header};
+use jaus::{Address, CommandCode};
 use jaus_dynamic::{DynMessage, Value};
 use pyo3::exceptions::{PyAttributeError, PyKeyError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{
     PyBool, PyByteArray, PyBytes, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple,
 };
-use serde::ser::{SerializeMap, Serializer};
-use serde::Serialize;
 use serde_json::{Map, Number, Value as Json};
-use std::sync::{Arc, Mutex, OnceLock};
+use std::sync::{Arc, OnceLock};
 
 /// The members of `jaus.Message` (methods and properties): an attribute of one of these
 /// names is the member, not a field (a field of that name is read as `m["name"]`).
@@ -52,19 +50,67 @@ fn immutable(v: &Value) -> bool {
 #[derive(Debug)]
 pub struct Message {
     pub(crate) cat: Arc<Catalog>,
-    pub(crate) msg: DynMessage,
-    /// The Python values of the fields read so far, by position in `msg.fields`: a
-    /// field is made a Python object when first read (immutable ones are kept).
+    name: &'static str,
+    code: CommandCode,
+    /// The body it is decoded from, checked (a message decoded from a packet).
+    body: Option<Body>,
+    /// The decoded message: given, or decoded from `body` when first needed.
+    decoded: OnceLock<Result<DynMessage, DecodeError>>,
+    /// The Python values of the fields read so far, by position in the decoded
+    /// fields: a field is made a Python object when first read (immutable ones are
+    /// kept).
     cache: OnceLock<Box<[OnceLock<Py<PyAny>>]>>,
 }
 
 impl Message {
+    /// The message `msg`, decoded or built.
     pub(crate) fn new(cat: Arc<Catalog>, msg: DynMessage) -> Message {
         Message {
             cat,
-            msg,
+            name: msg.name,
+            code: msg.code,
+            body: None,
+            decoded: OnceLock::from(Ok(msg)),
             cache: OnceLock::new(),
         }
+    }
+
+    /// The message `name` (code `code`) of the body `body`, which
+    /// `jaus_dynamic::Schema::check` has passed: decoded when first needed.
+    pub(crate) fn checked(
+        cat: Arc<Catalog>,
+        name: &'static str,
+        code: CommandCode,
+        body: Body,
+    ) -> Message {
+        Message {
+            cat,
+            name,
+            code,
+            body: Some(body),
+            decoded: OnceLock::new(),
+            cache: OnceLock::new(),
+        }
+    }
+
+    /// The message's name.
+    pub(crate) fn name(&self) -> &'static str {
+        self.name
+    }
+
+    /// Its command code.
+    pub(crate) fn code(&self) -> CommandCode {
+        self.code
+    }
+
+    /// The decoded message: decoded now from the checked body if it was not yet (a
+    /// body that passed the check decodes: the check is the decode's own walk).
+    pub(crate) fn msg(&self, py: Python<'_>) -> PyResult<&DynMessage> {
+        let decoded = self.decoded.get_or_init(|| {
+            let body = self.body.as_ref().map_or(&[][..], |b| b.bytes(py));
+            self.cat.schema.decode(self.code, body)
+        });
+        decoded.as_ref().map_err(|e| decode_error(py, e))
     }
 
     /// The Python value of the field at position `i` of the record `fields` (this
@@ -97,30 +143,25 @@ impl Message {
     /// The field `name` when it is one: its value, or None for an optional field that
     /// is absent.
     fn known_field<'py>(&self, py: Python<'py>, name: &str) -> PyResult<Option<Bound<'py, PyAny>>> {
-        if let Value::Record(f) = &self.msg.fields {
+        if let Value::Record(f) = &self.msg(py)?.fields {
             if let Some(i) = f.iter().position(|(k, _)| *k == name) {
                 return self.field_at(py, f, i).map(Some);
             }
         }
-        if self
-            .cat
-            .field_names(self.msg.name)
-            .iter()
-            .any(|f| f == name)
-        {
+        if self.cat.field_names(self.name).iter().any(|f| f == name) {
             return Ok(Some(py.None().into_bound(py)));
         }
         Ok(None)
     }
 
     fn no_field(&self, name: &str) -> String {
-        let names = self.cat.field_names(self.msg.name);
+        let names = self.cat.field_names(self.name);
         if names.is_empty() {
-            format!("{} has no field `{name}`: it has no fields", self.msg.name)
+            format!("{} has no field `{name}`: it has no fields", self.name)
         } else {
             format!(
                 "{} has no field `{name}`; its fields: {}",
-                self.msg.name,
+                self.name,
                 names.join(", ")
             )
         }
@@ -140,24 +181,24 @@ impl Message {
 #[pymethods]
 impl Message {
     /// The message's name (`"ReportGlobalPose"`).
-    #[getter]
-    fn name(&self) -> &'static str {
-        self.msg.name
+    #[getter(name)]
+    fn get_name(&self) -> &'static str {
+        self.name
     }
 
     /// Its command code.
-    #[getter]
-    fn code(&self) -> u16 {
-        self.msg.code.0
+    #[getter(code)]
+    fn get_code(&self) -> u16 {
+        self.code.0
     }
 
     /// The names of the fields present, in wire order.
     #[getter]
-    fn fields(&self) -> Vec<&'static str> {
-        match &self.msg.fields {
+    fn fields(&self, py: Python<'_>) -> PyResult<Vec<&'static str>> {
+        Ok(match &self.msg(py)?.fields {
             Value::Record(f) => f.iter().map(|(k, _)| *k).collect(),
             _ => Vec::new(),
-        }
+        })
     }
 
     /// A field by attribute (`m.speed`): looked up before the generic attribute lookup,
@@ -173,9 +214,9 @@ impl Message {
         let this = slf.get();
         match n {
             // The properties without the generic lookup's call.
-            "name" => return Ok(PyString::new(py, this.msg.name).into_any()),
-            "code" => return Ok(this.msg.code.0.into_pyobject(py)?.into_any()),
-            "fields" => return Ok(PyList::new(py, this.fields())?.into_any()),
+            "name" => return Ok(PyString::new(py, this.name).into_any()),
+            "code" => return Ok(this.code.0.into_pyobject(py)?.into_any()),
+            "fields" => return Ok(PyList::new(py, this.fields(py)?)?.into_any()),
             _ => {}
         }
         if may_be_entry(n, MESSAGE_MEMBERS) {
@@ -195,37 +236,37 @@ impl Message {
     }
 
     /// Whether the field `name` is present.
-    fn __contains__(&self, name: &str) -> bool {
-        self.msg.fields.field(name).is_some()
+    fn __contains__(&self, py: Python<'_>, name: &str) -> PyResult<bool> {
+        Ok(self.msg(py)?.fields.field(name).is_some())
     }
 
     fn __dir__(&self) -> Vec<String> {
         let mut out: Vec<String> = MESSAGE_MEMBERS.iter().map(|s| s.to_string()).collect();
-        out.extend(self.cat.field_names(self.msg.name).iter().cloned());
+        out.extend(self.cat.field_names(self.name).iter().cloned());
         out
     }
 
     /// The fields as a dict: exactly the `"fields"` of the line `jaus decode` prints.
     fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        object_to_dict(py, &self.msg.fields)
+        object_to_dict(py, &self.msg(py)?.fields)
     }
 
     /// The fields as JSON text: exactly the `"fields"` of the line `jaus decode`
     /// prints.
-    fn to_json(&self) -> PyResult<String> {
-        serde_json::to_string(&self.msg.fields)
+    fn to_json(&self, py: Python<'_>) -> PyResult<String> {
+        serde_json::to_string(&self.msg(py)?.fields)
             .map_err(|e| crate::errors::EncodeError::new_err(e.to_string()))
     }
 
     /// The message's body (as `jaus.encode(message)`).
     fn encode<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyBytes>> {
-        let body = self.cat.encode(py, &self.msg)?;
+        let body = self.cat.encode(py, self.msg(py)?)?;
         Ok(PyBytes::new(py, &body))
     }
 
     /// The message's description (`jaus messages NAME`).
     fn doc(&self) -> PyResult<String> {
-        self.cat.doc(self.msg.name)
+        self.cat.doc(self.name)
     }
 
     /// The SDK's message `name` with the fields of the dict `fields` (the form
@@ -242,351 +283,19 @@ impl Message {
         Ok(Message::new(cat, msg))
     }
 
-    fn __eq__(&self, other: &Bound<'_, PyAny>) -> bool {
+    fn __eq__(&self, py: Python<'_>, other: &Bound<'_, PyAny>) -> PyResult<bool> {
         match other.cast::<Message>() {
-            Ok(o) => {
-                let o = o.get();
-                o.msg == self.msg
-            }
-            Err(_) => false,
+            Ok(o) => Ok(o.get().msg(py)? == self.msg(py)?),
+            Err(_) => Ok(false),
         }
     }
 
-    fn __repr__(&self) -> String {
-        format!(
+    fn __repr__(&self, py: Python<'_>) -> PyResult<String> {
+        Ok(format!(
             "jaus.Message({:?}, {})",
-            self.msg.name,
-            serde_json::to_string(&self.msg.fields).unwrap_or_default()
-        )
-    }
-}
-
-/// A JAUS packet: the 16-byte header's fields as attributes (`priority`, `ack_nak`,
-/// `source`, ...), the `body` bytes and the `message` they hold (None for a command
-/// code the schema does not define, or a part of a multi-packet message).
-///
-/// The body is decoded, and so checked, when the packet is: a packet that is not a
-/// message raises then. What is kept is the decoded message; its Python object, and
-/// each of its fields', is made when first read.
-#[pyclass(module = "jaus", frozen)]
-#[derive(Debug)]
-pub struct Packet {
-    header: Header,
-    body: Body,
-    message: Option<Held>,
-}
-
-/// A packet's body.
-#[derive(Debug)]
-pub(crate) enum Body {
-    /// Bytes of its own.
-    Owned(Vec<u8>),
-    /// The whole packet's bytes as given (`bytes` are immutable): the body is from byte
-    /// 16 on.
-    Shared(Py<PyBytes>),
-}
-
-impl Body {
-    fn bytes<'a>(&'a self, py: Python<'_>) -> &'a [u8] {
-        match self {
-            Body::Owned(b) => b,
-            Body::Shared(p) => p.as_bytes(py).get(jaus::wire::HEADER_LEN..).unwrap_or(&[]),
-        }
-    }
-}
-
-/// The message a packet holds: decoded, its `jaus.Message` made on first read.
-struct Held {
-    name: &'static str,
-    cat: Arc<Catalog>,
-    /// The decoded message until its `jaus.Message` is made (moved into it then).
-    pending: Mutex<Option<DynMessage>>,
-    object: pyo3::sync::PyOnceLock<Py<Message>>,
-}
-
-impl std::fmt::Debug for Held {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("Held")
-            .field("name", &self.name)
-            .finish_non_exhaustive()
-    }
-}
-
-impl Held {
-    fn object<'a>(&'a self, py: Python<'_>) -> PyResult<&'a Py<Message>> {
-        // The lock runs the maker once; a packet's message is made once.
-        self.object.get_or_try_init(py, || {
-            let msg = self
-                .pending
-                .lock()
-                .map_err(|_| PyTypeError::new_err("a packet's message was lost"))?
-                .take()
-                .ok_or_else(|| PyTypeError::new_err("a packet's message was lost"))?;
-            Py::new(py, Message::new(self.cat.clone(), msg))
-        })
-    }
-}
-
-impl Packet {
-    /// The packet of `header` and `body`, its body decoded when it is a whole message
-    /// of the schema.
-    pub(crate) fn decode(
-        py: Python<'_>,
-        cat: &Arc<Catalog>,
-        header: Header,
-        body: Body,
-    ) -> PyResult<Packet> {
-        let whole = header.data_flag == jaus::wire::DataFlag::Single;
-        let message = if whole {
-            match cat.schema.decode(header.command_code, body.bytes(py)) {
-                Ok(m) => Some(Held {
-                    name: m.name,
-                    cat: cat.clone(),
-                    pending: Mutex::new(Some(m)),
-                    object: pyo3::sync::PyOnceLock::new(),
-                }),
-                // A code the schema does not define: a raw packet.
-                Err(e)
-                    if matches!(
-                        e.kind(),
-                        jaus::codec::DecodeErrorKind::UnknownCommandCode { code }
-                            if *code == header.command_code.0
-                    ) =>
-                {
-                    None
-                }
-                Err(e) => return Err(decode_error(py, &e)),
-            }
-        } else {
-            None
-        };
-        Ok(Packet {
-            header,
-            body,
-            message,
-        })
-    }
-
-    /// The packet.
-    pub(crate) fn packet(&self, py: Python<'_>) -> jaus::Packet {
-        jaus::Packet {
-            header: self.header,
-            body: self.body.bytes(py).to_vec(),
-        }
-    }
-
-    fn header(&self) -> &Header {
-        &self.header
-    }
-
-    /// The message's object, when the packet holds one.
-    fn message_object<'a>(&'a self, py: Python<'_>) -> PyResult<Option<&'a Py<Message>>> {
-        self.message.as_ref().map(|h| h.object(py)).transpose()
-    }
-
-    fn raw(&self, py: Python<'_>) -> jaus::RawMessage {
-        jaus::RawMessage {
-            code: self.header().command_code,
-            body: self.body.bytes(py).to_vec(),
-        }
-    }
-}
-
-fn address_tuple(a: Address) -> (u8, u8, u8, u8) {
-    (a.subsystem, a.node, a.component, a.instance)
-}
-
-/// The JSON text of a serde value (the header's enumerations).
-fn json_text<T: Serialize>(v: &T) -> String {
-    match serde_json::to_value(v) {
-        Ok(serde_json::Value::String(s)) => s,
-        Ok(other) => other.to_string(),
-        Err(e) => e.to_string(),
-    }
-}
-
-#[pymethods]
-impl Packet {
-    /// Priority 0-15.
-    #[getter]
-    fn priority(&self) -> u8 {
-        self.header().priority
-    }
-    /// `"none"`, `"request"`, `"nak"` or `"ack"`.
-    #[getter]
-    fn ack_nak(&self) -> String {
-        json_text(&self.header().ack_nak)
-    }
-    /// The service-connection flag.
-    #[getter]
-    fn service_connection(&self) -> bool {
-        self.header().service_connection
-    }
-    /// The experimental flag.
-    #[getter]
-    fn experimental(&self) -> bool {
-        self.header().experimental
-    }
-    /// The header version (2 for RA 3.2/3.3).
-    #[getter]
-    fn version(&self) -> u8 {
-        self.header().version
-    }
-    /// The two reserved bits of the properties word.
-    #[getter]
-    fn reserved(&self) -> u8 {
-        self.header().reserved
-    }
-    /// The command code.
-    #[getter]
-    fn command_code(&self) -> u16 {
-        self.header().command_code.0
-    }
-    /// `(subsystem, node, component, instance)`.
-    #[getter]
-    fn destination(&self) -> (u8, u8, u8, u8) {
-        address_tuple(self.header().destination)
-    }
-    /// `(subsystem, node, component, instance)`.
-    #[getter]
-    fn source(&self) -> (u8, u8, u8, u8) {
-        address_tuple(self.header().source)
-    }
-    /// The body size the header gives.
-    #[getter]
-    fn data_size(&self) -> u16 {
-        self.header().data_size
-    }
-    /// `"single"`, `"first"`, `"normal"`, `"retransmit"` or `"last"`.
-    #[getter]
-    fn data_flag(&self) -> String {
-        json_text(&self.header().data_flag)
-    }
-    /// The sequence number.
-    #[getter]
-    fn sequence_number(&self) -> u16 {
-        self.header().sequence_number
-    }
-    /// The body bytes.
-    #[getter]
-    fn body<'py>(&self, py: Python<'py>) -> Bound<'py, PyBytes> {
-        PyBytes::new(py, self.body.bytes(py))
-    }
-    /// The message the body holds, or None.
-    #[getter]
-    fn message(&self, py: Python<'_>) -> PyResult<Option<Py<Message>>> {
-        Ok(self.message_object(py)?.map(|m| m.clone_ref(py)))
-    }
-    /// The message's name, `"Raw"` when the schema does not define the code.
-    #[getter]
-    fn name(&self) -> &'static str {
-        self.message.as_ref().map_or("Raw", |m| m.name)
-    }
-
-    /// The header as a dict (the `"header"` of `jaus decode`'s line).
-    fn header_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let json =
-            serde_json::to_value(self.header()).map_err(|e| PyTypeError::new_err(e.to_string()))?;
-        let d = PyDict::new(py);
-        // In the header's field order.
-        for k in [
-            "priority",
-            "ack_nak",
-            "service_connection",
-            "experimental",
-            "version",
-            "reserved",
-            "command_code",
-            "destination",
-            "source",
-            "data_size",
-            "data_flag",
-            "sequence_number",
-        ] {
-            if let Some(v) = json.get(k) {
-                d.set_item(k, json_to_py(py, v)?)?;
-            }
-        }
-        Ok(d)
-    }
-
-    /// The line `jaus decode` prints, as a dict: `{"header", "message", "fields"}`.
-    fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let d = PyDict::new(py);
-        d.set_item("header", self.header_dict(py)?)?;
-        match self.message_object(py)? {
-            Some(m) => {
-                let m = m.get();
-                d.set_item("message", PyString::new(py, m.msg.name))?;
-                d.set_item("fields", object_to_dict(py, &m.msg.fields)?)?;
-            }
-            None => {
-                let raw = self.raw(py);
-                let json =
-                    serde_json::to_value(&raw).map_err(|e| PyTypeError::new_err(e.to_string()))?;
-                d.set_item("message", "Raw")?;
-                d.set_item("fields", json_to_py(py, &json)?)?;
-            }
-        }
-        Ok(d)
-    }
-
-    /// The line `jaus decode` prints, text for text.
-    fn to_json(&self, py: Python<'_>) -> PyResult<String> {
-        let message = self.message_object(py)?.map(|m| m.get());
-        let raw = message.is_none().then(|| self.raw(py));
-        let line = Line {
-            packet: self,
-            message,
-            raw,
-        };
-        serde_json::to_string(&line).map_err(|e| PyTypeError::new_err(e.to_string()))
-    }
-
-    /// The packet's bytes (the header's data size recomputed from the body).
-    fn encode<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyBytes>> {
-        let p = jaus::Packet::new(self.header, self.body.bytes(py).to_vec());
-        let bytes = jaus::codec::Encode::to_bytes(&p)
-            .map_err(|e| crate::errors::encode_error(py, Some(self.name()), &e))?;
-        Ok(PyBytes::new(py, &bytes))
-    }
-
-    fn __repr__(&self, py: Python<'_>) -> String {
-        let a = |a: Address| format!("{a}");
-        format!(
-            "<jaus.Packet {} ({}) {} -> {}, {} byte(s)>",
-            self.name(),
-            self.header().command_code,
-            a(self.header().source),
-            a(self.header().destination),
-            self.body.bytes(py).len()
-        )
-    }
-}
-
-/// `{"header": ..., "message": ..., "fields": ...}`, as `jaus decode` prints it.
-struct Line<'a> {
-    packet: &'a Packet,
-    message: Option<&'a Message>,
-    /// The body as a raw message (a packet without a message).
-    raw: Option<jaus::RawMessage>,
-}
-
-impl Serialize for Line<'_> {
-    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-        let mut map = s.serialize_map(Some(3))?;
-        map.serialize_entry("header", self.packet.header())?;
-        match self.message {
-            Some(m) => {
-                map.serialize_entry("message", m.msg.name)?;
-                map.serialize_entry("fields", &m.msg.fields)?;
-            }
-            None => {
-                map.serialize_entry("message", "Raw")?;
-                map.serialize_entry("fields", &self.raw)?;
-            }
-        }
-        map.end()
+            self.name,
+            serde_json::to_string(&self.msg(py)?.fields).unwrap_or_default()
+        ))
     }
 }
 

@@ -5,7 +5,7 @@
 
 use crate::catalog::Catalog;
 use crate::errors::decode_error_text;
-use crate::message::{Body, Packet};
+use crate::packet::{Body, Packet};
 use jaus_cli::capture;
 use jaus_cli::traffic::{as4_json, CaptureDecoder, Captured};
 use pyo3::exceptions::PyOSError;
@@ -64,7 +64,7 @@ pub(crate) fn read(
                 }
                 Captured::As4(_) => continue,
             };
-            let packet = match Packet::decode(py, cat, header, Body::Owned(body)) {
+            let packet = match Packet::decode(py, cat, header, Body::Owned(body.into())) {
                 Ok(p) => p,
                 Err(e) if strict => {
                     let text = format!("{}: {}", at(), e.value(py));

@@ -4,7 +4,8 @@
 
 use crate::catalog::{sdk, Catalog};
 use crate::errors::{decode_error, encode_error, fields_error, DecodeError, JausError, SpecError};
-use crate::message::{address, build, Body, Message, Packet};
+use crate::message::{address, build, Message};
+use crate::packet::{Body, Packet};
 use jaus::{CommandCode, Header};
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
@@ -247,7 +248,7 @@ pub(crate) fn encode<'py>(
     _cat: &Arc<Catalog>,
     message: &Message,
 ) -> PyResult<Bound<'py, PyBytes>> {
-    let body = message.cat.encode(py, &message.msg)?;
+    let body = message.cat.encode(py, message.msg(py)?)?;
     Ok(PyBytes::new(py, &body))
 }
 
@@ -270,9 +271,9 @@ pub(crate) fn encode_packet<'py>(
     destination: &Bound<'py, PyAny>,
     o: &HeaderOptions<'_>,
 ) -> PyResult<Bound<'py, PyBytes>> {
-    let body = message.cat.encode(py, &message.msg)?;
+    let body = message.cat.encode(py, message.msg(py)?)?;
     let mut h = Header::new(
-        message.msg.code,
+        message.code(),
         address(destination, "destination")?,
         address(source, "source")?,
     );
@@ -280,7 +281,7 @@ pub(crate) fn encode_packet<'py>(
         return Err(fields_error(
             py,
             format!("priority {} is not 0-15", o.priority),
-            Some(message.msg.name),
+            Some(message.name()),
             None,
         ));
     }
@@ -293,7 +294,7 @@ pub(crate) fn encode_packet<'py>(
                     "ack_nak `{}` is not one of none, request, nak, ack",
                     o.ack_nak
                 ),
-                Some(message.msg.name),
+                Some(message.name()),
                 None,
             )
         })?;
@@ -301,6 +302,6 @@ pub(crate) fn encode_packet<'py>(
     h.experimental = o.experimental;
     h.sequence_number = o.sequence_number;
     let bytes = jaus::codec::Encode::to_bytes(&jaus::Packet::new(h, body))
-        .map_err(|e| encode_error(py, Some(message.msg.name), &e))?;
+        .map_err(|e| encode_error(py, Some(message.name()), &e))?;
     Ok(PyBytes::new(py, &bytes))
 }

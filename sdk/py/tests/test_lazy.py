@@ -174,3 +174,19 @@ def test_a_schema_with_overlays_decodes_the_same_way(vendor_overlay, vectors):
     assert many[2].name == vectors[0]["message"]
     # The SDK's schema does not know the vendor's code: a raw packet, not an error.
     assert jaus.decode_many([pkt])[0].message is None
+
+
+def test_a_message_never_read_decodes_on_first_need(vectors):
+    # Each use below comes first on a message of its own: the message is decoded from
+    # the packet's checked bytes by whichever needs it first.
+    for v in vectors[::7]:
+        raw = bytes.fromhex(v["hex"])
+        body, eager = raw[16:], jaus.decode(raw[16:], int.from_bytes(raw[2:4], "little"))
+        fresh = lambda: jaus.decode_packet(raw).message  # noqa: E731
+        assert fresh() == eager and eager == fresh(), v["hex"]
+        assert jaus.encode(fresh()) == body and fresh().encode() == body
+        assert repr(fresh()) == repr(eager)
+        assert fresh().to_json() == eager.to_json()
+        assert fresh().fields == eager.fields
+        assert all(name in fresh() for name in eager.fields)
+        assert fresh().name == eager.name and fresh().code == eager.code

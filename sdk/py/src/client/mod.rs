@@ -161,8 +161,8 @@ impl Client {
 
     /// The message's body, code and name, by the schema it was made with.
     fn body(py: Python<'_>, message: &Message) -> PyResult<(CommandCode, &'static str, Vec<u8>)> {
-        let body = message.cat.encode(py, &message.msg)?;
-        Ok((message.msg.code, message.msg.name, body))
+        let body = message.cat.encode(py, message.msg(py)?)?;
+        Ok((message.code(), message.name(), body))
     }
 
     /// The code of the report answering `query` (`report` names it when the
@@ -181,14 +181,14 @@ impl Client {
                 .map(|m| m.code)
                 .ok_or_else(|| PyValueError::new_err(format!("report: no message named {r}")));
         }
-        self.codes.answer_of(query.msg.code).ok_or_else(|| {
+        self.codes.answer_of(query.code()).ok_or_else(|| {
             client_error(
                 py,
                 format!(
                     "{}: not a query (no report answers it); give report=NAME",
-                    query.msg.name
+                    query.name()
                 ),
-                Some(query.msg.name),
+                Some(query.name()),
                 None,
                 None,
             )
@@ -499,11 +499,11 @@ impl Client {
         let to = address(dest, "dest")?;
         let report = self.report_of(py, &query, report)?;
         let (code, name, query_body) = Client::body(py, &query)?;
-        let presence =
-            presence.unwrap_or_else(|| match query.msg.fields.field("presence_vector") {
-                Some(jaus_dynamic::Value::UInt(p)) => u32::try_from(*p).unwrap_or(u32::MAX),
-                _ => 0,
-            });
+        let fields = &query.msg(py)?.fields;
+        let presence = presence.unwrap_or_else(|| match fields.field("presence_vector") {
+            Some(jaus_dynamic::Value::UInt(p)) => u32::try_from(*p).unwrap_or(u32::MAX),
+            _ => 0,
+        });
         if let Some(hz) = periodic_hz {
             if !(hz.is_finite() && hz > 0.0) {
                 return Err(PyValueError::new_err(format!(
