@@ -74,18 +74,12 @@ fn every_stock_component_conforms() {
     let run = run(node(t0, &stock, |e| e), t0, &targets);
     println!("{}", report::summary(&run));
     assert_eq!(run.components.len(), stock.len());
-    // Documented deviations: advisory checks the stock components fail, with the
-    // reason (docs/conformance.md).
-    let deviations = [
-        // The stock Primitive Driver does not implement this query (its definition
-        // accepts it; Part 1 §5.3.4 lists it).
-        ("1.1.33.1", "query.QueryPlatformOperationalData"),
-    ];
+    // No documented deviation is left: no check fails, advisory ones included (the
+    // last one, Query Platform Operational Data, is answered since the stock Primitive
+    // Driver reads the simulated vehicle's odometer; docs/conformance.md).
     let failed: Vec<_> = not_passed(&run)
         .into_iter()
-        .filter(|(a, id, v)| {
-            *v == Verdict::Fail && !deviations.contains(&(a.as_str(), id.as_str()))
-        })
+        .filter(|(_, _, v)| *v == Verdict::Fail)
         .collect();
     assert!(failed.is_empty(), "failures: {failed:#?}");
     assert!(run.passed());

@@ -13,8 +13,8 @@ use rand_distr::{Distribution, Normal};
 
 use jaus::stock::geo::{wrap_angle, LocalFrame};
 use jaus::stock::hardware::{
-    Actuators, GlobalPose, GlobalPoseSource, LocalPose, LocalPoseSource, VelocitySource,
-    VelocityState, Wrench,
+    Actuators, GlobalPose, GlobalPoseSource, LocalPose, LocalPoseSource, OperationalData,
+    VelocitySource, VelocityState, Wrench,
 };
 
 /// Parameters of the simulated vehicle.
@@ -159,7 +159,8 @@ impl GroundVehicle {
         self.effort
     }
 
-    /// Distance driven, m.
+    /// Distance driven, m: the path length integrated from the model's motion (|speed|
+    /// × step, forward and reverse alike), so it never decreases.
     pub fn odometer(&self) -> f64 {
         self.odometer
     }
@@ -229,6 +230,17 @@ impl Actuators for SimVehicle {
         let mut v = self.lock();
         v.advance(now);
         v.effort = *effort;
+    }
+
+    /// The model's odometer (the distance it has driven, integrated up to `now`); it has
+    /// no engine, battery, fuel or oil, so those are absent.
+    fn operational_data(&mut self, now: Instant) -> Option<OperationalData> {
+        let mut v = self.lock();
+        v.advance(now);
+        Some(OperationalData {
+            odometer: Some(v.odometer),
+            ..OperationalData::default()
+        })
     }
 }
 
@@ -316,5 +328,32 @@ mod tests {
         let pb = b.local_pose(t0 + Duration::from_secs(4)).unwrap();
         assert_eq!(pa, pb, "same seed, same noise");
         assert_eq!(a.lock().speed(), 0.0);
+    }
+
+    #[test]
+    fn odometer_counts_the_distance_driven_forward_and_back() {
+        let t0 = Instant::now();
+        let mut v = SimVehicle::new(VehicleParams::default());
+        let at = |s: u64| t0 + Duration::from_secs(s);
+        let effort = |x: f64| Wrench {
+            linear: Vector3::new(x, 0.0, 0.0),
+            ..Wrench::ZERO
+        };
+        assert_eq!(v.operational_data(t0).unwrap().odometer, Some(0.0));
+        v.apply(t0, &effort(50.0));
+        v.apply(at(10), &effort(-50.0));
+        let forward = v.operational_data(at(10)).unwrap().odometer.unwrap();
+        let ahead = v.lock().position().x;
+        v.apply(at(20), &Wrench::brake());
+        let total = v.operational_data(at(22)).unwrap().odometer.unwrap();
+        let back = ahead - v.lock().position().x;
+        assert!((forward - ahead).abs() < 1e-9, "{forward} vs {ahead}");
+        assert!(forward > 9.0, "{forward}");
+        // Reversing adds to it: the distance driven, not the displacement.
+        assert!(back > 5.0, "{back}");
+        assert!(total >= forward + back, "{total} < {forward} + {back}");
+        assert!(total > v.lock().position().x.abs() + 10.0, "{total}");
+        let d = v.operational_data(at(22)).unwrap();
+        assert_eq!(d.engine_temperature.or(d.battery_voltage), None);
     }
 }

@@ -91,10 +91,37 @@ pub struct VelocityState {
     pub angular: Vector3<f64>,
 }
 
+/// The platform's operational data (RA 3.3 Report Platform Operational Data), each
+/// field `None` where the platform does not measure it. Units are SI or percent; the
+/// Primitive Driver converts them to the message's encoding.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct OperationalData {
+    /// Engine temperature, °C (the message carries −75..=180 °C).
+    pub engine_temperature: Option<f64>,
+    /// Distance travelled since the platform's odometer was set, m (never decreasing;
+    /// reported in whole metres, rounded down, up to `u32::MAX`).
+    pub odometer: Option<f64>,
+    /// Battery voltage, % of nominal (the message carries 0..=127 %).
+    pub battery_voltage: Option<f64>,
+    /// Fuel level, % (0..=100 %).
+    pub fuel_level: Option<f64>,
+    /// Oil pressure, % of nominal (the message carries 0..=127 %).
+    pub oil_pressure: Option<f64>,
+}
+
 /// Applies wrench efforts to the actuators (the Primitive Driver's hardware).
 pub trait Actuators: Send + 'static {
     /// Applies `effort` from `now` on.
     fn apply(&mut self, now: Instant, effort: &Wrench);
+
+    /// The platform's operational data at `now` (engine temperature, odometer, battery,
+    /// fuel, oil pressure), answered to Query Platform Operational Data; `None` (the
+    /// default) when the platform measures none of them, and the driver then leaves the
+    /// query unanswered.
+    fn operational_data(&mut self, now: Instant) -> Option<OperationalData> {
+        let _ = now;
+        None
+    }
 }
 
 /// Reads global pose fixes (a GPS/INS).
