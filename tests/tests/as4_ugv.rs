@@ -3,7 +3,9 @@
 //! over the RA 3.3 Primitive Driver's discrete devices, and reads it back from the RA
 //! 3.3 driver's report; only the controlling client may, and only while Ready but to
 //! apply it harder. The Platform Specifications service is offered over a Primitive
-//! Driver that answers Query Platform Specifications (the stock one does not).
+//! Driver that answers Query Platform Specifications. The Odometry service reads the
+//! demo vehicle's odometer (RA 3.3 Report Platform Operational Data) as it drives, and
+//! keeps trip odometers the controlling client resets.
 
 use std::time::{Duration, Instant};
 
@@ -15,8 +17,9 @@ use jaus::net::{Node, NodeConfig};
 use jaus::stock::drivers::{PrimitiveConfig, StockPrimitiveDriver};
 use jaus::JausMessage;
 use jaus_as4::{
-    ComponentState, Message, QueryParkingBrake, QueryPlatformSpecifications, QueryStatus,
-    ReportParkingBrake, Resume, SetParkingBrake, Standby, SteeringSpecifics,
+    ComponentState, Message, Odometer, QueryOdometry, QueryParkingBrake,
+    QueryPlatformSpecifications, QueryStatus, ReleaseControl, ReportParkingBrake, ResetOdometry,
+    Resume, SetParkingBrake, SetWrenchEffort, Standby, SteeringSpecifics, TripOdometer,
 };
 
 mod common;
@@ -276,4 +279,69 @@ fn platform_specifications_are_those_of_the_ra33_primitive_driver() {
     };
     close(k.track_separation, want.track_width);
     assert_eq!(k.drive_wheel_radius, None);
+}
+
+impl Rig {
+    fn odometry(&mut self, odometer: Odometer) -> u32 {
+        let Message::ReportOdometry(r) = self.one(QueryOdometry { odometer }) else {
+            panic!("no Report Odometry");
+        };
+        assert_eq!(r.odometer, odometer);
+        r.odometry
+    }
+
+    /// Drives forward at 60 % effort for `secs` seconds, the effort refreshed every
+    /// 100 ms (the driver's command timeout brakes a stale one), then stops.
+    fn drive(&mut self, secs: u32) {
+        let effort = |x: f64| SetWrenchEffort {
+            propulsive_linear_effort_x: Some(x),
+            ..Default::default()
+        };
+        for _ in 0..secs * 10 {
+            self.0.ask(effort(60.0), Duration::from_millis(100));
+        }
+        self.0.ask(effort(0.0), Duration::from_secs(2));
+    }
+}
+
+#[test]
+fn the_odometry_service_reads_the_ra33_odometer_and_keeps_trips() {
+    let mut r = Rig::demo();
+    let uris = r.uris();
+    assert!(
+        uris.iter().any(|u| u == "urn:jaus:jss:ugv:OdometryService"),
+        "{uris:?}"
+    );
+    let start = r.odometry(Odometer::Platform);
+    assert_eq!(r.odometry(Odometer::TripA), 0);
+
+    r.take_control();
+    assert!(r.0.ask(Resume {}, WAIT).is_empty());
+    r.drive(6);
+    let first = r.odometry(Odometer::Platform) - start;
+    assert!(first >= 2, "the odometer moved {first} m in 6 s at 60 %");
+    assert_eq!(r.odometry(Odometer::TripA), first);
+    assert_eq!(r.odometry(Odometer::TripB), first);
+
+    // Resetting a trip needs control: released, the reset is refused.
+    r.0.ask(ReleaseControl {}, WAIT);
+    r.0.ask(reset_a(), WAIT);
+    assert_eq!(r.odometry(Odometer::TripA), first);
+    // The controller resets trip A: it counts the second leg alone; trip B both.
+    r.take_control();
+    r.0.ask(reset_a(), WAIT);
+    assert_eq!(r.odometry(Odometer::TripA), 0);
+    assert!(r.0.ask(Resume {}, WAIT).is_empty());
+    r.drive(4);
+    let total = r.odometry(Odometer::Platform) - start;
+    let second = r.odometry(Odometer::TripA);
+    assert!(second >= 1 && second < total, "leg {second} m of {total} m");
+    assert_eq!(r.odometry(Odometer::TripB), total);
+    eprintln!("odometer: {first} m, then {second} m more ({total} m)");
+}
+
+fn reset_a() -> ResetOdometry {
+    ResetOdometry {
+        odometer: TripOdometer::TripA,
+    }
 }

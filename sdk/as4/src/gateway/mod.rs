@@ -465,11 +465,12 @@ mod tests {
         g.refresh(t0, &tree(true, t0));
         assert_eq!(g.node().env().targets().primitive_driver, Some(PD));
         let mut now = t0;
-        // The polls of its efforts, after the UGV services' two queries (discrete devices,
-        // platform specifications: asked once, polled only once answered).
+        // The polls of its efforts, after the UGV services' three queries (discrete
+        // devices, platform specifications, operational data: asked once, polled only
+        // once answered).
         assert_eq!(
             run_out(&mut g, &mut now),
-            2 + crate::ra33::GIVE_UP_AFTER as usize
+            3 + crate::ra33::GIVE_UP_AFTER as usize
         );
         let given_up = vec![(PD, QueryWrenchEffort::CODE)];
         assert_eq!(g.node().env().polls_given_up(), given_up);
@@ -484,11 +485,11 @@ mod tests {
         assert!(g.node().env().polls_given_up().is_empty());
         assert_eq!(Endpoint::poll_timeout(&g), Some(now));
         assert_eq!(g.node().env().stats().polls_resumed, 1);
-        // Given up again (the two queries asked again with the rediscovery); then
+        // Given up again (the three queries asked again with the rediscovery); then
         // forgotten by the node (timed out) and listed again.
         assert_eq!(
             run_out(&mut g, &mut now),
-            2 + crate::ra33::GIVE_UP_AFTER as usize
+            3 + crate::ra33::GIVE_UP_AFTER as usize
         );
         assert_eq!(g.node().env().polls_given_up(), given_up);
         Endpoint::forget(&mut g, PD);

@@ -7,13 +7,14 @@
 //! |---|---|---|
 //! | Parking Brake Driver | Primitive Driver | Set Parking Brake → RA 3.3 Set Discrete Devices (the parking brake bit: set for any level above 0, the horn bit kept as the driver reports it); Query Parking Brake answered from the driver's Report Discrete Devices (polled once answered): measured 100 % with the bit set, 0 % without (or without the field); commanded, the level last set (before any, the measured one) |
 //! | Platform Specifications | Primitive Driver | Query Platform Specifications answered from the driver's Report Platform Specifications (asked once, on discovery): name, extent, centre of gravity, wheel base, pitch-over and roll-over angles, maximum forward speed (RA 3.3 maximum velocity x) and rotational speed (maximum yaw rate); the steering kind Ackermann (minimum turning radius, wheel separation = track width) when the turning radius is above 0, else skid steer (track separation = track width) |
+//! | Odometry | Primitive Driver | Query Odometry answered from the odometer of the driver's Report Platform Operational Data (polled once answered): the platform odometer as RA 3.3 reports it (m); trips A, B and C kept by the gateway from the platform odometer, each reset by Reset Odometry from the controlling client ([`odometry`]) |
 //!
 //! A service is offered once the RA 3.3 Primitive Driver has answered the query it
 //! reads, asked once when the driver is found ([`ask`]) and again when it is
-//! discovered again ([`rediscovered`]) until answered ([`services`]): the SDK's stock driver answers Query Discrete Devices, not Query
-//! Platform Specifications (a documented deviation of its conformance run), so the demo
-//! vehicle gets the Parking Brake Driver only; a driver that answers both (a vendor's,
-//! OpenJAUS 3.3's) gets both.
+//! discovered again ([`rediscovered`]) until answered ([`services`]). The SDK's stock
+//! driver answers all three queries (the platform's specifications and operational data
+//! with what its hardware gives), so the demo vehicle gets all three services; a driver
+//! that answers fewer gets fewer.
 //!
 //! RA 3.3 control of the Primitive Driver is asked for when the controlling AS-4 client
 //! sets the parking brake ([`Ra33Side::ensure_control`]), as for its efforts; the command
@@ -23,9 +24,8 @@
 //!
 //! Not served: the Drive Train Driver (RA 3.3 Set Discrete Devices carries the gear and
 //! the transfer case as raw numbers that RA 3.3 leaves to the vendor: no mapping onto
-//! AS-4's Park/Neutral/Reverse/Drive/... and transfer case states), Odometry (RA 3.3's
-//! odometer is in Report Platform Operational Data, which the stock driver does not
-//! answer), the Skid Steer and Ackermann Drivers, the Stabilizer Driver and the Power
+//! AS-4's Park/Neutral/Reverse/Drive/... and transfer case states), the Skid Steer and
+//! Ackermann Drivers, the Stabilizer Driver and the Power
 //! Plant Manager; Illumination and Annunciator (RA 3.3 has no lights; its horn bit is the
 //! only annunciator). Their messages and machines are defined and generated.
 
@@ -38,9 +38,11 @@ use crate::core::generated_id;
 use crate::ra33::{Ra33Side, Targets};
 use crate::service::{Service, ServiceId};
 
+pub mod odometry;
 pub mod parking_brake;
 pub mod platform;
 
+pub use odometry::OdometryService;
 pub use parking_brake::ParkingBrakeDriver;
 pub use platform::PlatformSpecificationsService;
 
@@ -54,6 +56,8 @@ impl ServiceIds {
     pub const PARKING_BRAKE_DRIVER: ServiceId = generated_id!(parking_brake_driver);
     /// `urn:jaus:jss:ugv:PlatformSpecifications`.
     pub const PLATFORM_SPECIFICATIONS: ServiceId = generated_id!(platform_specifications_service);
+    /// `urn:jaus:jss:ugv:OdometryService`.
+    pub const ODOMETRY: ServiceId = generated_id!(odometry_service);
 }
 
 /// Which UGV services a gateway has offered (each once, when the RA 3.3 report it
@@ -64,6 +68,8 @@ pub struct Offered {
     pub parking_brake: bool,
     /// The Platform Specifications service.
     pub platform_specifications: bool,
+    /// The Odometry service.
+    pub odometry: bool,
 }
 
 /// Asks the RA 3.3 components just found (`new`) what the UGV services read, once: the
@@ -96,6 +102,9 @@ fn ask_driver(env: &mut Ra33Side, pd: Address, offered: &Offered) {
             },
         );
     }
+    if !offered.odometry {
+        env.send(pd, odometry::query());
+    }
 }
 
 /// Query Discrete Devices, every field.
@@ -127,6 +136,13 @@ pub fn services(
     if !offered.platform_specifications && specifications(env, pd).is_some() {
         offered.platform_specifications = true;
         out.push(Box::new(PlatformSpecificationsService::new(pd)));
+    }
+    if !offered.odometry {
+        if let Some(now_m) = odometry::odometer(env, pd) {
+            offered.odometry = true;
+            env.keep_polling(now, pd, odometry::query());
+            out.push(Box::new(OdometryService::new(pd, now_m)));
+        }
     }
     out
 }

@@ -3,7 +3,7 @@
 //! those its read-back query reported (so that its effect, if any, shows).
 
 use jaus_dynamic::{DynMessage, Value};
-use jaus_spec::{Int, Wire};
+use jaus_spec::{Int, TypeKind, Wire};
 use serde_json::{json, Value as Json};
 
 use super::defs::Definitions;
@@ -26,8 +26,42 @@ fn known(name: &str) -> Option<Json> {
 }
 
 /// The smallest body of message `name` as JSON fields: the shortest run of zero bytes
-/// that decodes and encodes back to itself (optional fields absent, lists empty).
+/// that decodes and encodes back to itself (optional fields absent, lists empty), each
+/// top-level enumeration whose 0 the definition does not name set to its smallest named
+/// value (Query Odometry asks for the platform odometer, not for odometer 0).
 fn zero(defs: &Definitions, name: &str) -> Result<Json, String> {
+    let mut fields = zero_bytes(defs, name)?;
+    let Some(m) = defs.message(name) else {
+        return Ok(fields);
+    };
+    for f in &m.fields {
+        let Wire::Named {
+            name: ty,
+            kind: TypeKind::Enum,
+            ..
+        } = &f.wire
+        else {
+            continue;
+        };
+        let Some(t) = defs.spec().ty(ty) else {
+            continue;
+        };
+        let values = &t.def.values;
+        if values.iter().any(|v| v.value == 0) {
+            continue;
+        }
+        if let (Some(first), Some(slot)) = (
+            values.iter().min_by_key(|v| v.value),
+            fields.get_mut(&f.def.name),
+        ) {
+            *slot = json!(first.name);
+        }
+    }
+    Ok(fields)
+}
+
+/// The shortest run of zero bytes that is a body of message `name`, as JSON fields.
+fn zero_bytes(defs: &Definitions, name: &str) -> Result<Json, String> {
     let layout = defs
         .schema()
         .message(name)
