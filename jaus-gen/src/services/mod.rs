@@ -6,6 +6,7 @@
 
 mod emit;
 pub(crate) mod guard;
+mod methods;
 pub(crate) mod model;
 
 use serde::Serialize;
