@@ -542,7 +542,7 @@ pub fn build_components(spec: &Spec, gates: bool) -> Vec<ComponentCtx> {
                 origin,
                 stock: d.stock.as_ref().map(|s| StockCtx {
                     name: s.name.clone(),
-                    needs: pascal(s.needs.as_str()),
+                    needs: s.needs.variant().to_string(),
                 }),
                 parts: shared
                     .iter()

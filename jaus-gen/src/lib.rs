@@ -18,6 +18,8 @@
 //! ```
 //!
 //! then `include!(concat!(env!("OUT_DIR"), "/messages.rs"));` in the crate.
+//! The SDK's own `build.rs` also writes the runtime types that jaus-spec's lists
+//! define ([`runtime`]: `jaus::component::Hardware`), so that each lives in one place.
 //!
 //! SAE AS-4 definitions in JSIDL are imported first, with [`Builder::jsidl`] (or
 //! `jaus-gen jsidl DIR… --out DIR` once, keeping the YAML): see `jaus_jsidl` and
@@ -100,6 +102,7 @@ pub mod diff;
 mod docs;
 pub mod lock;
 pub mod revision;
+pub mod runtime;
 pub mod scaffold;
 mod services;
 pub mod snapshot;

@@ -4,7 +4,9 @@ use serde::de::{self, Deserializer};
 use serde::Deserialize;
 use std::fmt;
 
+mod class;
 mod service;
+pub use class::MessageClass;
 pub use service::*;
 
 /// One YAML definition file: a message group with its shared types, messages and
@@ -174,56 +176,6 @@ impl MessageDef {
     /// core service in Report Services.
     pub fn runtime_output(&self) -> bool {
         self.runtime.contains(&RuntimeRole::Emits)
-    }
-}
-
-/// The class of a message (Part 1; the command-code ranges of the standard).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum MessageClass {
-    /// Changes the state of the receiver (0x0000-0x1FFF); executed only for the
-    /// component in control when a component lists it in `commands`.
-    Command,
-    /// Asks for information (0x2000-0x3FFF), answered by a report.
-    Query,
-    /// Carries information (0x4000-0x5FFF): reports.
-    Inform,
-    /// Event setup (0x6000-0x7FFF, deprecated in RA 3.3).
-    EventSetup,
-    /// Event notification (0x8000-0x9FFF, deprecated in RA 3.3).
-    EventNotification,
-    /// Node management (0xA000-0xBFFF).
-    NodeManagement,
-    /// An experimental code without an explicit class: handled like an inform message.
-    Experimental,
-}
-
-impl MessageClass {
-    /// The class the standard gives a code, `None` for reserved and experimental codes
-    /// (0xC000-0xFFFF), whose class a definition may state.
-    pub fn of_code(code: u16) -> Option<Self> {
-        Some(match code {
-            0x0000..=0x1FFF => Self::Command,
-            0x2000..=0x3FFF => Self::Query,
-            0x4000..=0x5FFF => Self::Inform,
-            0x6000..=0x7FFF => Self::EventSetup,
-            0x8000..=0x9FFF => Self::EventNotification,
-            0xA000..=0xBFFF => Self::NodeManagement,
-            _ => return None,
-        })
-    }
-
-    /// The YAML spelling.
-    pub fn as_str(self) -> &'static str {
-        match self {
-            Self::Command => "command",
-            Self::Query => "query",
-            Self::Inform => "inform",
-            Self::EventSetup => "event_setup",
-            Self::EventNotification => "event_notification",
-            Self::NodeManagement => "node_management",
-            Self::Experimental => "experimental",
-        }
     }
 }
 
@@ -547,7 +499,7 @@ pub struct ComponentDef {
     #[serde(default)]
     pub modes: Option<ModesDef>,
     /// The SDK's stock implementation of this component, which `jaus node` hosts
-    /// (`jaus_sim::host`): its name in a node file and the hardware it runs over.
+    /// (`jaus_node::host`): its name in a node file and the hardware it runs over.
     /// Absent when the SDK ships none.
     #[serde(default)]
     pub stock: Option<StockDef>,
@@ -601,37 +553,64 @@ pub struct StockDef {
     pub needs: Hardware,
 }
 
-/// The hardware a stock component runs over (`stock.needs` of a component).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Hardware {
-    /// None: it works on messages alone (a driver above the Primitive Driver, a store).
-    #[default]
-    None,
-    /// The vehicle: its actuators, or its pose and velocity.
-    Vehicle,
-    /// A range scanner on the vehicle.
-    Scanner,
-    /// A pan/tilt camera on the vehicle.
-    Camera,
-    /// A manipulator arm: its joints' actuators and sensors.
-    Arm,
-    /// Data links to other subsystems (a radio, a tether).
-    Links,
+/// Declares [`Hardware`] from its one list: each kind's variant, YAML name and meaning.
+/// jaus-gen generates the runtime's `jaus::component::Hardware` from the same list
+/// ([`Hardware::ALL`], [`Hardware::variant`], [`Hardware::as_str`], [`Hardware::doc`]).
+macro_rules! hardware {
+    ($(#[doc = $doc:literal] $(#[$extra:meta])* $variant:ident = $name:literal,)+) => {
+        /// The hardware a stock component runs over (`stock.needs` of a component).
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Deserialize)]
+        pub enum Hardware {
+            $(
+                #[doc = $doc]
+                $(#[$extra])*
+                #[serde(rename = $name)]
+                $variant,
+            )+
+        }
+
+        impl Hardware {
+            /// Every kind, in the order of the definitions.
+            pub const ALL: &'static [Hardware] = &[$(Hardware::$variant),+];
+
+            /// The name as written in the YAML (`vehicle`).
+            pub fn as_str(self) -> &'static str {
+                match self {
+                    $(Hardware::$variant => $name,)+
+                }
+            }
+
+            /// The Rust variant's name (`Vehicle`).
+            pub fn variant(self) -> &'static str {
+                match self {
+                    $(Hardware::$variant => stringify!($variant),)+
+                }
+            }
+
+            /// What the kind is (its doc comment, one line).
+            pub fn doc(self) -> &'static str {
+                match self {
+                    $(Hardware::$variant => $doc.trim_ascii(),)+
+                }
+            }
+        }
+    };
 }
 
-impl Hardware {
-    /// The name as written in the YAML (`vehicle`).
-    pub fn as_str(self) -> &'static str {
-        match self {
-            Hardware::None => "none",
-            Hardware::Vehicle => "vehicle",
-            Hardware::Scanner => "scanner",
-            Hardware::Camera => "camera",
-            Hardware::Arm => "arm",
-            Hardware::Links => "links",
-        }
-    }
+hardware! {
+    /// None: it works on messages alone (a driver above the Primitive Driver, a store).
+    #[default]
+    None = "none",
+    /// The vehicle: its actuators, or its pose and velocity.
+    Vehicle = "vehicle",
+    /// A range scanner on the vehicle.
+    Scanner = "scanner",
+    /// A pan/tilt camera on the vehicle.
+    Camera = "camera",
+    /// A manipulator arm: its joints' actuators and sensors.
+    Arm = "arm",
+    /// Data links to other subsystems (a radio, a tether).
+    Links = "links",
 }
 
 /// Sub-states of Ready and the legal transitions between them.

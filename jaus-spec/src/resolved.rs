@@ -4,7 +4,8 @@
 
 use crate::location::Pos;
 use crate::model::{
-    BitDef, ComponentDef, FieldDef, MessageDef, PartDef, ServiceDef, TypeDef, TypeKind, VariantDef,
+    BitDef, ComponentDef, FieldDef, MessageClass, MessageDef, PartDef, ServiceDef, TypeDef,
+    TypeKind, VariantDef,
 };
 use crate::{CountRef, Source, SpecError};
 use std::collections::BTreeSet;
@@ -479,8 +480,7 @@ pub(crate) fn report_of<'a, M>(
     match &query.report {
         Some(name) => by_name(name),
         // The complement rule holds for the standard query range only.
-        None if (0x2000..0x4000).contains(&query.code.0) => by_code(query.code.0 + 0x2000),
-        None => None,
+        None => MessageClass::report_code(query.code.0).and_then(by_code),
     }
 }
 

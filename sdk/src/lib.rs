@@ -72,6 +72,7 @@
 extern crate self as jaus;
 
 pub mod calendar;
+pub mod clock;
 pub mod codec;
 #[cfg(feature = "component")]
 pub mod component;

@@ -43,7 +43,9 @@ pub enum MessageClass {
 }
 
 impl CommandCode {
-    /// The class of this code.
+    /// The class of this code. The runtime's one copy of the standard's range table;
+    /// the definitions' (`jaus_spec::MessageClass::of_code`) is checked against it code
+    /// by code (`tests/tests/consistency.rs`).
     pub fn class(self) -> MessageClass {
         match self.0 {
             0x0000..=0x1FFF => MessageClass::Command,
@@ -61,7 +63,8 @@ impl CommandCode {
 impl CommandCode {
     /// The complementary code of the query/report pairing (docs/wire.md §3.3): a query's
     /// report is `query + 0x2000`, a report's query `report - 0x2000`. `None` outside
-    /// the query and inform classes.
+    /// the query and inform classes. Checked against the definitions' rule
+    /// (`jaus_spec::MessageClass::report_code`) by `tests/tests/consistency.rs`.
     pub fn complement(self) -> Option<CommandCode> {
         match self.class() {
             MessageClass::Query => Some(CommandCode(self.0 + 0x2000)),

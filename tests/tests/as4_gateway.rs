@@ -571,15 +571,15 @@ fn a_subsystem_with_only_global_services_gets_local_ones_over_them() {
         },
         t0,
     );
-    let mut host = jaus_sim::host::Host::new(1, 1, t0);
+    let mut host = jaus_node::host::Host::new(1, 1, t0);
     for name in [
         "primitive_driver",
         "global_pose_sensor",
         "velocity_state_sensor",
         "global_waypoint_driver",
     ] {
-        let stock = jaus_sim::host::Stock::by_name(name).unwrap();
-        node.add_boxed(host.build(&jaus_sim::host::Host::entry(stock)).unwrap())
+        let stock = jaus_node::host::Stock::by_name(name).unwrap();
+        node.add_boxed(host.build(&jaus_node::host::Host::entry(stock)).unwrap())
             .unwrap();
     }
     let mut j = Judge::with_node(t0, node);

@@ -62,16 +62,16 @@ fn the_iop_scenario_passes_in_memory_against_the_vehicle_through_the_gateway() {
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("iop.pcapng");
     let rec = session.take_recording();
-    let mut w = jaus_cli::capture::CaptureWriter::create(&path).unwrap();
+    let mut w = jaus_client::capture::CaptureWriter::create(&path).unwrap();
     for d in &rec.datagrams {
         w.write(d.time, d.from, d.to, &d.bytes).unwrap();
     }
     w.flush().unwrap();
     drop(w);
     let (mut out, mut err) = (Vec::new(), Vec::new());
-    let (messages, errors) = jaus_cli::traffic::decode_capture(
+    let (messages, errors) = jaus_client::traffic::decode_capture(
         &path,
-        &jaus_cli::catalogue::Catalogue::sdk(),
+        &jaus_client::catalogue::Catalogue::sdk(),
         &mut out,
         &mut err,
     )
@@ -120,7 +120,7 @@ fn the_iop_scenario_passes_in_memory_against_the_vehicle_through_the_gateway() {
     // malformed, and every message our decoder read under the same name (issue 47 item 3).
     if jaus_tests::tshark::available() {
         let ra33 = jaus_spec::load_dirs(&[jaus_spec::defs_dir()]).unwrap();
-        let as4 = jaus_cli::as4_talk::as4_spec(&[], &[]).unwrap();
+        let as4 = jaus_client::as4_link::as4_spec(&[], &[]).unwrap();
         let lua = dir.join("jaus.lua");
         std::fs::write(&lua, jaus_gen::wireshark::dissector_for(&ra33, Some(&as4))).unwrap();
         let packets = jaus_tests::tshark::dissect(&lua, &path);
@@ -178,7 +178,7 @@ fn jaus_node(
     let s = stop.clone();
     let node = std::thread::spawn(move || {
         let mut out = Vec::new();
-        let r = jaus_cli::net::node(
+        let r = jaus_node::node(
             Path::new(&file),
             Some(Duration::from_secs(120)),
             None,

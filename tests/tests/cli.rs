@@ -406,7 +406,7 @@ fn messages_describes_one_message_with_an_example_that_parses() {
         .nth(1)
         .expect("example line")
         .trim();
-    let parsed = jaus_cli::net::parse_message(example).expect("the example parses");
+    let parsed = jaus_client::parse_message(example).expect("the example parses");
     assert_eq!(parsed.1.name(), "ReportGlobalPose");
     // Issue 37: the definition's file by name and line, never the build machine's path.
     let line = text
@@ -434,10 +434,10 @@ fn messages_describes_one_message_with_an_example_that_parses() {
 /// packet line as `decode` prints it is accepted with its destination.
 #[test]
 fn messages_parse_without_fields_and_from_decode_lines() {
-    let (to, m) = jaus_cli::net::parse_message(r#"{"message":"QueryHeartbeatPulse"}"#).unwrap();
+    let (to, m) = jaus_client::parse_message(r#"{"message":"QueryHeartbeatPulse"}"#).unwrap();
     assert_eq!((to, m.name()), (None, "QueryHeartbeatPulse"));
     let decoded = jaus::json::decode_line(jaus::json::REFERENCE_PACKETS[0].1).unwrap();
-    let (to, m) = jaus_cli::net::parse_message(&decoded).unwrap();
+    let (to, m) = jaus_client::parse_message(&decoded).unwrap();
     assert_eq!(to, Some(jaus::Address::new(1, 2, 3, 4)));
     assert_eq!(m.name(), "ReportGlobalPose");
 }
@@ -447,7 +447,7 @@ fn messages_parse_without_fields_and_from_decode_lines() {
 #[test]
 fn the_default_socket_is_port_3794_on_an_address_of_its_own() {
     let peer: std::net::SocketAddr = "127.0.0.1:3794".parse().unwrap();
-    let s = jaus_cli::net::bind_socket(None, &[peer]).unwrap();
+    let s = jaus_client::bind_socket(None, &[peer]).unwrap();
     let local = s.local_addr().unwrap();
     assert_eq!(local.port(), 3794);
     assert_ne!(local.ip(), peer.ip());

@@ -34,7 +34,7 @@ use jaus::net::Node;
 use jaus::stock::communicator::CommunicatorEndpoint;
 use jaus::wire::Header;
 use jaus::Address;
-use jaus_cli::net::NodeFile;
+use jaus_node::NodeFile;
 use jaus_quic::{QuicLink, QuicLinkStats};
 
 const C1: Address = Address::new(1, 1, 35, 1);
@@ -627,7 +627,7 @@ fn the_example_node_files_are_a_quic_pair() {
         let links = f.communicator_links();
         assert_eq!(links.len(), 1);
         match &links[0] {
-            jaus_cli::net::LinkFile::Quic(q) => q.clone(),
+            jaus_node::LinkFile::Quic(q) => q.clone(),
             other => panic!("not a QUIC link: {other:?}"),
         }
     };

@@ -26,7 +26,7 @@ use jaus::net::{NetStats, Node};
 use jaus::stock::communicator::{CommunicatorEndpoint, LinkStats};
 use jaus::wire::Header;
 use jaus::Address;
-use jaus_cli::net::NodeFile;
+use jaus_node::NodeFile;
 
 const C1: Address = Address::new(1, 1, 35, 1);
 const C2: Address = Address::new(2, 1, 35, 1);

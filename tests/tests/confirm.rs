@@ -19,9 +19,9 @@ use jaus::codec::Encode;
 use jaus::messages::*;
 use jaus::net::Framing;
 use jaus::{Address, CommandCode, Header, JausMessage, Packet};
-use jaus_cli::catalogue::Catalogue;
-use jaus_cli::net::confirm::Confirmation;
-use jaus_cli::net::{Carrier, Client, Mode, Script};
+use jaus_client::catalogue::Catalogue;
+use jaus_client::confirm::Confirmation;
+use jaus_client::{Carrier, Client, Mode, Script};
 
 use common::jaus_bin;
 
@@ -125,7 +125,7 @@ fn confirm_session(
     peer: SocketAddr,
     to: Address,
     messages: &[&str],
-) -> (jaus_cli::net::Outcome, String) {
+) -> (jaus_client::Outcome, String) {
     let client = Client {
         me,
         bind: Some("127.0.0.1:0".parse().unwrap()),
@@ -140,7 +140,7 @@ fn confirm_session(
     let script = Script {
         messages: messages
             .iter()
-            .map(|m| (to, jaus_cli::net::parse_message(m).unwrap().1))
+            .map(|m| (to, jaus_client::parse_message(m).unwrap().1))
             .collect(),
         until_answered: true,
         catalogue: Arc::new(Catalogue::sdk()),
@@ -152,7 +152,7 @@ fn confirm_session(
     (o, String::from_utf8_lossy(&err).into_owned())
 }
 
-fn names_and_ends(o: &jaus_cli::net::Outcome) -> Vec<(&str, &Confirmation)> {
+fn names_and_ends(o: &jaus_client::Outcome) -> Vec<(&str, &Confirmation)> {
     o.confirmations
         .iter()
         .map(|(_, n, c)| (n.as_str(), c))

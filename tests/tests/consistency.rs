@@ -1,6 +1,8 @@
 //! The definition language and the runtime agree on the scaled-integer divisors (the
-//! generator documents resolutions with the former, the codec scales with the latter),
-//! and the core service of Report Services says what it always said.
+//! generator documents resolutions with the former, the codec scales with the latter)
+//! and on the command-code ranges of the message classes and the complement rule (the
+//! definitions classify and pair messages with the former, the runtime routes with the
+//! latter), and the core service of Report Services says what it always said.
 
 use jaus::codec::ScaledRepr;
 use jaus::components::global_pose_sensor::{self, GlobalPoseSensor};
@@ -18,6 +20,41 @@ fn scaled_divisors_agree() {
     assert_eq!(Int::I16.divisor(), <i16 as ScaledRepr>::DIVISOR);
     assert_eq!(Int::I32.divisor(), <i32 as ScaledRepr>::DIVISOR);
     assert_eq!(Int::I64.divisor(), <i64 as ScaledRepr>::DIVISOR);
+}
+
+/// `jaus::wire::MessageClass` of a code by `jaus_spec::MessageClass`'s table.
+fn class_by_spec(code: u16) -> jaus::wire::MessageClass {
+    use jaus::wire::MessageClass as W;
+    use jaus_spec::MessageClass as S;
+    match S::of_code(code) {
+        Some(S::Command) => W::Command,
+        Some(S::Query) => W::Query,
+        Some(S::Inform) => W::Inform,
+        Some(S::EventSetup) => W::EventSetup,
+        Some(S::EventNotification) => W::EventNotification,
+        Some(S::NodeManagement) => W::NodeManagement,
+        Some(S::Experimental) => unreachable!("no range of the standard is experimental"),
+        None if S::is_reserved_code(code) => W::Reserved,
+        None => {
+            assert!(S::is_experimental_code(code), "0x{code:04X}");
+            W::Experimental
+        }
+    }
+}
+
+#[test]
+fn message_classes_agree_on_every_code() {
+    use jaus_spec::MessageClass as S;
+    for code in 0..=u16::MAX {
+        let c = CommandCode(code);
+        assert_eq!(c.class(), class_by_spec(code), "class of 0x{code:04X}");
+        let complement = S::report_code(code).or_else(|| S::query_code(code));
+        assert_eq!(
+            c.complement().map(|c| c.0),
+            complement,
+            "complement of 0x{code:04X}"
+        );
+    }
 }
 
 #[test]

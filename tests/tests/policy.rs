@@ -376,7 +376,7 @@ fn without_a_policy_the_node_is_open() {
 fn the_example_node_file_carries_this_policy() {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../examples/nodes/policy-vehicle.yaml");
-    let file = jaus_cli::net::NodeFile::load(&path).unwrap();
+    let file = jaus_node::NodeFile::load(&path).unwrap();
     assert_eq!(file.node_config().policy, Some(policy()));
     let node = file.build_node(&path, Instant::now()).unwrap();
     assert_eq!(node.policy().map(|p| p.policy()), Some(&policy()));
@@ -387,7 +387,7 @@ fn the_example_node_file_carries_this_policy() {
         "subsystem: 1\nnode: 1\nbind: 127.0.0.1:0\npolicy:\n  rules:\n    - { from: 200.*.*.*, may: drive }\n",
     )
     .unwrap();
-    let e = jaus_cli::net::NodeFile::load(&bad).unwrap_err();
+    let e = jaus_node::NodeFile::load(&bad).unwrap_err();
     assert!(
         e.contains(":6:") && e.contains("`drive` is not a permission"),
         "{e}"

@@ -792,7 +792,7 @@ fn the_networked_demo_operator_finishes_and_writes_its_plot() {
         let spec = jaus_spec::load_dirs(&[jaus_spec::defs_dir()]).unwrap();
         let lua = dir.join("jaus.lua");
         std::fs::write(&lua, jaus_gen::wireshark::dissector(&spec)).unwrap();
-        let (datagrams, _) = jaus_cli::capture::read(&capture).unwrap();
+        let (datagrams, _) = jaus_client::capture::read(&capture).unwrap();
         let expected: Vec<Option<serde_json::Value>> = datagrams
             .iter()
             .map(|d| {

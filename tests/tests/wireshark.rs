@@ -13,7 +13,7 @@ use jaus::codec::Encode;
 use jaus::net::framing::{split, Framing};
 use jaus::wire::Header;
 use jaus::JausMessage;
-use jaus_cli::capture::CaptureWriter;
+use jaus_client::capture::CaptureWriter;
 use jaus_tests::tshark;
 use serde_json::Value;
 
@@ -141,7 +141,7 @@ fn tshark_capinfos_and_our_reader_agree_on_the_times_of_a_capture() {
     drop(w);
 
     // Ours.
-    let (ours, _) = jaus_cli::capture::read(&path).unwrap();
+    let (ours, _) = jaus_client::capture::read(&path).unwrap();
     assert_eq!(
         (ours[0].time, ours[2].time),
         (t0, last),

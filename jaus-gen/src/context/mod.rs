@@ -51,7 +51,7 @@ fn class_variant(d: &MessageDef) -> &'static str {
         C::EventSetup => "EventSetup",
         C::EventNotification => "EventNotification",
         C::NodeManagement => "NodeManagement",
-        C::Experimental if d.code.0 < 0xD000 => "Reserved",
+        C::Experimental if C::is_reserved_code(d.code.0) => "Reserved",
         C::Experimental => "Experimental",
     }
 }

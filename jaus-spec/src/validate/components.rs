@@ -132,7 +132,10 @@ fn check_message_lists(cx: &mut Ctx<'_>, c: &Component, ctx: &str) {
                     c.source,
                     &path,
                     ctx.to_string(),
-                    format!("`{name}` (0x{code:04X}) is not a command (0x0000-0x1FFF, or `class: command` for an experimental code): list it in `accepts`"),
+                    format!(
+                        "`{name}` (0x{code:04X}) is not a command ({}, or `class: command` for an experimental code): list it in `accepts`",
+                        MessageClass::Command.codes_text()
+                    ),
                 );
             }
         }

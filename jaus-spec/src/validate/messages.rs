@@ -89,9 +89,10 @@ fn check_class(cx: &mut Ctx<'_>, m: &Parsed<MessageDef>, ctx: &str) {
             &format!("{}.class", m.path),
             ctx.to_string(),
             format!(
-                "`class: {}` contradicts the code 0x{code:04X}, which is a {} code; `class:` is for experimental codes (0xD000-0xFFFF)",
+                "`class: {}` contradicts the code 0x{code:04X}, which is a {} code; `class:` is for experimental codes ({})",
                 explicit.as_str(),
-                by_code.as_str()
+                by_code.as_str(),
+                MessageClass::Experimental.codes_text()
             ),
         ),
         _ if explicit == MessageClass::Experimental => cx.err(
@@ -116,7 +117,10 @@ fn check_report(cx: &mut Ctx<'_>, m: &Parsed<MessageDef>, ctx: &str) {
                 m.source,
                 &format!("{}.report", m.path),
                 ctx.to_string(),
-                "`report` applies to query messages (0x2000..0x3FFF, or `class: query` for an experimental code)",
+                format!(
+                    "`report` applies to query messages ({}, or `class: query` for an experimental code)",
+                    MessageClass::Query.codes_text()
+                ),
             );
         } else if spec.message(r).is_none() {
             cx.err(
@@ -127,10 +131,9 @@ fn check_report(cx: &mut Ctx<'_>, m: &Parsed<MessageDef>, ctx: &str) {
             );
         }
     } else if is_query && !m.def.no_report && spec.report_of(&m.def).is_none() {
-        let hint = if (0x2000..0x4000).contains(&code) {
+        let hint = if let Some(report) = MessageClass::report_code(code) {
             format!(
-                "define the message with code 0x{:04X} (the complement rule), name it with `report:`, or mark the query `no_report: true`",
-                code + 0x2000
+                "define the message with code 0x{report:04X} (the complement rule), name it with `report:`, or mark the query `no_report: true`"
             )
         } else {
             "an experimental query names its report with `report:` (or is marked `no_report: true`)"

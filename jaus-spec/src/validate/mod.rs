@@ -26,7 +26,7 @@ mod stock;
 mod types;
 mod wire;
 
-use crate::model::{MessageDef, TypeDef};
+use crate::model::{MessageClass, MessageDef, TypeDef};
 use crate::{Component, Group, Message, Part, Service, Source, Spec, SpecError, Type, TypeForm};
 use fields::Body;
 
@@ -181,7 +181,9 @@ fn overlay_warnings(draft: &Draft) -> Vec<SpecError> {
     draft
         .messages
         .iter()
-        .filter(|m| m.source >= draft.base_sources && m.def.code.0 < 0xD000)
+        .filter(|m| {
+            m.source >= draft.base_sources && !MessageClass::is_experimental_code(m.def.code.0)
+        })
         .map(|m| {
             let s = &draft.sources[m.source];
             SpecError {
@@ -189,8 +191,9 @@ fn overlay_warnings(draft: &Draft) -> Vec<SpecError> {
                 pos: s.index.find(&format!("{}.code", m.path)),
                 context: format!("message `{}`", m.def.name),
                 message: format!(
-                    "code {} is outside the experimental range 0xD000-0xFFFF: a later revision of the standard may give it to another message",
-                    m.def.code
+                    "code {} is outside the experimental range {}: a later revision of the standard may give it to another message",
+                    m.def.code,
+                    MessageClass::Experimental.codes_text()
                 ),
             }
         })

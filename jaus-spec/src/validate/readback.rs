@@ -25,7 +25,10 @@ fn check_one(cx: &mut Ctx<'_>, m: &Parsed<MessageDef>, query: &str) {
             m.source,
             &path,
             ctx,
-            "`readback` applies to command messages (0x0000..0x1FFF, or `class: command`)",
+            format!(
+                "`readback` applies to command messages ({}, or `class: command`)",
+                MessageClass::Command.codes_text()
+            ),
         );
         return;
     }

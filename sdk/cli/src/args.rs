@@ -143,7 +143,7 @@ pub(crate) enum Cmd {
         args: jaus_cli::ros2::Ros2Args,
     },
     /// Run a node from a configuration file (YAML: subsystem, node, bind, framing,
-    /// transport, peers, host, as4, as4_vehicles, ros2, ...; `jaus_cli::net::NodeFile`);
+    /// transport, peers, host, as4, as4_vehicles, ros2, ...; `jaus_node::NodeFile`);
     /// prints the system tree whenever it changes. `ros2:` (the keys of `jaus ros2
     /// --config`'s file: domain_id, node_name, namespace, topics, frames, odom_axes,
     /// qos_commands, qos_sensors, effort, watchdog_ms, command_timeout_ms) hosts a ROS 2
@@ -362,7 +362,7 @@ pub(crate) struct NetArgs {
     pub(crate) bind: Option<std::net::SocketAddr>,
     /// auto (join the peer's node when --me is on it), join, or node.
     #[arg(long, default_value = "auto")]
-    pub(crate) mode: jaus_cli::net::Mode,
+    pub(crate) mode: jaus_client::Mode,
     /// Peer nodes: HOST:PORT (JUDP), tcp://HOST:PORT (JTCP, dialed) or
     /// serial:///dev/DEVICE?baud=N (JSerial; one line); repeatable, one transport.
     #[arg(long, default_value = "127.0.0.1:3794")]
@@ -390,7 +390,7 @@ impl NetArgs {
             .collect()
     }
 
-    pub(crate) fn client(&self) -> Result<jaus_cli::net::Client, String> {
+    pub(crate) fn client(&self) -> Result<jaus_client::Client, String> {
         let framing = match self.framing.as_str() {
             "judp" => jaus::net::Framing::Judp,
             "opc" => jaus::net::Framing::Opc,
@@ -400,10 +400,10 @@ impl NetArgs {
             Some(m) => m
                 .parse::<jaus::Address>()
                 .map_err(|_| format!("--me {m}: expected subsystem.node.component.instance"))?,
-            None => jaus_cli::net::default_me(),
+            None => jaus_client::default_me(),
         };
-        let (carrier, peers) = jaus_cli::net::carrier_of(&self.peer)?;
-        Ok(jaus_cli::net::Client {
+        let (carrier, peers) = jaus_client::carrier_of(&self.peer)?;
+        Ok(jaus_client::Client {
             name: "jaus CLI".into(),
             me,
             bind: self.bind,
@@ -419,7 +419,7 @@ impl NetArgs {
 
 /// `--me`: an RA 3.3 address S.N.C.I, or an AS-4 id S.N.C (`conform --as4`).
 fn me_arg(text: &str) -> Result<String, String> {
-    if text.parse::<jaus::Address>().is_ok() || jaus_conform::as4::parse_id(text).is_ok() {
+    if text.parse::<jaus::Address>().is_ok() || text.parse::<jaus::net::as5669a::As4Id>().is_ok() {
         Ok(text.to_string())
     } else {
         Err(format!(

@@ -6,11 +6,14 @@
 //! drives with Primitive Driver efforts for a while instead, printing the velocity. Over AS5669A on
 //! UDP; prints one line per step and per second of progress.
 
+use std::collections::VecDeque;
 use std::io::Write;
 use std::net::{SocketAddr, UdpSocket};
 use std::time::{Duration, Instant};
 
-use jaus::net::as5669a::{As4Config, As4Id, As4Message, As4Stack};
+use jaus::net::as5669a::{As4Client, As4Config, As4Id, As4Message};
+use jaus::net::shell;
+use jaus::net::udp::{IoOptions, UdpTransport};
 use jaus::CommandCode;
 use jaus_as4::{
     ComponentState, ControlConfirmation, Element, ExecuteList, Message, NodeServicesQuery,
@@ -18,6 +21,7 @@ use jaus_as4::{
     QueryStatus, QueryVelocityState, ReleaseControl, RequestControl, Resume, SetElement,
     SetGlobalWaypoint, SetLocalWaypoint, SetWrenchEffort, Standby,
 };
+use jaus_client::as4_link::parse_id;
 
 /// Options of `jaus as4-drive`.
 #[derive(Debug, clap::Args)]
@@ -66,10 +70,13 @@ pub struct As4DriveArgs {
     pub effort_for: f64,
 }
 
-/// The operator's socket and transport.
+/// The operator's socket and transport: an [`As4Client`] run by the SDK's one I/O loop
+/// ([`shell::run_until`]), which acknowledges, resends unacknowledged commands on the
+/// transport's timer and reassembles.
 struct Link {
     socket: UdpSocket,
-    stack: As4Stack<SocketAddr>,
+    client: As4Client<SocketAddr>,
+    pending: VecDeque<As4Message>,
     peer: SocketAddr,
     me: As4Id,
     target: As4Id,
@@ -82,22 +89,31 @@ impl Link {
             .body()
             .to_bytes()
             .map_err(|e| format!("{}: {e}", m.name()))?;
-        self.stack.send_at(
+        self.client.send_at(
             Instant::now(),
             self.peer,
             &[As4Message::new(m.code().0, self.target, self.me, body)],
         );
-        self.flush()
+        self.pump(Instant::now())
     }
 
-    /// Sends what the transport queued: messages, acknowledgements, resent commands.
-    fn flush(&mut self) -> Result<(), String> {
-        while let Some(d) = self.stack.poll_transmit() {
-            self.socket
-                .send_to(&d.bytes, d.to)
-                .map_err(|e| format!("{}: {e}", self.peer))?;
-        }
-        Ok(())
+    /// Runs the socket until a message arrived or `until` passed (at least one turn:
+    /// what was queued is sent).
+    fn pump(&mut self, until: Instant) -> Result<(), String> {
+        let mut transport = UdpTransport::new(&self.socket, &IoOptions::default());
+        let pending = &mut self.pending;
+        shell::run_until(
+            &mut self.client,
+            &mut transport,
+            until,
+            |c| {
+                pending.extend(c.take().into_iter().map(|(_, m)| m));
+                !pending.is_empty()
+            },
+            |_, _, _| {},
+        )
+        .map(drop)
+        .map_err(|e| format!("{}: {e}", self.peer))
     }
 
     /// The next message from the target within `wait` for which `want` says yes.
@@ -107,28 +123,8 @@ impl Link {
         mut want: impl FnMut(&Message) -> Option<T>,
     ) -> Option<T> {
         let until = Instant::now() + wait;
-        let mut buf = [0u8; 65536];
-        while Instant::now() < until {
-            // Commands not yet acknowledged are resent on the transport's timer.
-            let now = Instant::now();
-            if self.stack.poll_timeout().is_some_and(|t| t <= now) {
-                self.stack.handle_timeout(now);
-            }
-            let _ = self.flush();
-            let wake = self.stack.poll_timeout().map_or(until, |t| t.min(until));
-            let left = wake.saturating_duration_since(Instant::now());
-            let _ = self
-                .socket
-                .set_read_timeout(Some(left.max(Duration::from_millis(1))));
-            let Ok((n, from)) = self.socket.recv_from(&mut buf) else {
-                continue;
-            };
-            let received = self.stack.receive(Instant::now(), from, &buf[..n]);
-            let _ = self.flush();
-            let Ok(ms) = received else {
-                continue;
-            };
-            for m in ms {
+        loop {
+            while let Some(m) = self.pending.pop_front() {
                 if self.target != As4Id::new(0xFFFF, 0xFF, 0xFF) && m.source != self.target {
                     continue;
                 }
@@ -142,8 +138,10 @@ impl Link {
                     return Some(t);
                 }
             }
+            if Instant::now() >= until || self.pump(until).is_err() {
+                return None;
+            }
         }
-        None
     }
 
     fn ask<T>(
@@ -205,19 +203,20 @@ pub fn as4_drive(args: &As4DriveArgs, out: &mut impl Write) -> Result<(), String
     if points.len() > 200 {
         return Err(format!("{} waypoints: at most 200", points.len()));
     }
-    let me = jaus_conform::as4::parse_id(&args.me)?;
+    let me = parse_id(&args.me)?;
     let target = match &args.target {
-        Some(t) => jaus_conform::as4::parse_id(t)?,
+        Some(t) => parse_id(t)?,
         None => As4Id::new(0xFFFF, 0xFF, 0xFF),
     };
     let socket = UdpSocket::bind(args.bind).map_err(|e| format!("{}: {e}", args.bind))?;
     let mut link = Link {
         socket,
         // Commands acknowledged and resent until they arrive (docs/wire.md §1.7).
-        stack: As4Stack::new(As4Config {
+        client: As4Client::new(As4Config {
             reliable: Some(jaus::net::reliable::RetryPolicy::default()),
             ..As4Config::default()
         }),
+        pending: VecDeque::new(),
         peer: args.peer,
         me,
         target,
@@ -490,7 +489,7 @@ mod tests {
     #[test]
     fn the_default_operator_id_has_no_zero_or_broadcast_part() {
         let cli = Cli::try_parse_from(["as4-drive", "--peer", "127.0.0.1:3794"]).unwrap();
-        let me = jaus_conform::as4::parse_id(&cli.args.me).unwrap();
+        let me = cli.args.me.parse::<As4Id>().unwrap();
         assert_eq!(me, As4Id::new(42, 1, 1));
         assert!(me.subsystem != 0 && me.node != 0 && me.component != 0 && !me.is_broadcast());
     }

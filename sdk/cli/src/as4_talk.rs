@@ -19,7 +19,7 @@ use std::time::Duration;
 
 use jaus_dynamic::{DynMessage, Schema};
 
-use crate::as4_link::{As4Link, Incoming};
+use jaus_client::as4_link::{parse_id, schema, As4Link, Incoming};
 
 /// Options of `jaus as4-query` and `jaus as4-send`.
 #[derive(Debug, clap::Args)]
@@ -57,17 +57,6 @@ pub struct As4TalkArgs {
     pub messages: Vec<String>,
 }
 
-/// The definitions the tool reads messages with: jaus-as4's and `spec`, or `jsidl`.
-pub fn schema(spec: &[PathBuf], jsidl: &[PathBuf]) -> Result<Schema, String> {
-    as4_spec(spec, jsidl).map(|spec| Schema::from_spec(&spec))
-}
-
-/// The AS-4 definitions: jaus-as4's built-in ones with the YAML of the directories
-/// `spec` on them, or the JSIDL of the directories `jsidl` imported instead.
-pub fn as4_spec(spec: &[PathBuf], jsidl: &[PathBuf]) -> Result<jaus_spec::Spec, String> {
-    jaus_dynamic::load_overlaid(jaus_as4::DEFS, "jaus-as4/defs", spec, jsidl)
-}
-
 /// A message as the command line gives it.
 fn parse(schema: &Schema, line: &str) -> Result<DynMessage, String> {
     let v: serde_json::Value =
@@ -88,8 +77,8 @@ pub fn as4_talk(args: &As4TalkArgs, wait_each: bool, out: &mut impl Write) -> Re
         .iter()
         .map(|m| parse(&schema, m))
         .collect::<Result<Vec<_>, _>>()?;
-    let me = jaus_conform::as4::parse_id(&args.me)?;
-    let to = jaus_conform::as4::parse_id(&args.to)?;
+    let me = parse_id(&args.me)?;
+    let to = parse_id(&args.to)?;
     let wait = Duration::from_secs_f64(args.wait.clamp(0.0, 3600.0));
     let mut link = As4Link::open(schema, args.peer, args.bind, me)?;
     let mut print = |i: &Incoming| -> Result<(), String> {

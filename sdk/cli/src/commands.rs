@@ -6,7 +6,7 @@ use std::io::Write;
 use jaus::json::{decode_line, encode_line, REFERENCE_PACKETS};
 use jaus::messages::MESSAGES;
 
-use crate::catalogue::Catalogue;
+use jaus_client::catalogue::Catalogue;
 
 /// Runs `f` over every non-empty line, printing results to `out` and one error line
 /// per failure to `err`. Returns false if any line failed.

@@ -117,8 +117,9 @@ fn write_pcap(
     rec: jaus_conform::capture::Recording,
     out: &mut impl Write,
 ) -> Result<(), String> {
-    let fail = |e: jaus_cli::capture::CaptureError| format!("cannot write {}: {e}", path.display());
-    let mut w = jaus_cli::capture::CaptureWriter::create(path).map_err(fail)?;
+    let fail =
+        |e: jaus_client::capture::CaptureError| format!("cannot write {}: {e}", path.display());
+    let mut w = jaus_client::capture::CaptureWriter::create(path).map_err(fail)?;
     for d in &rec.datagrams {
         w.write(d.time, d.from, d.to, &d.bytes).map_err(fail)?;
     }
@@ -186,13 +187,18 @@ fn conform_as4(
         None
     };
     let me = match &net.me {
-        Some(m) => as4::parse_id(m).map_err(|e| format!("--me {e}"))?,
+        Some(m) => m
+            .parse::<jaus::net::as5669a::As4Id>()
+            .map_err(|e| format!("--me {e}"))?,
         None => As4Options::default().me,
     };
     let target = args
         .as4_target
         .as_deref()
-        .map(as4::parse_id)
+        .map(|t| {
+            t.parse::<jaus::net::as5669a::As4Id>()
+                .map_err(|e| e.to_string())
+        })
         .transpose()
         .map_err(|e| format!("--as4-target {e}"))?;
     let peers = net.udp_peers("conform --as4")?;
@@ -205,7 +211,7 @@ fn conform_as4(
             "--as4 tests one vehicle: {peer} (the other peers are not used)"
         );
     }
-    let socket = jaus_cli::net::bind_socket(net.bind, &[peer])?;
+    let socket = jaus_client::bind_socket(net.bind, &[peer])?;
     let mut session = UdpAs4Session::new(socket, peer)?;
     if args.pcap.is_some() {
         session.record();
@@ -233,7 +239,7 @@ fn conform_as4(
     }
     if !session.heard() {
         let wait = opts.wait;
-        return Err(jaus_cli::net::silence_hint(
+        return Err(jaus_client::silence_hint(
             &session.local_addr(),
             &[peer],
             wait,
@@ -336,7 +342,7 @@ pub fn conform(
     }
     net.udp_peers("conform")?;
     let client = net.client()?;
-    let socket = jaus_cli::net::bind_socket(client.bind, &client.peers)?;
+    let socket = jaus_client::bind_socket(client.bind, &client.peers)?;
     let voices = Voices::on(client.me.subsystem, client.me.node);
     let mut session = UdpSession::new(socket, client.peers.clone(), client.framing, &voices)?;
     if args.pcap.is_some() {
@@ -370,7 +376,7 @@ pub fn conform(
                         client.wait.as_secs_f64()
                     )
                 } else {
-                    jaus_cli::net::silence_hint(&local, &client.peers, client.wait)
+                    jaus_client::silence_hint(&local, &client.peers, client.wait)
                 });
             }
             t
@@ -400,7 +406,7 @@ pub fn conform(
         let local = session
             .local_addr()
             .unwrap_or_else(|| std::net::SocketAddr::from(([0, 0, 0, 0], 0)));
-        return Err(jaus_cli::net::silence_hint(
+        return Err(jaus_client::silence_hint(
             &local,
             &client.peers,
             client.wait,
@@ -415,7 +421,7 @@ pub fn conform(
 /// OpenJAUS's data socket 24629, whose raw packets have no framing).
 fn offline_record(
     number: u64,
-    d: &jaus_cli::capture::Datagram,
+    d: &jaus_client::capture::Datagram,
 ) -> Option<jaus_conform::offline::Record> {
     use jaus::net::as5669a::Generation;
     use jaus_conform::offline::{Carrier, Record};
@@ -455,7 +461,7 @@ fn from_pcap(
     if args.allow_motion || args.allow_shutdown || args.as4_target.is_some() {
         return Err("--allow-motion, --allow-shutdown and --as4-target test a vehicle on the network: not with --from-pcap".into());
     }
-    let (frames, stats) = jaus_cli::capture::read_frames(path)
+    let (frames, stats) = jaus_client::capture::read_frames(path)
         .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
     let opts = jaus_conform::offline::Options {
         window: Duration::from_secs_f64(args.answer_wait.clamp(0.001, 3600.0)),

@@ -45,7 +45,7 @@ static STOP: AtomicBool = AtomicBool::new(false);
 
 /// `REPORT@HZ[:PRESENCE]` of `watch --sc`.
 fn parse_sc(
-    catalogue: &jaus_cli::catalogue::Catalogue,
+    catalogue: &jaus_client::catalogue::Catalogue,
     s: &str,
     to: Option<jaus::Address>,
 ) -> Result<(jaus::Address, jaus::CommandCode, f64, u32), String> {
@@ -60,7 +60,7 @@ fn parse_sc(
     let code = catalogue
         .code_of(name)
         .ok_or_else(|| {
-            jaus_cli::catalogue::with_overlay_hint(
+            jaus_client::catalogue::with_overlay_hint(
                 format!("no message named `{name}` (see `jaus messages`)"),
                 catalogue.schema().is_some(),
             )
@@ -89,7 +89,7 @@ fn parse_sc(
 /// nothing came back at all.
 #[allow(clippy::too_many_arguments)]
 fn session(
-    catalogue: &std::sync::Arc<jaus_cli::catalogue::Catalogue>,
+    catalogue: &std::sync::Arc<jaus_client::catalogue::Catalogue>,
     net: &NetArgs,
     to: Option<jaus::Address>,
     messages: &[String],
@@ -98,7 +98,7 @@ fn session(
     scs: &[(jaus::Address, jaus::CommandCode, f64, u32)],
     all: bool,
     out: &mut impl Write,
-) -> Result<jaus_cli::net::Outcome, String> {
+) -> Result<jaus_client::Outcome, String> {
     let c = net.client()?;
     let mut parsed = Vec::new();
     for m in messages {
@@ -108,7 +108,7 @@ fn session(
             .ok_or_else(|| format!("{}: no destination: give --to ADDRESS", msg.name()))?;
         parsed.push((dest, msg));
     }
-    let script = jaus_cli::net::Script {
+    let script = jaus_client::Script {
         messages: parsed,
         stdin: messages.is_empty() && scs.is_empty() && hold.is_none_or(f64::is_finite),
         service_connections: scs.to_vec(),
@@ -126,7 +126,7 @@ fn session(
         return Err(conflict);
     }
     if !o.heard {
-        return Err(jaus_cli::net::silence_hint(
+        return Err(jaus_client::silence_hint(
             &o.local
                 .or(c.bind)
                 .unwrap_or_else(|| std::net::SocketAddr::from(([0, 0, 0, 0], 3794))),
@@ -186,7 +186,7 @@ fn main() -> ExitCode {
     // receivers) that log to stderr, and a lock held here would block them forever.
     let mut out = std::io::stdout();
     let mut err = std::io::stderr();
-    let catalogue = match jaus_cli::catalogue::Catalogue::load(&cli.spec) {
+    let catalogue = match jaus_client::catalogue::Catalogue::load(&cli.spec) {
         Ok(c) => std::sync::Arc::new(c),
         Err(e) => {
             let _ = writeln!(err, "error: {e}");
@@ -212,10 +212,10 @@ fn main() -> ExitCode {
             name: Some(name), ..
         } => report(
             &mut err,
-            jaus_cli::describe::spec_with(&cli.spec)
+            jaus_client::describe::spec_with(&cli.spec)
                 .and_then(|spec| {
-                    jaus_cli::describe::describe(&spec, &name).map_err(|e| {
-                        jaus_cli::catalogue::with_overlay_hint(e, !cli.spec.is_empty())
+                    jaus_client::describe::describe(&spec, &name).map_err(|e| {
+                        jaus_client::catalogue::with_overlay_hint(e, !cli.spec.is_empty())
                     })
                 })
                 .map(|text| {
@@ -224,7 +224,7 @@ fn main() -> ExitCode {
         ),
         Cmd::Decode {
             pcap: Some(file), ..
-        } => match jaus_cli::traffic::decode_capture(&file, &catalogue, &mut out, &mut err) {
+        } => match jaus_client::traffic::decode_capture(&file, &catalogue, &mut out, &mut err) {
             Ok((_, 0)) => true,
             Ok((_, _)) => false,
             Err(e) => {
@@ -240,9 +240,9 @@ fn main() -> ExitCode {
             bind,
         } => report(
             &mut err,
-            jaus_cli::traffic::replay(
+            jaus_client::traffic::replay(
                 &file,
-                &jaus_cli::traffic::Replay {
+                &jaus_client::traffic::Replay {
                     to,
                     only_to,
                     speed: speed.max(0.0),
@@ -310,7 +310,7 @@ fn main() -> ExitCode {
             let d = duration(seconds);
             report(
                 &mut err,
-                jaus_cli::net::node(&config, d, capture.as_deref(), &STOP, &mut out),
+                jaus_node::node(&config, d, capture.as_deref(), &STOP, &mut out),
             )
         }
         Cmd::Wireshark {
@@ -318,8 +318,8 @@ fn main() -> ExitCode {
             as4_spec,
         } => report(
             &mut err,
-            jaus_cli::describe::spec_with(&cli.spec).and_then(|ra33| {
-                let as4 = jaus_cli::as4_talk::as4_spec(&as4_spec, &[])
+            jaus_client::describe::spec_with(&cli.spec).and_then(|ra33| {
+                let as4 = jaus_client::as4_link::as4_spec(&as4_spec, &[])
                     .map_err(|e| format!("--as4-spec: {e}"))?;
                 let lua = jaus_gen::wireshark::dissector_for(&ra33, Some(&as4));
                 std::fs::write(&path, lua).map_err(|e| format!("{}: {e}", path.display()))?;
@@ -343,8 +343,8 @@ fn main() -> ExitCode {
             seconds,
         } => report(
             &mut err,
-            jaus_cli::net::attach_openjaus(
-                jaus_cli::net::OjNodeManager { control, data },
+            jaus_node::attach_openjaus(
+                jaus_node::OjNodeManager { control, data },
                 &host,
                 duration(seconds),
                 &STOP,
@@ -369,14 +369,14 @@ fn main() -> ExitCode {
             net.client().and_then(|c| {
                 let (tree, heard) = c.discover(&STOP)?;
                 if json {
-                    let _ = writeln!(out, "{}", jaus_cli::net::tree_json(&tree));
+                    let _ = writeln!(out, "{}", jaus_client::tree_json(&tree));
                 } else {
                     let _ = write!(out, "{}", tree.render());
                 }
                 if heard {
                     Ok(())
                 } else {
-                    Err(jaus_cli::net::silence_hint(
+                    Err(jaus_client::silence_hint(
                         &c.bind
                             .unwrap_or_else(|| std::net::SocketAddr::from(([0, 0, 0, 0], 3794))),
                         &c.peers,
@@ -466,7 +466,7 @@ fn main() -> ExitCode {
             out: dir,
             ..
         } => {
-            let run = jaus_cli::net::demo_operator(
+            let run = jaus_cli::demo_operator(
                 bind,
                 peer,
                 jaus::net::Framing::Judp,

@@ -64,7 +64,7 @@ pub fn ocu(args: &OcuArgs, stop: &AtomicBool, out: &mut impl Write) -> Result<()
     };
     match &args.config {
         Some(path) => {
-            let file = crate::net::NodeFile::load(path)?;
+            let file = jaus_node::NodeFile::load(path)?;
             if !file.host.is_empty() {
                 return Err(format!(
                     "{}: `host:` — the console's node hosts only the console (run the components with `jaus node`)",

@@ -14,7 +14,7 @@ use jaus::messages::{
 };
 use jaus::net::Framing;
 use jaus::{Address, Header, JausMessage, Packet};
-use jaus_cli::capture::CaptureWriter;
+use jaus_client::capture::CaptureWriter;
 
 const TARGET: Address = Address::new(1, 1, 33, 1);
 const CONTROLLER: Address = Address::new(1, 2, 40, 1);

@@ -6,7 +6,6 @@
 use jaus_spec::Spec;
 
 use crate::check::{Check, Kind, Level, Malformed, Rule, StateCommand};
-use crate::profile::Selection;
 
 /// Every rule the checks cite.
 pub mod rules {
@@ -155,23 +154,6 @@ fn check(
         rule,
         level,
         kind,
-    }
-}
-
-/// The checks for the component with id `component` (a type the definitions may or
-/// may not know), in the order the engine runs them: every one, or those `selection`
-/// selects ([`crate::profile`]), at the levels it gives them.
-pub fn plan_selected(spec: &Spec, component: u8, selection: Option<&Selection>) -> Vec<Check> {
-    let all = plan(spec, component);
-    match selection {
-        None => all,
-        Some(sel) => all
-            .into_iter()
-            .filter_map(|mut c| {
-                c.level = sel.level_of(&c.id, c.level)?;
-                Some(c)
-            })
-            .collect(),
     }
 }
 

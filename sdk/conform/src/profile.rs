@@ -45,7 +45,7 @@ use jaus_spec::Spec;
 use serde::Deserialize;
 
 use crate::catalogue::Entry;
-use crate::check::Level;
+use crate::check::{Check, Level};
 use crate::session::{Session, Voices};
 use crate::{Options, RunReport};
 
@@ -360,6 +360,23 @@ impl Selection {
     }
 }
 
+/// The checks for the component with id `component` (a type the definitions may or
+/// may not know), in the order the engine runs them: every one, or those `selection`
+/// selects, at the levels it gives them ([`crate::plan::plan`] filtered).
+pub fn plan_selected(spec: &Spec, component: u8, selection: Option<&Selection>) -> Vec<Check> {
+    let all = crate::plan::plan(spec, component);
+    match selection {
+        None => all,
+        Some(sel) => all
+            .into_iter()
+            .filter_map(|mut c| {
+                c.level = sel.level_of(&c.id, c.level)?;
+                Some(c)
+            })
+            .collect(),
+    }
+}
+
 /// [`crate::run`] planning only the checks `selection` selects, at its levels; the
 /// report names the profile.
 pub fn run(
@@ -515,7 +532,7 @@ mod tests {
         let spec = jaus_spec::load_sdk().unwrap();
         let p = Profile::parse(VENDOR, "acme.yaml").unwrap();
         let sel = p.select(&crate::catalogue::catalogue(&spec)).unwrap();
-        let planned = crate::plan::plan_selected(&spec, 45, Some(&sel));
+        let planned = plan_selected(&spec, 45, Some(&sel));
         assert!(planned.iter().all(|c| sel.selects(&c.id)));
         assert!(planned
             .iter()

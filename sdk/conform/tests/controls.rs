@@ -13,7 +13,7 @@ use jaus::{Address, CommandCode, Header};
 use jaus_conform::memory::{MemorySession, TESTER};
 use jaus_conform::session::Voices;
 use jaus_conform::{report, ComponentReport, Options, Outcome, RunReport, Verdict};
-use jaus_sim::host::{Host, Stock};
+use jaus_node::host::{Host, Stock};
 
 /// Standby (core state command).
 const STANDBY: CommandCode = CommandCode(0x0003);
@@ -110,7 +110,7 @@ fn node(
         },
         t0,
     );
-    let entry = jaus_sim::host::Entry {
+    let entry = jaus_node::host::Entry {
         authority,
         ..Host::entry(stock)
     };

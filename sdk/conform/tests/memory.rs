@@ -12,7 +12,7 @@ use jaus::Address;
 use jaus_conform::memory::{MemorySession, TESTER};
 use jaus_conform::session::Voices;
 use jaus_conform::{report, Options, RunReport, Verdict};
-use jaus_sim::host::{Host, Stock};
+use jaus_node::host::{Host, Stock};
 
 /// Every stock component but the Communicator (it needs data links).
 fn stock() -> Vec<Stock> {

@@ -16,7 +16,7 @@ use jaus_conform::memory::{MemorySession, TESTER};
 use jaus_conform::session::Voices;
 use jaus_conform::udp::UdpSession;
 use jaus_conform::{report, ComponentReport, Options, Outcome, RunReport, Verdict};
-use jaus_sim::host::{Host, Stock};
+use jaus_node::host::{Host, Stock};
 
 /// Standby (core state command).
 const STANDBY: CommandCode = CommandCode(0x0003);

@@ -9,7 +9,7 @@ use jaus_conform::memory::{MemorySession, TESTER};
 use jaus_conform::profile::{self, Profile, Selection};
 use jaus_conform::session::Voices;
 use jaus_conform::{report, Level, Options, RunReport};
-use jaus_sim::host::{Host, Stock};
+use jaus_node::host::{Host, Stock};
 
 /// The stock Global Waypoint Driver's id.
 const GWD: u8 = 45;

@@ -22,7 +22,7 @@ use jaus::Address;
 use jaus_conform::memory::{MemorySession, TESTER};
 use jaus_conform::session::Voices;
 use jaus_conform::{report, Options, Verdict};
-use jaus_sim::host::{Host, Stock};
+use jaus_node::host::{Host, Stock};
 
 /// Markup a hostile component could send as its identification or in a field.
 const EVIL: &str =

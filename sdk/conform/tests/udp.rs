@@ -21,7 +21,7 @@ use std::sync::{Arc, OnceLock};
 use std::time::{Duration, Instant};
 
 use jaus::net::{Node, NodeConfig};
-use jaus_sim::host::{Host, Stock};
+use jaus_node::host::{Host, Stock};
 use serde_json::Value;
 
 /// The two runs one at a time: each is a tester and a node spinning on their sockets,

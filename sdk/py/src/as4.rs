@@ -2,14 +2,14 @@
 //! the AS-4 definitions: jaus-as4's (every set of `jaus_as4::DEFS`), a vendor's YAML on them
 //! (`spec=[dirs]`, `extends: as4`), or a JSIDL import (`jsidl=[dirs]`). Messages go in as
 //! a name and keyword fields and come back as dicts (`{"t", "from", "message",
-//! "fields"}`), as `jaus as4-query` prints them. Over `jaus_cli::as4_link`.
+//! "fields"}`), as `jaus as4-query` prints them. Over `jaus_client::as4_link`.
 
 use std::path::PathBuf;
 use std::sync::Mutex;
 use std::time::Duration;
 
 use jaus::net::as5669a::As4Id;
-use jaus_cli::as4_link::{As4Link, Incoming};
+use jaus_client::as4_link::{As4Link, Incoming};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
@@ -26,7 +26,7 @@ pub struct As4Client {
 }
 
 fn id(text: &str, what: &str) -> PyResult<As4Id> {
-    jaus_cli::as4_link::parse_id(text).map_err(|e| PyValueError::new_err(format!("{what} {e}")))
+    jaus_client::as4_link::parse_id(text).map_err(|e| PyValueError::new_err(format!("{what} {e}")))
 }
 
 fn py_json(kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<serde_json::Value> {
@@ -76,7 +76,7 @@ impl As4Client {
         let bind = bind
             .parse()
             .map_err(|e| PyValueError::new_err(format!("bind {bind}: {e}")))?;
-        let schema = jaus_cli::as4_talk::schema(&spec, &jsidl).map_err(ClientError::new_err)?;
+        let schema = jaus_client::as4_link::schema(&spec, &jsidl).map_err(ClientError::new_err)?;
         let link =
             As4Link::open(schema, peer, bind, id(me, "me")?).map_err(ClientError::new_err)?;
         Ok(Self {

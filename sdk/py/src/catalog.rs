@@ -2,7 +2,7 @@
 //! for the codec and the definitions behind it, for field names and docs. The SDK's
 //! own, compiled once ([`sdk`]). The codec's bytes in and out, lookups and docs;
 //! no Python objects are made here (a message from Python values is
-//! `message::build`). The modules above build on it; it builds on `errors` alone.
+//! `message_py::build`). The modules above build on it; it builds on `errors` alone.
 
 use crate::errors::{decode_error, encode_error, JausError, SpecError};
 use jaus::CommandCode;
@@ -50,7 +50,7 @@ impl Catalog {
 
     /// The description of message `name` (`jaus messages NAME`).
     pub(crate) fn doc(&self, name: &str) -> PyResult<String> {
-        jaus_cli::describe::describe(&self.spec, name).map_err(JausError::new_err)
+        jaus_client::describe::describe(&self.spec, name).map_err(JausError::new_err)
     }
 
     /// Decodes a body of the message with command code `code`.

@@ -8,8 +8,8 @@
 //! ([`json_to_py`]).
 //!
 //! The other way, Python values into the JSON form of a message's fields, is
-//! `message::py_to_json`: a field may be given a `jaus.Packet`, whose module is
-//! above this one. This module builds on no other of the crate but `errors`.
+//! `message_py::py_to_json`: a field may be given a `jaus.Packet`, whose module
+//! is above this one. This module builds on no other of the crate but `errors`.
 
 use jaus_dynamic::Value;
 use pyo3::exceptions::{PyAttributeError, PyKeyError, PyTypeError};

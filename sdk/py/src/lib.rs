@@ -16,11 +16,13 @@
 //! `tests/`.
 
 mod as4;
+mod body;
 mod catalog;
 mod client;
 mod convert;
 mod errors;
 mod message;
+mod message_py;
 mod packet;
 mod pcap;
 mod schema;
@@ -107,7 +109,7 @@ fn make_message(
     fields: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<Message> {
     let cat = catalog::sdk()?;
-    let m = message::build(py, &cat, name, fields)?;
+    let m = message_py::build(py, &cat, name, fields)?;
     Ok(Message::new(cat, m))
 }
 

@@ -6,6 +6,7 @@
 //! keeps the bytes; nothing else is made until it is read: the `jaus.Message` when
 //! `.message` is first read, its values when a field is (`message`).
 
+use crate::body::Body;
 use crate::catalog::Catalog;
 use crate::convert::{json_to_py, object_to_dict};
 use crate::errors::decode_error;
@@ -32,32 +33,6 @@ pub struct Packet {
     header: Header,
     body: Body,
     message: Option<Held>,
-}
-
-/// A packet's body (and a message's, decoded from one).
-#[derive(Debug)]
-pub(crate) enum Body {
-    /// Bytes of its own (shared by the packet and its message).
-    Owned(Arc<[u8]>),
-    /// The whole packet's bytes as given (`bytes` are immutable): the body is from byte
-    /// 16 on.
-    Shared(Py<PyBytes>),
-}
-
-impl Body {
-    pub(crate) fn bytes<'a>(&'a self, py: Python<'_>) -> &'a [u8] {
-        match self {
-            Body::Owned(b) => b,
-            Body::Shared(p) => p.as_bytes(py).get(jaus::wire::HEADER_LEN..).unwrap_or(&[]),
-        }
-    }
-
-    fn clone_ref(&self, py: Python<'_>) -> Body {
-        match self {
-            Body::Owned(b) => Body::Owned(b.clone()),
-            Body::Shared(p) => Body::Shared(p.clone_ref(py)),
-        }
-    }
 }
 
 /// The message a packet holds: checked, its `jaus.Message` made on first read.

@@ -1,13 +1,14 @@
 //! `jaus.read_pcap`: the JAUS messages of a pcap/pcapng capture, read by the CLI's
-//! capture reader and decoder (`jaus_cli::capture`, `jaus_cli::traffic::CaptureDecoder`:
+//! capture reader and decoder (`jaus_client::capture`, `jaus_client::traffic::CaptureDecoder`:
 //! those of `jaus decode --pcap`). The packets are RA 3.3 ones: an AS-4 message
 //! (AS5669A) is recognised and named, raised in strict mode and skipped otherwise.
 
+use crate::body::Body;
 use crate::catalog::Catalog;
 use crate::errors::decode_error_text;
-use crate::packet::{Body, Packet};
-use jaus_cli::capture;
-use jaus_cli::traffic::{as4_json, CaptureDecoder, Captured};
+use crate::packet::Packet;
+use jaus_client::capture;
+use jaus_client::traffic::{as4_json, CaptureDecoder, Captured};
 use pyo3::exceptions::PyOSError;
 use pyo3::prelude::*;
 use std::path::Path;

@@ -2,10 +2,12 @@
 //! vendor's overlays loaded at run time), with the codec, the docs and the capture
 //! reader over them. The module's own functions use the SDK's schema.
 
+use crate::body::Body;
 use crate::catalog::{sdk, Catalog};
 use crate::errors::{decode_error, encode_error, fields_error, DecodeError, JausError, SpecError};
-use crate::message::{address, build, Message};
-use crate::packet::{Body, Packet};
+use crate::message::{address, Message};
+use crate::message_py::build;
+use crate::packet::Packet;
 use jaus::{CommandCode, Header};
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;

@@ -4,15 +4,12 @@
 //! watchdog. The thread sleeps in a mio poll on the DDS readers and the mailbox, so a
 //! sample or a command is handled as soon as it arrives.
 
-use std::collections::VecDeque;
-use std::sync::{Arc, Mutex, MutexGuard};
+use std::sync::{Arc, Mutex};
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
-use jaus::stock::hardware::{LocalPose, VelocityState};
 use jaus::stock::nalgebra::UnitQuaternion;
-use jaus::Address;
-use mio::{Events, Poll, PollOpt, Ready, Registration, SetReadiness, Token};
+use mio::{Events, Poll, PollOpt, Ready, Registration, Token};
 use ros2_client::ros2::{policy, QosPolicies, QosPolicyBuilder};
 use ros2_client::{
     Context, ContextOptions, MessageTypeName, Name, Node, NodeName, NodeOptions, Publisher,
@@ -21,154 +18,16 @@ use ros2_client::{
 
 use crate::config::{Qos, Reliability, Ros2Config};
 use crate::convert::{fix_to_jaus, odometry_to_jaus};
-use crate::msg::{CompressedImage, Image, LaserScan, NavSatFix, Odometry, RosMessage, Time, Twist};
-use crate::sensors::{self, Frame};
-use crate::Ros2Error;
+use crate::error::Ros2Error;
+use crate::msg::{CompressedImage, Image, LaserScan, NavSatFix, Odometry, RosMessage, Twist};
+use crate::sensors;
+use crate::state::{lock, Frame, Shared, Tap};
+pub use crate::state::{BridgeStats, OdomSample, WatchdogEvent};
 
-/// Watchdog events kept for [`Ros2Link::events`]; older ones are dropped and counted.
-const MAX_EVENTS: usize = 256;
 /// The longest the thread sleeps without an event (it checks the watchdog then).
 const IDLE: Duration = Duration::from_millis(10);
 /// Samples taken from one reader in one round (the rest wait for the next round).
 const MAX_TAKE: usize = 64;
-
-/// Why the bridge stopped the robot, or that the ROS side came back.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum WatchdogEvent {
-    /// The JAUS Primitive Driver stopped (control lost, Standby, Emergency, Shutdown,
-    /// Failure, or a wrench effort not refreshed within the command timeout): a zero
-    /// twist was published.
-    JausStop {
-        /// When.
-        at: Instant,
-        /// The controller that released control or vanished, when that was the reason.
-        controller: Option<Address>,
-        /// `control lost`, `standby`, `emergency`, `shutdown`, `failure` or
-        /// `command timeout`.
-        reason: &'static str,
-    },
-    /// No `odom` within the watchdog time: a zero twist was published and commands are
-    /// held at zero.
-    RosSilent {
-        /// When.
-        at: Instant,
-    },
-    /// `odom` arrived again after a silence: commands pass again.
-    RosResumed {
-        /// When.
-        at: Instant,
-    },
-}
-
-/// Counters of the bridge.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
-pub struct BridgeStats {
-    /// `odom` samples used.
-    pub odom: u64,
-    /// `fix` samples used.
-    pub fix: u64,
-    /// Samples refused: not finite, no fix, or undecodable (read errors).
-    pub refused: u64,
-    /// `odom` samples in frames other than the configured ones (ignored).
-    pub foreign_frames: u64,
-    /// `cmd_vel` messages published.
-    pub published: u64,
-    /// Zero twists among them.
-    pub published_zero: u64,
-    /// Publications DDS refused.
-    pub publish_errors: u64,
-    /// Commands replaced in the mailbox by a newer one before being published.
-    pub superseded: u64,
-    /// Non-zero commands held at zero while the ROS side was silent.
-    pub held: u64,
-    /// Watchdog events dropped from the full event queue.
-    pub events_dropped: u64,
-    /// `scan` sweeps taken.
-    pub scans: u64,
-    /// `scan` sweeps dropped (too many beams, angles or limits not finite, undecodable).
-    pub scans_refused: u64,
-    /// Camera images taken.
-    pub images: u64,
-    /// Camera images dropped (encoding or format not handled, too large, step or data
-    /// too short, a PNG that does not decode, undecodable).
-    pub images_refused: u64,
-}
-
-/// The latest odometry as JAUS sees it.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct OdomSample {
-    /// Local pose (JAUS local frame).
-    pub pose: LocalPose,
-    /// Velocity state (JAUS vehicle frame).
-    pub velocity: VelocityState,
-    /// When the bridge took it from DDS.
-    pub received: Instant,
-    /// Its `header.stamp`.
-    pub stamp: Time,
-}
-
-#[derive(Debug, Default)]
-pub(crate) struct Shared {
-    pub(crate) odom: Option<OdomSample>,
-    pub(crate) fix: Option<(jaus::stock::hardware::GlobalPose, Instant)>,
-    /// The latest sweep (platform frame) and when it was taken.
-    pub(crate) scan: Option<(Vec<jaus::stock::environment::scan::Beam>, Instant)>,
-    /// The latest camera message and when it was taken.
-    pub(crate) image: Option<(Arc<Frame>, Instant)>,
-    pending: Option<Twist>,
-    last_published: Option<Twist>,
-    pub(crate) silent: bool,
-    stop: bool,
-    pub(crate) stats: BridgeStats,
-    events: VecDeque<WatchdogEvent>,
-}
-
-impl Shared {
-    pub(crate) fn event(&mut self, e: WatchdogEvent) {
-        if self.events.len() >= MAX_EVENTS {
-            self.events.pop_front();
-            self.stats.events_dropped += 1;
-        }
-        self.events.push_back(e);
-    }
-}
-
-/// Locks `m`; a panic elsewhere while it was held leaves plain data, still usable.
-pub(crate) fn lock(m: &Mutex<Shared>) -> MutexGuard<'_, Shared> {
-    m.lock().unwrap_or_else(|e| e.into_inner())
-}
-
-/// What the JAUS components hold: the shared state and the mailbox's doorbell.
-#[derive(Debug, Clone)]
-pub(crate) struct Tap {
-    pub(crate) shared: Arc<Mutex<Shared>>,
-    bell: SetReadiness,
-}
-
-impl Tap {
-    /// Puts `t` in the mailbox and wakes the ROS thread.
-    pub(crate) fn command(&self, t: Twist) {
-        {
-            let mut s = lock(&self.shared);
-            if s.pending.replace(t).is_some() {
-                s.stats.superseded += 1;
-            }
-        }
-        // Fails only when the thread's poll is gone (it stopped): nothing to wake.
-        let _ = self.bell.set_readiness(Ready::readable());
-    }
-}
-
-#[cfg(test)]
-impl Tap {
-    /// A tap with no ROS thread behind it.
-    pub(crate) fn detached() -> Tap {
-        Tap {
-            shared: Arc::new(Mutex::new(Shared::default())),
-            bell: Registration::new2().1,
-        }
-    }
-}
 
 /// The running ROS 2 side of a bridge. Dropping it publishes a zero twist and stops
 /// the ROS 2 node.
@@ -690,15 +549,5 @@ mod tests {
         );
         assert_eq!(dds_topic_name("/robot1/", "/fix").unwrap(), "rt/fix");
         assert!(dds_topic_name("/", "bad-name").is_err());
-    }
-
-    #[test]
-    fn the_event_queue_is_bounded() {
-        let mut s = Shared::default();
-        for _ in 0..MAX_EVENTS + 5 {
-            s.event(WatchdogEvent::RosSilent { at: Instant::now() });
-        }
-        assert_eq!(s.events.len(), MAX_EVENTS);
-        assert_eq!(s.stats.events_dropped, 5);
     }
 }

@@ -15,7 +15,7 @@ use std::time::Duration;
 
 use serde::{Deserialize, Serialize};
 
-use crate::Ros2Error;
+use crate::error::Ros2Error;
 
 /// Everything the bridge needs to know about the ROS 2 side.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

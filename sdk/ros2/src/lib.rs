@@ -38,9 +38,11 @@
 pub mod bridge;
 pub mod config;
 pub mod convert;
+mod error;
 pub mod msg;
 pub mod robot;
 pub mod sensors;
+mod state;
 pub mod vehicle;
 
 pub use bridge::{dds_topic_name, BridgeStats, OdomSample, Ros2Link, WatchdogEvent};
@@ -48,20 +50,7 @@ pub use config::{
     CameraConfig, EffortMapping, Frames, OdomAxes, Qos, Reliability, Ros2Config, Sensors, Topics,
     VehicleConfig,
 };
+pub use error::Ros2Error;
 pub use robot::{ids, robot_components, robot_node, robot_parts};
 pub use sensors::SensorError;
 pub use vehicle::{vehicle_node, VehicleEvent, VehicleLink, VehicleStats};
-
-/// What can go wrong starting a bridge.
-#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-pub enum Ros2Error {
-    /// A setting is out of range or a name is not a ROS 2 name.
-    #[error("ros2 configuration: {0}")]
-    Config(String),
-    /// The DDS participant, a topic, a reader or the writer could not be created.
-    #[error("ros2 (DDS): {0}")]
-    Dds(String),
-    /// The JAUS node refused a component.
-    #[error("ros2 (JAUS node): {0}")]
-    Jaus(String),
-}

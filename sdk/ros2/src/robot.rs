@@ -24,11 +24,12 @@ use jaus::stock::hardware::{
 use jaus::stock::sensors::{StockGlobalPoseSensor, StockLocalPoseSensor, StockVelocityStateSensor};
 use jaus::Address;
 
-use crate::bridge::{lock, Ros2Link, Tap, WatchdogEvent};
+use crate::bridge::Ros2Link;
 use crate::config::{EffortMapping, Ros2Config};
 use crate::convert::twist_of;
+use crate::error::Ros2Error;
 use crate::sensors::{RosCamera, ScanSource};
-use crate::Ros2Error;
+use crate::state::{lock, OdomSample, Tap, WatchdogEvent};
 
 /// A fix older than this is no fix (a GPS publishes at 1..20 Hz).
 const FIX_MAX_AGE: Duration = Duration::from_secs(2);
@@ -73,7 +74,7 @@ pub struct OdomSource {
 }
 
 impl OdomSource {
-    fn fresh(&self) -> Option<crate::bridge::OdomSample> {
+    fn fresh(&self) -> Option<OdomSample> {
         let s = lock(&self.tap.shared);
         if s.silent {
             None

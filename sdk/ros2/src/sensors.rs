@@ -22,9 +22,9 @@ use jaus::stock::environment::image::RgbImage;
 use jaus::stock::environment::scan::{Beam, RangeScanner};
 use jaus::stock::nalgebra::Vector3;
 
-use crate::bridge::{lock, Shared, Tap};
 use crate::config::{Ros2Config, Sensors, MAX_BEAMS, MAX_IMAGE_SIDE};
 use crate::msg::{CompressedImage, Image, LaserScan};
+use crate::state::{lock, Frame, Shared, Tap};
 
 /// Why a scan or an image was dropped.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
@@ -325,13 +325,6 @@ pub fn resample(img: RgbImage, width: u16, height: u16) -> RgbImage {
         height,
         pixels,
     }
-}
-
-/// The latest camera message, converted when the Visual Sensor asks for a frame.
-#[derive(Debug)]
-pub(crate) enum Frame {
-    Raw(Image),
-    Png(Vec<u8>),
 }
 
 /// Logs a dropped scan or image: the first and every 100th of each kind.

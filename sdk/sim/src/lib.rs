@@ -19,23 +19,25 @@
 //!   simulated lossy network (drops, duplicates, delays) with a virtual clock;
 //! * [`radio`]: a simulated radio link (loss, latency, bandwidth, up/down), the data
 //!   link of two `jaus::stock::communicator` Communicators;
-//! * [`host`]: any stock component at any instance of a node, over one simulated
-//!   vehicle (what `jaus node` hosts from its `host:` list);
+//! * [`world`]: the simulated world the simulators share (the frame's origin, the
+//!   obstacles, the arm's control period);
 //! * [`demo`]: the scenario of `jaus demo`, a complete simulated subsystem (drivers,
 //!   sensors, spooler, world model) and a scripted operator, measured leg by leg.
 //!
-//! The SDK itself does not depend on this crate; tests, benchmarks and the `jaus` CLI do.
+//! The SDK itself does not depend on this crate; tests, benchmarks, `jaus-node` (which hosts
+//! the stock components over these simulators) and the `jaus` CLI do.
 
 pub mod arm;
 pub mod arm_demo;
 pub mod camera;
 pub mod demo;
-pub mod host;
 pub mod network;
 pub mod radio;
 pub mod scanner;
 pub mod vehicle;
+pub mod world;
 
 pub use arm::{ArmParams, SimArm};
 pub use network::{LinkModel, SimNet};
 pub use vehicle::{SimVehicle, VehicleParams};
+pub use world::World;

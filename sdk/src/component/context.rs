@@ -86,7 +86,10 @@ impl<I: Interface> Context<'_, I> {
 
     /// The JAUS time and date stamps of now, when the clock is set.
     pub fn time_stamps(&self) -> Option<(TimeStamp, DateStamp)> {
-        self.rt.clock.stamps(self.rt.now)
+        self.rt
+            .clock
+            .stamps(self.rt.now)
+            .map(|(t, d)| (t.into(), d.into()))
     }
 
     /// Sends `msg` to `to`. Only messages the interface may emit compile here.

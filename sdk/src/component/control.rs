@@ -48,11 +48,9 @@ impl<B: Behaviour> Component<B> {
             Message::ClearEmergency(_) => self.clear_emergency(source),
             Message::SetTime(m) => controlled(self).and_then(|()| {
                 let now = self.rt.now;
-                if self
-                    .rt
-                    .clock
-                    .apply(now, m.time_stamp.as_ref(), m.date_stamp.as_ref())
-                {
+                let time = m.time_stamp.as_ref().map(Into::into);
+                let date = m.date_stamp.as_ref().map(Into::into);
+                if self.rt.clock.apply(now, time, date).is_ok() {
                     Ok(())
                 } else {
                     Err(Refusal::Vendor(Refused::Invalid(

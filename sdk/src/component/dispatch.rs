@@ -167,7 +167,8 @@ impl<B: Behaviour> Component<B> {
                 .into()
             }
             Message::QueryTime(q) => {
-                let stamps = c.clock.stamps(c.now);
+                let stamps: Option<(TimeStamp, DateStamp)> =
+                    c.clock.stamps(c.now).map(|(t, d)| (t.into(), d.into()));
                 ReportTime {
                     time_stamp: stamps.filter(|_| q.presence_vector & 1 != 0).map(|s| s.0),
                     date_stamp: stamps.filter(|_| q.presence_vector & 2 != 0).map(|s| s.1),

@@ -100,7 +100,7 @@ impl<B: Behaviour> Component<B> {
     pub fn new(address: Address, behaviour: B, config: Config, now: Instant) -> Self {
         let mut rt = Runtime::new(address, config, now);
         if let Some(utc) = rt.config.utc {
-            rt.clock.set(now, utc);
+            rt.clock.set_utc(now, utc);
         }
         Self { rt, behaviour }
     }
@@ -171,8 +171,8 @@ impl<B: Behaviour> Component<B> {
     /// nobody set the component's clock yet (`Config::utc`, Set Time), so that its time
     /// stamps carry the system's time; the sans-IO runtime reads no clock of its own.
     pub fn wall_clock(&mut self, now: Instant, utc: Duration) {
-        if self.rt.clock.utc(now).is_none() {
-            self.rt.clock.set(now, utc);
+        if !self.rt.clock.is_set() {
+            self.rt.clock.set_utc(now, utc);
         }
     }
 

@@ -53,7 +53,6 @@
 //! the runtime state in `runtime`; control and emergencies in `control`; service
 //! connections and events in `connections` and `events`; refusals in `refusal`.
 
-mod clock;
 mod config;
 mod connections;
 mod context;

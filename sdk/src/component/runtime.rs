@@ -8,9 +8,10 @@ use std::time::Instant;
 use super::connections::{ProviderTable, RequesterTable};
 use super::events::EventTable;
 use super::{
-    clock, Config, ControlPolicy, CoreState, CoreTransition, Interface, Modes, Stats,
-    TransitionError, Transmit,
+    Config, ControlPolicy, CoreState, CoreTransition, Interface, Modes, Stats, TransitionError,
+    Transmit,
 };
+use crate::clock::Clock;
 use crate::messages::*;
 use crate::wire::AckNak;
 use crate::{Address, CommandCode, Header, MessageSet};
@@ -41,7 +42,7 @@ pub(super) struct Runtime<I: Interface> {
     /// Components that confirmed this one's control, each with the state it last
     /// reported (Report Component Status), if any since control was granted.
     pub(super) held_control: Vec<(Address, Option<CoreState>)>,
-    pub(super) clock: clock::Clock,
+    pub(super) clock: Clock,
     pub(super) source: Option<Address>,
     pub(super) outbox: VecDeque<Transmit<I::Messages>>,
     pub(super) stats: Stats,
@@ -74,7 +75,7 @@ impl<I: Interface> Runtime<I> {
             displaced: None,
             emergencies: Vec::new(),
             held_control: Vec::new(),
-            clock: clock::Clock::default(),
+            clock: Clock::default(),
             source: None,
             outbox: VecDeque::new(),
             stats: Stats::default(),

@@ -99,7 +99,7 @@ impl Attached {
     }
 
     /// [`add`](Self::add) for a component already boxed (e.g. one of
-    /// `jaus_sim::host`).
+    /// `jaus_node::host`).
     pub fn add_boxed(&mut self, endpoint: Box<dyn Endpoint>) -> Result<Address, NetError> {
         let a = endpoint.address();
         let taken = self.components.contains(a);

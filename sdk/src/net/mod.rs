@@ -38,10 +38,10 @@ use std::time::Instant;
 pub use attached::{Attached, AttachedConfig, AttachedStats};
 pub use framing::{Framing, Reassembler, ReassemblyLimits};
 pub use manager::{ManagerConfig, SystemTree};
-pub use node::{NetStats, Node, NodeConfig, NodeEvent};
+pub use node::{Node, NodeConfig, NodeEvent};
 pub use peer_url::{PeerUrl, DEFAULT_BAUD};
 pub use policy::{Permission, Policy, Rule};
-pub use transport::{Datagram, PeerAddr, Transport, Via};
+pub use transport::{Datagram, NetStats, PeerAddr, Transport, Via};
 
 use crate::Address;
 

@@ -2,7 +2,8 @@
 //! generic over its peers' address type ([`PeerAddr`]); a [`Transport`] moves the bytes:
 //! UDP sockets ([`udp::UdpTransport`](super::udp::UdpTransport)), a serial bus, a radio
 //! modem's packet interface, an in-memory pipe in a test. The routing never sees which.
-//! What crosses the seam: [`Datagram`]s, each with the socket ([`Via`]) it uses.
+//! What crosses the seam: [`Datagram`]s, each with the socket ([`Via`]) it uses; what a
+//! node counts of them and of their routing: [`NetStats`].
 
 use std::net::SocketAddr;
 use std::time::Duration;
@@ -88,4 +89,49 @@ pub enum Via {
     ComponentData,
     /// The component control socket (8-byte control datagrams, port 24627).
     ComponentControl,
+}
+
+/// Counters of the interface and the routing.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct NetStats {
+    /// Datagrams received.
+    pub received: u64,
+    /// Datagrams sent (taken from the queue).
+    pub sent: u64,
+    /// Messages delivered to local components (from anywhere).
+    pub delivered_local: u64,
+    /// Dropped: bad transport framing.
+    pub bad_framing: u64,
+    /// Dropped: bad JAUS header or data size not matching the datagram.
+    pub bad_packet: u64,
+    /// Dropped: looped back from this very node.
+    pub from_self: u64,
+    /// Dropped: addressed to another node (nothing is forwarded between nodes).
+    pub not_for_us: u64,
+    /// Dropped: no local component matches the destination.
+    pub no_such_component: u64,
+    /// Dropped: the outgoing queue was full.
+    pub outbox_full: u64,
+    /// Dropped: a message that could not be encoded or split.
+    pub encode_errors: u64,
+    /// Messages sent to every peer because their node is not located yet.
+    pub flooded: u64,
+    /// External components refused (table full, or an id a built-in component has).
+    pub external_refused: u64,
+    /// External components removed after their timeout.
+    pub external_timed_out: u64,
+    /// Packets handed to this node's communicator, leaving the subsystem
+    /// ([`NodeConfig::communicator`](super::NodeConfig::communicator)).
+    pub to_communicator: u64,
+    /// Packets this node's communicator received from its data links.
+    pub from_communicator: u64,
+    /// Dropped: a datagram from another subsystem that did not come through the
+    /// subsystem's communicator.
+    pub not_via_communicator: u64,
+    /// Messages refused by the node's policy ([`NodeConfig::policy`](super::NodeConfig::policy); per rule in
+    /// [`Node::policy`](super::Node::policy)).
+    pub policy_refused: u64,
+    /// Dropped: a message for a companion component found its owner's event queue
+    /// full ([`Node::poll_event`](super::Node::poll_event) not drained).
+    pub companion_queue_full: u64,
 }

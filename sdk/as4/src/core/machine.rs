@@ -25,8 +25,11 @@ use std::time::Instant;
 use jaus::net::as5669a::As4Id;
 
 use super::access::Access;
+use super::discovery::Discovery;
 use super::events::{self, Events, Rejection, Setup};
+use super::lists::Lists;
 use super::management::{Management, MAX_EMERGENCIES};
+use super::time::Time;
 use crate::messages::{
     ConfirmControl, ControlConfirmation, ControlRejection, EmergencyCode, EventRejection,
     EventType, EventsFilter, Message, RejectControl,
@@ -65,6 +68,16 @@ impl Clone for Box<dyn CoreMachine> {
     }
 }
 
+/// The data of the Core's other services (Time, Discovery, List Manager), lent to a
+/// [`Host`] for one call; their machines run in [`super::others`].
+#[derive(Debug)]
+pub(crate) struct Others<'a> {
+    pub(crate) time: &'a mut Time,
+    pub(crate) discovery: &'a mut Discovery,
+    /// The list manager, when the component offers it.
+    pub(crate) lists: Option<&'a mut Lists>,
+}
+
 /// The guards and actions of the Core's machine, over the services' data, for one
 /// trigger. Its methods are what the generated guards and actions call
 /// ([`core_machine!`](crate::core_machine)); the sender is an [`As4Id`].
@@ -78,7 +91,7 @@ pub struct Host<'a> {
     bound: Option<String>,
     /// The data of the Core's other services (Time, Discovery, List Manager), when the
     /// Core runs their machines ([`super::others`]).
-    others: Option<super::others::Others<'a>>,
+    others: Option<Others<'a>>,
     /// Why an action did not do what was asked (a time out of range), taken by the Core
     /// as a refusal.
     refused: Option<String>,
@@ -119,18 +132,18 @@ impl<'a> Host<'a> {
     }
 
     /// With the data of the Core's other services.
-    pub(crate) fn with_others(mut self, others: super::others::Others<'a>) -> Self {
+    pub(crate) fn with_others(mut self, others: Others<'a>) -> Self {
         self.others = Some(others);
         self
     }
 
     /// The data of the Core's other services, when given.
-    pub(crate) fn others(&mut self) -> Option<&mut super::others::Others<'a>> {
+    pub(crate) fn others(&mut self) -> Option<&mut Others<'a>> {
         self.others.as_mut()
     }
 
     /// The data of the Core's other services, when given (to read).
-    pub(crate) fn others_ref(&self) -> Option<&super::others::Others<'a>> {
+    pub(crate) fn others_ref(&self) -> Option<&Others<'a>> {
         self.others.as_ref()
     }
 

@@ -392,7 +392,7 @@ impl Core {
             &mut out,
             None,
         )
-        .with_others(others::Others {
+        .with_others(machine::Others {
             time: &mut self.time,
             discovery: &mut self.discovery,
             lists: list_manager.then_some(&mut self.lists),

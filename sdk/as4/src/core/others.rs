@@ -1,9 +1,10 @@
 //! The Core's other services on their generated machines: Time, Liveness, Discovery and
 //! List Manager (`defs/core_services.yaml`). Each inherits a service of the Core's main
 //! machine (Access Control, Events or Management) and adds transitions for its own
-//! messages; [`Others`] runs them beside that machine, each following its state
-//! ([`jaus::hsm::Machine::follow`]), on the same [`Host`], which implements their
-//! generated guards and actions over the services' data here.
+//! messages; [`OtherMachines`] runs them beside that machine, each following its state
+//! ([`jaus::hsm::Machine::follow`]), on the same [`Host`] (their data lent to it as
+//! [`Others`](super::machine::Others)), which implements their generated guards and
+//! actions over the services' data here.
 //!
 //! What the definitions decide here, and the code no longer does: who may set the time
 //! and change the list (a transition under `Controlled` guarded by
@@ -12,11 +13,9 @@
 
 use jaus::net::as5669a::As4Id;
 
-use super::discovery::Discovery;
 use super::lists::{answer, Lists};
 use super::liveness;
 use super::machine::Host;
-use super::time::Time;
 use crate::messages::services::transport::event::Receive;
 use crate::messages::services::{discovery, list_manager, liveness as live, time};
 use crate::messages::{
@@ -25,15 +24,6 @@ use crate::messages::{
     ReportElementCount, ReportElementList, SetElement, SetTime,
 };
 use crate::outgoing::{receive_of, sender_of};
-
-/// The data of the Core's other services, lent to a [`Host`] for one call.
-#[derive(Debug)]
-pub(crate) struct Others<'a> {
-    pub(crate) time: &'a mut Time,
-    pub(crate) discovery: &'a mut Discovery,
-    /// The list manager, when the component offers it.
-    pub(crate) lists: Option<&'a mut Lists>,
-}
 
 /// The running machines of the Core's other services.
 #[derive(Debug, Clone, Default)]

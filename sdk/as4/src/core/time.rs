@@ -6,54 +6,44 @@
 //! stamp sets the day of the month and the time of day, the date stamp the date;
 //! fields not sent keep their value. Until the clock is known, Report Time carries
 //! neither field (both are optional).
+//!
+//! The clock is the one RA 3.3 components keep ([`jaus::clock::Clock`]); this module
+//! holds the AS-4 wire mapping only: AS-4's time and date stamps as the clock's fields,
+//! and Query Time, Report Time and Set Time.
 
 use std::time::{Duration, Instant};
 
-use jaus::calendar::Civil;
+use jaus::clock::{Clock, Date, TimeOfDay};
 
 use crate::messages::{DateStamp, QueryTime, ReportTime, SetTime, TimeStamp};
 
 /// The UTC clock of a component.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Time {
-    anchor: Option<(Instant, Duration)>,
+    clock: Clock,
 }
 
 impl Time {
     /// UTC (since 1970-01-01) is `utc` at `now`.
     pub fn set_utc(&mut self, now: Instant, utc: Duration) {
-        self.anchor = Some((now, utc));
+        self.clock.set_utc(now, utc);
     }
 
     /// Whether the clock was ever set.
     pub fn is_set(&self) -> bool {
-        self.anchor.is_some()
+        self.clock.is_set()
     }
 
     /// UTC at `now`.
     pub fn utc(&self, now: Instant) -> Option<Duration> {
-        self.anchor
-            .map(|(at, utc)| utc + now.saturating_duration_since(at))
+        self.clock.utc(now)
     }
 
     /// The time and date stamps at `now`.
     pub fn stamps(&self, now: Instant) -> Option<(TimeStamp, DateStamp)> {
-        let c = Civil::from_utc(self.utc(now)?);
-        let time = TimeStamp {
-            millisecond: c.millisecond as u16,
-            second: c.second as u8,
-            minute: c.minute as u8,
-            hour: c.hour as u8,
-            day: c.day as u8,
-            reserved: 0,
-        };
-        let date = DateStamp {
-            day: c.day as u8,
-            month: c.month as u8,
-            year: (c.year - 2000).clamp(0, 127) as u8,
-            reserved: 0,
-        };
-        Some((time, date))
+        self.clock
+            .stamps(now)
+            .map(|(time, date)| (time.into(), date.into()))
     }
 
     /// Report Time with the fields Query Time asks for (bit 0 time, bit 1 date).
@@ -71,21 +61,54 @@ impl Time {
 
     /// Set Time: `Err` names an impossible time or date (nothing changes then).
     pub fn set(&mut self, now: Instant, msg: &SetTime) -> Result<(), String> {
-        let mut c = Civil::from_utc(self.utc(now).unwrap_or_default());
-        if let Some(ds) = &msg.date_stamp {
-            c.year = 2000 + i64::from(ds.year);
-            c.month = u32::from(ds.month);
-            c.day = u32::from(ds.day);
+        let time = msg.time_stamp.as_ref().map(TimeOfDay::from);
+        let date = msg.date_stamp.as_ref().map(Date::from);
+        self.clock.apply(now, time, date)
+    }
+}
+
+impl From<&TimeStamp> for TimeOfDay {
+    fn from(t: &TimeStamp) -> Self {
+        TimeOfDay {
+            millisecond: t.millisecond,
+            second: t.second,
+            minute: t.minute,
+            hour: t.hour,
+            day: t.day,
         }
-        if let Some(ts) = &msg.time_stamp {
-            c.day = u32::from(ts.day);
-            c.hour = u32::from(ts.hour);
-            c.minute = u32::from(ts.minute);
-            c.second = u32::from(ts.second);
-            c.millisecond = u32::from(ts.millisecond);
+    }
+}
+
+impl From<TimeOfDay> for TimeStamp {
+    fn from(t: TimeOfDay) -> Self {
+        TimeStamp {
+            millisecond: t.millisecond,
+            second: t.second,
+            minute: t.minute,
+            hour: t.hour,
+            day: t.day,
+            reserved: 0,
         }
-        let utc = c.to_utc()?;
-        self.set_utc(now, utc);
-        Ok(())
+    }
+}
+
+impl From<&DateStamp> for Date {
+    fn from(d: &DateStamp) -> Self {
+        Date {
+            day: d.day,
+            month: d.month,
+            year: d.year,
+        }
+    }
+}
+
+impl From<Date> for DateStamp {
+    fn from(d: Date) -> Self {
+        DateStamp {
+            day: d.day,
+            month: d.month,
+            year: d.year,
+            reserved: 0,
+        }
     }
 }

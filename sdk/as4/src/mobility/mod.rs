@@ -65,14 +65,7 @@ impl ServiceIds {
     pub const GLOBAL_PATH_SEGMENT_DRIVER: ServiceId = generated_id!(global_path_segment_driver);
 }
 
-/// An RA 3.3 time stamp as AS-4's (the same bits).
+/// An RA 3.3 time stamp as AS-4's (the same fields, [`jaus::clock::TimeOfDay`]).
 fn time_stamp(t: &jaus::messages::TimeStamp) -> crate::messages::TimeStamp {
-    crate::messages::TimeStamp {
-        millisecond: t.millisecond,
-        second: t.second,
-        minute: t.minute,
-        hour: t.hour,
-        day: t.day,
-        ..Default::default()
-    }
+    jaus::clock::TimeOfDay::from(t).into()
 }

@@ -17,16 +17,9 @@ use super::Role;
 use crate::messages::{self as as4, ComponentState, EmergencyCode, Message};
 use crate::ra33::efforts;
 
-/// An AS-4 time stamp as RA 3.3's (the same bits).
+/// An AS-4 time stamp as RA 3.3's (the same fields, [`jaus::clock::TimeOfDay`]).
 fn time_stamp(t: &as4::TimeStamp) -> ra::TimeStamp {
-    ra::TimeStamp {
-        millisecond: t.millisecond,
-        second: t.second,
-        minute: t.minute,
-        hour: t.hour,
-        day: t.day,
-        ..Default::default()
-    }
+    jaus::clock::TimeOfDay::from(t).into()
 }
 
 /// The RA 3.3 report of an AS-4 Report Velocity State (the same fields and units).

@@ -110,20 +110,6 @@ impl Default for As4Options {
     }
 }
 
-/// An AS-4 id from `S.N.C` (subsystem 0-65535, node and component 0-255).
-pub fn parse_id(text: &str) -> Result<As4Id, String> {
-    let parts: Vec<&str> = text.trim().split('.').collect();
-    let bad = || format!("`{text}`: expected an AS-4 id subsystem.node.component, e.g. 42.1.1");
-    let [s, n, c] = parts.as_slice() else {
-        return Err(bad());
-    };
-    Ok(As4Id::new(
-        s.parse().map_err(|_| bad())?,
-        n.parse().map_err(|_| bad())?,
-        c.parse().map_err(|_| bad())?,
-    ))
-}
-
 /// The rules the AS-4 checks cite, in this tool's words.
 pub mod rules {
     use crate::check::Rule;

@@ -137,6 +137,33 @@ impl JudgeStack {
     }
 }
 
+/// The judge runs on the SDK's one I/O loop ([`jaus::net::shell`]) like any participant.
+impl Participant<SocketAddr> for JudgeStack {
+    fn handle_datagram(&mut self, now: Instant, peer: SocketAddr, datagram: &[u8]) {
+        self.receive(now, peer, datagram);
+    }
+
+    fn handle_timeout(&mut self, now: Instant) {
+        JudgeStack::handle_timeout(self, now);
+    }
+
+    fn poll_transmit(&mut self) -> Option<Datagram<SocketAddr>> {
+        JudgeStack::poll_transmit(self)
+    }
+
+    fn poll_timeout(&self) -> Option<Instant> {
+        JudgeStack::poll_timeout(self)
+    }
+
+    fn as_any(&self) -> &dyn std::any::Any {
+        self
+    }
+
+    fn as_any_mut(&mut self) -> &mut dyn std::any::Any {
+        self
+    }
+}
+
 /// A bare [`As4Endpoint`] on a carrier of its own: an [`As4Stack`] in front of it,
 /// so that it can be the vehicle of a [`MemoryAs4Session`] (or a participant of a
 /// simulated network) without an RA 3.3 node.

@@ -1,17 +1,16 @@
 //! The [`As4Session`] over UDP: the judge's AS5669A stack on a socket, talking to one
 //! vehicle's socket (the IOP rules: the vehicle answers from the address and port the
-//! request went to).
+//! request went to), run by the SDK's one I/O loop ([`jaus::net::shell::run_until`]).
 
 use std::net::{SocketAddr, UdpSocket};
 use std::time::{Duration, Instant};
 
 use jaus::net::as5669a::As4Message;
+use jaus::net::shell::{self, Direction};
+use jaus::net::udp::{IoOptions, UdpTransport};
 
 use super::session::{Arrival, As4Session, JudgeStack};
 use crate::capture::{wall_now, Tap};
-
-/// Largest datagram read (AS5669A datagrams stay within 4096 bytes; room to spare).
-const MAX_DATAGRAM: usize = 65_536;
 
 /// The judge on a UDP socket.
 #[derive(Debug)]
@@ -22,7 +21,6 @@ pub struct UdpAs4Session {
     judge: JudgeStack,
     tap: Tap,
     heard: bool,
-    buf: Vec<u8>,
 }
 
 impl UdpAs4Session {
@@ -38,7 +36,6 @@ impl UdpAs4Session {
             judge: JudgeStack::new(),
             tap: Tap::default(),
             heard: false,
-            buf: vec![0; MAX_DATAGRAM],
         })
     }
 
@@ -47,13 +44,31 @@ impl UdpAs4Session {
         self.local
     }
 
-    /// Sends what the stack queued (messages, acknowledgements).
-    fn flush(&mut self) {
-        while let Some(d) = self.judge.poll_transmit() {
-            match self.socket.send_to(&d.bytes, d.to) {
-                Ok(_) => self.tap.push(wall_now(), self.local, d.to, &d.bytes),
-                Err(e) => tracing::debug!(to = %d.to, "send failed: {e}"),
-            }
+    /// Runs the socket until a message waits or `until` passed (at least one turn:
+    /// what was queued is sent). Every datagram is recorded; a datagram from the
+    /// vehicle's address marks it heard.
+    fn pump(&mut self, until: Instant) {
+        let mut transport = UdpTransport::new(&self.socket, &IoOptions::default());
+        let (local, peer) = (self.local, self.peer);
+        let (tap, heard) = (&mut self.tap, &mut self.heard);
+        let r = shell::run_until(
+            &mut self.judge,
+            &mut transport,
+            until,
+            |j| j.has_mail(),
+            |dir, addr, bytes| match dir {
+                Direction::Received => {
+                    *heard |= addr == peer;
+                    tap.push(wall_now(), addr, local, bytes);
+                }
+                Direction::Sent => tap.push(wall_now(), local, addr, bytes),
+            },
+        );
+        if let Err(e) = r {
+            // An ICMP error reported on the socket (some systems do): wait a little
+            // rather than spin, and keep listening.
+            tracing::debug!("jaus conform --as4: socket: {e}");
+            std::thread::sleep(Duration::from_millis(5));
         }
     }
 }
@@ -65,7 +80,7 @@ impl As4Session for UdpAs4Session {
 
     fn send(&mut self, message: As4Message) {
         self.judge.send(self.peer, message);
-        self.flush();
+        self.pump(Instant::now());
     }
 
     fn recv(&mut self, deadline: Instant) -> Option<Arrival> {
@@ -73,45 +88,10 @@ impl As4Session for UdpAs4Session {
             if let Some(a) = self.judge.pop() {
                 return Some(a);
             }
-            let now = Instant::now();
-            if now >= deadline {
+            if Instant::now() >= deadline {
                 return None;
             }
-            let until = self
-                .judge
-                .poll_timeout()
-                .map_or(deadline, |t| t.min(deadline));
-            let wait = until
-                .saturating_duration_since(now)
-                .max(Duration::from_millis(1));
-            if let Err(e) = self.socket.set_read_timeout(Some(wait)) {
-                tracing::warn!("jaus conform --as4: socket: {e}");
-                return None;
-            }
-            match self.socket.recv_from(&mut self.buf) {
-                Ok((n, from)) => {
-                    let now = Instant::now();
-                    self.heard |= from == self.peer;
-                    self.tap.push(wall_now(), from, self.local, &self.buf[..n]);
-                    self.judge.receive(now, from, &self.buf[..n]);
-                    // Acknowledgements the vehicle asked for.
-                    self.flush();
-                }
-                Err(e)
-                    if matches!(
-                        e.kind(),
-                        std::io::ErrorKind::WouldBlock | std::io::ErrorKind::TimedOut
-                    ) =>
-                {
-                    self.judge.handle_timeout(Instant::now());
-                }
-                Err(e) => {
-                    // An ICMP error reported on the socket (some systems do): wait a
-                    // little rather than spin, and keep listening.
-                    tracing::debug!("jaus conform --as4: receive: {e}");
-                    std::thread::sleep(Duration::from_millis(5).min(wait));
-                }
-            }
+            self.pump(deadline);
         }
     }
 

@@ -144,8 +144,11 @@ impl<'a> Engine<'a> {
 
     /// Runs every check that applies to the target, then restores it.
     pub fn run(mut self) -> ComponentReport {
-        let checks =
-            crate::plan::plan_selected(self.spec, self.target.component, self.selection.as_ref());
+        let checks = crate::profile::plan_selected(
+            self.spec,
+            self.target.component,
+            self.selection.as_ref(),
+        );
         let initial = self.status();
         self.evidence.clear();
         let mut outcomes = Vec::with_capacity(checks.len() + 1);

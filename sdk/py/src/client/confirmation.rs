@@ -16,7 +16,7 @@ pub struct Confirmation {
 
 impl Confirmation {
     /// The Python value of a confirmed command's end.
-    pub(crate) fn of(end: &jaus_cli::net::confirm::Confirmation) -> Confirmation {
+    pub(crate) fn of(end: &jaus_client::confirm::Confirmation) -> Confirmation {
         Confirmation {
             outcome: end.outcome(),
             detail: end.detail().to_string(),

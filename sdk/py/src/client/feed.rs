@@ -33,7 +33,7 @@ impl Failure {
 #[derive(Debug)]
 pub(crate) enum Cmd {
     /// A message to send; `ack`: wait for its ACK or NAK; `confirm`: confirm it by its
-    /// effect ([`jaus_cli::net::confirm`]).
+    /// effect ([`jaus_client::confirm`]).
     Send {
         to: Address,
         code: CommandCode,
@@ -41,7 +41,7 @@ pub(crate) enum Cmd {
         body: Vec<u8>,
         ack: Option<(Duration, Reply<()>)>,
         /// Confirm it by its effect, reading back for at most this long: how it ended.
-        confirm: Option<(Duration, Reply<jaus_cli::net::confirm::Confirmation>)>,
+        confirm: Option<(Duration, Reply<jaus_client::confirm::Confirmation>)>,
     },
     /// A query; the answer is the message with code `answer` from `to`.
     Query {

@@ -1,4 +1,4 @@
-//! The client's I/O thread: the CLI's place in the system (`jaus_cli::net::Client::link`:
+//! The client's I/O thread: the CLI's place in the system (`jaus_client::Client::link`:
 //! the peer's node joined, or a node of its own with heartbeats and discovery), its
 //! System Commander (service connections, control taken and kept), and a tap that
 //! reads what arrives for the client before the runtime does, answering the queries,
@@ -14,9 +14,9 @@ use jaus::messages::{CancelEvent, CreateEvent, EventType, Message};
 use jaus::net::framing::{Reassembler, ReassemblyLimits};
 use jaus::wire::{AckNak, MessageClass};
 use jaus::{Address, CommandCode, Header};
-use jaus_cli::catalogue::Catalogue;
-use jaus_cli::net::confirm::{self, Check, Confirmation, Confirming, Habit, Habits, Step};
-use jaus_cli::net::{flush, flush_seen, Link};
+use jaus_client::catalogue::Catalogue;
+use jaus_client::confirm::{self, Check, Confirmation, Confirming, Habit, Habits, Step};
+use jaus_client::{flush, flush_seen, Link};
 
 use super::feed::{Cmd, Failure, Feed, Reply, Stats};
 use crate::catalog::Catalog;
@@ -82,11 +82,11 @@ struct WatchState {
 
 /// The I/O thread's state.
 pub(crate) struct Io {
-    client: jaus_cli::net::Client,
+    client: jaus_client::Client,
     cat: Arc<Catalog>,
     codes: Catalogue,
     stats: Arc<Stats>,
-    port: jaus_cli::net::Port,
+    port: jaus_client::Port,
     link: Link,
     reassembler: Reassembler,
     t0: Instant,
@@ -119,11 +119,11 @@ impl Io {
     /// Binds, takes the client's place and waits until the peers are heard and the
     /// system knows the client (or `wait` passes).
     pub(crate) fn start(
-        client: jaus_cli::net::Client,
+        client: jaus_client::Client,
         cat: Arc<Catalog>,
         stats: Arc<Stats>,
     ) -> Result<Io, String> {
-        let mut port = jaus_cli::net::Port::open(&client.carrier, client.bind, &client.peers)?;
+        let mut port = jaus_client::Port::open(&client.carrier, client.bind, &client.peers)?;
         let t0 = Instant::now();
         let mut link = client.link(&mut port, t0)?;
         if let Some(tool) = link.tool(client.me) {
@@ -204,7 +204,7 @@ impl Io {
                 return Err(if self.heard {
                     format!("the peers {:?} answered but did not take this client ({}) into their system within {:.1} s", self.client.peers, self.client.me, wait.as_secs_f64())
                 } else {
-                    jaus_cli::net::silence_hint(&local, &self.client.peers, wait)
+                    jaus_client::silence_hint(&local, &self.client.peers, wait)
                 });
             }
             self.turn();
@@ -473,7 +473,7 @@ impl Io {
             }
             Cmd::Tree { reply } => {
                 let r = match &self.link {
-                    Link::Node(n) => Ok(jaus_cli::net::tree_json(n.tree())),
+                    Link::Node(n) => Ok(jaus_client::tree_json(n.tree())),
                     Link::Attached(_) => Err(Failure::new(format!(
                         "this client ({}) joined node {}.{} as one of its components: the system tree is that node's manager's (give the client a `me` on a node of its own, or mode=\"node\")",
                         self.client.me, self.client.me.subsystem, self.client.me.node

@@ -1,5 +1,5 @@
 //! `jaus.Client`: the network from Python, as the `jaus` CLI joins it. A thread of its
-//! own (Rust, no GIL) runs the CLI's place in the system (`jaus_cli::net`: discovery,
+//! own (Rust, no GIL) runs the CLI's place in the system (`jaus_client`: discovery,
 //! heartbeats, its System Commander) and answers Python's `send`, `query`,
 //! `control` and `watch`; Python waits with the GIL released.
 
@@ -15,7 +15,7 @@ use std::time::{Duration, Instant};
 
 use jaus::net::Framing;
 use jaus::{Address, CommandCode};
-use jaus_cli::catalogue::Catalogue;
+use jaus_client::catalogue::Catalogue;
 use pyo3::exceptions::{PyStopIteration, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -234,7 +234,7 @@ impl Client {
         let timeout = seconds(timeout, "timeout")?;
         let me = match me {
             Some(m) => address(m, "me")?,
-            None => jaus_cli::net::default_me(),
+            None => jaus_client::default_me(),
         };
         let bind = bind
             .map(|b| {
@@ -242,12 +242,12 @@ impl Client {
                     .map_err(|e| PyValueError::new_err(format!("bind {b}: {e}")))
             })
             .transpose()?;
-        let mode: jaus_cli::net::Mode = mode.parse().map_err(PyValueError::new_err)?;
-        let cfg = jaus_cli::net::Client {
+        let mode: jaus_client::Mode = mode.parse().map_err(PyValueError::new_err)?;
+        let cfg = jaus_client::Client {
             me,
             bind,
             peers: peers(peer)?,
-            carrier: jaus_cli::net::Carrier::Udp,
+            carrier: jaus_client::Carrier::Udp,
             name: name.to_string(),
             framing: Framing::Judp,
             wait: timeout,
@@ -362,7 +362,7 @@ impl Client {
             // the acknowledgement waited for (at most `limit`), then the read-back.
             let end = self.call(
                 py,
-                limit.saturating_mul(2) + jaus_cli::net::confirm::HELD_AT_MOST,
+                limit.saturating_mul(2) + jaus_client::confirm::HELD_AT_MOST,
                 |reply| Cmd::Send {
                     to,
                     code,

@@ -24,6 +24,7 @@ use jaus::stock::commander::{ControlEvent, ControlKeeper, KeeperConfig};
 use jaus::stock::geo::LocalFrame;
 use jaus::{Address, JausMessage};
 
+pub use super::core::role;
 use super::core::{
     global_waypoint_of, local_waypoint_of, wrench_of_twist, zero_wrench, CmdGate, GateAction,
 };
@@ -43,19 +44,6 @@ const POLL_AFTER: Duration = Duration::from_secs(2);
 const STATUS_PERIOD: Duration = Duration::from_secs(1);
 /// How often a command is refreshed (the stock Primitive Driver brakes after 300 ms).
 const REFRESH: Duration = Duration::from_millis(100);
-
-/// The short name of a component id the bridge gives a role (`PD`, `LPS`, ...).
-pub fn role(id: u8) -> &'static str {
-    match id {
-        primitive_driver::ID => "PD",
-        global_pose_sensor::ID => "GPS",
-        local_pose_sensor::ID => "LPS",
-        velocity_state_sensor::ID => "VSS",
-        global_waypoint_driver::ID => "GWD",
-        local_waypoint_driver::ID => "LWD",
-        _ => "component",
-    }
-}
 
 /// Which source drives the vehicle now.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -1,10 +1,15 @@
 //! The sans-IO core of vehicle mode: JAUS reports → ROS 2 messages, ROS 2 commands →
-//! JAUS messages, and the `cmd_vel` watchdog's decisions. Pure functions and a small
-//! state machine ([`CmdGate`]) fed with the times the shell reads; nothing here reads a
-//! clock, a socket or a DDS reader, and nothing panics on what the network sent.
+//! JAUS messages, the `cmd_vel` watchdog's decisions and the roles of the vehicle's
+//! components ([`role`]). Pure functions and a small state machine ([`CmdGate`]) fed
+//! with the times the shell reads; nothing here reads a clock, a socket or a DDS
+//! reader, and nothing panics on what the network sent.
 
 use std::time::{Duration, Instant};
 
+use jaus::components::{
+    global_pose_sensor, global_waypoint_driver, local_pose_sensor, local_waypoint_driver,
+    primitive_driver, velocity_state_sensor,
+};
 use jaus::messages::{
     ReportGlobalPose, ReportLocalPose, ReportVelocityState, SetGlobalWaypoint, SetLocalWaypoint,
     SetWrenchEffort,
@@ -22,6 +27,19 @@ use crate::msg::{
 
 fn finite(v: &[f64]) -> bool {
     v.iter().all(|x| x.is_finite())
+}
+
+/// The short name of a component id the bridge gives a role (`PD`, `LPS`, ...).
+pub fn role(id: u8) -> &'static str {
+    match id {
+        primitive_driver::ID => "PD",
+        global_pose_sensor::ID => "GPS",
+        local_pose_sensor::ID => "LPS",
+        velocity_state_sensor::ID => "VSS",
+        global_waypoint_driver::ID => "GWD",
+        local_waypoint_driver::ID => "LWD",
+        _ => "component",
+    }
 }
 
 /// The ROS orientation (base_link in the ENU `odom` frame) of a JAUS attitude (vehicle

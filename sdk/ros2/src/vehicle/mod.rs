@@ -48,7 +48,7 @@ pub use client::VehicleClient;
 pub use shared::{ComponentStatus, VehicleEvent, VehicleStats};
 
 use crate::config::Ros2Config;
-use crate::Ros2Error;
+use crate::error::Ros2Error;
 use shared::{vlock, VShared};
 
 /// The component id and instance of the bridge's JAUS client (a System Commander).

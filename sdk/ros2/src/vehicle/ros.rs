@@ -15,8 +15,8 @@ use super::core::{nav_sat_fix_of, odometry_of};
 use super::shared::{vlock, Shared};
 use crate::bridge::{absolute, qos_of};
 use crate::config::{Qos, Ros2Config};
+use crate::error::Ros2Error;
 use crate::msg::{NavSatFix, Odometry, PoseStamped, RosMessage, StdString, Time, Twist};
-use crate::Ros2Error;
 
 /// The longest the thread sleeps.
 const IDLE: Duration = Duration::from_millis(5);

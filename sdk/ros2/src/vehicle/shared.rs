@@ -11,6 +11,7 @@ use jaus::component::CoreState;
 use jaus::messages::{ReportGlobalPose, ReportLocalPose, ReportVelocityState};
 use jaus::Address;
 
+use super::core::role;
 use crate::msg::{PoseStamped, Twist};
 
 /// Events kept for [`VehicleLink::events`](super::VehicleLink::events).
@@ -156,7 +157,7 @@ impl VShared {
                 Some((c, auth)) => format!("controller {c} (authority {auth})"),
                 None => "no controller".to_string(),
             };
-            let name = super::client::role(a.component);
+            let name = role(a.component);
             parts.push(format!("{name} {a}: {state}, {ctl}"));
         }
         if parts.is_empty() {

@@ -31,9 +31,9 @@ use std::time::{Duration, Instant};
 
 use nalgebra::Vector2;
 
-use crate::host::HostConfig;
 use crate::scanner::Scene;
 use crate::vehicle::SimVehicle;
+use crate::world::World;
 use jaus::component::local::LocalBus;
 use jaus::component::Config;
 use jaus::components::system_commander;
@@ -223,10 +223,10 @@ pub fn scene() -> Scene {
     }
 }
 
-/// The demo's world for a [`Host`](crate::host::Host) (`Host::with_config`): its
+/// The demo's world for a host of stock components (`jaus_node::host::Host::with_world`): its
 /// frame's origin ([`ORIGIN`]), its [`scene`] and the arm demo's control period.
-pub fn host_config() -> HostConfig {
-    HostConfig {
+pub fn world() -> World {
+    World {
         origin: LocalFrame::new(ORIGIN.0, ORIGIN.1, ORIGIN.2),
         scene: scene(),
         arm_control_period: crate::arm_demo::CONTROL_PERIOD,
@@ -341,14 +341,14 @@ fn phase_name(s: Step) -> &'static str {
 pub type Ocu = jaus::component::Component<system_commander::Dispatch<Operator>>;
 
 /// Where a run happens: one in-process bus, or two nodes on a simulated network.
-trait World {
+trait Venue {
     fn ocu(&self) -> Option<&Ocu>;
     fn now(&self) -> Instant;
     fn run_for(&mut self, d: Duration);
     fn delivered(&self) -> u64;
 }
 
-impl World for LocalBus {
+impl Venue for LocalBus {
     fn ocu(&self) -> Option<&Ocu> {
         self.get::<Ocu>(addr::OCU)
     }
@@ -421,7 +421,7 @@ impl Network {
     }
 }
 
-impl World for Network {
+impl Venue for Network {
     fn ocu(&self) -> Option<&Ocu> {
         self.net.node(self.operator)?.get::<Ocu>(addr::OCU)
     }
@@ -482,7 +482,7 @@ pub fn network_summary(n: &NetworkReport) -> String {
 }
 
 fn run_in(
-    bus: &mut impl World,
+    bus: &mut impl Venue,
     t0: Instant,
     vehicle: &SimVehicle,
     opts: &Options,

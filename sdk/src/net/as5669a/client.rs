@@ -7,7 +7,8 @@ use std::collections::VecDeque;
 use std::net::SocketAddr;
 use std::time::Instant;
 
-use super::{As4Config, As4Message, As4Stack};
+use super::message::As4Message;
+use super::stack::{As4Config, As4Stack};
 use crate::net::{Datagram, Participant, PeerAddr};
 
 /// Default bound of the inbox (older messages are dropped first, and counted).
@@ -48,9 +49,14 @@ impl<A: PeerAddr> As4Client<A> {
         self
     }
 
-    /// Queues `messages` for `to`.
+    /// Queues `messages` for `to`, at the last time the client was given.
     pub fn send(&mut self, to: A, messages: &[As4Message]) {
         self.stack.send(to, messages);
+    }
+
+    /// Queues `messages` for `to` at `now` (a command's resend timer starts then).
+    pub fn send_at(&mut self, now: Instant, to: A, messages: &[As4Message]) {
+        self.stack.send_at(now, to, messages);
     }
 
     /// Every message received so far, with the peer it came from, oldest first.

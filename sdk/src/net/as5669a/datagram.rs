@@ -4,7 +4,9 @@
 
 use super::error::As4Error;
 use super::header::As4Packet;
-use super::VERSION;
+
+/// The transport version byte of an AS5669A datagram.
+pub const VERSION: u8 = 2;
 
 /// Which generation of JAUS over UDP a datagram belongs to, by its first byte(s).
 ///

@@ -12,7 +12,29 @@
 //! ```
 
 use super::error::As4Error;
-use super::{HC_LEN, HEADER_LEN, JAUS_MESSAGE_TYPE, SEQUENCE_LEN};
+
+/// Bytes of the general transport header without header compression: message type and
+/// HC flags (1), data size (2), properties (1), destination (4), source (4).
+pub const HEADER_LEN: usize = 12;
+
+/// Bytes of the header-compression fields (HC number, HC length) present when the HC
+/// flags are not 0.
+pub const HC_LEN: usize = 2;
+
+/// Bytes of the sequence number after the payload.
+pub const SEQUENCE_LEN: usize = 2;
+
+/// Bytes a message carries besides its payload (without header compression): header
+/// and sequence number. The data size of a message is its payload plus this.
+pub const OVERHEAD: usize = HEADER_LEN + SEQUENCE_LEN;
+
+/// Largest payload in one packet: 4079 bytes, so that a datagram of one message with
+/// header compression fields stays within 4096 bytes (1 + 14 + 2 + 4079), as the
+/// Junior middleware of the JAUS Tool Set bounds it.
+pub const MAX_PAYLOAD: usize = 4079;
+
+/// The message type of a JAUS message (the only one this transport carries).
+pub const JAUS_MESSAGE_TYPE: u8 = 0;
 
 /// The 32-bit id of an AS-4 component: a 16-bit subsystem, 8-bit node and component.
 /// On the wire it is the u32 `subsystem << 16 | node << 8 | component`, little-endian.
@@ -86,6 +108,62 @@ impl As4Id {
 impl std::fmt::Display for As4Id {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(f, "{}.{}.{}", self.subsystem, self.node, self.component)
+    }
+}
+
+/// Why text is not an AS-4 id (`subsystem.node.component`): the text and, where one
+/// part is wrong, which part and why.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct As4IdParseError {
+    text: String,
+    part: Option<(&'static str, String)>,
+}
+
+impl std::fmt::Display for As4IdParseError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match &self.part {
+            None => write!(
+                f,
+                "`{}`: expected an AS-4 id subsystem.node.component, e.g. 42.1.1",
+                self.text
+            ),
+            Some((part, why)) => write!(f, "`{}`: {part}: {why}", self.text),
+        }
+    }
+}
+
+impl std::error::Error for As4IdParseError {}
+
+/// `subsystem.node.component`, subsystem 0-65535, node and component 0-255 (65535 and
+/// 255 name every one); white space around the text is ignored.
+///
+/// ```
+/// use jaus::net::as5669a::As4Id;
+/// assert_eq!("42.1.1".parse::<As4Id>().unwrap(), As4Id::new(42, 1, 1));
+/// assert_eq!(
+///     "42.1.300".parse::<As4Id>().unwrap_err().to_string(),
+///     "`42.1.300`: component: number too large to fit in target type"
+/// );
+/// assert!("42.1".parse::<As4Id>().is_err());
+/// ```
+impl std::str::FromStr for As4Id {
+    type Err = As4IdParseError;
+
+    fn from_str(text: &str) -> Result<Self, Self::Err> {
+        let err = |part| As4IdParseError {
+            text: text.to_string(),
+            part,
+        };
+        let parts: Vec<&str> = text.trim().split('.').collect();
+        let [s, n, c] = parts.as_slice() else {
+            return Err(err(None));
+        };
+        let bad = |what: &'static str, e: std::num::ParseIntError| err(Some((what, e.to_string())));
+        Ok(As4Id::new(
+            s.parse().map_err(|e| bad("subsystem", e))?,
+            n.parse().map_err(|e| bad("node", e))?,
+            c.parse().map_err(|e| bad("component", e))?,
+        ))
     }
 }
 

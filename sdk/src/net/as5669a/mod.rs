@@ -4,6 +4,8 @@
 //! * [`header`]: the general transport header as typed values ([`As4Header`],
 //!   [`As4Id`], the flag enums) and one message on the wire ([`As4Packet`]: header,
 //!   payload whose first two bytes are the message ID, trailing sequence number).
+//! * [`message`]: a whole message ([`As4Message`]): addresses, transport flags, message
+//!   ID and body, what the sans-IO [`As4Stack`] takes and hands on.
 //! * [`datagram`]: a datagram is the version byte 2 followed by one or more messages:
 //!   [`parse_datagram`] reads all of them, [`write_datagrams`] packs several into each
 //!   datagram up to a size bound; [`Generation::of`] tells the generations apart by the
@@ -26,6 +28,7 @@ pub mod client;
 pub mod datagram;
 pub mod error;
 pub mod header;
+pub mod message;
 pub mod mux;
 pub mod reassembly;
 pub mod split;
@@ -35,37 +38,14 @@ pub mod stack;
 mod proptests;
 
 pub use client::As4Client;
-pub use datagram::{parse_datagram, write_datagrams, Generation};
+pub use datagram::{parse_datagram, write_datagrams, Generation, VERSION};
 pub use error::As4Error;
 pub use header::{
-    AckNak, As4Header, As4Id, As4Packet, Broadcast, DataControl, HcRequest, Priority,
+    AckNak, As4Header, As4Id, As4IdParseError, As4Packet, Broadcast, DataControl, HcRequest,
+    Priority, HC_LEN, HEADER_LEN, JAUS_MESSAGE_TYPE, MAX_PAYLOAD, OVERHEAD, SEQUENCE_LEN,
 };
-pub use mux::{As4Config, As4Endpoint, As4Message, As4Mux, As4Send, As4Side, As4Stack, As4Stats};
+pub use message::As4Message;
+pub use mux::{As4Endpoint, As4Mux, As4Send, As4Side};
 pub use reassembly::{As4Reassembler, As4ReassemblyLimits};
 pub use split::{ack, nak, split};
-
-/// The transport version byte of an AS5669A datagram.
-pub const VERSION: u8 = 2;
-
-/// Bytes of the general transport header without header compression: message type and
-/// HC flags (1), data size (2), properties (1), destination (4), source (4).
-pub const HEADER_LEN: usize = 12;
-
-/// Bytes of the header-compression fields (HC number, HC length) present when the HC
-/// flags are not 0.
-pub const HC_LEN: usize = 2;
-
-/// Bytes of the sequence number after the payload.
-pub const SEQUENCE_LEN: usize = 2;
-
-/// Bytes a message carries besides its payload (without header compression): header
-/// and sequence number. The data size of a message is its payload plus this.
-pub const OVERHEAD: usize = HEADER_LEN + SEQUENCE_LEN;
-
-/// Largest payload in one packet: 4079 bytes, so that a datagram of one message with
-/// header compression fields stays within 4096 bytes (1 + 14 + 2 + 4079), as the
-/// Junior middleware of the JAUS Tool Set bounds it.
-pub const MAX_PAYLOAD: usize = 4079;
-
-/// The message type of a JAUS message (the only one this transport carries).
-pub const JAUS_MESSAGE_TYPE: u8 = 0;
+pub use stack::{As4Config, As4Stack, As4Stats};

@@ -21,8 +21,7 @@
 use std::collections::{BTreeMap, HashMap};
 use std::time::Instant;
 
-use super::header::{As4Header, As4Id, As4Packet, DataControl};
-use super::OVERHEAD;
+use super::header::{As4Header, As4Id, As4Packet, DataControl, OVERHEAD};
 use crate::net::framing::{ByteBudget, ReassemblyLimits, ReassemblyStats};
 
 /// Limits of the [`As4Reassembler`].

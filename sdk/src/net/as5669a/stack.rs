@@ -12,11 +12,10 @@ use std::time::Instant;
 use super::datagram::{parse_datagram, write_datagrams};
 use super::error::As4Error;
 use super::header::As4Id;
-use super::header::{AckNak, As4Packet};
-use super::mux::As4Message;
+use super::header::{AckNak, As4Packet, MAX_PAYLOAD};
+use super::message::As4Message;
 use super::reassembly::{As4Reassembler, As4ReassemblyLimits};
 use super::split::{ack, split};
-use super::MAX_PAYLOAD;
 use crate::net::framing::ReassemblyStats;
 use crate::net::reliable::{
     content_hash, random_start, Arrival, Delivery, Receiver, ReliableStats, RetryPolicy, Sender,

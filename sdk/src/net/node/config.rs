@@ -1,4 +1,5 @@
-//! A node's settings and its counters.
+//! A node's settings (its counters, [`NetStats`](crate::net::NetStats), are beside the
+//! transport).
 
 use std::net::SocketAddr;
 
@@ -49,8 +50,9 @@ pub struct NodeConfig<A: PeerAddr = SocketAddr> {
     /// routed as if received (to the components here and the other nodes of the
     /// subsystem); on another node, such messages are sent to that node. Datagrams on
     /// the UDP interface from other subsystems are then dropped (counted in
-    /// [`NetStats::not_via_communicator`]) unless a node relays them from its
-    /// communicator. Default `None`: other subsystems are reached over UDP like nodes.
+    /// [`NetStats::not_via_communicator`](crate::net::NetStats::not_via_communicator))
+    /// unless a node relays them from its communicator. Default `None`: other
+    /// subsystems are reached over UDP like nodes.
     pub communicator: Option<Address>,
     /// Who may command the components here, take control of them and with what
     /// authority ([`Policy`](crate::net::policy::Policy)), checked before a message from
@@ -135,49 +137,4 @@ impl<A: PeerAddr> NodeConfig<A> {
             reliable: self.reliable,
         }
     }
-}
-
-/// Counters of the interface and the routing.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
-pub struct NetStats {
-    /// Datagrams received.
-    pub received: u64,
-    /// Datagrams sent (taken from the queue).
-    pub sent: u64,
-    /// Messages delivered to local components (from anywhere).
-    pub delivered_local: u64,
-    /// Dropped: bad transport framing.
-    pub bad_framing: u64,
-    /// Dropped: bad JAUS header or data size not matching the datagram.
-    pub bad_packet: u64,
-    /// Dropped: looped back from this very node.
-    pub from_self: u64,
-    /// Dropped: addressed to another node (nothing is forwarded between nodes).
-    pub not_for_us: u64,
-    /// Dropped: no local component matches the destination.
-    pub no_such_component: u64,
-    /// Dropped: the outgoing queue was full.
-    pub outbox_full: u64,
-    /// Dropped: a message that could not be encoded or split.
-    pub encode_errors: u64,
-    /// Messages sent to every peer because their node is not located yet.
-    pub flooded: u64,
-    /// External components refused (table full, or an id a built-in component has).
-    pub external_refused: u64,
-    /// External components removed after their timeout.
-    pub external_timed_out: u64,
-    /// Packets handed to this node's communicator, leaving the subsystem
-    /// ([`NodeConfig::communicator`]).
-    pub to_communicator: u64,
-    /// Packets this node's communicator received from its data links.
-    pub from_communicator: u64,
-    /// Dropped: a datagram from another subsystem that did not come through the
-    /// subsystem's communicator.
-    pub not_via_communicator: u64,
-    /// Messages refused by the node's policy ([`NodeConfig::policy`]; per rule in
-    /// [`Node::policy`](super::Node::policy)).
-    pub policy_refused: u64,
-    /// Dropped: a message for a companion component found its owner's event queue
-    /// full ([`Node::poll_event`](super::Node::poll_event) not drained).
-    pub companion_queue_full: u64,
 }

@@ -32,10 +32,11 @@ use std::collections::{HashMap, VecDeque};
 use std::net::SocketAddr;
 use std::time::Instant;
 
+pub use super::transport::NetStats;
 pub use super::transport::{Datagram, Via};
 pub use acks::{AckKey, MAX_STREAMS};
 pub use companions::NodeEvent;
-pub use config::{NetStats, NodeConfig};
+pub use config::NodeConfig;
 
 use super::framing::{split, DatagramError, Reassembler, ReassemblyStats, MAX_PACKET_BODY};
 use super::manager::{StockNodeManager, SystemTree};

@@ -49,7 +49,7 @@ impl Io {
             _ => {}
         }
         // The read-back of a command being confirmed.
-        if let Some(checks) = jaus_cli::net::confirm::checks() {
+        if let Some(checks) = jaus_client::confirm::checks() {
             for (c, _) in &mut self.confirms {
                 claimed |= c.message(checks, from, code, &body);
             }

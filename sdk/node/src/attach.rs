@@ -8,9 +8,9 @@ use std::net::{SocketAddr, UdpSocket};
 use std::sync::atomic::AtomicBool;
 use std::time::{Duration, Instant};
 
+use crate::host::{Host, Stock};
 use jaus::net::oj::Control;
 use jaus::net::{udp, Attached, AttachedConfig, Framing, ReassemblyLimits};
-use jaus_sim::host::{Host, Stock};
 
 /// Where the node manager's two sockets are.
 #[derive(Debug, Clone, Copy)]

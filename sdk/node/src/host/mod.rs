@@ -7,7 +7,7 @@
 //! use std::time::Instant;
 //! use jaus::components::{global_pose_sensor, world_model_vector_knowledge_store};
 //! use jaus::net::{Node, NodeConfig};
-//! use jaus_sim::host::{Host, Stock};
+//! use jaus_node::host::{Host, Stock};
 //!
 //! let t0 = Instant::now();
 //! let mut node = Node::new(NodeConfig { subsystem: 5, node: 2, ..NodeConfig::default() }, t0);
@@ -35,9 +35,9 @@
 //! # The simulated world
 //!
 //! [`Host::new`] hosts over an empty world: the vehicle at the origin of the default
-//! frame, no obstacles. [`Host::with_config`] takes the world to simulate
-//! ([`HostConfig`]: the frame's origin, the obstacles the range sensor, reflexive
-//! driver and camera see, the arm's control period); `jaus_sim::demo::host_config()`
+//! frame, no obstacles. [`Host::with_world`] takes the world to simulate
+//! ([`World`]: the frame's origin, the obstacles the range sensor, reflexive
+//! driver and camera see, the arm's control period); `jaus_sim::demo::world()`
 //! is the demo's.
 //!
 //! # Durable world model and missions
@@ -60,7 +60,7 @@
 //! use std::time::Instant;
 //! use jaus::net::udp::link::UdpLinkConfig;
 //! use jaus::net::{Node, NodeConfig};
-//! use jaus_sim::host::{Host, Stock};
+//! use jaus_node::host::{Host, Stock};
 //!
 //! let t0 = Instant::now();
 //! let mut comm = Host::entry(Stock::by_name("communicator").unwrap());
@@ -80,50 +80,25 @@ mod build;
 mod communicator;
 mod registry;
 
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
 use nalgebra::Vector2;
 
-use crate::arm::{ArmParams, SimArm};
-use crate::scanner::{ScannerParams, Scene, SimScanner};
-use crate::vehicle::{SimVehicle, VehicleParams};
 use jaus::component::Endpoint;
 use jaus::components::{communicator as comm, reflexive_driver};
 use jaus::net::udp::link::UdpLinkConfig;
 use jaus::stock::communicator::CommunicatorError;
-use jaus::stock::geo::LocalFrame;
 use jaus::Address;
+use jaus_sim::arm::{ArmParams, SimArm};
+use jaus_sim::scanner::{ScannerParams, SimScanner};
+use jaus_sim::vehicle::{SimVehicle, VehicleParams};
+use jaus_sim::World;
 
 use build::BuildCx;
 pub use registry::Stock;
 
 #[cfg(doc)]
 use jaus::net::udp::link::UdpLink;
-
-/// The simulated world a [`Host`] builds its components over.
-#[derive(Debug, Clone, PartialEq)]
-pub struct HostConfig {
-    /// The WGS 84 origin of the local frame: where the simulated vehicle starts, and
-    /// the frame of the drivers' local coordinates. Default: the origin of
-    /// [`VehicleParams::default`].
-    pub origin: LocalFrame,
-    /// What the range sensor, the reflexive driver and the camera see (local metres).
-    /// Default: nothing.
-    pub scene: Scene,
-    /// Tick of the manipulator components: the control period of the simulated arm.
-    /// Default 10 ms (the period the stock manipulator drivers' servo is tuned for).
-    pub arm_control_period: Duration,
-}
-
-impl Default for HostConfig {
-    fn default() -> Self {
-        Self {
-            origin: VehicleParams::default().origin,
-            scene: Scene::default(),
-            arm_control_period: Duration::from_millis(10),
-        }
-    }
-}
 
 /// One component to host: which, at which instance, and where its commands and
 /// feedback go when it is a driver.
@@ -217,7 +192,7 @@ pub struct Host {
     subsystem: u8,
     node: u8,
     t0: Instant,
-    config: HostConfig,
+    world: World,
     vehicle: SimVehicle,
     scanner: SimScanner,
     arm: SimArm,
@@ -228,16 +203,15 @@ pub struct Host {
 
 impl Host {
     /// A host for `subsystem`.`node`, its components starting at `t0`, over an empty
-    /// world ([`HostConfig::default`]).
+    /// world ([`World::default`]).
     pub fn new(subsystem: u8, node: u8, t0: Instant) -> Self {
-        Self::with_config(subsystem, node, t0, HostConfig::default())
+        Self::with_world(subsystem, node, t0, World::default())
     }
 
-    /// A host for `subsystem`.`node`, its components starting at `t0`, over the world
-    /// of `config`.
-    pub fn with_config(subsystem: u8, node: u8, t0: Instant, config: HostConfig) -> Self {
+    /// A host for `subsystem`.`node`, its components starting at `t0`, over `world`.
+    pub fn with_world(subsystem: u8, node: u8, t0: Instant, world: World) -> Self {
         let vehicle = SimVehicle::new(VehicleParams {
-            origin: config.origin,
+            origin: world.origin,
             start: (Vector2::zeros(), 0.0),
             ..VehicleParams::default()
         });
@@ -247,12 +221,12 @@ impl Host {
             t0,
             scanner: SimScanner::new(
                 vehicle.clone(),
-                config.scene.clone(),
+                world.scene.clone(),
                 ScannerParams::default(),
             ),
             vehicle,
             arm: SimArm::new(ArmParams::six_axis()),
-            config,
+            world,
             built: Vec::new(),
             reflexive: false,
             store: None,
@@ -312,8 +286,8 @@ impl Host {
     }
 
     /// The world the components are built over.
-    pub fn config(&self) -> &HostConfig {
-        &self.config
+    pub fn world(&self) -> &World {
+        &self.world
     }
 
     /// Where `e` goes on this node, checked: its instance in 1..=254, not hosted yet.

@@ -1,4 +1,5 @@
 use std::net::SocketAddr;
+use std::time::Duration;
 
 use nalgebra::Vector2;
 
@@ -9,6 +10,8 @@ use jaus::components::{
 };
 use jaus::net::udp::link::UdpLink;
 use jaus::stock::communicator::{CommunicatorEndpoint, DataLink};
+use jaus::stock::geo::LocalFrame;
+use jaus_sim::scanner::Scene;
 
 fn stock(name: &str) -> Stock {
     Stock::by_name(name).unwrap()
@@ -62,17 +65,17 @@ fn each_core_gets_the_hardware_its_definition_says_it_needs() {
 fn a_default_host_simulates_an_empty_world_and_a_configured_one_its_scene() {
     let t0 = Instant::now();
     let empty = Host::new(1, 1, t0);
-    assert_eq!(empty.config(), &HostConfig::default());
+    assert_eq!(empty.world(), &World::default());
     assert!(empty.scanner.scene().circles.is_empty());
     let origin = LocalFrame::new(10.0, 20.0, 5.0);
     let scene = Scene {
         circles: vec![(Vector2::new(3.0, 0.0), 0.5)],
     };
-    let host = Host::with_config(
+    let host = Host::with_world(
         1,
         1,
         t0,
-        HostConfig {
+        World {
             origin,
             scene: scene.clone(),
             arm_control_period: Duration::from_millis(20),
@@ -178,13 +181,13 @@ fn a_communicator_over_links_the_caller_made() {
 
 #[test]
 fn the_demo_passes_its_world_explicitly() {
-    let host = Host::with_config(1, 1, Instant::now(), crate::demo::host_config());
-    assert_eq!(host.scanner.scene(), crate::demo::scene());
+    let host = Host::with_world(1, 1, Instant::now(), jaus_sim::demo::world());
+    assert_eq!(host.scanner.scene(), jaus_sim::demo::scene());
     assert_eq!(host.scanner.scene().circles.len(), 2);
-    let o = crate::demo::ORIGIN;
-    assert_eq!(host.config().origin, LocalFrame::new(o.0, o.1, o.2));
+    let o = jaus_sim::demo::ORIGIN;
+    assert_eq!(host.world().origin, LocalFrame::new(o.0, o.1, o.2));
     assert_eq!(
-        host.config().arm_control_period,
-        crate::arm_demo::CONTROL_PERIOD
+        host.world().arm_control_period,
+        jaus_sim::arm_demo::CONTROL_PERIOD
     );
 }

@@ -9,7 +9,7 @@ use jaus::net::{udp, Framing, NodeConfig};
 mod build;
 mod run;
 
-pub use run::{node, tree_json, TreePrinter};
+pub use run::node;
 
 /// A node configuration file (YAML).
 ///
@@ -69,7 +69,7 @@ pub use run::{node, tree_json, TreePrinter};
 /// A `host:` entry is `vehicle`, `arm` (the Primitive Manipulator, the three joint sensors
 /// and the six manipulator drivers of `jaus_sim::arm_demo::arm_components` over one
 /// simulated 6-axis arm) or a stock component by its name in the definitions (`stock:`
-/// of a component in `jaus-spec/defs`, `jaus_sim::host::Stock::names()`: for example
+/// of a component in `jaus-spec/defs`, `jaus_node::host::Stock::names()`: for example
 /// `primitive_driver`, `global_pose_sensor`, `global_waypoint_driver`, `world_model`,
 /// `range_sensor`, `joint_position_sensor`, `communicator`; an unknown name's error
 /// lists them all), by name or as a map with `component`,
@@ -77,7 +77,7 @@ pub use run::{node, tree_json, TreePrinter};
 /// sensor they follow; default: this node's 43.1 or 33.1, and 38.1 or 41.1; manipulator
 /// drivers: 49.1) and `authority` (0). Those that need hardware share one simulated
 /// vehicle, the manipulator components one simulated arm, in an empty world (no
-/// obstacles; the vehicle at the origin of the default frame: `jaus_sim::host::HostConfig`).
+/// obstacles; the vehicle at the origin of the default frame: `jaus_sim::World`).
 ///
 /// `communicator` (Part 1 §5.2.1, id 35) is the subsystem's gateway to the other
 /// subsystems, over real data links: its `links:` (at least one) are each
@@ -155,7 +155,7 @@ pub struct NodeFile {
     pub communicator: Option<String>,
     /// The node's access policy (`jaus::net::Policy`; open without it).
     #[serde(default)]
-    pub policy: Option<super::PolicyFile>,
+    pub policy: Option<crate::policy_file::PolicyFile>,
     /// The durable store of the hosted world models and mission spoolers (relative to
     /// the node file's directory); in memory without it.
     #[serde(default)]
@@ -373,7 +373,7 @@ fn no_bind() -> SocketAddr {
 
 impl NodeFile {
     /// The serial transport of a `transport: serial` file (`path`: the file, for
-    /// errors); its far end is `jaus_cli::net::SERIAL_FAR_END`, the node's one peer.
+    /// errors); its far end is `jaus_client::SERIAL_FAR_END`, the node's one peer.
     #[cfg(target_os = "linux")]
     pub fn serial_transport(
         &self,
@@ -384,7 +384,7 @@ impl NodeFile {
         };
         jaus::net::serial::SerialTransport::open(
             jaus::net::serial::SerialConfig::new(line, *baud),
-            super::SERIAL_FAR_END,
+            jaus_client::SERIAL_FAR_END,
         )
         .map_err(|e| format!("{}: {e}", path.display()))
     }
@@ -508,7 +508,7 @@ pub enum Hosted {
     /// (`jaus_sim::arm_demo::arm_components`).
     Arm,
     /// One stock component.
-    Stock(jaus_sim::host::Entry),
+    Stock(crate::host::Entry),
 }
 impl NodeFile {
     /// Reads and checks a configuration file.
@@ -619,7 +619,7 @@ impl NodeFile {
             node: self.node,
             framing: self.framing,
             peers: if self.transport == TransportFile::Serial {
-                vec![super::SERIAL_FAR_END]
+                vec![jaus_client::SERIAL_FAR_END]
             } else {
                 self.peers.clone()
             },
@@ -702,7 +702,7 @@ mod transport_tests {
             "subsystem: 1\nnode: 1\ntransport: serial\nserial: serial:///dev/ttyUSB0?baud=9600\n",
         )
         .unwrap();
-        assert_eq!(f.node_config().peers, [crate::net::SERIAL_FAR_END]);
+        assert_eq!(f.node_config().peers, [jaus_client::SERIAL_FAR_END]);
         let e = load("subsystem: 1\nnode: 1\ntransport: serial\n").unwrap_err();
         assert!(
             e.contains("needs `serial: serial:///dev/DEVICE?baud=N`"),

@@ -1,17 +1,24 @@
 //! An AS-4 client over AS5669A on UDP, for any definitions loaded at run time: messages
 //! built from their names and JSON fields, every message received decoded by the same
-//! definitions. `jaus as4-query`/`as4-send` ([`crate::as4_talk`]) and Python's
+//! definitions. `jaus as4-query`/`as4-send` and Python's
 //! `jaus.As4Client` talk through it.
 
+use std::collections::VecDeque;
 use std::net::{SocketAddr, UdpSocket};
+use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
-use jaus::net::as5669a::{As4Config, As4Id, As4Message, As4Stack};
+use jaus::net::as5669a::{As4Client, As4Config, As4Id, As4Message};
+use jaus::net::shell;
+use jaus::net::udp::{IoOptions, UdpTransport};
 use jaus::CommandCode;
 use jaus_dynamic::{Decoded, DynMessage, Schema, Value};
 
-/// An AS-4 id from its text, `S.N.C`.
-pub use jaus_conform::as4::parse_id;
+/// An AS-4 id from `subsystem.node.component`, the error as text naming the part.
+pub fn parse_id(text: &str) -> Result<As4Id, String> {
+    text.parse()
+        .map_err(|e: jaus::net::as5669a::As4IdParseError| e.to_string())
+}
 
 /// A message received from a component: when (seconds since the link opened), from
 /// whom, and what it is (or why it did not decode).
@@ -85,15 +92,20 @@ impl Incoming {
     }
 }
 
-/// One AS-4 client endpoint: its id, its socket, the peer node it talks to.
+/// One AS-4 client endpoint: its id, its socket, the peer node it talks to. Its
+/// socket runs on the SDK's one I/O loop ([`jaus::net::shell::run_until`]), so what the
+/// peer asks to be acknowledged is acknowledged, and large messages are split and
+/// reassembled, as a node does.
 #[derive(Debug)]
 pub struct As4Link {
     schema: Schema,
     socket: UdpSocket,
-    stack: As4Stack<SocketAddr>,
+    client: As4Client<SocketAddr>,
     peer: SocketAddr,
     me: As4Id,
     start: Instant,
+    /// Messages received but not handed out yet (a `receive` that returned early).
+    pending: VecDeque<As4Message>,
 }
 
 impl As4Link {
@@ -109,11 +121,34 @@ impl As4Link {
         Ok(Self {
             schema,
             socket,
-            stack: As4Stack::new(As4Config::default()),
+            client: As4Client::new(As4Config::default()),
             peer,
             me,
             start: Instant::now(),
+            pending: VecDeque::new(),
         })
+    }
+
+    /// Runs the socket until `until` or until `done` says the messages received so far
+    /// are enough (it sees them in `pending`).
+    fn pump(
+        &mut self,
+        until: Instant,
+        mut done: impl FnMut(&mut VecDeque<As4Message>) -> bool,
+    ) -> Result<bool, String> {
+        let mut transport = UdpTransport::new(&self.socket, &IoOptions::default());
+        let pending = &mut self.pending;
+        shell::run_until(
+            &mut self.client,
+            &mut transport,
+            until,
+            |c| {
+                pending.extend(c.take().into_iter().map(|(_, m)| m));
+                done(pending)
+            },
+            |_, _, _| {},
+        )
+        .map_err(|e| format!("{}: {e}", self.peer))
     }
 
     /// The definitions.
@@ -139,18 +174,17 @@ impl As4Link {
 
     /// Sends message `code` with `body` to component `to`.
     pub fn send_raw(&mut self, to: As4Id, code: CommandCode, body: Vec<u8>) -> Result<(), String> {
-        self.stack
-            .send(self.peer, &[As4Message::new(code.0, to, self.me, body)]);
-        while let Some(d) = self.stack.poll_transmit() {
-            self.socket
-                .send_to(&d.bytes, d.to)
-                .map_err(|e| format!("{}: {e}", self.peer))?;
-        }
-        Ok(())
+        self.client.send_at(
+            Instant::now(),
+            self.peer,
+            &[As4Message::new(code.0, to, self.me, body)],
+        );
+        self.pump(Instant::now(), |_| true).map(drop)
     }
 
     /// The messages from `from` until `wait` has passed, each handed to `each`; returns
     /// at the first for which `each` answers true (with it), or `None` at the end.
+    /// Messages from other components are skipped.
     pub fn receive(
         &mut self,
         from: As4Id,
@@ -158,20 +192,8 @@ impl As4Link {
         mut each: impl FnMut(&Incoming) -> Result<bool, String>,
     ) -> Result<Option<Incoming>, String> {
         let until = Instant::now() + wait;
-        let mut buf = vec![0u8; 65536];
         loop {
-            let left = until.saturating_duration_since(Instant::now());
-            if left.is_zero() {
-                return Ok(None);
-            }
-            let _ = self.socket.set_read_timeout(Some(left));
-            let Ok((n, addr)) = self.socket.recv_from(&mut buf) else {
-                continue;
-            };
-            let Ok(messages) = self.stack.receive(Instant::now(), addr, &buf[..n]) else {
-                continue;
-            };
-            for m in messages {
+            while let Some(m) = self.pending.pop_front() {
                 if m.source != from {
                     continue;
                 }
@@ -189,6 +211,10 @@ impl As4Link {
                     return Ok(Some(incoming));
                 }
             }
+            if Instant::now() >= until {
+                return Ok(None);
+            }
+            self.pump(until, |p| !p.is_empty())?;
         }
     }
 
@@ -254,4 +280,15 @@ impl As4Link {
         })?;
         Ok(())
     }
+}
+
+/// The definitions the tool reads messages with: jaus-as4's and `spec`, or `jsidl`.
+pub fn schema(spec: &[PathBuf], jsidl: &[PathBuf]) -> Result<Schema, String> {
+    as4_spec(spec, jsidl).map(|spec| Schema::from_spec(&spec))
+}
+
+/// The AS-4 definitions: jaus-as4's built-in ones with the YAML of the directories
+/// `spec` on them, or the JSIDL of the directories `jsidl` imported instead.
+pub fn as4_spec(spec: &[PathBuf], jsidl: &[PathBuf]) -> Result<jaus_spec::Spec, String> {
+    jaus_dynamic::load_overlaid(jaus_as4::DEFS, "jaus-as4/defs", spec, jsidl)
 }

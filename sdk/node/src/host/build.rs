@@ -5,10 +5,6 @@ use std::cell::RefCell;
 use std::time::Instant;
 
 use super::{Entry, Host, HostError};
-use crate::arm::SimArm;
-use crate::camera::SimCamera;
-use crate::scanner::SimScanner;
-use crate::vehicle::SimVehicle;
 use jaus::component::{Config, Endpoint, Hardware};
 use jaus::components::{
     manipulator_joint_position_sensor as joint_positions,
@@ -18,6 +14,10 @@ use jaus::components::{
 use jaus::stock::manipulator::link::ArmDriverConfig;
 use jaus::stock::motion::DriverConfig;
 use jaus::Address;
+use jaus_sim::arm::SimArm;
+use jaus_sim::camera::SimCamera;
+use jaus_sim::scanner::SimScanner;
+use jaus_sim::vehicle::SimVehicle;
 
 /// A built component, or why not.
 pub(super) type Built = Result<Box<dyn Endpoint>, HostError>;
@@ -91,7 +91,7 @@ impl<'a> BuildCx<'a> {
         core: T,
     ) -> Built {
         let config = Config {
-            tick: self.host.config.arm_control_period,
+            tick: self.host.world.arm_control_period,
             ..self.config()
         };
         Ok(Box::new(make(self.at, core, config, self.t0())))
@@ -165,7 +165,7 @@ impl<'a> BuildCx<'a> {
             output: self.output(),
             pose_sensor: self.entry.pose.unwrap_or_else(|| self.local(pose)),
             velocity_sensor: Some(self.local(velocity_state_sensor::ID)),
-            origin: Some(self.host.config.origin),
+            origin: Some(self.host.world.origin),
             ..DriverConfig::default()
         }
     }

@@ -7,7 +7,7 @@ use std::time::Instant;
 use jaus::net::Node;
 use jaus::Address;
 
-use super::super::links_file::{links_at, LinkFile, QuicLinkFile};
+use crate::links_file::{links_at, LinkFile, QuicLinkFile};
 
 use super::*;
 
@@ -23,7 +23,7 @@ impl NodeFile {
             Hosted::Stock(e) => Some(e),
             Hosted::Vehicle | Hosted::Arm => None,
         });
-        let here = jaus_sim::host::Host::communicator_of(self.subsystem, self.node, entries);
+        let here = crate::host::Host::communicator_of(self.subsystem, self.node, entries);
         let Some(text) = &self.communicator else {
             return Ok(here);
         };
@@ -66,7 +66,7 @@ impl NodeFile {
     pub(super) fn hosted_at(&self, at: &dyn Fn(&str) -> String) -> Result<Vec<Hosted>, String> {
         let known = || {
             let mut k = vec!["vehicle", "arm"];
-            k.extend(jaus_sim::host::Stock::names());
+            k.extend(crate::host::Stock::names());
             k.join(", ")
         };
         let mut out = Vec::new();
@@ -85,14 +85,14 @@ impl NodeFile {
                 out.push(Hosted::Arm);
                 continue;
             }
-            let Some(stock) = jaus_sim::host::Stock::by_name(name) else {
+            let Some(stock) = crate::host::Stock::by_name(name) else {
                 return Err(format!(
                     "{}: unknown component `{name}` (known: {})",
                     at(&key),
                     known()
                 ));
             };
-            let mut e = jaus_sim::host::Host::entry(stock);
+            let mut e = crate::host::Host::entry(stock);
             let is_communicator = stock.id() == jaus::components::communicator::ID;
             let mut has_links = false;
             if let HostItem::Component {
@@ -192,7 +192,7 @@ impl NodeFile {
     /// The `links:` of the communicator this node hosts, and the index of its `host:`
     /// entry (checked by [`NodeFile::load`]).
     pub(super) fn communicator_link_files(&self) -> Option<(usize, Vec<LinkFile>)> {
-        use jaus_sim::host::Stock;
+        use crate::host::Stock;
         self.host.iter().enumerate().find_map(|(i, h)| match h {
             HostItem::Component {
                 component,
@@ -237,8 +237,8 @@ impl NodeFile {
     /// file `path`) here.
     pub(super) fn build_communicator(
         &self,
-        host: &mut jaus_sim::host::Host,
-        e: &jaus_sim::host::Entry,
+        host: &mut crate::host::Host,
+        e: &crate::host::Entry,
         path: &Path,
     ) -> Result<Box<dyn jaus::component::Endpoint>, String> {
         use jaus::stock::communicator::DataLink;
@@ -438,11 +438,16 @@ impl NodeFile {
             };
             let vehicle =
                 v.id.as_deref()
-                    .map(parse_as4_id)
+                    .map(|t| {
+                        t.parse::<jaus::net::as5669a::As4Id>()
+                            .map_err(|e| e.to_string())
+                    })
                     .transpose()
                     .map_err(|e| at("id", e))?;
             let me = match &v.proxy_id {
-                Some(t) => parse_as4_id(t).map_err(|e| at("proxy_id", e))?,
+                Some(t) => t
+                    .parse::<jaus::net::as5669a::As4Id>()
+                    .map_err(|e| at("proxy_id", e.to_string()))?,
                 None => {
                     let component = default_proxy_component(i).ok_or_else(|| {
                         at(
@@ -496,7 +501,7 @@ impl NodeFile {
     pub fn build_node(&self, path: &Path, t0: Instant) -> Result<Node, String> {
         let mut node = Node::new(self.node_config(), t0);
         let hosted = self.hosted();
-        let mut host = jaus_sim::host::Host::new(self.subsystem, self.node, t0);
+        let mut host = crate::host::Host::new(self.subsystem, self.node, t0);
         if let Some(file) = self.store_path(path) {
             let store = jaus_store::Store::open(&file)
                 .map_err(|e| format!("{}: store: {e}", path.display()))?;
@@ -572,20 +577,6 @@ fn role_name(r: jaus_as4::proxy::Role) -> &'static str {
         Role::GlobalPathSegmentDriver => "global_path_segment_driver",
         Role::LocalPathSegmentDriver => "local_path_segment_driver",
     }
-}
-
-/// An AS-4 id written `subsystem.node.component` (65535 and 255 for every one).
-pub fn parse_as4_id(text: &str) -> Result<jaus::net::as5669a::As4Id, String> {
-    let parts: Vec<&str> = text.trim().split('.').collect();
-    let [s, n, c] = parts.as_slice() else {
-        return Err(format!("`{text}`: an AS-4 id is subsystem.node.component"));
-    };
-    let bad = |what: &str, e: std::num::ParseIntError| format!("`{text}`: {what}: {e}");
-    Ok(jaus::net::as5669a::As4Id::new(
-        s.parse().map_err(|e| bad("subsystem", e))?,
-        n.parse().map_err(|e| bad("node", e))?,
-        c.parse().map_err(|e| bad("component", e))?,
-    ))
 }
 
 #[cfg(test)]

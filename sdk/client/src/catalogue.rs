@@ -112,7 +112,7 @@ impl Catalogue {
     /// it has one. An overlay's message becomes a [`Message::Raw`] of its encoded body.
     pub fn parse_message(&self, json: &str) -> Result<(Option<Address>, Message), String> {
         let Some(s) = &self.schema else {
-            return crate::net::parse_message(json).map_err(|e| with_overlay_hint(e, false));
+            return crate::session::parse_message(json).map_err(|e| with_overlay_hint(e, false));
         };
         let (header, parsed) = s.parse_line(json).map_err(|e| e.to_string())?;
         match &parsed {
@@ -121,7 +121,7 @@ impl Catalogue {
                 Ok((header.destination, Message::Raw(raw)))
             }
             // The SDK's own messages keep their typed form (control is tracked on it).
-            _ => crate::net::parse_message(json),
+            _ => crate::session::parse_message(json),
         }
     }
 
