@@ -154,7 +154,7 @@ impl NewCrate {
             Sdk::Path(p) => {
                 let p = p.to_string_lossy().replace('\\', "/");
                 (
-                    format!("path = \"{p}/sdk\""),
+                    format!("path = \"{p}/sdk/jaus\""),
                     format!("path = \"{p}/jaus-gen\""),
                     format!("path = \"{p}/sdk/as4\""),
                 )

@@ -106,7 +106,7 @@ fn every_public_set_imports_generates_and_compiles() {
         scratch.join("Cargo.toml"),
         format!(
             "[package]\nname = \"public-sets\"\nversion = \"0.0.0\"\nedition = \"2021\"\npublish = false\n\n[workspace]\n\n[dependencies]\njaus = {{ path = {:?}, default-features = false }}\nserde = {{ version = \"1\", features = [\"derive\"] }}\n",
-            ws.join("sdk")
+            ws.join("sdk/jaus")
         ),
     )
     .unwrap();

@@ -2,7 +2,7 @@
 //! own), its own component, and its socket.
 
 use std::net::{IpAddr, Ipv4Addr, SocketAddr, UdpSocket};
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::AtomicBool;
 use std::time::{Duration, Instant};
 
 use jaus::codec::Encode;
@@ -371,16 +371,17 @@ impl Client {
         };
         let mut heard = false;
         let peers = self.peers.clone();
-        let end = t0 + self.wait;
-        let mut buf = vec![0u8; 8 + 4096 + 64];
-        while Instant::now() < end && !stop.load(Ordering::Relaxed) {
-            if let Ok(Some((n, from))) = port.recv_from(&mut buf, Duration::from_millis(20)) {
-                heard |= peers.contains(&from);
-                node.handle_datagram(Instant::now(), from, &buf[..n]);
-            }
-            node.handle_timeout(Instant::now());
-            flush(node.as_mut(), &mut port);
-        }
+        jaus::net::shell::run(
+            node.as_mut(),
+            &mut port,
+            stop,
+            Some(t0 + self.wait),
+            |_| {},
+            |dir, from, _| {
+                heard |= dir == jaus::net::shell::Direction::Received && peers.contains(&from)
+            },
+        )
+        .map_err(|e| format!("{}: {e}", port.describe()))?;
         Ok((node.tree().clone(), heard))
     }
 

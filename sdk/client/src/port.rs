@@ -222,6 +222,36 @@ impl Port {
     }
 }
 
+/// The port as a carrier of the SDK's one I/O loop ([`jaus::net::shell`]): what a
+/// client runs until it is done (discovery) goes through the same turns as a node.
+impl Transport for Port {
+    type Addr = SocketAddr;
+
+    fn recv<F: FnMut(Via, SocketAddr, &[u8])>(
+        &mut self,
+        wait: Duration,
+        mut on: F,
+    ) -> std::io::Result<()> {
+        let mut buf = [0u8; MAX_DATAGRAM];
+        if let Some((n, from)) = self.recv_from(&mut buf, wait)? {
+            on(Via::Network, from, &buf[..n]);
+        }
+        Ok(())
+    }
+
+    fn send(&mut self, d: &Datagram) -> std::io::Result<()> {
+        self.send_to(&d.bytes, d.to)
+    }
+
+    fn describe(&self) -> String {
+        Port::describe(self)
+    }
+}
+
+/// Largest datagram the port reads for the shell (a JUDP datagram carries at most
+/// 4096 bytes of packet; TCP and serial hand whole datagrams of the same bound).
+const MAX_DATAGRAM: usize = 8 + 4096 + 64;
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -309,7 +309,11 @@ impl Client {
             if done {
                 break;
             }
-            // The network.
+            // The network, one datagram at a time rather than through
+            // `jaus::net::shell`: each datagram is read by the session before the node
+            // sees it (an acknowledgement, a confirmation's answer, another node
+            // answering as this tool's node ends the session at that datagram), and
+            // between two datagrams the session takes the operator's next line.
             let host = link.host();
             let wake = host
                 .poll_timeout()

@@ -132,7 +132,7 @@ STRUCT = {
 
 
 def vks_packet():
-    """The reference Report VKS Objects (sdk/examples/codec_lines.rs): 10 polygons x 40
+    """The reference Report VKS Objects (sdk/jaus/examples/codec_lines.rs): 10 polygons x 40
     points, 3 feature classes each."""
     objects = [
         {

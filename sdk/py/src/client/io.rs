@@ -238,6 +238,10 @@ impl Io {
 
     /// One turn of the network: a read (at most [`POLL`]), the hosts' timers, the
     /// datagrams they queued.
+    ///
+    /// One datagram at a time rather than through `jaus::net::shell`: each is shown to
+    /// the open confirmations and counted before the node sees it, and between two
+    /// turns the thread answers Python's requests.
     fn turn(&mut self) {
         let wake = self
             .link

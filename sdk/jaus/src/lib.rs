@@ -229,5 +229,5 @@ pub mod messages {
 /// The Rust examples of the workspace's README.md, compiled and run as doctests
 /// (`cargo test -p jaus --doc`), so that the README shows code that works.
 #[cfg(doctest)]
-#[doc = include_str!("../../README.md")]
+#[doc = include_str!("../../../README.md")]
 pub struct ReadmeExamples;
