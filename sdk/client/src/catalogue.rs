@@ -112,7 +112,7 @@ impl Catalogue {
     /// it has one. An overlay's message becomes a [`Message::Raw`] of its encoded body.
     pub fn parse_message(&self, json: &str) -> Result<(Option<Address>, Message), String> {
         let Some(s) = &self.schema else {
-            return crate::session::parse_message(json).map_err(|e| with_overlay_hint(e, false));
+            return parse_message(json).map_err(|e| with_overlay_hint(e, false));
         };
         let (header, parsed) = s.parse_line(json).map_err(|e| e.to_string())?;
         match &parsed {
@@ -121,7 +121,7 @@ impl Catalogue {
                 Ok((header.destination, Message::Raw(raw)))
             }
             // The SDK's own messages keep their typed form (control is tracked on it).
-            _ => crate::session::parse_message(json),
+            _ => parse_message(json),
         }
     }
 
@@ -229,4 +229,12 @@ impl Serialize for Printed<'_> {
         }
         map.end()
     }
+}
+
+/// A message given to the CLI, in the shape [`jaus::json::parse_message`] reads
+/// (`{"message": NAME, "fields": {...}}`, `fields` optional, or a whole line as `jaus
+/// decode` prints it); the destination of its header, if it has one, is returned.
+pub fn parse_message(json: &str) -> Result<(Option<Address>, Message), String> {
+    let (header, message) = jaus::json::parse_message(json).map_err(|e| e.to_string())?;
+    Ok((header.destination, message))
 }

@@ -37,9 +37,10 @@ pub mod session;
 pub mod traffic;
 pub mod tree;
 
+pub use catalogue::parse_message;
 pub use place::{
     bind_socket, default_me, flush, flush_seen, silence_hint, Client, Commander, Link, Mode, Tool,
 };
 pub use port::{carrier_of, Carrier, Port, SERIAL_FAR_END};
-pub use session::{parse_message, Outcome, Script};
+pub use session::{Outcome, Script};
 pub use tree::{tree_json, TreePrinter};

@@ -78,14 +78,6 @@ pub struct Outcome {
     pub confirmations: Vec<(Address, String, Confirmation)>,
 }
 
-/// A message given to the CLI, in the shape [`jaus::json::parse_message`] reads
-/// (`{"message": NAME, "fields": {...}}`, `fields` optional, or a whole line as `jaus
-/// decode` prints it); the destination of its header, if it has one, is returned.
-pub fn parse_message(json: &str) -> Result<(Option<Address>, Message), String> {
-    let (header, message) = jaus::json::parse_message(json).map_err(|e| e.to_string())?;
-    Ok((header.destination, message))
-}
-
 impl Client {
     /// Runs one session: takes its place, sends `script`'s messages in order (each
     /// after the previous one was answered, or after a short pause when the receiver
