@@ -118,7 +118,7 @@ pub enum Port {
 }
 
 impl Port {
-    /// Opens the port of `carrier`: UDP binds as [`bind_socket`](super::bind_socket)
+    /// Opens the port of `carrier`: UDP binds as [`bind_socket`](crate::place::bind_socket)
     /// says; TCP dials `peers` (and listens on `bind` if given); serial opens the line.
     pub fn open(
         carrier: &Carrier,
@@ -126,7 +126,7 @@ impl Port {
         peers: &[SocketAddr],
     ) -> Result<Port, String> {
         match carrier {
-            Carrier::Udp => super::bind_socket(bind, peers).map(Port::Udp),
+            Carrier::Udp => crate::place::bind_socket(bind, peers).map(Port::Udp),
             Carrier::Tcp => jaus::net::tcp::TcpTransport::new(jaus::net::tcp::TcpConfig {
                 listen: bind,
                 peers: peers.to_vec(),

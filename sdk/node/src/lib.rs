@@ -24,8 +24,9 @@ mod links_file;
 mod policy_file;
 
 pub use attach::{attach_openjaus, OjNodeManager};
+pub use file::run::node;
 pub use file::{
-    node, As4File, As4VehicleFile, FrameFile, HostItem, Hosted, IoFile, MulticastFile, NodeFile,
+    As4File, As4VehicleFile, FrameFile, HostItem, Hosted, IoFile, MulticastFile, NodeFile,
     OjComponentsFile, ReliableFile, TransportFile,
 };
 pub use links_file::{LinkFile, QuicLinkFile};

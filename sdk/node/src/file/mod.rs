@@ -7,9 +7,7 @@ use std::time::Duration;
 use jaus::net::{udp, Framing, NodeConfig};
 
 mod build;
-mod run;
-
-pub use run::node;
+pub(crate) mod run;
 
 /// A node configuration file (YAML).
 ///
