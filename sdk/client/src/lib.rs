@@ -38,9 +38,7 @@ pub mod traffic;
 pub mod tree;
 
 pub use catalogue::parse_message;
-pub use place::{
-    bind_socket, default_me, flush, flush_seen, silence_hint, Client, Commander, Link, Mode, Tool,
-};
-pub use port::{carrier_of, Carrier, Port, SERIAL_FAR_END};
+pub use place::{default_me, flush, flush_seen, Client, Commander, Link, Mode, Tool};
+pub use port::{bind_socket, carrier_of, silence_hint, Carrier, Port, SERIAL_FAR_END};
 pub use session::{Outcome, Script};
 pub use tree::{tree_json, TreePrinter};

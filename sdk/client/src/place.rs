@@ -1,7 +1,7 @@
 //! How the CLI takes its place in a system (joins `--me`'s node or runs a node of its
 //! own), its own component, and its socket.
 
-use std::net::{IpAddr, Ipv4Addr, SocketAddr, UdpSocket};
+use std::net::SocketAddr;
 use std::sync::atomic::AtomicBool;
 use std::time::{Duration, Instant};
 
@@ -202,44 +202,6 @@ impl Link {
             Link::Attached(_) => true,
         }
     }
-}
-
-/// Picks the local socket: the one asked for, or port 3794 on an address of its own
-/// (see the module docs).
-pub fn bind_socket(bind: Option<SocketAddr>, peers: &[SocketAddr]) -> Result<UdpSocket, String> {
-    if let Some(b) = bind {
-        return UdpSocket::bind(b).map_err(|e| format!("cannot bind {b}: {e}"));
-    }
-    let loopback = !peers.is_empty() && peers.iter().all(|p| p.ip().is_loopback());
-    if loopback {
-        for x in 2..=254u8 {
-            let ip = IpAddr::V4(Ipv4Addr::new(127, 0, 0, x));
-            if peers.iter().any(|p| p.ip() == ip) {
-                continue;
-            }
-            if let Ok(s) = UdpSocket::bind(SocketAddr::new(ip, 3794)) {
-                return Ok(s);
-            }
-        }
-        return Err("no free port 3794 on 127.0.0.2-254: JUDP peers answer port 3794 of the sender's address; give --bind ADDRESS:3794 with an address of this host".into());
-    }
-    let any = SocketAddr::new(IpAddr::V4(Ipv4Addr::UNSPECIFIED), 3794);
-    UdpSocket::bind(any).map_err(|e| {
-        format!("cannot bind {any}: {e}. JUDP peers (OpenJAUS) answer port 3794 of the sender's address, so this tool needs port 3794 on an address of its own: give --bind ADDRESS:3794 (or --bind ADDRESS:0 when the peer is a jaus node, which answers any port)")
-    })
-}
-
-/// Says why nothing came back when nothing did.
-pub fn silence_hint(socket: &SocketAddr, peers: &[SocketAddr], wait: Duration) -> String {
-    format!(
-        "no datagram from {peers:?} within {:.1} s. Is a node running there? JUDP peers (OpenJAUS) send their answers to port 3794 of the sender's IP address: this tool listened on {socket}{}",
-        wait.as_secs_f64(),
-        if socket.port() == 3794 {
-            "".to_string()
-        } else {
-            "; bind to port 3794 of an address of your own (--bind 127.0.0.2:3794)".to_string()
-        }
-    )
 }
 
 /// The CLI's address when `--me` is not given: S.1.40.1 with S in 200–253 from the

@@ -3,7 +3,7 @@
 //! session reads a socket.
 
 use std::collections::VecDeque;
-use std::net::{Ipv4Addr, SocketAddr, SocketAddrV4, UdpSocket};
+use std::net::{IpAddr, Ipv4Addr, SocketAddr, SocketAddrV4, UdpSocket};
 use std::path::PathBuf;
 use std::time::Duration;
 
@@ -118,7 +118,7 @@ pub enum Port {
 }
 
 impl Port {
-    /// Opens the port of `carrier`: UDP binds as [`bind_socket`](crate::place::bind_socket)
+    /// Opens the port of `carrier`: UDP binds as [`bind_socket`]
     /// says; TCP dials `peers` (and listens on `bind` if given); serial opens the line.
     pub fn open(
         carrier: &Carrier,
@@ -126,7 +126,7 @@ impl Port {
         peers: &[SocketAddr],
     ) -> Result<Port, String> {
         match carrier {
-            Carrier::Udp => crate::place::bind_socket(bind, peers).map(Port::Udp),
+            Carrier::Udp => bind_socket(bind, peers).map(Port::Udp),
             Carrier::Tcp => jaus::net::tcp::TcpTransport::new(jaus::net::tcp::TcpConfig {
                 listen: bind,
                 peers: peers.to_vec(),
@@ -220,6 +220,44 @@ impl Port {
             (n, from)
         }))
     }
+}
+
+/// Picks the local socket: the one asked for, or port 3794 on an address of its own
+/// (see the crate docs: JUDP peers answer port 3794 of the sender's address).
+pub fn bind_socket(bind: Option<SocketAddr>, peers: &[SocketAddr]) -> Result<UdpSocket, String> {
+    if let Some(b) = bind {
+        return UdpSocket::bind(b).map_err(|e| format!("cannot bind {b}: {e}"));
+    }
+    let loopback = !peers.is_empty() && peers.iter().all(|p| p.ip().is_loopback());
+    if loopback {
+        for x in 2..=254u8 {
+            let ip = IpAddr::V4(Ipv4Addr::new(127, 0, 0, x));
+            if peers.iter().any(|p| p.ip() == ip) {
+                continue;
+            }
+            if let Ok(s) = UdpSocket::bind(SocketAddr::new(ip, 3794)) {
+                return Ok(s);
+            }
+        }
+        return Err("no free port 3794 on 127.0.0.2-254: JUDP peers answer port 3794 of the sender's address; give --bind ADDRESS:3794 with an address of this host".into());
+    }
+    let any = SocketAddr::new(IpAddr::V4(Ipv4Addr::UNSPECIFIED), 3794);
+    UdpSocket::bind(any).map_err(|e| {
+        format!("cannot bind {any}: {e}. JUDP peers (OpenJAUS) answer port 3794 of the sender's address, so this tool needs port 3794 on an address of its own: give --bind ADDRESS:3794 (or --bind ADDRESS:0 when the peer is a jaus node, which answers any port)")
+    })
+}
+
+/// Says why nothing came back when nothing did.
+pub fn silence_hint(socket: &SocketAddr, peers: &[SocketAddr], wait: Duration) -> String {
+    format!(
+        "no datagram from {peers:?} within {:.1} s. Is a node running there? JUDP peers (OpenJAUS) send their answers to port 3794 of the sender's IP address: this tool listened on {socket}{}",
+        wait.as_secs_f64(),
+        if socket.port() == 3794 {
+            "".to_string()
+        } else {
+            "; bind to port 3794 of an address of your own (--bind 127.0.0.2:3794)".to_string()
+        }
+    )
 }
 
 /// The port as a carrier of the SDK's one I/O loop ([`jaus::net::shell`]): what a
