@@ -46,91 +46,9 @@ pub mod offline;
 pub mod plan;
 pub mod profile;
 pub mod report;
+pub mod selection;
 pub mod session;
 pub mod udp;
 
-use jaus::Address;
-use jaus_spec::Spec;
-use serde::Serialize;
-
 pub use check::{Check, Exchange, Level, Outcome, Rule, Verdict};
-pub use engine::{ComponentReport, Engine, Options};
-
-/// Everything one run found.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct RunReport {
-    /// The tool and its version.
-    pub tool: String,
-    /// Where the targets were reached (the peers), for the reader.
-    pub peer: String,
-    /// One report per component tested.
-    pub components: Vec<ComponentReport>,
-    /// Packets for the tester's voices that were not kept because its inbox was full
-    /// (a target flooding the tester); checks waiting for them may have failed.
-    pub tester_dropped: u64,
-}
-
-impl RunReport {
-    /// True when no required check failed.
-    pub fn passed(&self) -> bool {
-        self.components.iter().all(|c| c.required_failures() == 0)
-    }
-
-    /// Checks run in all.
-    pub fn checks(&self) -> usize {
-        self.components.iter().map(|c| c.outcomes.len()).sum()
-    }
-}
-
-/// Tests every component of `targets` in turn through `session`.
-pub fn run(
-    session: &mut dyn session::Session,
-    spec: &Spec,
-    voices: session::Voices,
-    targets: &[Address],
-    opts: Options,
-) -> RunReport {
-    run_selected(session, spec, voices, targets, opts, None)
-}
-
-/// [`run`] planning only the checks `selection` selects ([`profile::run`]).
-pub(crate) fn run_selected(
-    session: &mut dyn session::Session,
-    spec: &Spec,
-    voices: session::Voices,
-    targets: &[Address],
-    opts: Options,
-    selection: Option<&profile::Selection>,
-) -> RunReport {
-    let components = targets
-        .iter()
-        .map(|t| {
-            Engine::new(session, spec, voices, *t, opts)
-                .with_selection(selection.cloned())
-                .run()
-        })
-        .collect();
-    RunReport {
-        tool: format!("jaus conform {}", env!("CARGO_PKG_VERSION")),
-        peer: String::new(),
-        components,
-        tester_dropped: session.dropped(),
-    }
-}
-
-/// The components worth testing among `found`: those of `subsystem`, not node
-/// managers (component 1), not the tester's own node.
-pub fn targets_in(found: &[Address], subsystem: u8, voices: &session::Voices) -> Vec<Address> {
-    let mut v: Vec<Address> = found
-        .iter()
-        .copied()
-        .filter(|a| {
-            a.subsystem == subsystem
-                && a.component != 1
-                && !(a.subsystem == voices.controller.subsystem && a.node == voices.controller.node)
-        })
-        .collect();
-    v.sort_by_key(|a| (a.node, a.component, a.instance));
-    v.dedup();
-    v
-}
+pub use engine::{run, targets_in, ComponentReport, Engine, Options, RunReport};

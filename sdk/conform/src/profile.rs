@@ -45,9 +45,9 @@ use jaus_spec::Spec;
 use serde::Deserialize;
 
 use crate::catalogue::Entry;
-use crate::check::{Check, Level};
+use crate::engine::{Options, RunReport};
+pub use crate::selection::{plan_selected, LevelName, Pick, Selection};
 use crate::session::{Session, Voices};
-use crate::{Options, RunReport};
 
 /// The built-in profiles' names.
 pub const BUILTIN: [&str; 3] = ["all", "ra33-core", "iop"];
@@ -87,39 +87,6 @@ pub struct Profile {
     pub origin: String,
 }
 
-/// One entry of a profile.
-#[derive(Debug, Clone, PartialEq, Eq, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct Pick {
-    /// A check id, or a prefix of ids ending with `*`.
-    pub id: String,
-    /// The level the checks it selects are reported at, instead of their own.
-    #[serde(default)]
-    pub level: Option<LevelName>,
-    /// The entry's line in its file (1-based), when read from one.
-    #[serde(skip)]
-    pub line: Option<usize>,
-}
-
-/// A level as a profile file spells it.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum LevelName {
-    /// [`Level::Required`].
-    Required,
-    /// [`Level::Advisory`].
-    Advisory,
-}
-
-impl From<LevelName> for Level {
-    fn from(l: LevelName) -> Level {
-        match l {
-            LevelName::Required => Level::Required,
-            LevelName::Advisory => Level::Advisory,
-        }
-    }
-}
-
 /// A profile that cannot be read or names what the catalogue does not have.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct ProfileError {
@@ -141,25 +108,6 @@ impl fmt::Display for ProfileError {
 }
 
 impl std::error::Error for ProfileError {}
-
-impl Pick {
-    fn of(id: &str) -> Pick {
-        Pick {
-            id: id.to_string(),
-            level: None,
-            line: None,
-        }
-    }
-
-    /// How specifically this entry selects `id`: `None` when it does not; an exact id
-    /// beats any prefix, a longer prefix a shorter one.
-    fn matches(&self, id: &str) -> Option<usize> {
-        match self.id.strip_suffix('*') {
-            Some(prefix) => id.starts_with(prefix).then_some(prefix.len()),
-            None => (self.id == id).then_some(usize::MAX),
-        }
-    }
-}
 
 impl Profile {
     /// The built-in profile `name` ([`BUILTIN`]).
@@ -281,102 +229,6 @@ fn closest<'a>(id: &str, known: impl Iterator<Item = &'a str>) -> Option<&'a str
         .map(|(_, k)| k)
 }
 
-/// A profile checked against the catalogue: what a run plans and reports.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct Selection {
-    /// The profile's name.
-    pub name: String,
-    /// What it is for.
-    pub description: String,
-    picks: Vec<Pick>,
-    /// The catalogue ids selected, in catalogue order.
-    pub ids: Vec<String>,
-}
-
-impl Selection {
-    /// `None` when the check `id` is not selected; else its level: the one of the most
-    /// specific entry giving one, or `own`.
-    pub fn level_of(&self, id: &str, own: Level) -> Option<Level> {
-        let mut matching: Vec<(usize, usize, &Pick)> = self
-            .picks
-            .iter()
-            .enumerate()
-            .filter_map(|(i, p)| p.matches(id).map(|m| (m, i, p)))
-            .collect();
-        if matching.is_empty() {
-            return None;
-        }
-        // Most specific first; among equals, the later entry.
-        matching.sort_by_key(|&(specific, index, _)| std::cmp::Reverse((specific, index)));
-        Some(
-            matching
-                .iter()
-                .find_map(|(_, _, p)| p.level)
-                .map_or(own, Level::from),
-        )
-    }
-
-    /// Whether the check `id` is selected.
-    pub fn selects(&self, id: &str) -> bool {
-        self.level_of(id, Level::Advisory).is_some()
-    }
-
-    /// Whether it selects an AS-4 judge's check.
-    pub fn has_as4(&self) -> bool {
-        self.ids.iter().any(|id| id.starts_with("as4."))
-    }
-
-    /// Whether it selects an RA 3.3 check.
-    pub fn has_ra33(&self) -> bool {
-        self.ids.iter().any(|id| !id.starts_with("as4."))
-    }
-
-    /// The entries of `catalogue` it selects, at the levels it gives them
-    /// (`jaus conform --list --profile`).
-    pub fn entries(&self, catalogue: &[Entry]) -> Vec<Entry> {
-        catalogue
-            .iter()
-            .filter_map(|e| {
-                let level = self.level_of(&e.id, e.level)?;
-                Some(Entry { level, ..e.clone() })
-            })
-            .collect()
-    }
-
-    /// Keeps the outcomes of `run` it selects, at their levels, and names the profile
-    /// in the report's tool line.
-    pub fn apply(&self, run: &mut RunReport) {
-        for c in &mut run.components {
-            c.outcomes
-                .retain_mut(|o| match self.level_of(&o.check.id, o.check.level) {
-                    Some(level) => {
-                        o.check.level = level;
-                        true
-                    }
-                    None => false,
-                });
-        }
-        run.tool = format!("{}, profile {}", run.tool, self.name);
-    }
-}
-
-/// The checks for the component with id `component` (a type the definitions may or
-/// may not know), in the order the engine runs them: every one, or those `selection`
-/// selects, at the levels it gives them ([`crate::plan::plan`] filtered).
-pub fn plan_selected(spec: &Spec, component: u8, selection: Option<&Selection>) -> Vec<Check> {
-    let all = crate::plan::plan(spec, component);
-    match selection {
-        None => all,
-        Some(sel) => all
-            .into_iter()
-            .filter_map(|mut c| {
-                c.level = sel.level_of(&c.id, c.level)?;
-                Some(c)
-            })
-            .collect(),
-    }
-}
-
 /// [`crate::run`] planning only the checks `selection` selects, at its levels; the
 /// report names the profile.
 pub fn run(
@@ -387,8 +239,9 @@ pub fn run(
     opts: Options,
     selection: &Selection,
 ) -> RunReport {
-    let mut report = crate::run_selected(session, spec, voices, targets, opts, Some(selection));
-    selection.apply(&mut report);
+    let mut report =
+        crate::engine::run_selected(session, spec, voices, targets, opts, Some(selection));
+    keep_selected(selection, &mut report);
     report
 }
 
@@ -400,13 +253,30 @@ pub fn run_as4(
     selection: &Selection,
 ) -> RunReport {
     let mut report = crate::as4::run_as4(session, opts);
-    selection.apply(&mut report);
+    keep_selected(selection, &mut report);
     report
+}
+
+/// Keeps the outcomes of `run` that `selection` selects, at their levels, and names the profile
+/// in the report's tool line.
+pub fn keep_selected(selection: &Selection, run: &mut RunReport) {
+    for c in &mut run.components {
+        c.outcomes
+            .retain_mut(|o| match selection.level_of(&o.check.id, o.check.level) {
+                Some(level) => {
+                    o.check.level = level;
+                    true
+                }
+                None => false,
+            });
+    }
+    run.tool = format!("{}, profile {}", run.tool, selection.name);
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::check::Level;
 
     fn catalogue() -> Vec<Entry> {
         crate::catalogue::catalogue(&jaus_spec::load_sdk().unwrap())

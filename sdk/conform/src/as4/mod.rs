@@ -45,7 +45,7 @@ use jaus::net::as5669a::As4Id;
 pub use session::{Arrival, As4Host, As4Session, MemoryAs4Session};
 
 use crate::check::{Check, Kind, Level, Outcome, Rule, Verdict};
-use crate::{ComponentReport, RunReport};
+use crate::engine::{ComponentReport, RunReport};
 use talk::Judge;
 
 /// How the scenario runs.

@@ -20,6 +20,7 @@ use jaus_spec::Spec;
 use serde::Serialize;
 
 use crate::check::{Check, Exchange, Kind, Level, Outcome, Rule, Verdict};
+use crate::selection::Selection;
 use crate::session::{Session, Voices};
 
 /// How long the engine waits.
@@ -90,7 +91,7 @@ pub struct Engine<'a> {
     /// The definitions as a codec: messages by name, a vendor overlay's included.
     schema: jaus_dynamic::Schema,
     /// The checks a profile selects (`None`: every check).
-    selection: Option<crate::profile::Selection>,
+    selection: Option<Selection>,
     /// Whether the component has granted the tester's controller control in this run
     /// (from then on, only the tester's voices took control of it).
     granted: bool,
@@ -137,14 +138,14 @@ impl<'a> Engine<'a> {
 
     /// Plans only the checks `selection` selects, at the levels it gives them
     /// (`jaus conform --profile`).
-    pub fn with_selection(mut self, selection: Option<crate::profile::Selection>) -> Self {
+    pub fn with_selection(mut self, selection: Option<Selection>) -> Self {
         self.selection = selection;
         self
     }
 
     /// Runs every check that applies to the target, then restores it.
     pub fn run(mut self) -> ComponentReport {
-        let checks = crate::profile::plan_selected(
+        let checks = crate::selection::plan_selected(
             self.spec,
             self.target.component,
             self.selection.as_ref(),
@@ -282,4 +283,83 @@ fn describe_controller(c: Option<Option<(Address, u8)>>) -> String {
         Some(Some((a, auth))) => format!("{a} at authority {auth}"),
         None => "not reported".into(),
     }
+}
+
+/// Everything one run found.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RunReport {
+    /// The tool and its version.
+    pub tool: String,
+    /// Where the targets were reached (the peers), for the reader.
+    pub peer: String,
+    /// One report per component tested.
+    pub components: Vec<ComponentReport>,
+    /// Packets for the tester's voices that were not kept because its inbox was full
+    /// (a target flooding the tester); checks waiting for them may have failed.
+    pub tester_dropped: u64,
+}
+
+impl RunReport {
+    /// True when no required check failed.
+    pub fn passed(&self) -> bool {
+        self.components.iter().all(|c| c.required_failures() == 0)
+    }
+
+    /// Checks run in all.
+    pub fn checks(&self) -> usize {
+        self.components.iter().map(|c| c.outcomes.len()).sum()
+    }
+}
+
+/// Tests every component of `targets` in turn through `session`.
+pub fn run(
+    session: &mut dyn Session,
+    spec: &Spec,
+    voices: Voices,
+    targets: &[Address],
+    opts: Options,
+) -> RunReport {
+    run_selected(session, spec, voices, targets, opts, None)
+}
+
+/// [`run`] planning only the checks `selection` selects ([`crate::profile::run`]).
+pub(crate) fn run_selected(
+    session: &mut dyn Session,
+    spec: &Spec,
+    voices: Voices,
+    targets: &[Address],
+    opts: Options,
+    selection: Option<&Selection>,
+) -> RunReport {
+    let components = targets
+        .iter()
+        .map(|t| {
+            Engine::new(session, spec, voices, *t, opts)
+                .with_selection(selection.cloned())
+                .run()
+        })
+        .collect();
+    RunReport {
+        tool: format!("jaus conform {}", env!("CARGO_PKG_VERSION")),
+        peer: String::new(),
+        components,
+        tester_dropped: session.dropped(),
+    }
+}
+
+/// The components worth testing among `found`: those of `subsystem`, not node
+/// managers (component 1), not the tester's own node.
+pub fn targets_in(found: &[Address], subsystem: u8, voices: &Voices) -> Vec<Address> {
+    let mut v: Vec<Address> = found
+        .iter()
+        .copied()
+        .filter(|a| {
+            a.subsystem == subsystem
+                && a.component != 1
+                && !(a.subsystem == voices.controller.subsystem && a.node == voices.controller.node)
+        })
+        .collect();
+    v.sort_by_key(|a| (a.node, a.component, a.instance));
+    v.dedup();
+    v
 }

@@ -50,7 +50,7 @@ use jaus::net::as5669a::As4Id;
 use jaus::Address;
 
 use crate::check::Rule;
-use crate::{ComponentReport, RunReport};
+use crate::engine::{ComponentReport, RunReport};
 
 /// The check ids of an offline judgement.
 pub mod ids {

@@ -13,7 +13,7 @@ use std::fmt::Write;
 
 use super::escape;
 use crate::check::{Level, Verdict};
-use crate::RunReport;
+use crate::engine::RunReport;
 
 const STYLE: &str =
     "body{font-family:sans-serif;margin:1.5em}table{border-collapse:collapse;width:100%}\

@@ -6,7 +6,7 @@ use std::fmt::Write;
 
 use super::escape;
 use crate::check::{Level, Verdict};
-use crate::RunReport;
+use crate::engine::RunReport;
 
 /// The run as JUnit XML.
 pub fn junit(run: &RunReport) -> String {

@@ -10,7 +10,7 @@ pub use junit::junit;
 use std::fmt::Write;
 
 use crate::check::{Level, Verdict};
-use crate::RunReport;
+use crate::engine::RunReport;
 
 /// The run as pretty JSON.
 pub fn json(run: &RunReport) -> String {

@@ -47,7 +47,7 @@ use super::session::As4Session;
 use super::talk::{Judge, BROADCAST};
 use super::As4Options;
 use crate::check::{Check, Kind, Level, Outcome, Verdict};
-use crate::{ComponentReport, RunReport};
+use crate::engine::{ComponentReport, RunReport};
 use exec::{Found, Runner};
 
 /// The rules planned checks cite; each check's `source` names the service and the
