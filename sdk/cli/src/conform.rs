@@ -290,7 +290,7 @@ fn list(
     let spec = load_spec(spec_paths)?;
     let mut all = jaus_conform::catalogue::catalogue(&spec);
     if let Some(sel) = selection(args, &spec)? {
-        all = sel.entries(&all);
+        all = jaus_conform::catalogue::selected(&all, &sel);
     }
     let text = match format {
         ListFormat::Text => jaus_conform::catalogue::text(&all),

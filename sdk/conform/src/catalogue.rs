@@ -11,6 +11,7 @@ use jaus_spec::Spec;
 use serde::Serialize;
 
 use crate::check::Level;
+use crate::selection::Selection;
 
 /// One check of the catalogue.
 #[derive(Debug, Clone, PartialEq, Eq, Serialize)]
@@ -164,6 +165,18 @@ types). Generated from `jaus_conform::catalogue` (`jaus conform --list`) by \
         ));
     }
     s
+}
+
+/// The entries of `catalogue` that `selection` selects, at the levels it gives them
+/// (`jaus conform --list --profile`).
+pub fn selected(catalogue: &[Entry], selection: &Selection) -> Vec<Entry> {
+    catalogue
+        .iter()
+        .filter_map(|e| {
+            let level = selection.level_of(&e.id, e.level)?;
+            Some(Entry { level, ..e.clone() })
+        })
+        .collect()
 }
 
 #[cfg(test)]

@@ -311,7 +311,7 @@ mod tests {
             Some(Level::Required)
         );
         assert!(sel.has_ra33() && !sel.has_as4());
-        let listed = sel.entries(&catalogue());
+        let listed = crate::catalogue::selected(&catalogue(), &sel);
         assert_eq!(listed.len(), sel.ids.len());
         assert!(listed
             .iter()

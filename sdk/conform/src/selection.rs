@@ -5,7 +5,6 @@
 use jaus_spec::Spec;
 use serde::Deserialize;
 
-use crate::catalogue::Entry;
 use crate::check::{Check, Level};
 
 /// One entry of a profile.
@@ -108,18 +107,6 @@ impl Selection {
     /// Whether it selects an RA 3.3 check.
     pub fn has_ra33(&self) -> bool {
         self.ids.iter().any(|id| !id.starts_with("as4."))
-    }
-
-    /// The entries of `catalogue` it selects, at the levels it gives them
-    /// (`jaus conform --list --profile`).
-    pub fn entries(&self, catalogue: &[Entry]) -> Vec<Entry> {
-        catalogue
-            .iter()
-            .filter_map(|e| {
-                let level = self.level_of(&e.id, e.level)?;
-                Some(Entry { level, ..e.clone() })
-            })
-            .collect()
     }
 }
 
