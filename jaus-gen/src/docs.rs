@@ -1,7 +1,7 @@
 //! Reference documentation of a message set: one Markdown page per group and an index,
 //! rendered from `templates/docs/`.
 
-use crate::Error;
+use crate::error::Error;
 use jaus_spec::{Bits, Field, Len, Spec, Type, TypeForm, Wire};
 use minijinja::Environment;
 use serde::Serialize;
@@ -315,14 +315,14 @@ pub fn render_docs(spec: &Spec, out: &Path) -> Result<Vec<PathBuf>, Error> {
         .get_template("index.md.j2")?
         .render(minijinja::context! { groups => &groups, by_code => by_code })?;
     let p = out.join("index.md");
-    crate::write_if_changed(&p, &index)?;
+    crate::output::write_if_changed(&p, &index)?;
     files.push(p);
     for g in &groups {
         let page = env
             .get_template("group.md.j2")?
             .render(minijinja::context! { group => g })?;
         let p = out.join(format!("{}.md", g.name));
-        crate::write_if_changed(&p, &page)?;
+        crate::output::write_if_changed(&p, &page)?;
         files.push(p);
     }
     Ok(files)

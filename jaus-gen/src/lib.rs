@@ -100,7 +100,9 @@ mod components;
 mod context;
 pub mod diff;
 mod docs;
+mod error;
 pub mod lock;
+mod output;
 pub mod revision;
 pub mod runtime;
 pub mod scaffold;
@@ -108,13 +110,15 @@ mod services;
 pub mod snapshot;
 pub mod wireshark;
 
-use jaus_spec::{Spec, SpecErrors};
+use jaus_spec::Spec;
 use minijinja::Environment;
 use std::path::{Path, PathBuf};
 
 pub use components::{build_components, build_parts, ComponentCtx, PartCtx, PartRef};
 pub use context::{build_context, Context};
 pub use docs::{render_docs, DOC_TEMPLATES};
+pub use error::Error;
+pub use output::{format_code, write_if_changed};
 pub use services::{build_services, ServicesCtx};
 
 /// Templates compiled into the generator (from the crate's `templates/` directory).
@@ -133,57 +137,6 @@ pub const DEFAULT_TEMPLATES: &[(&str, &str)] = &[
         include_str!("../templates/services.rs.j2"),
     ),
 ];
-
-/// What can go wrong while generating.
-#[derive(Debug, thiserror::Error)]
-pub enum Error {
-    /// The definitions do not validate.
-    #[error("{0}")]
-    Spec(#[from] SpecErrors),
-    /// A template failed to load or render.
-    #[error("template error: {0:#}")]
-    Template(#[from] minijinja::Error),
-    /// The rendered code is not valid Rust (a template bug); the raw text was written
-    /// to `path` for inspection.
-    #[error("generated code does not parse ({path}:{line}:{column}): {message}")]
-    Syntax {
-        /// File holding the unformatted output.
-        path: PathBuf,
-        /// Line of the error.
-        line: usize,
-        /// Column of the error.
-        column: usize,
-        /// The parser's message.
-        message: String,
-    },
-    /// Reading or writing a file failed.
-    #[error("{path}: {source}")]
-    Io {
-        /// The file.
-        path: PathBuf,
-        /// The error.
-        source: std::io::Error,
-    },
-    /// A required setting is missing.
-    #[error("{0}")]
-    Config(String),
-    /// A revision to compare could not be read (a missing path, a git error, a
-    /// malformed lock file); the text names the argument, file and line.
-    #[error("{0}")]
-    Revision(String),
-    /// The definitions' wire layout differs from the lock file ([`Builder::lock`]); the
-    /// text lists every change and the command that updates the lock file.
-    #[error("{0}")]
-    Lock(String),
-    /// The services cannot be generated (a parent outside the definitions, a guard that
-    /// does not parse, a target that is not a state): the text names the service and
-    /// the file and line.
-    #[error("{0}")]
-    Services(String),
-    /// JSIDL could not be imported ([`Builder::jsidl`]): the file, line and element.
-    #[error("{0}")]
-    Jsidl(#[from] jaus_jsidl::Error),
-}
 
 /// The directory name under which YAML imported from JSIDL is loaded (it is never
 /// written there).
@@ -726,39 +679,5 @@ impl Builder {
             env.add_template_owned(name.to_string(), text)?;
         }
         Ok(env)
-    }
-}
-
-/// Writes `text` to `path` unless the file already holds exactly that.
-pub fn write_if_changed(path: &Path, text: &str) -> Result<(), Error> {
-    if std::fs::read_to_string(path).is_ok_and(|old| old == text) {
-        return Ok(());
-    }
-    std::fs::write(path, text).map_err(|source| Error::Io {
-        path: path.to_path_buf(),
-        source,
-    })
-}
-
-/// Parses and pretty-prints generated code. On a syntax error the raw text is written
-/// next to the output (`NAME.unformatted.rs`) and the error points into it.
-pub fn format_code(raw: &str, out_dir: Option<&Path>, name: &str) -> Result<String, Error> {
-    match syn::parse_file(raw) {
-        Ok(file) => Ok(prettyplease::unparse(&file)),
-        Err(e) => {
-            let dir = out_dir
-                .map(Path::to_path_buf)
-                .unwrap_or_else(std::env::temp_dir);
-            let path = dir.join(format!("{name}.unformatted.rs"));
-            let _ = std::fs::create_dir_all(&dir);
-            let _ = std::fs::write(&path, raw);
-            let start = e.span().start();
-            Err(Error::Syntax {
-                path,
-                line: start.line,
-                column: start.column + 1,
-                message: e.to_string(),
-            })
-        }
     }
 }

@@ -28,9 +28,9 @@
 //!   file of such a build holds. So `jaus-gen diff HEAD:defs/my.yaml defs/my.yaml` and
 //!   `jaus-gen diff defs/my.lock defs/my.yaml` compare like with like.
 
+use crate::error::Error;
 use crate::lock;
 use crate::snapshot::{label, JsidlPositions, Snapshot};
-use crate::Error;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 

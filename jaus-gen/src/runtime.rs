@@ -5,7 +5,8 @@
 
 use jaus_spec::Hardware;
 
-use crate::{format_code, Error};
+use crate::error::Error;
+use crate::output::format_code;
 
 /// `jaus::component::Hardware` (with `name()`) from [`Hardware::ALL`]: the variants,
 /// their docs and their names in the definitions, in the order jaus-spec lists them.

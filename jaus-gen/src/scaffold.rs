@@ -15,7 +15,7 @@ use std::path::{Path, PathBuf};
 
 use minijinja::Environment;
 
-use crate::Error;
+use crate::error::Error;
 
 /// The files of a new crate: (path in the crate, template name, template text).
 const FILES: &[(&str, &str, &str)] = &[

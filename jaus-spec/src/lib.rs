@@ -44,6 +44,8 @@ pub mod model;
 #[cfg(feature = "yaml")]
 mod resolved;
 #[cfg(feature = "yaml")]
+mod source;
+#[cfg(feature = "yaml")]
 mod validate;
 
 pub use count::{CountRef, CountRefError};
@@ -53,3 +55,5 @@ pub use load::*;
 pub use model::*;
 #[cfg(feature = "yaml")]
 pub use resolved::*;
+#[cfg(feature = "yaml")]
+pub use source::{Source, SpecError, SpecErrors};

@@ -3,9 +3,9 @@
 
 use crate::location::{LocationIndex, Pos};
 use crate::model::SpecFile;
+use crate::resolved::{Component, Group, Part, Service, Spec};
+use crate::source::{Source, SpecError, SpecErrors};
 use crate::validate;
-use crate::{Component, Group, Part, Service, Spec};
-use std::fmt;
 use std::path::{Path, PathBuf};
 
 /// Directory holding the RA 3.3 definitions shipped with this crate.
@@ -47,64 +47,6 @@ pub fn sdk_texts() -> Vec<(PathBuf, String)> {
 /// Loads and validates the built-in definitions ([`SDK_DEFS`]).
 pub fn load_sdk() -> Result<Spec, SpecErrors> {
     load_texts(sdk_texts())
-}
-
-/// One problem found in the definitions.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct SpecError {
-    /// File the problem is in.
-    pub file: PathBuf,
-    /// Where in the file.
-    pub pos: Pos,
-    /// The message/type/field concerned, e.g. `message ReportGlobalPose, field latitude`.
-    pub context: String,
-    /// What is wrong and what to do.
-    pub message: String,
-}
-
-impl fmt::Display for SpecError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(
-            f,
-            "{}:{}:{}: ",
-            self.file.display(),
-            self.pos.line,
-            self.pos.column
-        )?;
-        if !self.context.is_empty() {
-            write!(f, "{}: ", self.context)?;
-        }
-        f.write_str(&self.message)
-    }
-}
-
-/// Every problem found, in file order.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct SpecErrors(pub Vec<SpecError>);
-
-impl fmt::Display for SpecErrors {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        for (i, e) in self.0.iter().enumerate() {
-            if i > 0 {
-                writeln!(f)?;
-            }
-            write!(f, "{e}")?;
-        }
-        Ok(())
-    }
-}
-
-impl std::error::Error for SpecErrors {}
-
-/// A loaded source file.
-#[derive(Debug)]
-pub struct Source {
-    /// Its path.
-    pub path: PathBuf,
-    /// Its text.
-    pub text: String,
-    /// Node positions.
-    pub index: LocationIndex,
 }
 
 /// Loads every `*.yaml` file of `dirs` (sorted by name within each directory) and

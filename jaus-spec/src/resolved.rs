@@ -2,12 +2,13 @@
 //! representations, bit-field members, union variants), and what it says about itself
 //! (a query's report, the fields others depend on).
 
+use crate::count::CountRef;
 use crate::location::Pos;
 use crate::model::{
     BitDef, ComponentDef, FieldDef, MessageClass, MessageDef, PartDef, ServiceDef, TypeDef,
     TypeKind, VariantDef,
 };
-use crate::{CountRef, Source, SpecError};
+use crate::source::{Source, SpecError};
 use std::collections::BTreeSet;
 use std::path::Path;
 

@@ -9,7 +9,7 @@
 //! walk cannot follow, the last element it reached is the position.
 
 use super::{label, Loc};
-use crate::Error;
+use crate::error::Error;
 use jaus_spec::Spec;
 use serde_yaml::Value;
 use std::collections::HashMap;

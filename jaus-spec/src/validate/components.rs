@@ -3,7 +3,7 @@
 use super::names::{is_pascal, is_snake};
 use super::Ctx;
 use crate::model::{MessageClass, ModesDef};
-use crate::Component;
+use crate::resolved::Component;
 use std::collections::HashMap;
 
 /// Core states a mode transition may lead the component into.

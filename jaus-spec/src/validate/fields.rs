@@ -5,8 +5,9 @@
 use super::names::{is_snake, KEYWORDS};
 use super::wire::resolve;
 use super::{Ctx, Draft};
+use crate::count::CountRef;
 use crate::model::{FieldDef, TypeKind};
-use crate::{CountRef, Field, Int, Len, Wire};
+use crate::resolved::{Field, Int, Len, Wire};
 use std::collections::HashMap;
 
 /// A presence vector type and fields, resolved.

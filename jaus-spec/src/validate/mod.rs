@@ -27,7 +27,8 @@ mod types;
 mod wire;
 
 use crate::model::{MessageClass, MessageDef, TypeDef};
-use crate::{Component, Group, Message, Part, Service, Source, Spec, SpecError, Type, TypeForm};
+use crate::resolved::{Component, Group, Message, Part, Service, Spec, Type, TypeForm};
+use crate::source::{Source, SpecError};
 use fields::Body;
 
 /// A definition as parsed, with the file it came from.

@@ -4,7 +4,7 @@
 
 use super::names::is_pascal;
 use super::Ctx;
-use crate::{Component, Part};
+use crate::resolved::{Component, Part};
 use std::collections::HashMap;
 
 /// Names a part may not take: its accessor method (`snake_case` of the name) would be

@@ -7,7 +7,7 @@ use super::Ctx;
 use crate::model::{
     DefaultStateDef, EventDef, MachineDef, ServiceTransitionDef, StateDef, TransitionKind,
 };
-use crate::{Int, Service};
+use crate::resolved::{Int, Service};
 use std::collections::HashMap;
 
 /// Every service, and that no two share a name or a URI and version.

@@ -4,7 +4,7 @@
 use std::collections::HashMap;
 
 use super::Draft;
-use crate::SpecError;
+use crate::source::SpecError;
 
 /// Words of a node file's `host:` list that are not components.
 const RESERVED: &[&str] = &["vehicle", "arm"];

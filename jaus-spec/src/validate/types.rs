@@ -7,7 +7,7 @@ use super::names::{is_pascal, is_snake};
 use super::wire::resolve;
 use super::{Ctx, Parsed};
 use crate::model::{FieldDef, TypeDef, TypeKind};
-use crate::{Bits, Int, Member, TypeForm, Variant};
+use crate::resolved::{Bits, Int, Member, TypeForm, Variant};
 use std::collections::HashMap;
 
 /// Checks every named type and resolves its form; `None` for a type with an error

@@ -3,8 +3,9 @@
 //! named type a field refers to.
 
 use super::Draft;
+use crate::count::CountRef;
 use crate::model::{FieldDef, Length, TypeKind};
-use crate::{CountRef, Int, Len, Wire};
+use crate::resolved::{Int, Len, Wire};
 
 /// The integer type `name` if it can carry a count (u8, u16, u32).
 fn count_type(name: &str) -> Result<Int, String> {
