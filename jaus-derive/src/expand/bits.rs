@@ -1,8 +1,8 @@
 //! `#[derive(JausBits)]`: named bits and bit ranges of one unsigned integer, the
 //! undefined bits kept in a `reserved` member.
 
+use super::common::{fallback, lit, wire_int};
 use super::types::type_name;
-use super::{fallback, lit, wire_int};
 use crate::attr::{crate_path, parse_container_attrs, parse_field_attrs, span_of, Errors, Int};
 use proc_macro2::TokenStream;
 use quote::quote;

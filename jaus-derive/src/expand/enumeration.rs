@@ -1,8 +1,8 @@
 //! `#[derive(JausEnum)]`: an enumeration of named values of one unsigned integer,
 //! optionally keeping undefined values in an `unknown` variant.
 
+use super::common::{fallback, wire_int};
 use super::types::is_int_type;
-use super::{fallback, wire_int};
 use crate::attr::{crate_path, for_each_item, parse_container_attrs, skip_item, Errors, Int};
 use proc_macro2::TokenStream;
 use quote::quote;

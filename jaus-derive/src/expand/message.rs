@@ -1,9 +1,9 @@
 //! `#[derive(JausMessage)]` and `#[derive(JausRecord)]`: the codec of a struct from the
 //! model of its fields, and the command code of a message.
 
+use super::common::{fallback, lit};
 use super::field::{self, Parts, Slot};
 use super::model::{struct_model, Shape};
-use super::{fallback, lit};
 use crate::attr::{crate_path, parse_container_attrs, Errors, Int};
 use proc_macro2::TokenStream;
 use quote::quote;

@@ -2,7 +2,7 @@
 //! depend on each other, built from the struct and its attributes.
 
 use super::classify::classify;
-use super::lit;
+use super::common::lit;
 pub(super) use super::shape::{Elem, Len, ScaledSpec, Shape};
 use super::types::{generic_inner, is_int_type, type_name};
 use crate::attr::{parse_field_attrs, span_of, ContainerAttrs, Errors, Int};

@@ -1,7 +1,7 @@
 //! `#[derive(JausUnion)]`: an enum whose variant is chosen by a tag on the wire, read
 //! and written with its tag or (for a tag carried by another field) without it.
 
-use super::{fallback, lit, wire_int};
+use super::common::{fallback, lit, wire_int};
 use crate::attr::{crate_path, for_each_item, parse_container_attrs, skip_item, Errors};
 use proc_macro2::{Span, TokenStream};
 use quote::quote;

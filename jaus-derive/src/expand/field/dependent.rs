@@ -5,7 +5,7 @@
 use super::list::{elems_len, encode_elem, encode_elems};
 use super::number::read_scaled;
 use super::{Parts, ValueCode};
-use crate::expand::lit;
+use crate::expand::common::lit;
 use crate::expand::model::{Elem, FieldModel, Shape};
 use proc_macro2::TokenStream;
 use quote::{format_ident, quote};

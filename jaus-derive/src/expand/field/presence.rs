@@ -5,7 +5,7 @@
 use super::dependent::publish_decoded;
 use super::{Parts, ValueCode};
 use crate::attr::Int;
-use crate::expand::lit;
+use crate::expand::common::lit;
 use crate::expand::model::FieldModel;
 use proc_macro2::{Ident, TokenStream};
 use quote::quote;
