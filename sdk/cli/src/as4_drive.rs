@@ -6,14 +6,11 @@
 //! drives with Primitive Driver efforts for a while instead, printing the velocity. Over AS5669A on
 //! UDP; prints one line per step and per second of progress.
 
-use std::collections::VecDeque;
 use std::io::Write;
-use std::net::{SocketAddr, UdpSocket};
+use std::net::SocketAddr;
 use std::time::{Duration, Instant};
 
-use jaus::net::as5669a::{As4Client, As4Config, As4Id, As4Message};
-use jaus::net::shell;
-use jaus::net::udp::{IoOptions, UdpTransport};
+use jaus::net::as5669a::{As4Config, As4Id, As4Message};
 use jaus::CommandCode;
 use jaus_as4::{
     ComponentState, ControlConfirmation, Element, ExecuteList, Message, NodeServicesQuery,
@@ -22,6 +19,7 @@ use jaus_as4::{
     SetGlobalWaypoint, SetLocalWaypoint, SetWrenchEffort, Standby,
 };
 use jaus_client::as4_link::parse_id;
+use jaus_client::as4_socket::As4Socket;
 
 /// Options of `jaus as4-drive`.
 #[derive(Debug, clap::Args)]
@@ -70,14 +68,10 @@ pub struct As4DriveArgs {
     pub effort_for: f64,
 }
 
-/// The operator's socket and transport: an [`As4Client`] run by the SDK's one I/O loop
-/// ([`shell::run_until`]), which acknowledges, resends unacknowledged commands on the
-/// transport's timer and reassembles.
+/// The operator's socket ([`As4Socket`]: acknowledgements, commands resent on the
+/// transport's timer, reassembly) and who it talks to.
 struct Link {
-    socket: UdpSocket,
-    client: As4Client<SocketAddr>,
-    pending: VecDeque<As4Message>,
-    peer: SocketAddr,
+    socket: As4Socket,
     me: As4Id,
     target: As4Id,
 }
@@ -89,31 +83,8 @@ impl Link {
             .body()
             .to_bytes()
             .map_err(|e| format!("{}: {e}", m.name()))?;
-        self.client.send_at(
-            Instant::now(),
-            self.peer,
-            &[As4Message::new(m.code().0, self.target, self.me, body)],
-        );
-        self.pump(Instant::now())
-    }
-
-    /// Runs the socket until a message arrived or `until` passed (at least one turn:
-    /// what was queued is sent).
-    fn pump(&mut self, until: Instant) -> Result<(), String> {
-        let mut transport = UdpTransport::new(&self.socket, &IoOptions::default());
-        let pending = &mut self.pending;
-        shell::run_until(
-            &mut self.client,
-            &mut transport,
-            until,
-            |c| {
-                pending.extend(c.take().into_iter().map(|(_, m)| m));
-                !pending.is_empty()
-            },
-            |_, _, _| {},
-        )
-        .map(drop)
-        .map_err(|e| format!("{}: {e}", self.peer))
+        self.socket
+            .send(&[As4Message::new(m.code().0, self.target, self.me, body)])
     }
 
     /// The next message from the target within `wait` for which `want` says yes.
@@ -123,25 +94,21 @@ impl Link {
         mut want: impl FnMut(&Message) -> Option<T>,
     ) -> Option<T> {
         let until = Instant::now() + wait;
-        loop {
-            while let Some(m) = self.pending.pop_front() {
-                if self.target != As4Id::new(0xFFFF, 0xFF, 0xFF) && m.source != self.target {
-                    continue;
-                }
-                let Ok(msg) = Message::decode(CommandCode(m.message_id), &m.body) else {
-                    continue;
-                };
-                if self.target == As4Id::new(0xFFFF, 0xFF, 0xFF) {
-                    self.target = m.source;
-                }
-                if let Some(t) = want(&msg) {
-                    return Some(t);
-                }
+        while let Ok(Some(m)) = self.socket.next(until) {
+            if self.target != As4Id::new(0xFFFF, 0xFF, 0xFF) && m.source != self.target {
+                continue;
             }
-            if Instant::now() >= until || self.pump(until).is_err() {
-                return None;
+            let Ok(msg) = Message::decode(CommandCode(m.message_id), &m.body) else {
+                continue;
+            };
+            if self.target == As4Id::new(0xFFFF, 0xFF, 0xFF) {
+                self.target = m.source;
+            }
+            if let Some(t) = want(&msg) {
+                return Some(t);
             }
         }
+        None
     }
 
     fn ask<T>(
@@ -159,7 +126,8 @@ impl Link {
         }
         Err(format!(
             "{name} to {} at {}: no answer in 3 s",
-            self.target, self.peer
+            self.target,
+            self.socket.peer()
         ))
     }
 }
@@ -208,16 +176,16 @@ pub fn as4_drive(args: &As4DriveArgs, out: &mut impl Write) -> Result<(), String
         Some(t) => parse_id(t)?,
         None => As4Id::new(0xFFFF, 0xFF, 0xFF),
     };
-    let socket = UdpSocket::bind(args.bind).map_err(|e| format!("{}: {e}", args.bind))?;
     let mut link = Link {
-        socket,
         // Commands acknowledged and resent until they arrive (docs/wire.md §1.7).
-        client: As4Client::new(As4Config {
-            reliable: Some(jaus::net::reliable::RetryPolicy::default()),
-            ..As4Config::default()
-        }),
-        pending: VecDeque::new(),
-        peer: args.peer,
+        socket: As4Socket::bind(
+            args.bind,
+            args.peer,
+            As4Config {
+                reliable: Some(jaus::net::reliable::RetryPolicy::default()),
+                ..As4Config::default()
+            },
+        )?,
         me,
         target,
     };
@@ -236,7 +204,11 @@ pub fn as4_drive(args: &As4DriveArgs, out: &mut impl Write) -> Result<(), String
             _ => None,
         },
     )?;
-    say(format!("found {} \"{name}\" at {}", link.target, link.peer));
+    say(format!(
+        "found {} \"{name}\" at {}",
+        link.target,
+        link.socket.peer()
+    ));
     let services = link.ask(
         QueryServices {
             nodes: vec![NodeServicesQuery {

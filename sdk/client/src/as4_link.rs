@@ -3,16 +3,15 @@
 //! definitions. `jaus as4-query`/`as4-send` and Python's
 //! `jaus.As4Client` talk through it.
 
-use std::collections::VecDeque;
-use std::net::{SocketAddr, UdpSocket};
+use std::net::SocketAddr;
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
-use jaus::net::as5669a::{As4Client, As4Config, As4Id, As4Message};
-use jaus::net::shell;
-use jaus::net::udp::{IoOptions, UdpTransport};
+use jaus::net::as5669a::{As4Config, As4Id, As4Message};
 use jaus::CommandCode;
 use jaus_dynamic::{Decoded, DynMessage, Schema, Value};
+
+use crate::as4_socket::As4Socket;
 
 /// An AS-4 id from `subsystem.node.component`, the error as text naming the part.
 pub fn parse_id(text: &str) -> Result<As4Id, String> {
@@ -92,20 +91,14 @@ impl Incoming {
     }
 }
 
-/// One AS-4 client endpoint: its id, its socket, the peer node it talks to. Its
-/// socket runs on the SDK's one I/O loop ([`jaus::net::shell::run_until`]), so what the
-/// peer asks to be acknowledged is acknowledged, and large messages are split and
-/// reassembled, as a node does.
+/// One AS-4 client endpoint: its id, its socket ([`As4Socket`], on the SDK's one I/O
+/// loop), the peer node it talks to.
 #[derive(Debug)]
 pub struct As4Link {
     schema: Schema,
-    socket: UdpSocket,
-    client: As4Client<SocketAddr>,
-    peer: SocketAddr,
+    socket: As4Socket,
     me: As4Id,
     start: Instant,
-    /// Messages received but not handed out yet (a `receive` that returned early).
-    pending: VecDeque<As4Message>,
 }
 
 impl As4Link {
@@ -117,38 +110,12 @@ impl As4Link {
         bind: SocketAddr,
         me: As4Id,
     ) -> Result<Self, String> {
-        let socket = UdpSocket::bind(bind).map_err(|e| format!("{bind}: {e}"))?;
         Ok(Self {
             schema,
-            socket,
-            client: As4Client::new(As4Config::default()),
-            peer,
+            socket: As4Socket::bind(bind, peer, As4Config::default())?,
             me,
             start: Instant::now(),
-            pending: VecDeque::new(),
         })
-    }
-
-    /// Runs the socket until `until` or until `done` says the messages received so far
-    /// are enough (it sees them in `pending`).
-    fn pump(
-        &mut self,
-        until: Instant,
-        mut done: impl FnMut(&mut VecDeque<As4Message>) -> bool,
-    ) -> Result<bool, String> {
-        let mut transport = UdpTransport::new(&self.socket, &IoOptions::default());
-        let pending = &mut self.pending;
-        shell::run_until(
-            &mut self.client,
-            &mut transport,
-            until,
-            |c| {
-                pending.extend(c.take().into_iter().map(|(_, m)| m));
-                done(pending)
-            },
-            |_, _, _| {},
-        )
-        .map_err(|e| format!("{}: {e}", self.peer))
     }
 
     /// The definitions.
@@ -174,12 +141,8 @@ impl As4Link {
 
     /// Sends message `code` with `body` to component `to`.
     pub fn send_raw(&mut self, to: As4Id, code: CommandCode, body: Vec<u8>) -> Result<(), String> {
-        self.client.send_at(
-            Instant::now(),
-            self.peer,
-            &[As4Message::new(code.0, to, self.me, body)],
-        );
-        self.pump(Instant::now(), |_| true).map(drop)
+        self.socket
+            .send(&[As4Message::new(code.0, to, self.me, body)])
     }
 
     /// The messages from `from` until `wait` has passed, each handed to `each`; returns
@@ -192,30 +155,25 @@ impl As4Link {
         mut each: impl FnMut(&Incoming) -> Result<bool, String>,
     ) -> Result<Option<Incoming>, String> {
         let until = Instant::now() + wait;
-        loop {
-            while let Some(m) = self.pending.pop_front() {
-                if m.source != from {
-                    continue;
-                }
-                let code = CommandCode(m.message_id);
-                let incoming = Incoming {
-                    t: self.start.elapsed().as_secs_f64(),
-                    from: m.source,
-                    code,
-                    decoded: self
-                        .schema
-                        .fields_json(code, &m.body)
-                        .map_err(|e| e.to_string()),
-                };
-                if each(&incoming)? {
-                    return Ok(Some(incoming));
-                }
+        while let Some(m) = self.socket.next(until)? {
+            if m.source != from {
+                continue;
             }
-            if Instant::now() >= until {
-                return Ok(None);
+            let code = CommandCode(m.message_id);
+            let incoming = Incoming {
+                t: self.start.elapsed().as_secs_f64(),
+                from: m.source,
+                code,
+                decoded: self
+                    .schema
+                    .fields_json(code, &m.body)
+                    .map_err(|e| e.to_string()),
+            };
+            if each(&incoming)? {
+                return Ok(Some(incoming));
             }
-            self.pump(until, |p| !p.is_empty())?;
         }
+        Ok(None)
     }
 
     /// Request Control of `to` at `authority`: Ok when accepted, else the answer as the
@@ -255,7 +213,7 @@ impl As4Link {
             }
             _ => Err(format!(
                 "no Confirm Control from {to} at {} within {:.1} s",
-                self.peer,
+                self.socket.peer(),
                 wait.as_secs_f64()
             )),
         }

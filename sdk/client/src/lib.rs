@@ -16,7 +16,8 @@
 //!   overlays, by name;
 //! * [`capture`] and [`traffic`]: pcap/pcapng captures written, read, decoded to JSON
 //!   lines and replayed;
-//! * [`as4_link`]: an AS-4 client over AS5669A for definitions loaded at run time.
+//! * [`as4_link`]: an AS-4 client over AS5669A for definitions loaded at run time, on
+//!   [`as4_socket`]'s socket (an AS-4 client on the SDK's one I/O loop).
 //!
 //! # Sockets
 //!
@@ -26,6 +27,7 @@
 //! ([`bind_socket`]).
 
 pub mod as4_link;
+pub mod as4_socket;
 pub mod capture;
 pub mod catalogue;
 pub mod confirm;
