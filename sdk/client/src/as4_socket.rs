@@ -14,13 +14,17 @@ use jaus::net::udp::{IoOptions, UdpTransport};
 
 /// One socket talking AS-4 to the node at `peer`; messages received wait in order
 /// until [`next`](Self::next) takes them (at most `As4Client`'s inbox bound; the
-/// oldest are dropped first and counted, [`dropped`](Self::dropped)).
+/// oldest are dropped first and counted, [`dropped`](Self::dropped)). Only the peer's
+/// messages count: a datagram from any other address (a stranger on the network
+/// claiming a component's id) is acknowledged by the transport if it asks, then
+/// dropped and counted ([`strangers`](Self::strangers)).
 #[derive(Debug)]
 pub struct As4Socket {
     socket: UdpSocket,
     client: As4Client<SocketAddr>,
     pending: VecDeque<As4Message>,
     peer: SocketAddr,
+    strangers: u64,
 }
 
 impl As4Socket {
@@ -32,7 +36,13 @@ impl As4Socket {
             client: As4Client::new(config),
             pending: VecDeque::new(),
             peer,
+            strangers: 0,
         })
+    }
+
+    /// The socket's local address.
+    pub fn local_addr(&self) -> Result<SocketAddr, String> {
+        self.socket.local_addr().map_err(|e| e.to_string())
     }
 
     /// The node talked to.
@@ -64,22 +74,73 @@ impl As4Socket {
         self.client.dropped()
     }
 
+    /// Messages dropped because they came from another address than the peer's.
+    pub fn strangers(&self) -> u64 {
+        self.strangers
+    }
+
     /// Runs the socket until a message arrived or `until` passed (at least one turn:
     /// what was queued is sent).
     fn pump(&mut self, until: Instant) -> Result<(), String> {
         let mut transport = UdpTransport::new(&self.socket, &IoOptions::default());
-        let pending = &mut self.pending;
+        let (pending, strangers, peer) = (&mut self.pending, &mut self.strangers, self.peer);
         shell::run_until(
             &mut self.client,
             &mut transport,
             until,
             |c| {
-                pending.extend(c.take().into_iter().map(|(_, m)| m));
+                for (from, m) in c.take() {
+                    if from == peer {
+                        pending.push_back(m);
+                    } else {
+                        *strangers += 1;
+                        tracing::debug!(%from, %peer, "AS-4 message from another address than the peer's dropped");
+                    }
+                }
                 !pending.is_empty()
             },
             |_, _, _| {},
         )
         .map(drop)
         .map_err(|e| format!("{}: {e}", self.peer))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use jaus::net::as5669a::{As4Id, As4Stack};
+    use std::time::Duration;
+
+    /// The datagram carrying `m` from a stack of its own.
+    fn datagram(m: As4Message, to: SocketAddr) -> Vec<u8> {
+        let mut stack: As4Stack<SocketAddr> = As4Stack::new(As4Config::default());
+        stack.send(to, &[m]);
+        stack.poll_transmit().expect("one datagram").bytes
+    }
+
+    #[test]
+    fn only_the_peers_messages_are_taken_and_a_strangers_are_counted() {
+        let peer = UdpSocket::bind("127.0.0.1:0").unwrap();
+        let stranger = UdpSocket::bind("127.0.0.1:0").unwrap();
+        let mut s = As4Socket::bind(
+            "127.0.0.1:0".parse().unwrap(),
+            peer.local_addr().unwrap(),
+            As4Config::default(),
+        )
+        .unwrap();
+        let me = s.local_addr().unwrap();
+        let vehicle = As4Id::new(1, 1, 1);
+        let forged = As4Message::new(0x4002, As4Id::new(42, 1, 1), vehicle, vec![1, 0, 0, 0, 0]);
+        let real = As4Message::new(0x4002, As4Id::new(42, 1, 1), vehicle, vec![2, 0, 0, 0, 0]);
+        stranger.send_to(&datagram(forged, me), me).unwrap();
+        peer.send_to(&datagram(real.clone(), me), me).unwrap();
+        let got = s.next(Instant::now() + Duration::from_secs(2)).unwrap();
+        assert_eq!(got.map(|m| m.body), Some(real.body));
+        assert_eq!(s.strangers(), 1);
+        assert!(s
+            .next(Instant::now() + Duration::from_millis(50))
+            .unwrap()
+            .is_none());
     }
 }
