@@ -228,7 +228,7 @@ fn conform_as4(
         ..As4Options::default()
     };
     let run = match (&defs, sel) {
-        (Some(defs), _) => planned::run_planned(&mut session, defs, &opts),
+        (Some(defs), sel) => planned::run_planned_selected(&mut session, defs, &opts, sel),
         (None, Some(sel)) => profile::run_as4(&mut session, &opts, sel),
         (None, None) => as4::run_as4(&mut session, &opts),
     };

@@ -59,14 +59,14 @@ pub fn catalogue(spec: &Spec) -> Vec<Entry> {
         }
     }
     // The engine's clean-up, after the checks it plans, on every component.
-    let teardown = crate::plan::rules::TEARDOWN;
+    let teardown = crate::ra33::teardown_check();
     out.push(Entry {
-        id: "teardown.as-found".into(),
-        title: "The component is left as it was found".into(),
-        level: Level::Advisory,
-        rule: teardown.id,
-        source: teardown.source,
-        text: teardown.text,
+        id: teardown.id,
+        title: teardown.title,
+        level: teardown.level,
+        rule: teardown.rule.id,
+        source: teardown.rule.source,
+        text: teardown.rule.text,
         applies_to: spec.components.iter().map(|c| c.def.name.clone()).collect(),
     });
     for (id, title, rule, level) in crate::as4::CHECKS {

@@ -102,6 +102,9 @@ pub enum Kind {
         /// The query's name.
         query: String,
     },
+    /// The tester's clean-up on an RA 3.3 component: control released, the core state
+    /// restored ([`crate::ra33::teardown_check`]).
+    Teardown,
     /// A step of the AS-4 IOP scenario ([`crate::as4`]), run by that module, not by the
     /// RA 3.3 engine.
     As4,

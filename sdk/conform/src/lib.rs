@@ -13,13 +13,17 @@
 //! * [`plan`]: which checks apply to a component type;
 //! * [`session`]: the seam to the network; [`memory`] runs a target node in the same
 //!   process on a virtual clock, [`udp`] talks to a real one;
-//! * [`engine`]: runs the checks on one component and leaves it as found;
+//! * [`engine`]: the one engine: runs the checks of one component through a voice,
+//!   each with its evidence, a profile's selection applied, and reports them;
+//! * [`ra33`]: the RA 3.3 voice, four System Commanders that run the planned checks
+//!   and leave the component as found;
 //! * [`report`]: the terminal summary, JSON, JUnit XML and an HTML page;
 //! * [`capture`]: the datagrams of a run, for a pcap file;
 //! * [`catalogue`]: every check as data (`jaus conform --list`);
 //! * [`profile`]: named sets of checks (`jaus conform --profile`);
-//! * [`as4`]: the judge's side of the AS-4 IOP challenge scenario over AS5669A
-//!   (`jaus conform --as4`), reported the same way.
+//! * [`as4`]: the AS-4 voices over AS5669A (`jaus conform --as4`): the judge's side
+//!   of the IOP challenge scenario, and checks planned from AS-4 service definitions
+//!   ([`as4::planned`]), run by the same engine and reported the same way.
 //!
 //! ```
 //! use std::time::Instant;
@@ -45,10 +49,12 @@ pub mod memory;
 pub mod offline;
 pub mod plan;
 pub mod profile;
+pub mod ra33;
 pub mod report;
 pub mod selection;
 pub mod session;
 pub mod udp;
 
 pub use check::{Check, Exchange, Level, Outcome, Rule, Verdict};
-pub use engine::{run, targets_in, ComponentReport, Engine, Options, RunReport};
+pub use engine::{check_component, ComponentReport, Options, RunReport, Voice};
+pub use ra33::{run, targets_in, Ra33Voice};

@@ -32,11 +32,12 @@
 //! known id. A check takes its level from the most specific entry that gives one (the
 //! entry naming it, else the longest prefix).
 //!
-//! The RA 3.3 checks a profile leaves out are not planned (nothing is sent for them);
-//! the engine's teardown still runs (the tester leaves the target as found) and is
-//! reported when selected. The AS-4 scenario is one sequence whose steps prepare the
-//! next (control, the list loaded): it runs whole and the report keeps the selected
-//! checks.
+//! The engine ([`crate::engine`]) applies a profile the same way to every voice: a
+//! check it leaves out is not run (nothing is sent for it), unless the voice needs it
+//! run, and then the report leaves it out. The RA 3.3 teardown always runs (the tester
+//! leaves the target as found); the AS-4 scenario is one sequence whose steps prepare
+//! the next (control, the list loaded), so it runs whole; the checks planned from AS-4
+//! definitions need only their first, the services listed.
 
 use std::fmt;
 use std::path::Path;
@@ -46,7 +47,7 @@ use serde::Deserialize;
 
 use crate::catalogue::Entry;
 use crate::engine::{Options, RunReport};
-pub use crate::selection::{plan_selected, LevelName, Pick, Selection};
+pub use crate::selection::{LevelName, Pick, Selection};
 use crate::session::{Session, Voices};
 
 /// The built-in profiles' names.
@@ -229,7 +230,7 @@ fn closest<'a>(id: &str, known: impl Iterator<Item = &'a str>) -> Option<&'a str
         .map(|(_, k)| k)
 }
 
-/// [`crate::run`] planning only the checks `selection` selects, at its levels; the
+/// [`crate::run`] running only the checks `selection` selects, at its levels; the
 /// report names the profile.
 pub fn run(
     session: &mut dyn Session,
@@ -239,10 +240,7 @@ pub fn run(
     opts: Options,
     selection: &Selection,
 ) -> RunReport {
-    let mut report =
-        crate::engine::run_selected(session, spec, voices, targets, opts, Some(selection));
-    keep_selected(selection, &mut report);
-    report
+    crate::ra33::run_selected(session, spec, voices, targets, opts, Some(selection))
 }
 
 /// [`crate::as4::run_as4`] reporting the checks `selection` selects, at its levels (the
@@ -252,25 +250,7 @@ pub fn run_as4(
     opts: &crate::as4::As4Options,
     selection: &Selection,
 ) -> RunReport {
-    let mut report = crate::as4::run_as4(session, opts);
-    keep_selected(selection, &mut report);
-    report
-}
-
-/// Keeps the outcomes of `run` that `selection` selects, at their levels, and names the profile
-/// in the report's tool line.
-pub fn keep_selected(selection: &Selection, run: &mut RunReport) {
-    for c in &mut run.components {
-        c.outcomes
-            .retain_mut(|o| match selection.level_of(&o.check.id, o.check.level) {
-                Some(level) => {
-                    o.check.level = level;
-                    true
-                }
-                None => false,
-            });
-    }
-    run.tool = format!("{}, profile {}", run.tool, selection.name);
+    crate::as4::run_as4_selected(session, opts, Some(selection))
 }
 
 #[cfg(test)]
@@ -395,19 +375,6 @@ mod tests {
             .ids;
         sel.sort();
         assert_eq!(sel, core);
-    }
-
-    #[test]
-    fn the_plan_follows_the_selection_only_inside_it() {
-        let spec = jaus_spec::load_sdk().unwrap();
-        let p = Profile::parse(VENDOR, "acme.yaml").unwrap();
-        let sel = p.select(&crate::catalogue::catalogue(&spec)).unwrap();
-        let planned = plan_selected(&spec, 45, Some(&sel));
-        assert!(planned.iter().all(|c| sel.selects(&c.id)));
-        assert!(planned
-            .iter()
-            .any(|c| c.id == "events.every-change" && c.level == Level::Required));
-        assert!(crate::plan::plan(&spec, 45).len() > planned.len());
     }
 
     #[test]

@@ -2,10 +2,9 @@
 //! or prefix and the level each is reported at. The engine plans with it; profile files
 //! ([`crate::profile`]) are read into it.
 
-use jaus_spec::Spec;
 use serde::Deserialize;
 
-use crate::check::{Check, Level};
+use crate::check::Level;
 
 /// One entry of a profile.
 #[derive(Debug, Clone, PartialEq, Eq, Deserialize)]
@@ -107,22 +106,5 @@ impl Selection {
     /// Whether it selects an RA 3.3 check.
     pub fn has_ra33(&self) -> bool {
         self.ids.iter().any(|id| !id.starts_with("as4."))
-    }
-}
-
-/// The checks for the component with id `component` (a type the definitions may or
-/// may not know), in the order the engine runs them: every one, or those `selection`
-/// selects, at the levels it gives them ([`crate::plan::plan`] filtered).
-pub fn plan_selected(spec: &Spec, component: u8, selection: Option<&Selection>) -> Vec<Check> {
-    let all = crate::plan::plan(spec, component);
-    match selection {
-        None => all,
-        Some(sel) => all
-            .into_iter()
-            .filter_map(|mut c| {
-                c.level = sel.level_of(&c.id, c.level)?;
-                Some(c)
-            })
-            .collect(),
     }
 }

@@ -12,8 +12,8 @@ use jaus_as4::messages::{
 };
 
 use super::talk::BROADCAST;
-use super::{Found, Scenario};
-use crate::check::Verdict;
+use super::Scenario;
+use crate::engine::{fail, inconclusive, pass, Found};
 
 /// The services the scenario needs: the name after `urn:jaus:jss:<set>:` and the sets
 /// whose URI counts.
@@ -34,16 +34,6 @@ fn is_service(uri: &str, name: &str, sets: &[&str]) -> bool {
             .and_then(|r| r.strip_prefix(set))
             == Some(&format!(":{name}"))
     })
-}
-
-pub(super) fn pass(s: impl Into<String>) -> Found {
-    (Verdict::Pass, s.into())
-}
-pub(super) fn fail(s: impl Into<String>) -> Found {
-    (Verdict::Fail, s.into())
-}
-pub(super) fn inconclusive(s: impl Into<String>) -> Found {
-    (Verdict::Inconclusive, s.into())
 }
 
 impl Scenario<'_> {
@@ -341,7 +331,7 @@ impl Scenario<'_> {
             p.worst.as_secs_f64() * 1000.0
         );
         let (sent, answered) = (p.sent, p.answered);
-        let evidence = std::mem::take(&mut self.j.periodic.evidence);
+        let evidence = self.j.periodic.evidence.take();
         let found = if sent == 0 {
             inconclusive(summary)
         } else if answered == sent {

@@ -11,8 +11,9 @@ use jaus_as4::messages::{
 };
 use jaus_as4::ExecuteList;
 
-use super::{Found, Scenario};
-use crate::check::{Outcome, Verdict};
+use super::Scenario;
+use crate::check::Verdict;
+use crate::engine::{fail, inconclusive, pass, Found};
 
 /// The waypoints' offsets from the pose set (m): a 2 m square's three other corners.
 const OFFSETS: [(f64, f64); 3] = [(2.0, 0.0), (2.0, 2.0), (0.0, 2.0)];
@@ -26,16 +27,6 @@ const WAYPOINT_TOLERANCE: f64 = 0.01;
 /// How far the reported travel speed may be from the one executed (m/s): a count of its
 /// 16-bit scaling, and some.
 const SPEED_TOLERANCE: f64 = 0.01;
-
-fn pass(s: impl Into<String>) -> Found {
-    (Verdict::Pass, s.into())
-}
-fn fail(s: impl Into<String>) -> Found {
-    (Verdict::Fail, s.into())
-}
-fn inconclusive(s: impl Into<String>) -> Found {
-    (Verdict::Inconclusive, s.into())
-}
 
 impl Scenario<'_> {
     /// Where the list starts from: the pose set, else the pose reported, else 0, 0.
@@ -185,52 +176,40 @@ impl Scenario<'_> {
         }
     }
 
-    /// The four checks of the list driven: Execute List, then (in time order) travel
-    /// speed and local waypoint while it runs, then the active element to the list's
-    /// end; reported as execute, active element, travel speed, local waypoint.
-    pub(super) fn mission(&mut self) {
-        const IDS: [&str; 4] = [
-            "as4.waypoints.execute",
-            "as4.waypoints.active_element",
-            "as4.waypoints.travel_speed",
-            "as4.waypoints.local_waypoint",
-        ];
-        let why = if !self.known {
-            Some("no AS-4 component answered Query Identification")
-        } else if !self.j.opts.allow_motion {
+    /// Why the checks of the list driven cannot run: no motion allowed, no control, no
+    /// list loaded, or (after the first) Execute List did not start it. They run in
+    /// time order: Execute List, then travel speed and local waypoint while the list
+    /// runs, then the active element to the list's end.
+    pub(super) fn mission_blocked(&self, id: &str) -> Option<&'static str> {
+        if !self.j.opts.allow_motion {
             Some("Execute List moves the vehicle: give --allow-motion to run it")
         } else if !self.controlled {
             Some("the judge does not hold control (as4.control.request)")
         } else if !self.listed {
             Some("no list was loaded (as4.waypoints.set_element)")
+        } else if id != "as4.waypoints.execute" && self.executed.is_none() {
+            Some("Execute List did not start the list")
         } else {
             None
-        };
-        if let Some(why) = why {
-            for id in IDS {
-                let o = self.not_run(id, why);
-                self.outcomes.push(o);
-            }
-            return;
         }
-        let mut started = self.j.now();
-        let execute = self.run_step(IDS[0], |s| {
-            started = s.j.now();
-            s.execute()
-        });
-        if execute.verdict != Verdict::Pass {
-            self.outcomes.push(execute);
-            for id in &IDS[1..] {
-                let o = self.not_run(id, "Execute List did not start the list");
-                self.outcomes.push(o);
-            }
-            return;
+    }
+
+    /// `as4.waypoints.execute`, remembering when the list started if it did.
+    pub(super) fn execute_list(&mut self) -> Found {
+        let started = self.j.now();
+        let found = self.execute();
+        if found.0 == Verdict::Pass {
+            self.executed = Some(started);
         }
-        let speed = self.run_step(IDS[2], Scenario::travel_speed);
-        let waypoint = self.run_step(IDS[3], Scenario::local_waypoint);
-        let active = self.run_step(IDS[1], |s| s.follow(started));
-        self.outcomes
-            .extend::<[Outcome; 4]>([execute, active, speed, waypoint]);
+        found
+    }
+
+    /// `as4.waypoints.active_element`: followed from when Execute List started it.
+    pub(super) fn active_element(&mut self) -> Found {
+        match self.executed {
+            Some(started) => self.follow(started),
+            None => inconclusive("Execute List did not start the list"),
+        }
     }
 
     /// `as4.waypoints.execute`: Ready, Execute List from the first UID, then the active
@@ -261,7 +240,7 @@ impl Scenario<'_> {
     }
 
     /// `as4.waypoints.travel_speed`, while the list runs.
-    fn travel_speed(&mut self) -> Found {
+    pub(super) fn travel_speed(&mut self) -> Found {
         let want = self.j.opts.speed;
         match self.j.ask(QueryTravelSpeed {}.into()) {
             Ok(Message::ReportTravelSpeed(r)) if (r.speed - want).abs() <= SPEED_TOLERANCE => {
@@ -278,7 +257,7 @@ impl Scenario<'_> {
 
     /// `as4.waypoints.local_waypoint`, while the list runs: the waypoint of the active
     /// element (asked before and after, in case the vehicle moved on between).
-    fn local_waypoint(&mut self) -> Found {
+    pub(super) fn local_waypoint(&mut self) -> Found {
         let before = self.active().ok();
         let r = match self.j.ask(QueryLocalWaypoint { presence_vector: 0 }.into()) {
             Ok(Message::ReportLocalWaypoint(r)) => r,

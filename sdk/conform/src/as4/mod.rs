@@ -38,14 +38,15 @@ mod talk;
 pub mod udp;
 
 use std::net::SocketAddr;
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 use jaus::net::as5669a::As4Id;
 
 pub use session::{Arrival, As4Host, As4Session, MemoryAs4Session};
 
-use crate::check::{Check, Kind, Level, Outcome, Rule, Verdict};
-use crate::engine::{ComponentReport, RunReport};
+use crate::check::{Check, Kind, Level, Rule};
+use crate::engine::{check_component, inconclusive, Evidence, Found, RunReport, Subject, Voice};
+use crate::selection::Selection;
 use talk::Judge;
 
 /// How the scenario runs.
@@ -176,7 +177,7 @@ pub mod rules {
     };
 }
 
-/// The scenario's checks in order: id, title, rule, level.
+/// The scenario's checks in the order they run: id, title, rule, level.
 #[rustfmt::skip]
 pub(crate) const CHECKS: &[(&str, &str, Rule, Level)] = {
     use rules::*;
@@ -196,9 +197,9 @@ pub(crate) const CHECKS: &[(&str, &str, Rule, Level)] = {
         ("as4.waypoints.element_list", "Query Element List gives the UIDs in order", LIST, Required),
         ("as4.waypoints.element_count", "Query Element Count gives their number", LIST, Required),
         ("as4.waypoints.execute", "Execute List starts the list at its first element", DRIVER, Required),
-        ("as4.waypoints.active_element", "Query Active Element follows the list to its end", DRIVER, Required),
         ("as4.waypoints.travel_speed", "Query Travel Speed gives the speed executed", DRIVER, Required),
         ("as4.waypoints.local_waypoint", "Query Local Waypoint gives the active waypoint", DRIVER, Required),
+        ("as4.waypoints.active_element", "Query Active Element follows the list to its end", DRIVER, Required),
         ("as4.discovery.periodic", "Query Identification every 5 s is answered each time", PERIODIC, Required),
         ("as4.control.kept", "Control stays with the judge while it renews its request", ACCESS, Advisory),
         ("as4.management.shutdown", "Shutdown takes the component to Shutdown", MANAGEMENT, Required),
@@ -239,13 +240,11 @@ pub fn check_ids(opts: &As4Options) -> Vec<&'static str> {
         .collect()
 }
 
-/// A verdict and why.
-type Found = (Verdict, String);
-
-/// The scenario's state between its checks.
+/// The IOP scenario as the engine's AS-4 voice: its state between its checks.
 pub(super) struct Scenario<'a> {
     j: Judge<'a>,
-    outcomes: Vec<Outcome>,
+    /// The ids of the checks not run yet, in order.
+    ids: std::vec::IntoIter<&'static str>,
     /// Whom Query Identification reached (the periodic queries ask it).
     discovered: Option<As4Id>,
     identification: Option<String>,
@@ -265,53 +264,109 @@ pub(super) struct Scenario<'a> {
     listed: bool,
     /// How many UIDs Report Element List gave.
     list_len: Option<usize>,
+    /// When Execute List started the list, once it did.
+    executed: Option<Instant>,
 }
 
-impl<'a> Scenario<'a> {
-    /// Runs check `id` by `f` unless the component under test is unknown, and keeps its
-    /// outcome.
-    fn step(&mut self, id: &str, f: impl FnOnce(&mut Self) -> Found) {
-        let outcome = self.run_step(id, f);
-        self.outcomes.push(outcome);
+impl Voice for Scenario<'_> {
+    fn now(&self) -> Instant {
+        self.j.now()
     }
 
-    /// Runs check `id` by `f` and returns its outcome.
-    fn run_step(&mut self, id: &str, f: impl FnOnce(&mut Self) -> Found) -> Outcome {
-        self.j.begin();
-        let (verdict, detail) = if self.known || id == "as4.discovery.identification" {
-            f(self)
-        } else {
-            (
-                Verdict::Inconclusive,
-                "not run: no AS-4 component answered Query Identification (give the vehicle's id to test it anyway)".into(),
-            )
-        };
-        Outcome {
-            check: check(id),
-            verdict,
-            detail,
-            evidence: self.j.take_evidence(),
+    fn evidence(&mut self) -> &mut Evidence {
+        &mut self.j.evidence
+    }
+
+    fn next_check(&mut self) -> Option<Check> {
+        self.ids.next().map(check)
+    }
+
+    fn skip(&mut self, check: &Check) -> Option<String> {
+        let id = check.id.as_str();
+        if !self.known && id != "as4.discovery.identification" {
+            return Some("no AS-4 component answered Query Identification (give the vehicle's id to test it anyway)".into());
+        }
+        if id.starts_with("as4.waypoints.") && !LIST_CHECKS.contains(&id) {
+            return self.mission_blocked(id).map(str::to_string);
+        }
+        None
+    }
+
+    /// The scenario is one sequence whose steps prepare the next: it runs whole.
+    fn needed(&self, _check: &Check) -> bool {
+        true
+    }
+
+    fn run(&mut self, check: &Check) -> Found {
+        match check.id.as_str() {
+            "as4.discovery.identification" => self.identification(),
+            "as4.discovery.services" => self.services(),
+            "as4.control.query" => self.control_query(),
+            "as4.control.request" => self.control_request(),
+            "as4.management.status" => self.status_check(),
+            "as4.management.resume" => self.resume(),
+            "as4.management.standby" => self.standby(),
+            "as4.velocity.pv0140" => self.velocity(),
+            "as4.pose.set_local" => self.set_local_pose(),
+            "as4.pose.report_local" => self.report_local_pose(),
+            "as4.waypoints.set_element" => self.set_element(),
+            "as4.waypoints.element_list" => self.element_list(),
+            "as4.waypoints.element_count" => self.element_count(),
+            "as4.waypoints.execute" => self.execute_list(),
+            "as4.waypoints.travel_speed" => self.travel_speed(),
+            "as4.waypoints.local_waypoint" => self.local_waypoint(),
+            "as4.waypoints.active_element" => self.active_element(),
+            "as4.discovery.periodic" => self.periodic(),
+            "as4.control.kept" => self.control_kept(),
+            "as4.management.shutdown" => self.shutdown(),
+            "as4.control.release" => self.release_control(),
+            other => inconclusive(format!("{other} is not a step of the IOP scenario")),
         }
     }
 
-    /// An outcome for a check not run, saying why.
-    fn not_run(&self, id: &str, why: &str) -> Outcome {
-        Outcome {
-            check: check(id),
-            verdict: Verdict::Inconclusive,
-            detail: format!("not run: {why}"),
-            evidence: Vec::new(),
+    fn subject(&self) -> Subject {
+        let peer = self.j.peer;
+        Subject {
+            address: if self.known {
+                peer.to_string()
+            } else {
+                "(not found)".into()
+            },
+            component_id: peer.component,
+            component_type: Some("AS-4 vehicle (IOP scenario)".into()),
+            identification: self.identification.clone(),
         }
     }
+
+    fn dropped(&self) -> u64 {
+        self.j.dropped()
+    }
 }
+
+/// The waypoint checks that load the list (the others drive it).
+const LIST_CHECKS: [&str; 3] = [
+    "as4.waypoints.set_element",
+    "as4.waypoints.element_list",
+    "as4.waypoints.element_count",
+];
 
 /// Runs the IOP scenario through `session` and reports it as one component's checks
 /// (the component under test; its address is its AS-4 id).
 pub fn run_as4(session: &mut dyn As4Session, opts: &As4Options) -> RunReport {
+    run_as4_selected(session, opts, None)
+}
+
+/// [`run_as4`] reporting the checks `selection` selects, at its levels
+/// ([`crate::profile::run_as4`]).
+pub(crate) fn run_as4_selected(
+    session: &mut dyn As4Session,
+    opts: &As4Options,
+    selection: Option<&Selection>,
+) -> RunReport {
     let placeholder = opts.target.unwrap_or(talk::BROADCAST);
     let mut s = Scenario {
         j: Judge::new(session, *opts, placeholder),
-        outcomes: Vec::new(),
+        ids: check_ids(opts).into_iter(),
         discovered: None,
         identification: None,
         known: opts.target.is_some(),
@@ -322,45 +377,14 @@ pub fn run_as4(session: &mut dyn As4Session, opts: &As4Options) -> RunReport {
         waypoints: Vec::new(),
         listed: false,
         list_len: None,
+        executed: None,
     };
-    s.step("as4.discovery.identification", Scenario::identification);
-    s.step("as4.discovery.services", Scenario::services);
-    s.step("as4.control.query", Scenario::control_query);
-    s.step("as4.control.request", Scenario::control_request);
-    s.step("as4.management.status", Scenario::status_check);
-    s.step("as4.management.resume", Scenario::resume);
-    s.step("as4.management.standby", Scenario::standby);
-    s.step("as4.velocity.pv0140", Scenario::velocity);
-    s.step("as4.pose.set_local", Scenario::set_local_pose);
-    s.step("as4.pose.report_local", Scenario::report_local_pose);
-    s.step("as4.waypoints.set_element", Scenario::set_element);
-    s.step("as4.waypoints.element_list", Scenario::element_list);
-    s.step("as4.waypoints.element_count", Scenario::element_count);
-    s.mission();
-    s.step("as4.discovery.periodic", Scenario::periodic);
-    s.step("as4.control.kept", Scenario::control_kept);
-    if opts.shutdown {
-        s.step("as4.management.shutdown", Scenario::shutdown);
-    } else {
-        s.step("as4.control.release", Scenario::release_control);
-    }
-    let peer = s.j.peer;
-    let component = ComponentReport {
-        address: if s.known {
-            peer.to_string()
-        } else {
-            "(not found)".into()
-        },
-        component_id: peer.component,
-        component_type: Some("AS-4 vehicle (IOP scenario)".into()),
-        identification: s.identification.clone(),
-        outcomes: std::mem::take(&mut s.outcomes),
-    };
-    let dropped = s.j.dropped();
-    RunReport {
-        tool: format!("jaus conform --as4 {}", env!("CARGO_PKG_VERSION")),
-        peer: opts.vehicle.map(|v| v.to_string()).unwrap_or_default(),
-        components: vec![component],
-        tester_dropped: dropped,
-    }
+    let component = check_component(&mut s, selection);
+    RunReport::new(
+        "jaus conform --as4",
+        opts.vehicle.map(|v| v.to_string()).unwrap_or_default(),
+        vec![component],
+        s.dropped(),
+        selection,
+    )
 }

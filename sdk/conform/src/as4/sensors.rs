@@ -3,8 +3,8 @@
 
 use jaus_as4::messages::{Message, QueryLocalPose, QueryVelocityState, SetLocalPose};
 
-use super::checks::{fail, inconclusive, pass};
-use super::{Found, Scenario};
+use super::Scenario;
+use crate::engine::{fail, inconclusive, pass, Found};
 
 /// The presence vector of the velocity query: yaw rate (bit 6) and time stamp (bit 8).
 const VELOCITY_PV: u16 = 0x0140;

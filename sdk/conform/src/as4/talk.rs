@@ -18,9 +18,8 @@ use jaus_as4::messages::{
 use super::session::{Arrival, As4Session};
 use super::As4Options;
 use crate::check::Exchange;
+use crate::engine::Evidence;
 
-/// Most exchanges kept as the evidence of one check.
-const MAX_EVIDENCE: usize = 2_000;
 /// Most periodic queries waiting for their answer at once.
 const MAX_PENDING: usize = 64;
 
@@ -73,7 +72,6 @@ pub(super) struct Periodic {
     /// Whom it asks (`None`: not running).
     to: Option<As4Id>,
     next: Instant,
-    started: Instant,
     pending: VecDeque<Instant>,
     /// Queries sent.
     pub sent: u32,
@@ -85,8 +83,8 @@ pub(super) struct Periodic {
     pub missed: u32,
     /// The longest time to an answer.
     pub worst: Duration,
-    /// The queries and their answers.
-    pub evidence: Vec<Exchange>,
+    /// The queries and their answers (timed from the first).
+    pub evidence: Evidence,
 }
 
 /// Request Control again before control lapses, and what came of it.
@@ -115,8 +113,8 @@ pub(super) struct Judge<'a> {
     pub peer: As4Id,
     /// The run's options.
     pub opts: As4Options,
-    evidence: Vec<Exchange>,
-    started: Instant,
+    /// The running check's evidence.
+    pub evidence: Evidence,
     /// Query Identification every few seconds.
     pub periodic: Periodic,
     /// Request Control again.
@@ -144,19 +142,17 @@ impl<'a> Judge<'a> {
             me: opts.me,
             peer,
             opts,
-            evidence: Vec::new(),
-            started: now,
+            evidence: Evidence::new(now),
             periodic: Periodic {
                 to: None,
                 next: now,
-                started: now,
                 pending: VecDeque::new(),
                 sent: 0,
                 answered: 0,
                 late: 0,
                 missed: 0,
                 worst: Duration::ZERO,
-                evidence: Vec::new(),
+                evidence: Evidence::new(now),
             },
             keepalive: Keepalive {
                 every: None,
@@ -187,29 +183,16 @@ impl<'a> Judge<'a> {
         self.session.dropped()
     }
 
-    /// A check begins: its evidence is empty, its clock starts.
-    pub fn begin(&mut self) {
-        self.evidence.clear();
-        self.started = self.session.now();
-    }
-
-    /// The running check's evidence, leaving it empty.
-    pub fn take_evidence(&mut self) -> Vec<Exchange> {
-        std::mem::take(&mut self.evidence)
-    }
-
     /// Adds `more` to the running check's evidence.
     pub fn add_evidence(&mut self, more: Vec<Exchange>) {
-        for e in more {
-            Self::keep(&mut self.evidence, e);
-        }
+        self.evidence.extend(more);
     }
 
     /// Starts Query Identification to `to` every [`As4Options::periodic`].
     pub fn start_periodic(&mut self, to: As4Id) {
         let now = self.session.now();
         self.periodic.to = Some(to);
-        self.periodic.started = now;
+        self.periodic.evidence.begin(now);
         self.periodic.next = now + self.opts.periodic;
     }
 
@@ -243,15 +226,7 @@ impl<'a> Judge<'a> {
         }
     }
 
-    fn t_ms(&self, since: Instant) -> f64 {
-        self.session
-            .now()
-            .saturating_duration_since(since)
-            .as_secs_f64()
-            * 1000.0
-    }
-
-    fn exchange(&self, since: Instant, dir: &'static str, m: &As4Message) -> Exchange {
+    fn exchange(&self, log: &Evidence, dir: &'static str, m: &As4Message) -> Exchange {
         let (mut message, mut fields) = describe(m.message_id, &m.body);
         if message.starts_with("raw ") {
             if let Some(d) = self
@@ -263,7 +238,7 @@ impl<'a> Judge<'a> {
             }
         }
         Exchange {
-            t_ms: self.t_ms(since),
+            t_ms: log.t_ms(self.session.now()),
             dir,
             from: m.source.to_string(),
             to: m.destination.to_string(),
@@ -272,22 +247,9 @@ impl<'a> Judge<'a> {
         }
     }
 
-    /// Adds `e` to `list`, at most [`MAX_EVIDENCE`]; the cut is said in the list.
-    fn keep(list: &mut Vec<Exchange>, e: Exchange) {
-        match list.len() {
-            n if n < MAX_EVIDENCE => list.push(e),
-            n if n == MAX_EVIDENCE => list.push(Exchange {
-                message: format!("(more than {MAX_EVIDENCE} messages: the rest are not kept)"),
-                fields: serde_json::Value::Null,
-                ..e
-            }),
-            _ => {}
-        }
-    }
-
     fn record(&mut self, dir: &'static str, m: &As4Message) {
-        let e = self.exchange(self.started, dir, m);
-        Self::keep(&mut self.evidence, e);
+        let e = self.exchange(&self.evidence, dir, m);
+        self.evidence.keep(e);
     }
 
     /// Sends `msg` to `to` (a broadcast id goes out as a global broadcast:
@@ -326,8 +288,8 @@ impl<'a> Judge<'a> {
                 .into();
                 if let Ok(body) = q.to_bytes() {
                     let m = As4Message::new(q.code().0, to, self.me, body);
-                    let e = self.exchange(self.periodic.started, "sent", &m);
-                    Self::keep(&mut self.periodic.evidence, e);
+                    let e = self.exchange(&self.periodic.evidence, "sent", &m);
+                    self.periodic.evidence.keep(e);
                     self.session.send(m);
                     self.periodic.sent += 1;
                     if self.periodic.pending.len() < MAX_PENDING {
@@ -390,8 +352,8 @@ impl<'a> Judge<'a> {
         } else {
             self.periodic.answered += 1;
         }
-        let e = self.exchange(self.periodic.started, "received", m);
-        Self::keep(&mut self.periodic.evidence, e);
+        let e = self.exchange(&self.periodic.evidence, "received", m);
+        self.periodic.evidence.keep(e);
         true
     }
 

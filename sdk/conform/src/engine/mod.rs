@@ -1,27 +1,49 @@
-//! The engine: runs the checks of one component through a [`Session`], keeps the
-//! messages of each as its evidence, and leaves the target as it found it (control
-//! released, its core state restored).
+//! The one conformance engine. It runs the checks of one component, one at a time,
+//! through a [`Voice`]: the generation's way of talking to the component (RA 3.3's
+//! four System Commanders, [`crate::ra33::Ra33Voice`]; the AS-4 judge's client,
+//! [`crate::as4`]'s IOP scenario and the checks planned from AS-4 definitions). The
+//! engine owns what every run shares, so each rule of it lives here once:
+//!
+//! * the order: the voice gives its checks one at a time ([`Voice::next_check`]), so a
+//!   later check can be planned from what an earlier one found (the services an AS-4
+//!   component lists);
+//! * the selection of a profile ([`Selection`]): a check it leaves out is not run,
+//!   unless the voice needs it run for the checks after it or to leave the component as
+//!   found ([`Voice::needed`]); then it runs and is left out of the report;
+//! * a check that cannot run is reported Inconclusive, "not run: " and why
+//!   ([`Voice::skip`]), with nothing sent;
+//! * every check's evidence: the messages of that check only, timed from its start and
+//!   bounded ([`Evidence`]);
+//! * the reports: [`ComponentReport`] per component, [`RunReport`] per run.
 
-mod connections;
-mod control;
-mod core;
-mod events;
-mod readback;
-mod robust;
-mod state;
-mod talk;
-mod watch;
+pub mod evidence;
 
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
-use jaus::messages::{ComponentState, ReleaseComponentControl};
-use jaus::Address;
-use jaus_spec::Spec;
 use serde::Serialize;
 
-use crate::check::{Check, Exchange, Kind, Level, Outcome, Rule, Verdict};
+use crate::check::{Check, Outcome, Verdict};
 use crate::selection::Selection;
-use crate::session::{Session, Voices};
+
+pub use evidence::Evidence;
+
+/// A verdict and why.
+pub type Found = (Verdict, String);
+
+/// A pass, and what was seen.
+pub(crate) fn pass(d: impl Into<String>) -> Found {
+    (Verdict::Pass, d.into())
+}
+
+/// A failure, and how the component broke the rule.
+pub(crate) fn fail(d: impl Into<String>) -> Found {
+    (Verdict::Fail, d.into())
+}
+
+/// No decision, and why.
+pub(crate) fn inconclusive(d: impl Into<String>) -> Found {
+    (Verdict::Inconclusive, d.into())
+}
 
 /// How long the engine waits.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -40,6 +62,51 @@ impl Default for Options {
             settle: Duration::from_millis(200),
         }
     }
+}
+
+/// The component a voice tested, as its report names it.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Subject {
+    /// Its address (RA 3.3) or id (AS-4), or "(not found)".
+    pub address: String,
+    /// Its component id.
+    pub component_id: u8,
+    /// Its type, when known.
+    pub component_type: Option<String>,
+    /// Its identification text, when it answered.
+    pub identification: Option<String>,
+}
+
+/// One generation's way of testing a component: what to check, in which order, and
+/// how each check talks to the component. The engine ([`check_component`]) does the
+/// rest.
+pub trait Voice {
+    /// The session's clock.
+    fn now(&self) -> Instant;
+    /// The running check's evidence: every message the voice sends or receives for the
+    /// component goes in it.
+    fn evidence(&mut self) -> &mut Evidence;
+    /// Before the first check: what the voice reads to leave the component as found at
+    /// the end. Its messages are no check's evidence.
+    fn start(&mut self) {}
+    /// The next check to run (`None`: done). Called again after each check has run, so
+    /// later checks may be planned from what earlier ones found.
+    fn next_check(&mut self) -> Option<Check>;
+    /// Why `check` cannot run now (it is then reported Inconclusive with nothing sent).
+    fn skip(&mut self, _check: &Check) -> Option<String> {
+        None
+    }
+    /// Whether `check` must run even when a profile leaves it out: its steps prepare
+    /// the checks after it, or it leaves the component as found.
+    fn needed(&self, _check: &Check) -> bool {
+        false
+    }
+    /// Runs `check`.
+    fn run(&mut self, check: &Check) -> Found;
+    /// The component tested (asked once the checks are done).
+    fn subject(&self) -> Subject;
+    /// Messages for the tester the session did not keep (a full inbox).
+    fn dropped(&self) -> u64;
 }
 
 /// What the checks found on one component.
@@ -75,216 +142,6 @@ impl ComponentReport {
     }
 }
 
-/// Runs the checks on one component.
-pub struct Engine<'a> {
-    session: &'a mut dyn Session,
-    spec: &'a Spec,
-    voices: Voices,
-    target: Address,
-    opts: Options,
-    evidence: Vec<Exchange>,
-    started: std::time::Instant,
-    /// The component's own authority (0 until Query Component Authority says).
-    authority: u8,
-    /// Its identification, once answered.
-    identification: Option<String>,
-    /// The definitions as a codec: messages by name, a vendor overlay's included.
-    schema: jaus_dynamic::Schema,
-    /// The checks a profile selects (`None`: every check).
-    selection: Option<Selection>,
-    /// Whether the component has granted the tester's controller control in this run
-    /// (from then on, only the tester's voices took control of it).
-    granted: bool,
-}
-
-impl std::fmt::Debug for Engine<'_> {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("Engine")
-            .field("target", &self.target)
-            .field("voices", &self.voices)
-            .finish()
-    }
-}
-
-/// The check recording the tester's clean-up (its rule is the catalogue's).
-const TEARDOWN: Rule = crate::plan::rules::TEARDOWN;
-
-impl<'a> Engine<'a> {
-    /// An engine testing `target` through `session` with `voices`, its checks read
-    /// from `spec`.
-    pub fn new(
-        session: &'a mut dyn Session,
-        spec: &'a Spec,
-        voices: Voices,
-        target: Address,
-        opts: Options,
-    ) -> Self {
-        let started = session.now();
-        Engine {
-            session,
-            spec,
-            voices,
-            target,
-            opts,
-            evidence: Vec::new(),
-            started,
-            authority: 0,
-            identification: None,
-            schema: jaus_dynamic::Schema::from_spec(spec),
-            selection: None,
-            granted: false,
-        }
-    }
-
-    /// Plans only the checks `selection` selects, at the levels it gives them
-    /// (`jaus conform --profile`).
-    pub fn with_selection(mut self, selection: Option<Selection>) -> Self {
-        self.selection = selection;
-        self
-    }
-
-    /// Runs every check that applies to the target, then restores it.
-    pub fn run(mut self) -> ComponentReport {
-        let checks = crate::selection::plan_selected(
-            self.spec,
-            self.target.component,
-            self.selection.as_ref(),
-        );
-        let initial = self.status();
-        self.evidence.clear();
-        let mut outcomes = Vec::with_capacity(checks.len() + 1);
-        for check in checks {
-            outcomes.push(self.run_one(check));
-        }
-        outcomes.push(self.teardown(initial));
-        ComponentReport {
-            address: self.target.to_string(),
-            component_id: self.target.component,
-            component_type: crate::plan::type_name(self.spec, self.target.component)
-                .map(str::to_string),
-            identification: self.identification.clone(),
-            outcomes,
-        }
-    }
-
-    fn run_one(&mut self, check: Check) -> Outcome {
-        self.evidence.clear();
-        self.started = self.session.now();
-        let (verdict, detail) = match &check.kind {
-            Kind::Identification => self.identification(),
-            Kind::ServicesListed => self.services(false),
-            Kind::ServicesInputs => self.services(true),
-            Kind::Status => self.status_check(),
-            Kind::Heartbeat => self.heartbeat(),
-            Kind::Authority => self.authority_check(),
-            Kind::ControlGrant => self.control_grant(),
-            Kind::ControlReport => self.control_report(),
-            Kind::ControlEqual => self.control_equal(),
-            Kind::ControlBelow => self.control_below(),
-            Kind::ControlPreempt => self.control_preempt(),
-            Kind::ControlRelease => self.control_release(),
-            Kind::StateFromController(s) => self.state_from_controller(*s),
-            Kind::StateFromOutsider(s) => self.state_from_outsider(*s),
-            Kind::EmergencySet => self.emergency_set(),
-            Kind::EmergencyClear => self.emergency_clear(),
-            Kind::Readback { command, query } => self.readback(command, query),
-            Kind::OutsiderCommand { command, query } => self.outsider_command(command, query),
-            Kind::Robust(m) => self.robust(*m),
-            Kind::ServiceConnection => self.service_connection(),
-            Kind::QueryAnswered { query } => self.query_answered(query),
-            Kind::EventPeriodic => self.event_periodic(),
-            Kind::EventEveryChange => self.event_every_change(),
-            Kind::Time => self.time(),
-            Kind::As4 => (
-                Verdict::Inconclusive,
-                "an AS-4 scenario check: run by jaus_conform::as4, not on RA 3.3".to_string(),
-            ),
-            Kind::Offline => (
-                Verdict::Inconclusive,
-                "a finding on recorded traffic: judged by jaus_conform::offline, not run"
-                    .to_string(),
-            ),
-        };
-        Outcome {
-            check,
-            verdict,
-            detail,
-            evidence: std::mem::take(&mut self.evidence),
-        }
-    }
-
-    /// Releases control from every voice that may hold it, and brings the core state
-    /// back to `initial` (Ready or Standby).
-    fn teardown(&mut self, initial: Option<ComponentState>) -> Outcome {
-        self.evidence.clear();
-        self.started = self.session.now();
-        for v in [
-            self.voices.controller,
-            self.voices.senior,
-            self.voices.rival,
-        ] {
-            self.send(v, &ReleaseComponentControl {}.into(), false);
-        }
-        self.drain(self.opts.settle);
-        let mut now = self.status();
-        if now == Some(ComponentState::Emergency) {
-            self.clear_emergency(self.voices.outsider);
-            now = self.status();
-        }
-        if let (Some(want), Some(is)) = (initial, now) {
-            if want != is && matches!(want, ComponentState::Ready | ComponentState::Standby) {
-                let c = self.voices.controller;
-                if self.acquire(c, self.authority).is_some() {
-                    self.set_state(c, want);
-                    self.send(c, &ReleaseComponentControl {}.into(), false);
-                    self.drain(self.opts.settle);
-                }
-                now = self.status();
-            }
-        }
-        let controller = self.controller();
-        let free = matches!(controller, Some(None));
-        let (verdict, detail) = match (initial, now) {
-            (Some(a), Some(b)) if a == b && free => (
-                Verdict::Pass,
-                format!("left in {a:?} with nobody in control"),
-            ),
-            (Some(a), Some(b)) => (
-                Verdict::Fail,
-                format!(
-                    "found in {a:?}, left in {b:?}; controller: {}",
-                    describe_controller(controller)
-                ),
-            ),
-            _ => (
-                Verdict::Inconclusive,
-                "the component did not report its status".to_string(),
-            ),
-        };
-        Outcome {
-            check: Check {
-                id: "teardown.as-found".into(),
-                title: "The component is left as it was found".into(),
-                rule: TEARDOWN,
-                level: Level::Advisory,
-                kind: Kind::Status,
-            },
-            verdict,
-            detail,
-            evidence: std::mem::take(&mut self.evidence),
-        }
-    }
-}
-
-/// `Some(None)`: nobody; `Some(Some(a))`: `a`; `None`: not answered.
-fn describe_controller(c: Option<Option<(Address, u8)>>) -> String {
-    match c {
-        Some(None) => "nobody".into(),
-        Some(Some((a, auth))) => format!("{a} at authority {auth}"),
-        None => "not reported".into(),
-    }
-}
-
 /// Everything one run found.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct RunReport {
@@ -300,6 +157,27 @@ pub struct RunReport {
 }
 
 impl RunReport {
+    /// A run's report by `tool` (`jaus conform --as4`) of `components` reached through
+    /// `peer`, naming the profile of `selection` when a profile chose the checks.
+    pub fn new(
+        tool: &str,
+        peer: String,
+        components: Vec<ComponentReport>,
+        tester_dropped: u64,
+        selection: Option<&Selection>,
+    ) -> Self {
+        let mut tool = format!("{tool} {}", env!("CARGO_PKG_VERSION"));
+        if let Some(sel) = selection {
+            tool = format!("{tool}, profile {}", sel.name);
+        }
+        RunReport {
+            tool,
+            peer,
+            components,
+            tester_dropped,
+        }
+    }
+
     /// True when no required check failed.
     pub fn passed(&self) -> bool {
         self.components.iter().all(|c| c.required_failures() == 0)
@@ -311,55 +189,45 @@ impl RunReport {
     }
 }
 
-/// Tests every component of `targets` in turn through `session`.
-pub fn run(
-    session: &mut dyn Session,
-    spec: &Spec,
-    voices: Voices,
-    targets: &[Address],
-    opts: Options,
-) -> RunReport {
-    run_selected(session, spec, voices, targets, opts, None)
-}
-
-/// [`run`] planning only the checks `selection` selects ([`crate::profile::run`]).
-pub(crate) fn run_selected(
-    session: &mut dyn Session,
-    spec: &Spec,
-    voices: Voices,
-    targets: &[Address],
-    opts: Options,
-    selection: Option<&Selection>,
-) -> RunReport {
-    let components = targets
-        .iter()
-        .map(|t| {
-            Engine::new(session, spec, voices, *t, opts)
-                .with_selection(selection.cloned())
-                .run()
-        })
-        .collect();
-    RunReport {
-        tool: format!("jaus conform {}", env!("CARGO_PKG_VERSION")),
-        peer: String::new(),
-        components,
-        tester_dropped: session.dropped(),
+/// Runs the checks of one component through `voice`: those `selection` selects, at the
+/// levels it gives them (`None`: every check at its own level).
+pub fn check_component(voice: &mut dyn Voice, selection: Option<&Selection>) -> ComponentReport {
+    voice.start();
+    let mut outcomes = Vec::new();
+    while let Some(mut check) = voice.next_check() {
+        let level = match selection {
+            None => Some(check.level),
+            Some(sel) => sel.level_of(&check.id, check.level),
+        };
+        if level.is_none() && !voice.needed(&check) {
+            continue;
+        }
+        let now = voice.now();
+        voice.evidence().begin(now);
+        let (verdict, detail) = match voice.skip(&check) {
+            Some(why) => inconclusive(format!("not run: {why}")),
+            None => voice.run(&check),
+        };
+        let evidence = voice.evidence().take();
+        if let Some(level) = level {
+            check.level = level;
+            outcomes.push(Outcome {
+                check,
+                verdict,
+                detail,
+                evidence,
+            });
+        }
+    }
+    let s = voice.subject();
+    ComponentReport {
+        address: s.address,
+        component_id: s.component_id,
+        component_type: s.component_type,
+        identification: s.identification,
+        outcomes,
     }
 }
 
-/// The components worth testing among `found`: those of `subsystem`, not node
-/// managers (component 1), not the tester's own node.
-pub fn targets_in(found: &[Address], subsystem: u8, voices: &Voices) -> Vec<Address> {
-    let mut v: Vec<Address> = found
-        .iter()
-        .copied()
-        .filter(|a| {
-            a.subsystem == subsystem
-                && a.component != 1
-                && !(a.subsystem == voices.controller.subsystem && a.node == voices.controller.node)
-        })
-        .collect();
-    v.sort_by_key(|a| (a.node, a.component, a.instance));
-    v.dedup();
-    v
-}
+#[cfg(test)]
+mod tests;

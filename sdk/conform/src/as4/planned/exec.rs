@@ -17,10 +17,7 @@ use super::defs::Definitions;
 use super::plan::Step;
 use super::sample;
 use crate::as4::talk::Judge;
-use crate::check::Verdict;
-
-/// A verdict and why.
-pub(super) type Found = (Verdict, String);
+use crate::engine::{fail, inconclusive as unsure, pass, Found};
 
 // The ids of the answers waited for, from the generated messages (one home: the
 // definitions).
@@ -31,16 +28,6 @@ const REJECT_EVENT: u16 = RejectEventRequest::CODE.0;
 const EVENT: u16 = Event::CODE.0;
 /// The rate asked of a periodic event, Hz.
 const EVENT_RATE: f64 = 5.0;
-
-fn pass(d: impl Into<String>) -> Found {
-    (Verdict::Pass, d.into())
-}
-fn fail(d: impl Into<String>) -> Found {
-    (Verdict::Fail, d.into())
-}
-fn unsure(d: impl Into<String>) -> Found {
-    (Verdict::Inconclusive, d.into())
-}
 
 /// What came back for a message sent.
 enum Answer {

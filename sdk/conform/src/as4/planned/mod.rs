@@ -32,8 +32,9 @@ mod exec;
 pub mod plan;
 mod sample;
 
-use std::collections::HashSet;
+use std::collections::{HashSet, VecDeque};
 use std::sync::{Mutex, OnceLock, PoisonError};
+use std::time::Instant;
 
 use jaus::net::as5669a::As4Id;
 use jaus_as4::messages::{
@@ -46,9 +47,10 @@ pub use plan::{PlanOptions, Planned, Step};
 use super::session::As4Session;
 use super::talk::{Judge, BROADCAST};
 use super::As4Options;
-use crate::check::{Check, Kind, Level, Outcome, Verdict};
-use crate::engine::{ComponentReport, RunReport};
-use exec::{Found, Runner};
+use crate::check::{Check, Kind, Level, Verdict};
+use crate::engine::{check_component, inconclusive, Evidence, Found, RunReport, Subject, Voice};
+use crate::selection::Selection;
+use exec::Runner;
 
 /// The rules planned checks cite; each check's `source` names the service and the
 /// transition it was planned from.
@@ -103,9 +105,12 @@ pub(crate) fn intern(s: &str) -> &'static str {
     t
 }
 
+/// The id of the first check, the one that plans the others.
+const SERVICES_CHECK: &str = "as4.planned.services";
+
 fn services_check() -> Check {
     Check {
-        id: "as4.planned.services".into(),
+        id: SERVICES_CHECK.into(),
         title:
             "Report Services lists the component's services; each is planned from the definitions"
                 .into(),
@@ -203,6 +208,122 @@ fn discover(j: &mut Judge<'_>) -> (Discovered, Found) {
     (f, (Verdict::Pass, String::new()))
 }
 
+/// The engine's AS-4 voice for checks planned from definitions: first the services
+/// the component lists (`as4.planned.services`, which plans the rest), then the
+/// planned checks in plan order.
+struct PlannedVoice<'a> {
+    r: Runner<'a>,
+    /// Whether `as4.planned.services` was given to the engine.
+    asked: bool,
+    /// What discovery found, once run.
+    found: Option<Discovered>,
+    /// The planned checks not run yet.
+    queue: VecDeque<Planned>,
+    /// The planned check running.
+    current: Option<Planned>,
+}
+
+impl PlannedVoice<'_> {
+    /// `as4.planned.services`: discovery, then the plan from the services listed.
+    fn discover_and_plan(&mut self) -> Found {
+        let (found, (verdict, mut detail)) = discover(&mut self.r.j);
+        let plan_opts = PlanOptions {
+            allow_motion: self.r.j.opts.allow_motion,
+        };
+        let (planned, unknown) = plan::plan(self.r.defs, &found.listed, plan_opts);
+        if verdict == Verdict::Pass {
+            let listed: Vec<String> = found
+                .listed
+                .iter()
+                .map(|(u, a, b)| format!("{u} v{a}.{b}"))
+                .collect();
+            detail = format!(
+                "{} services listed, {} checks planned: {}",
+                listed.len(),
+                planned.len(),
+                listed.join(", ")
+            );
+            if !unknown.is_empty() {
+                detail.push_str(&format!(
+                    "; not in the definitions (not planned; give them with --as4-spec or --jsidl): {}",
+                    unknown.join(", ")
+                ));
+            }
+        }
+        self.queue = planned.into();
+        self.found = Some(found);
+        (verdict, detail)
+    }
+
+    fn known(&self) -> bool {
+        self.found.as_ref().is_some_and(|f| f.target.is_some())
+    }
+}
+
+impl Voice for PlannedVoice<'_> {
+    fn now(&self) -> Instant {
+        self.r.j.now()
+    }
+
+    fn evidence(&mut self) -> &mut Evidence {
+        &mut self.r.j.evidence
+    }
+
+    fn next_check(&mut self) -> Option<Check> {
+        if !self.asked {
+            self.asked = true;
+            return Some(services_check());
+        }
+        self.current = self.queue.pop_front();
+        self.current.as_ref().map(|p| p.check.clone())
+    }
+
+    fn skip(&mut self, check: &Check) -> Option<String> {
+        if check.id == SERVICES_CHECK {
+            return None;
+        }
+        match self.current.as_ref().and_then(|p| p.skip.clone()) {
+            Some(why) => Some(why),
+            None if !self.known() => Some("no component answered".into()),
+            None => None,
+        }
+    }
+
+    /// The services listed plan every other check: they are read whatever a profile
+    /// selects.
+    fn needed(&self, check: &Check) -> bool {
+        check.id == SERVICES_CHECK
+    }
+
+    fn run(&mut self, check: &Check) -> Found {
+        if check.id == SERVICES_CHECK {
+            return self.discover_and_plan();
+        }
+        match self.current.take() {
+            Some(p) => self.r.run(&p.step),
+            None => inconclusive(format!("{} was not planned", check.id)),
+        }
+    }
+
+    fn subject(&self) -> Subject {
+        let peer = self.r.j.peer;
+        Subject {
+            address: if self.known() {
+                peer.to_string()
+            } else {
+                "(not found)".into()
+            },
+            component_id: peer.component,
+            component_type: Some("AS-4 component (checks planned from its definitions)".into()),
+            identification: self.found.as_ref().and_then(|f| f.identification.clone()),
+        }
+    }
+
+    fn dropped(&self) -> u64 {
+        self.r.j.dropped()
+    }
+}
+
 /// Runs the checks planned from `defs` for the component `opts` names (or whichever
 /// answers Query Identification) through `session`, and reports them as that
 /// component's checks: `as4.planned.services` first, then the planned ones in plan order.
@@ -211,73 +332,32 @@ pub fn run_planned(
     defs: &Definitions,
     opts: &As4Options,
 ) -> RunReport {
+    run_planned_selected(session, defs, opts, None)
+}
+
+/// [`run_planned`] running the checks `selection` selects, at its levels (the services
+/// listed always run: they plan the rest).
+pub fn run_planned_selected(
+    session: &mut dyn As4Session,
+    defs: &Definitions,
+    opts: &As4Options,
+    selection: Option<&Selection>,
+) -> RunReport {
     let placeholder = opts.target.unwrap_or(BROADCAST);
-    let mut j = Judge::new(session, *opts, placeholder).with_schema(defs.schema());
-    j.begin();
-    let (found, (verdict, mut detail)) = discover(&mut j);
-    let plan_opts = PlanOptions {
-        allow_motion: opts.allow_motion,
+    let j = Judge::new(session, *opts, placeholder).with_schema(defs.schema());
+    let mut voice = PlannedVoice {
+        r: Runner::new(j, defs),
+        asked: false,
+        found: None,
+        queue: VecDeque::new(),
+        current: None,
     };
-    let (planned, unknown) = plan::plan(defs, &found.listed, plan_opts);
-    if verdict == Verdict::Pass {
-        let listed: Vec<String> = found
-            .listed
-            .iter()
-            .map(|(u, a, b)| format!("{u} v{a}.{b}"))
-            .collect();
-        detail = format!(
-            "{} services listed, {} checks planned: {}",
-            listed.len(),
-            planned.len(),
-            listed.join(", ")
-        );
-        if !unknown.is_empty() {
-            detail.push_str(&format!(
-                "; not in the definitions (not planned; give them with --as4-spec or --jsidl): {}",
-                unknown.join(", ")
-            ));
-        }
-    }
-    let mut outcomes = vec![Outcome {
-        check: services_check(),
-        verdict,
-        detail,
-        evidence: j.take_evidence(),
-    }];
-    let known = found.target.is_some();
-    let mut r = Runner::new(j, defs);
-    for p in &planned {
-        r.j.begin();
-        let (verdict, detail) = match &p.skip {
-            Some(why) => (Verdict::Inconclusive, format!("not run: {why}")),
-            None if !known => (
-                Verdict::Inconclusive,
-                "not run: no component answered".to_string(),
-            ),
-            None => r.run(&p.step),
-        };
-        outcomes.push(Outcome {
-            check: p.check.clone(),
-            verdict,
-            detail,
-            evidence: r.j.take_evidence(),
-        });
-    }
-    let peer = r.j.peer;
-    RunReport {
-        tool: format!("jaus conform --as4 --plan {}", env!("CARGO_PKG_VERSION")),
-        peer: opts.vehicle.map(|v| v.to_string()).unwrap_or_default(),
-        components: vec![ComponentReport {
-            address: if known {
-                peer.to_string()
-            } else {
-                "(not found)".into()
-            },
-            component_id: peer.component,
-            component_type: Some("AS-4 component (checks planned from its definitions)".into()),
-            identification: found.identification,
-            outcomes,
-        }],
-        tester_dropped: r.j.dropped(),
-    }
+    let component = check_component(&mut voice, selection);
+    RunReport::new(
+        "jaus conform --as4 --plan",
+        opts.vehicle.map(|v| v.to_string()).unwrap_or_default(),
+        vec![component],
+        voice.dropped(),
+        selection,
+    )
 }

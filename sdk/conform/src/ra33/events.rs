@@ -11,11 +11,11 @@ use jaus::messages::{
 };
 use jaus::{Address, CommandCode};
 
-use super::Engine;
+use super::Ra33Voice;
 use crate::check::Verdict;
 use crate::session::Incoming;
 
-type Found = (Verdict, String);
+use crate::engine::Found;
 
 /// Report Component Status, the report every component has.
 const REPORT: u16 = 0x4002;
@@ -42,7 +42,7 @@ enum Answer {
     Rejected(String),
 }
 
-impl Engine<'_> {
+impl Ra33Voice<'_> {
     /// Sends an event request from `from` and waits for its Confirm or Reject.
     fn event_request(&mut self, from: Address, msg: Message) -> Option<Answer> {
         self.send(from, &msg, false);

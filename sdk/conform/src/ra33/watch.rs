@@ -10,7 +10,7 @@ use std::time::Duration;
 use jaus::wire::AckNak;
 use jaus::{Address, CommandCode};
 
-use super::Engine;
+use super::Ra33Voice;
 use crate::session::Incoming;
 
 /// How often the target is asked during a watch: 200 Hz, so that a change undone a few
@@ -84,7 +84,7 @@ pub(super) fn changes<T: PartialEq>(
     Some(text)
 }
 
-impl Engine<'_> {
+impl Ra33Voice<'_> {
     /// Sends command `code` with `body` from `from` (asking for an acknowledgement),
     /// then until the settle time has passed asks the target `poll` from the outsider
     /// every [`WATCH_PERIOD`], and once more after it; every report is read by `read`

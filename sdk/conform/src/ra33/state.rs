@@ -8,12 +8,12 @@ use jaus::messages::{
 
 use super::core::ack_text;
 use super::watch::{changes, Poll};
-use super::Engine;
+use super::Ra33Voice;
 use crate::check::{StateCommand, Verdict};
 use jaus::codec::Encode;
 use jaus::JausMessage;
 
-type Found = (Verdict, String);
+use crate::engine::Found;
 
 fn message(s: StateCommand) -> Message {
     match s {
@@ -24,7 +24,7 @@ fn message(s: StateCommand) -> Message {
     }
 }
 
-impl Engine<'_> {
+impl Ra33Voice<'_> {
     /// Holds control and brings the target to `state`; `Err` when it cannot.
     pub(super) fn prepare(&mut self, state: Option<ComponentState>) -> Result<(), String> {
         self.hold_control()?;

@@ -17,10 +17,10 @@ use serde_json::{Map, Value};
 
 use super::core::ack_text;
 use super::watch::{changes, Poll};
-use super::Engine;
+use super::Ra33Voice;
 use crate::check::Verdict;
 
-type Found = (Verdict, String);
+use crate::engine::Found;
 
 /// A command ready to send, and how to judge what is read back.
 struct Trial {
@@ -55,7 +55,7 @@ fn shown(v: Option<f64>) -> String {
     v.map_or_else(|| "absent".to_string(), |v| v.to_string())
 }
 
-impl Engine<'_> {
+impl Ra33Voice<'_> {
     /// The message `name` of the definitions with `fields` (JSON, as `jaus decode`
     /// prints them).
     fn build(&self, name: &str, fields: Map<String, Value>) -> Result<DynMessage, String> {

@@ -6,10 +6,10 @@ use jaus::wire::DataFlag;
 use jaus::{CommandCode, JausMessage};
 
 use super::talk::Raw;
-use super::Engine;
+use super::Ra33Voice;
 use crate::check::{Malformed, Verdict};
 
-impl Engine<'_> {
+impl Ra33Voice<'_> {
     /// A command code neither the SDK nor the loaded definitions define.
     fn unknown_code(&self) -> CommandCode {
         (0x1E00u16..0x2000)

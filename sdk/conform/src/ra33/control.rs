@@ -5,12 +5,12 @@ use jaus::messages::{Message, QueryComponentAuthority, ReleaseComponentControl};
 use jaus::Address;
 
 use super::talk::ControlAnswer;
-use super::Engine;
+use super::Ra33Voice;
 use crate::check::Verdict;
 
-type Found = (Verdict, String);
+use crate::engine::Found;
 
-impl Engine<'_> {
+impl Ra33Voice<'_> {
     /// Whether `voice` received Reject Component Control during this check.
     fn rejected(&self, voice: Address) -> bool {
         let (from, to) = (self.target.to_string(), voice.to_string());

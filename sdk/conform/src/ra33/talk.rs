@@ -13,11 +13,9 @@ use jaus::messages::{
 use jaus::wire::{AckNak, DataFlag};
 use jaus::{Address, CommandCode, Header, MessageSet};
 
-use super::Engine;
+use super::Ra33Voice;
 use crate::check::Exchange;
 
-/// Most exchanges kept as the evidence of one check.
-const MAX_EVIDENCE: usize = 2_000;
 use crate::session::Incoming;
 
 /// A packet sent as given, right or wrong.
@@ -65,28 +63,13 @@ pub(crate) fn fields_of(m: &Message) -> serde_json::Value {
         .unwrap_or(serde_json::Value::Null)
 }
 
-impl Engine<'_> {
+impl Ra33Voice<'_> {
     fn t_ms(&self) -> f64 {
-        self.session
-            .now()
-            .saturating_duration_since(self.started)
-            .as_secs_f64()
-            * 1000.0
+        self.evidence.t_ms(self.session.now())
     }
 
-    /// Adds `e` to the check's evidence, at most [`MAX_EVIDENCE`] of them: a target that
-    /// floods the tester cannot grow a report without bound; the cut is said in the
-    /// evidence itself.
     fn keep(&mut self, e: Exchange) {
-        match self.evidence.len() {
-            n if n < MAX_EVIDENCE => self.evidence.push(e),
-            n if n == MAX_EVIDENCE => self.evidence.push(Exchange {
-                message: format!("(more than {MAX_EVIDENCE} packets: the rest are not kept)"),
-                fields: serde_json::Value::Null,
-                ..e
-            }),
-            _ => {}
-        }
+        self.evidence.keep(e);
     }
 
     /// Keeps a packet as evidence.

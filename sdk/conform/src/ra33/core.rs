@@ -8,12 +8,12 @@ use jaus::messages::{
 };
 use jaus::wire::AckNak;
 
-use super::Engine;
+use super::Ra33Voice;
 use crate::check::Verdict;
 
-type Found = (Verdict, String);
+use crate::engine::Found;
 
-impl Engine<'_> {
+impl Ra33Voice<'_> {
     fn no_answer(&self, query: &str) -> Found {
         (
             Verdict::Fail,

@@ -9,7 +9,7 @@ use jaus::messages::{
 };
 use jaus::Address;
 
-use super::Engine;
+use super::Ra33Voice;
 use crate::check::Verdict;
 
 /// Report Component Status.
@@ -17,7 +17,7 @@ const REPORT: u16 = 0x4002;
 /// The rate asked for, Hz.
 const RATE: f64 = 10.0;
 
-impl Engine<'_> {
+impl Ra33Voice<'_> {
     /// How long each phase is watched: five settle times, at least 250 ms.
     fn window(&self) -> Duration {
         (self.opts.settle * 5).max(Duration::from_millis(250))
