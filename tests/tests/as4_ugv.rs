@@ -5,22 +5,27 @@
 //! apply it harder. The Platform Specifications service is offered over a Primitive
 //! Driver that answers Query Platform Specifications. The Odometry service reads the
 //! demo vehicle's odometer (RA 3.3 Report Platform Operational Data) as it drives, and
-//! keeps trip odometers the controlling client resets.
+//! keeps trip odometers the controlling client resets. The Annunciator sounds the demo
+//! vehicle's RA 3.3 horn bit for the controlling client, a siren refused, the parking
+//! brake bit of the same RA 3.3 message left as it was by the horn and the reverse, even
+//! when both commands come together.
 
 use std::time::{Duration, Instant};
 
 use jaus::component::Config;
 use jaus::components::primitive_driver as pd;
 use jaus::messages as ra;
-use jaus::net::as5669a::As4Id;
+use jaus::net::as5669a::{As4Client, As4Id, As4Message};
 use jaus::net::{Node, NodeConfig};
 use jaus::stock::drivers::{PrimitiveConfig, StockPrimitiveDriver};
 use jaus::JausMessage;
 use jaus_as4::{
-    ComponentState, Message, Odometer, QueryOdometry, QueryParkingBrake,
-    QueryPlatformSpecifications, QueryStatus, ReleaseControl, ReportParkingBrake, ResetOdometry,
-    Resume, SetParkingBrake, SetWrenchEffort, Standby, SteeringSpecifics, TripOdometer,
+    AnnunciatorState, ComponentState, Message, Odometer, QueryAnnunciatorConfiguration,
+    QueryAnnunciatorState, QueryOdometry, QueryParkingBrake, QueryPlatformSpecifications,
+    QueryStatus, ReleaseControl, ReportParkingBrake, ResetOdometry, Resume, SetAnnunciatorState,
+    SetParkingBrake, SetWrenchEffort, Standby, SteeringSpecifics, TripOdometer,
 };
+use jaus_sim::network::SimNet;
 
 mod common;
 use common::as4::As4Rig;
@@ -86,13 +91,19 @@ impl Rig {
     /// The parking brake bit of the RA 3.3 Primitive Driver's latest Report Discrete
     /// Devices, as the gateway holds it.
     fn ra33_bit(&self) -> bool {
+        self.ra33_bits().0
+    }
+
+    /// The parking brake and horn bits of the RA 3.3 Primitive Driver's latest Report
+    /// Discrete Devices, as the gateway holds it.
+    fn ra33_bits(&self) -> (bool, bool) {
         let env = self.0.dual().gateway().node().env();
         let pd = env.targets().primitive_driver.expect("the driver found");
         match env.latest(pd, ra::ReportDiscreteDevices::CODE) {
             // Without the field: never set.
-            Some((_, ra::Message::ReportDiscreteDevices(r))) => {
-                r.parking_brake_and_horn.is_some_and(|d| d.parking_brake)
-            }
+            Some((_, ra::Message::ReportDiscreteDevices(r))) => r
+                .parking_brake_and_horn
+                .map_or((false, false), |d| (d.parking_brake, d.horn)),
             other => panic!("no RA 3.3 discrete devices: {other:?}"),
         }
     }
@@ -344,4 +355,140 @@ fn reset_a() -> ResetOdometry {
     ResetOdometry {
         odometer: TripOdometer::TripA,
     }
+}
+
+impl Rig {
+    fn annunciator(&mut self) -> AnnunciatorState {
+        match self.one(QueryAnnunciatorState {}) {
+            Message::ReportAnnunciatorState(r) => r.annunciator,
+            other => panic!("{other:?}"),
+        }
+    }
+
+    /// Sends Set Annunciator State; nothing comes back (taken or refused).
+    fn sound(&mut self, annunciator: AnnunciatorState) {
+        let got = self.0.ask(SetAnnunciatorState { annunciator }, WAIT);
+        assert!(got.is_empty(), "{got:?}");
+    }
+
+    fn refused(&self) -> u64 {
+        self.0
+            .dual()
+            .gateway()
+            .component()
+            .expect("the gateway's component")
+            .stats()
+            .refused
+    }
+
+    /// Sends `messages` in one datagram (the gateway takes them in the same instant,
+    /// before any RA 3.3 report), then lets `WAIT` pass.
+    fn together(&mut self, messages: Vec<Message>) {
+        let to = SimNet::addr(self.0.node);
+        let batch: Vec<As4Message> = messages
+            .iter()
+            .map(|m| {
+                let body = m.body().to_bytes().expect("encodes");
+                As4Message::new(m.code().0, self.0.target, common::as4::ME, body)
+            })
+            .collect();
+        let c = self
+            .0
+            .net
+            .get_mut::<As4Client>(self.0.client)
+            .expect("client");
+        c.send(to, &batch);
+        self.0.net.run_for(WAIT);
+        let c = self
+            .0
+            .net
+            .get_mut::<As4Client>(self.0.client)
+            .expect("client");
+        let got = c.take();
+        assert!(got.is_empty(), "{got:?}");
+    }
+}
+
+fn horn(level: u8) -> AnnunciatorState {
+    AnnunciatorState {
+        horn: level,
+        ..Default::default()
+    }
+}
+
+#[test]
+fn the_annunciator_sounds_the_ra33_horn_and_leaves_the_parking_brake_alone() {
+    let mut r = Rig::demo();
+    let uris = r.uris();
+    assert!(
+        uris.iter()
+            .any(|u| u == "urn:jaus:jss:ugv:AnnunciatorService"),
+        "{uris:?}"
+    );
+    // The horn is the one annunciator.
+    let Message::ReportAnnunciatorConfiguration(c) = r.one(QueryAnnunciatorConfiguration {}) else {
+        panic!("no Report Annunciator Configuration");
+    };
+    assert!(c.supported.horn);
+    assert!(!(c.supported.siren || c.supported.backup));
+    assert!(!(c.supported.variable1 || c.supported.variable2));
+    assert_eq!(r.annunciator(), horn(0));
+    assert_eq!(r.ra33_bits(), (false, false));
+
+    // Without control: refused, silent.
+    let refused = r.refused();
+    r.sound(horn(15));
+    assert_eq!(r.refused(), refused + 1);
+    assert_eq!(r.annunciator(), horn(0));
+    assert_eq!(r.ra33_bits(), (false, false));
+
+    // The controller (Standby will do): any level sounds RA 3.3's horn, read 15.
+    r.take_control();
+    r.sound(horn(4));
+    assert_eq!(r.annunciator(), horn(15));
+    assert_eq!(r.ra33_bits(), (false, true));
+    // A siren RA 3.3 does not have: refused, the horn as it was.
+    let refused = r.refused();
+    r.sound(AnnunciatorState {
+        siren: 8,
+        ..horn(0)
+    });
+    assert_eq!(r.refused(), refused + 1);
+    assert_eq!(r.annunciator(), horn(15));
+    assert_eq!(r.ra33_bits(), (false, true));
+
+    // The parking brake keeps the horn, the horn keeps the parking brake.
+    r.0.ask(Resume {}, WAIT);
+    assert_eq!(r.status(), ComponentState::Ready);
+    r.set(100.0);
+    assert_eq!(r.ra33_bits(), (true, true));
+    assert_eq!(r.annunciator(), horn(15));
+    r.sound(horn(0));
+    assert_eq!(r.ra33_bits(), (true, false));
+    assert_eq!(r.brake().actual_parking_brake, 100.0);
+    assert_eq!(r.annunciator(), horn(0));
+
+    // Both in the same instant, before the driver reports either: neither clobbers the
+    // other, in either order.
+    r.together(vec![
+        SetParkingBrake { parking_brake: 0.0 }.into(),
+        SetAnnunciatorState {
+            annunciator: horn(9),
+        }
+        .into(),
+    ]);
+    assert_eq!(r.ra33_bits(), (false, true));
+    r.together(vec![
+        SetAnnunciatorState {
+            annunciator: horn(0),
+        }
+        .into(),
+        SetParkingBrake {
+            parking_brake: 100.0,
+        }
+        .into(),
+    ]);
+    assert_eq!(r.ra33_bits(), (true, false));
+    assert_eq!(r.brake().actual_parking_brake, 100.0);
+    assert_eq!(r.annunciator(), horn(0));
 }

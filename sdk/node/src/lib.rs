@@ -22,12 +22,14 @@ mod file;
 pub mod host;
 mod links_file;
 mod policy_file;
+mod sim_lights;
 
 pub use attach::{attach_openjaus, OjNodeManager};
 pub use file::run::node;
 pub use file::{
-    As4File, As4VehicleFile, FrameFile, HostItem, Hosted, IoFile, MulticastFile, NodeFile,
-    OjComponentsFile, ReliableFile, TransportFile,
+    As4File, As4Native, As4VehicleFile, FrameFile, HostItem, Hosted, IoFile, MulticastFile,
+    NodeFile, OjComponentsFile, ReliableFile, TransportFile,
 };
 pub use links_file::{LinkFile, QuicLinkFile};
 pub use policy_file::{PolicyFile, RuleFile};
+pub use sim_lights::SimLights;

@@ -31,6 +31,7 @@ pub mod arm;
 pub mod arm_demo;
 pub mod camera;
 pub mod demo;
+pub mod lights;
 pub mod network;
 pub mod radio;
 pub mod scanner;
@@ -38,6 +39,7 @@ pub mod vehicle;
 pub mod world;
 
 pub use arm::{ArmParams, SimArm};
+pub use lights::{Lamp, Lights};
 pub use network::{LinkModel, SimNet};
 pub use vehicle::{SimVehicle, VehicleParams};
 pub use world::World;

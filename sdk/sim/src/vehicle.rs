@@ -12,6 +12,8 @@ use rand::SeedableRng;
 use rand_distr::{Distribution, Normal};
 
 use jaus::stock::geo::{wrap_angle, LocalFrame};
+
+use crate::lights::Lights;
 use jaus::stock::hardware::{
     Actuators, GlobalPose, GlobalPoseSource, LocalPose, LocalPoseSource, OperationalData,
     VelocitySource, VelocityState, Wrench,
@@ -76,6 +78,7 @@ pub struct GroundVehicle {
     trail: Vec<(Duration, Vector2<f64>)>,
     started: Option<Instant>,
     odometer: f64,
+    lights: Lights,
 }
 
 /// Most trail points kept (one every 50 ms: over 13 hours).
@@ -95,6 +98,7 @@ impl GroundVehicle {
             trail: Vec::new(),
             started: None,
             odometer: 0.0,
+            lights: Lights::default(),
             params,
         }
     }
@@ -163,6 +167,16 @@ impl GroundVehicle {
     /// × step, forward and reverse alike), so it never decreases.
     pub fn odometer(&self) -> f64 {
         self.odometer
+    }
+
+    /// Its lamps ([`crate::lights`]): which are on.
+    pub fn lights(&self) -> &Lights {
+        &self.lights
+    }
+
+    /// Its lamps, to switch them.
+    pub fn lights_mut(&mut self) -> &mut Lights {
+        &mut self.lights
     }
 
     /// The driven trajectory: (time since start, position) every 50 ms.

@@ -32,9 +32,26 @@ impl As4Rig {
     /// `node` behind a gateway (AS-4 component `target`, named `name`), after `settle`
     /// (its components come up, the gateway finds them).
     pub fn new(t0: Instant, node: Node, target: As4Id, name: &str, settle: Duration) -> Self {
+        Self::hosting(t0, node, Vec::new(), target, name, settle)
+    }
+
+    /// [`new`](Self::new), the gateway's component hosting `native` services too
+    /// (`DualNode::with_service`).
+    pub fn hosting(
+        t0: Instant,
+        node: Node,
+        native: jaus_node::As4Native,
+        target: As4Id,
+        name: &str,
+        settle: Duration,
+    ) -> Self {
         let mut net = SimNet::new(t0, LinkModel::default(), 11);
         let config = GatewayConfig::new(target, Address::new(1, 1, 60, 1), 1, name);
-        let node = net.add(DualNode::new(node, config).expect("gateway"));
+        let mut dual = DualNode::new(node, config).expect("gateway");
+        for s in native {
+            dual = dual.with_service(s);
+        }
+        let node = net.add(dual);
         let client = net.add(As4Client::<SocketAddr>::default());
         net.run_for(settle);
         As4Rig {

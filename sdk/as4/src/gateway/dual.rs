@@ -19,6 +19,8 @@ use jaus::net::as5669a::{As4Config, As4Endpoint, As4Side};
 use jaus::net::{Datagram, NetError, Node, NodeEvent, Participant, PeerAddr, Via};
 
 use super::{Gateway, GatewayConfig};
+use crate::ra33::Ra33Side;
+use crate::service::Service;
 
 /// Most rounds of passing values between node and gateway in one call (each round
 /// drains both; two that answered each other forever could not stall the loop).
@@ -73,6 +75,14 @@ impl<A: PeerAddr> DualNode<A> {
     /// vehicle), served the messages for its own id ([`As4Side`]'s routing).
     pub fn with_endpoint(mut self, endpoint: impl As4Endpoint<A>) -> Self {
         self.as4.add_endpoint(endpoint);
+        self
+    }
+
+    /// With an AS-4 service of the gateway's component that no RA 3.3 component stands
+    /// behind, hosted natively ([`Gateway::add_service`]: the demo vehicle's
+    /// [Illumination](crate::ugv::IlluminationService) over its simulated lights).
+    pub fn with_service(mut self, service: Box<dyn Service<Ra33Side>>) -> Self {
+        self.gateway.add_service(service);
         self
     }
 

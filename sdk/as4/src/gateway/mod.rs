@@ -151,6 +151,17 @@ impl<A: PeerAddr> Gateway<A> {
         self.node.component(self.as4)
     }
 
+    /// Adds to the AS-4 component a service no RA 3.3 component stands behind, hosted
+    /// natively (a [`GeneratedService`](crate::service::GeneratedService) over a
+    /// hardware trait, as [`crate::ugv::IlluminationService`]); Report Services lists it
+    /// from then on.
+    pub fn add_service(&mut self, service: Box<dyn crate::service::Service<Ra33Side>>) {
+        if let Some(c) = self.node.component_mut(self.as4) {
+            tracing::info!(service = %service.id(), as4 = %self.as4, "AS-4 service hosted natively");
+            c.add_service(service);
+        }
+    }
+
     /// Looks for the presented subsystem's components in `tree` and offers the service
     /// of each one found for the first time (Report Services lists it from then on). A
     /// presented component that was missing from the tree (or

@@ -5,7 +5,8 @@
 //! It keeps the latest report of each RA 3.3 component it polls, sends what the services
 //! ask (bounded, counted when full), holds RA 3.3 control of the drivers while an AS-4
 //! client holds control of the AS-4 component, and keeps the AS-4 local frame (Set Local
-//! Pose moves it; RA 3.3 has no way to set a pose sensor). A poll a component leaves
+//! Pose moves it; RA 3.3 has no way to set a pose sensor) and the parking brake and horn
+//! bits it commands the Primitive Driver ([`discrete`]). A poll a component leaves
 //! unanswered backs off and then stops ([`GIVE_UP_AFTER`]) until the component answers
 //! it or is discovered again ([`Ra33Side::rediscovered`]). As an RA 3.3 component it
 //! answers Query Identification and Query Services ([`Ra33Side::services`]).
@@ -32,10 +33,12 @@ use jaus::stock::geo::LocalFrame;
 use jaus::JausMessage;
 use jaus::{Address, CommandCode};
 
+pub mod discrete;
 pub mod frame;
 mod polls;
 pub mod targets;
 
+pub use discrete::DiscreteChange;
 pub use frame::Frame;
 pub use polls::{BACKOFF_AFTER, GIVE_UP_AFTER, MAX_POLL_PERIOD};
 pub use targets::{Group, Targets};
@@ -138,6 +141,8 @@ pub struct Ra33Side {
     /// Sensor reported: the RA 3.3 local frame of a subsystem without a Local Pose
     /// Sensor ([`crate::mobility::derived`]).
     tangent: Option<LocalFrame>,
+    /// The parking brake and horn bits commanded to each driver ([`discrete`]).
+    discrete: discrete::DiscreteDevices,
     /// Control requests asked again in a row, per driver ([`CONTROL_RETRIES`]).
     control_retries: HashMap<Address, u32>,
     /// Components whose commands the node reports the outcome of (it tracks them).
@@ -167,6 +172,7 @@ impl Ra33Side {
             active: HashMap::new(),
             frame: Frame::default(),
             tangent: None,
+            discrete: discrete::DiscreteDevices::default(),
             control_retries: HashMap::new(),
             answering: BTreeSet::new(),
             unsettled: HashMap::new(),

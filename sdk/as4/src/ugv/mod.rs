@@ -1,33 +1,35 @@
 //! The Unmanned Ground Vehicle services (AS6091, `urn:jaus:jss:ugv`) over RA 3.3
-//! components, as the [`crate::mobility`], [`crate::manipulator`] and
+//! components (Illumination over a hardware trait: RA 3.3 has no lights), as the [`crate::mobility`], [`crate::manipulator`] and
 //! [`crate::environment`] services are: their machines are `defs/ugv_services.yaml`,
 //! run by [`crate::machined`].
 //!
 //! | AS-4 service | RA 3.3 component | messages |
 //! |---|---|---|
-//! | Parking Brake Driver | Primitive Driver | Set Parking Brake → RA 3.3 Set Discrete Devices (the parking brake bit: set for any level above 0, the horn bit kept as the driver reports it); Query Parking Brake answered from the driver's Report Discrete Devices (polled once answered): measured 100 % with the bit set, 0 % without (or without the field); commanded, the level last set (before any, the measured one) |
+//! | Parking Brake Driver | Primitive Driver | Set Parking Brake → RA 3.3 Set Discrete Devices (the parking brake bit: set for any level above 0, the horn bit kept, [`crate::ra33::discrete`]); Query Parking Brake answered from the driver's Report Discrete Devices (polled once answered): measured 100 % with the bit set, 0 % without (or without the field); commanded, the level last set (before any, the measured one) |
+//! | Annunciator | Primitive Driver | Set Annunciator State → RA 3.3 Set Discrete Devices (the horn bit: set for any horn level above 0, the parking brake bit kept); a siren, reversing alarm or variable annunciator refused; Query Annunciator State answered from the driver's Report Discrete Devices: horn 15 with the bit set, 0 without; Query Annunciator Configuration: the horn alone ([`annunciator`]) |
 //! | Platform Specifications | Primitive Driver | Query Platform Specifications answered from the driver's Report Platform Specifications (asked once, on discovery): name, extent, centre of gravity, wheel base, pitch-over and roll-over angles, maximum forward speed (RA 3.3 maximum velocity x) and rotational speed (maximum yaw rate); the steering kind Ackermann (minimum turning radius, wheel separation = track width) when the turning radius is above 0, else skid steer (track separation = track width) |
 //! | Odometry | Primitive Driver | Query Odometry answered from the odometer of the driver's Report Platform Operational Data (polled once answered): the platform odometer as RA 3.3 reports it (m); trips A, B and C kept by the gateway from the platform odometer, each reset by Reset Odometry from the controlling client ([`odometry`]) |
+//! | Illumination | none (RA 3.3 has no lights) | hosted natively over a [`Lights`] hardware trait, not through the RA 3.3 side: [`IlluminationService`], a generated-machine service any AS-4 component hosts (the demo vehicle's gateway over its simulated lamps) |
 //!
-//! A service is offered once the RA 3.3 Primitive Driver has answered the query it
-//! reads, asked once when the driver is found ([`ask`]) and again when it is
-//! discovered again ([`rediscovered`]) until answered ([`services`]). The SDK's stock
-//! driver answers all three queries (the platform's specifications and operational data
-//! with what its hardware gives), so the demo vehicle gets all three services; a driver
-//! that answers fewer gets fewer.
+//! A service over the Primitive Driver is offered once the driver has answered the
+//! query it reads, asked once when the driver is found ([`ask`]) and again when it is
+//! discovered again ([`rediscovered`]) until answered ([`services`]); the Parking Brake
+//! Driver and the Annunciator both read Report Discrete Devices. The SDK's stock driver
+//! answers all three queries (the platform's specifications and operational data with
+//! what its hardware gives), so the demo vehicle gets all four services; a driver that
+//! answers fewer gets fewer.
 //!
 //! RA 3.3 control of the Primitive Driver is asked for when the controlling AS-4 client
-//! sets the parking brake ([`Ra33Side::ensure_control`]), as for its efforts; the command
-//! waits (the latest one) until it is granted. The stock driver takes Set Discrete
-//! Devices in Standby as in Ready, so the driver is not resumed and the vehicle's other
-//! drivers are left as they are.
+//! sets the parking brake or the horn ([`Ra33Side::ensure_control`]), as for its
+//! efforts; the command waits (the latest one, with both bits) until it is granted. The
+//! stock driver takes Set Discrete Devices in Standby as in Ready, so the driver is not
+//! resumed and the vehicle's other drivers are left as they are.
 //!
 //! Not served: the Drive Train Driver (RA 3.3 Set Discrete Devices carries the gear and
 //! the transfer case as raw numbers that RA 3.3 leaves to the vendor: no mapping onto
 //! AS-4's Park/Neutral/Reverse/Drive/... and transfer case states), the Skid Steer and
-//! Ackermann Drivers, the Stabilizer Driver and the Power
-//! Plant Manager; Illumination and Annunciator (RA 3.3 has no lights; its horn bit is the
-//! only annunciator). Their messages and machines are defined and generated.
+//! Ackermann Drivers, the Stabilizer Driver and the Power Plant Manager. Their messages
+//! and machines are defined and generated.
 
 use std::time::Instant;
 
@@ -38,10 +40,14 @@ use crate::core::generated_id;
 use crate::ra33::{Ra33Side, Targets};
 use crate::service::{Service, ServiceId};
 
+pub mod annunciator;
+pub mod illumination;
 pub mod odometry;
 pub mod parking_brake;
 pub mod platform;
 
+pub use annunciator::AnnunciatorService;
+pub use illumination::{IlluminationService, Lights};
 pub use odometry::OdometryService;
 pub use parking_brake::ParkingBrakeDriver;
 pub use platform::PlatformSpecificationsService;
@@ -58,6 +64,10 @@ impl ServiceIds {
     pub const PLATFORM_SPECIFICATIONS: ServiceId = generated_id!(platform_specifications_service);
     /// `urn:jaus:jss:ugv:OdometryService`.
     pub const ODOMETRY: ServiceId = generated_id!(odometry_service);
+    /// `urn:jaus:jss:ugv:AnnunciatorService`.
+    pub const ANNUNCIATOR: ServiceId = generated_id!(annunciator_service);
+    /// `urn:jaus:jss:ugv:IlluminationService`.
+    pub const ILLUMINATION: ServiceId = generated_id!(illumination_service);
 }
 
 /// Which UGV services a gateway has offered (each once, when the RA 3.3 report it
@@ -70,6 +80,8 @@ pub struct Offered {
     pub platform_specifications: bool,
     /// The Odometry service.
     pub odometry: bool,
+    /// The Annunciator.
+    pub annunciator: bool,
 }
 
 /// Asks the RA 3.3 components just found (`new`) what the UGV services read, once: the
@@ -91,7 +103,7 @@ pub fn rediscovered(env: &mut Ra33Side, component: Address, offered: &Offered) {
 }
 
 fn ask_driver(env: &mut Ra33Side, pd: Address, offered: &Offered) {
-    if !offered.parking_brake {
+    if !offered.parking_brake || !offered.annunciator {
         env.send(pd, discrete_devices());
     }
     if !offered.platform_specifications {
@@ -115,10 +127,11 @@ fn discrete_devices() -> ra::QueryDiscreteDevices {
 }
 
 /// The UGV services not offered yet whose RA 3.3 report has come (`offered` records
-/// them): the Parking Brake Driver once the Primitive Driver reported its discrete
-/// devices (a report without the parking brake field reads as released: the stock
-/// driver leaves out the devices never set), from then on polled; the Platform
-/// Specifications once it reported them (asked once: they do not change).
+/// them): the Parking Brake Driver and the Annunciator once the Primitive Driver
+/// reported its discrete devices (a report without the field reads as brake released,
+/// horn silent: the stock driver leaves out the devices never set), from then on
+/// polled; the Platform Specifications once it reported them (asked once: they do not
+/// change); the Odometry once it reported its odometer, from then on polled.
 pub fn services(
     env: &mut Ra33Side,
     now: Instant,
@@ -128,10 +141,17 @@ pub fn services(
     let Some(pd) = env.targets().primitive_driver else {
         return out;
     };
-    if !offered.parking_brake && parking_brake::measured(env, pd).is_some() {
-        offered.parking_brake = true;
+    let devices = env.reported_discrete_devices(pd).is_some();
+    if devices && !(offered.parking_brake && offered.annunciator) {
         env.keep_polling(now, pd, discrete_devices());
+    }
+    if !offered.parking_brake && devices {
+        offered.parking_brake = true;
         out.push(Box::new(ParkingBrakeDriver::new(pd)));
+    }
+    if !offered.annunciator && devices {
+        offered.annunciator = true;
+        out.push(Box::new(AnnunciatorService::new(pd)));
     }
     if !offered.platform_specifications && specifications(env, pd).is_some() {
         offered.platform_specifications = true;

@@ -7,29 +7,22 @@
 //! controlling client: any level while the component is Ready, only a harder one
 //! (`isEngage`, against the measured level) in its other controlled states; leaving
 //! Ready applies the brake (`engageBrake`).
+//!
+//! The horn bit of the same RA 3.3 message is the Annunciator's ([`super::annunciator`]):
+//! both bits are put together in one place ([`crate::ra33::discrete`]), so setting the
+//! brake keeps the horn as commanded or reported and the reverse.
 
-use jaus::messages as ra;
-use jaus::{Address, JausMessage};
+use std::time::Instant;
+
+use jaus::Address;
 
 use super::ServiceIds;
 use crate::machined::{machined, On, OnMachines};
 use crate::messages::services::parking_brake_driver as generated;
 use crate::messages::services::transport::event::Receive;
 use crate::messages::{QueryParkingBrake, ReportParkingBrake, SetParkingBrake};
-use crate::ra33::{Ra33Control, Ra33Side};
+use crate::ra33::{DiscreteChange, Ra33Side};
 use crate::service::Cx;
-
-/// The parking brake bit and horn bit the RA 3.3 driver at `pd` last reported (`None`
-/// before a Report Discrete Devices came). A report without the field (the stock
-/// driver's before the devices were ever set) reads as both off.
-pub(super) fn measured(env: &Ra33Side, pd: Address) -> Option<ra::ParkingBrakeHorn> {
-    match env.latest(pd, ra::ReportDiscreteDevices::CODE) {
-        Some((_, ra::Message::ReportDiscreteDevices(r))) => {
-            Some(r.parking_brake_and_horn.unwrap_or_default())
-        }
-        _ => None,
-    }
-}
 
 /// The AS-4 level (percent) of an RA 3.3 parking brake bit.
 fn level(engaged: bool) -> f64 {
@@ -44,13 +37,11 @@ fn level(engaged: bool) -> f64 {
 /// generated machines.
 pub type ParkingBrakeDriver = OnMachines<ParkingBrake>;
 
-/// The Parking Brake Driver's data: the RA 3.3 Primitive Driver, the level last set,
-/// the command waiting for RA 3.3 control.
+/// The Parking Brake Driver's data: the RA 3.3 Primitive Driver and the level last set.
 #[derive(Debug)]
 pub struct ParkingBrake {
     driver: Address,
     commanded: Option<f64>,
-    pending: Option<ra::SetDiscreteDevices>,
 }
 
 impl ParkingBrakeDriver {
@@ -60,49 +51,26 @@ impl ParkingBrakeDriver {
         OnMachines::from_impl(ParkingBrake {
             driver,
             commanded: None,
-            pending: None,
         })
     }
 }
 
 impl ParkingBrake {
-    /// Sends the parking brake bit `engaged` to the RA 3.3 driver (the horn bit as it
-    /// reports it), now if the gateway holds it, else when it does ([`Self::flush`]).
-    fn command(&mut self, env: &mut Ra33Side, engaged: bool) {
-        let horn = measured(env, self.driver).is_some_and(|d| d.horn);
-        let command = ra::SetDiscreteDevices {
-            parking_brake_and_horn: Some(ra::ParkingBrakeHorn {
-                parking_brake: engaged,
-                horn,
-                ..Default::default()
-            }),
+    /// Commands the parking brake bit `engaged` to the RA 3.3 driver at `now`, the horn
+    /// bit kept ([`crate::ra33::discrete`]: the one place both bits are put together);
+    /// sent once the gateway holds RA 3.3 control of the driver.
+    fn command(&mut self, env: &mut Ra33Side, now: Instant, engaged: bool) {
+        let change = DiscreteChange {
+            parking_brake: Some(engaged),
             ..Default::default()
         };
-        env.ensure_control(self.driver);
-        if env.control_of(self.driver) == Ra33Control::Granted {
-            env.send(self.driver, command);
-            self.pending = None;
-        } else {
-            self.pending = Some(command);
-        }
+        env.set_discrete_devices(now, self.driver, change);
     }
 
     /// Applies the brake (leaving Ready).
-    fn engage(&mut self, env: &mut Ra33Side) {
+    fn engage(&mut self, env: &mut Ra33Side, now: Instant) {
         self.commanded = Some(100.0);
-        self.command(env, true);
-    }
-
-    /// Sends the command kept in `pending` once RA 3.3 control is granted; drops it
-    /// when no AS-4 client controls the component any more.
-    fn flush(&mut self, env: &mut Ra33Side) {
-        if !env.controlled() {
-            self.pending = None;
-        } else if env.control_of(self.driver) == Ra33Control::Granted {
-            if let Some(c) = self.pending.take() {
-                env.send(self.driver, c);
-            }
-        }
+        self.command(env, now, true);
     }
 }
 
@@ -112,7 +80,7 @@ machined!(
     ServiceIds::PARKING_BRAKE_DRIVER,
     management {
         fn tick(&mut self, cx: &mut Cx<'_, Ra33Side>) {
-            self.flush(cx.env);
+            cx.env.flush_discrete_devices(cx.now);
         }
 
     }
@@ -120,16 +88,19 @@ machined!(
 
 impl generated::ParkingBrakeDriver for On<'_, ParkingBrake> {
     fn is_engage(&self, msg: &SetParkingBrake) -> bool {
-        let now = measured(self.env, self.svc.driver).is_some_and(|d| d.parking_brake);
+        let now = self
+            .env
+            .reported_discrete_devices(self.svc.driver)
+            .is_some_and(|d| d.parking_brake);
         msg.parking_brake > level(now)
     }
 
     fn engage_brake(&mut self) {
-        self.svc.engage(self.env);
+        self.svc.engage(self.env, self.now);
     }
 
     fn send_report_parking_brake(&mut self, _msg: &QueryParkingBrake, transport: &Receive) {
-        let Some(d) = measured(self.env, self.svc.driver) else {
+        let Some(d) = self.env.reported_discrete_devices(self.svc.driver) else {
             return self.refuse(format!(
                 "Query Parking Brake: no Report Discrete Devices from the RA 3.3 Primitive Driver {} yet",
                 self.svc.driver
@@ -151,6 +122,6 @@ impl generated::ParkingBrakeDriver for On<'_, ParkingBrake> {
             ));
         }
         self.svc.commanded = Some(asked);
-        self.svc.command(self.env, asked > 0.0);
+        self.svc.command(self.env, self.now, asked > 0.0);
     }
 }

@@ -499,7 +499,19 @@ impl NodeFile {
     /// The node this file describes, its `host:` entries built and added, starting at
     /// `t0` (`path`: the file, for the errors).
     pub fn build_node(&self, path: &Path, t0: Instant) -> Result<Node, String> {
+        self.build_node_and_as4(path, t0).map(|(node, _)| node)
+    }
+
+    /// [`build_node`](Self::build_node), with the AS-4 services its `host:` entries
+    /// offer natively for the gateway of `as4:` to host (`DualNode::with_service`):
+    /// `vehicle`'s Illumination over the simulated vehicle's lamps.
+    pub fn build_node_and_as4(
+        &self,
+        path: &Path,
+        t0: Instant,
+    ) -> Result<(Node, As4Native), String> {
         let mut node = Node::new(self.node_config(), t0);
+        let mut native: As4Native = Vec::new();
         let hosted = self.hosted();
         let mut host = crate::host::Host::new(self.subsystem, self.node, t0);
         if let Some(file) = self.store_path(path) {
@@ -516,7 +528,7 @@ impl NodeFile {
         for (i, h) in hosted.into_iter().enumerate() {
             let parts = match h {
                 Hosted::Vehicle => {
-                    jaus_sim::demo::vehicle_at(
+                    let (parts, vehicle) = jaus_sim::demo::vehicle_at(
                         t0,
                         &jaus_sim::demo::Options {
                             local_waypoint_driver: true,
@@ -524,8 +536,10 @@ impl NodeFile {
                         },
                         self.subsystem,
                         self.node,
-                    )
-                    .0
+                    );
+                    let lights = crate::SimLights(vehicle);
+                    native.push(Box::new(jaus_as4::ugv::IlluminationService::new(lights)));
+                    parts
                 }
                 Hosted::Arm => jaus_sim::arm_demo::arm_components(
                     &jaus_sim::SimArm::new(jaus_sim::ArmParams::six_axis()),
@@ -547,9 +561,12 @@ impl NodeFile {
                     .map_err(|e| format!("{}: host[{i}]: {e}", path.display()))?;
             }
         }
-        Ok(node)
+        Ok((node, native))
     }
 }
+
+/// AS-4 services a node file's `host:` entries offer natively, for its gateway.
+pub type As4Native = Vec<Box<dyn jaus_as4::service::Service<jaus_as4::gateway::Ra33Side>>>;
 
 /// The first AS-4 component id of the proxies' default ids (`proxy_id`).
 const FIRST_PROXY_COMPONENT: u8 = 200;

@@ -7,6 +7,7 @@ use std::time::Duration;
 use jaus::net::{udp, Framing, NodeConfig};
 
 mod build;
+pub use build::As4Native;
 pub(crate) mod run;
 
 /// A node configuration file (YAML).
@@ -76,6 +77,8 @@ pub(crate) mod run;
 /// drivers: 49.1) and `authority` (0). Those that need hardware share one simulated
 /// vehicle, the manipulator components one simulated arm, in an empty world (no
 /// obstacles; the vehicle at the origin of the default frame: `jaus_sim::World`).
+/// With `as4:`, the gateway's AS-4 component also hosts the AS-4 Illumination service
+/// over the `vehicle`'s simulated lamps (RA 3.3 has no lights: `SimLights`).
 ///
 /// `communicator` (Part 1 §5.2.1, id 35) is the subsystem's gateway to the other
 /// subsystems, over real data links: its `links:` (at least one) are each

@@ -24,7 +24,7 @@ pub fn node(
 ) -> Result<(), String> {
     let file = NodeFile::load(config)?;
     let t0 = Instant::now();
-    let mut node = file.build_node(config, t0)?;
+    let (mut node, native) = file.build_node_and_as4(config, t0)?;
     // Before the first line: the robot's DDS domain joined, its components hosted.
     let ros2 = file.start_ros2(config, &mut node, t0)?;
     let _ = writeln!(
@@ -281,6 +281,9 @@ pub fn node(
                 .map_err(|e| format!("{}: as4: {e}", config.display()))?;
             for p in proxies {
                 dual = dual.with_endpoint(p);
+            }
+            for s in native {
+                dual = dual.with_service(s);
             }
             let r = carrier.drive(&mut dual, stop, until, |d| show_tree(d.node()), &mut tap);
             as4_line = Some(as4_stats_line(dual.as4()));
