@@ -537,7 +537,7 @@ impl NodeFile {
                         self.subsystem,
                         self.node,
                     );
-                    let lights = crate::SimLights(vehicle);
+                    let lights = crate::sim_lights::SimLights(vehicle);
                     native.push(Box::new(jaus_as4::ugv::IlluminationService::new(lights)));
                     parts
                 }
