@@ -565,9 +565,6 @@ impl NodeFile {
     }
 }
 
-/// AS-4 services a node file's `host:` entries offer natively, for its gateway.
-pub type As4Native = Vec<Box<dyn jaus_as4::service::Service<jaus_as4::gateway::Ra33Side>>>;
-
 /// The first AS-4 component id of the proxies' default ids (`proxy_id`).
 const FIRST_PROXY_COMPONENT: u8 = 200;
 

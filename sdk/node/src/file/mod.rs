@@ -7,8 +7,10 @@ use std::time::Duration;
 use jaus::net::{udp, Framing, NodeConfig};
 
 mod build;
-pub use build::As4Native;
 pub(crate) mod run;
+
+/// AS-4 services a node file's `host:` entries offer natively, for its gateway.
+pub type As4Native = Vec<Box<dyn jaus_as4::service::Service<jaus_as4::gateway::Ra33Side>>>;
 
 /// A node configuration file (YAML).
 ///
