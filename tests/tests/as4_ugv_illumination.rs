@@ -78,13 +78,7 @@ impl Rig {
     }
 
     fn refused(&self) -> u64 {
-        self.0
-            .dual()
-            .gateway()
-            .component()
-            .expect("the gateway's component")
-            .stats()
-            .refused
+        self.0.refused()
     }
 }
 

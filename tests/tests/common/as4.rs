@@ -92,6 +92,16 @@ impl As4Rig {
         self.one_within(m, Duration::from_millis(300))
     }
 
+    /// Messages the gateway's AS-4 component refused (a guard said no).
+    pub fn refused(&self) -> u64 {
+        self.dual()
+            .gateway()
+            .component()
+            .expect("the gateway's component")
+            .stats()
+            .refused
+    }
+
     /// The node and its gateway.
     pub fn dual(&self) -> &DualNode {
         self.net.get::<DualNode>(self.node).expect("node")
