@@ -159,6 +159,19 @@ fn jaus_node(
     Arc<AtomicBool>,
     std::thread::JoinHandle<(Result<(), String>, String)>,
 ) {
+    jaus_node_hosting(tag, "[vehicle]")
+}
+
+/// [`jaus_node`] hosting `host` (a node file's `host:` list).
+#[allow(clippy::type_complexity)]
+fn jaus_node_hosting(
+    tag: &str,
+    host: &str,
+) -> (
+    u16,
+    Arc<AtomicBool>,
+    std::thread::JoinHandle<(Result<(), String>, String)>,
+) {
     let dir = std::env::temp_dir().join(format!("jaus-as4-{tag}-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let port = UdpSocket::bind("127.0.0.1:0")
@@ -170,7 +183,7 @@ fn jaus_node(
     std::fs::write(
         &file,
         format!(
-            "subsystem: 1\nnode: 1\nsubsystem_name: demo vehicle\nbind: 127.0.0.1:{port}\nhost: [vehicle]\nas4: {{}}\n"
+            "subsystem: 1\nnode: 1\nsubsystem_name: demo vehicle\nbind: 127.0.0.1:{port}\nhost: {host}\nas4: {{}}\n"
         ),
     )
     .unwrap();
@@ -204,6 +217,69 @@ fn the_iop_scenario_passes_over_udp_against_jaus_node() {
     assert!(r.is_ok(), "{r:?}\n{out}");
     assert!(out.contains("AS-4 (AS5669A) on the same socket"), "{out}");
     all_pass(&run);
+}
+
+/// The sets a node hosting the vehicle and the arm serves, by the URI prefix of their
+/// services (HMI has no stock core; Mission Spooling is not served yet).
+const SERVED_SETS: [&str; 5] = [
+    "urn:jaus:jss:core:",
+    "urn:jaus:jss:mobility:",
+    "urn:jaus:jss:manipulator:",
+    "urn:jaus:jss:environmentSensing:",
+    "urn:jaus:jss:ugv:",
+];
+
+/// `jaus conform --as4 --plan --allow-motion` against `jaus node` hosting the vehicle
+/// and the arm: every service it lists, of every set it serves, planned from jaus-as4's
+/// definitions; no check fails, required or advisory, and the JUnit and HTML reports
+/// say so.
+#[test]
+fn planned_checks_of_every_served_set_pass_over_udp_against_jaus_node() {
+    use jaus_conform::as4::planned::{run_planned, Definitions};
+    let (port, stop, node) = jaus_node_hosting("every-set", "[vehicle, arm]");
+    let socket = UdpSocket::bind("127.0.0.1:0").unwrap();
+    let mut session =
+        UdpAs4Session::new(socket, format!("127.0.0.1:{port}").parse().unwrap()).unwrap();
+    let defs = Definitions::as4().expect("jaus-as4's definitions");
+    let run = run_planned(&mut session, &defs, &judge());
+    stop.store(true, Ordering::Relaxed);
+    let (r, out) = node.join().unwrap();
+    assert!(r.is_ok(), "{r:?}\n{out}");
+
+    let outcomes = &run.components[0].outcomes;
+    let listed = &outcomes[0].detail;
+    assert_eq!(outcomes[0].verdict, Verdict::Pass, "{listed}");
+    for set in SERVED_SETS {
+        assert!(listed.contains(set), "no service of {set} listed: {listed}");
+    }
+    for uri in [
+        "ugv:IlluminationService",
+        "ugv:AnnunciatorService",
+        "ugv:ParkingBrakeDriver",
+        "manipulator:ManipulatorJointPositionDriver",
+        "environmentSensing:StillImage",
+        "mobility:LocalWaypointListDriver",
+    ] {
+        assert!(listed.contains(uri), "{uri} not listed: {listed}");
+    }
+    let failed: Vec<String> = outcomes
+        .iter()
+        .filter(|o| o.verdict == Verdict::Fail)
+        .map(|o| format!("{} [{:?}]: {}", o.check.id, o.check.level, o.detail))
+        .collect();
+    assert!(failed.is_empty(), "failed:\n{}", failed.join("\n"));
+    let passed = outcomes
+        .iter()
+        .filter(|o| o.verdict == Verdict::Pass)
+        .count();
+    assert!(passed >= 90, "{passed} of {} checks passed", outcomes.len());
+    assert!(run.passed());
+
+    let junit = jaus_conform::report::junit(&run);
+    assert!(junit.contains(r#"failures="0""#), "{junit}");
+    assert!(junit.contains("as4.illumination_service."), "{junit}");
+    let html = jaus_conform::report::html(&run);
+    assert!(html.contains("as4.manipulator_joint_position_driver."));
 }
 
 #[test]
