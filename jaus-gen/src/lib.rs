@@ -158,6 +158,7 @@ pub struct Builder {
     update_lock: Option<bool>,
     base: Option<Base>,
     delegate: Option<String>,
+    host: Option<String>,
 }
 
 /// Base definitions other than the SDK's that a vendor's set extends
@@ -354,6 +355,17 @@ impl Builder {
     /// then serves every service built on them, each service implemented apart.
     pub fn delegate_inherited(mut self, id_prefix: impl Into<String>) -> Self {
         self.delegate = Some(id_prefix.into());
+        self
+    }
+
+    /// The generated services are hosted by the crate at `path` (`crate`: jaus-as4
+    /// generating its own sets), which has the AS-4 component runtime
+    /// (`service::GeneratedService`, `core::machine::Host`): each service built on a
+    /// delegated one ([`delegate_inherited`](Self::delegate_inherited)) then gets a
+    /// `Hosted<S>` adapter, as a vendor's service on a base does, so its implementation
+    /// holds only the service's own guards and actions.
+    pub fn hosted_by(mut self, path: impl Into<String>) -> Self {
+        self.host = Some(path.into());
         self
     }
 
@@ -609,8 +621,8 @@ impl Builder {
             (String::new(), 0)
         } else {
             let on = self.base.as_ref().map(|_| base.as_str());
-            let ctx =
-                build_services(&spec, on, self.delegate.as_deref()).map_err(Error::Services)?;
+            let ctx = build_services(&spec, on, self.delegate.as_deref(), self.host.as_deref())
+                .map_err(Error::Services)?;
             let raw = env.get_template("services.rs.j2")?.render(&ctx)?;
             (
                 format_code(&raw, self.out_dir.as_deref(), "services")?,

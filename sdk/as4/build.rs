@@ -17,6 +17,8 @@ fn main() {
         // The Core's services are inherited by delegation: a Mobility service's trait
         // holds only its own guards and actions, the inherited ones run on the Core.
         .delegate_inherited("urn:jaus:jss:core:")
+        // jaus-as4 hosts its own services: each gets a `Hosted<S>` adapter.
+        .hosted_by("crate")
         .serde_cfg("feature = \"serde\"")
         .out_dir(out)
         .generate()

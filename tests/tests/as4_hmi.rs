@@ -11,13 +11,11 @@ use std::collections::BTreeMap;
 use std::time::{Duration, Instant};
 
 use jaus::net::as5669a::As4Id;
-use jaus::CommandCode;
-use jaus_as4::component::{As4Component, Outgoing};
-use jaus_as4::core::machine::Host;
+use jaus_as4::component::As4Component;
 use jaus_as4::core::CoreConfig;
 use jaus_as4::messages::services::transport::event::Receive;
 use jaus_as4::messages::services::{analog_control, digital_control};
-use jaus_as4::service::{GeneratedService, Outbox, ServiceId, Taken};
+use jaus_as4::service::Outbox;
 use jaus_as4::{
     AnalogDevice, AnalogValue, CreateEvent, DigitalControlState, DigitalControlStateFlags,
     EventType, Message, QueryAnalogAction, QueryAnalogDevices, QueryDcm, ReportAnalogAction,
@@ -29,32 +27,64 @@ const ASSET: As4Id = As4Id::new(61, 1, 1);
 const OTHER: As4Id = As4Id::new(62, 1, 1);
 
 /// The panel: its buttons (how each is shown, the last press or release) and its
-/// joystick's deflection.
+/// joystick's deflection, shared by its two services.
 #[derive(Debug, Default)]
 struct Panel {
     shown: BTreeMap<u16, DigitalControlStateFlags>,
     last_action: Option<(u16, DigitalControlState)>,
     stick: (i16, i16),
-    outbox: Outbox,
 }
+
+type Shared = std::sync::Arc<std::sync::Mutex<Panel>>;
 
 const STICK: u16 = 7;
 
-impl digital_control::DigitalControl for Panel {
+/// The Digital Control service's own actions over the panel's buttons; the generated
+/// `Hosted` adapter runs them on the service's machines.
+#[derive(Debug, Default)]
+struct Buttons {
+    panel: Shared,
+    outbox: Outbox,
+}
+
+impl AsMut<Outbox> for Buttons {
+    fn as_mut(&mut self) -> &mut Outbox {
+        &mut self.outbox
+    }
+}
+
+impl digital_control::DigitalControl for Buttons {
     fn send_report_dcm(&mut self, _msg: &QueryDcm, transport_data: &Receive) {
         // Before any press there is no action to report: nothing is sent.
-        if let Some((reference, state)) = self.last_action {
+        if let Some((reference, state)) = self.panel.lock().unwrap().last_action {
             self.outbox
                 .reply(transport_data, &ReportDcm { reference, state });
         }
     }
 
     fn set_dcm(&mut self, msg: &SetDcm) {
-        self.shown.insert(msg.reference, msg.state);
+        self.panel
+            .lock()
+            .unwrap()
+            .shown
+            .insert(msg.reference, msg.state);
     }
 }
 
-impl analog_control::AnalogControl for Panel {
+/// The Analog Control service's own actions over the panel's joystick.
+#[derive(Debug, Default)]
+struct Joystick {
+    panel: Shared,
+    outbox: Outbox,
+}
+
+impl AsMut<Outbox> for Joystick {
+    fn as_mut(&mut self) -> &mut Outbox {
+        &mut self.outbox
+    }
+}
+
+impl analog_control::AnalogControl for Joystick {
     fn send_report_analog_devices(&mut self, _msg: &QueryAnalogDevices, transport_data: &Receive) {
         let devices = vec![AnalogDevice {
             reference: STICK,
@@ -70,89 +100,28 @@ impl analog_control::AnalogControl for Panel {
         }
         // The axes asked for (bit 0 longitudinal, bit 1 lateral) that the stick has.
         let asked = msg.presence_vector as u8;
+        let stick = self.panel.lock().unwrap().stick;
         let report = ReportAnalogAction {
             reference: STICK,
-            longitudinal: (asked & 1 != 0).then_some(AnalogValue::I16(self.stick.0)),
-            lateral: (asked & 2 != 0).then_some(AnalogValue::I16(self.stick.1)),
+            longitudinal: (asked & 1 != 0).then_some(AnalogValue::I16(stick.0)),
+            lateral: (asked & 2 != 0).then_some(AnalogValue::I16(stick.1)),
             ..Default::default()
         };
         self.outbox.reply(transport_data, &report);
     }
 }
 
-/// One of the panel's services on its generated machines, the panel shared by both.
-/// This is what `jaus-gen` writes as `Hosted` for a vendor's service on jaus-as4: here
-/// by hand, as the HMI set is jaus-as4's own.
-macro_rules! hosted {
-    ($name:ident, $module:ident, $uri:literal) => {
-        #[derive(Debug, Default)]
-        struct $name {
-            panel: std::sync::Arc<std::sync::Mutex<Panel>>,
-            machines: $module::Machines,
-        }
-
-        impl GeneratedService for $name {
-            fn id(&self) -> ServiceId {
-                ServiceId::new($uri, 1, 0)
-            }
-
-            fn receives(&self, code: CommandCode) -> bool {
-                $module::RECEIVES.contains(&code)
-            }
-
-            fn follow(&mut self, core_state: &'static str) {
-                let mut p = self.panel.lock().unwrap();
-                self.machines.follow(&mut *p, core_state);
-            }
-
-            fn receive(
-                &mut self,
-                core: &mut Host<'_>,
-                message: &Message,
-                transport: &Receive,
-            ) -> Taken {
-                let Some(trigger) = $module::Trigger::received(message, transport) else {
-                    return Taken::NotMine;
-                };
-                let mut p = self.panel.lock().unwrap();
-                if self.machines.handle(&mut *p, core, &trigger) {
-                    Taken::Taken
-                } else {
-                    Taken::NoTransition(self.machines.0.iter().next().map_or("", |m| m.path()))
-                }
-            }
-
-            fn take_output(&mut self) -> Vec<Outgoing> {
-                self.panel.lock().unwrap().outbox.take()
-            }
-
-            fn states(&self) -> Vec<(&'static str, &'static str)> {
-                self.machines
-                    .0
-                    .iter()
-                    .map(|m| (m.def().name, m.path()))
-                    .collect()
-            }
-        }
-    };
-}
-
-hosted!(Buttons, digital_control, "urn:jaus:jss:HMI:DigitalControl");
-hosted!(Joystick, analog_control, "urn:jaus:jss:HMI:AnalogControl");
-
-type Shared = std::sync::Arc<std::sync::Mutex<Panel>>;
-
 fn panel() -> (As4Component<()>, Shared) {
     let shared = Shared::default();
     let c = As4Component::new(PANEL, CoreConfig::named("panel"))
-        .with_service(Buttons {
+        .with_service(digital_control::Hosted::new(Buttons {
             panel: shared.clone(),
-            ..Buttons::default()
-        })
-        .with_service(Joystick {
+            outbox: Outbox::new(),
+        }))
+        .with_service(analog_control::Hosted::new(Joystick {
             panel: shared.clone(),
-            ..Joystick::default()
-        });
+            outbox: Outbox::new(),
+        }));
     (c, shared)
 }
 

@@ -48,7 +48,7 @@ impl Rig {
         for p in parts {
             node.add_boxed(p).unwrap();
         }
-        let lights = IlluminationService::new(SimLights(vehicle.clone()));
+        let lights = IlluminationService::over(SimLights(vehicle.clone()));
         let rig = As4Rig::hosting(
             t0,
             node,

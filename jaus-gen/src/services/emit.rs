@@ -26,10 +26,15 @@ use std::collections::BTreeMap;
 /// inherited guards and actions on a second implementation (its trait does not extend
 /// the inherited trait). One implementation of the delegated services (a component's
 /// Core) then serves every service built on them, each implemented apart.
+///
+/// `host` is the path of the crate that hosts a set without base definitions
+/// (`crate` for jaus-as4 itself): with it, each service built on a delegated one gets
+/// the same `Hosted<S>` adapter as a service on a base.
 pub fn build_services(
     spec: &Spec,
     base: Option<&str>,
     delegate: Option<&str>,
+    host: Option<&str>,
 ) -> Result<ServicesCtx, String> {
     let parents = parents(spec)?;
     let n = spec.services.len();
@@ -91,6 +96,7 @@ pub fn build_services(
         // its ancestors); the others call into it.
         let on = Inherit {
             base,
+            host,
             services: &services_path,
             is_base: if delegated(i) { &standalone } else { &is_base },
         };
@@ -160,6 +166,8 @@ struct Inherit<'a> {
     /// The base's generated messages (`::jaus_as4::messages`), for a set on base
     /// definitions.
     base: Option<&'a str>,
+    /// The crate hosting a set without base definitions (`crate`), if it hosts one.
+    host: Option<&'a str>,
     /// Where the inherited services' traits are: the base's `services` module, or
     /// `super` for delegated services of the set.
     services: &'a str,
@@ -610,15 +618,22 @@ fn service(
             doc.extend(lines);
         }
     }
-    // A `Hosted` adapter when the service inherits a base service and its messages
-    // arrive with Transport's `Receive` data alone (the JSIDL convention).
-    let hosted = on.base.filter(|_| {
+    // A `Hosted` adapter when the service inherits a base (or delegated) service and
+    // its messages arrive with Transport's `Receive` data alone (the JSIDL convention):
+    // on the base's crate, whose `Message` carries the set's messages raw, or on the
+    // crate hosting the set, whose `Message` is the set's own.
+    let hosting = match on.base {
+        Some(b) => Some((b.trim_end_matches("::messages").to_string(), true)),
+        None => on.host.map(|h| (h.to_string(), false)),
+    };
+    let hosting = hosting.filter(|_| {
         chain(parents, i).into_iter().any(|k| (on.is_base)(k))
             && received.as_ref().is_some_and(|r| {
                 r.params.len() == 1 && r.params[0].ty.ends_with("::transport::event::Receive")
             })
     });
-    let hosted = hosted.map(|b| b.trim_end_matches("::messages").to_string());
+    let hosted_raw = hosting.as_ref().is_some_and(|h| h.1);
+    let hosted = hosting.map(|h| h.0);
     let version = {
         let mut it = d
             .version
@@ -650,6 +665,7 @@ fn service(
                 }
             }),
         hosted,
+        hosted_raw,
         uri: d.id.clone(),
         major: version.0,
         minor: version.1,

@@ -60,6 +60,9 @@ pub struct ServiceCtx {
     /// service inherits a base service and its messages arrive with Transport's
     /// `Receive` data alone.
     pub hosted: Option<String>,
+    /// Whether the hosting crate's `Message` carries the service's messages raw (a set
+    /// on base definitions), so `Hosted` decodes them with the set's own.
+    pub hosted_raw: bool,
     /// Its URI (`urn:acme:Lamp`).
     pub uri: String,
     /// Its major version.

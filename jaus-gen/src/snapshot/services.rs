@@ -293,7 +293,7 @@ fn guard_calls(cond: &str, out: &mut Vec<String>) {
 pub(crate) fn services(spec: &Spec, loc: &dyn Fn(usize, &str) -> Loc) -> Vec<ServiceSnap> {
     // The generated traits' methods, when the set's services generate.
     let generated: Option<BTreeMap<String, Vec<String>>> =
-        crate::services::build_services(spec, None, None)
+        crate::services::build_services(spec, None, None, None)
             .ok()
             .map(|ctx| {
                 ctx.services

@@ -1,7 +1,8 @@
 //! The Illumination service, hosted natively over a vehicle's lights ([`Lights`], the
 //! small hardware trait a vendor implements): RA 3.3 has no lights, so this service
-//! does not go through the gateway's RA 3.3 side. It is a [`GeneratedService`] on its
-//! generated machines (`defs/ugv_services.yaml`), so any AS-4 component hosts it
+//! does not go through the gateway's RA 3.3 side. It is the generated `Hosted` adapter
+//! (a [`GeneratedService`](crate::service::GeneratedService)) over its own guards and
+//! actions ([`Illumination`]), on its generated machines (`defs/ugv_services.yaml`), so any AS-4 component hosts it
 //! (`As4Component::with_service`, or beside a gateway's services with
 //! [`crate::gateway::DualNode::with_service`]).
 //!
@@ -15,18 +16,14 @@
 
 use std::fmt;
 
-use jaus::CommandCode;
-
-use super::ServiceIds;
-use crate::core::machine::Host;
 use crate::messages::services::illumination_service as generated;
 use crate::messages::services::transport::event::Receive;
 use crate::messages::{
-    IlluminationState, Message, QueryIlluminationConfiguration, QueryIlluminationState,
+    IlluminationState, QueryIlluminationConfiguration, QueryIlluminationState,
     ReportIlluminationConfiguration, ReportIlluminationState, SetIlluminationState,
     SupportedIllumination,
 };
-use crate::service::{GeneratedService, Outbox, Outgoing, ServiceId, Taken};
+use crate::service::Outbox;
 
 /// A vehicle's lights, as the Illumination service drives them (sans-IO: the vendor's
 /// implementation reaches its hardware; the simulator's is its model's lamps).
@@ -105,11 +102,25 @@ pub fn unsupported(
         .map(|(name, _, _)| name)
 }
 
-/// The Illumination service's own guards and actions over the lights `L`.
+/// The Illumination service's own guards and actions over the lights `L` (the
+/// inherited ones run on the component's Core).
 #[derive(Debug)]
-struct Illumination<L> {
+pub struct Illumination<L> {
     lights: L,
     outbox: Outbox,
+}
+
+impl<L> Illumination<L> {
+    /// The lights.
+    pub fn lights(&self) -> &L {
+        &self.lights
+    }
+}
+
+impl<L> AsMut<Outbox> for Illumination<L> {
+    fn as_mut(&mut self) -> &mut Outbox {
+        &mut self.outbox
+    }
 }
 
 impl<L: Lights> generated::IlluminationService for Illumination<L> {
@@ -149,67 +160,20 @@ impl<L: Lights> generated::IlluminationService for Illumination<L> {
     }
 }
 
-/// The Illumination service over the lights `L`, on its generated machines: a
-/// [`GeneratedService`], hosted by any AS-4 component.
-#[derive(Debug)]
-pub struct IlluminationService<L> {
-    imp: Illumination<L>,
-    machines: generated::Machines,
-}
+/// The Illumination service over the lights `L` on its generated machines: the
+/// generated `Hosted` adapter, a [`GeneratedService`] any AS-4 component hosts.
+///
+/// [`GeneratedService`]: crate::service::GeneratedService
+pub type IlluminationService<L> = generated::Hosted<Illumination<L>>;
 
-impl<L: Lights> IlluminationService<L> {
+impl<L: Lights> generated::Hosted<Illumination<L>> {
     /// The service over `lights`, its machines not started (they follow the Core's at
     /// the first message).
-    pub fn new(lights: L) -> Self {
-        Self {
-            imp: Illumination {
-                lights,
-                outbox: Outbox::new(),
-            },
-            machines: generated::Machines::new(),
-        }
-    }
-
-    /// The lights.
-    pub fn lights(&self) -> &L {
-        &self.imp.lights
-    }
-}
-
-impl<L: Lights> GeneratedService for IlluminationService<L> {
-    fn id(&self) -> ServiceId {
-        ServiceIds::ILLUMINATION
-    }
-
-    fn receives(&self, code: CommandCode) -> bool {
-        generated::RECEIVES.contains(&code)
-    }
-
-    fn follow(&mut self, core_state: &'static str) {
-        self.machines.follow(&mut self.imp, core_state);
-    }
-
-    fn receive(&mut self, core: &mut Host<'_>, message: &Message, transport: &Receive) -> Taken {
-        let Some(trigger) = generated::Trigger::received(message, transport) else {
-            return Taken::NotMine;
-        };
-        if self.machines.handle(&mut self.imp, core, &trigger) {
-            Taken::Taken
-        } else {
-            Taken::NoTransition(self.machines.0.iter().next().map_or("", |m| m.path()))
-        }
-    }
-
-    fn take_output(&mut self) -> Vec<Outgoing> {
-        self.imp.outbox.take()
-    }
-
-    fn states(&self) -> Vec<(&'static str, &'static str)> {
-        self.machines
-            .0
-            .iter()
-            .map(|m| (m.def().name, m.path()))
-            .collect()
+    pub fn over(lights: L) -> Self {
+        Self::new(Illumination {
+            lights,
+            outbox: Outbox::new(),
+        })
     }
 }
 

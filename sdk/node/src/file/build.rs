@@ -538,7 +538,7 @@ impl NodeFile {
                         self.node,
                     );
                     let lights = crate::sim_lights::SimLights(vehicle);
-                    native.push(Box::new(jaus_as4::ugv::IlluminationService::new(lights)));
+                    native.push(Box::new(jaus_as4::ugv::IlluminationService::over(lights)));
                     parts
                 }
                 Hosted::Arm => jaus_sim::arm_demo::arm_components(
