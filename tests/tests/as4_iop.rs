@@ -258,6 +258,7 @@ fn planned_checks_of_every_served_set_pass_over_udp_against_jaus_node() {
         "ugv:ParkingBrakeDriver",
         "manipulator:ManipulatorJointPositionDriver",
         "environmentSensing:StillImage",
+        "environmentSensing:RangeSensor",
         "mobility:LocalWaypointListDriver",
     ] {
         assert!(listed.contains(uri), "{uri} not listed: {listed}");

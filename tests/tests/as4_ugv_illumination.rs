@@ -176,7 +176,11 @@ fn a_node_file_hosting_the_vehicle_offers_illumination_on_its_gateway() {
     assert!(file.as4_config().is_some());
     let t0 = Instant::now();
     let (node, native) = file.build_node_and_as4(&path, t0).unwrap();
-    assert_eq!(native.len(), 1, "Illumination over the vehicle's lamps");
+    assert_eq!(
+        native.len(),
+        2,
+        "Illumination over the vehicle's lamps, the Range Sensor over its scanner"
+    );
     let mut r = Rig(As4Rig::hosting(
         t0,
         node,

@@ -12,7 +12,7 @@ use rand::SeedableRng;
 use rand_distr::{Distribution, Normal};
 
 use crate::vehicle::SimVehicle;
-use jaus::stock::environment::range::{Beam, RangeScanner};
+use jaus::stock::environment::range::{Beam, RangeScanner, ScannerSpec};
 
 /// Obstacles of the simulated world: circles (centre in the local frame, radius), m.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -153,6 +153,24 @@ impl RangeScanner for SimScanner {
             });
         }
         true
+    }
+
+    fn spec(&self) -> Option<ScannerSpec> {
+        let s = self.state.lock().unwrap_or_else(|e| e.into_inner());
+        let p = &s.params;
+        let half = if p.beams > 1 {
+            p.field_of_view / 2.0
+        } else {
+            0.0
+        };
+        Some(ScannerSpec {
+            first_bearing: p.mount_yaw - half,
+            last_bearing: p.mount_yaw + half,
+            beams: p.beams.max(1),
+            max_range: p.max_range,
+            range_noise: p.noise.max(0.0),
+            mount: (p.mount.x, p.mount.y),
+        })
     }
 }
 

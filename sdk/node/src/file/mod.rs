@@ -6,6 +6,7 @@ use std::time::Duration;
 
 use jaus::net::{udp, Framing, NodeConfig};
 
+mod as4;
 mod build;
 pub(crate) mod run;
 
@@ -80,7 +81,10 @@ pub type As4Native = Vec<Box<dyn jaus_as4::service::Service<jaus_as4::gateway::R
 /// vehicle, the manipulator components one simulated arm, in an empty world (no
 /// obstacles; the vehicle at the origin of the default frame: `jaus_sim::World`).
 /// With `as4:`, the gateway's AS-4 component also hosts the AS-4 Illumination service
-/// over the `vehicle`'s simulated lamps (RA 3.3 has no lights: `SimLights`).
+/// over the `vehicle`'s simulated lamps (RA 3.3 has no lights: `SimLights`), and the
+/// AS-4 Range Sensor over the simulated scanner of the first entry with one (`vehicle`
+/// or `range_sensor`: the scanner its RA 3.3 Range Sensor reads,
+/// `jaus_as4::environment::RangeSensorService`).
 ///
 /// `communicator` (Part 1 §5.2.1, id 35) is the subsystem's gateway to the other
 /// subsystems, over real data links: its `links:` (at least one) are each

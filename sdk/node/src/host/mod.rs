@@ -280,6 +280,12 @@ impl Host {
         &self.vehicle
     }
 
+    /// The range scanner on the simulated vehicle behind the range sensors built (clone
+    /// it to read the same sweeps elsewhere, such as the AS-4 Range Sensor).
+    pub fn scanner(&self) -> &SimScanner {
+        &self.scanner
+    }
+
     /// The simulated arm behind the manipulator components built.
     pub fn arm(&self) -> &SimArm {
         &self.arm

@@ -50,7 +50,7 @@ use measure::measure;
 pub use measure::operator_report;
 pub use operator::Operator;
 use operator::Step;
-pub use vehicle::{operator, vehicle, vehicle_at, vehicle_node};
+pub use vehicle::{operator, vehicle, vehicle_at, vehicle_node, vehicle_with_scanner_at};
 
 /// Addresses of the demo subsystem.
 pub mod addr {

@@ -63,6 +63,18 @@ pub fn vehicle_at(
     ss: u8,
     node: u8,
 ) -> (Vec<Box<dyn Endpoint>>, SimVehicle) {
+    let (parts, vehicle, _) = vehicle_with_scanner_at(t0, opts, ss, node);
+    (parts, vehicle)
+}
+
+/// [`vehicle_at`], with the range scanner its Range Sensor reads (a handle on the same
+/// scanner: another service may read the same sweeps, such as the AS-4 Range Sensor).
+pub fn vehicle_with_scanner_at(
+    t0: Instant,
+    opts: &Options,
+    ss: u8,
+    node: u8,
+) -> (Vec<Box<dyn Endpoint>>, SimVehicle, SimScanner) {
     let at = |a: Address| addr::on(a, ss, node);
     let vehicle = SimVehicle::new(VehicleParams {
         position_noise: opts.position_noise,
@@ -103,10 +115,12 @@ pub fn vehicle_at(
             ..ScannerParams::default()
         },
     );
-    let rs = StockRangeSensor::new(scanner, RangeConfig::default()).with_map_feed(MapFeedConfig {
-        origin: Some(LocalFrame::new(ORIGIN.0, ORIGIN.1, ORIGIN.2)),
-        ..MapFeedConfig::new(at(addr::WM), at(addr::GPS))
-    });
+    let rs = StockRangeSensor::new(scanner.clone(), RangeConfig::default()).with_map_feed(
+        MapFeedConfig {
+            origin: Some(LocalFrame::new(ORIGIN.0, ORIGIN.1, ORIGIN.2)),
+            ..MapFeedConfig::new(at(addr::WM), at(addr::GPS))
+        },
+    );
     let gwd = StockGlobalWaypointDriver::new(driver_config(at(addr::GPS), ss, node));
     let lpsd = StockLocalPathSegmentDriver::new(driver_config(at(addr::LPS), ss, node));
     let gpsd = StockGlobalPathSegmentDriver::new(driver_config(at(addr::GPS), ss, node));
@@ -199,7 +213,7 @@ pub fn vehicle_at(
             t0,
         )));
     }
-    (parts, vehicle)
+    (parts, vehicle, scanner)
 }
 
 /// The demo's vehicle on a node of its own (`subsystem.node`, the node's other settings

@@ -7,7 +7,7 @@
 use std::time::Instant;
 
 use super::map_feed::{MapFeed, MapFeedConfig, MapFeedStats, MapUpdate};
-pub use super::scan::{detections, Beam, Detection, RangeScanner};
+pub use super::scan::{detections, Beam, Detection, RangeScanner, ScannerSpec};
 use crate::component::Refused;
 use crate::components::range_sensor as rs;
 use crate::messages::*;

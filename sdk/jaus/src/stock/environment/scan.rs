@@ -14,10 +14,34 @@ pub struct Beam {
     pub range: Option<f64>,
 }
 
+/// What a scanner is, for the services that report it (the AS-4 Range Sensor's
+/// capabilities, configuration and placement): its beams' spread and reach.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ScannerSpec {
+    /// Bearing of its first (leftmost) beam, rad, as [`Beam::bearing`].
+    pub first_bearing: f64,
+    /// Bearing of its last (rightmost) beam, rad.
+    pub last_bearing: f64,
+    /// Beams in a sweep.
+    pub beams: usize,
+    /// Farthest return, m.
+    pub max_range: f64,
+    /// Range noise (standard deviation), m.
+    pub range_noise: f64,
+    /// Where ranges are measured from: forward and right of the platform's reference
+    /// point, m (bearings are the platform's directions, whatever the mount's yaw).
+    pub mount: (f64, f64),
+}
+
 /// A scanning range finder (a 2-D lidar, a sonar ring, ...).
 pub trait RangeScanner: Send + 'static {
     /// The latest sweep into `out` (cleared first), or `false` without one.
     fn scan(&mut self, now: Instant, out: &mut Vec<Beam>) -> bool;
+
+    /// Its geometry, when known (default: not known).
+    fn spec(&self) -> Option<ScannerSpec> {
+        None
+    }
 }
 
 /// An object found in a sweep: its nearest return.
