@@ -256,6 +256,8 @@ fn planned_checks_of_every_served_set_pass_over_udp_against_jaus_node() {
         "ugv:IlluminationService",
         "ugv:AnnunciatorService",
         "ugv:ParkingBrakeDriver",
+        "ugv:SkidSteerDriver",
+        "ugv:PowerPlantManager",
         "manipulator:ManipulatorJointPositionDriver",
         "environmentSensing:StillImage",
         "environmentSensing:RangeSensor",

@@ -63,9 +63,11 @@
 //! runtime below: the Core on [`core::Core`], the Mobility ([`mobility`]) and Manipulator
 //! ([`manipulator`]) services a gateway presents over RA 3.3 components on
 //! [`machined`], with the Still Image ([`environment`]) and the UGV Parking Brake Driver
-//! and Platform Specifications ([`ugv`]).
-//! The other UGV services and the Mission Spooling and HMI services are defined and
-//! generated (their traits and machines) without an implementation in this crate.
+//! and Platform Specifications, the Skid Steer Driver, Annunciator, Power Plant Manager,
+//! Odometry and Illumination ([`ugv`]). The other UGV services (the Ackermann,
+//! Stabilizer and Drive Train Drivers) and the Mission Spooling and HMI services are
+//! defined and generated (their traits and machines) without an implementation in this
+//! crate.
 //!
 //! ## Running AS-4 services
 //!

@@ -248,6 +248,7 @@ impl<A: PeerAddr> Gateway<A> {
         }
         services.extend(crate::manipulator::services(env, now, &targets, &new));
         crate::ugv::ask(env, &new);
+        services.extend(crate::ugv::found(&new));
         if let Some(a) = new.visual_sensor {
             services.push(Box::new(crate::environment::StillImage::new(a)));
         }

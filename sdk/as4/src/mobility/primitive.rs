@@ -2,6 +2,11 @@
 //! through (the same twelve efforts in percent), Query Wrench Effort answers from the
 //! RA 3.3 driver's latest report; the machines (`defs/mobility_services.yaml`) take Set
 //! Wrench Effort from the controlling client while the component is Ready.
+//!
+//! `command_efforts` and `stop_efforts` are the one path of efforts from AS-4 to the
+//! RA 3.3 driver: the UGV Skid Steer Driver ([`crate::ugv::skid_steer`]) sends its
+//! efforts through them too, so both services command the same RA 3.3 driver the same
+//! way and the latest command of either wins.
 
 use jaus::codec::Encode;
 use jaus::messages as ra;
@@ -54,11 +59,37 @@ impl generated::PrimitiveDriver for On<'_, Primitive> {
     }
 
     fn set_wrench_effort(&mut self, msg: &SetWrenchEffort) {
-        // Efforts from the AS-4 client: the gateway takes the RA 3.3 driver (a waypoint
-        // list executed later gives it back to the drivers).
-        let driver = self.svc.driver;
-        self.env.activate(driver);
-        self.env.send(driver, efforts!(msg => RaSetWrenchEffort));
+        command_efforts(
+            self.env,
+            self.svc.driver,
+            efforts!(msg => RaSetWrenchEffort),
+        );
+    }
+}
+
+/// Sends `efforts` from the AS-4 client to the RA 3.3 Primitive Driver at `driver`: the
+/// gateway takes the driver ([`Ra33Side::activate`]: RA 3.3 control asked for if not
+/// held, the driver resumed while the component is Ready, the group's other drivers put
+/// in standby; a waypoint list executed later gives it back to the drivers). Streamed
+/// ([`crate::ra33::STREAMED`]): the next command replaces a lost one.
+pub(crate) fn command_efforts(env: &mut Ra33Side, driver: Address, efforts: RaSetWrenchEffort) {
+    env.activate(driver);
+    env.send(driver, efforts);
+}
+
+/// Stops the efforts of the RA 3.3 Primitive Driver at `driver` at once (linear x and
+/// rotational z at 0), when the gateway drives it itself (holds RA 3.3 control; its
+/// standby follows from the gateway's control).
+pub(crate) fn stop_efforts(env: &mut Ra33Side, driver: Address) {
+    if env.control_of(driver) == crate::ra33::Ra33Control::Granted {
+        env.send(
+            driver,
+            RaSetWrenchEffort {
+                propulsive_linear_effort_x: Some(0.0),
+                propulsive_rotational_effort_z: Some(0.0),
+                ..Default::default()
+            },
+        );
     }
 }
 
@@ -74,19 +105,9 @@ machined!(
         to: crate::ComponentState,
     ) {
         // Leaving Ready stops the efforts at once, when the gateway drives the RA 3.3
-        // Primitive Driver itself (its standby follows from the gateway's control).
-        if from == crate::ComponentState::Ready
-            && to != crate::ComponentState::Ready
-            && cx.env.control_of(self.driver) == crate::ra33::Ra33Control::Granted
-        {
-            cx.env.send(
-                self.driver,
-                RaSetWrenchEffort {
-                    propulsive_linear_effort_x: Some(0.0),
-                    propulsive_rotational_effort_z: Some(0.0),
-                    ..Default::default()
-                },
-            );
+        // Primitive Driver itself.
+        if from == crate::ComponentState::Ready && to != crate::ComponentState::Ready {
+            stop_efforts(cx.env, self.driver);
         }
     }
     }

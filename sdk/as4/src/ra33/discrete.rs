@@ -1,24 +1,28 @@
-//! The parking brake and horn bits of RA 3.3 Primitive Drivers as this gateway commands
-//! them: the one place a Set Discrete Devices is built.
+//! The parking brake, horn and main propulsion bits of RA 3.3 Primitive Drivers as
+//! this gateway commands them: the one place a Set Discrete Devices is built.
 //!
-//! Two AS-4 services write the one byte of RA 3.3 Set Discrete Devices that carries
-//! both bits: the Parking Brake Driver its parking brake bit, the Annunciator its horn
-//! bit ([`crate::ugv`]). Each asks for its own bit ([`DiscreteChange`]) and
-//! [`Ra33Side::set_discrete_devices`] builds the message with both, so neither clobbers
-//! the other:
+//! Three AS-4 services write RA 3.3 Set Discrete Devices: the Parking Brake Driver its
+//! parking brake bit and the Annunciator its horn bit (the one byte that carries both),
+//! the Power Plant Manager the main propulsion bit of the propulsion byte
+//! ([`crate::ugv`]). Each asks for its own bit ([`DiscreteChange`]) and
+//! [`Ra33Side::set_discrete_devices`] builds the message, so none clobbers another:
 //!
 //! * a bit asked for is the one sent;
 //! * a bit not asked for is the one this gateway last commanded while that command may
 //!   not show in the driver's reports yet (it waits for RA 3.3 control, or was sent
 //!   less than [`SETTLE`] ago), else the one the driver last reported (off before a
 //!   report, or in one without the field: the stock driver leaves out devices never
-//!   set).
+//!   set);
+//! * the parking brake and horn byte is always sent; the propulsion byte only with a
+//!   main propulsion bit asked for or still settling, its other bits (fuel supplies,
+//!   auxiliary power, starter, cold start, automatic start and stop) kept the same way
+//!   as the others, so a brake or a horn never switches the engine and a driver that
+//!   was never sent one keeps its own.
 //!
-//! Propulsion, gear and transfer case are never sent (the AS-4 services served have
-//! none of them; RA 3.3 leaves the gear's and transfer case's meaning to the vendor).
+//! Gear and transfer case are never sent (RA 3.3 leaves their meaning to the vendor).
 //!
 //! RA 3.3 control of the driver is asked for with the command; the command goes at once
-//! if control is held, else the latest one per driver (both bits) waits until it is
+//! if control is held, else the latest one per driver (every bit) waits until it is
 //! granted ([`Ra33Side::flush_discrete_devices`]) and is dropped when no AS-4 client
 //! controls the component any more.
 
@@ -26,7 +30,8 @@ use std::collections::HashMap;
 use std::time::{Duration, Instant};
 
 use jaus::messages::{
-    Message as Ra33Message, ParkingBrakeHorn, ReportDiscreteDevices, SetDiscreteDevices,
+    DiscretePropulsion, Message as Ra33Message, ParkingBrakeHorn, ReportDiscreteDevices,
+    SetDiscreteDevices,
 };
 use jaus::{Address, JausMessage};
 
@@ -36,20 +41,33 @@ use super::{Ra33Control, Ra33Side};
 /// report may have been asked for before the command arrived).
 pub const SETTLE: Duration = Duration::from_secs(2);
 
-/// A change of an RA 3.3 driver's parking brake and horn bits: `None` keeps a bit.
+/// A change of an RA 3.3 driver's parking brake, horn and main propulsion bits: `None`
+/// keeps a bit.
 #[derive(Debug, Default, Clone, Copy, PartialEq, Eq)]
 pub struct DiscreteChange {
     /// The parking brake bit to command.
     pub parking_brake: Option<bool>,
     /// The horn bit to command.
     pub horn: Option<bool>,
+    /// The main propulsion bit to command (engine on or off).
+    pub main_propulsion: Option<bool>,
 }
 
-/// The bits last commanded to one driver: when sent (`None`: waiting for control).
+/// The bits last commanded to one driver (the propulsion byte if it was sent): when
+/// sent (`None`: waiting for control).
 #[derive(Debug, Clone, Copy)]
 struct Commanded {
     bits: ParkingBrakeHorn,
+    propulsion: Option<DiscretePropulsion>,
     sent: Option<Instant>,
+}
+
+impl Commanded {
+    /// Whether it may not show in the driver's reports yet at `now`.
+    fn settling(&self, now: Instant) -> bool {
+        self.sent
+            .is_none_or(|at| now.saturating_duration_since(at) < SETTLE)
+    }
 }
 
 /// The bits last commanded to each driver (one entry per Primitive Driver commanded).
@@ -58,10 +76,11 @@ pub(super) struct DiscreteDevices {
     commanded: HashMap<Address, Commanded>,
 }
 
-/// Set Discrete Devices with `bits` alone.
-fn message(bits: ParkingBrakeHorn) -> SetDiscreteDevices {
+/// Set Discrete Devices with `c`'s bits (the propulsion byte if any).
+fn message(c: &Commanded) -> SetDiscreteDevices {
     SetDiscreteDevices {
-        parking_brake_and_horn: Some(bits),
+        propulsion: c.propulsion,
+        parking_brake_and_horn: Some(c.bits),
         ..Default::default()
     }
 }
@@ -79,33 +98,55 @@ impl Ra33Side {
         }
     }
 
-    /// Commands `change` to the RA 3.3 driver at `driver` at `now`, the bit not changed
+    /// The propulsion bits the RA 3.3 driver at `driver` last reported (`None` before a
+    /// Report Discrete Devices came; a report without the field reads as all off).
+    pub fn reported_propulsion(&self, driver: Address) -> Option<DiscretePropulsion> {
+        match self.latest(driver, ReportDiscreteDevices::CODE) {
+            Some((_, Ra33Message::ReportDiscreteDevices(r))) => {
+                Some(r.propulsion.unwrap_or_default())
+            }
+            _ => None,
+        }
+    }
+
+    /// Commands `change` to the RA 3.3 driver at `driver` at `now`, the bits not changed
     /// kept (see the module's documentation), through RA 3.3 control of the driver.
     pub fn set_discrete_devices(&mut self, now: Instant, driver: Address, change: DiscreteChange) {
-        let base = match self.discrete.commanded.get(&driver) {
-            Some(c)
-                if c.sent
-                    .is_none_or(|at| now.saturating_duration_since(at) < SETTLE) =>
-            {
-                c.bits
-            }
-            _ => self.reported_discrete_devices(driver).unwrap_or_default(),
-        };
+        let settling = self
+            .discrete
+            .commanded
+            .get(&driver)
+            .filter(|c| c.settling(now))
+            .copied();
+        let base = settling
+            .map(|c| c.bits)
+            .unwrap_or_else(|| self.reported_discrete_devices(driver).unwrap_or_default());
         let bits = ParkingBrakeHorn {
             parking_brake: change.parking_brake.unwrap_or(base.parking_brake),
             horn: change.horn.unwrap_or(base.horn),
             ..Default::default()
         };
-        self.ensure_control(driver);
-        let sent = if self.control_of(driver) == Ra33Control::Granted {
-            self.send(driver, message(bits));
-            Some(now)
-        } else {
-            None
+        let kept = settling.and_then(|c| c.propulsion);
+        let propulsion = match change.main_propulsion {
+            Some(on) => Some(DiscretePropulsion {
+                main_propulsion: on,
+                ..kept
+                    .or_else(|| self.reported_propulsion(driver))
+                    .unwrap_or_default()
+            }),
+            None => kept,
         };
-        self.discrete
-            .commanded
-            .insert(driver, Commanded { bits, sent });
+        self.ensure_control(driver);
+        let mut c = Commanded {
+            bits,
+            propulsion,
+            sent: None,
+        };
+        if self.control_of(driver) == Ra33Control::Granted {
+            self.send(driver, message(&c));
+            c.sent = Some(now);
+        }
+        self.discrete.commanded.insert(driver, c);
     }
 
     /// Sends the discrete devices commands waiting for RA 3.3 control to the drivers
@@ -116,22 +157,17 @@ impl Ra33Side {
             self.discrete.commanded.retain(|_, c| c.sent.is_some());
             return;
         }
-        let ready: Vec<(Address, ParkingBrakeHorn)> = self
+        let ready: Vec<(Address, Commanded)> = self
             .discrete
             .commanded
             .iter()
             .filter(|(d, c)| c.sent.is_none() && self.control_of(**d) == Ra33Control::Granted)
-            .map(|(d, c)| (*d, c.bits))
+            .map(|(d, c)| (*d, *c))
             .collect();
-        for (driver, bits) in ready {
-            self.send(driver, message(bits));
-            self.discrete.commanded.insert(
-                driver,
-                Commanded {
-                    bits,
-                    sent: Some(now),
-                },
-            );
+        for (driver, mut c) in ready {
+            self.send(driver, message(&c));
+            c.sent = Some(now);
+            self.discrete.commanded.insert(driver, c);
         }
     }
 }
@@ -284,5 +320,86 @@ mod tests {
         );
         s.flush_discrete_devices(t0);
         assert_eq!(sent(&mut s), None);
+    }
+
+    /// The propulsion byte of the Set Discrete Devices sent, if one was (`Some(None)`:
+    /// sent without it).
+    fn propulsion_sent(s: &mut Ra33Side) -> Option<Option<DiscretePropulsion>> {
+        let mut last = None;
+        while let Some((to, m)) = s.poll_transmit() {
+            if let (PD, Ra33Message::SetDiscreteDevices(d)) = (to, m) {
+                last = Some(d.propulsion);
+            }
+        }
+        last
+    }
+
+    #[test]
+    fn the_main_propulsion_bit_keeps_the_other_bits_and_is_sent_only_when_asked_for() {
+        let t0 = Instant::now();
+        let mut s = side(t0);
+        let fuel = DiscretePropulsion {
+            main_fuel_supply: true,
+            ..Default::default()
+        };
+        s.on_message(
+            t0,
+            PD,
+            Ra33Message::ReportDiscreteDevices(ReportDiscreteDevices {
+                propulsion: Some(fuel),
+                parking_brake_and_horn: Some(ParkingBrakeHorn {
+                    parking_brake: true,
+                    ..Default::default()
+                }),
+                ..Default::default()
+            }),
+        );
+        // A brake or a horn alone leaves the propulsion byte out.
+        s.set_discrete_devices(
+            t0,
+            PD,
+            DiscreteChange {
+                horn: Some(true),
+                ..Default::default()
+            },
+        );
+        assert_eq!(propulsion_sent(&mut s), Some(None));
+        // The engine on: the fuel supply bit reported kept, the brake and horn too.
+        s.set_discrete_devices(
+            t0,
+            PD,
+            DiscreteChange {
+                main_propulsion: Some(true),
+                ..Default::default()
+            },
+        );
+        let on = DiscretePropulsion {
+            main_propulsion: true,
+            ..fuel
+        };
+        let c = s.discrete.commanded.get(&PD).copied().expect("commanded");
+        assert!(c.bits.parking_brake && c.bits.horn, "{c:?}");
+        assert_eq!(propulsion_sent(&mut s), Some(Some(on)));
+        // The horn right after, before the driver reports the engine: the engine kept.
+        s.set_discrete_devices(
+            t0,
+            PD,
+            DiscreteChange {
+                horn: Some(false),
+                ..Default::default()
+            },
+        );
+        assert_eq!(propulsion_sent(&mut s), Some(Some(on)));
+        // Long after, the horn leaves the propulsion byte out again.
+        let later = t0 + SETTLE * 2;
+        s.set_discrete_devices(
+            later,
+            PD,
+            DiscreteChange {
+                horn: Some(true),
+                ..Default::default()
+            },
+        );
+        assert_eq!(propulsion_sent(&mut s), Some(None));
     }
 }

@@ -5,7 +5,7 @@
 //! It keeps the latest report of each RA 3.3 component it polls, sends what the services
 //! ask (bounded, counted when full), holds RA 3.3 control of the drivers while an AS-4
 //! client holds control of the AS-4 component, and keeps the AS-4 local frame (Set Local
-//! Pose moves it; RA 3.3 has no way to set a pose sensor) and the parking brake and horn
+//! Pose moves it; RA 3.3 has no way to set a pose sensor) and the discrete devices'
 //! bits it commands the Primitive Driver ([`discrete`]). A poll a component leaves
 //! unanswered backs off and then stops ([`GIVE_UP_AFTER`]) until the component answers
 //! it or is discovered again ([`Ra33Side::rediscovered`]). As an RA 3.3 component it
@@ -141,7 +141,7 @@ pub struct Ra33Side {
     /// Sensor reported: the RA 3.3 local frame of a subsystem without a Local Pose
     /// Sensor ([`crate::mobility::derived`]).
     tangent: Option<LocalFrame>,
-    /// The parking brake and horn bits commanded to each driver ([`discrete`]).
+    /// The parking brake, horn and propulsion bits commanded to each driver ([`discrete`]).
     discrete: discrete::DiscreteDevices,
     /// Control requests asked again in a row, per driver ([`CONTROL_RETRIES`]).
     control_retries: HashMap<Address, u32>,

@@ -26,10 +26,12 @@ pub(super) fn odometer(env: &Ra33Side, pd: Address) -> Option<u32> {
     }
 }
 
-/// Query Platform Operational Data for the odometer alone.
+/// Query Platform Operational Data, every field: the odometer for this service, the
+/// engine's gauges for the Power Plant Manager ([`super::power_plant`]); one poll of
+/// the driver serves both.
 pub(super) fn query() -> ra::QueryPlatformOperationalData {
     ra::QueryPlatformOperationalData {
-        presence_vector: 0x02,
+        presence_vector: 0x1F,
     }
 }
 
