@@ -16,7 +16,7 @@ use jaus::component::Config;
 use jaus::components::primitive_driver as pd;
 use jaus::messages as ra;
 use jaus::net::as5669a::{As4Client, As4Id, As4Message};
-use jaus::net::{Node, NodeConfig};
+use jaus::net::Node;
 use jaus::stock::drivers::{PrimitiveConfig, StockPrimitiveDriver};
 use jaus::JausMessage;
 use jaus_as4::{
@@ -216,23 +216,8 @@ fn ra33_specifications() -> ra::ReportPlatformSpecifications {
 #[test]
 fn platform_specifications_are_those_of_the_ra33_primitive_driver() {
     let t0 = Instant::now();
-    let opts = jaus_sim::demo::Options {
-        local_waypoint_driver: true,
-        ..Default::default()
-    };
-    let (parts, vehicle) = jaus_sim::demo::vehicle_at(t0, &opts, 1, 1);
-    let mut node = Node::new(
-        NodeConfig {
-            subsystem: 1,
-            node: 1,
-            ..NodeConfig::default()
-        },
-        t0,
-    );
     let at = jaus::Address::new(1, 1, jaus::components::primitive_driver::ID, 1);
-    for p in parts.into_iter().filter(|p| p.address() != at) {
-        node.add_boxed(p).unwrap();
-    }
+    let (mut node, vehicle) = As4Rig::demo_vehicle_node(t0, Some(at));
     let driver = StockPrimitiveDriver::new(
         vehicle,
         PrimitiveConfig {

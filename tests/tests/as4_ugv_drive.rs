@@ -21,7 +21,6 @@ use jaus::component::Config;
 use jaus::components::primitive_driver as pd;
 use jaus::messages as ra;
 use jaus::net::as5669a::{As4Client, As4Id, As4Message};
-use jaus::net::{Node, NodeConfig};
 use jaus::stock::drivers::{PrimitiveConfig, StockPrimitiveDriver};
 use jaus::stock::hardware::{Actuators, OperationalData, Wrench};
 use jaus::JausMessage;
@@ -71,23 +70,8 @@ impl Rig {
     /// [`Gauged`] hardware.
     fn demo() -> Self {
         let t0 = Instant::now();
-        let opts = jaus_sim::demo::Options {
-            local_waypoint_driver: true,
-            ..Default::default()
-        };
-        let (parts, vehicle) = jaus_sim::demo::vehicle_at(t0, &opts, 1, 1);
-        let mut node = Node::new(
-            NodeConfig {
-                subsystem: 1,
-                node: 1,
-                ..NodeConfig::default()
-            },
-            t0,
-        );
         let at = jaus::Address::new(1, 1, pd::ID, 1);
-        for p in parts.into_iter().filter(|p| p.address() != at) {
-            node.add_boxed(p).expect("added");
-        }
+        let (mut node, vehicle) = As4Rig::demo_vehicle_node(t0, Some(at));
         let specifications = Some(vehicle.lock().params().specifications());
         let driver = StockPrimitiveDriver::new(
             Gauged(vehicle.clone()),

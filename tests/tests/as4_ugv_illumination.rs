@@ -10,7 +10,6 @@
 use std::time::{Duration, Instant};
 
 use jaus::net::as5669a::As4Id;
-use jaus::net::{Node, NodeConfig};
 use jaus_as4::ugv::IlluminationService;
 use jaus_as4::{
     IlluminationState, Message, QueryIlluminationConfiguration, QueryIlluminationState,
@@ -32,22 +31,7 @@ impl Rig {
     /// the vehicle's model.
     fn demo() -> (Self, SimVehicle) {
         let t0 = Instant::now();
-        let opts = jaus_sim::demo::Options {
-            local_waypoint_driver: true,
-            ..Default::default()
-        };
-        let (parts, vehicle) = jaus_sim::demo::vehicle_at(t0, &opts, 1, 1);
-        let mut node = Node::new(
-            NodeConfig {
-                subsystem: 1,
-                node: 1,
-                ..NodeConfig::default()
-            },
-            t0,
-        );
-        for p in parts {
-            node.add_boxed(p).unwrap();
-        }
+        let (node, vehicle) = As4Rig::demo_vehicle_node(t0, None);
         let lights = IlluminationService::over(SimLights(vehicle.clone()));
         let rig = As4Rig::hosting(
             t0,

@@ -107,6 +107,30 @@ impl As4Rig {
         self.net.get::<DualNode>(self.node).expect("node")
     }
 
+    /// Node 1.1 with the demo vehicle's components (its local waypoint driver among
+    /// them) but the one at `without` (for a test to add its own in its place), and
+    /// the vehicle's model.
+    pub fn demo_vehicle_node(
+        t0: Instant,
+        without: Option<Address>,
+    ) -> (Node, jaus_sim::SimVehicle) {
+        let opts = jaus_sim::demo::Options {
+            local_waypoint_driver: true,
+            ..Default::default()
+        };
+        let (parts, vehicle) = jaus_sim::demo::vehicle_at(t0, &opts, 1, 1);
+        let config = jaus::net::NodeConfig {
+            subsystem: 1,
+            node: 1,
+            ..jaus::net::NodeConfig::default()
+        };
+        let mut node = Node::new(config, t0);
+        for p in parts.into_iter().filter(|p| Some(p.address()) != without) {
+            node.add_boxed(p).expect("a demo component");
+        }
+        (node, vehicle)
+    }
+
     /// The demo vehicle (node 1.1) behind its gateway as AS-4 component 1.1.1, settled
     /// for 3 s (the gateway has found its components).
     pub fn demo_vehicle() -> Self {

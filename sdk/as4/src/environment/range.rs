@@ -216,9 +216,12 @@ fn encoded_points(points: &[Point]) -> Option<Vec<u8>> {
 }
 
 impl<S: RangeScanner> Ranges<S> {
-    /// A fresh sweep into `self.beams`, or `false` without one.
+    /// A fresh sweep into `self.beams` at the Core's time of the message being
+    /// handled, or `false` without one (sans-IO: no time of its own).
     fn sweep(&mut self) -> bool {
-        let now = self.now.unwrap_or_else(Instant::now);
+        let Some(now) = self.now else {
+            return false;
+        };
         self.scanner.scan(now, &mut self.beams)
     }
 

@@ -189,15 +189,20 @@ mod tests {
             Duration::from_millis(100),
         );
         s.set_controlled(true);
+        grant(&mut s, t0);
+        while s.poll_transmit().is_some() {}
+        s
+    }
+
+    /// The driver grants the gateway RA 3.3 control at `at`.
+    fn grant(s: &mut Ra33Side, at: Instant) {
         s.on_message(
-            t0,
+            at,
             PD,
             Ra33Message::ConfirmComponentControl(ConfirmComponentControl {
                 response_code: ControlResponse::ControlAccepted,
             }),
         );
-        while s.poll_transmit().is_some() {}
-        s
     }
 
     fn report(s: &mut Ra33Side, at: Instant, parking_brake: bool, horn: bool) {
@@ -287,13 +292,7 @@ mod tests {
             },
         );
         assert_eq!(sent(&mut s), None, "waits for control");
-        s.on_message(
-            t0,
-            PD,
-            Ra33Message::ConfirmComponentControl(ConfirmComponentControl {
-                response_code: ControlResponse::ControlAccepted,
-            }),
-        );
+        grant(&mut s, t0);
         s.flush_discrete_devices(t0);
         assert_eq!(sent(&mut s), Some((true, true)));
         s.flush_discrete_devices(t0);
@@ -311,13 +310,7 @@ mod tests {
         );
         s.flush_discrete_devices(t0);
         s.set_controlled(true);
-        s.on_message(
-            t0,
-            PD,
-            Ra33Message::ConfirmComponentControl(ConfirmComponentControl {
-                response_code: ControlResponse::ControlAccepted,
-            }),
-        );
+        grant(&mut s, t0);
         s.flush_discrete_devices(t0);
         assert_eq!(sent(&mut s), None);
     }
