@@ -9,7 +9,11 @@
 //!    Transport, Events, Access Control and Management (`defs/core_services.yaml`).
 //!    For Create and Update Event the component first runs the event's query through
 //!    this dispatch as if the subscriber had sent it: the event is confirmed only when
-//!    something answers it.
+//!    something answers it. A Create Command Event is confirmed only when its command
+//!    is a command that the Core or a service receives; the command then runs through
+//!    this dispatch as if the client had sent it (control and state checked as for any
+//!    command), and a Command Event tells the client whether it was taken
+//!    (`Successful`) or not (`Unsuccessful`).
 //! 2. Everything else goes to the services, in the order they were added, to each whose
 //!    [`Service::receives`] says yes until one does not answer [`Handled::NotMine`]. A
 //!    message that needs control ([`Service::needs_control`]: `is_command` of the
@@ -216,11 +220,15 @@ impl<E: 'static> As4Component<E> {
                     Message::UpdateEvent(u) => {
                         Some(self.lookahead(now, from, &u.query_message, env))
                     }
+                    Message::CreateCommandEvent(c) => Some(self.command_taker(&c.command_message)),
                     _ => None,
                 };
                 match self.core.handle(now, from, msg, lookahead) {
-                    Ok(out) => {
+                    Ok(mut out) => {
                         self.count_event_refusals(from, msg, &out);
+                        if let Some(pending) = self.core.take_command() {
+                            out.extend(self.run_command(now, &pending, env));
+                        }
                         out
                     }
                     Err(r) => {
@@ -431,6 +439,59 @@ impl<E: 'static> As4Component<E> {
             return Err((EventRejection::MessageNotSupported, why));
         }
         Ok(query)
+    }
+
+    /// The command of a Create Command Event, decoded, if it is a command that the Core
+    /// or a service receives ([`events::command_of`]), or why not.
+    fn command_taker(&self, bytes: &[u8]) -> Result<Message, events::Rejection> {
+        let command = events::command_of(bytes)?;
+        let code = command.code();
+        if self.core.handles(code) || self.services.iter().any(|s| s.receives(code)) {
+            Ok(command)
+        } else {
+            let why = format!("nothing of the component receives {}", command.name());
+            Err((EventRejection::MessageNotSupported, why))
+        }
+    }
+
+    /// Runs a confirmed command event's command as if its client had sent it (refusals
+    /// counted as for any message), then its Command Event: Successful when the Core or
+    /// a service took it.
+    fn run_command(
+        &mut self,
+        now: Instant,
+        pending: &events::PendingCommand,
+        env: &mut E,
+    ) -> Vec<Outgoing> {
+        let (from, command) = (pending.client, &pending.command);
+        let (mut out, taken) = if self.core.handles(command.code()) {
+            match self.core.handle(now, from, command, None) {
+                Ok(out) => (out, true),
+                Err(r) => {
+                    self.refuse(from, command, r);
+                    (Vec::new(), false)
+                }
+            }
+        } else {
+            match self.dispatch(now, from, command, env) {
+                Dispatch::Answered(reply) => {
+                    let out = reply.map(|m| Outgoing::new(from, m)).into_iter().collect();
+                    (out, true)
+                }
+                Dispatch::Unhandled => {
+                    self.stats.unhandled += 1;
+                    tracing::debug!(message = command.name(), %from, component = %self.id, "command event: no service takes it");
+                    (Vec::new(), false)
+                }
+                Dispatch::Refused(r) => {
+                    self.refuse(from, command, r);
+                    (Vec::new(), false)
+                }
+            }
+        };
+        tracing::debug!(message = command.name(), %from, component = %self.id, event_id = pending.event_id, taken, "command event completed");
+        out.push(pending.completed(taken));
+        out
     }
 
     /// Counts the Reject Event Requests the Core answered `msg` with (a bound reached,

@@ -168,7 +168,7 @@ fn service<'s>(spec: &'s Spec, id: &str) -> Option<&'s ServiceDef> {
 const OURS: &[&str] = &[
     // Events: one transition per message, eventExists folded into the actions.
     "in Receiving.Ready on CancelEvent [] internal",
-    "in Receiving.Ready on CreateCommandEvent [] internal",
+    "in Receiving.Ready on CreateCommandEvent [iscommandsupported] internal",
     "in Receiving.Ready on CreateEvent [issupported] internal",
     "in Receiving.Ready on UpdateEvent [!issupported] internal",
     "in Receiving.Ready on UpdateEvent [issupported] internal",
@@ -201,7 +201,6 @@ const THEIRS: &[&str] = &[
     "in Receiving.Ready on CancelEvent [eventexists] internal",
     "in Receiving.Ready on CommandCompleted [eventexists] internal",
     "in Receiving.Ready on CommandExpired [] internal",
-    "in Receiving.Ready on CreateCommandEvent [!iscommandsupported] internal",
     "in Receiving.Ready on CreateCommandEvent [iscommandsupported && !eventexists] internal",
     "in Receiving.Ready on CreateCommandEvent [iscommandsupported && eventexists] internal",
     "in Receiving.Ready on CreateEvent [issupported && !eventexists] internal",

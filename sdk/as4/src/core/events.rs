@@ -23,8 +23,16 @@
 //!   gets a Confirm Event Request for it, as for a cancel.
 //! * At most [`CoreConfig::max_events`](super::CoreConfig::max_events) events (and 255):
 //!   more are refused with `ConnectionRefused` and counted.
-//! * Create Command Event is refused (`MessageNotSupported`): no service of this runtime
-//!   runs commands as events.
+//! * Create Command Event carries a command (message ID and body). The component checks
+//!   it ([`command_of`]: it decodes, is a command by the definitions, not an Events
+//!   message itself, and the Core or a service receives it), confirms it with a Confirm
+//!   Event Request (an event id no subscription holds, rate 0), runs the command as if
+//!   the client had sent it, and sends the client a Command Event: `Successful` when the
+//!   Core or a service took it, `Unsuccessful` when it was refused (no control, not
+//!   Ready, a guard) or taken by none. A command completes in the step that runs it, so
+//!   `maximum_allowed_duration` never lapses and no command event outlives its message.
+//!   A command event that fails the check is refused (`MessageNotSupported` or
+//!   `InvalidEventSetup`, with why).
 
 use std::collections::BTreeMap;
 use std::time::{Duration, Instant};
@@ -33,8 +41,8 @@ use jaus::net::as5669a::As4Id;
 
 use crate::embedded;
 use crate::messages::{
-    ConfirmEventRequest, Event, EventInfo, EventRejection, EventType, EventsFilter, Message,
-    RejectEventRequest, ReportEventTimeout, ReportEvents,
+    CommandEvent, CommandResult, ConfirmEventRequest, Event, EventInfo, EventRejection, EventType,
+    EventsFilter, Message, RejectEventRequest, ReportEventTimeout, ReportEvents,
 };
 use crate::outgoing::Outgoing;
 
@@ -70,6 +78,68 @@ pub fn query_of(bytes: &[u8]) -> Result<Message, Rejection> {
     Ok(m)
 }
 
+/// The command of a Create Command Event, decoded, or why it cannot be one: it does not
+/// decode (`InvalidEventSetup`), it is no command by the definitions or an Events
+/// message itself (`MessageNotSupported`). Whether something receives it is the
+/// component's to say.
+pub fn command_of(bytes: &[u8]) -> Result<Message, Rejection> {
+    let m = embedded::decode(bytes).map_err(|e| {
+        (
+            EventRejection::InvalidEventSetup,
+            format!("command does not decode: {e}"),
+        )
+    })?;
+    let code = m.code();
+    let not = |what: &str| {
+        Err((
+            EventRejection::MessageNotSupported,
+            format!("{} ({:#06X}) {what}", m.name(), code.0),
+        ))
+    };
+    if matches!(
+        m,
+        Message::CreateEvent(_)
+            | Message::UpdateEvent(_)
+            | Message::CancelEvent(_)
+            | Message::CreateCommandEvent(_)
+    ) {
+        return not("is an Events message: not run as a command event");
+    }
+    if !crate::service::needs_control(code) {
+        return not("is not a command");
+    }
+    Ok(m)
+}
+
+/// A command event confirmed, its command not run yet.
+#[derive(Debug, Clone)]
+pub struct PendingCommand {
+    /// The client that asked for it: the command runs as if it had sent it.
+    pub client: As4Id,
+    /// The event id confirmed.
+    pub event_id: u8,
+    /// The command.
+    pub command: Message,
+}
+
+impl PendingCommand {
+    /// The Command Event that reports its outcome to the client.
+    pub fn completed(&self, successful: bool) -> Outgoing {
+        let command_result = if successful {
+            CommandResult::Successful
+        } else {
+            CommandResult::Unsuccessful
+        };
+        Outgoing::new(
+            self.client,
+            CommandEvent {
+                event_id: self.event_id,
+                command_result,
+            },
+        )
+    }
+}
+
 /// Reject Event Request for `request_id` to `to`.
 pub fn reject(to: As4Id, request_id: u8, (code, text): Rejection) -> Outgoing {
     let mut text = text;
@@ -102,6 +172,8 @@ struct Subscription {
 #[derive(Debug, Clone)]
 pub struct Events {
     subs: BTreeMap<u8, Subscription>,
+    /// The command of the command event just confirmed, for the component to run.
+    command: Option<PendingCommand>,
     max: usize,
     timeout_minutes: u8,
     change_period: Duration,
@@ -128,6 +200,7 @@ impl Events {
     pub fn new(max: usize, timeout_minutes: u8, change_period: Duration) -> Self {
         Self {
             subs: BTreeMap::new(),
+            command: None,
             max: max.min(255),
             timeout_minutes,
             change_period: change_period.max(Duration::from_millis(1)),
@@ -242,6 +315,28 @@ impl Events {
                 request_id: setup.request_id,
             },
         );
+    }
+
+    /// Create Command Event from `from` whose command the component takes: a Confirm
+    /// Event Request under an event id no subscription holds, the command queued for
+    /// the component ([`take_command`](Self::take_command)); refused with
+    /// `ConnectionRefused` when every id is held.
+    pub fn create_command(&mut self, from: As4Id, request_id: u8, command: Message) -> Outgoing {
+        let Some(event_id) = (0..=254u8).find(|i| !self.subs.contains_key(i)) else {
+            let why = (EventRejection::ConnectionRefused, "no free event id".into());
+            return reject(from, request_id, why);
+        };
+        self.command = Some(PendingCommand {
+            client: from,
+            event_id,
+            command,
+        });
+        Self::confirm(from, request_id, event_id, 0.0)
+    }
+
+    /// The command of the command event just confirmed, to run once.
+    pub fn take_command(&mut self) -> Option<PendingCommand> {
+        self.command.take()
     }
 
     /// Cancel Event from `from`.

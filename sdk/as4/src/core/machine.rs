@@ -109,6 +109,7 @@ impl fmt::Debug for Host<'_> {
 impl<'a> Host<'a> {
     /// A host at `now` over the services' data, sending into `out`; `event_query` is,
     /// for Create and Update Event, the event's query decoded and answered by the
+    /// component, for Create Command Event its command decoded and taken by the
     /// component, or why it is not supported.
     pub(crate) fn new(
         now: Instant,
@@ -266,12 +267,36 @@ impl<'a> Host<'a> {
         self.out.push(events::reject(from, request_id, r));
     }
 
-    /// Reject Event Request for a Create Command Event: not offered.
+    /// Guard `isCommandSupported`: the command event's command is one the component
+    /// takes (the component looked ahead).
+    pub fn is_command_supported(&self) -> bool {
+        matches!(self.event_query, Some(Ok(_)))
+    }
+
+    /// Create Command Event from `from`: confirm it and queue its command for the
+    /// component to run ([`Events::create_command`]).
+    pub fn create_command_event(&mut self, from: As4Id, request_id: u8, command: &[u8]) {
+        let o = match self.event_query.take() {
+            Some(Ok(c)) => self.events.create_command(from, request_id, c),
+            Some(Err(r)) => events::reject(from, request_id, r),
+            None => match events::command_of(command) {
+                Ok(c) => self.events.create_command(from, request_id, c),
+                Err(r) => events::reject(from, request_id, r),
+            },
+        };
+        self.out.push(o);
+    }
+
+    /// Reject Event Request for a Create Command Event whose command the component does
+    /// not take, with why.
     pub fn refuse_command_event(&mut self, from: As4Id, request_id: u8) {
-        let r = (
-            EventRejection::MessageNotSupported,
-            "command events are not supported".into(),
-        );
+        let r = match self.event_query.take() {
+            Some(Err(r)) => r,
+            _ => (
+                EventRejection::MessageNotSupported,
+                "the command is not supported".into(),
+            ),
+        };
         self.out.push(events::reject(from, request_id, r));
     }
 
@@ -448,6 +473,12 @@ macro_rules! core_machine {
                 }
                 fn refuse_command_event(&mut self, m: &CreateCommandEvent, t: &Receive) {
                     Host::refuse_command_event(self, sender(t), m.request_id)
+                }
+                fn is_command_supported(&self, _: &CreateCommandEvent) -> bool {
+                    Host::is_command_supported(self)
+                }
+                fn create_command_event(&mut self, m: &CreateCommandEvent, t: &Receive) {
+                    Host::create_command_event(self, sender(t), m.request_id, &m.command_message)
                 }
                 fn send_report_events(&mut self, m: &QueryEvents, t: &Receive) {
                     Host::send_report_events(self, sender(t), &m.filter)

@@ -360,7 +360,10 @@ impl Core {
     /// A Core message from `from`: the messages to send, or why nothing was done.
     /// `event_query` is, for Create and Update Event, the event's query decoded and
     /// answered by the component, or why it is not supported (the query may be any
-    /// service's, so the component looks ahead; `None`: decoded here, as unanswered).
+    /// service's, so the component looks ahead; `None`: decoded here, as unanswered);
+    /// for Create Command Event, its command decoded and received by the Core or a
+    /// service, or why not. A command event confirmed leaves its command for the
+    /// component to run ([`take_command`](Self::take_command)).
     pub fn handle(
         &mut self,
         now: Instant,
@@ -415,6 +418,13 @@ impl Core {
             Some(false) => Err(self.refusal(from, msg)),
             None => Err(Refusal::Ignored("nothing to answer".into())),
         }
+    }
+
+    /// The command of the command event just confirmed, for the component to run as if
+    /// its client had sent it and to report with
+    /// [`PendingCommand::completed`](events::PendingCommand::completed).
+    pub fn take_command(&mut self) -> Option<events::PendingCommand> {
+        self.events.take_command()
     }
 
     /// Why the machine took no transition for `msg` from `from`, as the component counts
