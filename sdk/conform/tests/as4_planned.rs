@@ -226,11 +226,12 @@ fn beacon_session(beacon: Beacon) -> MemoryAs4Session {
     MemoryAs4Session::new(As4Host::new(node), t0)
 }
 
-const BEACON_CHECKS: [&str; 4] = [
+const BEACON_CHECKS: [&str; 5] = [
     "as4.beacon.query.QueryBeaconRate",
     "as4.beacon.command.SetBeaconRate.outsider",
     "as4.beacon.command.SetBeaconRate.controller",
     "as4.beacon.event.QueryBeaconRate",
+    "as4.beacon.command.SetBeaconRate.command_event",
 ];
 
 #[test]
@@ -302,6 +303,10 @@ fn a_vendor_service_from_its_yaml_is_planned_and_checked() {
     // The evidence names the vendor's messages by the definitions.
     let o = outcome(&run, "as4.beacon.query.QueryBeaconRate");
     assert!(o.evidence.iter().any(|e| e.message == "ReportBeaconRate"));
+    // Our Core v1.1 runs command events: confirmed, then reported Unsuccessful for a
+    // client without control.
+    let o = outcome(&run, "as4.beacon.command.SetBeaconRate.command_event");
+    assert!(o.detail.contains("reported Unsuccessful"), "{}", o.detail);
     // The controller's value was put back.
     let o = outcome(&run, "as4.beacon.command.SetBeaconRate.controller");
     assert!(o.detail.contains("rate: 120 → 119"), "{}", o.detail);
@@ -328,7 +333,8 @@ fn a_broken_vendor_service_fails_exactly_the_checks_it_breaks() {
     assert!(!run.passed());
     let o = outcome(&run, "as4.beacon.query.QueryBeaconRate");
     assert!(o.detail.contains("ReportBeaconRate"), "{}", o.detail);
-    // A command obeyed without control: that check fails, nothing else.
+    // A command obeyed without control: the checks sending it without control fail
+    // (plain, and inside a Core v1.1 command event), nothing else.
     let mut session = beacon_session(Beacon {
         rate: 120,
         obeys_anyone: true,
@@ -336,7 +342,20 @@ fn a_broken_vendor_service_fails_exactly_the_checks_it_breaks() {
     });
     let run = run_planned(&mut session, &defs, &As4Options::default());
     print(&run);
-    assert_eq!(failed(&run), ["as4.beacon.command.SetBeaconRate.outsider"]);
+    assert_eq!(
+        failed(&run),
+        [
+            "as4.beacon.command.SetBeaconRate.command_event",
+            "as4.beacon.command.SetBeaconRate.outsider"
+        ]
+    );
     let o = outcome(&run, "as4.beacon.command.SetBeaconRate.outsider");
     assert!(o.detail.contains("rate: 120 → 119"), "{}", o.detail);
+    let o = outcome(&run, "as4.beacon.command.SetBeaconRate.command_event");
+    // (The plain outsider check ran first: the beacon it fooled is at 119 now.)
+    assert!(
+        o.detail.contains("through a command event") && o.detail.contains("rate: 119 → 118"),
+        "{}",
+        o.detail
+    );
 }

@@ -43,7 +43,7 @@ enum Answer {
 pub(super) struct Runner<'a> {
     pub j: Judge<'a>,
     pub defs: &'a Definitions,
-    request: u8,
+    pub(super) request: u8,
 }
 
 impl<'a> Runner<'a> {
@@ -124,7 +124,7 @@ impl<'a> Runner<'a> {
     }
 
     /// Sends query `query`, returns its report decoded (or why not).
-    fn read(&mut self, query: &str, report: &str) -> Result<DynMessage, String> {
+    pub(super) fn read(&mut self, query: &str, report: &str) -> Result<DynMessage, String> {
         let q = sample::query(self.defs, query, report)?;
         self.send_dyn(&q)?;
         let want = self.code(report)?;
@@ -156,6 +156,7 @@ impl<'a> Runner<'a> {
                 needs_ready,
             } => self.controller(command, readback, *needs_ready),
             Step::Event { query, report } => self.event(query, report),
+            Step::CommandEvent { command, readback } => self.command_event(command, readback),
         }
     }
 
@@ -196,7 +197,11 @@ impl<'a> Runner<'a> {
     }
 
     /// The read-back query of `command`, its report, and the fields they share.
-    fn readback(&self, command: &str, query: &str) -> Option<(String, Vec<sample::Shared>)> {
+    pub(super) fn readback(
+        &self,
+        command: &str,
+        query: &str,
+    ) -> Option<(String, Vec<sample::Shared>)> {
         let report = super::plan::report_name(self.defs, query)?;
         let shared = sample::shared(self.defs, command, &report);
         (!shared.is_empty()).then_some((report, shared))
@@ -213,7 +218,7 @@ impl<'a> Runner<'a> {
     }
 
     /// Confirmations (`Confirm...`) among what arrives during the settle time.
-    fn settle_confirmations(&mut self) -> Vec<String> {
+    pub(super) fn settle_confirmations(&mut self) -> Vec<String> {
         let deadline = self.j.now() + self.j.opts.settle;
         let (peer, me) = (self.j.peer, self.j.me);
         let mut seen = Vec::new();

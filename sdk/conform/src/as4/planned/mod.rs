@@ -27,6 +27,7 @@
 //! Each check cites the service's URI and version and the transition (machine, state,
 //! trigger, guard, and its `file:line` in the definitions) as its rule's source.
 
+mod command_event;
 mod defs;
 mod exec;
 pub mod plan;
@@ -74,6 +75,12 @@ pub mod rules {
         id: "as4.planned.outsider",
         source: "the service's definitions; AS5710A Access Control",
         text: "A command that needs control (is_command, or a transition guarded by isControllingClient) from a client not in control is refused or ignored: nothing it sets changes, nothing confirms it.",
+    };
+    /// A command inside a command event refused without control.
+    pub const COMMAND_EVENT: Rule = Rule {
+        id: "as4.planned.command_event",
+        source: "the service's definitions; AS5710A Events (Create Command Event) and Access Control",
+        text: "A command that needs control, sent inside a Create Command Event by a client not in control, is not carried out: the component refuses the command event (Reject Event Request) or confirms it and reports it Unsuccessful (Command Event), and nothing the command sets changes.",
     };
     /// A command carried out for the controller.
     pub const CONTROLLER: Rule = Rule {
@@ -229,6 +236,7 @@ impl PlannedVoice<'_> {
         let (found, (verdict, mut detail)) = discover(&mut self.r.j);
         let plan_opts = PlanOptions {
             allow_motion: self.r.j.opts.allow_motion,
+            command_events: false,
         };
         let (planned, unknown) = plan::plan(self.r.defs, &found.listed, plan_opts);
         if verdict == Verdict::Pass {

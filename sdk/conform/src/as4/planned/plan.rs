@@ -55,6 +55,14 @@ pub enum Step {
         /// The component must be Ready (its transition lies under Ready).
         needs_ready: bool,
     },
+    /// Send the command inside a Create Command Event without control: refused (Reject
+    /// Event Request), or confirmed and reported Unsuccessful; the read-back unchanged.
+    CommandEvent {
+        /// The command.
+        command: String,
+        /// The query reading back what it sets.
+        readback: String,
+    },
     /// Create Event (periodic) on the query: confirmed, and an Event carries the report.
     Event {
         /// The query subscribed.
@@ -81,6 +89,11 @@ pub struct Planned {
 pub struct PlanOptions {
     /// Commands that move the vehicle (a Driver service's) are carried out too.
     pub allow_motion: bool,
+    /// The component offers Core v1.1 command events (it lists Events 1.1 or later and
+    /// the definitions hold Create Command Event): each command checked from a client
+    /// without control is also sent inside a Create Command Event. [`plan`] sets it
+    /// from the services listed.
+    pub command_events: bool,
 }
 
 /// A lower-case, `_`-separated form of a PascalCase name (`LocalPoseSensor` →
@@ -192,6 +205,7 @@ pub fn plan_service(defs: &Definitions, s: &ServiceModel, opts: PlanOptions) -> 
     let mut outsiders = Vec::new();
     let mut controllers = Vec::new();
     let mut events = Vec::new();
+    let mut command_events = Vec::new();
     let seen = |list: &Vec<Planned>, id: &str| list.iter().any(|p| p.check.id == id);
     let evented = defs.inherits(&s.uri, EVENTS) && s.uri != EVENTS;
     for t in &s.transitions {
@@ -287,6 +301,28 @@ pub fn plan_service(defs: &Definitions, s: &ServiceModel, opts: PlanOptions) -> 
         let Some(readback) = readback else {
             continue;
         };
+        if opts.command_events {
+            command_events.push(Planned {
+                check: check(
+                    format!("as4.{svc}.command.{name}.command_event"),
+                    format!(
+                        "{name} inside a Create Command Event from a client without control is not carried out ({readback} unchanged)"
+                    ),
+                    rules::COMMAND_EVENT,
+                    citation(s, t),
+                    Level::Required,
+                ),
+                step: Step::CommandEvent {
+                    command: name.to_string(),
+                    readback: readback.clone(),
+                },
+                skip: (moves(s, name) && !opts.allow_motion).then(|| {
+                    format!(
+                        "{name} would move a vehicle that obeys it: run with --allow-motion to send it"
+                    )
+                }),
+            });
+        }
         let skip = (moves(s, name) && !opts.allow_motion)
             .then(|| format!("{name} moves the vehicle: run with --allow-motion to send it"));
         controllers.push(Planned {
@@ -310,6 +346,7 @@ pub fn plan_service(defs: &Definitions, s: &ServiceModel, opts: PlanOptions) -> 
         .chain(outsiders)
         .chain(controllers)
         .chain(events)
+        .chain(command_events)
         .collect()
 }
 
@@ -323,6 +360,14 @@ pub fn plan(
     let mut out = Vec::new();
     let mut unknown = Vec::new();
     let mut done: Vec<&str> = Vec::new();
+    let command_events = defs.schema().message("CreateCommandEvent").is_some()
+        && listed
+            .iter()
+            .any(|(uri, major, minor)| uri == EVENTS && (*major, *minor) >= (1, 1));
+    let opts = PlanOptions {
+        command_events,
+        ..opts
+    };
     for (uri, major, minor) in listed {
         match defs.service(uri, *major, *minor) {
             Some(s) if !done.contains(&s.uri.as_str()) => {
@@ -401,6 +446,28 @@ mod tests {
                 "as4.management.event.QueryStatus"
             ]
         );
+    }
+
+    #[test]
+    fn command_events_are_planned_for_a_component_listing_events_1_1() {
+        let defs = Definitions::as4().expect("jaus-as4's definitions");
+        let listed = |events_minor: u8| {
+            vec![
+                ("urn:jaus:jss:core:Events".to_string(), 1, events_minor),
+                ("urn:jaus:jss:mobility:LocalPoseSensor".to_string(), 1, 0),
+            ]
+        };
+        let (v11, _) = plan(&defs, &listed(1), PlanOptions::default());
+        let id = "as4.local_pose_sensor.command.SetLocalPose.command_event";
+        let p = v11.iter().find(|p| p.check.id == id).expect("planned");
+        assert_eq!(p.check.level, Level::Required);
+        assert!(matches!(
+            &p.step,
+            Step::CommandEvent { command, readback } if command == "SetLocalPose" && readback == "QueryLocalPose"
+        ));
+        // Events 1.0 has no command events.
+        let (v10, _) = plan(&defs, &listed(0), PlanOptions::default());
+        assert!(!ids(&v10).contains(&id));
     }
 
     #[test]
