@@ -24,7 +24,7 @@
 //! * At most [`CoreConfig::max_events`](super::CoreConfig::max_events) events (and 255):
 //!   more are refused with `ConnectionRefused` and counted.
 //! * Create Command Event carries a command (message ID and body). The component checks
-//!   it ([`command_of`]: it decodes, is a command by the definitions, not an Events
+//!   it ([`command_of`]: it decodes, its message ID is a command's, it is not an Events
 //!   message itself, and the Core or a service receives it), confirms it with a Confirm
 //!   Event Request (an event id no subscription holds, rate 0), runs the command as if
 //!   the client had sent it, and sends the client a Command Event: `Successful` when the
@@ -79,8 +79,8 @@ pub fn query_of(bytes: &[u8]) -> Result<Message, Rejection> {
 }
 
 /// The command of a Create Command Event, decoded, or why it cannot be one: it does not
-/// decode (`InvalidEventSetup`), it is no command by the definitions or an Events
-/// message itself (`MessageNotSupported`). Whether something receives it is the
+/// decode (`InvalidEventSetup`), its message ID is not a command's (0x0000–0x1FFF) or it
+/// is an Events message itself (`MessageNotSupported`). Whether something receives it is the
 /// component's to say.
 pub fn command_of(bytes: &[u8]) -> Result<Message, Rejection> {
     let m = embedded::decode(bytes).map_err(|e| {
@@ -105,7 +105,10 @@ pub fn command_of(bytes: &[u8]) -> Result<Message, Rejection> {
     ) {
         return not("is an Events message: not run as a command event");
     }
-    if !crate::service::needs_control(code) {
+    // A command by its message ID, as AS-4 classes messages: the published sets mark
+    // some commands `is_command="false"` (Mobility's Execute List), which says whether
+    // they need control, not what they are.
+    if code.class() != jaus::wire::MessageClass::Command {
         return not("is not a command");
     }
     Ok(m)
