@@ -442,14 +442,27 @@ impl<E: 'static> As4Component<E> {
     }
 
     /// The command of a Create Command Event, decoded, if it is a command that the Core
-    /// or a service receives ([`events::command_of`]), or why not.
+    /// or a service receives ([`events::command_of`]; an experimental ID only where the
+    /// service receiving it needs control for it), or why not.
     fn command_taker(&self, bytes: &[u8]) -> Result<Message, events::Rejection> {
         let command = events::command_of(bytes)?;
         let code = command.code();
-        if self.core.handles(code) || self.services.iter().any(|s| s.receives(code)) {
+        // An experimental (vendor's) ID is a command when a service receiving it needs
+        // control for it.
+        let experimental = code.class() == jaus::wire::MessageClass::Experimental;
+        let taken = self.core.handles(code)
+            || self
+                .services
+                .iter()
+                .any(|s| s.receives(code) && (!experimental || s.needs_control(code)));
+        if taken {
             Ok(command)
         } else {
-            let why = format!("nothing of the component receives {}", command.name());
+            let why = format!(
+                "nothing of the component receives {} ({:#06X}) as a command",
+                command.name(),
+                code.0
+            );
             Err((EventRejection::MessageNotSupported, why))
         }
     }

@@ -65,9 +65,10 @@
 //! [`machined`], with the Still Image ([`environment`]) and the UGV Parking Brake Driver
 //! and Platform Specifications, the Skid Steer Driver, Annunciator, Power Plant Manager,
 //! Odometry and Illumination ([`ugv`]). The other UGV services (the Ackermann,
-//! Stabilizer and Drive Train Drivers) and the Mission Spooling and HMI services are
-//! defined and generated (their traits and machines) without an implementation in this
-//! crate.
+//! Stabilizer and Drive Train Drivers), the Manipulator services an RA 3.3 arm cannot
+//! carry (motion profile, end-effector pose list, actuator force/torque, primitive and
+//! pan-tilt services) and the Mission Spooling and HMI services are defined and generated
+//! (their traits and machines) without an implementation in this crate.
 //!
 //! ## Running AS-4 services
 //!

@@ -419,11 +419,26 @@ fn compare_core(ours: &Spec, theirs: &Spec, services: &[&str], d: &Declared) {
 /// `Receiving.Ready` (`mobility_services.yaml`'s header), so triggers and guards are
 /// compared, not states.
 fn takes(spec: &Spec, s: &ServiceDef) -> BTreeSet<String> {
+    takes_named(spec, s, |t| t.to_string())
+}
+
+/// [`takes`], each trigger named by `name` (a message as another set names it).
+fn takes_named(spec: &Spec, s: &ServiceDef, name: impl Fn(&str) -> String) -> BTreeSet<String> {
     behaviour(spec, s)
         .1
         .into_iter()
-        .map(|r| format!("on {} [{}]", r.trigger, r.guard))
+        .map(|r| format!("on {} [{}]", name(&r.trigger), r.guard))
         .collect()
+}
+
+/// The name `theirs` gives the message `ours` names `name`, found by message ID
+/// (Manipulator v2.0's Execute List and Query Active Element have names of their own
+/// in our definitions, where Mobility's hold the published ones); any other trigger as
+/// it is.
+fn named_as_in(ours: &Spec, theirs: &Spec, name: &str) -> String {
+    ours.message(name)
+        .and_then(|m| theirs.message_by_code(m.def.code.0))
+        .map_or_else(|| name.to_string(), |m| m.def.name.clone())
 }
 
 /// The differences `mobility_services.yaml` declares (its header), service by service.
@@ -533,7 +548,10 @@ fn compare_services(
             ));
         }
         let label = label_of(name);
-        let (o, t) = (takes(ours, o), takes(theirs, t));
+        let (o, t) = (
+            takes_named(ours, o, |n| named_as_in(ours, theirs, n)),
+            takes(theirs, t),
+        );
         compared += o.intersection(&t).count();
         println!(
             "{name}: {} triggers in the JSIDL, {} here",
@@ -560,6 +578,12 @@ fn compare_services(
     );
 }
 
+/// The differences `manipulator_services.yaml` declares: the Joint Position and
+/// End-Effector Pose List Drivers take Set Element as the Core's List Manager does.
+const MANIPULATOR_THEIRS: &[&str] = &[
+    "ListDriver: on SetElement [iscontrollingclient && isvalidelementrequest && iselementsupported]",
+];
+
 #[test]
 fn our_manipulator_machines_take_what_the_public_jsidl_takes() {
     let Some(root) = std::env::var_os("JAUS_JSIDL_DIR").map(PathBuf::from) else {
@@ -576,7 +600,8 @@ fn our_manipulator_machines_take_what_the_public_jsidl_takes() {
     ])
     .and_then(|i| i.load())
     .unwrap_or_else(|e| panic!("importing Manipulator v2.0: {e}"));
-    // The services we serve; every trigger and guard as published.
+    // All 25 services of the set; every trigger and guard as published but the list
+    // drivers' copy of the List Manager's Set Element.
     compare_services(
         &ours,
         &theirs,
@@ -588,9 +613,34 @@ fn our_manipulator_machines_take_what_the_public_jsidl_takes() {
             "ManipulatorEndEffectorPoseSensor",
             "ManipulatorJointPositionDriver",
             "ManipulatorEndEffectorPoseDriver",
+            "ManipulatorJointVelocityDriver",
+            "ManipulatorEndEffectorVelocityStateDriver",
+            "ManipulatorEndEffectorVelocityStateSensor",
+            "ManipulatorJointForceTorqueSensor",
+            "ManipulatorJointMotionProfile",
+            "ManipulatorToolOffsetService",
+            "ManipulatorListDriver",
+            "ManipulatorJointPositionListDriver",
+            "ManipulatorEndEffectorPoseListDriver",
+            "ManipulatorActuatorForceTorqueDriver",
+            "PanTiltJointPositionDriver",
+            "PanTiltJointPositionSensor",
+            "PanTiltJointVelocityDriver",
+            "PanTiltJointVelocitySensor",
+            "PanTiltMotionProfileService",
+            "PanTiltSpecificationService",
+            "PrimitiveEndEffector",
+            "PrimitiveManipulator",
+            "PrimitivePanTilt",
         ],
-        |name| name,
-        (&[], &[]),
+        |name| {
+            if name.ends_with("ListDriver") && name != "ManipulatorListDriver" {
+                "ListDriver"
+            } else {
+                name
+            }
+        },
+        (&[], MANIPULATOR_THEIRS),
         "manipulator_services.yaml",
     );
 }

@@ -79,8 +79,8 @@ pub fn query_of(bytes: &[u8]) -> Result<Message, Rejection> {
 }
 
 /// The command of a Create Command Event, decoded, or why it cannot be one: it does not
-/// decode (`InvalidEventSetup`), its message ID is not a command's (0x0000–0x1FFF) or it
-/// is an Events message itself (`MessageNotSupported`). Whether something receives it is the
+/// decode (`InvalidEventSetup`), its message ID is not a command's (0x0000–0x1FFF) nor an
+/// experimental one, or it is an Events message itself (`MessageNotSupported`). Whether something receives it is the
 /// component's to say.
 pub fn command_of(bytes: &[u8]) -> Result<Message, Rejection> {
     let m = embedded::decode(bytes).map_err(|e| {
@@ -107,8 +107,14 @@ pub fn command_of(bytes: &[u8]) -> Result<Message, Rejection> {
     }
     // A command by its message ID, as AS-4 classes messages: the published sets mark
     // some commands `is_command="false"` (Mobility's Execute List), which says whether
-    // they need control, not what they are.
-    if code.class() != jaus::wire::MessageClass::Command {
+    // they need control, not what they are. An experimental ID (0xD000 and up, a
+    // vendor's) has no class: the component takes it when a service that receives it
+    // says it needs control.
+    use jaus::wire::MessageClass;
+    if !matches!(
+        code.class(),
+        MessageClass::Command | MessageClass::Experimental
+    ) {
         return not("is not a command");
     }
     Ok(m)

@@ -27,7 +27,7 @@ use crate::service::Cx;
 
 /// Sends `command` to `driver` now if the gateway holds it, else keeps it in `pending`
 /// for [`flush`]; either way `driver` becomes its group's active driver.
-fn deliver(
+pub(super) fn deliver(
     env: &mut Ra33Side,
     driver: Address,
     command: ra::Message,
@@ -43,7 +43,7 @@ fn deliver(
 }
 
 /// Sends the command kept in `pending` once RA 3.3 control of `driver` is granted.
-fn flush(env: &mut Ra33Side, driver: Address, pending: &mut Option<ra::Message>) {
+pub(super) fn flush(env: &mut Ra33Side, driver: Address, pending: &mut Option<ra::Message>) {
     if env.control_of(driver) == Ra33Control::Granted {
         if let Some(c) = pending.take() {
             env.send(driver, c);

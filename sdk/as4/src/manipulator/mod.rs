@@ -18,15 +18,27 @@
 //! | End-Effector Pose Sensor | Joint Position Sensor + the chain | Query/Report End Effector Pose (forward kinematics of the measured joints, with the tool point) |
 //! | Joint Position Driver | Joint Positions Driver | Set Joint Positions (checked against the chain: count, joint kinds) → RA 3.3 Set Joint Positions; Query/Report Commanded Joint Positions |
 //! | End-Effector Pose Driver | End-Effector Pose Driver | Set End Effector Pose → RA 3.3 Set End Effector Pose (the same position and quaternion, in the vehicle frame); Query/Report Commanded End Effector Pose |
+//! | Joint Force/Torque Sensor | Joint Force/Torque Sensor | Query/Report Joint Force Torques (each joint's torque, N·m, or force, N, tagged by the chain) |
+//! | Joint Velocity Driver | Joint Velocities Driver | Set Joint Velocity (checked against the chain: count, joint kinds, each joint's speed limit) → RA 3.3 Set Joint Velocities, streamed; Query/Report Commanded Joint Velocity |
+//! | End-Effector Velocity State Driver | End-Effector Velocity State Driver | Set End Effector Velocity State → RA 3.3 Set End Effector Velocity State (the same six rates, vehicle frame), streamed; Query/Report Commanded End Effector Velocity State |
+//! | End-Effector Velocity State Sensor | Joint Position + Joint Velocity Sensors + the chain | Query/Report End Effector Velocity State (the Jacobian of the measured joints times their rates, at the tool point) |
+//! | Tool Offset Service | End-Effector Pose Driver | Set Tool Offset → RA 3.3 Set Tool Point; Query/Report Tool Offset from Report Tool Point ([`tool`]) |
+//! | Joint Position List Driver | Joint Move Driver | the component's list of Set Joint Positions, from Manipulator Execute List's element → one RA 3.3 Set Joint Motion, each pose at a planned time; Query Manipulator Active Element, Query/Report Commanded Joint Positions ([`list`]) |
 //!
-//! The two drivers are one [`Group`](crate::ra33::Group): the one an AS-4 client
-//! commands is resumed and the other put in standby, as two RA 3.3 drivers of one arm
+//! The five drivers are one [`Group`](crate::ra33::Group): the one an AS-4 client
+//! commands is resumed and the others put in standby, as two RA 3.3 drivers of one arm
 //! must not both hold the Primitive Manipulator. Leaving Ready (the JSIDL's exit action
-//! `stopMotion`) puts them in standby, which holds the arm where it is.
+//! `stopMotion`) puts them in standby, which holds the arm where it is. The velocity
+//! drivers' rates are set-points a client streams ([`velocity`]).
 //!
-//! Not offered yet: the joint and end-effector velocity drivers, the list drivers, the
-//! motion profile, tool offset and force/torque services, the pan-tilt services (their
-//! messages are defined and generated).
+//! Not offered (their machines are generated, `defs/manipulator_services.yaml`, for a
+//! vendor to serve): the Joint Motion Profile (RA 3.3 keeps no acceleration limits a
+//! client could read or set), the End-Effector Pose List Driver (RA 3.3's End-Effector
+//! Discrete Pose Driver could carry it as the Joint Move Driver carries the joint list;
+//! not done yet), the Actuator Force/Torque Driver and Primitive Manipulator (the stock
+//! Primitive Manipulator takes efforts only from the RA 3.3 drivers, which hold it, and
+//! RA 3.3 has no force/torque command), the Primitive End Effector and the pan-tilt
+//! services (no RA 3.3 component, no simulated gripper or pan-tilt).
 
 use jaus::messages as ra;
 use jaus::stock::manipulator::kinematics::{Chain, JointKind};
@@ -34,20 +46,30 @@ use jaus::{Address, JausMessage};
 
 use crate::core::generated_id;
 use crate::messages::{
-    FirstJoint, FirstPrismaticJoint, FirstRevoluteJoint, JointPosition, JointPositionMetres,
-    JointPositionRadians, JointSpecification, JointVelocity, JointVelocityMetresPerSecond,
-    JointVelocityRadiansPerSecond, ManipulatorCoordinateSystem, PrismaticJointSpecification,
-    ReportEndEffectorPose, ReportManipulatorSpecifications, RevoluteJointSpecification,
+    FirstJoint, FirstPrismaticJoint, FirstRevoluteJoint, ForceNewtons, ForceTorque, JointPosition,
+    JointPositionMetres, JointPositionRadians, JointSpecification, JointVelocity,
+    JointVelocityMetresPerSecond, JointVelocityRadiansPerSecond, ManipulatorCoordinateSystem,
+    PrismaticJointSpecification, ReportEndEffectorPose, ReportManipulatorSpecifications,
+    RevoluteJointSpecification, TorqueNewtonMetres,
 };
 use crate::ra33::{Ra33Side, Targets};
 use crate::service::{Service, ServiceId};
 
 pub mod drivers;
+pub mod list;
 pub mod sensors;
+pub mod tool;
+pub mod velocity;
 
 pub use drivers::{EndEffectorPoseDriver, JointPositionDriver};
+pub use list::JointPositionListDriver;
 pub use sensors::{
-    EndEffectorPoseSensor, JointPositionSensor, JointVelocitySensor, SpecificationService,
+    EndEffectorPoseSensor, JointForceTorqueSensor, JointPositionSensor, JointVelocitySensor,
+    SpecificationService,
+};
+pub use tool::ToolOffsetService;
+pub use velocity::{
+    EndEffectorVelocityStateDriver, EndEffectorVelocityStateSensor, JointVelocityDriver,
 };
 
 /// The URIs and versions of the Manipulator services, as
@@ -70,6 +92,22 @@ impl ServiceIds {
     /// `urn:jaus:jss:manipulator:ManipulatorEndEffectorPoseDriver`.
     pub const END_EFFECTOR_POSE_DRIVER: ServiceId =
         generated_id!(manipulator_end_effector_pose_driver);
+    /// `urn:jaus:jss:manipulator:ManipulatorJointForceTorqueSensor`.
+    pub const JOINT_FORCE_TORQUE_SENSOR: ServiceId =
+        generated_id!(manipulator_joint_force_torque_sensor);
+    /// `urn:jaus:jss:manipulator:ManipulatorJointVelocityDriver`.
+    pub const JOINT_VELOCITY_DRIVER: ServiceId = generated_id!(manipulator_joint_velocity_driver);
+    /// `urn:jaus:jss:manipulator:ManipulatorEndEffectorVelocityStateDriver`.
+    pub const END_EFFECTOR_VELOCITY_STATE_DRIVER: ServiceId =
+        generated_id!(manipulator_end_effector_velocity_state_driver);
+    /// `urn:jaus:jss:manipulator:ManipulatorEndEffectorVelocityStateSensor`.
+    pub const END_EFFECTOR_VELOCITY_STATE_SENSOR: ServiceId =
+        generated_id!(manipulator_end_effector_velocity_state_sensor);
+    /// `urn:jaus:jss:manipulator:ManipulatorToolOffsetService`.
+    pub const TOOL_OFFSET: ServiceId = generated_id!(manipulator_tool_offset_service);
+    /// `urn:jaus:jss:manipulator:ManipulatorJointPositionListDriver`.
+    pub const JOINT_POSITION_LIST_DRIVER: ServiceId =
+        generated_id!(manipulator_joint_position_list_driver);
 }
 
 /// The Manipulator services for the RA 3.3 components just found (`new`, a subset of
@@ -112,6 +150,15 @@ pub fn services(
     ) {
         out.push(Box::new(JointVelocitySensor::new(env, now, s, arm)));
     }
+    // Before the Joint Position Driver: it answers Query Commanded Joint Positions
+    // while it drives a list, and leaves it to the other driver otherwise.
+    if let (Some(d), Some(_), true) = (
+        targets.joint_move_driver,
+        jps,
+        pm_new || new.joint_move_driver.is_some() || new.joint_position_sensor.is_some(),
+    ) {
+        out.push(Box::new(JointPositionListDriver::new(d, arm)));
+    }
     if let (Some(d), true) = (
         targets.joint_positions_driver,
         pm_new || new.joint_positions_driver.is_some(),
@@ -123,6 +170,34 @@ pub fn services(
         pm_new || new.end_effector_pose_driver.is_some(),
     ) {
         out.push(Box::new(EndEffectorPoseDriver::new(d, arm)));
+        out.push(Box::new(ToolOffsetService::new(d)));
+    }
+    if let (Some(s), true) = (
+        targets.joint_force_torque_sensor,
+        pm_new || new.joint_force_torque_sensor.is_some(),
+    ) {
+        out.push(Box::new(JointForceTorqueSensor::new(env, now, s, arm)));
+    }
+    if let (Some(d), true) = (
+        targets.joint_velocities_driver,
+        pm_new || new.joint_velocities_driver.is_some(),
+    ) {
+        out.push(Box::new(JointVelocityDriver::new(d, arm)));
+    }
+    if let (Some(d), true) = (
+        targets.end_effector_velocity_state_driver,
+        pm_new || new.end_effector_velocity_state_driver.is_some(),
+    ) {
+        out.push(Box::new(EndEffectorVelocityStateDriver::new(d, arm)));
+    }
+    // The tool's velocity needs the joints and their rates, polled by the two sensor
+    // services.
+    if let (Some(_), Some(v), true) = (
+        jps,
+        targets.joint_velocity_sensor,
+        pm_new || new.joint_position_sensor.is_some() || new.joint_velocity_sensor.is_some(),
+    ) {
+        out.push(Box::new(EndEffectorVelocityStateSensor::new(arm, v)));
     }
     out
 }
@@ -189,6 +264,22 @@ pub fn joint_velocities(chain: Option<&Chain>, v: &[f64]) -> Vec<JointVelocity> 
             JointKind::Prismatic => {
                 JointVelocity::MetresPerSecond(JointVelocityMetresPerSecond { value })
             }
+        })
+        .collect()
+}
+
+/// Each joint's torque or force tagged with its joint's kind (revolute: N·m, within
+/// ±1000; prismatic: N, within ±500, what the report carries), as [`joint_positions`].
+pub fn force_torques(chain: Option<&Chain>, f: &[f64]) -> Vec<ForceTorque> {
+    f.iter()
+        .enumerate()
+        .map(|(i, &value)| match kind(chain, i) {
+            JointKind::Revolute => ForceTorque::NewtonMetres(TorqueNewtonMetres {
+                value: within(value, -1000.0, 1000.0),
+            }),
+            JointKind::Prismatic => ForceTorque::Newtons(ForceNewtons {
+                value: within(value, -500.0, 500.0),
+            }),
         })
         .collect()
 }

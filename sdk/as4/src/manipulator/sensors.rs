@@ -1,24 +1,25 @@
-//! The sensors and the specification service: Joint Position and Joint Velocity
-//! Sensors, the Specification Service and the End-Effector Pose Sensor, answering from
-//! the latest reports of the RA 3.3 components behind them (which the gateway keeps
-//! polling) and the arm's chain ([`Arm::chain`]).
+//! The sensors and the specification service: Joint Position, Joint Velocity and Joint
+//! Force/Torque Sensors, the Specification Service and the End-Effector Pose Sensor,
+//! answering from the latest reports of the RA 3.3 components behind them (which the
+//! gateway keeps polling) and the arm's chain ([`Arm::chain`]).
 
 use jaus::messages as ra;
 use jaus::{Address, JausMessage};
 
-use super::{end_effector_pose, joint_positions, joint_velocities, specifications};
+use super::{end_effector_pose, force_torques, joint_positions, joint_velocities, specifications};
 use super::{Arm, ServiceIds};
 use crate::machined::{machined, On, OnMachines};
 use crate::messages::services::transport::event::Receive;
 use crate::messages::services::{
     manipulator_end_effector_pose_sensor as pose_sensor,
+    manipulator_joint_force_torque_sensor as force_torque_sensor,
     manipulator_joint_position_sensor as position_sensor,
     manipulator_joint_velocity_sensor as velocity_sensor,
     manipulator_specification_service as specification,
 };
 use crate::messages::{
-    QueryManipulatorSpecifications, ReportEndEffectorPose, ReportJointPositions,
-    ReportJointVelocity,
+    QueryManipulatorSpecifications, ReportEndEffectorPose, ReportJointForceTorques,
+    ReportJointPositions, ReportJointVelocity,
 };
 use crate::ra33::Ra33Side;
 
@@ -201,5 +202,48 @@ impl pose_sensor::ManipulatorEndEffectorPoseSensor for On<'_, EndEffectorPose> {
             Ok(report) => self.reply(transport, report),
             Err(why) => self.refuse(why),
         }
+    }
+}
+
+machined!(
+    ForceTorques,
+    manipulator_joint_force_torque_sensor,
+    ServiceIds::JOINT_FORCE_TORQUE_SENSOR,
+    events
+);
+
+/// The Joint Force/Torque Sensor over an RA 3.3 Joint Force/Torque Sensor: each joint's
+/// torque (revolute, N·m) or force (prismatic, N), tagged by the chain.
+pub type JointForceTorqueSensor = OnMachines<ForceTorques>;
+
+/// The Joint Force/Torque Sensor's data: the RA 3.3 sensor and the arm.
+#[derive(Debug)]
+pub struct ForceTorques {
+    sensor: Address,
+    arm: Arm,
+}
+
+impl JointForceTorqueSensor {
+    /// The service over the RA 3.3 sensor at `sensor`; `side` starts polling it.
+    pub fn new(side: &mut Ra33Side, now: std::time::Instant, sensor: Address, arm: Arm) -> Self {
+        side.keep_polling(now, sensor, ra::QueryJointForceTorques {});
+        OnMachines::from_impl(ForceTorques { sensor, arm })
+    }
+}
+
+impl force_torque_sensor::ManipulatorJointForceTorqueSensor for On<'_, ForceTorques> {
+    fn send_report_joint_force_torques(&mut self, transport: &Receive) {
+        let chain = self.svc.arm.chain(self.env);
+        let values = match self
+            .env
+            .latest(self.svc.sensor, ra::ReportJointForceTorques::CODE)
+        {
+            Some((_, ra::Message::ReportJointForceTorques(r))) => r.joint_force_torque.as_slice(),
+            _ => &[],
+        };
+        let report = ReportJointForceTorques {
+            actuator_force_torques: force_torques(chain.as_ref(), values),
+        };
+        self.reply(transport, report);
     }
 }

@@ -57,8 +57,14 @@ pub const MAX_OUTBOX: usize = 1024;
 /// each AS-4 Set Wrench Effort of the client at its rate, so the next one replaces a
 /// lost one within a period, while a resent old one would arrive after (and undo) a
 /// newer effort; and as the node sends a peer's tracked commands one at a time, a
-/// stream waiting for each acknowledgement would fall behind the client.
-pub const STREAMED: &[CommandCode] = &[jaus::messages::SetWrenchEffort::CODE];
+/// stream waiting for each acknowledgement would fall behind the client. The
+/// manipulator's velocity set-points (Set Joint Velocities, Set End Effector Velocity
+/// State) are streams alike: the RA 3.3 drivers stop when they are not refreshed.
+pub const STREAMED: &[CommandCode] = &[
+    jaus::messages::SetWrenchEffort::CODE,
+    jaus::messages::SetJointVelocities::CODE,
+    jaus::messages::SetEndEffectorVelocityState::CODE,
+];
 
 /// Times a control request the node gave up on (no answer after every copy) is asked
 /// again at once, to a driver known to acknowledge; after that it is asked again when
@@ -498,8 +504,9 @@ impl Ra33Side {
         }
     }
 
-    /// Whether `driver` is the active one of its group.
-    fn is_active(&self, driver: Address) -> bool {
+    /// Whether `driver` is the active one of its group (the one the AS-4 client
+    /// commanded last, while the component is Ready; [`activate`](Self::activate)).
+    pub fn is_active(&self, driver: Address) -> bool {
         self.active.get(&self.targets.group(driver)) == Some(&driver)
     }
 

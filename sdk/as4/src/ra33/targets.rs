@@ -79,6 +79,14 @@ targets! {
     joint_positions_driver: c::manipulator_joint_positions_driver::ID,
     /// Manipulator End-Effector Pose Driver.
     end_effector_pose_driver: c::manipulator_end_effector_pose_driver::ID,
+    /// Manipulator Joint Force/Torque Sensor.
+    joint_force_torque_sensor: c::manipulator_joint_force_torque_sensor::ID,
+    /// Manipulator Joint Velocities Driver.
+    joint_velocities_driver: c::manipulator_joint_velocities_driver::ID,
+    /// Manipulator End-Effector Velocity State Driver.
+    end_effector_velocity_state_driver: c::manipulator_end_effector_velocity_state_driver::ID,
+    /// Manipulator Joint Move Driver.
+    joint_move_driver: c::manipulator_joint_move_driver::ID,
     /// Visual Sensor.
     visual_sensor: c::visual_sensor::ID,
 }
@@ -90,14 +98,16 @@ targets! {
 pub enum Group {
     /// The waypoint and path segment drivers, the Primitive Driver.
     Vehicle,
-    /// The manipulator's joint positions and end-effector pose drivers.
+    /// The manipulator's joint positions, end-effector pose, joint velocities,
+    /// end-effector velocity state and joint move drivers.
     Arm,
 }
 
 impl Targets {
     /// The drivers the gateway takes RA 3.3 control of as soon as an AS-4 client
     /// controls it: the waypoint and path segment drivers and the manipulator's joint
-    /// positions and end-effector pose drivers. The Primitive Driver is
+    /// positions, end-effector pose, joint velocities, end-effector velocity state and
+    /// joint move drivers. The Primitive Driver is
     /// taken only when the AS-4 client commands efforts
     /// ([`Ra33Side::ensure_control`](super::Ra33Side::ensure_control)): the other
     /// drivers reach it through the Reflexive Driver, which must hold it.
@@ -109,6 +119,9 @@ impl Targets {
             self.global_path_segment_driver,
             self.joint_positions_driver,
             self.end_effector_pose_driver,
+            self.joint_velocities_driver,
+            self.end_effector_velocity_state_driver,
+            self.joint_move_driver,
         ]
         .into_iter()
         .flatten()
@@ -116,7 +129,15 @@ impl Targets {
 
     /// The group `driver` belongs to (the vehicle's unless it is one of the arm's).
     pub fn group(&self, driver: Address) -> Group {
-        if [self.joint_positions_driver, self.end_effector_pose_driver].contains(&Some(driver)) {
+        if [
+            self.joint_positions_driver,
+            self.end_effector_pose_driver,
+            self.joint_velocities_driver,
+            self.end_effector_velocity_state_driver,
+            self.joint_move_driver,
+        ]
+        .contains(&Some(driver))
+        {
             Group::Arm
         } else {
             Group::Vehicle
