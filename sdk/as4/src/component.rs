@@ -241,6 +241,7 @@ impl<E: 'static> As4Component<E> {
         };
         self.notify(now, before, env);
         out.append(&mut self.spill);
+        out.extend(self.finish_commands(now));
         out.extend(self.fire_events(now, env));
         self.stats.sent += out.len() as u64;
         out
@@ -257,6 +258,7 @@ impl<E: 'static> As4Component<E> {
         });
         self.notify(now, before, env);
         out.append(&mut self.spill);
+        out.extend(self.finish_commands(now));
         out.extend(self.fire_events(now, env));
         self.stats.sent += out.len() as u64;
         out
@@ -269,6 +271,7 @@ impl<E: 'static> As4Component<E> {
         self.with_services(now, env, |s, cx| s.tick(cx));
         self.notify(now, before, env);
         let mut out = std::mem::take(&mut self.spill);
+        out.extend(self.finish_commands(now));
         out.extend(self.fire_events(now, env));
         self.stats.sent += out.len() as u64;
         out
@@ -502,9 +505,25 @@ impl<E: 'static> As4Component<E> {
                 }
             }
         };
-        tracing::debug!(message = command.name(), %from, component = %self.id, event_id = pending.event_id, taken, "command event completed");
-        out.push(pending.completed(taken));
+        let code = command.code();
+        if taken && self.services.iter().any(|s| s.in_progress(code)) {
+            tracing::debug!(message = command.name(), %from, component = %self.id, event_id = pending.event_id, "command event running");
+            self.core.events_mut().keep_running(now, pending.clone());
+        } else {
+            tracing::debug!(message = command.name(), %from, component = %self.id, event_id = pending.event_id, taken, "command event completed");
+            out.push(pending.completed(taken));
+        }
         out
+    }
+
+    /// The Command Events of running commands that ended: done, expired, or the
+    /// component out of Ready.
+    fn finish_commands(&mut self, now: Instant) -> Vec<Outgoing> {
+        let ready = self.core.state() == ComponentState::Ready;
+        let services = &self.services;
+        self.core.events_mut().finish_running(now, ready, |code| {
+            services.iter().any(|s| s.in_progress(code))
+        })
     }
 
     /// Counts the Reject Event Requests the Core answered `msg` with (a bound reached,

@@ -64,11 +64,13 @@
 //! ([`manipulator`]) services a gateway presents over RA 3.3 components on
 //! [`machined`], with the Still Image ([`environment`]) and the UGV Parking Brake Driver
 //! and Platform Specifications, the Skid Steer Driver, Annunciator, Power Plant Manager,
-//! Odometry and Illumination ([`ugv`]). The other UGV services (the Ackermann,
-//! Stabilizer and Drive Train Drivers), the Manipulator services an RA 3.3 arm cannot
-//! carry (motion profile, end-effector pose list, actuator force/torque, primitive and
-//! pan-tilt services) and the Mission Spooling and HMI services are defined and generated
-//! (their traits and machines) without an implementation in this crate.
+//! Odometry and Illumination ([`ugv`]), and the Mission Spooler ([`mission`]: a
+//! mission's messages run as Core v1.1 command events on their destinations). The
+//! other UGV services (the Ackermann, Stabilizer and Drive Train Drivers), the
+//! Manipulator services an RA 3.3 arm cannot carry (motion profile, end-effector pose
+//! list, actuator force/torque, primitive and pan-tilt services) and the HMI services
+//! are defined and generated (their traits and machines) without an implementation in
+//! this crate.
 //!
 //! ## Running AS-4 services
 //!
@@ -198,6 +200,7 @@ pub mod environment;
 pub mod gateway;
 pub mod machined;
 pub mod manipulator;
+pub mod mission;
 pub mod mobility;
 pub mod node;
 pub mod outgoing;

@@ -118,6 +118,13 @@ pub trait Machined: fmt::Debug + Send + Sized + 'static {
     fn tick(&mut self, cx: &mut Cx<'_, Ra33Side>) {
         let _ = cx;
     }
+
+    /// Whether the command `code` it took is still being carried out
+    /// ([`Service::in_progress`]).
+    fn in_progress(&self, code: CommandCode) -> bool {
+        let _ = code;
+        false
+    }
 }
 
 /// Implements [`Machined`] for a service's data `$data` over its generated module
@@ -301,5 +308,9 @@ impl<T: Machined> Service<Ra33Side> for OnMachines<T> {
 
     fn tick(&mut self, cx: &mut Cx<'_, Ra33Side>) {
         self.imp.tick(cx);
+    }
+
+    fn in_progress(&self, code: CommandCode) -> bool {
+        self.imp.in_progress(code)
     }
 }

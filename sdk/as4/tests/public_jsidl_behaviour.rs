@@ -741,8 +741,27 @@ fn our_ugv_machines_take_what_the_public_jsidl_takes() {
     );
 }
 
-/// The differences `mission_spooling_services.yaml` declares: none in the triggers and
-/// guards (its refinements are in the actions and the guards' arguments).
+/// The differences `mission_spooling_services.yaml` declares (the last part of its
+/// header): the client side of the spooler (a destination's answers), the validity
+/// guards of Spool and Run Mission, and three internal events the owner raises.
+const MISSION_OURS: &[&str] = &[
+    "MissionSpooler: on ConfirmControl []",
+    "MissionSpooler: on RejectControl []",
+    "MissionSpooler: on ReportTimeout []",
+    "MissionSpooler: on ConfirmEventRequest []",
+    "MissionSpooler: on RejectEventRequest []",
+    "MissionSpooler: on SpoolMission [iscontrollingclient && ismissionvalid]",
+    "MissionSpooler: on RunMission [iscontrollingclient && isrunvalid]",
+    "MissionSpooler: on Unblocked []",
+    "MissionSpooler: on ControlRefused [ismissionspooled]",
+    "MissionSpooler: on ControlRegained []",
+    "MissionSpooler: on ControlRegained [ismissionspooled]",
+];
+const MISSION_THEIRS: &[&str] = &[
+    "MissionSpooler: on SpoolMission [iscontrollingclient]",
+    "MissionSpooler: on RunMission [iscontrollingclient]",
+];
+
 #[test]
 fn our_mission_spooler_machine_takes_what_the_public_jsidl_takes() {
     let Some(root) = std::env::var_os("JAUS_JSIDL_DIR").map(PathBuf::from) else {
@@ -766,7 +785,7 @@ fn our_mission_spooler_machine_takes_what_the_public_jsidl_takes() {
         "urn:jaus:jss:missionSpooler",
         &["MissionSpooler"],
         |name| name,
-        (&[], &[]),
+        (MISSION_OURS, MISSION_THEIRS),
         "mission_spooling_services.yaml",
     );
 }

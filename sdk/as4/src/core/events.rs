@@ -28,9 +28,12 @@
 //!   message itself, and the Core or a service receives it), confirms it with a Confirm
 //!   Event Request (an event id no subscription holds, rate 0), runs the command as if
 //!   the client had sent it, and sends the client a Command Event: `Successful` when the
-//!   Core or a service took it, `Unsuccessful` when it was refused (no control, not
-//!   Ready, a guard) or taken by none. A command completes in the step that runs it, so
-//!   `maximum_allowed_duration` never lapses and no command event outlives its message.
+//!   Core or a service took it and it is done, `Unsuccessful` when it was refused (no
+//!   control, not Ready, a guard) or taken by none. A command a service is still
+//!   carrying out (`Service::in_progress`: Execute List until the list is done) keeps
+//!   its event (and its id) until it is done (`Successful`), its
+//!   `maximum_allowed_duration` (seconds; 0: none) lapses, or the component leaves
+//!   Ready (`Unsuccessful`); running command events count against the events' bound.
 //!   A command event that fails the check is refused (`MessageNotSupported` or
 //!   `InvalidEventSetup`, with why).
 
@@ -120,7 +123,7 @@ pub fn command_of(bytes: &[u8]) -> Result<Message, Rejection> {
     Ok(m)
 }
 
-/// A command event confirmed, its command not run yet.
+/// A command event confirmed, its command not run yet (or still running).
 #[derive(Debug, Clone)]
 pub struct PendingCommand {
     /// The client that asked for it: the command runs as if it had sent it.
@@ -129,7 +132,12 @@ pub struct PendingCommand {
     pub event_id: u8,
     /// The command.
     pub command: Message,
+    /// The longest the command may run, seconds (0: no limit).
+    pub max_duration: u32,
 }
+
+/// How often running commands are looked at when nothing else happens.
+pub const COMMAND_CHECK_PERIOD: Duration = Duration::from_millis(100);
 
 impl PendingCommand {
     /// The Command Event that reports its outcome to the client.
@@ -183,6 +191,10 @@ pub struct Events {
     subs: BTreeMap<u8, Subscription>,
     /// The command of the command event just confirmed, for the component to run.
     command: Option<PendingCommand>,
+    /// Command events whose command is still being carried out, with their deadline.
+    running: Vec<(PendingCommand, Option<Instant>)>,
+    /// When the running commands are next looked at.
+    next_check: Option<Instant>,
     max: usize,
     timeout_minutes: u8,
     change_period: Duration,
@@ -210,6 +222,8 @@ impl Events {
         Self {
             subs: BTreeMap::new(),
             command: None,
+            running: Vec::new(),
+            next_check: None,
             max: max.min(255),
             timeout_minutes,
             change_period: change_period.max(Duration::from_millis(1)),
@@ -330,8 +344,24 @@ impl Events {
     /// Event Request under an event id no subscription holds, the command queued for
     /// the component ([`take_command`](Self::take_command)); refused with
     /// `ConnectionRefused` when every id is held.
-    pub fn create_command(&mut self, from: As4Id, request_id: u8, command: Message) -> Outgoing {
-        let Some(event_id) = (0..=254u8).find(|i| !self.subs.contains_key(i)) else {
+    pub fn create_command(
+        &mut self,
+        from: As4Id,
+        request_id: u8,
+        command: Message,
+        max_duration: u32,
+    ) -> Outgoing {
+        if self.subs.len() + self.running.len() >= self.max {
+            let why = (
+                EventRejection::ConnectionRefused,
+                format!("at most {} events", self.max),
+            );
+            return reject(from, request_id, why);
+        }
+        let held = |i: &u8| {
+            self.subs.contains_key(i) || self.running.iter().any(|(p, _)| p.event_id == *i)
+        };
+        let Some(event_id) = (0..=254u8).find(|i| !held(i)) else {
             let why = (EventRejection::ConnectionRefused, "no free event id".into());
             return reject(from, request_id, why);
         };
@@ -339,8 +369,67 @@ impl Events {
             client: from,
             event_id,
             command,
+            max_duration,
         });
         Self::confirm(from, request_id, event_id, 0.0)
+    }
+
+    /// `pending`'s command was taken at `now` and is still being carried out: its
+    /// Command Event waits ([`finish_running`](Self::finish_running)), at most its
+    /// maximum duration (none when 0).
+    pub fn keep_running(&mut self, now: Instant, pending: PendingCommand) {
+        let deadline = (pending.max_duration > 0)
+            .then(|| now + Duration::from_secs(u64::from(pending.max_duration)));
+        self.running.push((pending, deadline));
+        self.next_check = Some(now + COMMAND_CHECK_PERIOD);
+    }
+
+    /// Command events still running.
+    pub fn running_commands(&self) -> usize {
+        self.running.len()
+    }
+
+    /// The Command Events of the running commands that ended at `now`: `Successful` for
+    /// one no longer `in_progress`, `Unsuccessful` for one past its maximum duration or
+    /// interrupted (the component not `ready` any more).
+    pub fn finish_running(
+        &mut self,
+        now: Instant,
+        ready: bool,
+        in_progress: impl Fn(jaus::CommandCode) -> bool,
+    ) -> Vec<Outgoing> {
+        if self.running.is_empty() {
+            self.next_check = None;
+            return Vec::new();
+        }
+        let mut out = Vec::new();
+        self.running.retain(|(p, deadline)| {
+            let expired = deadline.is_some_and(|d| now >= d);
+            let done = !in_progress(p.command.code());
+            let outcome = if !ready || expired {
+                Some(false)
+            } else if done {
+                Some(true)
+            } else {
+                None
+            };
+            match outcome {
+                Some(ok) => {
+                    tracing::debug!(
+                        event_id = p.event_id,
+                        command = p.command.name(),
+                        ok,
+                        expired,
+                        "command event ended"
+                    );
+                    out.push(p.completed(ok));
+                    false
+                }
+                None => true,
+            }
+        });
+        self.next_check = (!self.running.is_empty()).then(|| now + COMMAND_CHECK_PERIOD);
+        out
     }
 
     /// The command of the command event just confirmed, to run once.
@@ -450,6 +539,8 @@ impl Events {
             .values()
             .flat_map(|s| [Some(s.next_due), lifetime.map(|l| s.renewed + l)])
             .flatten()
+            .chain(self.next_check)
+            .chain(self.running.iter().filter_map(|(_, d)| *d))
             .min()
     }
 

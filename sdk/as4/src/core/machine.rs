@@ -275,12 +275,22 @@ impl<'a> Host<'a> {
 
     /// Create Command Event from `from`: confirm it and queue its command for the
     /// component to run ([`Events::create_command`]).
-    pub fn create_command_event(&mut self, from: As4Id, request_id: u8, command: &[u8]) {
+    pub fn create_command_event(
+        &mut self,
+        from: As4Id,
+        request_id: u8,
+        command: &[u8],
+        max_duration: u32,
+    ) {
         let o = match self.event_query.take() {
-            Some(Ok(c)) => self.events.create_command(from, request_id, c),
+            Some(Ok(c)) => self
+                .events
+                .create_command(from, request_id, c, max_duration),
             Some(Err(r)) => events::reject(from, request_id, r),
             None => match events::command_of(command) {
-                Ok(c) => self.events.create_command(from, request_id, c),
+                Ok(c) => self
+                    .events
+                    .create_command(from, request_id, c, max_duration),
                 Err(r) => events::reject(from, request_id, r),
             },
         };
@@ -478,7 +488,7 @@ macro_rules! core_machine {
                     Host::is_command_supported(self)
                 }
                 fn create_command_event(&mut self, m: &CreateCommandEvent, t: &Receive) {
-                    Host::create_command_event(self, sender(t), m.request_id, &m.command_message)
+                    Host::create_command_event(self, sender(t), m.request_id, &m.command_message, m.maximum_allowed_duration)
                 }
                 fn send_report_events(&mut self, m: &QueryEvents, t: &Receive) {
                     Host::send_report_events(self, sender(t), &m.filter)

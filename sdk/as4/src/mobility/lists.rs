@@ -586,6 +586,11 @@ impl<K: Kind> Machined for ListDriver<K> {
         }
     }
 
+    fn in_progress(&self, code: CommandCode) -> bool {
+        // Execute List is carried out until the list is done (no element active).
+        code == <ExecuteList as jaus::JausMessage>::CODE && self.active().is_some()
+    }
+
     fn tick(&mut self, cx: &mut Cx<'_, Ra33Side>) {
         let Some(run) = self.run.as_mut() else { return };
         let n = run.elements.len();

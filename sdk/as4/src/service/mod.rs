@@ -205,4 +205,13 @@ pub trait Service<E>: fmt::Debug + Send + 'static {
     fn poll_timeout(&self) -> Option<Instant> {
         None
     }
+
+    /// Whether the command `code` this service took is still being carried out (a list
+    /// being executed): a Core v1.1 command event of it completes when this turns false
+    /// (checked at the component's ticks and timeouts), or expires after its maximum
+    /// duration. Default: a command is done once taken.
+    fn in_progress(&self, code: CommandCode) -> bool {
+        let _ = code;
+        false
+    }
 }

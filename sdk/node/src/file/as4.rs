@@ -35,6 +35,68 @@ impl NodeFile {
         Some(config)
     }
 
+    /// With `as4: { mission_spooler: … }`, the AS-4 node of the Mission Spooler's
+    /// component, to add beside the gateway (`DualNode::with_endpoint`): it knows the
+    /// gateway's component at this node's own address and the destinations listed at
+    /// theirs (`path`: the file, for the errors).
+    pub fn as4_mission_spooler(
+        &self,
+        path: &Path,
+    ) -> Result<Option<jaus_as4::node::As4Node<()>>, String> {
+        use jaus_as4::mission::{MissionSpoolerService, SpoolerConfig};
+        let (Some(gw), Some(m)) = (
+            self.as4_config(),
+            self.as4.as_ref().and_then(|a| a.mission_spooler.as_ref()),
+        ) else {
+            return Ok(None);
+        };
+        let at =
+            |what: &str, e: String| format!("{}: as4.mission_spooler.{what}: {e}", path.display());
+        let id =
+            jaus::net::as5669a::As4Id::new(gw.as4.subsystem, gw.as4.node, m.component.unwrap_or(5));
+        if id == gw.as4 || id.is_broadcast() || id.component == 0 {
+            return Err(at(
+                "component",
+                format!("{id} is the gateway's component, 0 or a broadcast"),
+            ));
+        }
+        let seconds = |what: &str, s: Option<f64>, default: u64| match s {
+            None => Ok(Duration::from_secs(default)),
+            Some(s) => Duration::try_from_secs_f64(s)
+                .ok()
+                .filter(|d| !d.is_zero())
+                .ok_or_else(|| at(what, format!("{s} is not a number of seconds above 0"))),
+        };
+        let mut config = SpoolerConfig::default();
+        config.authority = m.authority.unwrap_or(config.authority);
+        config.control_timeout = seconds("control_timeout", m.control_timeout, 5)?;
+        config.command_timeout = seconds("command_timeout", m.command_timeout, 60)?;
+        if let Some(n) = m.max_messages {
+            config.bounds.max_messages = n;
+        }
+        let component = jaus_as4::component::As4Component::new(
+            id,
+            jaus_as4::core::CoreConfig::named("mission spooler"),
+        )
+        .with_service(MissionSpoolerService::new(config));
+        let mut node = jaus_as4::node::As4Node::new(()).with_component(component);
+        let mut own = self.bind;
+        if own.ip().is_unspecified() {
+            own.set_ip(match own {
+                std::net::SocketAddr::V4(_) => std::net::Ipv4Addr::LOCALHOST.into(),
+                std::net::SocketAddr::V6(_) => std::net::Ipv6Addr::LOCALHOST.into(),
+            });
+        }
+        node.learn_peer(gw.as4, own);
+        for (i, d) in m.destinations.iter().enumerate() {
+            let did =
+                d.id.parse::<jaus::net::as5669a::As4Id>()
+                    .map_err(|e| at(&format!("destinations[{i}].id"), e.to_string()))?;
+            node.learn_peer(did, d.peer);
+        }
+        Ok(Some(node))
+    }
+
     /// The proxies of `as4_vehicles:`: each one's settings and the vehicle's address
     /// (`path`: the file, for the errors).
     pub fn as4_vehicles(
@@ -208,6 +270,53 @@ mod tests {
         );
         // The AS-4 judge of `jaus conform --as4` (and of `jaus as4-drive`, same default).
         assert!(specific(jaus_conform::as4::As4Options::default().me));
+    }
+
+    #[test]
+    fn a_mission_spooler_is_its_own_component_knowing_the_gateway_and_its_destinations() {
+        use jaus::net::as5669a::As4Id;
+        let f = file(
+            "subsystem: 3\nnode: 2\nbind: 0.0.0.0:3794\nas4:\n  mission_spooler:\n    command_timeout: 30\n    authority: 90\n    destinations: [{ id: 4.1.1, peer: 10.0.0.4:3794 }]\n",
+        );
+        let node = f.as4_mission_spooler(Path::new("n.yaml")).unwrap().unwrap();
+        let c = node.components().next().unwrap();
+        assert_eq!(c.id(), As4Id::new(3, 2, 5));
+        let uris: Vec<&str> = c.service_ids().iter().map(|s| s.uri).collect();
+        assert!(
+            uris.contains(&"urn:jaus:jss:missionSpooler:MissionSpooler"),
+            "{uris:?}"
+        );
+        // The gateway at this node's own socket, the destination at its own.
+        assert_eq!(
+            node.peer(As4Id::new(3, 2, 1)),
+            Some("127.0.0.1:3794".parse().unwrap())
+        );
+        assert_eq!(
+            node.peer(As4Id::new(4, 1, 1)),
+            Some("10.0.0.4:3794".parse().unwrap())
+        );
+        // Without `as4:` or without `mission_spooler:`, none.
+        let none = file("subsystem: 3\nnode: 2\nbind: 0.0.0.0:3794\nas4: {}\n");
+        assert!(none
+            .as4_mission_spooler(Path::new("n.yaml"))
+            .unwrap()
+            .is_none());
+        // Errors name the field.
+        let bad = file(
+            "subsystem: 3\nnode: 2\nbind: 0.0.0.0:3794\nas4: { mission_spooler: { component: 1 } }\n",
+        );
+        let e = bad.as4_mission_spooler(Path::new("n.yaml")).unwrap_err();
+        assert!(e.contains("as4.mission_spooler.component"), "{e}");
+        let bad = file(
+            "subsystem: 3\nnode: 2\nbind: 0.0.0.0:3794\nas4: { mission_spooler: { command_timeout: -1 } }\n",
+        );
+        let e = bad.as4_mission_spooler(Path::new("n.yaml")).unwrap_err();
+        assert!(e.contains("as4.mission_spooler.command_timeout"), "{e}");
+        let bad = file(
+            "subsystem: 3\nnode: 2\nbind: 0.0.0.0:3794\nas4: { mission_spooler: { destinations: [{ id: x, peer: 10.0.0.4:1 }] } }\n",
+        );
+        let e = bad.as4_mission_spooler(Path::new("n.yaml")).unwrap_err();
+        assert!(e.contains("as4.mission_spooler.destinations[0].id"), "{e}");
     }
 
     #[test]

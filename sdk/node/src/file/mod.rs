@@ -326,6 +326,8 @@ pub struct FrameFile {
 ///   authority: 200      # its authority when it takes RA 3.3 control; default 200
 ///   multicast: 239.255.0.1  # hear AS-4 first contact on this group (the JAUS Tool Set's);
 ///                           # needs bind 0.0.0.0; nothing is ever sent to it
+///   mission_spooler:        # an AS-4 Mission Spooler on its own component (see
+///     component: 5          #   MissionSpoolerFile)
 /// ```
 #[derive(Debug, Clone, Default, serde::Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -358,6 +360,62 @@ pub struct As4File {
     /// traffic included.
     #[serde(default)]
     pub multicast: Option<std::net::Ipv4Addr>,
+    /// An AS-4 Mission Spooler on its own AS-4 component of this node
+    /// (`jaus_as4::mission`), beside the gateway's on the same socket.
+    #[serde(default)]
+    pub mission_spooler: Option<MissionSpoolerFile>,
+}
+
+/// `as4: { mission_spooler: … }` of a node file: an AS-4 component of its own (the
+/// gateway's subsystem and node) serving the Mission Spooler
+/// (`jaus_as4::mission::MissionSpoolerService`). A component, not a service of the
+/// gateway's, because it takes control of the components its missions command: the
+/// gateway's among them, which it reaches through the node's own socket (its address
+/// is the bind address, 127.0.0.1 for 0.0.0.0). Destinations on other nodes are listed
+/// with their address (an AS-4 node knows an id's address once it heard from it).
+///
+/// ```yaml
+/// as4:
+///   mission_spooler:
+///     component: 5          # its AS-4 component id (default 5; not the gateway's)
+///     authority: 100        # with which it asks its destinations for control (default 100)
+///     control_timeout: 5    # s a destination has to grant control (default 5)
+///     command_timeout: 60   # s a command has to complete (default 60)
+///     max_messages: 1024    # messages in a mission at most (default 1024)
+///     destinations:         # AS-4 components on other nodes, and where they are
+///       - { id: 2.1.1, peer: 10.0.0.2:3794 }
+/// ```
+#[derive(Debug, Clone, Default, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MissionSpoolerFile {
+    /// Its AS-4 component id (default 5).
+    #[serde(default)]
+    pub component: Option<u8>,
+    /// The authority with which it asks its destinations for control (default 100).
+    #[serde(default)]
+    pub authority: Option<u8>,
+    /// Seconds a destination has to answer Request Control (default 5).
+    #[serde(default)]
+    pub control_timeout: Option<f64>,
+    /// Seconds a command has to complete (default 60).
+    #[serde(default)]
+    pub command_timeout: Option<f64>,
+    /// Messages in a mission at most (default 1024).
+    #[serde(default)]
+    pub max_messages: Option<usize>,
+    /// AS-4 components on other nodes its missions command, and their addresses.
+    #[serde(default)]
+    pub destinations: Vec<SpoolerDestinationFile>,
+}
+
+/// One of `mission_spooler: { destinations: … }`.
+#[derive(Debug, Clone, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SpoolerDestinationFile {
+    /// Its AS-4 id (`subsystem.node.component`).
+    pub id: String,
+    /// Its node's address.
+    pub peer: SocketAddr,
 }
 
 /// `transport:` of a node file.

@@ -100,6 +100,18 @@ pub fn node(
             gw.as4, gw.present, gw.ra33
         );
     }
+    if let (Some(gw), Some(m)) = (
+        &as4,
+        file.as4.as_ref().and_then(|a| a.mission_spooler.as_ref()),
+    ) {
+        let _ = writeln!(
+            out,
+            "AS-4 Mission Spooler: component {}.{}.{}",
+            gw.as4.subsystem,
+            gw.as4.node,
+            m.component.unwrap_or(5)
+        );
+    }
     let vehicles = file.as4_vehicles(config)?;
     let mut proxies = Vec::new();
     for (v, peer) in vehicles {
@@ -281,6 +293,9 @@ pub fn node(
                 .map_err(|e| format!("{}: as4: {e}", config.display()))?;
             for p in proxies {
                 dual = dual.with_endpoint(p);
+            }
+            if let Some(spooler) = file.as4_mission_spooler(config)? {
+                dual = dual.with_endpoint(spooler);
             }
             for s in native {
                 dual = dual.with_service(s);
