@@ -73,36 +73,8 @@ impl Runner<'_> {
         };
         let moved = sample::moved(&r0.fields, &r1.fields, &sent);
         let what = format!("{command} {}", sample::text(&cmd.fields));
-        if !moved.is_empty() {
-            return fail(format!(
-                "carried out without control through a command event: {} by {readback}",
-                moved.join("; ")
-            ));
-        }
-        if let Some(c) = confirmed.iter().find(|c| *c != "ConfirmEventRequest") {
-            return fail(format!(
-                "{c} without control, for a command event of {what}"
-            ));
-        }
-        match outcome {
-            Outcome::Refused(why) => pass(format!(
-                "Create Command Event of {what} refused ({why}); {readback} unchanged"
-            )),
-            Outcome::Confirmed(id, Some(CommandResult::Unsuccessful)) => pass(format!(
-                "command event {id} of {what} confirmed and reported Unsuccessful; {readback} unchanged"
-            )),
-            Outcome::Confirmed(id, Some(r)) => fail(format!(
-                "command event {id} of {what} from a client without control reported {r:?}"
-            )),
-            Outcome::Confirmed(id, None) => fail(format!(
-                "command event {id} of {what} confirmed, but no Command Event reported its outcome within {:.1} s",
-                self.j.opts.wait.as_secs_f64()
-            )),
-            Outcome::Silence => fail(format!(
-                "no answer to Create Command Event within {:.1} s (Events v1.1 refuses one it does not run)",
-                self.j.opts.wait.as_secs_f64()
-            )),
-        }
+        let wait = self.j.opts.wait.as_secs_f64();
+        judge(&outcome, &moved, &confirmed, &what, readback, wait)
     }
 
     /// Waits for the answer to Create Command Event `request_id`: its refusal, or its
@@ -148,5 +120,103 @@ impl Runner<'_> {
                 _ => {}
             }
         }
+    }
+}
+
+/// The verdict of a command event sent without control: what the component answered
+/// (`outcome`), what the read-back shows moved, the confirmations seen meanwhile.
+fn judge(
+    outcome: &Outcome,
+    moved: &[String],
+    confirmed: &[String],
+    what: &str,
+    readback: &str,
+    wait: f64,
+) -> Found {
+    if !moved.is_empty() {
+        return fail(format!(
+            "carried out without control through a command event: {} by {readback}",
+            moved.join("; ")
+        ));
+    }
+    if let Some(c) = confirmed.iter().find(|c| *c != "ConfirmEventRequest") {
+        return fail(format!(
+            "{c} without control, for a command event of {what}"
+        ));
+    }
+    match outcome {
+        Outcome::Refused(why) => pass(format!(
+            "Create Command Event of {what} refused ({why}); {readback} unchanged"
+        )),
+        Outcome::Confirmed(id, Some(CommandResult::Unsuccessful)) => pass(format!(
+            "command event {id} of {what} confirmed and reported Unsuccessful; {readback} unchanged"
+        )),
+        Outcome::Confirmed(id, Some(r)) => fail(format!(
+            "command event {id} of {what} from a client without control reported {r:?}"
+        )),
+        Outcome::Confirmed(id, None) => fail(format!(
+            "command event {id} of {what} confirmed, but no Command Event reported its outcome within {wait:.1} s"
+        )),
+        Outcome::Silence => fail(format!(
+            "no answer to Create Command Event within {wait:.1} s (Events v1.1 refuses one it does not run)"
+        )),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::check::Verdict;
+
+    fn verdict(outcome: Outcome, moved: &[&str], confirmed: &[&str]) -> (Verdict, String) {
+        let moved: Vec<String> = moved.iter().map(|s| s.to_string()).collect();
+        let confirmed: Vec<String> = confirmed.iter().map(|s| s.to_string()).collect();
+        judge(
+            &outcome,
+            &moved,
+            &confirmed,
+            "SetX {\"x\":1}",
+            "QueryX",
+            1.0,
+        )
+    }
+
+    #[test]
+    fn refused_or_unsuccessful_and_unchanged_passes() {
+        let (v, d) = verdict(Outcome::Refused("MessageNotSupported".into()), &[], &[]);
+        assert_eq!(v, Verdict::Pass, "{d}");
+        let (v, d) = verdict(
+            Outcome::Confirmed(3, Some(CommandResult::Unsuccessful)),
+            &[],
+            &["ConfirmEventRequest"],
+        );
+        assert_eq!(v, Verdict::Pass, "{d}");
+        assert!(d.contains("reported Unsuccessful"), "{d}");
+    }
+
+    #[test]
+    fn carried_out_reported_successful_or_silent_fails() {
+        let (v, d) = verdict(
+            Outcome::Confirmed(3, Some(CommandResult::Unsuccessful)),
+            &["x: 0 → 1 (sent 1)"],
+            &[],
+        );
+        assert_eq!(v, Verdict::Fail);
+        assert!(d.contains("through a command event"), "{d}");
+        let (v, d) = verdict(
+            Outcome::Confirmed(3, Some(CommandResult::Successful)),
+            &[],
+            &[],
+        );
+        assert_eq!(v, Verdict::Fail);
+        assert!(d.contains("reported Successful"), "{d}");
+        let (v, d) = verdict(Outcome::Confirmed(3, None), &[], &[]);
+        assert_eq!(v, Verdict::Fail);
+        assert!(d.contains("no Command Event"), "{d}");
+        let (v, _) = verdict(Outcome::Silence, &[], &[]);
+        assert_eq!(v, Verdict::Fail);
+        let (v, d) = verdict(Outcome::Refused("no".into()), &[], &["ConfirmX"]);
+        assert_eq!(v, Verdict::Fail);
+        assert!(d.contains("ConfirmX without control"), "{d}");
     }
 }
