@@ -87,10 +87,7 @@ machined!(
     ServiceIds::JOINT_VELOCITY_DRIVER,
     management {
         fn tick(&mut self, cx: &mut Cx<'_, Ra33Side>) {
-            flush(cx.env, self.driver, &mut self.pending);
-            if !cx.env.is_active(self.driver) {
-                self.stopped();
-            }
+            self.follow_driver(cx);
         }
         fn state_changed(
             &mut self,
@@ -98,9 +95,7 @@ machined!(
             from: ComponentState,
             to: ComponentState,
         ) {
-            if from == ComponentState::Ready && to != ComponentState::Ready {
-                self.stopped();
-            }
+            self.follow_state(from, to);
         }
     }
 );
@@ -110,10 +105,7 @@ machined!(
     ServiceIds::END_EFFECTOR_VELOCITY_STATE_DRIVER,
     management {
         fn tick(&mut self, cx: &mut Cx<'_, Ra33Side>) {
-            flush(cx.env, self.driver, &mut self.pending);
-            if !cx.env.is_active(self.driver) {
-                self.stopped();
-            }
+            self.follow_driver(cx);
         }
         fn state_changed(
             &mut self,
@@ -121,9 +113,7 @@ machined!(
             from: ComponentState,
             to: ComponentState,
         ) {
-            if from == ComponentState::Ready && to != ComponentState::Ready {
-                self.stopped();
-            }
+            self.follow_state(from, to);
         }
     }
 );
@@ -137,33 +127,58 @@ machined!(
 /// The Joint Velocity Driver over an RA 3.3 Joint Velocities Driver.
 pub type JointVelocityDriver = OnMachines<JointRates>;
 
-/// The Joint Velocity Driver's data: the RA 3.3 driver, the arm, the last command.
+/// A velocity driver's data: the RA 3.3 driver, the arm, the last command `C`, and the
+/// RA 3.3 command not sent yet.
 #[derive(Debug)]
-pub struct JointRates {
+pub struct Rates<C> {
     driver: Address,
     arm: Arm,
-    commanded: Option<SetJointVelocity>,
+    commanded: Option<C>,
     pending: Option<ra::Message>,
 }
 
-impl JointRates {
+/// The Joint Velocity Driver's data.
+pub type JointRates = Rates<SetJointVelocity>;
+/// The End-Effector Velocity State Driver's data.
+pub type ToolRates = Rates<SetEndEffectorVelocityState>;
+
+impl<C> Rates<C> {
+    fn over(driver: Address, arm: Arm) -> Self {
+        Rates {
+            driver,
+            arm,
+            commanded: None,
+            pending: None,
+        }
+    }
+
     /// The arm stopped for this driver (the component left Ready, or another driver
     /// took the arm: the RA 3.3 driver is in standby): no rate stands commanded.
     fn stopped(&mut self) {
         self.commanded = None;
         self.pending = None;
     }
+
+    /// Its tick: the command not sent yet goes out; a driver no longer active stopped.
+    fn follow_driver(&mut self, cx: &mut Cx<'_, Ra33Side>) {
+        flush(cx.env, self.driver, &mut self.pending);
+        if !cx.env.is_active(self.driver) {
+            self.stopped();
+        }
+    }
+
+    /// Leaving Ready stops the arm for this driver.
+    fn follow_state(&mut self, from: ComponentState, to: ComponentState) {
+        if from == ComponentState::Ready && to != ComponentState::Ready {
+            self.stopped();
+        }
+    }
 }
 
 impl JointVelocityDriver {
     /// The service over the RA 3.3 Joint Velocities Driver at `driver`.
     pub fn new(driver: Address, arm: Arm) -> Self {
-        OnMachines::from_impl(JointRates {
-            driver,
-            arm,
-            commanded: None,
-            pending: None,
-        })
+        OnMachines::from_impl(Rates::over(driver, arm))
     }
 }
 
@@ -202,33 +217,10 @@ impl joint_driver::ManipulatorJointVelocityDriver for On<'_, JointRates> {
 /// Driver: the same six rates, in the vehicle frame ([`VEHICLE_FRAME`]).
 pub type EndEffectorVelocityStateDriver = OnMachines<ToolRates>;
 
-/// The End-Effector Velocity State Driver's data: the RA 3.3 driver, the arm, the last
-/// command.
-#[derive(Debug)]
-pub struct ToolRates {
-    driver: Address,
-    arm: Arm,
-    commanded: Option<SetEndEffectorVelocityState>,
-    pending: Option<ra::Message>,
-}
-
-impl ToolRates {
-    /// The arm stopped for this driver, as [`JointRates::stopped`].
-    fn stopped(&mut self) {
-        self.commanded = None;
-        self.pending = None;
-    }
-}
-
 impl EndEffectorVelocityStateDriver {
     /// The service over the RA 3.3 End-Effector Velocity State Driver at `driver`.
     pub fn new(driver: Address, arm: Arm) -> Self {
-        OnMachines::from_impl(ToolRates {
-            driver,
-            arm,
-            commanded: None,
-            pending: None,
-        })
+        OnMachines::from_impl(Rates::over(driver, arm))
     }
 }
 

@@ -37,13 +37,8 @@ impl Runner<'_> {
                 "{readback} reads back nothing {command} sets, by the definitions"
             ));
         };
-        let r0 = match self.read(readback, &report) {
-            Ok(r) => r,
-            Err(e) => return unsure(format!("before: {e}")),
-        };
-        let (cmd, sent) = match sample::command(self.defs, command, &shared, Some(&r0.fields), true)
-        {
-            Ok(c) => c,
+        let (r0, cmd, sent) = match self.nudged(command, readback, &report, &shared) {
+            Ok(n) => n,
             Err(e) => return unsure(e),
         };
         if sent.is_empty() {

@@ -29,6 +29,10 @@ const EVENT: u16 = Event::CODE.0;
 /// The rate asked of a periodic event, Hz.
 const EVENT_RATE: f64 = 5.0;
 
+/// What a read-back gave, the command with those values moved a little, and the fields
+/// it sets with their values ([`Runner::nudged`]).
+pub(super) type Nudged = (DynMessage, DynMessage, Vec<(String, f64)>);
+
 /// What came back for a message sent.
 enum Answer {
     /// The message expected: its body.
@@ -196,6 +200,23 @@ impl<'a> Runner<'a> {
         }
     }
 
+    /// Reads `query` (answered by `report`), then builds `command` carrying the fields
+    /// `shared` with the values read moved a little: what was read, the command and what
+    /// it sets, or why not (an inconclusive verdict).
+    pub(super) fn nudged(
+        &mut self,
+        command: &str,
+        query: &str,
+        report: &str,
+        shared: &[sample::Shared],
+    ) -> Result<Nudged, String> {
+        let r0 = self
+            .read(query, report)
+            .map_err(|e| format!("before: {e}"))?;
+        let (cmd, sent) = sample::command(self.defs, command, shared, Some(&r0.fields), true)?;
+        Ok((r0, cmd, sent))
+    }
+
     /// The read-back query of `command`, its report, and the fields they share.
     pub(super) fn readback(
         &self,
@@ -239,13 +260,8 @@ impl<'a> Runner<'a> {
         let Some((query, (report, shared))) = rb else {
             return self.outsider_by_status(command);
         };
-        let r0 = match self.read(&query, &report) {
-            Ok(r) => r,
-            Err(e) => return unsure(format!("before: {e}")),
-        };
-        let (cmd, sent) = match sample::command(self.defs, command, &shared, Some(&r0.fields), true)
-        {
-            Ok(c) => c,
+        let (r0, cmd, sent) = match self.nudged(command, &query, &report, &shared) {
+            Ok(n) => n,
             Err(e) => return unsure(e),
         };
         if sent.is_empty() {
