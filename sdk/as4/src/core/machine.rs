@@ -267,6 +267,12 @@ impl<'a> Host<'a> {
         self.out.push(events::reject(from, request_id, r));
     }
 
+    /// The component's current authority (its controlling client's; the default one
+    /// while nobody controls it).
+    pub fn current_authority(&self) -> u8 {
+        self.access.authority()
+    }
+
     /// Guard `isCommandSupported`: the command event's command is one the component
     /// takes (the component looked ahead).
     pub fn is_command_supported(&self) -> bool {

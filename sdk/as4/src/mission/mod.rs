@@ -42,7 +42,8 @@
 //!
 //! **Control of the destinations.** A destination takes commands only from its
 //! controlling client, so before the first message to a destination the spooler sends
-//! it Request Control ([`SpoolerConfig::authority`]) and keeps the message (and any
+//! it Request Control ([`SpoolerConfig::authority`], never above the authority of the
+//! client controlling the spooler) and keeps the message (and any
 //! further ones for it, in order) until Confirm Control (Control Accepted). A refusal, a
 //! Reject Control, or no answer within [`SpoolerConfig::control_timeout`] ends those
 //! messages (Unsuccessful; status Aborted, Lost Component Control) and **aborts the
@@ -217,6 +218,7 @@ impl MissionSpoolerService {
     /// Runs `trigger`, then the internal events it raised.
     fn run(&mut self, core: &mut Host<'_>, trigger: &generated::Trigger<'_>) -> bool {
         self.imp.path = self.state();
+        self.imp.client_authority = core.current_authority();
         let taken = self.machines.handle(&mut self.imp, core, trigger);
         self.drain(core);
         taken

@@ -229,6 +229,9 @@ pub(super) struct Spooler {
     pub(super) path: &'static str,
     /// The sender of the message being handled (set by the shell), for the logs.
     pub(super) from: Option<As4Id>,
+    /// The spooler's own current authority (its controlling client's, set by the shell):
+    /// destinations are asked for control at no more than this.
+    pub(super) client_authority: u8,
     pub(super) outbox: Outbox,
     pub(super) raised: VecDeque<Raise>,
     pub(super) stats: SpoolerStats,
@@ -242,12 +245,20 @@ pub(super) struct Spooler {
 }
 
 impl Spooler {
+    /// The authority destinations are asked for control with: the configured one, but
+    /// never above the controlling client's (a client of low authority cannot command a
+    /// destination through the spooler at a higher one).
+    pub(super) fn request_authority(&self) -> u8 {
+        self.config.authority.min(self.client_authority)
+    }
+
     pub(super) fn new(config: SpoolerConfig) -> Self {
         Self {
             config,
             now: None,
             path: "",
             from: None,
+            client_authority: 0,
             outbox: Outbox::new(),
             raised: VecDeque::new(),
             stats: SpoolerStats::default(),
@@ -404,7 +415,7 @@ impl Spooler {
         for d in late {
             self.lose(d, "did not answer Request Control in time");
         }
-        let authority = self.config.authority;
+        let authority = self.request_authority();
         let mut refresh = Vec::new();
         for (k, d) in &mut self.dests {
             if let Some((period, at)) = d.refresh {

@@ -228,11 +228,12 @@ fn a_blocking_message_holds_the_next_until_its_command_event() {
     ));
     assert!(r.state().contains("Pending"), "{}", r.state());
     let out = r.run();
-    // Control of the destination first, nothing else.
+    // Control of the destination first, nothing else; asked at the controlling client's
+    // authority (10), not the spooler's configured 100: the spooler lends no authority.
     assert!(has(
         &out,
         D,
-        |m| matches!(m, Message::RequestControl(c) if c.authority_code == 100)
+        |m| matches!(m, Message::RequestControl(c) if c.authority_code == 10)
     ));
     assert!(commands(&out, D).is_empty());
     assert!(r.state().contains("Blocked"), "{}", r.state());
@@ -739,4 +740,18 @@ fn run_order_is_a_tasks_messages_then_its_children_depth_first() {
         .map(|x| p.message(x).unwrap().uid)
         .collect();
     assert_eq!(uids, vec![1, 3, 2, 4]);
+}
+
+#[test]
+fn destinations_are_asked_at_the_lower_of_the_configured_and_the_clients_authority() {
+    let mut s = super::spooler::Spooler::new(SpoolerConfig::default());
+    assert_eq!(SpoolerConfig::default().authority, 100);
+    s.client_authority = 200;
+    assert_eq!(
+        s.request_authority(),
+        100,
+        "never above the configured authority"
+    );
+    s.client_authority = 10;
+    assert_eq!(s.request_authority(), 10, "never above the client's");
 }

@@ -378,7 +378,7 @@ pub struct As4File {
 /// as4:
 ///   mission_spooler:
 ///     component: 5          # its AS-4 component id (default 5; not the gateway's)
-///     authority: 100        # with which it asks its destinations for control (default 100)
+///     authority: 100        # with which it asks its destinations for control (default 100; never above the controlling client's)
 ///     control_timeout: 5    # s a destination has to grant control (default 5)
 ///     command_timeout: 60   # s a command has to complete (default 60)
 ///     max_messages: 1024    # messages in a mission at most (default 1024)

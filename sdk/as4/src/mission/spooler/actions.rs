@@ -378,12 +378,8 @@ impl generated::MissionSpooler for Spooler {
                     refresh: None,
                 },
             );
-            self.outbox.send(
-                dest,
-                &RequestControl {
-                    authority_code: self.config.authority,
-                },
-            );
+            let authority_code = self.request_authority();
+            self.outbox.send(dest, &RequestControl { authority_code });
         }
     }
 
