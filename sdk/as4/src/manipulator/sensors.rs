@@ -22,6 +22,7 @@ use crate::messages::{
     ReportJointPositions, ReportJointVelocity,
 };
 use crate::ra33::Ra33Side;
+use jaus::stock::manipulator::kinematics::Chain;
 
 machined!(
     JointPositions,
@@ -173,8 +174,13 @@ impl EndEffectorPoseSensor {
     }
 }
 
-/// The measured pose of the tool point, or why there is none.
-pub(super) fn measured_pose(env: &Ra33Side, arm: &Arm) -> Result<ReportEndEffectorPose, String> {
+/// The arm's joint position sensor, kinematic chain and measured joint positions, or why
+/// there are none
+/// (no sensor behind the gateway, no specifications or no positions yet).
+pub(super) fn chain_and_joints<'e>(
+    env: &'e Ra33Side,
+    arm: &Arm,
+) -> Result<(Address, Chain, &'e [f64]), String> {
     let sensor = arm
         .joints_from
         .ok_or("no RA 3.3 joint position sensor behind the gateway")?;
@@ -186,6 +192,12 @@ pub(super) fn measured_pose(env: &Ra33Side, arm: &Arm) -> Result<ReportEndEffect
     })?;
     let q = measured(env, sensor)
         .ok_or_else(|| format!("no joint positions from the RA 3.3 sensor {sensor} yet"))?;
+    Ok((sensor, chain, q))
+}
+
+/// The measured pose of the tool point, or why there is none.
+pub(super) fn measured_pose(env: &Ra33Side, arm: &Arm) -> Result<ReportEndEffectorPose, String> {
+    let (sensor, chain, q) = chain_and_joints(env, arm)?;
     if q.len() != chain.dof() {
         return Err(format!(
             "the RA 3.3 sensor {sensor} reports {} joints, the manipulator has {}",

@@ -16,7 +16,7 @@ use jaus::stock::nalgebra::{DVector, Dyn, OMatrix, U6};
 use jaus::{Address, JausMessage};
 
 use super::drivers::{deliver, flush};
-use super::sensors::measured;
+use super::sensors::chain_and_joints;
 use super::{joint_velocities, within, Arm, ServiceIds};
 use crate::machined::{machined, On, OnMachines};
 use crate::messages::services::transport::event::Receive;
@@ -298,17 +298,7 @@ pub fn measured_tool_velocity(
     arm: &Arm,
     rates_from: Address,
 ) -> Result<ReportEndEffectorVelocityState, String> {
-    let sensor = arm
-        .joints_from
-        .ok_or("no RA 3.3 joint position sensor behind the gateway")?;
-    let chain = arm.chain(env).ok_or_else(|| {
-        format!(
-            "no usable Report Manipulator Specifications from the RA 3.3 manipulator {} yet",
-            arm.manipulator
-        )
-    })?;
-    let q = measured(env, sensor)
-        .ok_or_else(|| format!("no joint positions from the RA 3.3 sensor {sensor} yet"))?;
+    let (_, chain, q) = chain_and_joints(env, arm)?;
     let qd = match env.latest(rates_from, ra::ReportJointVelocities::CODE) {
         Some((_, ra::Message::ReportJointVelocities(r))) => r.joint_velocity.as_slice(),
         _ => {

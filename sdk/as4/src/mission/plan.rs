@@ -226,6 +226,12 @@ impl Plan {
         self.tasks.iter().position(|t| t.task_id == id)
     }
 
+    /// [`task`](Self::task) of a message's `task_id`, or the refusal naming it.
+    fn task_named(&self, id: u16) -> Result<usize, Refusal> {
+        self.task(id)
+            .ok_or_else(|| Refusal::new("task_id", format!("no task {id}")))
+    }
+
     /// Where the message `uid` is.
     pub fn find(&self, uid: u16) -> Option<Place> {
         self.tasks.iter().enumerate().find_map(|(t, task)| {
@@ -310,9 +316,7 @@ impl Plan {
         issued: &BTreeSet<u16>,
         bounds: &Bounds,
     ) -> Result<Plan, Refusal> {
-        let t = self
-            .task(msg.task_id)
-            .ok_or_else(|| Refusal::new("task_id", format!("no task {}", msg.task_id)))?;
+        let t = self.task_named(msg.task_id)?;
         let mut plan = self.clone();
         for (k, uid) in msg.uids.iter().enumerate() {
             let field = format!("uids[{k}]");
@@ -342,9 +346,7 @@ impl Plan {
         issued: &BTreeSet<u16>,
         bounds: &Bounds,
     ) -> Result<Plan, Refusal> {
-        let t = self
-            .task(msg.task_id)
-            .ok_or_else(|| Refusal::new("task_id", format!("no task {}", msg.task_id)))?;
+        let t = self.task_named(msg.task_id)?;
         let at = self.tasks[t]
             .messages
             .iter()
@@ -375,9 +377,7 @@ impl Plan {
         issued: &BTreeSet<u16>,
         bounds: &Bounds,
     ) -> Result<Plan, Refusal> {
-        let t = self
-            .task(msg.task_id)
-            .ok_or_else(|| Refusal::new("task_id", format!("no task {}", msg.task_id)))?;
+        let t = self.task_named(msg.task_id)?;
         let parent = self
             .parent(t)
             .ok_or_else(|| Refusal::new("task_id", "the root task is not removed"))?;
@@ -439,9 +439,7 @@ impl Plan {
         issued: &BTreeSet<u16>,
         bounds: &Bounds,
     ) -> Result<Plan, Refusal> {
-        let t = self
-            .task(msg.task_id)
-            .ok_or_else(|| Refusal::new("task_id", format!("no task {}", msg.task_id)))?;
+        let t = self.task_named(msg.task_id)?;
         if !msg.task.child_tasks.is_empty() {
             return Err(Refusal::new(
                 "task.child_tasks",
