@@ -119,6 +119,12 @@ pub trait Machined: fmt::Debug + Send + Sized + 'static {
         let _ = cx;
     }
 
+    /// When its [`tick`](Self::tick) is next due on its own ([`Service::poll_timeout`];
+    /// default: never, it ticks when the RA 3.3 side changes).
+    fn poll_timeout(&self) -> Option<Instant> {
+        None
+    }
+
     /// Whether the command `code` it took is still being carried out
     /// ([`Service::in_progress`]).
     fn in_progress(&self, code: CommandCode) -> bool {
@@ -129,7 +135,8 @@ pub trait Machined: fmt::Debug + Send + Sized + 'static {
 
 /// Implements [`Machined`] for a service's data `$data` over its generated module
 /// `$module` (`crate::messages::services::NAME`), inheriting `$inherited`'s messages;
-/// items in braces are added to the implementation (`claims`, `state_changed`, `tick`).
+/// items in braces are added to the implementation (`claims`, `state_changed`, `tick`,
+/// `poll_timeout`).
 macro_rules! machined {
     ($data:ty, $module:ident, $id:expr, $inherited:ident $({ $($extra:item)* })?) => {
         impl $crate::machined::Machined for $data {
@@ -308,6 +315,10 @@ impl<T: Machined> Service<Ra33Side> for OnMachines<T> {
 
     fn tick(&mut self, cx: &mut Cx<'_, Ra33Side>) {
         self.imp.tick(cx);
+    }
+
+    fn poll_timeout(&self) -> Option<Instant> {
+        self.imp.poll_timeout()
     }
 
     fn in_progress(&self, code: CommandCode) -> bool {

@@ -271,37 +271,26 @@ pub fn check_compressed(c: &CompressedImage, max_bytes: usize) -> Result<(), Sen
 }
 
 /// A PNG file as RGB (palette and low bit depths expanded, 16 bits to 8, alpha dropped),
-/// refused when it would be over the limits before any pixel is decoded.
+/// refused when it would be over the limits before any pixel is decoded
+/// (`jaus::stock::environment::image::decode`, then this bridge's own side limit).
 pub fn png_to_rgb(data: &[u8], max_bytes: usize) -> Result<RgbImage, SensorError> {
-    let png_err = |e: png::DecodingError| SensorError::Png(e.to_string());
-    let mut d = png::Decoder::new_with_limits(data, png::Limits { bytes: max_bytes });
-    d.set_transformations(png::Transformations::EXPAND | png::Transformations::STRIP_16);
-    let mut r = d.read_info().map_err(png_err)?;
-    let (w, h) = (r.info().width, r.info().height);
-    check_size(w, h, data.len(), max_bytes)?;
-    let mut buf = vec![0; r.output_buffer_size()];
-    let f = r.next_frame(&mut buf).map_err(png_err)?;
-    let bpp = match f.color_type {
-        png::ColorType::Grayscale => 1,
-        png::ColorType::GrayscaleAlpha => 2,
-        png::ColorType::Rgb => 3,
-        png::ColorType::Rgba => 4,
-        png::ColorType::Indexed => {
-            return Err(SensorError::Png("a palette left unexpanded".into()));
-        }
-    };
-    let pixels = rows_to_rgb(&buf, (w as usize, h as usize, f.line_size), bpp, |p| {
-        if bpp < 3 {
-            [p[0]; 3]
-        } else {
-            [p[0], p[1], p[2]]
-        }
+    use jaus::stock::environment::image::{decode, ImageError};
+    let img = decode(jaus::messages::ImageFormat::Png, data, max_bytes).map_err(|e| match e {
+        ImageError::TooLarge {
+            width,
+            height,
+            bytes,
+            limit,
+        } => SensorError::TooLarge {
+            width,
+            height,
+            bytes,
+            limit,
+        },
+        other => SensorError::Png(other.to_string()),
     })?;
-    Ok(RgbImage {
-        width: w as u16,
-        height: h as u16,
-        pixels,
-    })
+    check_size(img.width.into(), img.height.into(), data.len(), max_bytes)?;
+    Ok(img)
 }
 
 /// `img` at `width` × `height` (nearest pixel); as it is when already that size.

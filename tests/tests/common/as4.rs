@@ -45,8 +45,21 @@ impl As4Rig {
         name: &str,
         settle: Duration,
     ) -> Self {
-        let mut net = SimNet::new(t0, LinkModel::default(), 11);
         let config = GatewayConfig::new(target, Address::new(1, 1, 60, 1), 1, name);
+        Self::configured(t0, node, native, config, settle)
+    }
+
+    /// [`hosting`](Self::hosting) with the gateway's whole `config` (its AS-4 id the
+    /// target).
+    pub fn configured(
+        t0: Instant,
+        node: Node,
+        native: jaus_node::As4Native,
+        config: GatewayConfig,
+        settle: Duration,
+    ) -> Self {
+        let mut net = SimNet::new(t0, LinkModel::default(), 11);
+        let target = config.as4;
         let mut dual = DualNode::new(node, config).expect("gateway");
         for s in native {
             dual = dual.with_service(s);

@@ -16,26 +16,16 @@ use super::{ServiceIds, SENSOR_ID};
 use crate::machined::{machined, On, OnMachines};
 use crate::messages::services::still_image as generated;
 use crate::messages::services::transport::event::Receive;
-use crate::messages::services::visual_sensor as parent;
 use crate::messages::{
     ConfirmSensorConfiguration, ConfirmSensorConfigurationVariant as Confirmed,
     ConfirmSensorConfigurationVariantStillImageSensorErrorRec as StillImageError,
     ConfirmSensorConfigurationVariantStillImageSensorErrorRecErrorCode as StillImageCode,
-    ConfirmSensorConfigurationVariantVisualSensorErrorRec as VisualError,
-    ConfirmSensorConfigurationVariantVisualSensorErrorRecCode as VisualCode, CoordinateSystemEnum,
-    QuerySensorGeometricProperties, QueryStillImageData, QueryStillImageSensorCapabilities,
-    QueryStillImageSensorConfiguration, QueryVisualSensorCapabilities,
-    QueryVisualSensorConfiguration, ReportSensorGeometricProperties,
-    ReportSensorGeometricPropertiesSequence as Placement,
-    ReportSensorGeometricPropertiesSequenceVariant as PlacementVariant,
-    ReportSensorGeometricPropertiesSequenceVariantNoVariant as NoPlacement, ReportStillImageData,
-    ReportStillImageDataRec, ReportStillImageSensorCapabilities,
-    ReportStillImageSensorCapabilitiesRec,
+    CoordinateSystemEnum, QueryStillImageData, QueryStillImageSensorCapabilities,
+    QueryStillImageSensorConfiguration, ReportStillImageData, ReportStillImageDataRec,
+    ReportStillImageSensorCapabilities, ReportStillImageSensorCapabilitiesRec,
     ReportStillImageSensorCapabilitiesRecSupportedImageFormats as ImageFormats,
-    ReportStillImageSensorConfiguration, ReportVisualSensorCapabilities,
-    ReportVisualSensorCapabilitiesRec, ReportVisualSensorConfiguration, SensorIdRec,
-    SensorStateEnum, SetStillImageSensorConfiguration, SetVisualSensorConfiguration,
-    StillImageFormatEnum, StillImageSensorConfigurationRec, VisualSensorConfigurationRec,
+    ReportStillImageSensorConfiguration, SensorIdRec, SetStillImageSensorConfiguration,
+    StillImageFormatEnum, StillImageSensorConfigurationRec,
 };
 use crate::outgoing::sender_of;
 use crate::ra33::Ra33Side;
@@ -153,130 +143,9 @@ impl On<'_, Images> {
     }
 }
 
-impl parent::VisualSensor for On<'_, Images> {
-    fn send_report_visual_sensor_capabilities(
-        &mut self,
-        msg: &QueryVisualSensorCapabilities,
-        transport: &Receive,
-    ) {
-        let list = msg
-            .query_visual_sensor_capabilities_list
-            .iter()
-            .filter(|r| r.sensor_id == SENSOR_ID)
-            .map(|_| ReportVisualSensorCapabilitiesRec {
-                sensor_id: SENSOR_ID,
-                sensor_name: format!("RA 3.3 visual sensor {}", self.svc.sensor),
-                ..Default::default()
-            })
-            .collect();
-        self.reply(
-            transport,
-            ReportVisualSensorCapabilities {
-                visual_sensor_capabilities_list: list,
-            },
-        );
-    }
-
-    fn send_report_visual_sensor_configuration(
-        &mut self,
-        msg: &QueryVisualSensorConfiguration,
-        transport: &Receive,
-    ) {
-        // An RA 3.3 visual sensor takes an image whenever asked.
-        let state = SensorStateEnum::Active;
-        let list = msg
-            .query_visual_sensor_configuration_list
-            .iter()
-            .filter(|r| r.sensor_id == SENSOR_ID)
-            .map(|_| VisualSensorConfigurationRec {
-                sensor_id: SENSOR_ID,
-                sensor_state: Some(state),
-                ..Default::default()
-            })
-            .collect();
-        self.reply(
-            transport,
-            ReportVisualSensorConfiguration {
-                visual_sensor_configuration_list: list,
-            },
-        );
-    }
-
-    fn send_report_sensor_geometric_properties(
-        &mut self,
-        msg: &QuerySensorGeometricProperties,
-        transport: &Receive,
-    ) {
-        // Where the camera is on the vehicle is not known over RA 3.3.
-        let list = msg
-            .sensor_id_list
-            .iter()
-            .filter(|r| r.sensor_id == SENSOR_ID)
-            .map(|r| Placement {
-                sensor_id_rec: r.clone(),
-                geometric_properties_variant: PlacementVariant::NoGeometricPropertiesVariant(
-                    NoPlacement::default(),
-                ),
-            })
-            .collect();
-        self.reply(
-            transport,
-            ReportSensorGeometricProperties {
-                geometric_properties_list: list,
-            },
-        );
-    }
-
-    fn update_visual_sensor_configuration(
-        &mut self,
-        msg: &SetVisualSensorConfiguration,
-        transport: &Receive,
-    ) {
-        // Nothing of an RA 3.3 visual sensor is configurable this way: a sensor left
-        // Active is accepted, anything else refused.
-        let confirm_sensor_list = msg
-            .visual_sensor_configuration_list
-            .iter()
-            .map(|r| {
-                let refuse = |code, why: &str| {
-                    Confirmed::VisualSensorErrorRec(VisualError {
-                        sensor_id: r.sensor_id,
-                        visual_sensor_error_code: code,
-                        error_message: why.into(),
-                    })
-                };
-                if r.sensor_id != SENSOR_ID {
-                    return refuse(VisualCode::UnknownSensorId, "no such sensor");
-                }
-                let only_state = VisualSensorConfigurationRec {
-                    sensor_id: r.sensor_id,
-                    sensor_state: r.sensor_state,
-                    ..Default::default()
-                };
-                if *r != only_state {
-                    return refuse(
-                        VisualCode::MultipleInvalidParameters,
-                        "the RA 3.3 visual sensor has no such setting",
-                    );
-                }
-                match r.sensor_state {
-                    None | Some(SensorStateEnum::Active) => Confirmed::SensorIdRec(SensorIdRec {
-                        sensor_id: r.sensor_id,
-                    }),
-                    Some(_) => refuse(
-                        VisualCode::InvalidSensorState,
-                        "the RA 3.3 visual sensor is always active",
-                    ),
-                }
-            })
-            .collect();
-        self.reply(
-            transport,
-            ConfirmSensorConfiguration {
-                request_id_rec: msg.request_id_rec.clone(),
-                confirm_sensor_list,
-            },
-        );
+impl super::visual::OverVisualSensor for Images {
+    fn visual_sensor(&self) -> Address {
+        self.sensor
     }
 }
 

@@ -68,6 +68,13 @@ pub struct GatewayConfig {
     pub authority: u8,
     /// How often it queries the RA 3.3 sensors. Default 100 ms.
     pub poll_period: Duration,
+    /// Where a Digital Video service over the RA 3.3 Visual Sensor publishes its frames,
+    /// and its bounds; `None` (the default): no Digital Video (its frames would have
+    /// nowhere to go).
+    pub video: Option<(
+        crate::environment::VideoHub,
+        crate::environment::VideoLimits,
+    )>,
 }
 
 impl GatewayConfig {
@@ -81,6 +88,7 @@ impl GatewayConfig {
             present,
             authority: 200,
             poll_period: Duration::from_millis(100),
+            video: None,
         }
     }
 }
@@ -105,6 +113,11 @@ pub struct Gateway<A: PeerAddr = SocketAddr> {
     derived: Derived,
     /// The UGV services offered so far (each when its RA 3.3 report first came).
     ugv: crate::ugv::Offered,
+    /// Where Digital Video publishes ([`GatewayConfig::video`]).
+    video: Option<(
+        crate::environment::VideoHub,
+        crate::environment::VideoLimits,
+    )>,
 }
 
 /// Which local services a [`Gateway`] derived from global ones.
@@ -137,6 +150,7 @@ impl<A: PeerAddr> Gateway<A> {
             in_tree: HashSet::new(),
             derived: Derived::default(),
             ugv: crate::ugv::Offered::default(),
+            video: config.video,
         }
     }
 
@@ -251,6 +265,13 @@ impl<A: PeerAddr> Gateway<A> {
         services.extend(crate::ugv::found(&new));
         if let Some(a) = new.visual_sensor {
             services.push(Box::new(crate::environment::StillImage::new(a)));
+            if let Some((hub, limits)) = &self.video {
+                services.push(Box::new(crate::environment::DigitalVideo::new(
+                    a,
+                    hub.clone(),
+                    *limits,
+                )));
+            }
         }
         let Some(c) = self.node.component_mut(self.as4) else {
             return;

@@ -1,5 +1,7 @@
 //! Raster images as cameras deliver them ([`RgbImage`]) and their encodings for Report
-//! Image: PNG (through the `png` crate) and binary PPM.
+//! Image: PNG (through the `png` crate) and binary PPM; baseline JPEG (through the
+//! `jpeg-encoder` crate) for video frames; and the way back ([`decode`]) from PNG and
+//! PPM, bounded before any pixel is decoded.
 
 use crate::messages::ImageFormat;
 
@@ -61,12 +63,38 @@ pub enum ImageError {
     /// The PNG encoder failed.
     #[error("PNG encoding: {0}")]
     Png(String),
+    /// The JPEG encoder failed.
+    #[error("JPEG encoding: {0}")]
+    Jpeg(String),
+    /// The bytes are not an image of the format they were said to be.
+    #[error("{format:?} decoding: {why}")]
+    Decode {
+        /// The format expected.
+        format: ImageFormat,
+        /// What is wrong.
+        why: String,
+    },
+    /// The image would be larger than allowed (checked before its pixels are decoded).
+    #[error("a {width}×{height} image ({bytes} bytes as RGB) is over the {limit}-byte limit")]
+    TooLarge {
+        /// Width, pixels.
+        width: u32,
+        /// Height, pixels.
+        height: u32,
+        /// Its size as RGB (or as given, if larger), bytes.
+        bytes: usize,
+        /// The limit, bytes.
+        limit: usize,
+    },
 }
 
-/// The formats [`encode`] writes.
+/// The formats the stock camera offers (Report Image); [`encode`] writes JPEG too.
 pub const FORMATS: [ImageFormat; 2] = [ImageFormat::Png, ImageFormat::Ppm];
 
-/// `image` in `format` (PNG or PPM).
+/// The quality [`encode`] gives JPEG (1–100).
+pub const JPEG_QUALITY: u8 = 80;
+
+/// `image` in `format` (PNG, PPM or JPEG).
 pub fn encode(image: &RgbImage, format: ImageFormat) -> Result<Vec<u8>, ImageError> {
     let expected = usize::from(image.width) * usize::from(image.height) * 3;
     if image.pixels.len() != expected {
@@ -95,8 +123,144 @@ pub fn encode(image: &RgbImage, format: ImageFormat) -> Result<Vec<u8>, ImageErr
             out.extend_from_slice(&image.pixels);
             Ok(out)
         }
+        ImageFormat::Jpeg => {
+            let mut out = Vec::new();
+            jpeg_encoder::Encoder::new(&mut out, JPEG_QUALITY)
+                .encode(
+                    &image.pixels,
+                    image.width,
+                    image.height,
+                    jpeg_encoder::ColorType::Rgb,
+                )
+                .map_err(|e| ImageError::Jpeg(e.to_string()))?;
+            Ok(out)
+        }
         other => Err(ImageError::Format(other)),
     }
+}
+
+/// `data`, an image in `format` (PNG or PPM), as RGB: PNG palettes and low bit depths
+/// expanded, 16 bits to 8, grey replicated, alpha dropped. Refused, before its pixels
+/// are decoded, when it would take more than `max_bytes` as RGB (or as decoded).
+pub fn decode(format: ImageFormat, data: &[u8], max_bytes: usize) -> Result<RgbImage, ImageError> {
+    match format {
+        ImageFormat::Png => decode_png(data, max_bytes),
+        ImageFormat::Ppm => decode_ppm(data, max_bytes),
+        other => Err(ImageError::Format(other)),
+    }
+}
+
+/// Checks a `width` × `height` image of `given` bytes against `limit` (and `u16` sides).
+fn check_size(width: u32, height: u32, given: usize, limit: usize) -> Result<(), ImageError> {
+    let rgb = (width as usize)
+        .saturating_mul(height as usize)
+        .saturating_mul(3);
+    let bytes = rgb.max(given);
+    if width > u32::from(u16::MAX) || height > u32::from(u16::MAX) || bytes > limit {
+        return Err(ImageError::TooLarge {
+            width,
+            height,
+            bytes,
+            limit,
+        });
+    }
+    Ok(())
+}
+
+fn decode_png(data: &[u8], max_bytes: usize) -> Result<RgbImage, ImageError> {
+    let bad = |e: png::DecodingError| ImageError::Decode {
+        format: ImageFormat::Png,
+        why: e.to_string(),
+    };
+    let mut d = png::Decoder::new_with_limits(data, png::Limits { bytes: max_bytes });
+    d.set_transformations(png::Transformations::EXPAND | png::Transformations::STRIP_16);
+    let mut r = d.read_info().map_err(bad)?;
+    let (w, h) = (r.info().width, r.info().height);
+    check_size(w, h, 0, max_bytes)?;
+    let mut buf = vec![0; r.output_buffer_size()];
+    let f = r.next_frame(&mut buf).map_err(bad)?;
+    let bpp = match f.color_type {
+        png::ColorType::Grayscale => 1,
+        png::ColorType::GrayscaleAlpha => 2,
+        png::ColorType::Rgb => 3,
+        png::ColorType::Rgba => 4,
+        png::ColorType::Indexed => {
+            return Err(ImageError::Decode {
+                format: ImageFormat::Png,
+                why: "a palette left unexpanded".into(),
+            })
+        }
+    };
+    let (w, h) = (w as usize, h as usize);
+    let mut pixels = Vec::with_capacity(w * h * 3);
+    for y in 0..h {
+        let start = y.saturating_mul(f.line_size);
+        let row = buf
+            .get(start..start.saturating_add(w * bpp))
+            .ok_or_else(|| ImageError::Decode {
+                format: ImageFormat::Png,
+                why: format!("row {y} is short"),
+            })?;
+        for p in row.chunks_exact(bpp) {
+            pixels.extend_from_slice(&if bpp < 3 {
+                [p[0]; 3]
+            } else {
+                [p[0], p[1], p[2]]
+            });
+        }
+    }
+    // check_size bounded both sides to u16.
+    Ok(RgbImage {
+        width: w as u16,
+        height: h as u16,
+        pixels,
+    })
+}
+
+/// Binary PPM (`P6`, maxval 255, `#` comments in the header).
+fn decode_ppm(data: &[u8], max_bytes: usize) -> Result<RgbImage, ImageError> {
+    let bad = |why: &str| ImageError::Decode {
+        format: ImageFormat::Ppm,
+        why: why.into(),
+    };
+    let mut at = 0;
+    let mut token = || -> Option<&[u8]> {
+        loop {
+            match data.get(at)? {
+                b'#' => {
+                    while *data.get(at)? != b'\n' {
+                        at += 1;
+                    }
+                }
+                c if c.is_ascii_whitespace() => at += 1,
+                _ => break,
+            }
+        }
+        let start = at;
+        while data.get(at).is_some_and(|c| !c.is_ascii_whitespace()) {
+            at += 1;
+        }
+        Some(&data[start..at])
+    };
+    let number = |t: Option<&[u8]>| -> Option<u32> { std::str::from_utf8(t?).ok()?.parse().ok() };
+    if token() != Some(b"P6".as_slice()) {
+        return Err(bad("not a binary PPM (P6)"));
+    }
+    let (w, h, max) = (number(token()), number(token()), number(token()));
+    let (Some(w), Some(h), Some(255)) = (w, h, max) else {
+        return Err(bad("a header of width, height and maxval 255 expected"));
+    };
+    check_size(w, h, 0, max_bytes)?;
+    // One whitespace byte ends the header.
+    let pixels = data
+        .get(at + 1..)
+        .and_then(|p| p.get(..w as usize * h as usize * 3))
+        .ok_or_else(|| bad("fewer pixel bytes than the header says"))?;
+    Ok(RgbImage {
+        width: w as u16,
+        height: h as u16,
+        pixels: pixels.to_vec(),
+    })
 }
 
 #[cfg(test)]
@@ -118,10 +282,46 @@ mod tests {
         let ppm = encode(&img, ImageFormat::Ppm).unwrap();
         assert!(ppm.starts_with(b"P6\n4 3\n255\n"));
         assert_eq!(ppm.len(), 11 + 36);
+        assert_eq!(decode(ImageFormat::Png, &png, 1 << 20).unwrap(), img);
+        assert_eq!(decode(ImageFormat::Ppm, &ppm, 1 << 20).unwrap(), img);
+        let jpeg = encode(&img, ImageFormat::Jpeg).unwrap();
+        assert!(jpeg.starts_with(&[0xFF, 0xD8]) && jpeg.ends_with(&[0xFF, 0xD9]));
         assert_eq!(
-            encode(&img, ImageFormat::Jpeg),
-            Err(ImageError::Format(ImageFormat::Jpeg))
+            encode(&img, ImageFormat::Gif),
+            Err(ImageError::Format(ImageFormat::Gif))
         );
+        // Bounded before decoding; bad bytes are typed errors.
+        assert!(matches!(
+            decode(ImageFormat::Png, &png, 30),
+            Err(ImageError::TooLarge {
+                width: 4,
+                height: 3,
+                bytes: 36,
+                limit: 30
+            })
+        ));
+        assert!(matches!(
+            decode(ImageFormat::Ppm, b"P6\n4000 4000\n255\n", 1 << 20),
+            Err(ImageError::TooLarge { .. })
+        ));
+        for short in [
+            &png[..png.len() - 20],
+            b"P6\n4 3\n255\nabc".as_slice(),
+            b"P3\n1 1\n255\n",
+        ] {
+            let format = if short.starts_with(b"P") {
+                ImageFormat::Ppm
+            } else {
+                ImageFormat::Png
+            };
+            assert!(
+                matches!(
+                    decode(format, short, 1 << 20),
+                    Err(ImageError::Decode { .. })
+                ),
+                "{short:?}"
+            );
+        }
         img.pixels.pop();
         assert!(matches!(
             encode(&img, ImageFormat::Png),
