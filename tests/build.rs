@@ -9,11 +9,15 @@
 //! `tests/as4_regenerate.rs` runs a component on it. And it generates a vendor's own
 //! AS-4 service on jaus-as4's definitions (`as4-vendor/lamp.yaml`, `extends: as4`), as a
 //! vendor's build script does (`vendor_as4`); `tests/as4_vendor_service.rs` runs it.
+//! And it generates the standard's first revisions as jaus-as4 holds them (Core v1.0 and
+//! Manipulator v1.0, `sdk/as4/revisions/`), which `tests/as4_first_revisions.rs` compiles
+//! and runs: what `jaus-gen diff` compares is code a vendor could build.
 
 fn main() {
     let out = std::env::var("OUT_DIR").expect("cargo sets OUT_DIR");
     regenerate_core(&out);
     vendor_as4(&out);
+    first_revisions(&out);
     if let Err(e) = jaus_gen::Builder::new()
         .overlay("vendor/acme.yaml")
         .lock("vendor/acme.lock")
@@ -113,4 +117,22 @@ fn vendor_as4(out: &str) {
         std::fs::write(target, text).expect("write the edited lamp.yaml");
     }
     generate(&spec, &edited, false);
+}
+
+/// Generates `sdk/as4/revisions/core-v1.0` with `manipulator-v1.0` (the first revisions
+/// of both sets, written as jaus-as4's definitions are) into `OUT_DIR/as4-v1.0`.
+fn first_revisions(out: &str) {
+    let root = std::path::Path::new("../sdk/as4/revisions");
+    let dir = std::path::Path::new(out).join("as4-v1.0");
+    std::fs::create_dir_all(&dir).expect("create OUT_DIR/as4-v1.0");
+    if let Err(e) = jaus_gen::Builder::new()
+        .spec_dir(root.join("core-v1.0"))
+        .spec_dir(root.join("manipulator-v1.0"))
+        .runtime_path("::jaus")
+        .out_dir(&dir)
+        .generate()
+    {
+        eprintln!("{e}");
+        std::process::exit(1);
+    }
 }

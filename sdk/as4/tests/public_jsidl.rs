@@ -3,8 +3,9 @@
 //! Runs only when `JAUS_JSIDL_DIR` names the `GUI/resources/xml` directory of the JAUS
 //! Tool Set repository (it holds `urn.jaus.jss.core-v1.1`, `urn.jaus.jss.core-v1.0`,
 //! `urn.jaus.jss.mobility`, `urn.jaus.jss.manipulator-v2.0`,
-//! `urn.jaus.jss.environmentSensing`, `urn.jaus.jss.ugv`, `urn.jaus.jss.missionSpooler`
-//! and `urn.jaus.jss.hmi`); otherwise it says that it skipped and passes:
+//! `urn.jaus.jss.manipulator-v1.0`, `urn.jaus.jss.environmentSensing`,
+//! `urn.jaus.jss.ugv`, `urn.jaus.jss.missionSpooler` and `urn.jaus.jss.hmi`); otherwise
+//! it says that it skipped and passes:
 //!
 //! ```sh
 //! JAUS_JSIDL_DIR=/path/to/jaustoolset/GUI/resources/xml \
@@ -23,6 +24,10 @@
 //! layout is split into named types may differ; the bytes may not. Where both sides
 //! name the values of an enumeration, the members of a bit field or a unit, those must
 //! agree too, and so must `is_command`.
+//!
+//! The first revisions kept for `jaus-gen diff` (`revisions/core-v1.0/` with
+//! `revisions/manipulator-v1.0/`) are compared the same way with Core v1.0 and
+//! Manipulator v1.0 (imported with Core v1.0).
 
 use jaus_gen::snapshot::{wire_text, FieldSnap, FormSnap, MessageSnap, Snapshot, TypeSnap};
 use jaus_spec::{Bits, Spec, Wire};
@@ -33,8 +38,9 @@ mod jsidl_common;
 use jsidl_common::copy_without;
 
 /// Messages the public JSIDL marks `is_command="false"` although they command: Manipulator
-/// v2.0's Execute List (0x061E) starts the list driver's motion, as Mobility's Execute List
-/// (0x041E, a command in its JSIDL) does. Ours are commands; only the flag differs.
+/// v2.0's (and v1.0's) Execute List (0x061E) starts the list driver's motion, as
+/// Mobility's Execute List (0x041E, a command in its JSIDL) does. Ours are commands; only
+/// the flag differs.
 const COMMAND_AS_PUBLISHED_IS_NOT: &[u16] = &[0x061E];
 
 /// One item of a flattened layout.
@@ -281,8 +287,6 @@ fn our_yaml_has_the_wire_layout_of_the_public_jsidl() {
     };
     let defs = Path::new(env!("CARGO_MANIFEST_DIR")).join("defs");
     let spec = jaus_spec::load_dirs(&[&defs]).expect("our definitions validate");
-    let ours = Snapshot::from_spec(&spec);
-    let our_commands = commands(&spec);
 
     let core = import(
         "Core v1.1",
@@ -351,21 +355,107 @@ fn our_yaml_has_the_wire_layout_of_the_public_jsidl() {
         "jaus_jss_hmi",
     );
 
+    assert_same_layouts(
+        &spec,
+        &[
+            &core,
+            &core_v1_0,
+            &mobility,
+            &manipulator,
+            &environment,
+            &ugv,
+            &mission_spooling,
+            &hmi,
+        ],
+    );
+}
+
+/// Our first revisions of Core and Manipulator (`revisions/core-v1.0/` and
+/// `revisions/manipulator-v1.0/`, loaded together as `jaus-gen diff` loads them) against
+/// the public JSIDL of Core v1.0 and of Manipulator v1.0 (imported with Core v1.0): every
+/// message of both, byte for byte, as the test above compares `defs/`.
+#[test]
+fn our_v1_0_revisions_have_the_wire_layout_of_the_public_jsidl() {
+    let Some(root) = std::env::var_os("JAUS_JSIDL_DIR").map(PathBuf::from) else {
+        println!("skipped: set JAUS_JSIDL_DIR to compare our v1.0 revisions with the public JSIDL");
+        return;
+    };
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("revisions");
+    let spec = jaus_spec::load_dirs(&[dir.join("core-v1.0"), dir.join("manipulator-v1.0")])
+        .expect("our v1.0 definitions validate");
+    let core_v1_0 = import(
+        "Core v1.0",
+        &[root.join("urn.jaus.jss.core-v1.0")],
+        "jaus_jss_core_v1_0",
+    );
+    let manipulator_v1_0 = import(
+        "Manipulator v1.0",
+        &[
+            root.join("urn.jaus.jss.core-v1.0"),
+            root.join("urn.jaus.jss.manipulator-v1.0"),
+        ],
+        "jaus_jss_manipulator_v1_0",
+    );
+    assert_same_layouts(&spec, &[&core_v1_0, &manipulator_v1_0]);
+}
+
+/// [`compare_sets`], and every message of `spec` compared: fails on any problem.
+fn assert_same_layouts(spec: &Spec, sets: &[&Imported]) {
+    let (problems, covered, compared) = compare_sets(spec, sets);
+    println!(
+        "{compared} comparisons, {} distinct messages, {} of ours",
+        covered.len(),
+        spec.messages.len()
+    );
+    assert!(
+        problems.is_empty(),
+        "{} difference(s) from the public JSIDL:\n{}",
+        problems.len(),
+        problems.join("\n")
+    );
+    assert_eq!(covered.len(), spec.messages.len());
+}
+
+/// The flattening itself: a record of one field is that field, an enumeration is its
+/// integer, and a moved field is found.
+#[test]
+fn flattening_ignores_names_and_records_but_not_bytes() {
+    let load = |yaml: &str| {
+        let spec = jaus_spec::load_texts(vec![(PathBuf::from("t.yaml"), yaml.to_string())])
+            .expect("test YAML validates");
+        Snapshot::from_spec(&spec)
+    };
+    let a = load(
+        "extends: none\ngroup: t\ntypes:\n  - { name: Id, kind: record, fields: [{ name: id, type: u8 }] }\n  - { name: Kind, kind: enum, repr: u8, values: [{ name: A, value: 0 }] }\nmessages:\n  - { name: SetThing, code: 0x0D00, fields: [{ name: r, type: Id }, { name: k, type: Kind }, { name: n, type: u16 }] }\n",
+    );
+    let b = load(
+        "extends: none\ngroup: t\nmessages:\n  - { name: SetOther, code: 0x0D00, fields: [{ name: id, type: u8 }, { name: kind, type: u8 }, { name: count, type: u16 }] }\n",
+    );
+    let c = load(
+        "extends: none\ngroup: t\nmessages:\n  - { name: SetOther, code: 0x0D00, fields: [{ name: count, type: u16 }, { name: id, type: u8 }, { name: kind, type: u8 }] }\n",
+    );
+    let flat = |s: &Snapshot| Flattener::new(s).message(&s.messages[0]);
+    assert!(compare(&flat(&a), &flat(&b)).is_empty());
+    let d = compare(&flat(&a), &flat(&c));
+    assert_eq!(d.len(), 1, "{d:?}");
+    assert!(
+        d[0].contains("ours `u8`") && d[0].contains("JSIDL's `u16`"),
+        "{d:?}"
+    );
+}
+
+/// Compares the messages of each imported set (those of its group) with ours, by code:
+/// a message missing here, a difference of layout and a differing `is_command` are
+/// problems. Returns the problems, the codes compared and the number of comparisons.
+fn compare_sets(spec: &Spec, sets: &[&Imported]) -> (Vec<String>, BTreeSet<u16>, usize) {
+    let ours = Snapshot::from_spec(spec);
+    let our_commands = commands(spec);
     let our_flat = Flattener::new(&ours);
     let by_code: BTreeMap<u16, &MessageSnap> = ours.messages.iter().map(|m| (m.code, m)).collect();
     let mut problems = Vec::new();
     let mut covered = BTreeSet::new();
     let mut compared = 0;
-    for set in [
-        &core,
-        &core_v1_0,
-        &mobility,
-        &manipulator,
-        &environment,
-        &ugv,
-        &mission_spooling,
-        &hmi,
-    ] {
+    for set in sets {
         let flat = Flattener::new(&set.snap);
         let mut n = 0;
         for m in set
@@ -405,44 +495,5 @@ fn our_yaml_has_the_wire_layout_of_the_public_jsidl() {
             ));
         }
     }
-    println!(
-        "{compared} comparisons, {} distinct messages, {} of ours",
-        covered.len(),
-        ours.messages.len()
-    );
-    assert!(
-        problems.is_empty(),
-        "{} difference(s) from the public JSIDL:\n{}",
-        problems.len(),
-        problems.join("\n")
-    );
-    assert_eq!(covered.len(), ours.messages.len());
-}
-
-/// The flattening itself: a record of one field is that field, an enumeration is its
-/// integer, and a moved field is found.
-#[test]
-fn flattening_ignores_names_and_records_but_not_bytes() {
-    let load = |yaml: &str| {
-        let spec = jaus_spec::load_texts(vec![(PathBuf::from("t.yaml"), yaml.to_string())])
-            .expect("test YAML validates");
-        Snapshot::from_spec(&spec)
-    };
-    let a = load(
-        "extends: none\ngroup: t\ntypes:\n  - { name: Id, kind: record, fields: [{ name: id, type: u8 }] }\n  - { name: Kind, kind: enum, repr: u8, values: [{ name: A, value: 0 }] }\nmessages:\n  - { name: SetThing, code: 0x0D00, fields: [{ name: r, type: Id }, { name: k, type: Kind }, { name: n, type: u16 }] }\n",
-    );
-    let b = load(
-        "extends: none\ngroup: t\nmessages:\n  - { name: SetOther, code: 0x0D00, fields: [{ name: id, type: u8 }, { name: kind, type: u8 }, { name: count, type: u16 }] }\n",
-    );
-    let c = load(
-        "extends: none\ngroup: t\nmessages:\n  - { name: SetOther, code: 0x0D00, fields: [{ name: count, type: u16 }, { name: id, type: u8 }, { name: kind, type: u8 }] }\n",
-    );
-    let flat = |s: &Snapshot| Flattener::new(s).message(&s.messages[0]);
-    assert!(compare(&flat(&a), &flat(&b)).is_empty());
-    let d = compare(&flat(&a), &flat(&c));
-    assert_eq!(d.len(), 1, "{d:?}");
-    assert!(
-        d[0].contains("ours `u8`") && d[0].contains("JSIDL's `u16`"),
-        "{d:?}"
-    );
+    (problems, covered, compared)
 }

@@ -4,6 +4,9 @@
 //! Core v1.0, service by service: the same states, and per state the same
 //! triggers with the same guards and the same kind and target; differences are listed,
 //! and only the refinements that `core_services.yaml` declares at its top may remain.
+//! The other sets' services are compared by what they take (trigger and guard); our
+//! Manipulator v1.0 (`revisions/manipulator-v1.0/`) state by state, as its header
+//! declares.
 //!
 //! Runs only when `JAUS_JSIDL_DIR` names the `GUI/resources/xml` directory of the JAUS
 //! Tool Set repository; otherwise it says that it skipped and passes:
@@ -821,4 +824,200 @@ fn our_hmi_machines_take_what_the_public_jsidl_takes() {
         (&[], &[]),
         "hmi_services.yaml",
     );
+}
+
+/// The twenty services of Manipulator v1.0.
+const MANIPULATOR_1_0: &[&str] = &[
+    "ManipulatorJointPositionSensor",
+    "ManipulatorJointVelocitySensor",
+    "ManipulatorJointForceTorqueSensor",
+    "ManipulatorEndEffectorPoseSensor",
+    "ManipulatorEndEffectorVelocityStateSensor",
+    "ManipulatorJointPositionDriver",
+    "ManipulatorEndEffectorPoseDriver",
+    "ManipulatorJointVelocitiesDriver",
+    "ManipulatorEndEffectorVelocityStateDriver",
+    "ManipulatorActuatorForceTorqueDriver",
+    "ListManager",
+    "ManipulatorJointPositionsListDriver",
+    "ManipulatorEndEffectorPoseListDriver",
+    "PanTiltJointPositionDriver",
+    "PanTiltJointPositionSensor",
+    "PanTiltJointVelocitiesDriver",
+    "PanTiltJointVelocitySensor",
+    "PrimitiveEndEffector",
+    "PrimitiveManipulator",
+    "PrimitivePanTilt",
+];
+
+/// The first refinement `revisions/manipulator-v1.0/manipulator_services.yaml` declares:
+/// a query the JSIDL takes, with the same guard, in both states of a pair (not
+/// controlled, controlled) is taken once in `Receiving.Ready`, whatever the state.
+const QUERIES_ONCE: &[(&str, &str)] = &[
+    // The drivers, on Management v1.0.
+    (
+        "Receiving.Ready.NotControlled.StateA",
+        "Receiving.Ready.Controlled.StateB",
+    ),
+    // The end-effector sensors, on Access Control v1.0.
+    (
+        "Receiving.Ready.NotControlled",
+        "Receiving.Ready.Controlled",
+    ),
+];
+
+/// The other differences it declares, row by row (`ListDriver` is either list driver).
+const MANIPULATOR_OURS_1_0: &[&str] = &[
+    // The List Manager: one Set Element and one Delete Element, the action decides.
+    "ListManager: in Receiving.Ready.Controlled.StateB on SetElement [iscontrollingclient]",
+    "ListManager: in Receiving.Ready.Controlled.StateB on DeleteElement [iscontrollingclient]",
+];
+const MANIPULATOR_THEIRS_1_0: &[&str] = &[
+    // The List Manager: validity, support and existence decided in the actions.
+    "ListManager: in Receiving.Ready.Controlled.StateB on SetElement [iscontrollingclient && isvalidelementrequest && iselementsupported]",
+    "ListManager: in Receiving.Ready.Controlled.StateB on SetElement [iscontrollingclient && !isvalidelementrequest]",
+    "ListManager: in Receiving.Ready.Controlled.StateB on SetElement [iscontrollingclient && !iselementsupported]",
+    "ListManager: in Receiving.Ready.Controlled.StateB on DeleteElement [iscontrollingclient && elementexists]",
+    "ListManager: in Receiving.Ready.Controlled.StateB on DeleteElement [iscontrollingclient && !elementexists]",
+    // The list drivers' copy of the List Manager's Set Element, not repeated.
+    "ListDriver: in Receiving.Ready.Controlled.StateB on SetElement [iscontrollingclient && isvalidelementrequest && iselementsupported]",
+    "ListDriver: in Receiving.Ready.Controlled.StateB on SetElement [iscontrollingclient && !isvalidelementrequest]",
+    "ListDriver: in Receiving.Ready.Controlled.StateB on SetElement [iscontrollingclient && !iselementsupported]",
+];
+
+/// Our Manipulator v1.0 (`revisions/manipulator-v1.0/`, on `revisions/core-v1.0/`)
+/// against the public JSIDL of Manipulator v1.0 (imported with Core v1.0), service by
+/// service: the same parent, the same states, and per state the same triggers with the
+/// same guards, but for what its header declares ([`QUERIES_ONCE`] and the rows of
+/// [`MANIPULATOR_OURS_1_0`] and [`MANIPULATOR_THEIRS_1_0`]). A state only the JSIDL has
+/// must hold nothing but queries that ours answers once in `Receiving.Ready`.
+#[test]
+fn our_manipulator_v1_0_revision_has_the_behaviour_of_the_public_jsidl() {
+    let Some(root) = std::env::var_os("JAUS_JSIDL_DIR").map(PathBuf::from) else {
+        println!(
+            "skipped: set JAUS_JSIDL_DIR to compare our Manipulator v1.0 with the public JSIDL"
+        );
+        return;
+    };
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("revisions");
+    let ours = jaus_spec::load_dirs(&[dir.join("core-v1.0"), dir.join("manipulator-v1.0")])
+        .expect("our v1.0 definitions validate");
+    let theirs = jaus_jsidl::import(&[
+        root.join("urn.jaus.jss.core-v1.0"),
+        root.join("urn.jaus.jss.manipulator-v1.0"),
+    ])
+    .and_then(|i| i.load())
+    .unwrap_or_else(|e| panic!("importing Manipulator v1.0: {e}"));
+    assert_eq!(
+        ours.services
+            .iter()
+            .filter(|s| s.def.id.starts_with("urn:jaus:jss:manipulator:"))
+            .count(),
+        MANIPULATOR_1_0.len()
+    );
+    let mut unexplained = Vec::new();
+    let mut compared = 0;
+    for &name in MANIPULATOR_1_0 {
+        let id = format!("urn:jaus:jss:manipulator:{name}");
+        let (Some(o), Some(t)) = (service(&ours, &id), service(&theirs, &id)) else {
+            panic!("service {id} missing: ours or the JSIDL's");
+        };
+        let parent = |s: &ServiceDef| {
+            s.inherits
+                .as_ref()
+                .map(|i| (i.id.clone(), i.version.clone()))
+        };
+        if parent(o) != parent(t) {
+            unexplained.push(format!(
+                "{name}: inherits {:?}, the JSIDL's {:?}",
+                parent(o),
+                parent(t)
+            ));
+        }
+        let label = if name.ends_with("ListDriver") {
+            "ListDriver"
+        } else {
+            name
+        };
+        let (o_states, o_rows) = per_state(&ours, o, |n| named_as_in(&ours, &theirs, n));
+        let (t_states, t_rows) = per_state(&theirs, t, |n| n.to_string());
+        println!(
+            "{name}: {} states, {} (trigger, guard) pairs in the JSIDL; {} states, {} here",
+            t_states.len(),
+            t_rows.len(),
+            o_states.len(),
+            o_rows.len()
+        );
+        compared += o_rows.intersection(&t_rows).count();
+        let mut ours_only: BTreeSet<(String, String)> =
+            o_rows.difference(&t_rows).cloned().collect();
+        let mut theirs_only: BTreeSet<(String, String)> =
+            t_rows.difference(&o_rows).cloned().collect();
+        // Queries taken once in Receiving.Ready: their pair of rows in the JSIDL goes.
+        let mut folded = BTreeSet::new();
+        for (state, take) in ours_only.clone() {
+            if state != "Receiving.Ready" || !take.starts_with("on Query") {
+                continue;
+            }
+            for &(a, b) in QUERIES_ONCE {
+                let pair = [(a.to_string(), take.clone()), (b.to_string(), take.clone())];
+                if pair.iter().all(|r| theirs_only.contains(r)) {
+                    for r in &pair {
+                        theirs_only.remove(r);
+                        folded.insert(r.0.clone());
+                    }
+                    ours_only.remove(&(state.clone(), take.clone()));
+                    break;
+                }
+            }
+        }
+        let row = |(s, take): &(String, String)| format!("{label}: in {s} {take}");
+        for r in &theirs_only {
+            if !MANIPULATOR_THEIRS_1_0.contains(&row(r).as_str()) {
+                unexplained.push(format!("{name}: only in the JSIDL: in {} {}", r.0, r.1));
+            }
+        }
+        for r in &ours_only {
+            if !MANIPULATOR_OURS_1_0.contains(&row(r).as_str()) {
+                unexplained.push(format!("{name}: only ours: in {} {}", r.0, r.1));
+            }
+        }
+        // A state only the JSIDL has held queries folded into Receiving.Ready, and
+        // nothing else (in it or below it).
+        for s in t_states.difference(&o_states) {
+            let inside = |st: &String| st == s || st.starts_with(&format!("{s}."));
+            let held_folded = folded.iter().any(inside);
+            let held_other = t_rows.iter().any(|(st, take)| {
+                inside(st) && !folded.contains(st) && !o_rows.contains(&(st.clone(), take.clone()))
+            });
+            if !held_folded || held_other {
+                unexplained.push(format!("{name}: state {s} of the JSIDL is not ours"));
+            }
+        }
+        for s in o_states.difference(&t_states) {
+            unexplained.push(format!("{name}: state {s} is ours only"));
+        }
+    }
+    println!("{compared} (state, trigger, guard) rows identical");
+    assert!(compared > 0, "nothing compared");
+    assert!(
+        unexplained.is_empty(),
+        "differences not declared in revisions/manipulator-v1.0/manipulator_services.yaml:\n{}",
+        unexplained.join("\n")
+    );
+}
+
+/// The states of a service's own machines and what it takes in each: `(state, "on
+/// Trigger [guard]")`, each trigger named by `name`.
+fn per_state(
+    spec: &Spec,
+    s: &ServiceDef,
+    name: impl Fn(&str) -> String,
+) -> (BTreeSet<String>, BTreeSet<(String, String)>) {
+    let (states, rows) = behaviour(spec, s);
+    let rows = rows
+        .into_iter()
+        .map(|r| (r.state, format!("on {} [{}]", name(&r.trigger), r.guard)))
+        .collect();
+    (states, rows)
 }
