@@ -23,6 +23,7 @@ pub mod host;
 mod links_file;
 mod policy_file;
 mod sim_lights;
+pub mod video;
 
 pub use attach::{attach_openjaus, OjNodeManager};
 pub use file::run::node;

@@ -328,6 +328,8 @@ pub struct FrameFile {
 ///                           # needs bind 0.0.0.0; nothing is ever sent to it
 ///   mission_spooler:        # an AS-4 Mission Spooler on its own component (see
 ///     component: 5          #   MissionSpoolerFile)
+///   video:                  # Digital Video over the RA 3.3 Visual Sensor, MJPEG over
+///     listen: 127.0.0.1:8090  # HTTP at http://<listen>/video/1 (see video::VideoFile)
 /// ```
 #[derive(Debug, Clone, Default, serde::Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -364,6 +366,10 @@ pub struct As4File {
     /// (`jaus_as4::mission`), beside the gateway's on the same socket.
     #[serde(default)]
     pub mission_spooler: Option<MissionSpoolerFile>,
+    /// AS-4 Digital Video over the RA 3.3 Visual Sensor, its frames served as MJPEG over
+    /// HTTP ([`crate::video::VideoFile`]); without it, no Digital Video.
+    #[serde(default)]
+    pub video: Option<crate::video::VideoFile>,
 }
 
 /// `as4: { mission_spooler: … }` of a node file: an AS-4 component of its own (the

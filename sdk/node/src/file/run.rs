@@ -92,7 +92,7 @@ pub fn node(
             );
         }
     }
-    let as4 = file.as4_config();
+    let mut as4 = file.as4_config();
     if let Some(gw) = &as4 {
         let _ = writeln!(
             out,
@@ -100,6 +100,24 @@ pub fn node(
             gw.as4, gw.present, gw.ra33
         );
     }
+    // Digital Video: the gateway's service publishes to the hub, the server serves it.
+    let video = match (&mut as4, file.as4.as_ref().and_then(|a| a.video.as_ref())) {
+        (Some(gw), Some(v)) => {
+            let (hub, limits) = v.hub();
+            let server = crate::video::MjpegServer::start(v, hub.clone())
+                .map_err(|e| format!("{}: as4.video.listen {}: {e}", config.display(), v.listen))?;
+            let _ = writeln!(
+                out,
+                "AS-4 Digital Video of the RA 3.3 visual sensor: MJPEG at http://{}/video/1{} while an AS-4 client plays it (at most {} frames/s)",
+                server.local_addr(),
+                if v.token.is_some() { "?token=…" } else { "" },
+                limits.max_frame_rate
+            );
+            gw.video = Some((hub, limits));
+            Some(server)
+        }
+        _ => None,
+    };
     if let (Some(gw), Some(m)) = (
         &as4,
         file.as4.as_ref().and_then(|a| a.mission_spooler.as_ref()),
@@ -367,6 +385,9 @@ pub fn node(
     }
     if let Some(line) = &as4_line {
         let _ = writeln!(out, "{line}");
+    }
+    if let Some(v) = video {
+        let _ = writeln!(out, "{}", v.stats_line());
     }
     if let Some(link) = ros2 {
         for e in link.events() {

@@ -151,8 +151,9 @@ impl VideoHub {
         })
     }
 
-    /// Adds sensor `sensor`'s stream, stopped (a service's).
-    pub(crate) fn add_stream(&self, sensor: u16) {
+    /// Adds sensor `sensor`'s stream, stopped (a Digital Video service does, for each
+    /// sensor it streams; a vendor's own service over its own camera too).
+    pub fn add_stream(&self, sensor: u16) {
         self.lock().entry(sensor).or_insert(Slot {
             state: StreamState::Stopped,
             latest: None,
@@ -161,7 +162,7 @@ impl VideoHub {
     }
 
     /// Sets the state of sensor `sensor`'s stream (stopping forgets its frame).
-    pub(crate) fn set_state(&self, sensor: u16, state: StreamState) {
+    pub fn set_state(&self, sensor: u16, state: StreamState) {
         if let Some(s) = self.lock().get_mut(&sensor) {
             s.state = state;
             if state == StreamState::Stopped {
@@ -172,7 +173,7 @@ impl VideoHub {
     }
 
     /// Publishes a frame of sensor `sensor`, taken at `at`.
-    pub(crate) fn publish(&self, sensor: u16, at: Instant, jpeg: Vec<u8>) {
+    pub fn publish(&self, sensor: u16, at: Instant, jpeg: Vec<u8>) {
         if let Some(s) = self.lock().get_mut(&sensor) {
             s.stats.published += 1;
             s.latest = Some(Frame {
@@ -185,7 +186,7 @@ impl VideoHub {
     }
 
     /// Counts a camera image of sensor `sensor` that did not become a frame.
-    pub(crate) fn dropped(&self, sensor: u16) {
+    pub fn dropped(&self, sensor: u16) {
         if let Some(s) = self.lock().get_mut(&sensor) {
             s.stats.dropped += 1;
         }
