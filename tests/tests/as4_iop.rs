@@ -159,14 +159,16 @@ fn jaus_node(
     Arc<AtomicBool>,
     std::thread::JoinHandle<(Result<(), String>, String)>,
 ) {
-    jaus_node_hosting(tag, "[vehicle]")
+    jaus_node_hosting(tag, "[vehicle]", "{}")
 }
 
-/// [`jaus_node`] hosting `host` (a node file's `host:` list).
+/// [`jaus_node`] hosting `host` (a node file's `host:` list), `as4` its `as4:` (flow
+/// YAML).
 #[allow(clippy::type_complexity)]
 fn jaus_node_hosting(
     tag: &str,
     host: &str,
+    as4: &str,
 ) -> (
     u16,
     Arc<AtomicBool>,
@@ -183,7 +185,7 @@ fn jaus_node_hosting(
     std::fs::write(
         &file,
         format!(
-            "subsystem: 1\nnode: 1\nsubsystem_name: demo vehicle\nbind: 127.0.0.1:{port}\nhost: {host}\nas4: {{}}\n"
+            "subsystem: 1\nnode: 1\nsubsystem_name: demo vehicle\nbind: 127.0.0.1:{port}\nhost: {host}\nas4: {as4}\n"
         ),
     )
     .unwrap();
@@ -219,8 +221,9 @@ fn the_iop_scenario_passes_over_udp_against_jaus_node() {
     all_pass(&run);
 }
 
-/// The sets a node hosting the vehicle and the arm serves, by the URI prefix of their
-/// services (HMI has no stock core; Mission Spooling is not served yet).
+/// The sets a node hosting the vehicle and the arm serves on the gateway's component,
+/// by the URI prefix of their services (HMI has no stock core; Mission Spooling is a
+/// component of its own, checked on its own).
 const SERVED_SETS: [&str; 5] = [
     "urn:jaus:jss:core:",
     "urn:jaus:jss:mobility:",
@@ -230,21 +233,60 @@ const SERVED_SETS: [&str; 5] = [
 ];
 
 /// `jaus conform --as4 --plan --allow-motion` against `jaus node` hosting the vehicle
-/// and the arm: every service it lists, of every set it serves, planned from jaus-as4's
-/// definitions; no check fails, required or advisory, and the JUnit and HTML reports
-/// say so.
+/// and the arm with Digital Video and a Mission Spooler: every service it lists, of
+/// every set it serves, planned from jaus-as4's definitions, on the gateway's component
+/// and on the spooler's; no check fails, required or advisory, and the JUnit and HTML
+/// reports say so.
 #[test]
 fn planned_checks_of_every_served_set_pass_over_udp_against_jaus_node() {
     use jaus_conform::as4::planned::{run_planned, Definitions};
-    let (port, stop, node) = jaus_node_hosting("every-set", "[vehicle, arm]");
-    let socket = UdpSocket::bind("127.0.0.1:0").unwrap();
-    let mut session =
-        UdpAs4Session::new(socket, format!("127.0.0.1:{port}").parse().unwrap()).unwrap();
+    let (port, stop, node) = jaus_node_hosting(
+        "every-set",
+        "[vehicle, arm]",
+        "{ video: { listen: 127.0.0.1:0 }, mission_spooler: {} }",
+    );
+    let peer = format!("127.0.0.1:{port}").parse().unwrap();
     let defs = Definitions::as4().expect("jaus-as4's definitions");
+    let mut session = UdpAs4Session::new(UdpSocket::bind("127.0.0.1:0").unwrap(), peer).unwrap();
     let run = run_planned(&mut session, &defs, &judge());
+    // The Mission Spooler's component, on its own.
+    let mut session = UdpAs4Session::new(UdpSocket::bind("127.0.0.1:0").unwrap(), peer).unwrap();
+    let spooler = run_planned(
+        &mut session,
+        &defs,
+        &As4Options {
+            target: Some(As4Id::new(1, 1, 5)),
+            ..judge()
+        },
+    );
     stop.store(true, Ordering::Relaxed);
     let (r, out) = node.join().unwrap();
     assert!(r.is_ok(), "{r:?}\n{out}");
+    assert!(out.contains("AS-4 Digital Video"), "{out}");
+    let s = &spooler.components[0].outcomes;
+    assert!(
+        s[0].detail
+            .contains("urn:jaus:jss:missionSpooler:MissionSpooler"),
+        "{}",
+        s[0].detail
+    );
+    let failed: Vec<String> = s
+        .iter()
+        .filter(|o| o.verdict == Verdict::Fail)
+        .map(|o| format!("{} [{:?}]: {}", o.check.id, o.check.level, o.detail))
+        .collect();
+    assert!(
+        failed.is_empty(),
+        "the spooler failed:\n{}",
+        failed.join("\n")
+    );
+    let spooler_passed = s.iter().filter(|o| o.verdict == Verdict::Pass).count();
+    println!("spooler: {spooler_passed} of {} checks passed", s.len());
+    assert!(
+        spooler_passed >= 10,
+        "{spooler_passed} of {} checks passed",
+        s.len()
+    );
 
     let outcomes = &run.components[0].outcomes;
     let listed = &outcomes[0].detail;
@@ -265,6 +307,7 @@ fn planned_checks_of_every_served_set_pass_over_udp_against_jaus_node() {
         "manipulator:ManipulatorJointForceTorqueSensor",
         "manipulator:ManipulatorToolOffsetService",
         "environmentSensing:StillImage",
+        "environmentSensing:DigitalVideo",
         "environmentSensing:RangeSensor",
         "mobility:LocalWaypointListDriver",
     ] {
@@ -286,10 +329,17 @@ fn planned_checks_of_every_served_set_pass_over_udp_against_jaus_node() {
         let o = outcomes.iter().find(|o| o.check.id == id);
         assert!(o.is_some_and(|o| o.verdict == Verdict::Pass), "{id}: {o:?}");
     }
+    for o in outcomes
+        .iter()
+        .filter(|o| o.check.id.starts_with("as4.digital_video."))
+    {
+        println!("{} {:?}: {}", o.check.id, o.verdict, o.detail);
+    }
     let passed = outcomes
         .iter()
         .filter(|o| o.verdict == Verdict::Pass)
         .count();
+    println!("gateway: {passed} of {} checks passed", outcomes.len());
     assert!(passed >= 90, "{passed} of {} checks passed", outcomes.len());
     assert!(run.passed());
 

@@ -746,7 +746,8 @@ fn our_ugv_machines_take_what_the_public_jsidl_takes() {
 
 /// The differences `mission_spooling_services.yaml` declares (the last part of its
 /// header): the client side of the spooler (a destination's answers), the validity
-/// guards of Spool and Run Mission, and three internal events the owner raises.
+/// guards of Spool and Run Mission, Query Mission Status answered for what the spooler
+/// holds, and three internal events the owner raises.
 const MISSION_OURS: &[&str] = &[
     "MissionSpooler: on ConfirmControl []",
     "MissionSpooler: on RejectControl []",
@@ -755,6 +756,7 @@ const MISSION_OURS: &[&str] = &[
     "MissionSpooler: on RejectEventRequest []",
     "MissionSpooler: on SpoolMission [iscontrollingclient && ismissionvalid]",
     "MissionSpooler: on RunMission [iscontrollingclient && isrunvalid]",
+    "MissionSpooler: on QueryMissionStatus [isstatusknown]",
     "MissionSpooler: on Unblocked []",
     "MissionSpooler: on ControlRefused [ismissionspooled]",
     "MissionSpooler: on ControlRegained []",
@@ -763,6 +765,7 @@ const MISSION_OURS: &[&str] = &[
 const MISSION_THEIRS: &[&str] = &[
     "MissionSpooler: on SpoolMission [iscontrollingclient]",
     "MissionSpooler: on RunMission [iscontrollingclient]",
+    "MissionSpooler: on QueryMissionStatus []",
 ];
 
 #[test]

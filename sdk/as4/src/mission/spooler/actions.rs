@@ -75,6 +75,15 @@ impl generated::MissionSpooler for Spooler {
         false
     }
 
+    fn is_status_known(&self, msg: &QueryMissionStatus) -> bool {
+        self.record(msg.mission_id)
+            .is_some_and(|r| match (msg.message_uid, msg.task_id) {
+                (Some(uid), _) => r.plan.find(uid).is_some(),
+                (None, Some(t)) => r.plan.task(t).is_some(),
+                (None, None) => true,
+            })
+    }
+
     fn is_run_valid(&self, msg: &RunMission) -> bool {
         self.run_refusal(msg).is_none()
     }

@@ -22,6 +22,17 @@ const PROTOCOL: &[&str] = &[
     "urn:jaus:jss:core:Liveness",
 ];
 
+/// Whether message `name` is one a [`PROTOCOL`] service takes: left alone wherever it
+/// appears, as in a service that redefines how it is taken (the Mission Spooler takes
+/// Request Control its own way, pausing its mission first): sent blindly from an
+/// outsider, Request Control is granted, as it must be.
+fn is_protocol_message(defs: &Definitions, name: &str) -> bool {
+    defs.services()
+        .iter()
+        .filter(|p| PROTOCOL.contains(&p.uri.as_str()))
+        .any(|p| p.transitions.iter().any(|t| t.message == name))
+}
+
 /// The Events service: a service inheriting it lets clients subscribe to its queries.
 pub(super) const EVENTS: &str = "urn:jaus:jss:core:Events";
 
@@ -259,7 +270,9 @@ pub fn plan_service(defs: &Definitions, s: &ServiceModel, opts: PlanOptions) -> 
             }
             continue;
         }
-        if PROTOCOL.contains(&s.uri.as_str()) || !(defs.needs_control(name) || t.needs_controller())
+        if PROTOCOL.contains(&s.uri.as_str())
+            || is_protocol_message(defs, name)
+            || !(defs.needs_control(name) || t.needs_controller())
         {
             continue;
         }
