@@ -126,3 +126,21 @@ fn an_as4_client_plays_the_cameras_video_and_a_viewer_gets_mjpeg_over_http() {
         "{out}"
     );
 }
+
+/// `examples/nodes/as4-vehicle.yaml`, which the docs tell a vendor to run, loads: the
+/// gateway, Digital Video on loopback, the Mission Spooler on component 5.
+#[test]
+fn the_example_as4_node_file_loads() {
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/nodes/as4-vehicle.yaml");
+    let file = jaus_node::NodeFile::load(&path).expect("loads");
+    assert_eq!(file.as4_config().expect("as4:").as4.to_string(), "1.1.1");
+    let as4 = file.as4.as_ref().unwrap();
+    let video = as4.video.as_ref().expect("video:");
+    assert_eq!(
+        video.listen,
+        "127.0.0.1:8090".parse::<SocketAddr>().unwrap()
+    );
+    assert!(video.token.is_none() && video.listen.ip().is_loopback());
+    assert!(file.as4_mission_spooler(&path).unwrap().is_some());
+}
