@@ -5,7 +5,8 @@
 //! Core. Checked: a remote asset asks which analog devices the panel has and how far the
 //! joystick is deflected (any client, no control), asks the last button action, sets
 //! how a button is shown only while it controls the panel, and an event on the
-//! joystick's query reports its deflection.
+//! joystick's query reports its deflection. And `jaus conform --as4 --plan` against it
+//! (in memory): every required check of both services passes.
 
 use std::collections::BTreeMap;
 use std::time::{Duration, Instant};
@@ -96,7 +97,13 @@ impl analog_control::AnalogControl for Joystick {
 
     fn send_report_analog_action(&mut self, msg: &QueryAnalogAction, transport_data: &Receive) {
         if msg.analog_reference != STICK {
-            return;
+            // A device the panel has not: its report carries no axis (the query's
+            // transition is unguarded, so it is answered).
+            let none = ReportAnalogAction {
+                reference: msg.analog_reference,
+                ..Default::default()
+            };
+            return self.outbox.reply(transport_data, &none);
         }
         // The axes asked for (bit 0 longitudinal, bit 1 lateral) that the stick has.
         let asked = msg.presence_vector as u8;
@@ -262,4 +269,63 @@ fn an_event_on_the_joysticks_query_reports_its_deflection() {
         Message::ReportAnalogAction(a)
             if a.longitudinal == Some(AnalogValue::I16(500)) && a.lateral == Some(AnalogValue::I16(-40))
     )), "{reports:?}");
+}
+
+#[test]
+fn the_planned_conformance_checks_pass_against_the_panel() {
+    use jaus_conform::as4::planned::{run_planned, Definitions};
+    use jaus_conform::as4::{As4Host, As4Options, MemoryAs4Session};
+    use jaus_conform::Verdict;
+
+    let t0 = Instant::now();
+    let (component, shared) = panel();
+    shared.lock().unwrap().last_action = Some((3, DigitalControlState::Pressed));
+    let node: jaus_as4::node::As4Node<(), std::net::SocketAddr> =
+        jaus_as4::node::As4Node::new(()).with_component(component);
+    let mut session = MemoryAs4Session::new(As4Host::new(node), t0);
+    let defs = Definitions::as4().expect("jaus-as4's definitions");
+    let run = run_planned(
+        &mut session,
+        &defs,
+        &As4Options {
+            target: Some(PANEL),
+            ..As4Options::default()
+        },
+    );
+    let outcomes = &run.components[0].outcomes;
+    for o in outcomes {
+        println!("{} {:?}: {}", o.check.id, o.verdict, o.detail);
+    }
+    let listed = &outcomes[0].detail;
+    for uri in [
+        "urn:jaus:jss:HMI:DigitalControl",
+        "urn:jaus:jss:HMI:AnalogControl",
+    ] {
+        assert!(listed.contains(uri), "{uri} not listed: {listed}");
+    }
+    let hmi: Vec<_> = outcomes
+        .iter()
+        .filter(|o| {
+            o.check.id.starts_with("as4.digital_control.")
+                || o.check.id.starts_with("as4.analog_control.")
+        })
+        .collect();
+    assert!(hmi.len() >= 5, "{} HMI checks", hmi.len());
+    let failed: Vec<String> = outcomes
+        .iter()
+        .filter(|o| o.verdict == Verdict::Fail)
+        .map(|o| format!("{}: {}", o.check.id, o.detail))
+        .collect();
+    assert!(failed.is_empty(), "failed:\n{}", failed.join("\n"));
+    assert!(run.passed());
+    // Set DCM's `state` (flags: how a button is shown) is not Report DCM's (pressed or
+    // released): Query DCM is not its read-back, so no `.controller` check.
+    assert!(!outcomes
+        .iter()
+        .any(|o| o.check.id == "as4.digital_control.command.SetDcm.controller"));
+    let passed = outcomes
+        .iter()
+        .filter(|o| o.verdict == Verdict::Pass)
+        .count();
+    println!("panel: {passed} of {} checks passed", outcomes.len());
 }

@@ -282,7 +282,10 @@ pub fn plan_service(defs: &Definitions, s: &ServiceModel, opts: PlanOptions) -> 
         }
         // A read-back only counts when its report carries a field the command sets.
         let readback = readback_of(defs, name).filter(|q| {
-            report_name(defs, q).is_some_and(|r| !super::sample::shared(defs, name, &r).is_empty())
+            report_name(defs, q).is_some_and(|r| {
+                !super::sample::shared(defs, name, &r).is_empty()
+                    && !super::sample::conflicts(defs, name, &r)
+            })
         });
         outsiders.push(Planned {
             check: check(

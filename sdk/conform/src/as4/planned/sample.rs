@@ -146,6 +146,20 @@ pub fn shared(defs: &Definitions, command: &str, report: &str) -> Vec<Shared> {
         .collect()
 }
 
+/// Whether `report` cannot be `command`'s read-back: a field of both names with
+/// different types (HMI's Set DCM sets how a button is shown, `state` of flags; Report
+/// DCM reports its last action, `state` pressed or released: same names, two things).
+pub fn conflicts(defs: &Definitions, command: &str, report: &str) -> bool {
+    let (Some(c), Some(r)) = (defs.message(command), defs.message(report)) else {
+        return false;
+    };
+    c.fields.iter().any(|f| {
+        r.fields
+            .iter()
+            .any(|g| g.def.name == f.def.name && (g.def.ty != f.def.ty || g.wire != f.wire))
+    })
+}
+
 /// `v` moved a little within its wire type: down by one step when it can, else up.
 fn nudge(v: f64, wire: &Wire) -> f64 {
     match wire {
