@@ -288,14 +288,11 @@ impl<A: PeerAddr> Gateway<A> {
         if gpsd.is_some() {
             c.core_mut().lists_mut().support(SetGlobalPathSegment::CODE);
         }
-        if services
-            .iter()
-            .any(|s| s.id() == crate::manipulator::ServiceIds::JOINT_POSITION_LIST_DRIVER)
-        {
-            // The Joint Position List Driver's elements.
-            c.core_mut()
-                .lists_mut()
-                .support(crate::messages::SetJointPositions::CODE);
+        for (id, code) in crate::manipulator::LIST_ELEMENTS {
+            // The manipulator list drivers' elements.
+            if services.iter().any(|s| s.id() == id) {
+                c.core_mut().lists_mut().support(code);
+            }
         }
         for s in services {
             tracing::info!(service = %s.id(), as4 = %self.as4, "AS-4 service offered");

@@ -167,30 +167,10 @@ impl pose_driver::ManipulatorEndEffectorPoseDriver for On<'_, EndEffectorPose> {
     }
 
     fn send_report_commanded_end_effector_pose(&mut self, transport: &Receive) {
-        let report = match &self.svc.commanded {
-            Some(c) => ReportCommandedEndEffectorPose {
-                tool_point_x: c.tool_point_x,
-                tool_point_y: c.tool_point_y,
-                tool_point_z: c.tool_point_z,
-                quaternion_d: c.quaternion_d,
-                quaternion_a: c.quaternion_a,
-                quaternion_b: c.quaternion_b,
-                quaternion_c: c.quaternion_c,
-            },
-            None => match measured_pose(self.env, &self.svc.arm) {
-                Ok(p) => ReportCommandedEndEffectorPose {
-                    tool_point_x: p.tool_point_x,
-                    tool_point_y: p.tool_point_y,
-                    tool_point_z: p.tool_point_z,
-                    quaternion_d: p.quaternion_d,
-                    quaternion_a: p.quaternion_a,
-                    quaternion_b: p.quaternion_b,
-                    quaternion_c: p.quaternion_c,
-                },
-                Err(why) => return self.refuse(why),
-            },
-        };
-        self.reply(transport, report);
+        match commanded_pose(self.env, &self.svc.arm, self.svc.commanded.as_ref()) {
+            Ok(report) => self.reply(transport, report),
+            Err(why) => self.refuse(why),
+        }
     }
 
     fn set_end_effector_pose(&mut self, msg: &SetEndEffectorPose) {
@@ -206,16 +186,54 @@ impl pose_driver::ManipulatorEndEffectorPoseDriver for On<'_, EndEffectorPose> {
             return self.refuse(e.to_string());
         }
         self.svc.commanded = Some(msg.clone());
-        let command = ra::SetEndEffectorPose {
-            x: msg.tool_point_x,
-            y: msg.tool_point_y,
-            z: msg.tool_point_z,
-            d: msg.quaternion_d,
-            a: msg.quaternion_a,
-            b: msg.quaternion_b,
-            c: msg.quaternion_c,
-        }
-        .into();
+        let command = ra33_pose(msg);
         deliver(self.env, self.svc.driver, command, &mut self.svc.pending);
     }
+}
+
+/// The RA 3.3 Set End Effector Pose of an AS-4 one: the same position and quaternion,
+/// in the vehicle frame.
+pub(super) fn ra33_pose(msg: &SetEndEffectorPose) -> ra::Message {
+    ra::SetEndEffectorPose {
+        x: msg.tool_point_x,
+        y: msg.tool_point_y,
+        z: msg.tool_point_z,
+        d: msg.quaternion_d,
+        a: msg.quaternion_a,
+        b: msg.quaternion_b,
+        c: msg.quaternion_c,
+    }
+    .into()
+}
+
+/// Report Commanded End Effector Pose: the pose `commanded`, else the measured one (or
+/// why there is none).
+pub(super) fn commanded_pose(
+    env: &Ra33Side,
+    arm: &Arm,
+    commanded: Option<&SetEndEffectorPose>,
+) -> Result<ReportCommandedEndEffectorPose, String> {
+    Ok(match commanded {
+        Some(c) => ReportCommandedEndEffectorPose {
+            tool_point_x: c.tool_point_x,
+            tool_point_y: c.tool_point_y,
+            tool_point_z: c.tool_point_z,
+            quaternion_d: c.quaternion_d,
+            quaternion_a: c.quaternion_a,
+            quaternion_b: c.quaternion_b,
+            quaternion_c: c.quaternion_c,
+        },
+        None => {
+            let p = measured_pose(env, arm)?;
+            ReportCommandedEndEffectorPose {
+                tool_point_x: p.tool_point_x,
+                tool_point_y: p.tool_point_y,
+                tool_point_z: p.tool_point_z,
+                quaternion_d: p.quaternion_d,
+                quaternion_a: p.quaternion_a,
+                quaternion_b: p.quaternion_b,
+                quaternion_c: p.quaternion_c,
+            }
+        }
+    })
 }

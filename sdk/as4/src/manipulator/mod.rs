@@ -24,6 +24,7 @@
 //! | End-Effector Velocity State Sensor | Joint Position + Joint Velocity Sensors + the chain | Query/Report End Effector Velocity State (the Jacobian of the measured joints times their rates, at the tool point) |
 //! | Tool Offset Service | End-Effector Pose Driver | Set Tool Offset → RA 3.3 Set Tool Point; Query/Report Tool Offset from Report Tool Point ([`tool`]) |
 //! | Joint Position List Driver | Joint Move Driver | the component's list of Set Joint Positions, from Manipulator Execute List's element → one RA 3.3 Set Joint Motion, each pose at a planned time; Query Manipulator Active Element, Query/Report Commanded Joint Positions ([`list`]) |
+//! | End-Effector Pose List Driver | End-Effector Pose Driver + Joint Position Sensor + the chain | the component's list of Set End Effector Pose (each checked within reach), from Manipulator Execute List's element → one RA 3.3 Set End Effector Pose at a time, the next once the measured pose is within 1 mm and 0.01 rad; Query Manipulator Active Element, Query/Report Commanded End Effector Pose ([`pose_list`]) |
 //!
 //! The five drivers are one [`Group`](crate::ra33::Group): the one an AS-4 client
 //! commands is resumed and the others put in standby, as two RA 3.3 drivers of one arm
@@ -33,12 +34,11 @@
 //!
 //! Not offered (their machines are generated, `defs/manipulator_services.yaml`, for a
 //! vendor to serve): the Joint Motion Profile (RA 3.3 keeps no acceleration limits a
-//! client could read or set), the End-Effector Pose List Driver (RA 3.3's End-Effector
-//! Discrete Pose Driver could carry it as the Joint Move Driver carries the joint list;
-//! not done yet), the Actuator Force/Torque Driver and Primitive Manipulator (the stock
-//! Primitive Manipulator takes efforts only from the RA 3.3 drivers, which hold it, and
-//! RA 3.3 has no force/torque command), the Primitive End Effector and the pan-tilt
-//! services (no RA 3.3 component, no simulated gripper or pan-tilt).
+//! client could read or set), the Actuator Force/Torque Driver and Primitive
+//! Manipulator (the stock Primitive Manipulator takes efforts only from the RA 3.3
+//! drivers, which hold it, and RA 3.3 has no force/torque command), the Primitive End
+//! Effector and the pan-tilt services (no RA 3.3 component, no simulated gripper or
+//! pan-tilt).
 
 use jaus::messages as ra;
 use jaus::stock::manipulator::kinematics::{Chain, JointKind};
@@ -57,12 +57,15 @@ use crate::service::{Service, ServiceId};
 
 pub mod drivers;
 pub mod list;
+mod listing;
+pub mod pose_list;
 pub mod sensors;
 pub mod tool;
 pub mod velocity;
 
 pub use drivers::{EndEffectorPoseDriver, JointPositionDriver};
 pub use list::JointPositionListDriver;
+pub use pose_list::EndEffectorPoseListDriver;
 pub use sensors::{
     EndEffectorPoseSensor, JointForceTorqueSensor, JointPositionSensor, JointVelocitySensor,
     SpecificationService,
@@ -108,7 +111,23 @@ impl ServiceIds {
     /// `urn:jaus:jss:manipulator:ManipulatorJointPositionListDriver`.
     pub const JOINT_POSITION_LIST_DRIVER: ServiceId =
         generated_id!(manipulator_joint_position_list_driver);
+    /// `urn:jaus:jss:manipulator:ManipulatorEndEffectorPoseListDriver`.
+    pub const END_EFFECTOR_POSE_LIST_DRIVER: ServiceId =
+        generated_id!(manipulator_end_effector_pose_list_driver);
 }
+
+/// The message the elements of each list driver's list hold: the service, the message
+/// the gateway's List Manager is to accept.
+pub const LIST_ELEMENTS: [(ServiceId, jaus::CommandCode); 2] = [
+    (
+        ServiceIds::JOINT_POSITION_LIST_DRIVER,
+        crate::messages::SetJointPositions::CODE,
+    ),
+    (
+        ServiceIds::END_EFFECTOR_POSE_LIST_DRIVER,
+        crate::messages::SetEndEffectorPose::CODE,
+    ),
+];
 
 /// The Manipulator services for the RA 3.3 components just found (`new`, a subset of
 /// `targets`, the gateway's whole set): a service is offered once the components it
@@ -164,6 +183,15 @@ pub fn services(
         pm_new || new.joint_positions_driver.is_some(),
     ) {
         out.push(Box::new(JointPositionDriver::new(d, arm)));
+    }
+    // Before the End-Effector Pose Driver, as the joint list before the Joint Position
+    // Driver (Query Commanded End Effector Pose while it drives a list).
+    if let (Some(d), Some(_), true) = (
+        targets.end_effector_pose_driver,
+        jps,
+        pm_new || new.end_effector_pose_driver.is_some() || new.joint_position_sensor.is_some(),
+    ) {
+        out.push(Box::new(EndEffectorPoseListDriver::new(d, arm)));
     }
     if let (Some(d), true) = (
         targets.end_effector_pose_driver,

@@ -141,6 +141,8 @@ pub struct Ra33Side {
     ready: bool,
     /// The driver of each group that moves its hardware ([`Ra33Side::activate`]).
     active: HashMap<Group, Address>,
+    /// How many commands each group's drivers were given ([`Ra33Side::activations`]).
+    activations: HashMap<Group, u64>,
     /// The AS-4 local frame relative to the RA 3.3 one (Set Local Pose moves it).
     pub frame: Frame,
     /// A local frame (x north, y east) at the first global position the Global Pose
@@ -176,6 +178,7 @@ impl Ra33Side {
             want_control: false,
             ready: false,
             active: HashMap::new(),
+            activations: HashMap::new(),
             frame: Frame::default(),
             tangent: None,
             discrete: discrete::DiscreteDevices::default(),
@@ -510,6 +513,17 @@ impl Ra33Side {
         self.active.get(&self.targets.group(driver)) == Some(&driver)
     }
 
+    /// How many times a driver of `driver`'s group was made the active one
+    /// ([`activate`](Self::activate), once per command an AS-4 service passes on): a
+    /// service that drove the group last knows another command came when it changes,
+    /// even one to the same RA 3.3 driver.
+    pub fn activations(&self, driver: Address) -> u64 {
+        self.activations
+            .get(&self.targets.group(driver))
+            .copied()
+            .unwrap_or(0)
+    }
+
     /// Makes `driver` the one that moves its group's hardware ([`Group`]): it is resumed
     /// (control asked for first if needed) and every other driver of its group the
     /// gateway controls goes to standby, so that two drivers never contend for the
@@ -533,6 +547,7 @@ impl Ra33Side {
             }
         }
         self.active.insert(group, driver);
+        *self.activations.entry(group).or_default() += 1;
         if self.ready && self.control_of(driver) == Ra33Control::Granted {
             self.send(driver, Resume {});
         }
