@@ -233,7 +233,7 @@ const SERVED_SETS: [&str; 5] = [
 ];
 
 /// `jaus conform --as4 --plan --allow-motion` against `jaus node` hosting the vehicle
-/// and the arm with Digital Video and a Mission Spooler: every service it lists, of
+/// and the arm with Digital Video, the camera's pan-tilt mount and a Mission Spooler: every service it lists, of
 /// every set it serves, planned from jaus-as4's definitions, on the gateway's component
 /// and on the spooler's; no check fails, required or advisory, and the JUnit and HTML
 /// reports say so.
@@ -243,7 +243,7 @@ fn planned_checks_of_every_served_set_pass_over_udp_against_jaus_node() {
     let (port, stop, node) = jaus_node_hosting(
         "every-set",
         "[vehicle, arm]",
-        "{ video: { listen: 127.0.0.1:0 }, mission_spooler: {} }",
+        "{ video: { listen: 127.0.0.1:0 }, mission_spooler: {}, pan_tilt: { pan_limit: 90, tilt_limit: 30 } }",
     );
     let peer = format!("127.0.0.1:{port}").parse().unwrap();
     let defs = Definitions::as4().expect("jaus-as4's definitions");
@@ -308,6 +308,9 @@ fn planned_checks_of_every_served_set_pass_over_udp_against_jaus_node() {
         "manipulator:ManipulatorToolOffsetService",
         "environmentSensing:StillImage",
         "environmentSensing:DigitalVideo",
+        "manipulator:PanTiltJointPositionDriver",
+        "manipulator:PanTiltJointPositionSensor",
+        "manipulator:ManipulatorEndEffectorPoseListDriver",
         "environmentSensing:RangeSensor",
         "mobility:LocalWaypointListDriver",
     ] {

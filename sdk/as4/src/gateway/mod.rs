@@ -10,9 +10,10 @@
 //! ([`jaus::net::as5669a::As4Side`]) hands it the AS-4 messages. It hosts one
 //! [`As4Component`] with the Core services and, for each RA 3.3 component found in the
 //! presented subsystem, the matching Mobility service ([`crate::mobility`]), Manipulator
-//! services ([`crate::manipulator`]) and Still Image ([`crate::environment`]); the UGV
-//! services ([`crate::ugv`]) come once the RA 3.3 Primitive Driver has answered what
-//! they read.
+//! services ([`crate::manipulator`], with the pan-tilt services over the Visual Sensor's
+//! camera mount when [`GatewayConfig::pan_tilt`] gives it) and Still Image
+//! ([`crate::environment`]); the UGV services ([`crate::ugv`]) come once the RA 3.3
+//! Primitive Driver has answered what they read.
 //!
 //! The control and status semantics cross over: while an AS-4 client holds control of
 //! the AS-4 component, the gateway holds RA 3.3 control of the drivers (with its own
@@ -75,6 +76,10 @@ pub struct GatewayConfig {
         crate::environment::VideoHub,
         crate::environment::VideoLimits,
     )>,
+    /// The pan/tilt mount of a camera of the RA 3.3 Visual Sensor (RA 3.3 does not give
+    /// its limits); `None` (the default): no pan-tilt services
+    /// ([`crate::manipulator::pan_tilt`]).
+    pub pan_tilt: Option<crate::manipulator::PanTiltMount>,
 }
 
 impl GatewayConfig {
@@ -89,6 +94,7 @@ impl GatewayConfig {
             authority: 200,
             poll_period: Duration::from_millis(100),
             video: None,
+            pan_tilt: None,
         }
     }
 }
@@ -118,6 +124,8 @@ pub struct Gateway<A: PeerAddr = SocketAddr> {
         crate::environment::VideoHub,
         crate::environment::VideoLimits,
     )>,
+    /// The camera mount the pan-tilt services drive ([`GatewayConfig::pan_tilt`]).
+    pan_tilt: Option<crate::manipulator::PanTiltMount>,
 }
 
 /// Which local services a [`Gateway`] derived from global ones.
@@ -151,6 +159,7 @@ impl<A: PeerAddr> Gateway<A> {
             derived: Derived::default(),
             ugv: crate::ugv::Offered::default(),
             video: config.video,
+            pan_tilt: config.pan_tilt,
         }
     }
 
@@ -265,6 +274,9 @@ impl<A: PeerAddr> Gateway<A> {
         services.extend(crate::ugv::found(&new));
         if let Some(a) = new.visual_sensor {
             services.push(Box::new(crate::environment::StillImage::new(a)));
+            if let Some(mount) = self.pan_tilt {
+                services.extend(crate::manipulator::pan_tilt::services(env, now, a, mount));
+            }
             if let Some((hub, limits)) = &self.video {
                 services.push(Box::new(crate::environment::DigitalVideo::new(
                     a,

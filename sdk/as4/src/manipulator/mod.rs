@@ -23,6 +23,9 @@
 //! | End-Effector Velocity State Driver | End-Effector Velocity State Driver | Set End Effector Velocity State → RA 3.3 Set End Effector Velocity State (the same six rates, vehicle frame), streamed; Query/Report Commanded End Effector Velocity State |
 //! | End-Effector Velocity State Sensor | Joint Position + Joint Velocity Sensors + the chain | Query/Report End Effector Velocity State (the Jacobian of the measured joints times their rates, at the tool point) |
 //! | Tool Offset Service | End-Effector Pose Driver | Set Tool Offset → RA 3.3 Set Tool Point; Query/Report Tool Offset from Report Tool Point ([`tool`]) |
+//! | Pan Tilt Specification Service | Visual Sensor + the configured mount ([`PanTiltMount`]) | Query/Report Pan Tilt Specifications (the mount's limits; its origin from Report Camera Pose) ([`pan_tilt`]) |
+//! | Pan Tilt Joint Position Sensor | Visual Sensor | Query/Report Pan Tilt Joint Positions from Report Camera Pose's lens axis ([`pan_tilt`]) |
+//! | Pan Tilt Joint Position Driver | Visual Sensor | Set Pan Tilt Joint Positions (checked against the mount's limits) → RA 3.3 Set Camera Pose, position mode, percent of the limits; Query/Report Commanded Pan Tilt Joint Positions ([`pan_tilt`]) |
 //! | Joint Position List Driver | Joint Move Driver | the component's list of Set Joint Positions, from Manipulator Execute List's element → one RA 3.3 Set Joint Motion, each pose at a planned time; Query Manipulator Active Element, Query/Report Commanded Joint Positions ([`list`]) |
 //! | End-Effector Pose List Driver | End-Effector Pose Driver + Joint Position Sensor + the chain | the component's list of Set End Effector Pose (each checked within reach), from Manipulator Execute List's element → one RA 3.3 Set End Effector Pose at a time, the next once the measured pose is within 1 mm and 0.01 rad; Query Manipulator Active Element, Query/Report Commanded End Effector Pose ([`pose_list`]) |
 //!
@@ -37,8 +40,9 @@
 //! client could read or set), the Actuator Force/Torque Driver and Primitive
 //! Manipulator (the stock Primitive Manipulator takes efforts only from the RA 3.3
 //! drivers, which hold it, and RA 3.3 has no force/torque command), the Primitive End
-//! Effector and the pan-tilt services (no RA 3.3 component, no simulated gripper or
-//! pan-tilt).
+//! Effector (no RA 3.3 component, no simulated gripper), the Primitive Pan Tilt, the
+//! pan-tilt velocity services and the Pan Tilt Motion Profile Service (the stock Visual
+//! Sensor's mount takes positions only; RA 3.3 gives no speed limits, [`pan_tilt`]).
 
 use jaus::messages as ra;
 use jaus::stock::manipulator::kinematics::{Chain, JointKind};
@@ -58,6 +62,7 @@ use crate::service::{Service, ServiceId};
 pub mod drivers;
 pub mod list;
 mod listing;
+pub mod pan_tilt;
 pub mod pose_list;
 pub mod sensors;
 pub mod tool;
@@ -65,6 +70,10 @@ pub mod velocity;
 
 pub use drivers::{EndEffectorPoseDriver, JointPositionDriver};
 pub use list::JointPositionListDriver;
+pub use pan_tilt::{
+    PanTiltJointPositionDriver, PanTiltJointPositionSensor, PanTiltMount,
+    PanTiltSpecificationService,
+};
 pub use pose_list::EndEffectorPoseListDriver;
 pub use sensors::{
     EndEffectorPoseSensor, JointForceTorqueSensor, JointPositionSensor, JointVelocitySensor,
@@ -114,6 +123,14 @@ impl ServiceIds {
     /// `urn:jaus:jss:manipulator:ManipulatorEndEffectorPoseListDriver`.
     pub const END_EFFECTOR_POSE_LIST_DRIVER: ServiceId =
         generated_id!(manipulator_end_effector_pose_list_driver);
+    /// `urn:jaus:jss:manipulator:PanTiltSpecificationService`.
+    pub const PAN_TILT_SPECIFICATION: ServiceId = generated_id!(pan_tilt_specification_service);
+    /// `urn:jaus:jss:manipulator:PanTiltJointPositionSensor`.
+    pub const PAN_TILT_JOINT_POSITION_SENSOR: ServiceId =
+        generated_id!(pan_tilt_joint_position_sensor);
+    /// `urn:jaus:jss:manipulator:PanTiltJointPositionDriver`.
+    pub const PAN_TILT_JOINT_POSITION_DRIVER: ServiceId =
+        generated_id!(pan_tilt_joint_position_driver);
 }
 
 /// The message the elements of each list driver's list hold: the service, the message

@@ -32,6 +32,13 @@ impl NodeFile {
         if let Some(x) = a.authority {
             config.authority = x;
         }
+        config.pan_tilt = a.pan_tilt.as_ref().map(|m| {
+            jaus_as4::manipulator::PanTiltMount::new(
+                m.camera,
+                m.pan_limit.to_radians(),
+                m.tilt_limit.to_radians(),
+            )
+        });
         Some(config)
     }
 

@@ -330,6 +330,8 @@ pub struct FrameFile {
 ///     component: 5          #   MissionSpoolerFile)
 ///   video:                  # Digital Video over the RA 3.3 Visual Sensor, MJPEG over
 ///     listen: 127.0.0.1:8090  # HTTP at http://<listen>/video/1 (see video::VideoFile)
+///   pan_tilt: { camera: 1, pan_limit: 90, tilt_limit: 30 }  # the camera's mount (deg),
+///                           # for the AS-4 pan-tilt services (see PanTiltFile)
 /// ```
 #[derive(Debug, Clone, Default, serde::Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -370,6 +372,34 @@ pub struct As4File {
     /// HTTP ([`crate::video::VideoFile`]); without it, no Digital Video.
     #[serde(default)]
     pub video: Option<crate::video::VideoFile>,
+    /// The pan/tilt mount of a camera of the RA 3.3 Visual Sensor, for the AS-4 pan-tilt
+    /// services (RA 3.3 gives no mount limits); without it, none.
+    #[serde(default)]
+    pub pan_tilt: Option<PanTiltFile>,
+}
+
+/// `as4: { pan_tilt: … }` of a node file: the mount of a camera of the RA 3.3 Visual
+/// Sensor the gateway presents as the AS-4 Pan Tilt Specification, Joint Position
+/// Sensor and Joint Position Driver (`jaus_as4::manipulator::pan_tilt`).
+///
+/// ```yaml
+/// as4:
+///   pan_tilt: { camera: 1, pan_limit: 90, tilt_limit: 30 }   # degrees, ± each
+/// ```
+#[derive(Debug, Clone, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PanTiltFile {
+    /// The camera on the mount (from 1; default 1).
+    #[serde(default = "one")]
+    pub camera: u8,
+    /// The mount pans ± this far, degrees (the RA 3.3 pan axis's 100 %).
+    pub pan_limit: f64,
+    /// The mount tilts ± this far, degrees (the RA 3.3 tilt axis's 100 %).
+    pub tilt_limit: f64,
+}
+
+fn one() -> u8 {
+    1
 }
 
 /// `as4: { mission_spooler: … }` of a node file: an AS-4 component of its own (the
@@ -662,6 +692,25 @@ impl NodeFile {
                     at(key),
                     if f.transport == TransportFile::Tcp { "tcp" } else { "serial" },
                     if f.transport == TransportFile::Tcp { "JTCP to its peers" } else { "JSerial on its line" },
+                ));
+            }
+        }
+        if let Some(m) = f.as4.as_ref().and_then(|a| a.pan_tilt.as_ref()) {
+            for (key, v, max) in [
+                ("as4.pan_tilt.pan_limit", m.pan_limit, 180.0),
+                ("as4.pan_tilt.tilt_limit", m.tilt_limit, 90.0),
+            ] {
+                if !(v > 0.0 && v <= max) {
+                    return Err(format!(
+                        "{}: {key} {v} is not in (0, {max}] degrees (± how far the mount turns)",
+                        at(key)
+                    ));
+                }
+            }
+            if m.camera == 0 {
+                return Err(format!(
+                    "{}: as4.pan_tilt.camera 0: cameras count from 1",
+                    at("as4.pan_tilt.camera")
                 ));
             }
         }
