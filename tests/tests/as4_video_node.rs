@@ -17,7 +17,7 @@ use common::process::{free_addr, node_file, test_dir, NodeProcess};
 fn get(http: SocketAddr) -> Option<(String, Vec<u8>)> {
     let mut c = TcpStream::connect(http).ok()?;
     c.set_read_timeout(Some(Duration::from_secs(10))).ok()?;
-    c.write_all(b"GET /video/1 HTTP/1.1\r\nHost: test\r\n\r\n")
+    c.write_all(b"GET /video/1 HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n")
         .ok()?;
     let mut out = Vec::new();
     let _ = c.read_to_end(&mut out);

@@ -10,8 +10,10 @@
 //! [`MAX_REQUEST`] bytes at most and read within [`IO_TIMEOUT`]; connections served at
 //! once bounded ([`VideoFile::max_viewers`] watching, as many again being read: more are
 //! closed unanswered, counted); only `GET` of the one path; an optional token
-//! (`?token=…`, compared in constant time); a write that stalls for [`IO_TIMEOUT`] ends
-//! the viewer. The listener is the node file's `listen` (default loopback only): the
+//! (`?token=…`, compared in constant time); a `Host` header naming anything but an IP
+//! address or `localhost` refused (no web page of another site reaches the stream by DNS
+//! rebinding; a page may still show it in an `<img>`, which gives it no pixels to read);
+//! a write that stalls for [`IO_TIMEOUT`] ends the viewer. The listener is the node file's `listen` (default loopback only): the
 //! HTTP side has no authentication but the token, so expose it only on a trusted link.
 
 use std::io::{self, Read, Write};
@@ -254,8 +256,40 @@ fn same(a: &[u8], b: &[u8]) -> bool {
     a.len() == b.len() && a.iter().zip(b).fold(0u8, |d, (x, y)| d | (x ^ y)) == 0
 }
 
+/// Whether a request's `Host` header may reach the server: absent (HTTP/1.0), an IP
+/// address or `localhost`, with or without a port. A web page whose own name an attacker
+/// made resolve to this address (DNS rebinding) sends its name: refused, so no page of
+/// another site can read the stream through a visitor's browser.
+fn host_allowed(head: &str) -> bool {
+    let Some(host) = head.lines().skip(1).find_map(|l| {
+        let (name, value) = l.split_once(':')?;
+        name.trim()
+            .eq_ignore_ascii_case("host")
+            .then(|| value.trim())
+    }) else {
+        return true;
+    };
+    let name = match host.strip_prefix('[') {
+        // [v6]:port
+        Some(v6) => {
+            return v6
+                .split(']')
+                .next()
+                .is_some_and(|a| a.parse::<std::net::Ipv6Addr>().is_ok())
+        }
+        None => host.rsplit_once(':').map_or(host, |(n, _)| n),
+    };
+    name.eq_ignore_ascii_case("localhost") || name.parse::<std::net::Ipv4Addr>().is_ok()
+}
+
 /// The sensor id a request line asks for, or the status refusing it.
 fn route(head: &str, token: Option<&str>) -> Result<u16, (u16, &'static str)> {
+    if !host_allowed(head) {
+        return Err((
+            403,
+            "Host must be this server's address (an IP or localhost)",
+        ));
+    }
     let line = head.lines().next().unwrap_or_default();
     let mut parts = line.split(' ');
     let (Some(method), Some(target), Some(version), None) =

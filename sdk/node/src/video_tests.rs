@@ -70,7 +70,7 @@ fn a_viewer_gets_the_frames_as_mjpeg_until_the_stream_stops() {
         }
         h.set_state(1, StreamState::Stopped);
     });
-    let answer = get(&s, b"GET /video/1 HTTP/1.1\r\nHost: x\r\n\r\n");
+    let answer = get(&s, b"GET /video/1 HTTP/1.1\r\nHost: 127.0.0.1:8090\r\n\r\n");
     publisher.join().unwrap();
     let text = String::from_utf8_lossy(&answer);
     assert_eq!(status(&answer), "HTTP/1.1 200 OK");
@@ -94,7 +94,11 @@ fn what_is_not_a_viewer_of_a_playing_stream_is_refused_and_the_server_goes_on() 
     assert_eq!(status(&a), "HTTP/1.1 503 Service Unavailable");
     assert!(String::from_utf8_lossy(&a).contains("Control Digital Video Sensor Stream"));
     hub.set_state(1, StreamState::Playing);
-    let cases: [(&[u8], &str); 9] = [
+    let cases: [(&[u8], &str); 10] = [
+        (
+            b"GET /video/1?token=s3cret HTTP/1.1\r\nHost: evil.example:8090\r\n\r\n",
+            "403",
+        ),
         (b"POST /video/1?token=s3cret HTTP/1.1\r\n\r\n", "405"),
         (b"GET /video/1 HTTP/1.1\r\n\r\n", "403"),
         (b"GET /video/1?token=s3crex HTTP/1.1\r\n\r\n", "403"),
@@ -137,7 +141,7 @@ fn what_is_not_a_viewer_of_a_playing_stream_is_refused_and_the_server_goes_on() 
     drop(first);
     let st = s.stats();
     assert_eq!(st.bad_requests.load(Ordering::Relaxed), 5);
-    assert_eq!(st.forbidden.load(Ordering::Relaxed), 2);
+    assert_eq!(st.forbidden.load(Ordering::Relaxed), 3);
     assert_eq!(st.not_found.load(Ordering::Relaxed), 3);
     assert_eq!(st.unavailable.load(Ordering::Relaxed), 2);
     println!("{}", s.stats_line());
@@ -158,4 +162,25 @@ fn connections_beyond_the_bound_are_closed_unanswered() {
     assert!(a.is_empty(), "{}", String::from_utf8_lossy(&a));
     assert_eq!(s.stats().busy.load(Ordering::Relaxed), 1);
     drop(idle);
+}
+
+#[test]
+fn only_an_ip_or_localhost_may_be_the_host() {
+    for (host, ok) in [
+        ("127.0.0.1:8090", true),
+        ("10.1.2.3", true),
+        ("localhost:8090", true),
+        ("LOCALHOST", true),
+        ("[::1]:8090", true),
+        ("evil.example", false),
+        ("127.0.0.1.nip.io:8090", false),
+        ("[evil]:80", false),
+    ] {
+        let head = format!("GET /video/1 HTTP/1.1\r\nHost: {host}\r\n\r\n");
+        assert_eq!(host_allowed(&head), ok, "{host}");
+    }
+    assert!(
+        host_allowed("GET /video/1 HTTP/1.0\r\n\r\n"),
+        "no Host (HTTP/1.0)"
+    );
 }

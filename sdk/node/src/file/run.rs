@@ -108,8 +108,9 @@ pub fn node(
                 .map_err(|e| format!("{}: as4.video.listen {}: {e}", config.display(), v.listen))?;
             let _ = writeln!(
                 out,
-                "AS-4 Digital Video of the RA 3.3 visual sensor: MJPEG at http://{}/video/1{} while an AS-4 client plays it (at most {} frames/s)",
+                "AS-4 Digital Video of the RA 3.3 visual sensor: MJPEG at http://{}/video/{}{} while an AS-4 client plays it (at most {} frames/s)",
                 server.local_addr(),
+                jaus_as4::environment::SENSOR_ID,
                 if v.token.is_some() { "?token=…" } else { "" },
                 limits.max_frame_rate
             );
